@@ -1,0 +1,60 @@
+/* Ray-primitive intersection. Rays have unit directions; a hit is reported
+ * as a distance t in (0, t_max), a miss as WP_INFINITY. There is no minimum
+ * distance: rays leave surfaces from points offset by offset_ray_origin(),
+ * which is what keeps them from re-hitting their own surface. */
+
+/* Sphere, in the numerically careful form of Haines et al., "Precision
+ * Improvements for Ray/Sphere Intersection" (Ray Tracing Gems, ch. 7):
+ * the discriminant from the ray's closest approach to the centre, and the
+ * second root from Vieta's formula, so huge and tiny spheres and far origins
+ * keep their precision. Rays starting inside report the exit distance. */
+WP_FN real intersect_sphere(vec3 center, real radius, vec3 origin, vec3 direction, real t_max) {
+    vec3 f = origin - center;
+    real b = -dot(f, direction);
+    vec3 closest = f + b * direction; /* centre to the ray's closest point */
+    real discriminant = radius * radius - dot(closest, closest);
+    if (discriminant < REAL(0.0)) return WP_INFINITY;
+    real c = dot(f, f) - radius * radius;
+    real q = b + copysign(sqrt(discriminant), b);
+    real t0 = q != REAL(0.0) ? c / q : REAL(0.0);
+    real t1 = q;
+    real t_near = fmin(t0, t1);
+    real t_far = fmax(t0, t1);
+    if (t_near > REAL(0.0) && t_near < t_max) return t_near;
+    if (t_far > REAL(0.0) && t_far < t_max) return t_far;
+    return WP_INFINITY;
+}
+
+/* Infinite plane through `point` with (not necessarily unit) `normal`. A ray
+ * parallel to the plane misses it, also when it lies inside it. */
+WP_FN real intersect_plane(vec3 point, vec3 normal, vec3 origin, vec3 direction, real t_max) {
+    real denominator = dot(normal, direction);
+    if (denominator == REAL(0.0)) return WP_INFINITY;
+    real t = dot(point - origin, normal) / denominator;
+    return (t > REAL(0.0) && t < t_max) ? t : WP_INFINITY;
+}
+
+/* Parallelogram corner + u*edge1 + v*edge2 with u, v in [0, 1], edges and
+ * corners included. */
+WP_FN real intersect_quad(vec3 corner, vec3 edge1, vec3 edge2, vec3 origin, vec3 direction, real t_max) {
+    vec3 normal = cross(edge1, edge2);
+    real t = intersect_plane(corner, normal, origin, direction, t_max);
+    if (t == WP_INFINITY) return WP_INFINITY;
+    vec3 p = origin + t * direction - corner;
+    vec3 w = normal / dot(normal, normal);
+    real u = dot(w, cross(p, edge2));
+    real v = dot(w, cross(edge1, p));
+    return (u >= REAL(0.0) && u <= REAL(1.0) && v >= REAL(0.0) && v <= REAL(1.0)) ? t : WP_INFINITY;
+}
+
+/* Outward unit normal at a point on a sphere. */
+WP_FN vec3 sphere_normal(vec3 center, vec3 p) { return normalize(p - center); }
+
+/* Moves a computed hit point back onto the sphere, removing most of the
+ * error that origin + t * direction accumulated. */
+WP_FN vec3 sphere_reproject(vec3 center, real radius, vec3 p) {
+    vec3 d = p - center;
+    return center + d * (radius / length(d));
+}
+
+WP_FN vec3 quad_normal(vec3 edge1, vec3 edge2) { return normalize(cross(edge1, edge2)); }

@@ -1,0 +1,61 @@
+// The shared math of kernels/common/ compiled as C++, once per precision.
+// The code is included inside a struct, so its functions become static
+// members: wp::SharedMath<float> matches the OpenCL kernels and
+// wp::SharedMath<double> is the double-precision build, and code templated
+// on the scalar type reaches the right one through that alias.
+#pragma once
+
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <type_traits>
+
+#include <glm/geometric.hpp>
+#include <glm/vec3.hpp>
+
+namespace wp::shared_math_detail {
+
+// Scalar functions the shared code calls unqualified; vector ones (dot,
+// cross, normalize, length) are found through glm by argument lookup.
+using std::acos;
+using std::atan2;
+using std::copysign;
+using std::cos;
+using std::fabs;
+using std::floor;
+using std::fmax;
+using std::fmin;
+using std::isfinite;
+using std::sin;
+using std::sqrt;
+
+struct Float {
+    using real = float;
+    using real_bits = std::int32_t;
+    using uint = std::uint32_t;
+    using vec3 = glm::vec<3, real>;
+    static constexpr real real_max = std::numeric_limits<real>::max();
+    static constexpr int real_mantissa_bits = std::numeric_limits<real>::digits;
+#include "common/wavepath.h"
+};
+
+#undef WP_SHARED_MATH_H  // the include guard, so that the double build sees the code again
+
+struct Double {
+    using real = double;
+    using real_bits = std::int64_t;
+    using uint = std::uint32_t;
+    using vec3 = glm::vec<3, real>;
+    static constexpr real real_max = std::numeric_limits<real>::max();
+    static constexpr int real_mantissa_bits = std::numeric_limits<real>::digits;
+#include "common/wavepath.h"
+};
+
+}  // namespace wp::shared_math_detail
+
+namespace wp {
+template <class Real>
+using SharedMath = std::conditional_t<std::is_same_v<Real, float>, shared_math_detail::Float,
+                                      std::conditional_t<std::is_same_v<Real, double>, shared_math_detail::Double, void>>;
+}  // namespace wp

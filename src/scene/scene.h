@@ -1,0 +1,106 @@
+// A loaded, validated scene. Positions are camera-relative: the loader
+// subtracts the camera position (in double) from every position, so that
+// float kernels keep full precision near the viewer wherever the scene sits.
+#pragma once
+
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+namespace wp {
+
+struct Camera {
+    glm::dvec3 position{0.0};  // always the origin after loading
+    glm::dvec3 look_at{0.0, 0.0, -1.0};
+    glm::dvec3 up{0.0, 1.0, 0.0};
+    double fov_y_degrees = 40.0;
+    int width = 0;
+    int height = 0;
+};
+
+struct RenderSettings {
+    int spp = 16;
+    int max_depth = 8;  // most scattering events a path may have
+    int rr_depth = 3;   // Russian roulette from this many scattering events on
+    std::uint32_t seed = 0;
+};
+
+enum class MaterialType { Diffuse, Mirror, Glass, Emitter };
+
+struct Material {
+    std::string name;
+    MaterialType type = MaterialType::Diffuse;
+    glm::dvec3 albedo{0.0};       // diffuse
+    glm::dvec3 reflectance{0.0};  // mirror
+    double ior = 1.5;             // glass
+    glm::dvec3 emission{0.0};     // diffuse (optional) and emitter
+    bool two_sided = false;       // emission on both sides
+    bool emits() const { return emission.x > 0.0 || emission.y > 0.0 || emission.z > 0.0; }
+};
+
+struct Sphere {
+    glm::dvec3 center{0.0};
+    double radius = 1.0;
+    int material = 0;
+};
+
+struct Plane {
+    glm::dvec3 point{0.0};
+    glm::dvec3 normal{0.0, 1.0, 0.0};  // unit length after loading
+    int material = 0;
+};
+
+struct Quad {
+    glm::dvec3 corner{0.0};
+    glm::dvec3 edge1{1.0, 0.0, 0.0};
+    glm::dvec3 edge2{0.0, 0.0, 1.0};
+    int material = 0;
+};
+
+enum class ShapeType { Sphere, Plane, Quad };
+
+// An emitting sphere or quad; planes cannot emit (infinite power).
+struct Light {
+    ShapeType shape = ShapeType::Quad;
+    int index = 0;        // into Scene::spheres or Scene::quads
+    double power = 0.0;   // pi * luminance(emission) * area * (two_sided ? 2 : 1)
+};
+
+// Which features occur, so kernels and path state can leave the rest out.
+struct FeatureSet {
+    bool spheres = false, planes = false, quads = false;
+    bool diffuse = false, mirror = false, glass = false, emitter_material = false;
+    bool sphere_lights = false, quad_lights = false;
+    bool background = false;  // a non-black background
+};
+
+struct Scene {
+    std::string source;  // file name, for messages
+    Camera camera;
+    RenderSettings render;
+    glm::dvec3 background{0.0};
+    glm::dvec3 world_offset{0.0};  // camera position in the file's coordinates
+    std::vector<Material> materials;
+    std::vector<Sphere> spheres;
+    std::vector<Plane> planes;
+    std::vector<Quad> quads;
+    std::vector<Light> lights;
+    std::vector<double> light_cdf;  // cumulative selection probability, proportional to power; last = 1
+
+    FeatureSet features() const;
+};
+
+// One line: "<source>: <json path>: <problem>", e.g.
+// "scenes/bad.json: shapes[3].radius: must be > 0, got -1".
+class SceneError : public std::runtime_error {
+   public:
+    using std::runtime_error::runtime_error;
+};
+
+Scene load_scene(const std::string& path);
+Scene parse_scene(const std::string& json_text, const std::string& source_name);
+
+}  // namespace wp
