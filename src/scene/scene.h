@@ -100,6 +100,10 @@ class SceneError : public std::runtime_error {
     using std::runtime_error::runtime_error;
 };
 
+// Fills Scene::lights and Scene::light_cdf from the emitting spheres and
+// quads. The loader calls it; tests that build scenes in code call it too.
+void build_light_table(Scene& scene);
+
 Scene load_scene(const std::string& path);
 Scene parse_scene(const std::string& json_text, const std::string& source_name);
 

@@ -1,0 +1,64 @@
+#include "scene/scene.h"
+
+#include <glm/geometric.hpp>
+#include <numbers>
+
+namespace wp {
+namespace {
+
+double luminance(const glm::dvec3& c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; }
+
+// Radiant power (in luminance) leaving a Lambertian emitter of this area.
+double emitted_power(const Material& material, double area) {
+    return std::numbers::pi * luminance(material.emission) * area * (material.two_sided ? 2.0 : 1.0);
+}
+
+}  // namespace
+
+FeatureSet Scene::features() const {
+    FeatureSet f;
+    f.spheres = !spheres.empty();
+    f.planes = !planes.empty();
+    f.quads = !quads.empty();
+    for (const Material& m : materials) {
+        f.diffuse |= m.type == MaterialType::Diffuse;
+        f.mirror |= m.type == MaterialType::Mirror;
+        f.glass |= m.type == MaterialType::Glass;
+        f.emitter_material |= m.type == MaterialType::Emitter;
+    }
+    for (const Light& light : lights) {
+        f.sphere_lights |= light.shape == ShapeType::Sphere;
+        f.quad_lights |= light.shape == ShapeType::Quad;
+    }
+    f.background = background.x > 0.0 || background.y > 0.0 || background.z > 0.0;
+    return f;
+}
+
+void build_light_table(Scene& scene) {
+    scene.lights.clear();
+    scene.light_cdf.clear();
+    for (int i = 0; i < static_cast<int>(scene.spheres.size()); ++i) {
+        const Sphere& s = scene.spheres[i];
+        const Material& m = scene.materials[s.material];
+        if (m.emits()) {
+            scene.lights.push_back({ShapeType::Sphere, i, emitted_power(m, 4.0 * std::numbers::pi * s.radius * s.radius)});
+        }
+    }
+    for (int i = 0; i < static_cast<int>(scene.quads.size()); ++i) {
+        const Quad& q = scene.quads[i];
+        const Material& m = scene.materials[q.material];
+        if (m.emits()) {
+            scene.lights.push_back({ShapeType::Quad, i, emitted_power(m, glm::length(glm::cross(q.edge1, q.edge2)))});
+        }
+    }
+    double total = 0.0;
+    for (const Light& light : scene.lights) total += light.power;
+    double running = 0.0;
+    for (const Light& light : scene.lights) {
+        running += light.power;
+        scene.light_cdf.push_back(running / total);
+    }
+    if (!scene.light_cdf.empty()) scene.light_cdf.back() = 1.0;
+}
+
+}  // namespace wp
