@@ -1,0 +1,32 @@
+// Image files through OpenImageIO, the format chosen by the file extension:
+// .exr, .pfm and .hdr hold linear float RGB; .png and .jpg/.jpeg hold
+// sRGB-encoded 8-bit RGB, clamped to [0, 1] first.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "core/render.h"
+
+namespace wp {
+
+// Throws OutputError unless `path` has a supported extension and its
+// directory exists and is writable. The CLI calls it before rendering so
+// that a bad output path fails in a second, not after the render.
+void validate_output_path(const std::string& path);
+
+// Writes atomically (temporary file, then rename): on failure nothing is left
+// behind and an existing file at `path` is untouched. Throws OutputError for
+// anything that prevents writing, std::invalid_argument for an image that is
+// malformed or holds a non-finite value.
+void write_image(const Image& image, const std::string& path);
+
+// Any format OpenImageIO reads, as linear RGB floats exactly as stored (8-bit
+// files are not decoded from sRGB: value / 255). Throws std::runtime_error.
+Image read_image(const std::string& path);
+
+// The sRGB transfer function (IEC 61966-2-1) of a linear value clamped to
+// [0, 1], rounded to the nearest 8-bit code.
+std::uint8_t encode_srgb8(float linear);
+
+}  // namespace wp
