@@ -17,8 +17,8 @@ WP_FN Frame frame_from_normal(vec3 n) {
     return frame;
 }
 
-WP_FN vec3 frame_to_world(Frame frame, vec3 local) {
-    return local.x * frame.tangent + local.y * frame.bitangent + local.z * frame.normal;
+WP_FN vec3 frame_to_world(Frame frame, vec3 local_direction) {
+    return local_direction.x * frame.tangent + local_direction.y * frame.bitangent + local_direction.z * frame.normal;
 }
 
 /* Malley's method: pdf = cos(theta) / pi over the hemisphere. */
@@ -79,31 +79,30 @@ WP_FN LightSample sample_sphere_area(vec3 center, real radius, vec3 reference, r
 
 /* Uniform over the cone of directions the sphere subtends from an outside
  * reference point (pbrt-v4, Sphere::Sample): every sample sees the sphere.
- * For cones narrower than about 1.5 degrees, 1 - cos(theta_max) is taken from
- * its Taylor form sin^2/2 and theta is sampled through sin^2, since the plain
- * difference cancels to zero in float for small, distant lights. */
+ * 1 - cos(theta) is kept as such and never formed by subtracting cosines,
+ * which cancels to zero in float for small, distant lights:
+ * 1 - cos(theta_max) = sin^2 / (1 + cos), and for the sampled angle
+ * sin^2(theta) = (1 - cos)(1 + cos). Exact at every cone size (pbrt's
+ * small-angle branch instead approximates 1 - cos by sin^2 / 2, a bias of up
+ * to 1.7e-4 near its 1.5 degree switch). */
 WP_FN LightSample sample_sphere_cone(vec3 center, real radius, vec3 reference, real u1, real u2) {
     vec3 to_center = center - reference;
     real distance = length(to_center);
     real sin_theta_max = radius / distance;
     real sin2_theta_max = sin_theta_max * sin_theta_max;
     real cos_theta_max = safe_sqrt(REAL(1.0) - sin2_theta_max);
-    real one_minus_cos_theta_max = REAL(1.0) - cos_theta_max;
-    real cos_theta = (cos_theta_max - REAL(1.0)) * u1 + REAL(1.0);
-    real sin2_theta = REAL(1.0) - cos_theta * cos_theta;
-    if (sin2_theta_max < REAL(0.00068523)) { /* sin^2(1.5 degrees) */
-        sin2_theta = sin2_theta_max * u1;
-        cos_theta = sqrt(REAL(1.0) - sin2_theta);
-        one_minus_cos_theta_max = sin2_theta_max / REAL(2.0);
-    }
+    real one_minus_cos_theta_max = sin2_theta_max / (REAL(1.0) + cos_theta_max);
+    real one_minus_cos_theta = u1 * one_minus_cos_theta_max;
+    real cos_theta = REAL(1.0) - one_minus_cos_theta;
+    real sin2_theta = one_minus_cos_theta * (REAL(2.0) - one_minus_cos_theta);
     /* Angle alpha at the centre between the axis and the sampled point. */
     real cos_alpha = sin2_theta / sin_theta_max + cos_theta * safe_sqrt(REAL(1.0) - sin2_theta / sin2_theta_max);
     real sin_alpha = safe_sqrt(REAL(1.0) - cos_alpha * cos_alpha);
     real phi = REAL(2.0) * WP_PI * u2;
     Frame frame = frame_from_normal(to_center / distance);
-    vec3 local = make_vec3(sin_alpha * cos(phi), sin_alpha * sin(phi), cos_alpha);
+    vec3 local_direction = make_vec3(sin_alpha * cos(phi), sin_alpha * sin(phi), cos_alpha);
     LightSample s;
-    s.normal = -frame_to_world(frame, local);
+    s.normal = -frame_to_world(frame, local_direction);
     s.point = center + radius * s.normal;
     s.pdf_solid_angle = REAL(1.0) / (REAL(2.0) * WP_PI * one_minus_cos_theta_max);
     return s;

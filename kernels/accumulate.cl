@@ -1,0 +1,39 @@
+/* Adds a drained pass into the film: one work item per pixel sums that
+ * pixel's pass entries in sample order, in double (or compensated float
+ * where the device lacks fp64), exactly as the reference sums its samples.
+ * No atomics: the image does not depend on scheduling or wavefront size. */
+#ifdef WP_FILM_DOUBLE
+#pragma OPENCL EXTENSION cl_khr_fp64 : enable
+typedef double film_real;
+#else
+typedef float film_real;
+#endif
+
+/* film holds 3 sums per pixel, then (compensated float only) 3 compensations. */
+__kernel void accumulate(ulong pass_start, uint pass_size, uint pixel_count, __global const float *pass_radiance,
+                         __global film_real *film) {
+    uint px = get_global_id(0);
+    if (px >= pixel_count) return;
+    uint first = (uint)((px + pixel_count - pass_start % pixel_count) % pixel_count);
+    for (uint c = 0; c < 3u; ++c) {
+        film_real sum = film[3u * px + c];
+#ifndef WP_FILM_DOUBLE
+        /* Kahan summation */
+        film_real compensation = film[3u * (pixel_count + px) + c];
+#endif
+        for (uint item = first; item < pass_size; item += pixel_count) {
+#ifdef WP_FILM_DOUBLE
+            sum += (film_real)pass_radiance[3u * item + c];
+#else
+            film_real y = pass_radiance[3u * item + c] - compensation;
+            film_real t = sum + y;
+            compensation = (t - sum) - y;
+            sum = t;
+#endif
+        }
+        film[3u * px + c] = sum;
+#ifndef WP_FILM_DOUBLE
+        film[3u * (pixel_count + px) + c] = compensation;
+#endif
+    }
+}

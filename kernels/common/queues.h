@@ -1,0 +1,21 @@
+/* Queue and counter indices shared by the host (src/wavefront/pipeline.h)
+ * and the kernels. `queues` holds WP_QUEUE_COUNT queues of path slots, each
+ * `capacity` long; `counts` holds their lengths, then the counters. */
+#ifndef WP_QUEUES_H
+#define WP_QUEUES_H
+
+#define WP_QUEUE_FREE 0u    /* slots without a path, refilled by generate */
+#define WP_QUEUE_HIT 1u     /* extension rays that hit a surface, for shade_direct */
+#define WP_QUEUE_RAY 2u     /* paths with an extension ray to trace, for intersect */
+#define WP_QUEUE_SHADOW 3u  /* shadow rays to trace, for intersect_shadow */
+#define WP_QUEUE_SCATTER 4u /* paths that scatter at their hit, for scatter */
+#define WP_QUEUE_COUNT 5u
+
+#define WP_COUNTER_WORK 5u      /* work items of the pass handed out (may overshoot the pass) */
+#define WP_COUNTER_NONFINITE 6u /* samples dropped for non-finite radiance */
+#define WP_COUNTS_SIZE 7u
+
+/* Work-group size of the stage kernels (the aggregated queue push uses local memory). */
+#define WP_GROUP_SIZE 64
+
+#endif

@@ -1,0 +1,44 @@
+#include "wavefront/kernel_options.h"
+
+#include <utility>
+#include <vector>
+
+namespace wp {
+namespace {
+
+// (name for --explain, macro) for each feature in use.
+std::vector<std::pair<const char*, const char*>> features_in_use(const FeatureSet& f) {
+    std::vector<std::pair<const char*, const char*>> in_use;
+    auto add = [&](bool on, const char* name, const char* macro) {
+        if (on) in_use.emplace_back(name, macro);
+    };
+    add(f.spheres, "spheres", "WP_HAS_SPHERES");
+    add(f.planes, "planes", "WP_HAS_PLANES");
+    add(f.quads, "quads", "WP_HAS_QUADS");
+    add(f.diffuse, "diffuse", "WP_HAS_DIFFUSE");
+    add(f.mirror, "mirror", "WP_HAS_MIRROR");
+    add(f.glass, "glass", "WP_HAS_GLASS");
+    add(f.emitter_material, "emitter", "WP_HAS_EMITTER");
+    add(f.sphere_lights, "sphere-lights", "WP_HAS_SPHERE_LIGHTS");
+    add(f.quad_lights, "quad-lights", "WP_HAS_QUAD_LIGHTS");
+    add(f.background, "background", "WP_HAS_BACKGROUND");
+    return in_use;
+}
+
+}  // namespace
+
+std::string kernel_build_options(const FeatureSet& features, bool has_lights, bool device_fp64) {
+    std::string options;
+    for (const auto& [name, macro] : features_in_use(features)) options += std::string(" -D") + macro;
+    if (has_lights) options += " -DWP_HAS_NEE";
+    if (device_fp64) options += " -DWP_FILM_DOUBLE";
+    return options.empty() ? options : options.substr(1);
+}
+
+std::string describe_features(const FeatureSet& features) {
+    std::string text;
+    for (const auto& [name, macro] : features_in_use(features)) text += (text.empty() ? "" : " ") + std::string(name);
+    return text;
+}
+
+}  // namespace wp

@@ -1,0 +1,74 @@
+#include "wavefront/path_state.h"
+
+#include <algorithm>
+#include <cstdint>
+#include <sstream>
+#include <stdexcept>
+
+namespace wp {
+namespace path_state_types {
+using uint = std::uint32_t;
+}  // namespace path_state_types
+
+#include "common/path_state.h"
+
+const std::vector<PathStateField>& path_state_fields() {
+    using path_state_types::uint;
+#define WP_PATH_STATE_ENTRY(type, name, feature, writers, readers) \
+    {#type, #name, PathFeature::feature, sizeof(type), writers, readers},
+    static const std::vector<PathStateField> fields{WP_PATH_STATE(WP_PATH_STATE_ENTRY)};
+#undef WP_PATH_STATE_ENTRY
+    return fields;
+}
+
+bool path_feature_compiled(PathFeature feature, const FeatureSet& features, bool has_lights) {
+    switch (feature) {
+        case PathFeature::ALWAYS:
+            return true;
+        case PathFeature::SPECULAR:
+            return features.mirror || features.glass;
+        case PathFeature::NEE:
+            return has_lights;
+    }
+    return false;
+}
+
+std::string path_state_table_markdown() {
+    static const char* feature_names[] = {"always", "specular (mirror or glass)", "nee (any light)"};
+    std::ostringstream table;
+    table << "| field | type | bytes/path | exists when | written by | read by |\n"
+          << "|---|---|---|---|---|---|\n";
+    for (const PathStateField& f : path_state_fields()) {
+        table << "| `" << f.name << "` | " << f.type << " | " << f.bytes << " | "
+              << feature_names[static_cast<int>(f.feature)] << " | " << f.writers << " | " << f.readers << " |\n";
+    }
+    return table.str();
+}
+
+std::size_t PathState::bytes_per_path(const FeatureSet& features, bool has_lights) {
+    std::size_t bytes = 0;
+    for (const PathStateField& f : path_state_fields())
+        if (path_feature_compiled(f.feature, features, has_lights)) bytes += f.bytes;
+    return bytes;
+}
+
+PathState::PathState(const cl::Context& context, std::size_t capacity, const FeatureSet& features, bool has_lights) {
+    for (const PathStateField& f : path_state_fields()) {
+        if (!path_feature_compiled(f.feature, features, has_lights)) continue;
+        buffers_.emplace_back(context, CL_MEM_READ_WRITE, f.bytes * capacity);
+        names_.emplace_back(f.name);
+        bytes_per_path_ += f.bytes;
+    }
+}
+
+bool PathState::has_field(const std::string& name) const {
+    return std::find(names_.begin(), names_.end(), name) != names_.end();
+}
+
+const cl::Buffer& PathState::field(const std::string& name) const {
+    auto it = std::find(names_.begin(), names_.end(), name);
+    if (it == names_.end()) throw std::out_of_range("path state field not compiled in: " + name);
+    return buffers_[it - names_.begin()];
+}
+
+}  // namespace wp

@@ -1,0 +1,55 @@
+// The host side of kernels/common/path_state.h: one device buffer per path
+// state field whose feature the scene uses, in the order the kernels take them.
+#pragma once
+
+#include <CL/opencl.hpp>
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "scene/scene.h"
+
+namespace wp {
+
+enum class PathFeature { ALWAYS, SPECULAR, NEE };
+
+struct PathStateField {
+    const char* type;
+    const char* name;
+    PathFeature feature;
+    std::size_t bytes;    // per path
+    const char* writers;  // stages, space-separated
+    const char* readers;
+};
+
+// Every field of the X-macro list, in order.
+const std::vector<PathStateField>& path_state_fields();
+
+// Whether the kernels compiled for this scene have the feature's fields.
+bool path_feature_compiled(PathFeature feature, const FeatureSet& features, bool has_lights);
+
+// The markdown table of docs/architecture.md: field, type, bytes per path,
+// feature, written by, read by.
+std::string path_state_table_markdown();
+
+class PathState {
+ public:
+    PathState(const cl::Context& context, std::size_t capacity, const FeatureSet& features, bool has_lights);
+
+    // The buffers of the compiled fields, in X-macro order (kernel argument order).
+    const std::vector<cl::Buffer>& buffers() const { return buffers_; }
+    // The buffer of a compiled field; throws std::out_of_range otherwise.
+    const cl::Buffer& field(const std::string& name) const;
+    bool has_field(const std::string& name) const;
+    std::size_t bytes_per_path() const { return bytes_per_path_; }
+
+    // The bytes per path the kernels for this scene need, without allocating.
+    static std::size_t bytes_per_path(const FeatureSet& features, bool has_lights);
+
+ private:
+    std::vector<cl::Buffer> buffers_;
+    std::vector<std::string> names_;
+    std::size_t bytes_per_path_ = 0;
+};
+
+}  // namespace wp

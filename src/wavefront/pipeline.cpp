@@ -1,0 +1,131 @@
+#include "wavefront/pipeline.h"
+
+#include <numeric>
+
+#include "wavefront/kernel_options.h"
+
+namespace wp {
+namespace {
+
+std::size_t round_up(std::size_t n, std::size_t multiple) { return (n + multiple - 1) / multiple * multiple; }
+
+}  // namespace
+
+const std::vector<std::string>& wavefront_kernel_files() {
+    static const std::vector<std::string> files{"generate.cl",         "intersect.cl", "shade_direct.cl",
+                                                "intersect_shadow.cl", "scatter.cl",   "accumulate.cl"};
+    return files;
+}
+
+Pipeline::Pipeline(const Scene& scene, const DeviceInfo& device, std::size_t capacity, std::size_t pass_capacity)
+    : capacity_(capacity),
+      pass_capacity_(pass_capacity),
+      pixel_count_(std::size_t(scene.camera.width) * scene.camera.height),
+      film_double_(device.fp64),
+      context_(device.device),
+      queue_(context_, device.device),
+      program_(build_program(context_, device, wavefront_kernel_files(),
+                             kernel_build_options(scene.features(), !scene.lights.empty(), device.fp64))),
+      scene_(context_, flatten_scene(scene)),
+      state_(context_, capacity, scene.features(), !scene.lights.empty()),
+      queues_(context_, CL_MEM_READ_WRITE, sizeof(std::uint32_t) * WP_QUEUE_COUNT * capacity),
+      counts_(context_, CL_MEM_READ_WRITE, sizeof(DeviceCounts)),
+      pass_radiance_(context_, CL_MEM_READ_WRITE, sizeof(float) * 3 * pass_capacity),
+      film_(context_, CL_MEM_READ_WRITE,
+            film_double_ ? sizeof(double) * 3 * pixel_count_ : sizeof(float) * 6 * pixel_count_) {
+    std::vector<std::uint32_t> identity(capacity);
+    std::iota(identity.begin(), identity.end(), 0u);
+    identity_slots_ = cl::Buffer(context_, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(std::uint32_t) * capacity,
+                                 identity.data());
+    queue_.enqueueFillBuffer(film_, std::uint8_t(0), 0, film_.getInfo<CL_MEM_SIZE>());
+    for (const char* name : stage_kernel_names) {
+        cl::Kernel kernel(program_.program, name);
+        cl_uint arg = 0;
+        for (const cl::Buffer& b : scene_.buffers) kernel.setArg(arg++, b);
+        kernel.setArg(arg++, queues_);
+        kernel.setArg(arg++, counts_);
+        kernel.setArg(arg++, cl_uint(capacity_));
+        kernel.setArg(arg++, cl_ulong(0));
+        kernel.setArg(arg++, cl_uint(0));
+        kernel.setArg(arg++, pass_radiance_);
+        for (const cl::Buffer& b : state_.buffers()) kernel.setArg(arg++, b);
+        stages_.push_back(kernel);
+    }
+    accumulate_ = cl::Kernel(program_.program, "accumulate");
+}
+
+// Argument positions of the pass in WP_STAGE_PARAMS.
+constexpr cl_uint kPassStartArg = 10, kPassSizeArg = 11;
+
+void Pipeline::begin_pass(std::uint64_t start, std::uint32_t size) {
+    pass_start_ = start;
+    pass_size_ = size;
+    for (cl::Kernel& k : stages_) {
+        k.setArg(kPassStartArg, cl_ulong(start));
+        k.setArg(kPassSizeArg, cl_uint(size));
+    }
+    queue_.enqueueCopyBuffer(identity_slots_, queues_, 0, WP_QUEUE_FREE * capacity_ * sizeof(std::uint32_t),
+                             capacity_ * sizeof(std::uint32_t));
+    DeviceCounts counts{};
+    counts[WP_QUEUE_FREE] = static_cast<std::uint32_t>(capacity_);
+    queue_.enqueueWriteBuffer(counts_, CL_TRUE, 0, sizeof counts, counts.data());
+}
+
+void Pipeline::run(Stage stage) {
+    queue_.enqueueNDRangeKernel(stages_[static_cast<int>(stage)], cl::NullRange,
+                                cl::NDRange(round_up(capacity_, WP_GROUP_SIZE)), cl::NDRange(WP_GROUP_SIZE));
+}
+
+void Pipeline::clear_counts(std::uint32_t first, std::uint32_t n) {
+    queue_.enqueueFillBuffer(counts_, std::uint32_t(0), first * sizeof(std::uint32_t), n * sizeof(std::uint32_t));
+}
+
+DeviceCounts Pipeline::read_counts() {
+    DeviceCounts counts;
+    queue_.enqueueReadBuffer(counts_, CL_TRUE, 0, sizeof counts, counts.data());
+    return counts;
+}
+
+void Pipeline::accumulate() {
+    accumulate_.setArg(0, cl_ulong(pass_start_));
+    accumulate_.setArg(1, cl_uint(pass_size_));
+    accumulate_.setArg(2, cl_uint(pixel_count_));
+    accumulate_.setArg(3, pass_radiance_);
+    accumulate_.setArg(4, film_);
+    queue_.enqueueNDRangeKernel(accumulate_, cl::NullRange, cl::NDRange(pixel_count_));
+}
+
+std::vector<double> Pipeline::read_film() {
+    std::vector<double> sums(3 * pixel_count_);
+    if (film_double_) {
+        queue_.enqueueReadBuffer(film_, CL_TRUE, 0, sizeof(double) * sums.size(), sums.data());
+    } else {
+        std::vector<float> film(6 * pixel_count_);  // sums, then Kahan compensations
+        queue_.enqueueReadBuffer(film_, CL_TRUE, 0, sizeof(float) * film.size(), film.data());
+        for (std::size_t i = 0; i < sums.size(); ++i) sums[i] = double(film[i]) - double(film[sums.size() + i]);
+    }
+    return sums;
+}
+
+void Pipeline::set_queue(std::uint32_t queue, const std::vector<std::uint32_t>& slots) {
+    queue_.enqueueWriteBuffer(queues_, CL_TRUE, queue * capacity_ * sizeof(std::uint32_t),
+                              slots.size() * sizeof(std::uint32_t), slots.data());
+    std::uint32_t length = static_cast<std::uint32_t>(slots.size());
+    queue_.enqueueWriteBuffer(counts_, CL_TRUE, queue * sizeof(std::uint32_t), sizeof length, &length);
+}
+
+std::vector<std::uint32_t> Pipeline::read_queue(std::uint32_t queue) {
+    std::vector<std::uint32_t> slots(read_counts()[queue]);
+    if (!slots.empty())
+        queue_.enqueueReadBuffer(queues_, CL_TRUE, queue * capacity_ * sizeof(std::uint32_t),
+                                 slots.size() * sizeof(std::uint32_t), slots.data());
+    return slots;
+}
+
+std::vector<float> Pipeline::read_pass_radiance() {
+    std::vector<float> values(3 * pass_capacity_);
+    queue_.enqueueReadBuffer(pass_radiance_, CL_TRUE, 0, sizeof(float) * values.size(), values.data());
+    return values;
+}
+
+}  // namespace wp

@@ -1,0 +1,88 @@
+// The wavefront's device objects: the program built for the scene, the stage
+// kernels, the path state, the scene buffers, the queues and the film, and
+// the operations the scheduler (and the stage tests) compose.
+#pragma once
+
+#include <CL/opencl.hpp>
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "device/opencl_device.h"
+#include "device/program_cache.h"
+#include "scene/scene.h"
+#include "wavefront/path_state.h"
+#include "wavefront/scene_upload.h"
+
+namespace wp {
+
+namespace device_layout {
+#include "common/queues.h"
+}  // namespace device_layout
+
+enum class Stage { Generate, Intersect, ShadeDirect, IntersectShadow, Scatter };
+inline constexpr std::array<const char*, 5> stage_kernel_names{"generate", "intersect", "shade_direct",
+                                                               "intersect_shadow", "scatter"};
+
+// Queue lengths then counters, as in kernels/common/queues.h.
+using DeviceCounts = std::array<std::uint32_t, WP_COUNTS_SIZE>;
+
+class Pipeline {
+ public:
+    // capacity: paths in flight; pass_capacity: most work items per pass.
+    Pipeline(const Scene& scene, const DeviceInfo& device, std::size_t capacity, std::size_t pass_capacity);
+
+    const BuiltProgram& program() const { return program_; }
+    const PathState& state() const { return state_; }
+    std::size_t capacity() const { return capacity_; }
+    std::size_t pass_capacity() const { return pass_capacity_; }
+    cl::CommandQueue& queue() { return queue_; }
+
+    // Starts the pass of work items [start, start + size): every slot free,
+    // every other queue empty, the work counter at 0.
+    void begin_pass(std::uint64_t start, std::uint32_t size);
+    // Enqueues a stage over the queues' capacity (it reads its queue's length on the device).
+    void run(Stage stage);
+    // Sets lengths [first, first + n) of `counts` to 0.
+    void clear_counts(std::uint32_t first, std::uint32_t n);
+    DeviceCounts read_counts();
+    // Adds the drained pass's entries to the film, per pixel in sample order.
+    void accumulate();
+    // Per-pixel RGB sums over all passes so far.
+    std::vector<double> read_film();
+
+    // For stage tests: set a queue's slots and length, read the pass entries.
+    void set_queue(std::uint32_t queue, const std::vector<std::uint32_t>& slots);
+    std::vector<std::uint32_t> read_queue(std::uint32_t queue);
+    std::vector<float> read_pass_radiance();
+    template <class T>
+    void write_field(const std::string& name, const std::vector<T>& values) {
+        queue_.enqueueWriteBuffer(state_.field(name), CL_TRUE, 0, sizeof(T) * values.size(), values.data());
+    }
+    template <class T>
+    std::vector<T> read_field(const std::string& name) {
+        std::vector<T> values(capacity_);
+        queue_.enqueueReadBuffer(state_.field(name), CL_TRUE, 0, sizeof(T) * values.size(), values.data());
+        return values;
+    }
+
+ private:
+    std::size_t capacity_, pass_capacity_, pixel_count_;
+    bool film_double_;
+    cl::Context context_;
+    cl::CommandQueue queue_;
+    BuiltProgram program_;
+    DeviceScene scene_;
+    PathState state_;
+    cl::Buffer queues_, counts_, pass_radiance_, film_, identity_slots_;
+    std::vector<cl::Kernel> stages_;
+    cl::Kernel accumulate_;
+    std::uint64_t pass_start_ = 0;
+    std::uint32_t pass_size_ = 0;
+};
+
+// The kernel files of the program, in build order.
+const std::vector<std::string>& wavefront_kernel_files();
+
+}  // namespace wp

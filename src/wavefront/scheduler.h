@@ -1,0 +1,27 @@
+// The host loop that drives the stage kernels over passes of work items.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "core/render.h"
+#include "wavefront/pipeline.h"
+#include "wavefront/wavefront_renderer.h"
+
+namespace wp {
+
+struct ScheduleTotals {
+    std::uint64_t extension_rays = 0;
+    std::uint64_t shadow_rays = 0;
+    std::uint64_t nonfinite = 0;
+};
+
+// Renders work items [0, total) (w: pixel w % pixels, sample w / pixels) in
+// passes of at most pipeline.pass_capacity(): per pass, iterations of
+// generate, intersect, shade_direct, intersect_shadow, scatter until every
+// item is issued and every path has ended, then accumulate. Appends one
+// record per iteration.
+ScheduleTotals run_schedule(Pipeline& pipeline, std::uint64_t total, bool has_lights, const ProgressFn& progress,
+                            std::vector<IterationRecord>& iterations);
+
+}  // namespace wp

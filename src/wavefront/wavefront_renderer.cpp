@@ -1,0 +1,90 @@
+#include "wavefront/wavefront_renderer.h"
+
+#include <algorithm>
+#include <chrono>
+#include <sstream>
+
+#include "device/opencl_device.h"
+#include "wavefront/kernel_options.h"
+#include "wavefront/pipeline.h"
+#include "wavefront/scheduler.h"
+
+namespace wp {
+namespace {
+
+// Work items per pass, as a multiple of the wavefront: a pass drains (its
+// last paths run with the wavefront partly empty) before accumulation, so
+// longer passes waste less; each item costs 12 bytes of pass radiance.
+constexpr std::size_t kPassesPerWavefront = 4;
+
+Image film_to_image(const std::vector<double>& sums, int width, int height, int spp) {
+    Image image;
+    image.width = width;
+    image.height = height;
+    image.rgb.resize(sums.size());
+    for (std::size_t i = 0; i < sums.size(); ++i) image.rgb[i] = static_cast<float>(sums[i] / spp);
+    return image;
+}
+
+}  // namespace
+
+std::size_t default_wavefront_size(std::uint64_t work_items, std::size_t bytes_per_path,
+                                   unsigned long long device_memory_bytes) {
+    constexpr std::size_t kGroup = WP_GROUP_SIZE;
+    // State, five queue entries and the pass entries of each path slot.
+    std::size_t bytes_per_slot = bytes_per_path + WP_QUEUE_COUNT * 4 + kPassesPerWavefront * 12;
+    std::size_t by_memory = std::size_t(device_memory_bytes / 4 / bytes_per_slot);
+    std::size_t size = std::min<std::uint64_t>({std::size_t(1) << 20, work_items, by_memory});
+    return std::max(kGroup, (size + kGroup - 1) / kGroup * kGroup);
+}
+
+std::string WavefrontReport::explain() const {
+    std::ostringstream out;
+    out << "device: " << device << "\n"
+        << "features: " << features << "\n"
+        << "build options: " << build_options << "\n"
+        << "program: " << (cache_hit ? "cache hit" : "cache miss, compiled") << " in " << build_seconds << " s"
+        << (cache_file.empty() ? " (no cache directory)" : " (" + cache_file + ")") << "\n"
+        << "wavefront: " << wavefront << " paths in flight, passes of up to " << pass_capacity << " samples\n"
+        << "path state: " << state_bytes_per_path << " bytes per path, " << state_bytes_per_path * wavefront / 1024
+        << " KiB in all\n";
+    return out.str();
+}
+
+RenderResult render_wavefront(const Scene& scene, const WavefrontOptions& options, const ProgressFn& progress,
+                              WavefrontReport* report) {
+    auto start = std::chrono::steady_clock::now();
+    DeviceInfo device = choose_device(options.device);
+    const Camera& camera = scene.camera;
+    std::uint64_t total = std::uint64_t(camera.width) * camera.height * scene.render.spp;
+    bool has_lights = !scene.lights.empty();
+    std::size_t wavefront = options.wavefront
+                                ? options.wavefront
+                                : default_wavefront_size(total, PathState::bytes_per_path(scene.features(), has_lights),
+                                                         device.global_memory_bytes);
+    Pipeline pipeline(scene, device, wavefront, std::min<std::uint64_t>(total, kPassesPerWavefront * wavefront));
+
+    WavefrontReport local_report;
+    WavefrontReport& r = report ? *report : local_report;
+    r.device = device.name + " (" + device.platform + ")";
+    r.features = describe_features(scene.features()) + (has_lights ? " nee" : "");
+    r.build_options = pipeline.program().options;
+    r.cache_hit = pipeline.program().cache_hit;
+    r.build_seconds = pipeline.program().build_seconds;
+    r.cache_file = pipeline.program().cache_file;
+    r.wavefront = wavefront;
+    r.pass_capacity = pipeline.pass_capacity();
+    r.state_bytes_per_path = pipeline.state().bytes_per_path();
+
+    ScheduleTotals totals = run_schedule(pipeline, total, has_lights, progress, r.iterations);
+    RenderResult result;
+    result.image = film_to_image(pipeline.read_film(), camera.width, camera.height, scene.render.spp);
+    result.stats.samples = total;
+    result.stats.extension_rays = totals.extension_rays;
+    result.stats.shadow_rays = totals.shadow_rays;
+    result.stats.nonfinite = totals.nonfinite;
+    result.stats.time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return result;
+}
+
+}  // namespace wp

@@ -1,0 +1,54 @@
+// The OpenCL wavefront backend: the default renderer of wavepath.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/render.h"
+#include "scene/scene.h"
+
+namespace wp {
+
+struct WavefrontOptions {
+    std::string device;         // "" (prefer a GPU), an index, or a name substring
+    std::size_t wavefront = 0;  // paths in flight; 0 = chosen from device memory and image size
+};
+
+// Queue lengths of one iteration of the stage loop, for the profiler.
+struct IterationRecord {
+    std::uint32_t generated = 0;   // camera rays started
+    std::uint32_t traced = 0;      // extension rays intersected
+    std::uint32_t hits = 0;        // of those, hits (to shade_direct)
+    std::uint32_t shadow = 0;      // shadow rays
+    std::uint32_t continuing = 0;  // paths that scattered on
+    std::uint32_t finished = 0;    // paths that ended
+};
+
+// What --explain prints, and the profile of the run.
+struct WavefrontReport {
+    std::string device;
+    std::string features;
+    std::string build_options;
+    bool cache_hit = false;
+    double build_seconds = 0.0;
+    std::string cache_file;
+    std::size_t wavefront = 0;
+    std::size_t pass_capacity = 0;
+    std::size_t state_bytes_per_path = 0;
+    std::vector<IterationRecord> iterations;
+
+    std::string explain() const;
+};
+
+// Renders on OpenCL; throws DeviceError (no device, kernel build failure).
+RenderResult render_wavefront(const Scene& scene, const WavefrontOptions& options, const ProgressFn& progress,
+                              WavefrontReport* report = nullptr);
+
+// The automatic --wavefront size: up to 2^20 paths, no more than the work
+// (pixels x spp), and the state within a quarter of the device's memory.
+std::size_t default_wavefront_size(std::uint64_t work_items, std::size_t bytes_per_path,
+                                   unsigned long long device_memory_bytes);
+
+}  // namespace wp
