@@ -26,12 +26,8 @@ constexpr const char* kScene = R"({
   ]
 })";
 
-struct TestRay {
-    vec3 origin, direction;
-};
-
-std::vector<TestRay> hand_built_rays() {
-    auto ray = [](vec3 o, vec3 d) { return TestRay{o, glm::normalize(d)}; };
+std::vector<test::TestRay> hand_built_rays() {
+    auto ray = [](vec3 o, vec3 d) { return test::TestRay{o, glm::normalize(d)}; };
     return {
         ray({0, 0, 0}, {0, 0, -1}),         // sphere, head on
         ray({0, 0, 0}, {0, 1, 0}),          // miss: up into the sky
@@ -50,29 +46,9 @@ std::vector<TestRay> hand_built_rays() {
 
 TEST(IntersectStage, MatchesReferenceClosestHit) {
     Scene scene = test::scene_from_json(kScene);
-    std::vector<TestRay> rays = hand_built_rays();
+    std::vector<test::TestRay> rays = hand_built_rays();
     Pipeline pipeline(scene, choose_device(""), 64, 64);
-    std::vector<float> ox, oy, oz, dx, dy, dz;
-    for (const TestRay& r : rays) {
-        ox.push_back(r.origin.x), oy.push_back(r.origin.y), oz.push_back(r.origin.z);
-        dx.push_back(r.direction.x), dy.push_back(r.direction.y), dz.push_back(r.direction.z);
-    }
-    for (auto [name, values] : {std::pair{"origin_x", &ox},
-                                {"origin_y", &oy},
-                                {"origin_z", &oz},
-                                {"direction_x", &dx},
-                                {"direction_y", &dy},
-                                {"direction_z", &dz}})
-        pipeline.write_field(name, *values);
-    pipeline.write_field("radiance_r", std::vector<float>(rays.size(), 0.0f));
-    pipeline.write_field("radiance_g", std::vector<float>(rays.size(), 0.0f));
-    pipeline.write_field("radiance_b", std::vector<float>(rays.size(), 0.0f));
-    pipeline.write_field("pass_item", std::vector<std::uint32_t>(rays.size(), 0u));
-    std::vector<std::uint32_t> slots(rays.size());
-    for (std::uint32_t i = 0; i < slots.size(); ++i) slots[i] = i;
-    pipeline.begin_pass(0, 1);
-    pipeline.clear_counts(WP_QUEUE_FREE, 1);
-    pipeline.set_queue(WP_QUEUE_RAY, slots);
+    test::start_paths(pipeline, rays);
     pipeline.run(Stage::Intersect);
 
     std::vector<float> t = pipeline.read_field<float>("hit_t");

@@ -5,9 +5,12 @@
 
 #include <cstdlib>
 #include <filesystem>
+#include <glm/vec3.hpp>
 #include <string>
+#include <vector>
 
 #include "scene/scene.h"
+#include "wavefront/pipeline.h"
 
 namespace wp::test {
 
@@ -25,6 +28,41 @@ inline Scene scene_from_json(const std::string& json, const std::string& name = 
 inline Scene scene_from_file(const std::string& relative_path) {
     use_build_tree_program_cache();
     return load_scene(std::string(WAVEPATH_SOURCE_DIR) + "/" + relative_path);
+}
+
+struct TestRay {
+    glm::vec3 origin, direction;
+};
+
+// Puts fresh paths (depth 0, throughput 1, no radiance, after a "specular"
+// camera vertex) with these rays into slots 0..n-1, path i being sample
+// `first_sample + i` of pixel 0, and queues them all for intersect.
+inline void start_paths(Pipeline& pipeline, const std::vector<TestRay>& rays, std::uint32_t first_sample = 0) {
+    std::size_t n = rays.size();
+    std::vector<float> o[3], d[3];
+    std::vector<std::uint32_t> slots(n), samples(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        for (int a = 0; a < 3; ++a) o[a].push_back(rays[i].origin[a]), d[a].push_back(rays[i].direction[a]);
+        slots[i] = std::uint32_t(i);
+        samples[i] = first_sample + std::uint32_t(i);
+    }
+    const char* axes[] = {"x", "y", "z"};
+    for (int a = 0; a < 3; ++a) {
+        pipeline.write_field(std::string("origin_") + axes[a], o[a]);
+        pipeline.write_field(std::string("direction_") + axes[a], d[a]);
+    }
+    for (const char* c : {"r", "g", "b"}) {
+        pipeline.write_field(std::string("radiance_") + c, std::vector<float>(n, 0.0f));
+        pipeline.write_field(std::string("throughput_") + c, std::vector<float>(n, 1.0f));
+    }
+    pipeline.write_field("pixel", std::vector<std::uint32_t>(n, 0u));
+    pipeline.write_field("sample", samples);
+    pipeline.write_field("pass_item", slots);
+    pipeline.write_field("depth", std::vector<std::uint32_t>(n, 0u));
+    if (pipeline.state().has_field("specular")) pipeline.write_field("specular", std::vector<std::uint32_t>(n, 1u));
+    pipeline.begin_pass(0, std::uint32_t(n));
+    pipeline.clear_counts(WP_QUEUE_FREE, 1);
+    pipeline.set_queue(WP_QUEUE_RAY, slots);
 }
 
 }  // namespace wp::test
