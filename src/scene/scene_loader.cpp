@@ -1,0 +1,62 @@
+// parse_scene / load_scene: JSON text -> validated, camera-relative Scene.
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <memory>
+
+#include "scene/json_field.h"
+#include "scene/json_syntax.h"
+#include "scene/scene.h"
+#include "scene/scene_sections.h"
+
+namespace wp {
+namespace {
+
+// Moves the camera to the origin; kernels in float then keep full precision
+// near the viewer wherever the scene sits in the file's coordinates.
+void rebase_to_camera(Scene& scene) {
+    const glm::dvec3 origin = scene.camera.position;
+    scene.world_offset = origin;
+    scene.camera.position = glm::dvec3(0.0);
+    scene.camera.look_at -= origin;
+    for (Sphere& sphere : scene.spheres) sphere.center -= origin;
+    for (Plane& plane : scene.planes) plane.point -= origin;
+    for (Quad& quad : scene.quads) quad.corner -= origin;
+}
+
+std::string read_text_file(const std::string& path) {
+    std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"), &std::fclose);
+    if (!file) throw SceneError(path + ": cannot open scene file: " + std::strerror(errno));
+    std::string text;
+    char buffer[1 << 16];
+    std::size_t count;
+    while ((count = std::fread(buffer, 1, sizeof buffer, file.get())) > 0) text.append(buffer, count);
+    if (std::ferror(file.get())) throw SceneError(path + ": cannot read scene file: " + std::strerror(errno));
+    return text;
+}
+
+}  // namespace
+
+Scene parse_scene(const std::string& json_text, const std::string& source_name) {
+    const nlohmann::json document = parse_json_strictly(json_text, source_name);
+    const JsonField root = root_field(document, source_name);
+    root.allow_only_keys({"camera", "render", "background", "materials", "shapes"});
+
+    Scene scene;
+    scene.source = source_name;
+    scene.camera = read_camera(root.member("camera"));
+    if (auto render = root.optional_member("render")) scene.render = read_render(*render);
+    if (auto background = root.optional_member("background")) {
+        scene.background = background->vec3_in(0.0, kMaxSceneMagnitude);
+    }
+    if (auto materials = root.optional_member("materials")) scene.materials = read_materials(*materials);
+    if (auto shapes = root.optional_member("shapes")) read_shapes(*shapes, scene);
+
+    rebase_to_camera(scene);
+    build_light_table(scene);
+    return scene;
+}
+
+Scene load_scene(const std::string& path) { return parse_scene(read_text_file(path), path); }
+
+}  // namespace wp

@@ -1,0 +1,224 @@
+#include "scene/scene_sections.h"
+
+#include <algorithm>
+#include <cmath>
+#include <glm/geometric.hpp>
+#include <limits>
+
+namespace wp {
+namespace {
+
+// The direction of v without overflow or underflow; the zero vector stays zero.
+glm::dvec3 safe_normalize(const glm::dvec3& v) {
+    double scale = std::max({std::fabs(v.x), std::fabs(v.y), std::fabs(v.z)});
+    return scale == 0.0 ? glm::dvec3(0.0) : glm::normalize(v / scale);
+}
+
+bool nearly_parallel(const glm::dvec3& a, const glm::dvec3& b) {
+    return glm::length(glm::cross(safe_normalize(a), safe_normalize(b))) < kMinSine;
+}
+
+glm::dvec3 read_direction(const JsonField& field) {
+    glm::dvec3 v = field.vec3();
+    if (v == glm::dvec3(0.0)) field.fail("must not be zero-length");
+    return v;
+}
+
+double read_positive(const JsonField& field) {
+    double value = field.number();
+    if (!(value > 0.0)) field.fail("must be > 0, got " + format_number(value));
+    return value;
+}
+
+template <class Int>
+void read_optional_integer(const JsonField& parent, std::string_view key, std::int64_t min, std::int64_t max,
+                           Int& out) {
+    if (auto field = parent.optional_member(key)) out = static_cast<Int>(field->integer(min, max));
+}
+
+// ---- camera ----
+
+double read_fov(const JsonField& field) {
+    double fov = field.number();
+    if (!(fov > 0.0 && fov < 180.0)) field.fail("must be in (0, 180), got " + format_number(fov));
+    return fov;
+}
+
+void check_pixel_count(const JsonField& camera_field, const Camera& camera) {
+    std::int64_t pixels = std::int64_t{camera.width} * camera.height;
+    if (pixels > kMaxPixels) {
+        camera_field.fail("width * height must be <= " + std::to_string(kMaxPixels) + ", got " +
+                          std::to_string(camera.width) + " * " + std::to_string(camera.height) + " = " +
+                          std::to_string(pixels));
+    }
+}
+
+void read_up(const JsonField& camera_field, Camera& camera) {
+    std::optional<JsonField> up = camera_field.optional_member("up");
+    if (up) camera.up = read_direction(*up);
+    if (!nearly_parallel(camera.up, camera.look_at - camera.position)) return;
+    if (up) up->fail("must not be parallel to the view direction (look_at - position)");
+    camera_field.fail("the default up [0, 1, 0] is parallel to the view direction (look_at - position); set up");
+}
+
+// ---- materials ----
+
+glm::dvec3 read_reflectivity(const JsonField& field) { return field.vec3_in(0.0, 1.0, " (energy gain)"); }
+
+glm::dvec3 read_radiance(const JsonField& field) { return field.vec3_in(0.0, kMaxSceneMagnitude); }
+
+bool read_two_sided(const JsonField& field) {
+    std::optional<JsonField> two_sided = field.optional_member("two_sided");
+    return two_sided && two_sided->boolean();
+}
+
+void read_diffuse(const JsonField& field, Material& material) {
+    field.allow_only_keys({"type", "albedo", "emission", "two_sided"});
+    material.albedo = read_reflectivity(field.member("albedo"));
+    if (auto emission = field.optional_member("emission")) material.emission = read_radiance(*emission);
+    material.two_sided = read_two_sided(field);
+}
+
+void read_mirror(const JsonField& field, Material& material) {
+    field.allow_only_keys({"type", "reflectance"});
+    material.reflectance = read_reflectivity(field.member("reflectance"));
+}
+
+void read_glass(const JsonField& field, Material& material) {
+    field.allow_only_keys({"type", "ior"});
+    material.ior = read_positive(field.member("ior"));
+}
+
+void read_emitter(const JsonField& field, Material& material) {
+    field.allow_only_keys({"type", "radiance", "two_sided"});
+    material.emission = read_radiance(field.member("radiance"));
+    material.two_sided = read_two_sided(field);
+}
+
+Material read_material(const std::string& name, const JsonField& field) {
+    Material material;
+    material.name = name;
+    JsonField type_field = field.member("type");
+    std::string type = type_field.string();
+    if (type == "diffuse") {
+        material.type = MaterialType::Diffuse;
+        read_diffuse(field, material);
+    } else if (type == "mirror") {
+        material.type = MaterialType::Mirror;
+        read_mirror(field, material);
+    } else if (type == "glass") {
+        material.type = MaterialType::Glass;
+        read_glass(field, material);
+    } else if (type == "emitter") {
+        material.type = MaterialType::Emitter;
+        read_emitter(field, material);
+    } else {
+        type_field.fail("unknown material type " + nlohmann::json(type).dump() +
+                        " (expected one of: diffuse, mirror, glass, emitter)");
+    }
+    return material;
+}
+
+// ---- shapes ----
+
+std::string material_names(const std::vector<Material>& materials) {
+    if (materials.empty()) return "none";
+    std::string names;
+    for (const Material& m : materials) names += (names.empty() ? "" : ", ") + m.name;
+    return names;
+}
+
+int resolve_material(const JsonField& shape_field, const std::vector<Material>& materials) {
+    JsonField field = shape_field.member("material");
+    std::string name = field.string();
+    auto found = std::find_if(materials.begin(), materials.end(), [&](const Material& m) { return m.name == name; });
+    if (found == materials.end()) {
+        field.fail("undefined material " + nlohmann::json(name).dump() + " (defined: " + material_names(materials) +
+                   ")");
+    }
+    return static_cast<int>(found - materials.begin());
+}
+
+Sphere read_sphere(const JsonField& field, const std::vector<Material>& materials) {
+    field.allow_only_keys({"type", "center", "radius", "material"});
+    return {field.member("center").vec3(), read_positive(field.member("radius")), resolve_material(field, materials)};
+}
+
+Plane read_plane(const JsonField& field, const std::vector<Material>& materials) {
+    field.allow_only_keys({"type", "point", "normal", "material"});
+    Plane plane{field.member("point").vec3(), safe_normalize(read_direction(field.member("normal"))),
+                resolve_material(field, materials)};
+    const Material& material = materials[plane.material];
+    if (material.emits()) {
+        field.member("material")
+            .fail(nlohmann::json(material.name).dump() + " emits light, but a plane cannot be a light (infinite area)");
+    }
+    return plane;
+}
+
+Quad read_quad(const JsonField& field, const std::vector<Material>& materials) {
+    field.allow_only_keys({"type", "corner", "edge1", "edge2", "material"});
+    Quad quad;
+    quad.corner = field.member("corner").vec3();
+    quad.edge1 = read_direction(field.member("edge1"));
+    JsonField edge2 = field.member("edge2");
+    quad.edge2 = read_direction(edge2);
+    if (nearly_parallel(quad.edge1, quad.edge2)) edge2.fail("must not be parallel to edge1");
+    quad.material = resolve_material(field, materials);
+    return quad;
+}
+
+void read_shape(const JsonField& field, Scene& scene) {
+    JsonField type_field = field.member("type");
+    std::string type = type_field.string();
+    if (type == "sphere") {
+        scene.spheres.push_back(read_sphere(field, scene.materials));
+    } else if (type == "plane") {
+        scene.planes.push_back(read_plane(field, scene.materials));
+    } else if (type == "quad") {
+        scene.quads.push_back(read_quad(field, scene.materials));
+    } else {
+        type_field.fail("unknown shape type " + nlohmann::json(type).dump() +
+                        " (expected one of: sphere, plane, quad)");
+    }
+}
+
+}  // namespace
+
+Camera read_camera(const JsonField& field) {
+    field.allow_only_keys({"position", "look_at", "up", "fov_y", "width", "height"});
+    Camera camera;
+    camera.position = field.member("position").vec3();
+    JsonField look_at = field.member("look_at");
+    camera.look_at = look_at.vec3();
+    if (camera.look_at == camera.position) look_at.fail("must differ from camera.position");
+    read_up(field, camera);
+    camera.fov_y_degrees = read_fov(field.member("fov_y"));
+    camera.width = static_cast<int>(field.member("width").integer(1, kMaxResolution));
+    camera.height = static_cast<int>(field.member("height").integer(1, kMaxResolution));
+    check_pixel_count(field, camera);
+    return camera;
+}
+
+RenderSettings read_render(const JsonField& field) {
+    field.allow_only_keys({"spp", "max_depth", "rr_depth", "seed"});
+    RenderSettings render;
+    read_optional_integer(field, "spp", 1, kMaxSpp, render.spp);
+    read_optional_integer(field, "max_depth", 0, kMaxDepthLimit, render.max_depth);
+    read_optional_integer(field, "rr_depth", 0, std::numeric_limits<int>::max(), render.rr_depth);
+    read_optional_integer(field, "seed", 0, std::numeric_limits<std::uint32_t>::max(), render.seed);
+    return render;
+}
+
+std::vector<Material> read_materials(const JsonField& field) {
+    std::vector<Material> materials;
+    for (const auto& entry : field.object()) materials.push_back(read_material(entry.first, field.member(entry.first)));
+    return materials;
+}
+
+void read_shapes(const JsonField& field, Scene& scene) {
+    std::size_t count = field.array_size();
+    for (std::size_t i = 0; i < count; ++i) read_shape(field.element(i), scene);
+}
+
+}  // namespace wp
