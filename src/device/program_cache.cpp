@@ -56,10 +56,14 @@ std::string cache_key(const DeviceInfo& device, const fs::path& dir, const std::
     return hex;
 }
 
+// The first error as "file:line: message", from either log format:
+// clang's "file:line:col: error: message" or PoCL's "error: file:line:col: message".
 std::string first_error_line(const std::string& log) {
-    static const std::regex error_line(R"(([^\s:][^:\n]*):(\d+):(?:\d+:)? (?:fatal )?error: ([^\n]*))");
+    static const std::regex clang_format(R"(([^\s:][^:\n]*):(\d+):\d+: (?:fatal )?error: ([^\n]*))");
+    static const std::regex pocl_format(R"((?:fatal )?error: ([^\s:][^:\n]*):(\d+):\d+: ([^\n]*))");
     std::smatch m;
-    if (std::regex_search(log, m, error_line)) return m[1].str() + ":" + m[2].str() + ": " + m[3].str();
+    if (std::regex_search(log, m, pocl_format) || std::regex_search(log, m, clang_format))
+        return m[1].str() + ":" + m[2].str() + ": " + m[3].str();
     return "(no error location in the build log)";
 }
 
@@ -104,9 +108,8 @@ cl::Program build_from_source(const cl::Context& context, const DeviceInfo& devi
     cl::Program program(context, source);
     try {
         program.build({device.device}, options.c_str());
-    } catch (const cl::BuildError& e) {
-        std::string log;
-        for (const auto& [dev, text] : e.getBuildLog()) log += text;
+    } catch (const cl::BuildError&) {
+        std::string log = program.getBuildInfo<CL_PROGRAM_BUILD_LOG>(device.device);
         throw KernelBuildError(first_error_line(log), log);
     }
     return program;
