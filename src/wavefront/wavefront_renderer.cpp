@@ -15,7 +15,7 @@ namespace {
 // Work items per pass, as a multiple of the wavefront: a pass drains (its
 // last paths run with the wavefront partly empty) before accumulation, so
 // longer passes waste less; each item costs 12 bytes of pass radiance.
-constexpr std::size_t kPassesPerWavefront = 4;
+constexpr std::size_t kPassesPerWavefront = 16;
 
 Image film_to_image(const std::vector<double>& sums, int width, int height, int spp) {
     Image image;
@@ -28,13 +28,15 @@ Image film_to_image(const std::vector<double>& sums, int width, int height, int 
 
 }  // namespace
 
-std::size_t default_wavefront_size(std::uint64_t work_items, std::size_t bytes_per_path,
-                                   unsigned long long device_memory_bytes) {
+std::size_t default_wavefront_size(std::uint64_t work_items, std::size_t bytes_per_path, const DeviceInfo& device) {
+    // On a CPU the state should stay near the caches: 2^16 paths rendered room.json
+    // at 512x512 1.7x faster than 2^20 on PoCL (2 cores); GPUs need many paths in flight.
+    std::size_t most = device.type == "CPU" ? std::size_t(1) << 16 : std::size_t(1) << 20;
     constexpr std::size_t kGroup = WP_GROUP_SIZE;
     // State, five queue entries and the pass entries of each path slot.
     std::size_t bytes_per_slot = bytes_per_path + WP_QUEUE_COUNT * 4 + kPassesPerWavefront * 12;
-    std::size_t by_memory = std::size_t(device_memory_bytes / 4 / bytes_per_slot);
-    std::size_t size = std::min<std::uint64_t>({std::size_t(1) << 20, work_items, by_memory});
+    std::size_t by_memory = std::size_t(device.global_memory_bytes / 4 / bytes_per_slot);
+    std::size_t size = std::min<std::uint64_t>({most, work_items, by_memory});
     return std::max(kGroup, (size + kGroup - 1) / kGroup * kGroup);
 }
 
@@ -61,7 +63,7 @@ RenderResult render_wavefront(const Scene& scene, const WavefrontOptions& option
     std::size_t wavefront = options.wavefront
                                 ? options.wavefront
                                 : default_wavefront_size(total, PathState::bytes_per_path(scene.features(), has_lights),
-                                                         device.global_memory_bytes);
+                                                         device);
     Pipeline pipeline(scene, device, wavefront, std::min<std::uint64_t>(total, kPassesPerWavefront * wavefront));
 
     WavefrontReport local_report;

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/render.h"
+#include "device/opencl_device.h"
 #include "scene/scene.h"
 
 namespace wp {
@@ -46,9 +47,9 @@ struct WavefrontReport {
 RenderResult render_wavefront(const Scene& scene, const WavefrontOptions& options, const ProgressFn& progress,
                               WavefrontReport* report = nullptr);
 
-// The automatic --wavefront size: up to 2^20 paths, no more than the work
-// (pixels x spp), and the state within a quarter of the device's memory.
-std::size_t default_wavefront_size(std::uint64_t work_items, std::size_t bytes_per_path,
-                                   unsigned long long device_memory_bytes);
+// The automatic --wavefront size: up to 2^16 paths on a CPU and 2^20 on
+// other devices, no more than the work (pixels x spp), and the state within
+// a quarter of the device's memory.
+std::size_t default_wavefront_size(std::uint64_t work_items, std::size_t bytes_per_path, const DeviceInfo& device);
 
 }  // namespace wp
