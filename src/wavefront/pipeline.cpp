@@ -17,7 +17,8 @@ const std::vector<std::string>& wavefront_kernel_files() {
     return files;
 }
 
-Pipeline::Pipeline(const Scene& scene, const DeviceInfo& device, std::size_t capacity, std::size_t pass_capacity)
+Pipeline::Pipeline(const Scene& scene, const DeviceInfo& device, std::size_t capacity, std::size_t pass_capacity,
+                   const FeatureSet& kernel_features)
     : capacity_(capacity),
       pass_capacity_(pass_capacity),
       pixel_count_(std::size_t(scene.camera.width) * scene.camera.height),
@@ -25,9 +26,9 @@ Pipeline::Pipeline(const Scene& scene, const DeviceInfo& device, std::size_t cap
       context_(device.device),
       queue_(context_, device.device),
       program_(build_program(context_, device, wavefront_kernel_files(),
-                             kernel_build_options(scene.features(), !scene.lights.empty(), device.fp64))),
+                             kernel_build_options(kernel_features, !scene.lights.empty(), device.fp64))),
       scene_(context_, flatten_scene(scene)),
-      state_(context_, capacity, scene.features(), !scene.lights.empty()),
+      state_(context_, capacity, kernel_features, !scene.lights.empty()),
       queues_(context_, CL_MEM_READ_WRITE, sizeof(std::uint32_t) * WP_QUEUE_COUNT * capacity),
       counts_(context_, CL_MEM_READ_WRITE, sizeof(DeviceCounts)),
       pass_radiance_(context_, CL_MEM_READ_WRITE, sizeof(float) * 3 * pass_capacity),

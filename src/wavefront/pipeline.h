@@ -31,7 +31,12 @@ using DeviceCounts = std::array<std::uint32_t, WP_COUNTS_SIZE>;
 class Pipeline {
  public:
     // capacity: paths in flight; pass_capacity: most work items per pass.
-    Pipeline(const Scene& scene, const DeviceInfo& device, std::size_t capacity, std::size_t pass_capacity);
+    // The kernels are compiled for `kernel_features`, normally scene.features()
+    // (a superset also renders the scene, only slower).
+    Pipeline(const Scene& scene, const DeviceInfo& device, std::size_t capacity, std::size_t pass_capacity,
+             const FeatureSet& kernel_features);
+    Pipeline(const Scene& scene, const DeviceInfo& device, std::size_t capacity, std::size_t pass_capacity)
+        : Pipeline(scene, device, capacity, pass_capacity, scene.features()) {}
 
     const BuiltProgram& program() const { return program_; }
     const PathState& state() const { return state_; }

@@ -15,6 +15,7 @@ namespace wp {
 struct WavefrontOptions {
     std::string device;         // "" (prefer a GPU), an index, or a name substring
     std::size_t wavefront = 0;  // paths in flight; 0 = chosen from device memory and image size
+    bool specialise = true;     // compile only the scene's features (false: every shape and material, for comparison)
 };
 
 // Queue lengths of one iteration of the stage loop, for the profiler.
