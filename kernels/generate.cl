@@ -5,15 +5,12 @@
 #include "wavefront.h"
 
 __kernel __attribute__((reqd_work_group_size(WP_GROUP_SIZE, 1, 1))) void generate(WP_STAGE_PARAMS) {
-    __local uint group_count, group_base;
-    uint k = queue_position(counts, WP_QUEUE_FREE);
-    uint slot = 0u;
+    WP_STAGE_INPUT(WP_QUEUE_FREE);
     int started = 0;
     /* Reading first keeps the counter from running far past the pass once it is issued. */
     if (k != ~0u && counts[WP_COUNTER_WORK] < pass_size) {
         uint item = atomic_inc(&counts[WP_COUNTER_WORK]);
         if (item < pass_size) {
-            slot = queues[WP_QUEUE_FREE * capacity + k];
             ulong work = pass_start + item;
             uint pixel_count = scene->width * scene->height;
             uint px = (uint)(work % pixel_count);

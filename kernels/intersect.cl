@@ -3,9 +3,7 @@
 #include "wavefront.h"
 
 __kernel __attribute__((reqd_work_group_size(WP_GROUP_SIZE, 1, 1))) void intersect(WP_STAGE_PARAMS) {
-    __local uint group_count, group_base;
-    uint k = queue_position(counts, WP_QUEUE_RAY);
-    uint slot = k != ~0u ? queues[WP_QUEUE_RAY * capacity + k] : 0u;
+    WP_STAGE_INPUT(WP_QUEUE_RAY);
     int hit_something = 0, missed = 0;
     if (k != ~0u) {
         Hit hit = closest_hit(WP_SCENE_ARGS, LOAD_XYZ(origin, slot), LOAD_XYZ(direction, slot));

@@ -50,9 +50,7 @@ WP_FN Scattered scatter_glass(__global const DeviceMaterial *m, vec3 d, vec3 nf,
 #endif
 
 __kernel __attribute__((reqd_work_group_size(WP_GROUP_SIZE, 1, 1))) void scatter(WP_STAGE_PARAMS) {
-    __local uint group_count, group_base;
-    uint k = queue_position(counts, WP_QUEUE_SCATTER);
-    uint slot = k != ~0u ? queues[WP_QUEUE_SCATTER * capacity + k] : 0u;
+    WP_STAGE_INPUT(WP_QUEUE_SCATTER);
     int continues = 0, ends = 0;
     if (k != ~0u) {
         vec3 d = LOAD_XYZ(direction, slot);

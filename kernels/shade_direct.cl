@@ -48,9 +48,7 @@ WP_FN int sample_direct_light(WP_SCENE_PARAMS, uint pixel, uint sample, uint bou
 #endif
 
 __kernel __attribute__((reqd_work_group_size(WP_GROUP_SIZE, 1, 1))) void shade_direct(WP_STAGE_PARAMS) {
-    __local uint group_count, group_base;
-    uint k = queue_position(counts, WP_QUEUE_HIT);
-    uint slot = k != ~0u ? queues[WP_QUEUE_HIT * capacity + k] : 0u;
+    WP_STAGE_INPUT(WP_QUEUE_HIT);
     int ends = 0, scatters = 0, casts_shadow = 0;
     if (k != ~0u) {
         vec3 d = LOAD_XYZ(direction, slot);

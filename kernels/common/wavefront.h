@@ -51,6 +51,13 @@ WP_FN uint queue_position(__global const uint *counts, uint queue) {
     return k < counts[queue] ? k : ~0u;
 }
 
+/* The start of a stage kernel: the work group's push scratch, this work
+ * item's position k in its input queue (~0u past the end) and the slot there. */
+#define WP_STAGE_INPUT(queue)                   \
+    __local uint group_count, group_base;       \
+    uint k = queue_position(counts, (queue));   \
+    uint slot = k != ~0u ? queues[(queue) * capacity + k] : 0u
+
 /* Appends `slot` to `queue` where `push` is set, one global atomic per work
  * group. Every work item of the group must call it (it has barriers); work
  * items past their queue's end push nothing. Kernels do not return early
