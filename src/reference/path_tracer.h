@@ -1,0 +1,268 @@
+// The reference path tracer: the estimator of HELPERS.md, one camera sample
+// at a time, in plain scalar code over ReferenceScene<Real>. Every random
+// number comes from rng_uniform(seed, pixel, sample, bounce, dimension), so a
+// sample's path depends on nothing but those five numbers.
+//
+// Choices the wavefront kernels must repeat to retrace these paths exactly:
+//  - shapes are tested spheres, then planes, then quads, each in scene order,
+//    and a later shape replaces the closest hit only when strictly closer;
+//  - a sphere hit point is moved back onto the sphere with sphere_reproject;
+//  - the shadow ray runs from offset_ray_origin(x, nf) towards
+//    offset_ray_origin(light point, light normal facing x), with the unit
+//    direction and the distance between those two points;
+//  - the diffuse bounce direction is frame_to_world(frame_from_normal(nf),
+//    sample_cosine_hemisphere(u, v)), not renormalised.
+#pragma once
+
+#include <cstdint>
+#include <glm/geometric.hpp>
+#include <glm/vec3.hpp>
+#include <numbers>
+
+#include "reference/reference_scene.h"
+
+namespace wp::reference {
+
+struct RayCounts {
+    std::uint64_t extension = 0;  // camera and bounce rays
+    std::uint64_t shadow = 0;
+};
+
+// The random numbers of one camera sample.
+template <class Real>
+struct SampleRng {
+    std::uint32_t seed, pixel, sample;
+    Real operator()(std::uint32_t bounce, std::uint32_t dimension) const {
+        return SharedMath<Real>::rng_uniform(seed, pixel, sample, bounce, dimension);
+    }
+};
+
+template <class Real>
+struct Ray {
+    Vec3<Real> origin, direction;  // direction is unit length
+};
+
+template <class Real>
+struct ShapeHit {
+    Real t = SharedMath<Real>::real_max;  // real_max: nothing hit
+    ShapeType shape = ShapeType::Sphere;
+    int index = -1;
+    bool found() const { return index >= 0; }
+};
+
+// Where a ray met a surface.
+template <class Real>
+struct SurfacePoint {
+    Vec3<Real> point;
+    Vec3<Real> normal;  // geometric: outward, plane normal, or edge1 x edge2
+    int material;
+};
+
+template <class Real>
+ShapeHit<Real> closest_hit(const ReferenceScene<Real>& scene, const Ray<Real>& ray) {
+    using M = SharedMath<Real>;
+    ShapeHit<Real> hit;
+    auto keep_if_closer = [&hit](Real t, ShapeType shape, int index) {
+        if (t < hit.t) hit = {t, shape, index};
+    };
+    for (int i = 0; i < static_cast<int>(scene.spheres.size()); ++i) {
+        const auto& s = scene.spheres[i];
+        keep_if_closer(M::intersect_sphere(s.center, s.radius, ray.origin, ray.direction, hit.t), ShapeType::Sphere, i);
+    }
+    for (int i = 0; i < static_cast<int>(scene.planes.size()); ++i) {
+        const auto& p = scene.planes[i];
+        keep_if_closer(M::intersect_plane(p.point, p.normal, ray.origin, ray.direction, hit.t), ShapeType::Plane, i);
+    }
+    for (int i = 0; i < static_cast<int>(scene.quads.size()); ++i) {
+        const auto& q = scene.quads[i];
+        keep_if_closer(M::intersect_quad(q.corner, q.edge1, q.edge2, ray.origin, ray.direction, hit.t), ShapeType::Quad,
+                       i);
+    }
+    return hit;
+}
+
+// True when any shape lies on the ray closer than `distance`.
+template <class Real>
+bool occluded(const ReferenceScene<Real>& scene, const Ray<Real>& ray, Real distance) {
+    using M = SharedMath<Real>;
+    for (const auto& s : scene.spheres) {
+        if (M::intersect_sphere(s.center, s.radius, ray.origin, ray.direction, distance) < distance) return true;
+    }
+    for (const auto& p : scene.planes) {
+        if (M::intersect_plane(p.point, p.normal, ray.origin, ray.direction, distance) < distance) return true;
+    }
+    for (const auto& q : scene.quads) {
+        if (M::intersect_quad(q.corner, q.edge1, q.edge2, ray.origin, ray.direction, distance) < distance) return true;
+    }
+    return false;
+}
+
+template <class Real>
+SurfacePoint<Real> surface_at(const ReferenceScene<Real>& scene, const Ray<Real>& ray, const ShapeHit<Real>& hit) {
+    using M = SharedMath<Real>;
+    typename M::vec3 point = ray.origin + hit.t * ray.direction;
+    switch (hit.shape) {
+        case ShapeType::Sphere: {
+            const auto& s = scene.spheres[hit.index];
+            point = M::sphere_reproject(s.center, s.radius, point);
+            return {point, M::sphere_normal(s.center, point), s.material};
+        }
+        case ShapeType::Plane:
+            return {point, scene.planes[hit.index].normal, scene.planes[hit.index].material};
+        case ShapeType::Quad:
+            return {point, scene.quads[hit.index].normal, scene.quads[hit.index].material};
+    }
+    return {};
+}
+
+template <class Real>
+typename SharedMath<Real>::LightSample sample_light(const ReferenceScene<Real>& scene,
+                                                    const typename ReferenceScene<Real>::LightRef& light,
+                                                    const Vec3<Real>& reference, Real u1, Real u2) {
+    using M = SharedMath<Real>;
+    if (light.shape == ShapeType::Sphere) {
+        const auto& s = scene.spheres[light.index];
+        return M::sample_sphere(s.center, s.radius, reference, u1, u2);
+    }
+    const auto& q = scene.quads[light.index];
+    return M::sample_quad(q.corner, q.edge1, q.edge2, reference, u1, u2);
+}
+
+template <class Real>
+int light_material(const ReferenceScene<Real>& scene, const typename ReferenceScene<Real>::LightRef& light) {
+    return light.shape == ShapeType::Sphere ? scene.spheres[light.index].material : scene.quads[light.index].material;
+}
+
+// Next-event estimation at a diffuse point x with front-facing normal nf:
+// one light chosen by the power CDF, one point on it, one shadow ray.
+// `weight` is the path throughput times the albedo; returns the radiance the
+// sample adds to the path.
+template <class Real>
+Vec3<Real> sample_direct_light(const ReferenceScene<Real>& scene, const Vec3<Real>& x, const Vec3<Real>& nf,
+                               const Vec3<Real>& weight, const SampleRng<Real>& rng, std::uint32_t bounce,
+                               RayCounts& counts) {
+    using M = SharedMath<Real>;
+    using vec3 = typename M::vec3;
+    const vec3 none(Real(0));
+    auto light_count = static_cast<std::uint32_t>(scene.lights.size());
+    std::uint32_t index = M::select_light(scene.light_cdf.data(), light_count, rng(bounce, DIM_LIGHT_SELECT));
+    Real pmf = M::light_selection_pmf(scene.light_cdf.data(), index);
+    const auto& light = scene.lights[index];
+    auto s = sample_light(scene, light, x, rng(bounce, DIM_LIGHT_U), rng(bounce, DIM_LIGHT_V));
+    if (s.pdf_solid_angle == Real(0)) return none;
+
+    vec3 wi = glm::normalize(s.point - x);
+    Real cos_surface = glm::dot(wi, nf);
+    if (!(cos_surface > Real(0))) return none;
+    const auto& emitter = scene.materials[light_material(scene, light)];
+    bool light_faces_x = glm::dot(s.normal, x - s.point) > Real(0);
+    if (!emitter.two_sided && !light_faces_x) return none;
+
+    vec3 origin = M::offset_ray_origin(x, nf);
+    vec3 target = M::offset_ray_origin(s.point, light_faces_x ? s.normal : -s.normal);
+    vec3 to_target = target - origin;
+    Real distance = glm::length(to_target);
+    ++counts.shadow;
+    if (occluded(scene, Ray<Real>{origin, to_target / distance}, distance)) return none;
+    return weight * std::numbers::inv_pi_v<Real> * emitter.emission * cos_surface / (s.pdf_solid_angle * pmf);
+}
+
+template <class Real>
+struct Scattered {
+    Ray<Real> ray;
+    Vec3<Real> weight;  // throughput factor
+    bool specular;
+};
+
+// Samples the continuation of the path at a non-emitter surface. d is the
+// incoming direction, n the geometric normal, nf the one facing d.
+template <class Real>
+Scattered<Real> scatter(const typename ReferenceScene<Real>::SurfaceMaterial& material, const Vec3<Real>& x,
+                        const Vec3<Real>& d, const Vec3<Real>& n, const Vec3<Real>& nf, const SampleRng<Real>& rng,
+                        std::uint32_t bounce) {
+    using M = SharedMath<Real>;
+    using vec3 = typename M::vec3;
+    auto leave = [&x](const vec3& direction, const vec3& side) {
+        return Ray<Real>{M::offset_ray_origin(x, side), direction};
+    };
+    switch (material.type) {
+        case MaterialType::Mirror:
+            return {leave(M::reflect_direction(d, nf), nf), material.reflectance, true};
+        case MaterialType::Glass: {
+            bool entering = glm::dot(d, n) < Real(0);
+            Real eta = entering ? material.ior : Real(1) / material.ior;
+            Real reflectance = M::fresnel_dielectric(-glm::dot(d, nf), eta);
+            vec3 refracted;
+            if (rng(bounce, DIM_BSDF_LOBE) < reflectance || !M::refract_direction(d, nf, eta, &refracted)) {
+                return {leave(M::reflect_direction(d, nf), nf), vec3(Real(1)), true};
+            }
+            return {leave(refracted, -nf), vec3(Real(1) / (eta * eta)), true};
+        }
+        default: {  // diffuse
+            vec3 local = M::sample_cosine_hemisphere(rng(bounce, DIM_BSDF_U), rng(bounce, DIM_BSDF_V));
+            return {leave(M::frame_to_world(M::frame_from_normal(nf), local), nf), material.albedo, false};
+        }
+    }
+}
+
+// Radiance carried by one path that starts with `ray`.
+template <class Real>
+Vec3<Real> trace_path(const ReferenceScene<Real>& scene, Ray<Real> ray, const SampleRng<Real>& rng, RayCounts& counts) {
+    using M = SharedMath<Real>;
+    using vec3 = typename M::vec3;
+    vec3 throughput(Real(1));
+    vec3 radiance(Real(0));
+    bool specular = true;  // the previous vertex was specular, or is the camera
+    for (int depth = 0;;) {
+        ++counts.extension;
+        ShapeHit<Real> hit = closest_hit(scene, ray);
+        if (!hit.found()) {
+            radiance += throughput * scene.background;
+            break;
+        }
+        SurfacePoint<Real> surface = surface_at(scene, ray, hit);
+        const auto& material = scene.materials[surface.material];
+        bool front = glm::dot(ray.direction, surface.normal) < Real(0);
+        vec3 nf = front ? surface.normal : -surface.normal;
+        if (material.emits && (material.two_sided || front) && specular) radiance += throughput * material.emission;
+        if (depth >= scene.render.max_depth || material.type == MaterialType::Emitter) break;
+
+        auto bounce = static_cast<std::uint32_t>(depth);
+        if (material.type == MaterialType::Diffuse && !scene.lights.empty()) {
+            radiance +=
+                sample_direct_light(scene, surface.point, nf, throughput * material.albedo, rng, bounce, counts);
+        }
+        Scattered<Real> next = scatter(material, surface.point, ray.direction, surface.normal, nf, rng, bounce);
+        throughput *= next.weight;
+        ray = next.ray;
+        specular = next.specular;
+
+        ++depth;
+        if (depth >= scene.render.rr_depth) {
+            Real survival = M::wp_clamp(M::max_component(throughput), Real(0.05), Real(1));
+            if (rng(bounce, DIM_ROULETTE) >= survival) break;
+            throughput /= survival;
+        }
+    }
+    return radiance;
+}
+
+// The camera ray of sample `sample` in pixel (px, py): jittered in the pixel.
+template <class Real>
+Ray<Real> camera_ray(const ReferenceScene<Real>& scene, int px, int py, const SampleRng<Real>& rng) {
+    using M = SharedMath<Real>;
+    const auto& c = scene.camera;
+    Real x = (Real(px) + rng(0, DIM_FILM_X)) / Real(c.width);
+    Real y = (Real(py) + rng(0, DIM_FILM_Y)) / Real(c.height);
+    return {c.position, M::camera_direction(c.right, c.up, c.forward, c.tan_half_fov_y, c.aspect, x, y)};
+}
+
+// Radiance of one camera sample, before the non-finite check.
+template <class Real>
+Vec3<Real> trace_camera_sample(const ReferenceScene<Real>& scene, int px, int py, int sample, RayCounts& counts) {
+    auto pixel = static_cast<std::uint32_t>(py * scene.camera.width + px);
+    SampleRng<Real> rng{scene.render.seed, pixel, static_cast<std::uint32_t>(sample)};
+    return trace_path(scene, camera_ray(scene, px, py, rng), rng, counts);
+}
+
+}  // namespace wp::reference

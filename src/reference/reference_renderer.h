@@ -1,0 +1,31 @@
+// The scalar reference renderer: plain C++ on the CPU, float or double,
+// computing exactly the estimator the OpenCL kernels compute (HELPERS.md).
+// It validates the wavefront backend, path for path.
+#pragma once
+
+#include <glm/vec3.hpp>
+
+#include "core/render.h"
+#include "scene/scene.h"
+
+namespace wp {
+
+struct ReferenceOptions {
+    int threads = 0;  // 0 = hardware concurrency
+    bool double_precision = false;
+};
+
+// Renders the scene with its own render settings and camera resolution. The
+// image is bit-identical for any thread count. Throws std::invalid_argument
+// for a resolution or spp below 1 or a negative max_depth.
+RenderResult render_reference(const Scene& scene, const ReferenceOptions& options, const ProgressFn& progress = {});
+
+// Radiance of one camera sample, exactly as render_reference computes it
+// (before non-finite samples are dropped); Real is float or double.
+template <class Real>
+glm::dvec3 trace_reference_sample(const Scene& scene, int px, int py, int sample);
+
+extern template glm::dvec3 trace_reference_sample<float>(const Scene&, int, int, int);
+extern template glm::dvec3 trace_reference_sample<double>(const Scene&, int, int, int);
+
+}  // namespace wp

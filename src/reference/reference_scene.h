@@ -1,0 +1,97 @@
+// The scene converted once to the reference renderer's scalar type, so that
+// all path arithmetic runs in Real, as the kernels' runs in float.
+#pragma once
+
+#include <cmath>
+#include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
+#include <vector>
+
+#include "core/shared_math.h"
+#include "scene/scene.h"
+
+namespace wp::reference {
+
+template <class Real>
+using Vec3 = typename SharedMath<Real>::vec3;
+
+template <class Real>
+struct ReferenceScene {
+    using M = SharedMath<Real>;
+    using vec3 = typename M::vec3;
+
+    struct SphereShape {
+        vec3 center;
+        Real radius;
+        int material;
+    };
+    struct PlaneShape {
+        vec3 point;
+        vec3 normal;  // unit
+        int material;
+    };
+    struct QuadShape {
+        vec3 corner, edge1, edge2;
+        vec3 normal;  // quad_normal(edge1, edge2), computed in Real as the kernels do
+        int material;
+    };
+    struct SurfaceMaterial {
+        MaterialType type;
+        vec3 albedo;       // diffuse
+        vec3 reflectance;  // mirror
+        vec3 emission;     // diffuse (optional) and emitter
+        Real ior;          // glass
+        bool two_sided;    // emission on both sides
+        bool emits;
+    };
+    struct LightRef {
+        ShapeType shape;  // Sphere or Quad
+        int index;        // into spheres or quads
+    };
+    // Pinhole camera; the basis is built in double and then rounded, as a
+    // host would do before handing it to a kernel.
+    struct PinholeCamera {
+        vec3 position, right, up, forward;
+        Real tan_half_fov_y, aspect;
+        int width, height;
+    };
+
+    PinholeCamera camera;
+    RenderSettings render;
+    vec3 background;
+    std::vector<SurfaceMaterial> materials;
+    std::vector<SphereShape> spheres;
+    std::vector<PlaneShape> planes;
+    std::vector<QuadShape> quads;
+    std::vector<LightRef> lights;
+    std::vector<Real> light_cdf;
+
+    explicit ReferenceScene(const Scene& scene) : render(scene.render), background(scene.background) {
+        camera = convert_camera(scene.camera);
+        for (const Material& m : scene.materials) {
+            materials.push_back(
+                {m.type, vec3(m.albedo), vec3(m.reflectance), vec3(m.emission), Real(m.ior), m.two_sided, m.emits()});
+        }
+        for (const Sphere& s : scene.spheres) spheres.push_back({vec3(s.center), Real(s.radius), s.material});
+        for (const Plane& p : scene.planes) planes.push_back({vec3(p.point), vec3(p.normal), p.material});
+        for (const Quad& q : scene.quads) {
+            vec3 edge1(q.edge1), edge2(q.edge2);
+            quads.push_back({vec3(q.corner), edge1, edge2, M::quad_normal(edge1, edge2), q.material});
+        }
+        for (const Light& light : scene.lights) lights.push_back({light.shape, light.index});
+        for (double c : scene.light_cdf) light_cdf.push_back(Real(c));
+    }
+
+ private:
+    static PinholeCamera convert_camera(const Camera& c) {
+        glm::dvec3 forward = glm::normalize(c.look_at - c.position);
+        glm::dvec3 right = glm::normalize(glm::cross(forward, c.up));
+        glm::dvec3 up = glm::cross(right, forward);
+        double tan_half_fov_y = std::tan(glm::radians(c.fov_y_degrees) / 2.0);
+        double aspect = static_cast<double>(c.width) / static_cast<double>(c.height);
+        return {vec3(c.position),     vec3(right),  vec3(up), vec3(forward),
+                Real(tan_half_fov_y), Real(aspect), c.width,  c.height};
+    }
+};
+
+}  // namespace wp::reference

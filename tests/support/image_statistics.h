@@ -1,0 +1,29 @@
+// Per-channel statistics over the pixels of a rendered image. Pixels are
+// independent estimates (their random numbers never overlap), so where all
+// selected pixels share one expected value, their spread gives the standard
+// error of their mean.
+#pragma once
+
+#include <cmath>
+#include <functional>
+
+#include "core/render.h"
+#include "support/statistics.h"
+
+namespace wp::test {
+
+inline float pixel_channel(const Image& image, int x, int y, int channel) {
+    return image.rgb[3 * (static_cast<std::size_t>(y) * image.width + x) + channel];
+}
+
+// Mean and standard error of one channel over the pixels `keep` accepts.
+inline RunningMean channel_mean(
+    const Image& image, int channel, const std::function<bool(int, int)>& keep = [](int, int) { return true; }) {
+    RunningMean mean;
+    for (int y = 0; y < image.height; ++y)
+        for (int x = 0; x < image.width; ++x)
+            if (keep(x, y)) mean.add(pixel_channel(image, x, y, channel));
+    return mean;
+}
+
+}  // namespace wp::test
