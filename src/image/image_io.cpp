@@ -88,9 +88,8 @@ std::vector<std::uint8_t> encode_srgb8_values(const std::vector<float>& linear) 
 // Writes `image` to `file`, whose extension selects OpenImageIO's writer;
 // errors name `target`, the path the user asked for.
 void write_with_oiio(const Image& image, const Format& format, const fs::path& file, const std::string& target) {
-    auto fail = [&](const std::string& problem) { fail_write(target, problem); };
     std::unique_ptr<OIIO::ImageOutput> output = OIIO::ImageOutput::create(file.string());
-    if (!output) fail(OIIO::geterror());
+    if (!output) fail_write(target, OIIO::geterror());
 
     const bool srgb = format.encoding == Encoding::Srgb8;
     const OIIO::TypeDesc type = srgb ? OIIO::TypeDesc::UINT8 : OIIO::TypeDesc::FLOAT;
@@ -98,11 +97,11 @@ void write_with_oiio(const Image& image, const Format& format, const fs::path& f
     spec.attribute("oiio:ColorSpace", srgb ? "sRGB" : "Linear");
     if (format.compression) spec.attribute("compression", format.compression);
 
-    if (!output->open(file.string(), spec)) fail(output->geterror());
+    if (!output->open(file.string(), spec)) fail_write(target, output->geterror());
     const bool written = srgb ? output->write_image(type, encode_srgb8_values(image.rgb).data())
                               : output->write_image(type, image.rgb.data());
-    if (!written) fail(output->geterror());
-    if (!output->close()) fail(output->geterror());
+    if (!written) fail_write(target, output->geterror());
+    if (!output->close()) fail_write(target, output->geterror());
 }
 
 // PFM: "PF", width and height, a scale whose sign gives the byte order
