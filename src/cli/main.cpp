@@ -1,12 +1,39 @@
-// wavepath command line entry point.
+// wavepath command line: subcommands `render` and `version`. Exit codes are
+// listed in cli/errors.h (and the README).
 #include <CLI/CLI.hpp>
+#include <exception>
 #include <iostream>
 
+#include "cli/errors.h"
+#include "cli/render_command.h"
+
 int main(int argc, char** argv) {
-    CLI::App app{"wavepath: a physically based Monte Carlo path tracer"};
-    app.require_subcommand(1);
-    auto* version = app.add_subcommand("version", "Print the version and exit");
-    version->callback([] { std::cout << "wavepath " WAVEPATH_VERSION "\n"; });
-    CLI11_PARSE(app, argc, argv);
-    return 0;
+    using namespace wp::cli;
+    CLI::App app{"wavepath: a physically based Monte Carlo path tracer", "wavepath"};
+    // Not require_subcommand(1): CLI11 would then call an unknown subcommand
+    // "missing" rather than "not expected"; a missing one is checked below.
+    app.require_subcommand(0, 1);
+
+    RenderCommand render_command;
+    CLI::App* render = app.add_subcommand("render", "Render a scene file to an image");
+    add_render_options(*render, render_command);
+    CLI::App* version = app.add_subcommand("version", "Print the version");
+
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& error) {
+        return report_parse_error(app, error);
+    }
+    try {
+        if (version->parsed()) {
+            std::cout << "wavepath " WAVEPATH_VERSION << std::endl;
+        } else if (render->parsed()) {
+            run_render(render_command);
+        } else {
+            throw UsageError("a subcommand is required: render or version (see wavepath --help)");
+        }
+        return kExitOk;
+    } catch (...) {
+        return report_error(std::current_exception());
+    }
 }

@@ -1,0 +1,30 @@
+// The renderers the CLI can run, by name. Adding a backend means adding its
+// options to BackendOptions, its flags to add_backend_options and one entry
+// to the table in backends.cpp; nothing else in the CLI changes.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <string>
+#include <vector>
+
+#include "core/render.h"
+#include "scene/scene.h"
+
+namespace wp::cli {
+
+struct BackendOptions {
+    std::string name = "reference";
+    int threads = 0;  // CPU threads for the reference; 0 = all hardware threads
+    std::string precision = "float";
+};
+
+// --backend and the flags of every backend.
+void add_backend_options(CLI::App& render, BackendOptions& options);
+
+std::vector<std::string> backend_names();
+
+// Renders with the backend named in `options` (already validated by the
+// parser). Throws UsageError for an option the backend does not support.
+RenderResult render_with_backend(const Scene& scene, const BackendOptions& options, const ProgressFn& progress);
+
+}  // namespace wp::cli

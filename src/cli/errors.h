@@ -1,0 +1,35 @@
+// How the command line reports failures: one line on stderr and an exit
+// code that tells scripts what kind of thing went wrong.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <exception>
+#include <stdexcept>
+#include <string>
+
+namespace wp::cli {
+
+enum ExitCode : int {
+    kExitOk = 0,
+    kExitRuntime = 1,  // the render failed (including OpenCL errors)
+    kExitUsage = 2,    // bad command-line flags
+    kExitScene = 3,    // the scene file is missing or invalid
+    kExitOutput = 4,   // the image or stats file cannot be written
+};
+
+// A flag value that is well-formed but not acceptable, found after parsing
+// (e.g. --width that makes too many pixels with the scene's height).
+class UsageError : public std::runtime_error {
+ public:
+    using std::runtime_error::runtime_error;
+};
+
+// Prints "wavepath: error: <message>" (newlines in the message folded so it
+// stays one line) and returns the exit code for the exception's kind.
+int report_error(const std::exception_ptr& error);
+
+// --help prints the help and returns 0; any other parse error is reported as
+// one line and returns kExitUsage.
+int report_parse_error(const CLI::App& app, const CLI::ParseError& error);
+
+}  // namespace wp::cli

@@ -1,0 +1,58 @@
+#include "cli/options.h"
+
+#include <limits>
+
+#include "cli/errors.h"
+#include "cli/flag_checks.h"
+#include "scene/scene_sections.h"  // the loader's limits, so flags and files agree
+
+namespace wp::cli {
+
+namespace {
+
+template <class Int>
+void add_integer(CLI::App& app, const std::string& flag, std::optional<Int>& value, const std::string& help,
+                 std::int64_t min, std::int64_t max) {
+    app.add_option(flag, value, help)->check(integer_in(min, max));
+}
+
+}  // namespace
+
+void add_render_options(CLI::App& render, RenderCommand& command) {
+    render.add_option("scene", command.scene_path, "Scene file (JSON, see docs/scene-format.md)")->required();
+    render.add_option("-o,--output", command.output_path, "Output image: .exr .pfm .hdr (linear) or .png .jpg (sRGB)")
+        ->required();
+
+    RenderOverrides& o = command.overrides;
+    add_integer(render, "--spp", o.spp, "Samples per pixel (overrides render.spp)", 1, kMaxSpp);
+    add_integer(render, "--width", o.width, "Image width in pixels (overrides camera.width)", 1, kMaxResolution);
+    add_integer(render, "--height", o.height, "Image height in pixels (overrides camera.height)", 1, kMaxResolution);
+    add_integer(render, "--max-depth", o.max_depth, "Most scattering events per path (overrides render.max_depth)", 0,
+                kMaxDepthLimit);
+    add_integer(render, "--rr-depth", o.rr_depth, "Russian roulette from this depth on (overrides render.rr_depth)", 0,
+                std::numeric_limits<int>::max());
+    add_integer(render, "--seed", o.seed, "Random seed (overrides render.seed)", 0,
+                std::numeric_limits<std::uint32_t>::max());
+
+    add_backend_options(render, command.backend);
+
+    render.add_flag("-q,--quiet", command.quiet, "No progress and no summary on stderr (errors still appear)");
+    render.add_option("--stats-json", command.stats_json_path, "Also write the run's figures to this JSON file");
+}
+
+void apply_overrides(const RenderOverrides& overrides, Scene& scene) {
+    if (overrides.spp) scene.render.spp = *overrides.spp;
+    if (overrides.max_depth) scene.render.max_depth = *overrides.max_depth;
+    if (overrides.rr_depth) scene.render.rr_depth = *overrides.rr_depth;
+    if (overrides.seed) scene.render.seed = static_cast<std::uint32_t>(*overrides.seed);
+    if (overrides.width) scene.camera.width = *overrides.width;
+    if (overrides.height) scene.camera.height = *overrides.height;
+
+    const std::int64_t pixels = std::int64_t{scene.camera.width} * scene.camera.height;
+    if (pixels > kMaxPixels)
+        throw UsageError("--width/--height: width * height must be <= " + std::to_string(kMaxPixels) + ", got " +
+                         std::to_string(scene.camera.width) + " * " + std::to_string(scene.camera.height) + " = " +
+                         std::to_string(pixels));
+}
+
+}  // namespace wp::cli

@@ -1,0 +1,106 @@
+#include "cli/progress.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+namespace wp::cli {
+
+namespace {
+
+constexpr auto kBarInterval = std::chrono::milliseconds(100);  // ~10 Hz redraw
+constexpr auto kLineInterval = std::chrono::seconds(5);        // sparse enough for CI logs
+constexpr int kBarWidth = 30;
+
+std::string eta_text(double fraction, double elapsed_s) {
+    if (fraction <= 0.0) return "ETA --";
+    return "ETA " + format_duration(elapsed_s * (1.0 - fraction) / fraction);
+}
+
+}  // namespace
+
+ProgressStyle choose_progress_style(bool quiet) {
+    if (quiet) return ProgressStyle::Silent;
+    return ::isatty(STDERR_FILENO) ? ProgressStyle::Bar : ProgressStyle::Lines;
+}
+
+std::string format_duration(double seconds) {
+    const long total = std::lround(std::max(seconds, 0.0));
+    char text[32];
+    if (total < 60)
+        std::snprintf(text, sizeof text, "%lds", total);
+    else if (total < 3600)
+        std::snprintf(text, sizeof text, "%ldm%02lds", total / 60, total % 60);
+    else
+        std::snprintf(text, sizeof text, "%ldh%02ldm", total / 3600, total / 60 % 60);
+    return text;
+}
+
+std::string format_progress_bar(double fraction, double elapsed_s) {
+    const int filled = static_cast<int>(fraction * kBarWidth);
+    std::string bar(1, '[');
+    bar.append(filled, '#').append(kBarWidth - filled, '-');
+    char percent[32];
+    std::snprintf(percent, sizeof percent, "] %5.1f%%  elapsed ", 100.0 * fraction);
+    return bar.append(percent).append(format_duration(elapsed_s)).append("  ").append(eta_text(fraction, elapsed_s));
+}
+
+std::string format_progress_line(double fraction, double elapsed_s) {
+    return "wavepath: " + std::to_string(static_cast<int>(100.0 * fraction)) + "% done, " + format_duration(elapsed_s) +
+           " elapsed, " + eta_text(fraction, elapsed_s);
+}
+
+ProgressReporter::ProgressReporter(ProgressStyle style, std::ostream& out)
+    : ProgressReporter(style, out, style == ProgressStyle::Bar ? Clock::duration(kBarInterval) : kLineInterval) {}
+
+ProgressReporter::ProgressReporter(ProgressStyle style, std::ostream& out, Clock::duration interval)
+    : style_(style), out_(out), interval_(interval) {}
+
+ProgressReporter::~ProgressReporter() {
+    if (bar_open_) out_ << std::endl;
+}
+
+double ProgressReporter::record(double fraction_done) {
+    const double clamped = std::clamp(fraction_done, 0.0, 1.0);
+    double seen = fraction_.load();
+    while (clamped > seen && !fraction_.compare_exchange_weak(seen, clamped)) {
+    }
+    return std::max(seen, clamped);
+}
+
+void ProgressReporter::update(double fraction_done) {
+    if (style_ == ProgressStyle::Silent) return;
+    const double fraction = record(fraction_done);
+    // Another thread drawing right now already shows (nearly) this fraction.
+    std::unique_lock lock(draw_mutex_, std::try_to_lock);
+    if (!lock) return;
+    const Clock::time_point now = Clock::now();
+    if (now - last_output_ < interval_) return;
+    last_output_ = now;
+    draw(fraction, std::chrono::duration<double>(now - start_).count());
+}
+
+ProgressFn ProgressReporter::callback() {
+    return [this](double fraction_done) { update(fraction_done); };
+}
+
+void ProgressReporter::finish() {
+    if (style_ != ProgressStyle::Bar) return;
+    std::lock_guard lock(draw_mutex_);
+    draw(1.0, std::chrono::duration<double>(Clock::now() - start_).count());
+    out_ << std::endl;
+    bar_open_ = false;
+}
+
+void ProgressReporter::draw(double fraction, double elapsed_s) {
+    if (style_ == ProgressStyle::Bar) {
+        out_ << "\r" << format_progress_bar(fraction, elapsed_s) << "\033[K" << std::flush;  // clear leftovers
+        bar_open_ = true;
+    } else {
+        out_ << format_progress_line(fraction, elapsed_s) << std::endl;
+    }
+}
+
+}  // namespace wp::cli

@@ -1,0 +1,30 @@
+// The figures of a finished run: one summary line for people, a JSON file
+// for tools.
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "core/render.h"
+
+namespace wp::cli {
+
+struct RunSummary {
+    std::string backend;
+    std::string output_path;
+    int width = 0, height = 0, spp = 0;
+    RenderStats stats;
+};
+
+// "wavepath: wrote out.png (512x512, 64 spp, reference) in 12.3 s: 1.36 Msamples/s,
+//  extension 5.12 Mrays/s, shadow 3.40 Mrays/s, 0 non-finite samples"
+std::string format_summary_line(const RunSummary& summary);
+
+// {"backend","width","height","spp","time_s","samples","samples_per_s",
+//  "extension_rays","extension_rays_per_s","shadow_rays","shadow_rays_per_s","nonfinite"}
+nlohmann::json stats_json(const RunSummary& summary);
+
+// Writes stats_json atomically; throws OutputError.
+void write_stats_json(const RunSummary& summary, const std::string& path);
+
+}  // namespace wp::cli

@@ -1,0 +1,311 @@
+// The wavepath binary end to end: exit codes, one-line errors, no output
+// file after any failure, flags overriding the scene, and --stats-json.
+// Scenes are 8x8 at 1-4 spp so that every run takes milliseconds.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "cli/run_wavepath.h"
+#include "image/image_io.h"
+
+namespace wp::test {
+namespace {
+
+using nlohmann::json;
+
+// A small valid scene: a diffuse sphere on a plane under a quad light.
+json base_scene() {
+    return json::parse(R"({
+      "camera": {"position": [0, 1, 4], "look_at": [0, 0.5, 0], "fov_y": 45, "width": 8, "height": 8},
+      "render": {"spp": 2, "max_depth": 4, "rr_depth": 2, "seed": 7},
+      "materials": {
+        "white": {"type": "diffuse", "albedo": [0.6, 0.6, 0.6]},
+        "lamp": {"type": "emitter", "radiance": [5, 5, 5]}
+      },
+      "shapes": [
+        {"type": "sphere", "center": [0, 0.5, 0], "radius": 0.5, "material": "white"},
+        {"type": "plane", "point": [0, 0, 0], "normal": [0, 1, 0], "material": "white"},
+        {"type": "quad", "corner": [-0.5, 2, -0.5], "edge1": [1, 0, 0], "edge2": [0, 0, 1], "material": "lamp"}
+      ]
+    })");
+}
+
+json patched_scene(const std::string& merge_patch) {
+    json scene = base_scene();
+    scene.merge_patch(json::parse(merge_patch));
+    return scene;
+}
+
+int count_lines(const std::string& text) { return static_cast<int>(std::count(text.begin(), text.end(), '\n')); }
+
+class CliTest : public ::testing::Test {
+ protected:
+    // Scenes and outputs live in separate directories, so that "no output
+    // file" means the output directory is empty, temporaries included.
+    std::string write_scene(const std::string& text) {
+        const std::string path = scenes_ / "scene.json";
+        write_text(path, text);
+        return path;
+    }
+    CommandResult run(const std::vector<std::string>& args) { return run_wavepath(args, scenes_.path()); }
+    CommandResult render(const std::string& scene_text, std::vector<std::string> extra = {}) {
+        std::vector<std::string> args{"render", write_scene(scene_text), "-o", output_path()};
+        args.insert(args.end(), extra.begin(), extra.end());
+        return run(args);
+    }
+    std::string output_path() const { return outputs_ / "out.exr"; }
+
+    void expect_failure(const CommandResult& result, int exit_code, const std::string& message_start) {
+        EXPECT_EQ(result.exit_code, exit_code) << result.err;
+        EXPECT_EQ(count_lines(result.err), 1) << result.err;
+        EXPECT_EQ(result.err.rfind("wavepath: error: " + message_start, 0), 0u) << result.err;
+        EXPECT_TRUE(outputs_.entries().empty()) << "left in the output directory: " << outputs_.entries().front();
+    }
+
+    TempDirectory scenes_{"scenes"}, outputs_{"outputs"};
+};
+
+// ---- scene errors: exit 3, "<file>: <json path>: <problem>" ----
+
+struct SceneErrorCase {
+    const char* name;
+    const char* merge_patch;         // applied to base_scene(), unless raw_text is set
+    const char* message;             // start of the text after "wavepath: error: <scene path>: "
+    const char* raw_text = nullptr;  // the whole scene file, for text that is not valid JSON
+};
+
+const SceneErrorCase kSceneErrors[] = {
+    {"MalformedJson", nullptr, "line 3, column 16: ", "{\n  \"camera\": {\n    \"width\": 8,,\n  }\n}"},
+    {"NonFiniteNumber", nullptr, "line 1, column 71: malformed JSON: number overflow parsing '1e999'",
+     R"({"camera": {"position": [0, 1, 4], "look_at": [0, 0, 0], "fov_y": 1e999, "width": 8, "height": 8}})"},
+    {"UnknownKey", R"({"camra": {}})", "camra: unknown key"},
+    {"WrongType", R"({"camera": {"fov_y": "wide"}})", "camera.fov_y: must be a number, got string"},
+    {"NegativeRadius", R"({"shapes": [{"type": "sphere", "center": [0, 0, 0], "radius": -1, "material": "white"}]})",
+     "shapes[0].radius: must be > 0, got -1"},
+    {"ZeroLengthNormal",
+     R"({"shapes": [{"type": "plane", "point": [0, 0, 0], "normal": [0, 0, 0], "material": "white"}]})",
+     "shapes[0].normal: must not be zero-length"},
+    {"ZeroLengthEdge",
+     R"({"shapes": [{"type": "quad", "corner": [0, 2, 0], "edge1": [1, 0, 0], "edge2": [0, 0, 0], "material": "lamp"}]})",
+     "shapes[0].edge2: must not be zero-length"},
+    {"UndefinedMaterial", R"({"shapes": [{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "gold"}]})",
+     "shapes[0].material: undefined material \"gold\""},
+    {"MissingCamera", R"({"camera": null})", "camera: missing required key"},
+    {"ResolutionTooLarge", R"({"camera": {"width": 16385}})", "camera.width: must be in [1, 16384], got 16385"},
+    {"TooManyPixels", R"({"camera": {"width": 16384, "height": 16384}})", "camera: width * height must be <= "},
+    {"SppBeyondLimit", R"({"render": {"spp": 1048577}})", "render.spp: must be in [1, 1048576], got 1048577"},
+};
+
+void PrintTo(const SceneErrorCase& c, std::ostream* out) { *out << c.name; }
+
+class SceneErrorTest : public CliTest, public ::testing::WithParamInterface<SceneErrorCase> {};
+
+TEST_P(SceneErrorTest, OneLineWithLocationExitCode3AndNoOutput) {
+    const SceneErrorCase& c = GetParam();
+    const std::string text = c.raw_text ? std::string(c.raw_text) : patched_scene(c.merge_patch).dump(2);
+    const CommandResult result = render(text);
+    expect_failure(result, 3, scenes_ / "scene.json" + ": " + c.message);
+}
+
+INSTANTIATE_TEST_SUITE_P(Cli, SceneErrorTest, ::testing::ValuesIn(kSceneErrors),
+                         [](const auto& info) { return std::string(info.param.name); });
+
+TEST_F(CliTest, MissingSceneFileIsASceneError) {
+    const CommandResult result = run({"render", scenes_ / "absent.json", "-o", output_path()});
+    expect_failure(result, 3, scenes_ / "absent.json" + ": ");
+}
+
+// ---- usage errors: exit 2 ----
+
+struct UsageCase {
+    const char* name;
+    std::vector<std::string> flags;
+    const char* message;  // start of the message after "wavepath: error: "
+};
+
+const UsageCase kUsageErrors[] = {
+    {"ZeroSpp", {"--spp", "0"}, "--spp: must be in [1, 1048576], got 0"},
+    {"SppBeyondLimit", {"--spp", "1048577"}, "--spp: must be in [1, 1048576], got 1048577"},
+    {"SppNotANumber", {"--spp", "many"}, "--spp: must be an integer in [1, 1048576], got many"},
+    {"SppFraction", {"--spp", "2.5"}, "--spp: must be an integer"},
+    {"ZeroWidth", {"--width", "0"}, "--width: must be in [1, 16384], got 0"},
+    {"HeightTooLarge", {"--height", "16385"}, "--height: must be in [1, 16384], got 16385"},
+    {"TooManyPixels", {"--width", "16384", "--height", "16384"}, "--width/--height: width * height must be <= "},
+    {"NegativeMaxDepth", {"--max-depth", "-1"}, "--max-depth: must be in [0, 100000], got -1"},
+    {"NegativeRrDepth", {"--rr-depth", "-2"}, "--rr-depth: must be in [0, 2147483647], got -2"},
+    {"SeedBeyond32Bits", {"--seed", "4294967296"}, "--seed: must be in [0, 4294967295], got 4294967296"},
+    {"NegativeThreads", {"--threads", "-1"}, "--threads: must be in [0, 4096], got -1"},
+    {"UnknownBackend", {"--backend", "quantum"}, "--backend: "},
+    {"UnknownPrecision", {"--precision", "half"}, "--precision: "},
+    {"UnknownFlag", {"--sp", "4"}, "The following argument"},
+    {"FlagWithoutValue", {"--spp"}, "--spp"},
+};
+
+void PrintTo(const UsageCase& c, std::ostream* out) { *out << c.name; }
+
+class UsageErrorTest : public CliTest, public ::testing::WithParamInterface<UsageCase> {};
+
+TEST_P(UsageErrorTest, OneLineExitCode2AndNoOutput) {
+    const UsageCase& c = GetParam();
+    expect_failure(render(base_scene().dump(), c.flags), 2, c.message);
+}
+
+INSTANTIATE_TEST_SUITE_P(Cli, UsageErrorTest, ::testing::ValuesIn(kUsageErrors),
+                         [](const auto& info) { return std::string(info.param.name); });
+
+TEST_F(CliTest, MissingOutputFlagIsAUsageError) {
+    expect_failure(run({"render", write_scene(base_scene().dump())}), 2, "--output is required");
+}
+
+TEST_F(CliTest, MissingSubcommandIsAUsageError) { expect_failure(run({}), 2, "a subcommand is required"); }
+
+TEST_F(CliTest, UnknownSubcommandIsAUsageError) { expect_failure(run({"paint"}), 2, "The following argument"); }
+
+// ---- output errors: exit 4, found before rendering ----
+
+TEST_F(CliTest, UnsupportedExtensionIsAnOutputError) {
+    const CommandResult result = run({"render", write_scene(base_scene().dump()), "-o", outputs_ / "out.tga"});
+    expect_failure(result, 4, "cannot write " + outputs_ / "out.tga" + ": unsupported image extension '.tga'");
+}
+
+TEST_F(CliTest, MissingOutputDirectoryIsAnOutputError) {
+    const std::string target = outputs_ / "missing/out.png";
+    const CommandResult result = run({"render", write_scene(base_scene().dump()), "-o", target});
+    expect_failure(result, 4, "cannot write " + target + ": directory ");
+}
+
+TEST_F(CliTest, UnwritableStatsPathFailsBeforeRendering) {
+    const std::string stats = outputs_ / "missing/stats.json";
+    expect_failure(render(base_scene().dump(), {"--stats-json", stats}), 4, "cannot write " + stats + ": directory ");
+}
+
+TEST_F(CliTest, OutputErrorComesBeforeSceneErrors) {
+    // An unusable output path is reported without even reading the scene.
+    const CommandResult result = run({"render", scenes_ / "absent.json", "-o", outputs_ / "out.bmp"});
+    expect_failure(result, 4, "cannot write ");
+}
+
+// ---- successful runs ----
+
+TEST_F(CliTest, RenderWritesImageSummaryAndNothingElse) {
+    const CommandResult result = render(base_scene().dump());
+    ASSERT_EQ(result.exit_code, 0) << result.err;
+    EXPECT_EQ(outputs_.entries(), std::vector<std::string>{"out.exr"});
+    const Image image = read_image(output_path());
+    EXPECT_EQ(image.width, 8);
+    EXPECT_EQ(image.height, 8);
+    // The lamp lights the scene: some pixel is bright, none is negative.
+    EXPECT_GT(*std::max_element(image.rgb.begin(), image.rgb.end()), 0.1f);
+    EXPECT_GE(*std::min_element(image.rgb.begin(), image.rgb.end()), 0.0f);
+    // stderr is not a terminal here: no bar, and this run is far shorter than
+    // the 5 s between progress lines, so only the summary line appears.
+    EXPECT_EQ(count_lines(result.err), 1) << result.err;
+    EXPECT_EQ(result.err.rfind("wavepath: wrote " + output_path() + " (8x8, 2 spp, reference) in ", 0), 0u)
+        << result.err;
+    EXPECT_NE(result.err.find("Mrays/s"), std::string::npos) << result.err;
+    EXPECT_TRUE(result.out.empty()) << result.out;
+}
+
+TEST_F(CliTest, QuietPrintsNothing) {
+    const CommandResult result = render(base_scene().dump(), {"--quiet"});
+    ASSERT_EQ(result.exit_code, 0) << result.err;
+    EXPECT_TRUE(result.err.empty()) << result.err;
+    EXPECT_TRUE(result.out.empty()) << result.out;
+}
+
+TEST_F(CliTest, StatsJsonHasConsistentFigures) {
+    const std::string stats_path = outputs_ / "stats.json";
+    const CommandResult result =
+        render(base_scene().dump(), {"--width", "6", "--height", "4", "--spp", "3", "--stats-json", stats_path});
+    ASSERT_EQ(result.exit_code, 0) << result.err;
+    EXPECT_EQ(outputs_.entries(), (std::vector<std::string>{"out.exr", "stats.json"}));
+
+    const json stats = json::parse(read_text(stats_path));
+    for (const char* key : {"backend", "width", "height", "spp", "time_s", "samples", "samples_per_s", "extension_rays",
+                            "shadow_rays", "nonfinite"})
+        EXPECT_TRUE(stats.contains(key)) << key;
+    EXPECT_EQ(stats["backend"], "reference");
+    EXPECT_EQ(stats["width"], 6);
+    EXPECT_EQ(stats["height"], 4);
+    EXPECT_EQ(stats["spp"], 3);
+    EXPECT_EQ(stats["samples"], 6 * 4 * 3);
+    EXPECT_EQ(stats["nonfinite"], 0);
+    const double time_s = stats["time_s"];
+    ASSERT_GT(time_s, 0.0);
+    EXPECT_NEAR(stats["samples_per_s"].get<double>(), 72.0 / time_s, 1e-9 * 72.0 / time_s);
+    // Every sample traces a camera ray; every shadow ray leaves a vertex an
+    // extension ray found, at most one per vertex.
+    const std::uint64_t extension = stats["extension_rays"], shadow = stats["shadow_rays"];
+    EXPECT_GE(extension, 72u);
+    EXPECT_GT(shadow, 0u);
+    EXPECT_LE(shadow, extension);
+}
+
+TEST_F(CliTest, FlagsOverrideTheScene) {
+    ASSERT_EQ(render(base_scene().dump(), {"--width", "5", "--height", "3", "-q"}).exit_code, 0);
+    const Image image = read_image(output_path());
+    EXPECT_EQ(image.width, 5);
+    EXPECT_EQ(image.height, 3);
+
+    // The seed is the only difference between these runs.
+    const auto render_with_seed = [&](const char* seed) {
+        EXPECT_EQ(render(base_scene().dump(), {"--seed", seed, "-q"}).exit_code, 0);
+        return read_image(output_path()).rgb;
+    };
+    EXPECT_EQ(render_with_seed("3"), render_with_seed("3"));
+    EXPECT_NE(render_with_seed("3"), render_with_seed("4"));
+}
+
+TEST_F(CliTest, MaxDepthZeroTracesOnlyCameraRays) {
+    // max_depth 0 ends every path at its first hit, before next-event
+    // estimation: one extension ray per sample and no shadow rays.
+    const std::string stats_path = outputs_ / "stats.json";
+    ASSERT_EQ(render(base_scene().dump(), {"--max-depth", "0", "-q", "--stats-json", stats_path}).exit_code, 0);
+    const json stats = json::parse(read_text(stats_path));
+    EXPECT_EQ(stats["extension_rays"], 8 * 8 * 2);
+    EXPECT_EQ(stats["shadow_rays"], 0);
+}
+
+TEST_F(CliTest, DoublePrecisionAndThreadCountRun) {
+    ASSERT_EQ(render(base_scene().dump(), {"--precision", "double", "--threads", "2", "-q"}).exit_code, 0);
+    EXPECT_EQ(read_image(output_path()).width, 8);
+}
+
+TEST_F(CliTest, ExistingOutputIsReplacedOnlyBySuccess) {
+    ASSERT_EQ(render(base_scene().dump(), {"-q"}).exit_code, 0);
+    const std::vector<float> first = read_image(output_path()).rgb;
+    EXPECT_EQ(render(base_scene().dump(), {"--spp", "0"}).exit_code, 2);
+    EXPECT_EQ(render(patched_scene(R"({"camera": null})").dump()).exit_code, 3);
+    EXPECT_EQ(read_image(output_path()).rgb, first);
+    EXPECT_EQ(outputs_.entries(), std::vector<std::string>{"out.exr"});
+}
+
+// ---- version and help ----
+
+TEST_F(CliTest, VersionPrintsTheVersion) {
+    const CommandResult result = run({"version"});
+    EXPECT_EQ(result.exit_code, 0);
+    EXPECT_EQ(result.out, "wavepath " WAVEPATH_VERSION "\n");
+    EXPECT_TRUE(result.err.empty()) << result.err;
+}
+
+TEST_F(CliTest, HelpListsSubcommands) {
+    const CommandResult result = run({"--help"});
+    EXPECT_EQ(result.exit_code, 0);
+    EXPECT_NE(result.out.find("render"), std::string::npos) << result.out;
+    EXPECT_NE(result.out.find("version"), std::string::npos) << result.out;
+}
+
+TEST_F(CliTest, RenderHelpListsEveryFlag) {
+    const CommandResult result = run({"render", "--help"});
+    EXPECT_EQ(result.exit_code, 0);
+    for (const char* flag : {"--output", "--spp", "--width", "--height", "--max-depth", "--rr-depth", "--seed",
+                             "--backend", "--threads", "--precision", "--quiet", "--stats-json"})
+        EXPECT_NE(result.out.find(flag), std::string::npos) << flag;
+}
+
+}  // namespace
+}  // namespace wp::test

@@ -1,0 +1,200 @@
+// The CLI's pieces without the binary: progress output, the summary line and
+// stats JSON, overrides, and the mapping from errors to exit codes.
+#include <gtest/gtest.h>
+
+#include <sstream>
+#include <thread>
+#include <vector>
+
+#include "cli/errors.h"
+#include "cli/options.h"
+#include "cli/progress.h"
+#include "cli/summary.h"
+#include "core/atomic_file.h"
+
+namespace wp::cli {
+namespace {
+
+TEST(Progress, DurationFormats) {
+    EXPECT_EQ(format_duration(0.0), "0s");
+    EXPECT_EQ(format_duration(59.4), "59s");
+    EXPECT_EQ(format_duration(125.0), "2m05s");
+    EXPECT_EQ(format_duration(3600.0 + 120.0 + 30.0), "1h02m");
+    EXPECT_EQ(format_duration(-3.0), "0s");
+}
+
+TEST(Progress, BarShowsFillPercentAndEta) {
+    // 25% after 10 s: 30 s to go.
+    EXPECT_EQ(format_progress_bar(0.25, 10.0), "[#######-----------------------]  25.0%  elapsed 10s  ETA 30s");
+    EXPECT_EQ(format_progress_bar(0.0, 1.0), "[------------------------------]   0.0%  elapsed 1s  ETA --");
+    EXPECT_EQ(format_progress_bar(1.0, 61.0), "[##############################] 100.0%  elapsed 1m01s  ETA 0s");
+}
+
+TEST(Progress, LineShowsPercentAndEta) {
+    EXPECT_EQ(format_progress_line(0.4, 20.0), "wavepath: 40% done, 20s elapsed, ETA 30s");
+}
+
+TEST(Progress, LinesStyleWritesOneLinePerUpdateAtZeroInterval) {
+    std::ostringstream out;
+    {
+        ProgressReporter reporter(ProgressStyle::Lines, out, ProgressReporter::Clock::duration::zero());
+        reporter.update(0.5);
+        reporter.update(0.2);  // out of order: the larger fraction stands
+        reporter.finish();
+    }
+    const std::string text = out.str();
+    EXPECT_EQ(std::count(text.begin(), text.end(), '\n'), 2) << text;
+    EXPECT_EQ(text.find("wavepath: 20%"), std::string::npos) << text;
+    EXPECT_EQ(text.rfind("wavepath: 50% done", 0), 0u) << text;
+}
+
+TEST(Progress, LinesAreThrottled) {
+    std::ostringstream out;
+    ProgressReporter reporter(ProgressStyle::Lines, out, std::chrono::hours(1));
+    for (int i = 1; i <= 100; ++i) reporter.update(i / 100.0);
+    EXPECT_TRUE(out.str().empty()) << out.str();  // the first line is due after one interval
+}
+
+TEST(Progress, BarRedrawsInPlaceAndEndsItsLine) {
+    std::ostringstream out;
+    {
+        ProgressReporter reporter(ProgressStyle::Bar, out, ProgressReporter::Clock::duration::zero());
+        reporter.update(0.5);
+        reporter.finish();
+    }
+    const std::string text = out.str();
+    EXPECT_EQ(text.front(), '\r');
+    EXPECT_NE(text.find(" 50.0%"), std::string::npos) << text;
+    EXPECT_NE(text.find("100.0%"), std::string::npos) << text;
+    EXPECT_EQ(text.back(), '\n');
+    EXPECT_EQ(std::count(text.begin(), text.end(), '\n'), 1) << text;
+}
+
+TEST(Progress, UnfinishedBarEndsItsLineSoAnErrorStartsOnANewOne) {
+    std::ostringstream out;
+    {
+        ProgressReporter reporter(ProgressStyle::Bar, out, ProgressReporter::Clock::duration::zero());
+        reporter.update(0.3);
+    }
+    EXPECT_EQ(out.str().back(), '\n');
+}
+
+TEST(Progress, SilentWritesNothing) {
+    std::ostringstream out;
+    {
+        ProgressReporter reporter(ProgressStyle::Silent, out, ProgressReporter::Clock::duration::zero());
+        reporter.update(0.5);
+        reporter.finish();
+    }
+    EXPECT_TRUE(out.str().empty());
+    EXPECT_EQ(choose_progress_style(true), ProgressStyle::Silent);
+}
+
+TEST(Progress, ConcurrentUpdatesAreSafe) {
+    std::ostringstream out;
+    ProgressReporter reporter(ProgressStyle::Lines, out, ProgressReporter::Clock::duration::zero());
+    const ProgressFn progress = reporter.callback();
+    std::vector<std::thread> threads;
+    for (int t = 0; t < 4; ++t)
+        threads.emplace_back([&, t] {
+            for (int i = 0; i < 250; ++i) progress((t * 250 + i + 1) / 1000.0);
+        });
+    for (std::thread& thread : threads) thread.join();
+    // Each line is whole (no interleaving): every line starts with the prefix.
+    std::istringstream lines(out.str());
+    int count = 0;
+    for (std::string line; std::getline(lines, line); ++count) EXPECT_EQ(line.rfind("wavepath: ", 0), 0u) << line;
+    EXPECT_GT(count, 0);
+}
+
+RunSummary example_summary() {
+    RunSummary summary{"reference", "out/room.png", 640, 480, 16, {}};
+    summary.stats.time_s = 2.0;
+    summary.stats.samples = 640ull * 480 * 16;  // 4915200
+    summary.stats.extension_rays = 12'000'000;
+    summary.stats.shadow_rays = 5'000'000;
+    summary.stats.nonfinite = 3;
+    return summary;
+}
+
+TEST(Summary, LineHasTimeRatesNonfiniteAndPath) {
+    EXPECT_EQ(format_summary_line(example_summary()),
+              "wavepath: wrote out/room.png (640x480, 16 spp, reference) in 2.000 s: 2.458 Msamples/s, "
+              "extension 6.00 Mrays/s, shadow 2.50 Mrays/s, 3 non-finite samples");
+}
+
+TEST(Summary, StatsJsonHasTheFiguresAndRates) {
+    const nlohmann::json stats = stats_json(example_summary());
+    EXPECT_EQ(stats["backend"], "reference");
+    EXPECT_EQ(stats["width"], 640);
+    EXPECT_EQ(stats["height"], 480);
+    EXPECT_EQ(stats["spp"], 16);
+    EXPECT_EQ(stats["time_s"], 2.0);
+    EXPECT_EQ(stats["samples"], 4915200u);
+    EXPECT_EQ(stats["samples_per_s"], 2457600.0);
+    EXPECT_EQ(stats["extension_rays"], 12000000u);
+    EXPECT_EQ(stats["extension_rays_per_s"], 6e6);
+    EXPECT_EQ(stats["shadow_rays"], 5000000u);
+    EXPECT_EQ(stats["shadow_rays_per_s"], 2.5e6);
+    EXPECT_EQ(stats["nonfinite"], 3u);
+}
+
+TEST(Summary, ZeroTimeGivesZeroRatesNotInfinity) {
+    RunSummary summary = example_summary();
+    summary.stats.time_s = 0.0;
+    EXPECT_EQ(stats_json(summary)["samples_per_s"], 0.0);
+}
+
+TEST(Overrides, ReplaceOnlyWhatIsGiven) {
+    Scene scene;
+    scene.camera.width = 32;
+    scene.camera.height = 24;
+    scene.render = RenderSettings{16, 8, 3, 5};
+    RenderOverrides overrides;
+    overrides.spp = 2;
+    overrides.height = 10;
+    overrides.seed = 4294967295;
+    apply_overrides(overrides, scene);
+    EXPECT_EQ(scene.render.spp, 2);
+    EXPECT_EQ(scene.render.max_depth, 8);
+    EXPECT_EQ(scene.render.rr_depth, 3);
+    EXPECT_EQ(scene.render.seed, 4294967295u);
+    EXPECT_EQ(scene.camera.width, 32);
+    EXPECT_EQ(scene.camera.height, 10);
+}
+
+TEST(Overrides, PixelLimitAppliesToTheCombination) {
+    Scene scene;
+    scene.camera.width = 16384;
+    scene.camera.height = 2;
+    RenderOverrides overrides;
+    overrides.height = 16384;
+    EXPECT_THROW(apply_overrides(overrides, scene), UsageError);
+}
+
+int exit_code_of(const std::exception_ptr& error) {
+    ::testing::internal::CaptureStderr();
+    const int code = report_error(error);
+    const std::string printed = ::testing::internal::GetCapturedStderr();
+    EXPECT_EQ(std::count(printed.begin(), printed.end(), '\n'), 1) << printed;
+    EXPECT_EQ(printed.rfind("wavepath: error: ", 0), 0u) << printed;
+    return code;
+}
+
+TEST(Errors, EachKindHasItsExitCode) {
+    EXPECT_EQ(exit_code_of(std::make_exception_ptr(UsageError("u"))), kExitUsage);
+    EXPECT_EQ(exit_code_of(std::make_exception_ptr(SceneError("s"))), kExitScene);
+    EXPECT_EQ(exit_code_of(std::make_exception_ptr(OutputError("o"))), kExitOutput);
+    EXPECT_EQ(exit_code_of(std::make_exception_ptr(std::runtime_error("r"))), kExitRuntime);
+    EXPECT_EQ(exit_code_of(std::make_exception_ptr(std::bad_alloc())), kExitRuntime);
+    EXPECT_EQ(exit_code_of(std::make_exception_ptr(42)), kExitRuntime);
+}
+
+TEST(Errors, MultiLineMessagesAreFoldedIntoOneLine) {
+    ::testing::internal::CaptureStderr();
+    report_error(std::make_exception_ptr(std::runtime_error("build failed\nkernel.cl:3: error\n")));
+    EXPECT_EQ(::testing::internal::GetCapturedStderr(), "wavepath: error: build failed; kernel.cl:3: error\n");
+}
+
+}  // namespace
+}  // namespace wp::cli
