@@ -4,7 +4,7 @@
 
 #include "cli/errors.h"
 #include "cli/flag_checks.h"
-#include "scene/scene_sections.h"  // the loader's limits, so flags and files agree
+#include "scene/limits.h"  // the loader's limits, so flags and files agree
 
 namespace wp::cli {
 

@@ -5,15 +5,11 @@
 #include <vector>
 
 #include "scene/json_field.h"
+#include "scene/limits.h"
 #include "scene/scene.h"
 
 namespace wp {
 
-// Sane limits; docs/scene-format.md lists them.
-inline constexpr int kMaxResolution = 16384;
-inline constexpr std::int64_t kMaxPixels = std::int64_t{1} << 27;
-inline constexpr int kMaxSpp = 1 << 20;
-inline constexpr int kMaxDepthLimit = 100000;
 // Two directions whose angle has a smaller sine count as parallel.
 inline constexpr double kMinSine = 1e-6;
 

@@ -1,0 +1,14 @@
+// Sane limits on what a scene (and the command line's overrides) may ask
+// for; docs/scene-format.md lists them.
+#pragma once
+
+#include <cstdint>
+
+namespace wp {
+
+inline constexpr int kMaxResolution = 16384;
+inline constexpr std::int64_t kMaxPixels = std::int64_t{1} << 27;
+inline constexpr int kMaxSpp = 1 << 20;
+inline constexpr int kMaxDepthLimit = 100000;
+
+}  // namespace wp
