@@ -2,16 +2,20 @@
 
 #include <algorithm>
 #include <array>
+#include <iostream>
 
 #include "cli/errors.h"
 #include "cli/flag_checks.h"
+#include "device/program_cache.h"
 #include "reference/reference_renderer.h"
+#include "wavefront/wavefront_renderer.h"
 
 namespace wp::cli {
 
 namespace {
 
 constexpr int kMaxThreads = 4096;
+constexpr std::int64_t kMaxWavefront = std::int64_t(1) << 26;
 
 using RenderFn = RenderResult (*)(const Scene&, const BackendOptions&, const ProgressFn&);
 
@@ -25,7 +29,21 @@ RenderResult render_on_reference(const Scene& scene, const BackendOptions& optio
     return render_reference(scene, ReferenceOptions{options.threads, options.precision == "double"}, progress);
 }
 
-constexpr std::array<Backend, 1> kBackends{{
+// A kernel that fails to build shows the compiler's log before the one-line error.
+RenderResult render_on_wavefront(const Scene& scene, const BackendOptions& options, const ProgressFn& progress) {
+    WavefrontReport report;
+    try {
+        RenderResult result = render_wavefront(scene, {options.device, options.wavefront}, progress, &report);
+        if (options.explain) std::cout << report.explain() << std::flush;
+        return result;
+    } catch (const KernelBuildError& error) {
+        std::cerr << error.log() << std::endl;
+        throw;
+    }
+}
+
+constexpr std::array<Backend, 2> kBackends{{
+    {"wavefront", "OpenCL wavefront path tracer, the default", render_on_wavefront},
     {"reference", "scalar C++ path tracer on the CPU threads", render_on_reference},
 }};
 
@@ -53,6 +71,13 @@ void add_backend_options(CLI::App& render, BackendOptions& options) {
     render.add_option("--precision", options.precision, "Arithmetic of the reference backend")
         ->check(CLI::IsMember({"float", "double"}))
         ->capture_default_str();
+    render.add_option("--wavefront", options.wavefront, "Paths in flight for the wavefront backend (0: automatic)")
+        ->check(integer_in(0, kMaxWavefront))
+        ->capture_default_str();
+    render.add_option("--device", options.device,
+                      "OpenCL device for the wavefront backend: index or name substring (see `wavepath devices`)");
+    render.add_flag("--explain", options.explain,
+                    "Print the wavefront's feature set, build options, program cache hit or miss and state size");
 }
 
 RenderResult render_with_backend(const Scene& scene, const BackendOptions& options, const ProgressFn& progress) {

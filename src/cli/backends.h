@@ -4,6 +4,7 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -13,9 +14,12 @@
 namespace wp::cli {
 
 struct BackendOptions {
-    std::string name = "reference";
+    std::string name = "wavefront";
     int threads = 0;  // CPU threads for the reference; 0 = all hardware threads
     std::string precision = "float";
+    std::size_t wavefront = 0;  // paths in flight for the wavefront; 0 = automatic
+    std::string device;         // OpenCL device index or name substring; "" = prefer a GPU
+    bool explain = false;       // print the wavefront's features, build and state size
 };
 
 // --backend and the flags of every backend.

@@ -1,4 +1,4 @@
-// wavepath command line: subcommands `render` and `version`. Exit codes are
+// wavepath command line: subcommands `render`, `devices` and `version`. Exit codes are
 // listed in cli/errors.h (and the README).
 #include <CLI/CLI.hpp>
 #include <exception>
@@ -6,6 +6,7 @@
 
 #include "cli/errors.h"
 #include "cli/render_command.h"
+#include "device/opencl_device.h"
 
 int main(int argc, char** argv) {
     using namespace wp::cli;
@@ -18,6 +19,7 @@ int main(int argc, char** argv) {
     CLI::App* render = app.add_subcommand("render", "Render a scene file to an image");
     add_render_options(*render, render_command);
     CLI::App* version = app.add_subcommand("version", "Print the version");
+    CLI::App* devices = app.add_subcommand("devices", "List the OpenCL platforms and devices");
 
     try {
         app.parse(argc, argv);
@@ -27,10 +29,12 @@ int main(int argc, char** argv) {
     try {
         if (version->parsed()) {
             std::cout << "wavepath " WAVEPATH_VERSION << std::endl;
+        } else if (devices->parsed()) {
+            std::cout << wp::describe_devices(wp::list_devices()) << std::flush;
         } else if (render->parsed()) {
             run_render(render_command);
         } else {
-            throw UsageError("a subcommand is required: render or version (see wavepath --help)");
+            throw UsageError("a subcommand is required: render, devices or version (see wavepath --help)");
         }
         return kExitOk;
     } catch (...) {

@@ -203,7 +203,7 @@ TEST_F(CliTest, RenderWritesImageSummaryAndNothingElse) {
     // stderr is not a terminal here: no bar, and this run is far shorter than
     // the 5 s between progress lines, so only the summary line appears.
     EXPECT_EQ(count_lines(result.err), 1) << result.err;
-    EXPECT_EQ(result.err.rfind("wavepath: wrote " + output_path() + " (8x8, 2 spp, reference) in ", 0), 0u)
+    EXPECT_EQ(result.err.rfind("wavepath: wrote " + output_path() + " (8x8, 2 spp, wavefront) in ", 0), 0u)
         << result.err;
     EXPECT_NE(result.err.find("Mrays/s"), std::string::npos) << result.err;
     EXPECT_TRUE(result.out.empty()) << result.out;
@@ -227,7 +227,7 @@ TEST_F(CliTest, StatsJsonHasConsistentFigures) {
     for (const char* key : {"backend", "width", "height", "spp", "time_s", "samples", "samples_per_s", "extension_rays",
                             "shadow_rays", "nonfinite"})
         EXPECT_TRUE(stats.contains(key)) << key;
-    EXPECT_EQ(stats["backend"], "reference");
+    EXPECT_EQ(stats["backend"], "wavefront");  // the default backend
     EXPECT_EQ(stats["width"], 6);
     EXPECT_EQ(stats["height"], 4);
     EXPECT_EQ(stats["spp"], 3);

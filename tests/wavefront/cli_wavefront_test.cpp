@@ -1,0 +1,76 @@
+// The wavefront through the wavepath executable: the default backend,
+// --explain, --wavefront, `wavepath devices`, and device errors.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+
+namespace wp {
+namespace {
+
+struct CommandRun {
+    int exit_code;
+    std::string output;  // stdout and stderr
+};
+
+CommandRun run(const std::string& environment, const std::string& arguments) {
+    std::string command = environment + " '" WAVEPATH_BINARY "' " + arguments + " 2>&1";
+    FILE* pipe = ::popen(command.c_str(), "r");
+    CommandRun result{-1, ""};
+    std::array<char, 4096> buffer;
+    while (std::size_t n = std::fread(buffer.data(), 1, buffer.size(), pipe)) result.output.append(buffer.data(), n);
+    int status = ::pclose(pipe);
+    result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    return result;
+}
+
+std::string cache_env() {
+    return "WAVEPATH_CACHE_DIR='" +
+           (std::filesystem::path(WAVEPATH_BINARY).parent_path() / "test-program-cache").string() + "'";
+}
+
+std::string output_path(const char* name) { return (std::filesystem::temp_directory_path() / name).string(); }
+
+TEST(WavefrontCli, DefaultBackendWithExplain) {
+    std::string out = output_path("wavepath-wavefront-cli.pfm");
+    CommandRun r = run(cache_env(), "render '" WAVEPATH_SOURCE_DIR "/scenes/test/room_small.json' -o '" + out +
+                                        "' --spp 1 --wavefront 256 --explain");
+    EXPECT_EQ(r.exit_code, 0) << r.output;
+    for (const char* text : {"features: spheres quads diffuse mirror glass emitter quad-lights nee",
+                             "build options: -cl-std=CL1.2", "-DWP_HAS_GLASS", "program: cache",
+                             "wavefront: 256 paths in flight", "bytes per path", "spp, wavefront) in "})
+        EXPECT_NE(r.output.find(text), std::string::npos) << text << "\n" << r.output;
+    EXPECT_TRUE(std::filesystem::exists(out));
+    std::filesystem::remove(out);
+}
+
+TEST(WavefrontCli, DevicesListed) {
+    CommandRun r = run("", "devices");
+    EXPECT_EQ(r.exit_code, 0);
+    for (const char* text : {"[0] ", "platform: ", "type: ", "compute units: ", "memory: ", "OpenCL C "})
+        EXPECT_NE(r.output.find(text), std::string::npos) << text << "\n" << r.output;
+}
+
+// ocl-icd reads the installed platforms from OCL_ICD_VENDORS: an empty
+// directory stands for a machine without any OpenCL platform.
+TEST(WavefrontCli, NoPlatformOrUnknownDeviceIsOneClearError) {
+    std::filesystem::path empty = std::filesystem::temp_directory_path() / "wavepath-no-icd";
+    std::filesystem::create_directories(empty);
+    CommandRun none = run("OCL_ICD_VENDORS='" + empty.string() + "'", "devices");
+    EXPECT_EQ(none.exit_code, 1);
+    EXPECT_EQ(none.output,
+              "wavepath: error: no OpenCL device found (no platform installed, or none with a device; "
+              "try `clinfo -l`)\n");
+
+    std::string out = output_path("wavepath-no-device.png");
+    CommandRun unknown = run(cache_env(), "render '" WAVEPATH_SOURCE_DIR "/scenes/test/room_small.json' -o '" + out +
+                                              "' --device no-such-device");
+    EXPECT_EQ(unknown.exit_code, 1);
+    EXPECT_NE(unknown.output.find("--device no-such-device: "), std::string::npos) << unknown.output;
+    EXPECT_FALSE(std::filesystem::exists(out));
+}
+
+}  // namespace
+}  // namespace wp
