@@ -1,6 +1,6 @@
 // The shared math of kernels/common/ compiled as C++, once per precision.
-// The code is included inside a struct, so its functions become static
-// members: wp::SharedMath<float> matches the OpenCL kernels and
+// The code is included inside a class template, so its functions become
+// static members: wp::SharedMath<float> matches the OpenCL kernels and
 // wp::SharedMath<double> is the double-precision build, and code templated
 // on the scalar type reaches the right one through that alias.
 #pragma once
@@ -30,21 +30,11 @@ using std::isfinite;
 using std::sin;
 using std::sqrt;
 
-struct Float {
-    using real = float;
-    using real_bits = std::int32_t;
-    using uint = std::uint32_t;
-    using vec3 = glm::vec<3, real>;
-    static constexpr real real_max = std::numeric_limits<real>::max();
-    static constexpr int real_mantissa_bits = std::numeric_limits<real>::digits;
-#include "common/wavepath.h"
-};
-
-#undef WP_SHARED_MATH_H  // the include guard, so that the double build sees the code again
-
-struct Double {
-    using real = double;
-    using real_bits = std::int64_t;
+// One instantiation per precision; `RealBits` is the integer of the same width.
+template <class Real, class RealBits>
+struct Precision {
+    using real = Real;
+    using real_bits = RealBits;
     using uint = std::uint32_t;
     using vec3 = glm::vec<3, real>;
     static constexpr real real_max = std::numeric_limits<real>::max();
@@ -56,6 +46,7 @@ struct Double {
 
 namespace wp {
 template <class Real>
-using SharedMath = std::conditional_t<std::is_same_v<Real, float>, shared_math_detail::Float,
-                                      std::conditional_t<std::is_same_v<Real, double>, shared_math_detail::Double, void>>;
+using SharedMath = std::conditional_t<std::is_same_v<Real, float>, shared_math_detail::Precision<float, std::int32_t>,
+                                      std::conditional_t<std::is_same_v<Real, double>,
+                                                         shared_math_detail::Precision<double, std::int64_t>, void>>;
 }  // namespace wp
