@@ -81,7 +81,7 @@ __kernel __attribute__((reqd_work_group_size(WP_GROUP_SIZE, 1, 1))) void scatter
             throughput = throughput / survival;
         }
         if (continues) {
-            STORE_XYZ(origin, slot, offset_ray_origin(surface.point, scattered.leave_side));
+            STORE_XYZ(origin, slot, offset_ray_origin(surface.point, scattered.leave_side, surface.error));
             STORE_XYZ(direction, slot, scattered.direction);
             STORE_RGB(throughput, slot, throughput);
             depth[slot] = new_depth;

@@ -8,7 +8,8 @@
  * ray and the contribution it adds when unoccluded, 0 when the sample carries
  * nothing. */
 #ifdef WP_HAS_NEE
-WP_FN int sample_direct_light(WP_SCENE_PARAMS, uint pixel, uint sample, uint bounce, vec3 x, vec3 nf, vec3 weight,
+WP_FN int sample_direct_light(WP_SCENE_PARAMS, uint pixel, uint sample, uint bounce, vec3 x, real x_error, vec3 nf,
+                              vec3 weight,
                               vec3 *shadow_origin, vec3 *shadow_direction, real *shadow_distance,
                               vec3 *contribution) {
     uint seed = scene->seed;
@@ -19,17 +20,22 @@ WP_FN int sample_direct_light(WP_SCENE_PARAMS, uint pixel, uint sample, uint bou
     uint index = lights[light].shape & WP_SHAPE_INDEX_MASK;
     LightSample ls;
     uint material = 0u;
+    real magnitude = REAL(0.0);
 #ifdef WP_HAS_SPHERE_LIGHTS
     if ((lights[light].shape >> WP_SHAPE_TYPE_SHIFT) == WP_SHAPE_SPHERE) {
-        ls = sample_sphere(vec3_at(spheres[index].center), spheres[index].radius, x, u, v);
+        vec3 center = vec3_at(spheres[index].center);
+        ls = sample_sphere(center, spheres[index].radius, x, u, v);
         material = spheres[index].material;
+        magnitude = sphere_magnitude(center, spheres[index].radius);
     }
 #endif
 #ifdef WP_HAS_QUAD_LIGHTS
     if ((lights[light].shape >> WP_SHAPE_TYPE_SHIFT) == WP_SHAPE_QUAD) {
-        ls = sample_quad(vec3_at(quads[index].corner), vec3_at(quads[index].edge1), vec3_at(quads[index].edge2), x, u,
-                         v);
+        vec3 corner = vec3_at(quads[index].corner), edge1 = vec3_at(quads[index].edge1);
+        vec3 edge2 = vec3_at(quads[index].edge2);
+        ls = sample_quad(corner, edge1, edge2, x, u, v);
         material = quads[index].material;
+        magnitude = quad_magnitude(corner, edge1, edge2);
     }
 #endif
     if (ls.pdf_solid_angle == REAL(0.0)) return 0;
@@ -37,8 +43,9 @@ WP_FN int sample_direct_light(WP_SCENE_PARAMS, uint pixel, uint sample, uint bou
     real cos_surface = dot(wi, nf);
     int light_faces_x = dot(ls.normal, x - ls.point) > REAL(0.0);
     if (!(cos_surface > REAL(0.0)) || !(materials[material].two_sided || light_faces_x)) return 0;
-    vec3 from = offset_ray_origin(x, nf);
-    vec3 to = offset_ray_origin(ls.point, light_faces_x ? ls.normal : -ls.normal);
+    vec3 from = offset_ray_origin(x, nf, x_error);
+    vec3 to = offset_ray_origin(ls.point, light_faces_x ? ls.normal : -ls.normal,
+                                shadow_target_error(x, ls.point, magnitude));
     *shadow_distance = length(to - from);
     *shadow_direction = (to - from) / *shadow_distance;
     *shadow_origin = from;
@@ -76,7 +83,7 @@ __kernel __attribute__((reqd_work_group_size(WP_GROUP_SIZE, 1, 1))) void shade_d
             vec3 shadow_origin, shadow_direction, contribution;
             real distance;
             if (m->type == WP_MATERIAL_DIFFUSE &&
-                sample_direct_light(WP_SCENE_ARGS, pixel[slot], sample[slot], bounce, s.point, nf,
+                sample_direct_light(WP_SCENE_ARGS, pixel[slot], sample[slot], bounce, s.point, s.error, nf,
                                     throughput * vec3_at(m->albedo), &shadow_origin, &shadow_direction, &distance,
                                     &contribution)) {
                 STORE_XYZ(shadow_origin, slot, shadow_origin);

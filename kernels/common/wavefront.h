@@ -136,6 +136,7 @@ typedef struct {
     vec3 point;
     vec3 normal; /* geometric: outward (sphere), the plane's, normalize(edge1 x edge2) (quad) */
     uint material;
+    real error; /* bound on the point's distance from the surface (offset.h) */
 } Surface;
 
 WP_FN Surface surface_at(WP_SCENE_PARAMS, uint shape, vec3 origin, vec3 direction, real t) {
@@ -149,18 +150,22 @@ WP_FN Surface surface_at(WP_SCENE_PARAMS, uint shape, vec3 origin, vec3 directio
         s.point = sphere_reproject(center, spheres[index].radius, s.point);
         s.normal = sphere_normal(center, s.point);
         s.material = spheres[index].material;
+        s.error = shape_point_error(sphere_magnitude(center, spheres[index].radius));
     }
 #endif
 #ifdef WP_HAS_PLANES
     if (type == WP_SHAPE_PLANE) {
         s.normal = vec3_at(planes[index].normal);
         s.material = planes[index].material;
+        s.error = ray_point_error(origin, t, plane_magnitude(vec3_at(planes[index].point)));
     }
 #endif
 #ifdef WP_HAS_QUADS
     if (type == WP_SHAPE_QUAD) {
-        s.normal = quad_normal(vec3_at(quads[index].edge1), vec3_at(quads[index].edge2));
+        vec3 edge1 = vec3_at(quads[index].edge1), edge2 = vec3_at(quads[index].edge2);
+        s.normal = quad_normal(edge1, edge2);
         s.material = quads[index].material;
+        s.error = ray_point_error(origin, t, quad_magnitude(vec3_at(quads[index].corner), edge1, edge2));
     }
 #endif
     return s;

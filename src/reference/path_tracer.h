@@ -7,8 +7,12 @@
 //  - shapes are tested spheres, then planes, then quads, each in scene order,
 //    and a later shape replaces the closest hit only when strictly closer;
 //  - a sphere hit point is moved back onto the sphere with sphere_reproject;
-//  - the shadow ray runs from offset_ray_origin(x, nf) towards
-//    offset_ray_origin(light point, light normal facing x), with the unit
+//  - every surface point carries the error bound of offset.h (ray_point_error
+//    for planes and quads, shape_point_error for reprojected sphere hits), and
+//    spawned rays leave from offset_ray_origin(x, side, error);
+//  - the shadow ray runs from offset_ray_origin(x, nf, error) towards
+//    offset_ray_origin(light point, light normal facing x,
+//    shadow_target_error(x, light point, light magnitude)), with the unit
 //    direction and the distance between those two points;
 //  - the diffuse bounce direction is frame_to_world(frame_from_normal(nf),
 //    sample_cosine_hemisphere(u, v)), not renormalised.
@@ -56,6 +60,7 @@ struct SurfacePoint {
     Vec3<Real> point;
     Vec3<Real> normal;  // geometric: outward, plane normal, or edge1 x edge2
     int material;
+    Real error;  // bound on the point's distance from the surface (offset.h)
 };
 
 template <class Real>
@@ -105,12 +110,18 @@ SurfacePoint<Real> surface_at(const ReferenceScene<Real>& scene, const Ray<Real>
         case ShapeType::Sphere: {
             const auto& s = scene.spheres[hit.index];
             point = M::sphere_reproject(s.center, s.radius, point);
-            return {point, M::sphere_normal(s.center, point), s.material};
+            return {point, M::sphere_normal(s.center, point), s.material,
+                    M::shape_point_error(M::sphere_magnitude(s.center, s.radius))};
         }
-        case ShapeType::Plane:
-            return {point, scene.planes[hit.index].normal, scene.planes[hit.index].material};
-        case ShapeType::Quad:
-            return {point, scene.quads[hit.index].normal, scene.quads[hit.index].material};
+        case ShapeType::Plane: {
+            const auto& p = scene.planes[hit.index];
+            return {point, p.normal, p.material, M::ray_point_error(ray.origin, hit.t, M::plane_magnitude(p.point))};
+        }
+        case ShapeType::Quad: {
+            const auto& q = scene.quads[hit.index];
+            return {point, q.normal, q.material,
+                    M::ray_point_error(ray.origin, hit.t, M::quad_magnitude(q.corner, q.edge1, q.edge2))};
+        }
     }
     return {};
 }
@@ -129,18 +140,30 @@ typename SharedMath<Real>::LightSample sample_light(const ReferenceScene<Real>& 
 }
 
 template <class Real>
+Real light_magnitude(const ReferenceScene<Real>& scene, const typename ReferenceScene<Real>::LightRef& light) {
+    using M = SharedMath<Real>;
+    if (light.shape == ShapeType::Sphere) {
+        const auto& s = scene.spheres[light.index];
+        return M::sphere_magnitude(s.center, s.radius);
+    }
+    const auto& q = scene.quads[light.index];
+    return M::quad_magnitude(q.corner, q.edge1, q.edge2);
+}
+
+template <class Real>
 int light_material(const ReferenceScene<Real>& scene, const typename ReferenceScene<Real>::LightRef& light) {
     return light.shape == ShapeType::Sphere ? scene.spheres[light.index].material : scene.quads[light.index].material;
 }
 
-// Next-event estimation at a diffuse point x with front-facing normal nf:
+// Next-event estimation at a diffuse point x (with error bound x_error) and
+// front-facing normal nf:
 // one light chosen by the power CDF, one point on it, one shadow ray.
 // `weight` is the path throughput times the albedo; returns the radiance the
 // sample adds to the path.
 template <class Real>
-Vec3<Real> sample_direct_light(const ReferenceScene<Real>& scene, const Vec3<Real>& x, const Vec3<Real>& nf,
-                               const Vec3<Real>& weight, const SampleRng<Real>& rng, std::uint32_t bounce,
-                               RayCounts& counts) {
+Vec3<Real> sample_direct_light(const ReferenceScene<Real>& scene, const Vec3<Real>& x, Real x_error,
+                               const Vec3<Real>& nf, const Vec3<Real>& weight, const SampleRng<Real>& rng,
+                               std::uint32_t bounce, RayCounts& counts) {
     using M = SharedMath<Real>;
     using vec3 = typename M::vec3;
     const vec3 none(Real(0));
@@ -158,8 +181,9 @@ Vec3<Real> sample_direct_light(const ReferenceScene<Real>& scene, const Vec3<Rea
     bool light_faces_x = glm::dot(s.normal, x - s.point) > Real(0);
     if (!emitter.two_sided && !light_faces_x) return none;
 
-    vec3 origin = M::offset_ray_origin(x, nf);
-    vec3 target = M::offset_ray_origin(s.point, light_faces_x ? s.normal : -s.normal);
+    vec3 origin = M::offset_ray_origin(x, nf, x_error);
+    vec3 target = M::offset_ray_origin(s.point, light_faces_x ? s.normal : -s.normal,
+                                       M::shadow_target_error(x, s.point, light_magnitude(scene, light)));
     vec3 to_target = target - origin;
     Real distance = glm::length(to_target);
     ++counts.shadow;
@@ -174,16 +198,16 @@ struct Scattered {
     bool specular;
 };
 
-// Samples the continuation of the path at a non-emitter surface. d is the
-// incoming direction, n the geometric normal, nf the one facing d.
+// Samples the continuation of the path at a non-emitter surface point x. d
+// is the incoming direction, n the geometric normal, nf the one facing d.
 template <class Real>
-Scattered<Real> scatter(const typename ReferenceScene<Real>::SurfaceMaterial& material, const Vec3<Real>& x,
-                        const Vec3<Real>& d, const Vec3<Real>& n, const Vec3<Real>& nf, const SampleRng<Real>& rng,
-                        std::uint32_t bounce) {
+Scattered<Real> scatter(const typename ReferenceScene<Real>::SurfaceMaterial& material, const SurfacePoint<Real>& x,
+                        const Vec3<Real>& d, const Vec3<Real>& nf, const SampleRng<Real>& rng, std::uint32_t bounce) {
     using M = SharedMath<Real>;
     using vec3 = typename M::vec3;
+    const vec3& n = x.normal;
     auto leave = [&x](const vec3& direction, const vec3& side) {
-        return Ray<Real>{M::offset_ray_origin(x, side), direction};
+        return Ray<Real>{M::offset_ray_origin(x.point, side, x.error), direction};
     };
     switch (material.type) {
         case MaterialType::Mirror:
@@ -229,10 +253,10 @@ Vec3<Real> trace_path(const ReferenceScene<Real>& scene, Ray<Real> ray, const Sa
 
         auto bounce = static_cast<std::uint32_t>(depth);
         if (material.type == MaterialType::Diffuse && !scene.lights.empty()) {
-            radiance +=
-                sample_direct_light(scene, surface.point, nf, throughput * material.albedo, rng, bounce, counts);
+            radiance += sample_direct_light(scene, surface.point, surface.error, nf, throughput * material.albedo, rng,
+                                            bounce, counts);
         }
-        Scattered<Real> next = scatter(material, surface.point, ray.direction, surface.normal, nf, rng, bounce);
+        Scattered<Real> next = scatter(material, surface, ray.direction, nf, rng, bounce);
         throughput *= next.weight;
         ray = next.ray;
         specular = next.specular;
