@@ -1,14 +1,17 @@
 /* Stage 4: any hit along each shadow ray; an unoccluded one adds the light
- * sample's contribution to its path. */
+ * sample's contribution to its path. No early return: the profile's
+ * per-depth count has barriers. */
 #include "wavefront.h"
+#include "profile.h"
 
 __kernel __attribute__((reqd_work_group_size(WP_GROUP_SIZE, 1, 1))) void intersect_shadow(WP_STAGE_PARAMS) {
 #ifdef WP_HAS_NEE
+    WP_DEPTH_HISTOGRAM_SCRATCH;
     uint k = queue_position(counts, WP_QUEUE_SHADOW);
-    if (k == ~0u) return;
-    uint slot = queues[WP_QUEUE_SHADOW * capacity + k];
-    if (!any_hit(WP_SCENE_ARGS, LOAD_XYZ(shadow_origin, slot), LOAD_XYZ(shadow_direction, slot),
-                 shadow_distance[slot]))
+    uint slot = k != ~0u ? queues[WP_QUEUE_SHADOW * capacity + k] : 0u;
+    if (k != ~0u && !any_hit(WP_SCENE_ARGS, LOAD_XYZ(shadow_origin, slot), LOAD_XYZ(shadow_direction, slot),
+                             shadow_distance[slot]))
         STORE_RGB(radiance, slot, LOAD_RGB(radiance, slot) + LOAD_RGB(shadow_radiance, slot));
+    COUNT_BY_DEPTH(WP_PROFILE_SHADOW_BY_DEPTH, k != ~0u, depth[slot]);
 #endif
 }

@@ -64,7 +64,7 @@
 /* ", __global float* origin_x, ..." for the fields of the compiled features;
  * every stage kernel ends its parameter list with it, so the host binds the
  * same buffers at the same positions for every stage. */
-#define WP_PATH_STATE_PARAM(type, name, feature, writers, readers) WP_IF_##feature(, __global type* name)
+#define WP_PATH_STATE_PARAM(type, name, feature, writers, readers) WP_IF_##feature(, __global type* restrict name)
 #define WP_PATH_STATE_PARAMS WP_PATH_STATE(WP_PATH_STATE_PARAM)
 #endif
 

@@ -15,6 +15,13 @@
 #define WP_COUNTER_NONFINITE 6u /* samples dropped for non-finite radiance */
 #define WP_COUNTS_SIZE 7u
 
+/* Built with -DWP_PROFILE, the kernels also count rays per path depth in two
+ * histograms after the counters (the last bin takes every deeper ray). */
+#define WP_PROFILE_DEPTHS 64u
+#define WP_PROFILE_EXTENSION_BY_DEPTH WP_COUNTS_SIZE
+#define WP_PROFILE_SHADOW_BY_DEPTH (WP_COUNTS_SIZE + WP_PROFILE_DEPTHS)
+#define WP_COUNTS_PROFILED_SIZE (WP_COUNTS_SIZE + 2u * WP_PROFILE_DEPTHS)
+
 /* Work-group size of the stage kernels (the aggregated queue push uses local memory). */
 #define WP_GROUP_SIZE 64
 

@@ -26,6 +26,8 @@ struct Backend {
 };
 
 RenderResult render_on_reference(const Scene& scene, const BackendOptions& options, const ProgressFn& progress) {
+    if (options.profile || !options.profile_json.empty())
+        throw UsageError("--profile/--profile-json: the reference backend has no kernels to profile");
     return render_reference(scene, ReferenceOptions{options.threads, options.precision == "double"}, progress);
 }
 
@@ -33,8 +35,12 @@ RenderResult render_on_reference(const Scene& scene, const BackendOptions& optio
 RenderResult render_on_wavefront(const Scene& scene, const BackendOptions& options, const ProgressFn& progress) {
     WavefrontReport report;
     try {
-        RenderResult result = render_wavefront(scene, {options.device, options.wavefront}, progress, &report);
+        WavefrontOptions wavefront{options.device, options.wavefront};
+        wavefront.profile = options.profile || !options.profile_json.empty();
+        RenderResult result = render_wavefront(scene, wavefront, progress, &report);
         if (options.explain) std::cout << report.explain() << std::flush;
+        if (options.profile) std::cerr << format_profile_table(report.profile) << std::flush;
+        if (!options.profile_json.empty()) write_profile_json(report.profile, options.profile_json);
         return result;
     } catch (const KernelBuildError& error) {
         std::cerr << error.log() << std::endl;
@@ -78,6 +84,9 @@ void add_backend_options(CLI::App& render, BackendOptions& options) {
                       "OpenCL device for the wavefront backend: index or name substring (see `wavepath devices`)");
     render.add_flag("--explain", options.explain,
                     "Print the wavefront's feature set, build options, program cache hit or miss and state size");
+    render.add_flag("--profile", options.profile,
+                    "Print the wavefront's per-kernel profile (launches, items, device time, items/s) on stderr");
+    render.add_option("--profile-json", options.profile_json, "Also write the wavefront's profile to this JSON file");
 }
 
 RenderResult render_with_backend(const Scene& scene, const BackendOptions& options, const ProgressFn& progress) {

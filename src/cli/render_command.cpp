@@ -12,6 +12,7 @@ namespace wp::cli {
 void run_render(const RenderCommand& command) {
     validate_output_path(command.output_path);
     if (!command.stats_json_path.empty()) check_writable_destination(command.stats_json_path);
+    if (!command.backend.profile_json.empty()) check_writable_destination(command.backend.profile_json);
 
     Scene scene = load_scene(command.scene_path);
     apply_overrides(command.overrides, scene);

@@ -1,5 +1,6 @@
 #include "wavefront/pipeline.h"
 
+#include <algorithm>
 #include <numeric>
 
 #include "wavefront/kernel_options.h"
@@ -18,27 +19,30 @@ const std::vector<std::string>& wavefront_kernel_files() {
 }
 
 Pipeline::Pipeline(const Scene& scene, const DeviceInfo& device, std::size_t capacity, std::size_t pass_capacity,
-                   const FeatureSet& kernel_features)
+                   const FeatureSet& kernel_features, bool profile)
     : capacity_(capacity),
       pass_capacity_(pass_capacity),
       pixel_count_(std::size_t(scene.camera.width) * scene.camera.height),
       film_double_(device.fp64),
       context_(device.device),
-      queue_(context_, device.device),
+      queue_(context_, device.device, profile ? cl_command_queue_properties(CL_QUEUE_PROFILING_ENABLE) : 0),
       program_(build_program(context_, device, wavefront_kernel_files(),
-                             kernel_build_options(kernel_features, !scene.lights.empty(), device.fp64))),
+                             kernel_build_options(kernel_features, !scene.lights.empty(), device.fp64) +
+                                 (profile ? " -DWP_PROFILE" : ""))),
       scene_(context_, flatten_scene(scene)),
       state_(context_, capacity, kernel_features, !scene.lights.empty()),
       queues_(context_, CL_MEM_READ_WRITE, sizeof(std::uint32_t) * WP_QUEUE_COUNT * capacity),
-      counts_(context_, CL_MEM_READ_WRITE, sizeof(DeviceCounts)),
+      counts_(context_, CL_MEM_READ_WRITE, sizeof(std::uint32_t) * WP_COUNTS_PROFILED_SIZE),
       pass_radiance_(context_, CL_MEM_READ_WRITE, sizeof(float) * 3 * pass_capacity),
       film_(context_, CL_MEM_READ_WRITE,
-            film_double_ ? sizeof(double) * 3 * pixel_count_ : sizeof(float) * 6 * pixel_count_) {
+            film_double_ ? sizeof(double) * 3 * pixel_count_ : sizeof(float) * 6 * pixel_count_),
+      profiling_(profile) {
     std::vector<std::uint32_t> identity(capacity);
     std::iota(identity.begin(), identity.end(), 0u);
     identity_slots_ = cl::Buffer(context_, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(std::uint32_t) * capacity,
                                  identity.data());
     queue_.enqueueFillBuffer(film_, std::uint8_t(0), 0, film_.getInfo<CL_MEM_SIZE>());
+    queue_.enqueueFillBuffer(counts_, std::uint32_t(0), 0, counts_.getInfo<CL_MEM_SIZE>());
     for (const char* name : stage_kernel_names) {
         cl::Kernel kernel(program_.program, name);
         cl_uint arg = 0;
@@ -72,9 +76,38 @@ void Pipeline::begin_pass(std::uint64_t start, std::uint32_t size) {
     queue_.enqueueWriteBuffer(counts_, CL_TRUE, 0, sizeof counts, counts.data());
 }
 
+void Pipeline::enqueue(cl::Kernel& kernel, const char* name, std::size_t items) {
+    cl::Event event;
+    queue_.enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(round_up(items, WP_GROUP_SIZE)),
+                                cl::NDRange(WP_GROUP_SIZE), nullptr, profiling_ ? &event : nullptr);
+    if (profiling_) pending_events_.emplace_back(name, event);
+}
+
 void Pipeline::run(Stage stage) {
-    queue_.enqueueNDRangeKernel(stages_[static_cast<int>(stage)], cl::NullRange,
-                                cl::NDRange(round_up(capacity_, WP_GROUP_SIZE)), cl::NDRange(WP_GROUP_SIZE));
+    int index = static_cast<int>(stage);
+    enqueue(stages_[index], stage_kernel_names[index], capacity_);
+}
+
+void Pipeline::time_finished_kernels() {
+    for (auto& [name, event] : pending_events_) {
+        cl_ulong start = event.getProfilingInfo<CL_PROFILING_COMMAND_START>();
+        cl_ulong end = event.getProfilingInfo<CL_PROFILING_COMMAND_END>();
+        KernelProfile& k = profile_.kernel(name);
+        ++k.launches;
+        k.device_s += double(end - start) * 1e-9;
+        if (last_kernel_end_ != 0 && start > last_kernel_end_)
+            profile_.gaps_s += double(start - last_kernel_end_) * 1e-9;
+        last_kernel_end_ = std::max(last_kernel_end_, end);
+    }
+    pending_events_.clear();
+}
+
+void Pipeline::read_rays_by_depth(WavefrontProfile& profile) {
+    std::vector<std::uint32_t> histograms(2 * WP_PROFILE_DEPTHS);
+    queue_.enqueueReadBuffer(counts_, CL_TRUE, WP_PROFILE_EXTENSION_BY_DEPTH * sizeof(std::uint32_t),
+                             histograms.size() * sizeof(std::uint32_t), histograms.data());
+    profile.extension_rays_by_depth.assign(histograms.begin(), histograms.begin() + WP_PROFILE_DEPTHS);
+    profile.shadow_rays_by_depth.assign(histograms.begin() + WP_PROFILE_DEPTHS, histograms.end());
 }
 
 void Pipeline::clear_counts(std::uint32_t first, std::uint32_t n) {
@@ -84,6 +117,7 @@ void Pipeline::clear_counts(std::uint32_t first, std::uint32_t n) {
 DeviceCounts Pipeline::read_counts() {
     DeviceCounts counts;
     queue_.enqueueReadBuffer(counts_, CL_TRUE, 0, sizeof counts, counts.data());
+    if (profiling_) time_finished_kernels();
     return counts;
 }
 
@@ -93,7 +127,7 @@ void Pipeline::accumulate() {
     accumulate_.setArg(2, cl_uint(pixel_count_));
     accumulate_.setArg(3, pass_radiance_);
     accumulate_.setArg(4, film_);
-    queue_.enqueueNDRangeKernel(accumulate_, cl::NullRange, cl::NDRange(pixel_count_));
+    enqueue(accumulate_, "accumulate", pixel_count_);
 }
 
 std::vector<double> Pipeline::read_film() {
@@ -105,6 +139,7 @@ std::vector<double> Pipeline::read_film() {
         queue_.enqueueReadBuffer(film_, CL_TRUE, 0, sizeof(float) * film.size(), film.data());
         for (std::size_t i = 0; i < sums.size(); ++i) sums[i] = double(film[i]) - double(film[sums.size() + i]);
     }
+    if (profiling_) time_finished_kernels();
     return sums;
 }
 

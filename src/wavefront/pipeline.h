@@ -13,6 +13,7 @@
 #include "device/program_cache.h"
 #include "scene/scene.h"
 #include "wavefront/path_state.h"
+#include "wavefront/profile.h"
 #include "wavefront/scene_upload.h"
 
 namespace wp {
@@ -32,9 +33,11 @@ class Pipeline {
  public:
     // capacity: paths in flight; pass_capacity: most work items per pass.
     // The kernels are compiled for `kernel_features`, normally scene.features()
-    // (a superset also renders the scene, only slower).
+    // (a superset also renders the scene, only slower). `profile` times every
+    // kernel with OpenCL events and builds the kernels with -DWP_PROFILE
+    // (rays counted per depth).
     Pipeline(const Scene& scene, const DeviceInfo& device, std::size_t capacity, std::size_t pass_capacity,
-             const FeatureSet& kernel_features);
+             const FeatureSet& kernel_features, bool profile = false);
     Pipeline(const Scene& scene, const DeviceInfo& device, std::size_t capacity, std::size_t pass_capacity)
         : Pipeline(scene, device, capacity, pass_capacity, scene.features()) {}
 
@@ -51,11 +54,17 @@ class Pipeline {
     void run(Stage stage);
     // Sets lengths [first, first + n) of `counts` to 0.
     void clear_counts(std::uint32_t first, std::uint32_t n);
+    // Waits for the queue; with profiling, adds the finished kernels' times to profile().
     DeviceCounts read_counts();
     // Adds the drained pass's entries to the film, per pixel in sample order.
     void accumulate();
     // Per-pixel RGB sums over all passes so far.
     std::vector<double> read_film();
+
+    // Kernel launches and device times so far (profiling only; items are the scheduler's to fill in).
+    WavefrontProfile& profile() { return profile_; }
+    // Extension and shadow rays counted per depth by the -DWP_PROFILE kernels.
+    void read_rays_by_depth(WavefrontProfile& profile);
 
     // For stage tests: set a queue's slots and length, read the pass entries.
     void set_queue(std::uint32_t queue, const std::vector<std::uint32_t>& slots);
@@ -85,6 +94,13 @@ class Pipeline {
     cl::Kernel accumulate_;
     std::uint64_t pass_start_ = 0;
     std::uint32_t pass_size_ = 0;
+    bool profiling_;
+    WavefrontProfile profile_;
+    std::vector<std::pair<const char*, cl::Event>> pending_events_;  // launched, not yet timed
+    cl_ulong last_kernel_end_ = 0;
+
+    void enqueue(cl::Kernel& kernel, const char* name, std::size_t items);
+    void time_finished_kernels();
 };
 
 // The kernel files of the program, in build order.

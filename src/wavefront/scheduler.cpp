@@ -29,15 +29,17 @@ ScheduleTotals run_schedule(Pipeline& pipeline, std::uint64_t total, bool has_li
     for (std::uint64_t start = 0; start < total; start += pipeline.pass_capacity()) {
         auto size = static_cast<std::uint32_t>(std::min<std::uint64_t>(pipeline.pass_capacity(), total - start));
         pipeline.begin_pass(start, size);
-        std::uint32_t continuing = 0, issued = 0;
+        std::uint32_t continuing = 0, issued = 0, free_slots = static_cast<std::uint32_t>(pipeline.capacity());
         for (;;) {
             DeviceCounts counts = run_iteration(pipeline, has_lights);
             std::uint32_t now_issued = std::min(counts[WP_COUNTER_WORK], size);
             IterationRecord r;
+            r.free_slots = free_slots;
             r.generated = now_issued - issued;
             r.traced = continuing + r.generated;
             r.hits = counts[WP_QUEUE_HIT];
             r.shadow = has_lights ? counts[WP_QUEUE_SHADOW] : 0;
+            r.scattered = counts[WP_QUEUE_SCATTER];
             r.continuing = counts[WP_QUEUE_RAY];
             r.finished = counts[WP_QUEUE_FREE];
             iterations.push_back(r);
@@ -45,6 +47,7 @@ ScheduleTotals run_schedule(Pipeline& pipeline, std::uint64_t total, bool has_li
             totals.shadow_rays += r.shadow;
             finished += r.finished;
             issued = now_issued;
+            free_slots = r.finished;
             continuing = r.continuing;
             if (progress) progress(double(finished) / double(total));
             if (issued == size && continuing == 0) {

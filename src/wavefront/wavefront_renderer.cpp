@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <map>
 #include <sstream>
 
 #include "device/opencl_device.h"
@@ -34,6 +35,25 @@ FeatureSet every_shape_and_material(FeatureSet f) {
     f.diffuse = f.mirror = f.glass = f.emitter_material = true;
     f.sphere_lights = f.quad_lights = true;
     return f;
+}
+
+// Items each kernel processed: its input queue's length summed over the
+// iterations (accumulate: the pass entries it summed).
+void fill_profile(WavefrontProfile& profile, const std::vector<IterationRecord>& iterations, std::uint64_t samples) {
+    const std::map<std::string, std::uint32_t IterationRecord::*> input_queue{
+        {"generate", &IterationRecord::free_slots},
+        {"intersect", &IterationRecord::traced},
+        {"shade_direct", &IterationRecord::hits},
+        {"intersect_shadow", &IterationRecord::shadow},
+        {"scatter", &IterationRecord::scattered}};
+    for (KernelProfile& k : profile.kernels) {
+        auto queue = input_queue.find(k.name);
+        if (queue == input_queue.end()) continue;
+        k.items = 0;
+        for (const IterationRecord& r : iterations) k.items += r.*(queue->second);
+    }
+    profile.kernel("accumulate").items = samples;
+    profile.iterations = iterations.size();
 }
 
 }  // namespace
@@ -75,7 +95,7 @@ RenderResult render_wavefront(const Scene& scene, const WavefrontOptions& option
             : default_wavefront_size(total, PathState::bytes_per_path(scene.features(), has_lights), device);
     FeatureSet features = options.specialise ? scene.features() : every_shape_and_material(scene.features());
     Pipeline pipeline(scene, device, wavefront, std::min<std::uint64_t>(total, kPassesPerWavefront * wavefront),
-                      features);
+                      features, options.profile);
 
     WavefrontReport local_report;
     WavefrontReport& r = report ? *report : local_report;
@@ -98,6 +118,13 @@ RenderResult render_wavefront(const Scene& scene, const WavefrontOptions& option
     result.stats.shadow_rays = totals.shadow_rays;
     result.stats.nonfinite = totals.nonfinite;
     result.stats.time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - render_start).count();
+    if (options.profile) {
+        r.profile = pipeline.profile();
+        fill_profile(r.profile, r.iterations, total);
+        r.profile.render_s = result.stats.time_s;
+        r.profile.build_s = r.build_seconds;
+        pipeline.read_rays_by_depth(r.profile);
+    }
     return result;
 }
 

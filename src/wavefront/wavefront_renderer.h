@@ -9,6 +9,7 @@
 #include "core/render.h"
 #include "device/opencl_device.h"
 #include "scene/scene.h"
+#include "wavefront/profile.h"
 
 namespace wp {
 
@@ -16,14 +17,17 @@ struct WavefrontOptions {
     std::string device;         // "" (prefer a GPU), an index, or a name substring
     std::size_t wavefront = 0;  // paths in flight; 0 = chosen from device memory and image size
     bool specialise = true;     // compile only the scene's features (false: every shape and material, for comparison)
+    bool profile = false;       // time every kernel (WavefrontReport::profile)
 };
 
 // Queue lengths of one iteration of the stage loop, for the profiler.
 struct IterationRecord {
+    std::uint32_t free_slots = 0;  // slots generate looked at
     std::uint32_t generated = 0;   // camera rays started
     std::uint32_t traced = 0;      // extension rays intersected
     std::uint32_t hits = 0;        // of those, hits (to shade_direct)
     std::uint32_t shadow = 0;      // shadow rays
+    std::uint32_t scattered = 0;   // paths scatter sampled (hits that did not end in shade_direct)
     std::uint32_t continuing = 0;  // paths that scattered on
     std::uint32_t finished = 0;    // paths that ended
 };
@@ -40,6 +44,7 @@ struct WavefrontReport {
     std::size_t pass_capacity = 0;
     std::size_t state_bytes_per_path = 0;
     std::vector<IterationRecord> iterations;
+    WavefrontProfile profile;  // filled when WavefrontOptions::profile
 
     std::string explain() const;
 };
