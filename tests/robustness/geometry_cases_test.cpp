@@ -1,0 +1,225 @@
+// Geometry at the extremes (issue 5), on both backends: the smallpt box of
+// radius-1e5 sphere walls against the same box of quads, no light leaking
+// along the room's edges, the camera inside a sphere and on a surface, and
+// rays that exactly graze a plane or a sphere's silhouette.
+#include <gtest/gtest.h>
+
+#include <glm/trigonometric.hpp>
+#include <glm/vec2.hpp>
+#include <string>
+#include <vector>
+
+#include "robustness_support.h"
+#include "support/analytic_scenes.h"
+
+namespace wp::test {
+namespace {
+
+class Geometry : public ::testing::TestWithParam<Backend> {};
+
+// A 100 x 80 x 170 box, closed, lit by a small sphere light, the camera
+// inside near the front wall; its six walls either quads or, as in smallpt,
+// spheres of radius 1e5 whose surfaces lie on the same planes (they bulge by
+// at most 85^2 / 2e5 = 0.04 over a wall, 4e-4 of the box).
+std::string box_scene(bool sphere_walls, std::uint32_t seed) {
+    const char* walls_quads = R"(
+    {"type": "quad", "corner": [0, 0, 0], "edge1": [0, 80, 0], "edge2": [0, 0, 170], "material": "red"},
+    {"type": "quad", "corner": [100, 0, 0], "edge1": [0, 0, 170], "edge2": [0, 80, 0], "material": "blue"},
+    {"type": "quad", "corner": [0, 0, 0], "edge1": [0, 0, 170], "edge2": [100, 0, 0], "material": "white"},
+    {"type": "quad", "corner": [0, 80, 0], "edge1": [100, 0, 0], "edge2": [0, 0, 170], "material": "white"},
+    {"type": "quad", "corner": [0, 0, 0], "edge1": [100, 0, 0], "edge2": [0, 80, 0], "material": "white"},
+    {"type": "quad", "corner": [0, 0, 170], "edge1": [0, 80, 0], "edge2": [100, 0, 0], "material": "white"})";
+    const char* walls_spheres = R"(
+    {"type": "sphere", "center": [-100000, 40, 85], "radius": 100000, "material": "red"},
+    {"type": "sphere", "center": [100100, 40, 85], "radius": 100000, "material": "blue"},
+    {"type": "sphere", "center": [50, -100000, 85], "radius": 100000, "material": "white"},
+    {"type": "sphere", "center": [50, 100080, 85], "radius": 100000, "material": "white"},
+    {"type": "sphere", "center": [50, 40, -100000], "radius": 100000, "material": "white"},
+    {"type": "sphere", "center": [50, 40, 100170], "radius": 100000, "material": "white"})";
+    return std::string(R"({
+  "camera": {"position": [50, 42, 165], "look_at": [50, 38, 0], "fov_y": 55, "width": 32, "height": 32},
+  "render": {"spp": 16, "max_depth": 6, "rr_depth": 3, "seed": )") +
+           std::to_string(seed) + R"(},
+  "materials": {
+    "white": {"type": "diffuse", "albedo": [0.75, 0.75, 0.75]},
+    "red": {"type": "diffuse", "albedo": [0.75, 0.25, 0.25]},
+    "blue": {"type": "diffuse", "albedo": [0.25, 0.25, 0.75]},
+    "lamp": {"type": "emitter", "radiance": [400, 400, 400]}
+  },
+  "shapes": [
+    {"type": "sphere", "center": [50, 70, 85], "radius": 5, "material": "lamp"},)" +
+           (sphere_walls ? walls_spheres : walls_quads) + "]}";
+}
+
+TEST_P(Geometry, SmallptSphereWallsMatchQuadWalls) {
+    RenderResult quads = render_on(GetParam(), parse_scene(box_scene(false, 1), "quad box"));
+    RenderResult spheres = render_on(GetParam(), parse_scene(box_scene(true, 2), "smallpt box"));
+    EXPECT_EQ(spheres.stats.nonfinite, 0u);
+    RegionComparison c = compare_regions(spheres.image, quads.image, 4);
+    report_figure("smallpt sphere walls vs quad walls (independent seeds)", GetParam(), describe(c));
+    EXPECT_LE(c.worst_z, kSigmaTolerance);
+    EXPECT_LE(std::fabs(c.whole_z), kSigmaTolerance);
+}
+
+// Pixel position of a camera-relative point.
+glm::dvec2 project(const Camera& camera, const glm::dvec3& point) {
+    glm::dvec3 forward = glm::normalize(camera.look_at - camera.position);
+    glm::dvec3 right = glm::normalize(glm::cross(forward, camera.up));
+    glm::dvec3 up = glm::cross(right, forward);
+    glm::dvec3 d = point - camera.position;
+    double t = std::tan(glm::radians(camera.fov_y_degrees) / 2.0), aspect = double(camera.width) / camera.height;
+    double sx = glm::dot(d, right) / glm::dot(d, forward) / (t * aspect),
+           sy = glm::dot(d, up) / glm::dot(d, forward) / t;
+    return {(sx + 1.0) / 2.0 * camera.width, (1.0 - sy) / 2.0 * camera.height};
+}
+
+// Light leaking through an edge shows as a bright line along it. The room
+// is closed, so its outside (the background) must never be seen; it is made
+// 100 times as bright as the lamp to turn any leak into a bright line. For
+// the four edges of the room's back wall (roof, floor, left and right walls
+// meeting it), each pixel the edge crosses is compared with the mean of the
+// pixels two away on either side (across the edge): over an edge, the mean
+// of (edge pixel - neighbour mean) must not exceed kSigmaTolerance standard
+// errors (one-sided: corners are darker than their surroundings, never
+// brighter). The room translated by 1e+5 too, where float precision is
+// tightest. And no sample anywhere may see the outside: no pixel reaches
+// the outside's radiance / spp.
+constexpr double kOutside = 1400.0;
+TEST_P(Geometry, NoLightLeaksAlongTheRoomsEdges) {
+    for (double translation : {0.0, 1e5}) {
+        SCOPED_TRACE("translation " + std::to_string(translation));
+        Scene scene = transformed_room(1.0, glm::dvec3(translation), 48, 64, 5, [](nlohmann::json& room) {
+            room["background"] = {kOutside, kOutside, kOutside};
+        });
+        RenderResult result = render_on(GetParam(), scene);
+        EXPECT_EQ(result.stats.nonfinite, 0u);
+        // The back wall's corners, room coordinates, camera-relative.
+        glm::dvec3 eye(0, 2.4, 7);
+        glm::dvec3 corners[4] = {{-2.5, 0, -3}, {2.5, 0, -3}, {2.5, 5, -3}, {-2.5, 5, -3}};
+        for (int e = 0; e < 4; ++e) {
+            glm::dvec3 a = corners[e] - eye, b = corners[(e + 1) % 4] - eye;
+            glm::dvec2 pa = project(scene.camera, a), pb = project(scene.camera, b);
+            bool horizontal = std::fabs(pb.x - pa.x) > std::fabs(pb.y - pa.y);
+            RunningMean excess, level;
+            int last_x = -1, last_y = -1;
+            for (double s = 0.1; s <= 0.9; s += 0.002) {
+                glm::dvec2 p = project(scene.camera, a + s * (b - a));
+                int x = int(std::floor(p.x)), y = int(std::floor(p.y));
+                if ((x == last_x && y == last_y) || x < 2 || y < 2 || x >= 46 || y >= 46) continue;
+                last_x = x, last_y = y;
+                int dx = horizontal ? 0 : 2, dy = horizontal ? 2 : 0;
+                double neighbours =
+                    0.5 * (pixel_sum(result.image, x - dx, y - dy) + pixel_sum(result.image, x + dx, y + dy));
+                excess.add(pixel_sum(result.image, x, y) - neighbours);
+                level.add(neighbours);
+            }
+            ASSERT_GT(excess.count(), 10u) << "edge " << e;
+            double z = excess.mean() / excess.standard_error();
+            report_figure("room edge " + std::to_string(e) + (translation > 0 ? " (translated 1e+5)" : ""), GetParam(),
+                          format("edge pixels minus neighbours: %+.3f of the neighbour level (z %+.2f)",
+                                 excess.mean() / level.mean(), z));
+            EXPECT_LE(z, kSigmaTolerance) << "edge " << e;
+        }
+        float brightest = *std::max_element(result.image.rgb.begin(), result.image.rgb.end());
+        report_figure(std::string("room with a bright outside") + (translation > 0 ? " (translated 1e+5)" : ""),
+                      GetParam(),
+                      format("brightest pixel %.2f, one leaked sample would add %.2f", brightest, kOutside / 64));
+        EXPECT_LT(brightest, kOutside / 64);
+    }
+}
+
+// The camera inside a closed, two-sided emissive diffuse sphere (albedo 0.9)
+// and, second, on such a sphere's surface, its rays entering the sphere (the
+// camera point is exactly on it: a hit at t = 0 must not count). Next-event
+// estimation from a sphere's inside is exact per vertex, so every pixel is
+// the truncated series Le (1 - rho^(d+1)) / (1 - rho) to float rounding.
+TEST_P(Geometry, CameraInsideASphereAndOnItsSurface) {
+    RenderBlock block{16, 16, 4, 8};
+    Scene inside = inside_emissive_sphere(block, glm::dvec3(0.9), glm::dvec3(1.0));
+    Scene on_surface = parse_scene(R"({
+      "camera": {"position": [0, 2, 5], "look_at": [0.2, 1.9, 3], "fov_y": 60, "width": 16, "height": 16},
+      "render": {"spp": 4, "max_depth": 8, "rr_depth": 1000000, "seed": 1},
+      "materials": {"glow": {"type": "diffuse", "albedo": [0.9, 0.9, 0.9], "emission": [1, 1, 1], "two_sided": true}},
+      "shapes": [{"type": "sphere", "center": [0, 2, 4], "radius": 1, "material": "glow"}]})",
+                                   "camera on sphere");
+    double expected = inside_emissive_sphere_radiance(0.9, 1.0, 8);
+    for (const Scene* scene : {&inside, &on_surface}) {
+        RenderResult result = render_on(GetParam(), *scene);
+        double worst = 0.0;
+        for (float v : result.image.rgb) worst = std::max(worst, std::fabs(v - expected) / expected);
+        report_figure(scene == &inside ? "camera inside a sphere" : "camera on a sphere's surface", GetParam(),
+                      format("largest pixel deviation from Le(1-rho^9)/(1-rho): %.2e", worst));
+        EXPECT_LE(worst, 1e-5);
+        EXPECT_EQ(result.stats.nonfinite, 0u);
+    }
+}
+
+// The camera exactly on a diffuse plane (after the loader's rebase the
+// plane passes through the origin): no ray meets the plane at t = 0, so
+// every pixel shows the background, on both sides of the horizon.
+TEST_P(Geometry, CameraOnAPlaneSeesPastIt) {
+    Scene scene = parse_scene(R"({
+      "camera": {"position": [3, 1, 2], "look_at": [3, 0.5, 1], "fov_y": 60, "width": 16, "height": 16},
+      "render": {"spp": 2, "max_depth": 4, "seed": 1},
+      "background": [0.25, 0.5, 1],
+      "materials": {"white": {"type": "diffuse", "albedo": [0.5, 0.5, 0.5]}},
+      "shapes": [{"type": "plane", "point": [5, 1, 7], "normal": [0, 1, 0], "material": "white"}]})",
+                              "camera on plane");
+    RenderResult result = render_on(GetParam(), scene);
+    int off = 0;
+    for (int y = 0; y < 16; ++y)
+        for (int x = 0; x < 16; ++x)
+            for (int c = 0; c < 3; ++c) off += pixel_channel(result.image, x, y, c) != float(scene.background[c]);
+    report_figure("camera on a plane", GetParam(), format("pixels not equal to the background: %.0f of 256", off));
+    EXPECT_EQ(off, 0);
+}
+
+// At 1 spp a pixel is one sample. Under a uniform background of 1 and no
+// lights, a sample that meets a convex surface of albedo (or reflectance)
+// 0.5 scatters once into the sky and carries exactly 0.5; one that misses
+// carries 1; a ray that hits its own surface again after scattering would
+// carry 0.25 or less. `grazing_hits` counts the hits among the pixels.
+void expect_one_scattering_only(const RenderResult& result, const std::string& name, Backend backend,
+                                int minimum_hits) {
+    int hits = 0, other = 0;
+    for (float v : result.image.rgb) {
+        if (std::fabs(v - 0.5f) <= 1e-6f)
+            ++hits;
+        else if (v != 1.0f)
+            ++other;
+    }
+    report_figure(name, backend, format("1-spp pixel channels: %.0f hit (0.5), %.0f neither 0.5 nor 1", hits, other));
+    EXPECT_EQ(other, 0);
+    EXPECT_GE(hits, minimum_hits);
+    EXPECT_EQ(result.stats.nonfinite, 0u);
+}
+
+// The camera 1 above a diffuse plane, looking at the horizon: the rows just
+// below it meet the plane at t up to ~1e6 and incidence angles down to 1e-6
+// rad, where o + t d carries an error of ulp(t), far above ulp of the point.
+TEST_P(Geometry, RaysGrazingAPlane) {
+    RenderBlock block{48, 48, 1, 8};
+    Scene scene = empty_scene(block, {0, 0, -1}, 2.0);
+    scene.background = glm::dvec3(1.0);
+    scene.planes.push_back({{0, -1, 0}, {0, 1, 0}, add_material(scene, diffuse(glm::dvec3(0.5)))});
+    build_light_table(scene);
+    expect_one_scattering_only(render_on(GetParam(), scene), "rays grazing a plane", GetParam(), 3 * 48 * 20);
+}
+
+// A mirror sphere seen at its silhouette through a 0.5 degree field: most
+// rays meet it within a fraction of a degree of tangency.
+TEST_P(Geometry, RaysGrazingASpheresSilhouette) {
+    RenderBlock block{48, 48, 1, 8};
+    double s = 0.25;  // sin of the silhouette's angle from the axis: radius / distance
+    Scene scene = empty_scene(block, {s, 0, -std::sqrt(1 - s * s)}, 0.5);
+    scene.background = glm::dvec3(1.0);
+    scene.spheres.push_back({{0, 0, -4}, 1.0, add_material(scene, mirror(glm::dvec3(0.5)))});
+    build_light_table(scene);
+    expect_one_scattering_only(render_on(GetParam(), scene), "rays grazing a sphere's silhouette", GetParam(),
+                               3 * 48 * 10);
+}
+
+INSTANTIATE_TEST_SUITE_P(Backends, Geometry, ::testing::Values(Backend::Reference, Backend::Wavefront), BackendNames());
+
+}  // namespace
+}  // namespace wp::test
