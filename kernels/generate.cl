@@ -3,6 +3,7 @@
  * issued; this is also path regeneration, since slots freed by finished
  * paths come back through the free queue every iteration. */
 #include "wavefront.h"
+#include "vertex.h"
 
 __kernel __attribute__((reqd_work_group_size(WP_GROUP_SIZE, 1, 1))) void generate(WP_STAGE_PARAMS) {
     WP_STAGE_INPUT(WP_QUEUE_FREE);
@@ -15,12 +16,7 @@ __kernel __attribute__((reqd_work_group_size(WP_GROUP_SIZE, 1, 1))) void generat
             uint pixel_count = scene->width * scene->height;
             uint px = (uint)(work % pixel_count);
             uint s = (uint)(work / pixel_count);
-            uint x = px % scene->width, y = px / scene->width;
-            real u0 = rng_uniform(scene->seed, px, s, 0u, DIM_FILM_X);
-            real u1 = rng_uniform(scene->seed, px, s, 0u, DIM_FILM_Y);
-            vec3 direction = camera_direction(vec3_at(scene->camera_right), vec3_at(scene->camera_up),
-                                              vec3_at(scene->camera_forward), scene->tan_half_fov_y, scene->aspect,
-                                              ((real)x + u0) / (real)scene->width, ((real)y + u1) / (real)scene->height);
+            vec3 direction = camera_ray_direction(scene, px, s);
             pixel[slot] = px;
             sample[slot] = s;
             pass_item[slot] = item;

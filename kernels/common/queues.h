@@ -13,7 +13,9 @@
 
 #define WP_COUNTER_WORK 5u      /* work items of the pass handed out (may overshoot the pass) */
 #define WP_COUNTER_NONFINITE 6u /* samples dropped for non-finite radiance */
-#define WP_COUNTS_SIZE 7u
+#define WP_COUNTER_EXTENSION_RAYS 7u /* megakernel only: rays traced (the wavefront counts its queues) */
+#define WP_COUNTER_SHADOW_RAYS 8u
+#define WP_COUNTS_SIZE 9u
 
 /* Built with -DWP_PROFILE, the kernels also count rays per path depth in two
  * histograms after the counters (the last bin takes every deeper ray). */

@@ -7,6 +7,7 @@
 #include "cli/errors.h"
 #include "cli/flag_checks.h"
 #include "device/program_cache.h"
+#include "megakernel/megakernel_renderer.h"
 #include "reference/reference_renderer.h"
 #include "wavefront/wavefront_renderer.h"
 
@@ -48,8 +49,24 @@ RenderResult render_on_wavefront(const Scene& scene, const BackendOptions& optio
     }
 }
 
-constexpr std::array<Backend, 2> kBackends{{
+// The same for the megakernel baseline.
+RenderResult render_on_megakernel(const Scene& scene, const BackendOptions& options, const ProgressFn& progress) {
+    MegakernelReport report;
+    try {
+        MegakernelOptions megakernel{options.device, options.profile || !options.profile_json.empty()};
+        RenderResult result = render_megakernel(scene, megakernel, progress, &report);
+        if (options.profile) std::cerr << format_profile_table(report.profile) << std::flush;
+        if (!options.profile_json.empty()) write_profile_json(report.profile, options.profile_json);
+        return result;
+    } catch (const KernelBuildError& error) {
+        std::cerr << error.log() << std::endl;
+        throw;
+    }
+}
+
+constexpr std::array<Backend, 3> kBackends{{
     {"wavefront", "OpenCL wavefront path tracer, the default", render_on_wavefront},
+    {"megakernel", "OpenCL megakernel baseline: one work item traces a whole path", render_on_megakernel},
     {"reference", "scalar C++ path tracer on the CPU threads", render_on_reference},
 }};
 

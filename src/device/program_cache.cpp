@@ -43,10 +43,12 @@ std::vector<fs::path> kernel_tree_files(const fs::path& dir) {
     return files;
 }
 
-std::string cache_key(const DeviceInfo& device, const fs::path& dir, const std::string& options) {
+std::string cache_key(const DeviceInfo& device, const fs::path& dir, const std::vector<std::string>& files,
+                      const std::string& options) {
     Fnv1a h;
     for (const std::string& s : {device.platform, device.platform_version, device.name, device.driver_version, options})
         h.add(s);
+    for (const std::string& name : files) h.add(name);  // which program: the wavefront's or the megakernel's
     for (const fs::path& file : kernel_tree_files(dir)) {
         h.add(file.lexically_relative(dir).string());
         h.add(read_file(file));
@@ -138,7 +140,7 @@ BuiltProgram build_program(const cl::Context& context, const DeviceInfo& device,
         "-cl-std=CL1.2 -cl-fp32-correctly-rounded-divide-sqrt -I " + (dir / "common").string() + " " + options;
     std::string cache_dir = program_cache_directory();
     if (!cache_dir.empty())
-        built.cache_file = (fs::path(cache_dir) / (cache_key(device, dir, built.options) + ".bin")).string();
+        built.cache_file = (fs::path(cache_dir) / (cache_key(device, dir, files, built.options) + ".bin")).string();
 
     auto start = std::chrono::steady_clock::now();
     built.cache_hit = build_from_binary(context, device, built.cache_file, built.options, built.program);

@@ -37,8 +37,8 @@ std::string program_cache_directory();
 
 // Builds the concatenation of `files` (names in kernel_directory()) as one
 // program for `device`, with -I for the kernel directories, -cl-std=CL1.2 and
-// `options`. The cache key hashes the platform, device, driver, options and
-// every file in the kernel directories (the headers included).
+// `options`. The cache key hashes the platform, device, driver, options, the
+// names in `files` and every file in the kernel directories (the headers included).
 BuiltProgram build_program(const cl::Context& context, const DeviceInfo& device, const std::vector<std::string>& files,
                            const std::string& options);
 

@@ -34,14 +34,12 @@ Pipeline::Pipeline(const Scene& scene, const DeviceInfo& device, std::size_t cap
       queues_(context_, CL_MEM_READ_WRITE, sizeof(std::uint32_t) * WP_QUEUE_COUNT * capacity),
       counts_(context_, CL_MEM_READ_WRITE, sizeof(std::uint32_t) * WP_COUNTS_PROFILED_SIZE),
       pass_radiance_(context_, CL_MEM_READ_WRITE, sizeof(float) * 3 * pass_capacity),
-      film_(context_, CL_MEM_READ_WRITE,
-            film_double_ ? sizeof(double) * 3 * pixel_count_ : sizeof(float) * 6 * pixel_count_),
+      film_(make_film(context_, queue_, pixel_count_, film_double_)),
       profiling_(profile) {
     std::vector<std::uint32_t> identity(capacity);
     std::iota(identity.begin(), identity.end(), 0u);
     identity_slots_ = cl::Buffer(context_, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(std::uint32_t) * capacity,
                                  identity.data());
-    queue_.enqueueFillBuffer(film_, std::uint8_t(0), 0, film_.getInfo<CL_MEM_SIZE>());
     queue_.enqueueFillBuffer(counts_, std::uint32_t(0), 0, counts_.getInfo<CL_MEM_SIZE>());
     for (const char* name : stage_kernel_names) {
         cl::Kernel kernel(program_.program, name);
@@ -122,25 +120,43 @@ DeviceCounts Pipeline::read_counts() {
 }
 
 void Pipeline::accumulate() {
-    accumulate_.setArg(0, cl_ulong(pass_start_));
-    accumulate_.setArg(1, cl_uint(pass_size_));
-    accumulate_.setArg(2, cl_uint(pixel_count_));
-    accumulate_.setArg(3, pass_radiance_);
-    accumulate_.setArg(4, film_);
+    set_accumulate_args(accumulate_, pass_start_, pass_size_, pixel_count_, pass_radiance_, film_);
     enqueue(accumulate_, "accumulate", pixel_count_);
 }
 
 std::vector<double> Pipeline::read_film() {
-    std::vector<double> sums(3 * pixel_count_);
-    if (film_double_) {
-        queue_.enqueueReadBuffer(film_, CL_TRUE, 0, sizeof(double) * sums.size(), sums.data());
-    } else {
-        std::vector<float> film(6 * pixel_count_);  // sums, then Kahan compensations
-        queue_.enqueueReadBuffer(film_, CL_TRUE, 0, sizeof(float) * film.size(), film.data());
-        for (std::size_t i = 0; i < sums.size(); ++i) sums[i] = double(film[i]) - double(film[sums.size() + i]);
-    }
+    std::vector<double> sums = read_film_sums(queue_, film_, pixel_count_, film_double_);
     if (profiling_) time_finished_kernels();
     return sums;
+}
+
+std::vector<double> read_film_sums(cl::CommandQueue& queue, const cl::Buffer& film, std::size_t pixel_count,
+                                   bool film_double) {
+    std::vector<double> sums(3 * pixel_count);
+    if (film_double) {
+        queue.enqueueReadBuffer(film, CL_TRUE, 0, sizeof(double) * sums.size(), sums.data());
+    } else {
+        std::vector<float> values(6 * pixel_count);  // sums, then Kahan compensations
+        queue.enqueueReadBuffer(film, CL_TRUE, 0, sizeof(float) * values.size(), values.data());
+        for (std::size_t i = 0; i < sums.size(); ++i) sums[i] = double(values[i]) - double(values[sums.size() + i]);
+    }
+    return sums;
+}
+
+cl::Buffer make_film(const cl::Context& context, cl::CommandQueue& queue, std::size_t pixel_count, bool film_double) {
+    cl::Buffer film(context, CL_MEM_READ_WRITE,
+                    film_double ? sizeof(double) * 3 * pixel_count : sizeof(float) * 6 * pixel_count);
+    queue.enqueueFillBuffer(film, std::uint8_t(0), 0, film.getInfo<CL_MEM_SIZE>());
+    return film;
+}
+
+void set_accumulate_args(cl::Kernel& accumulate, std::uint64_t pass_start, std::uint32_t pass_size,
+                         std::size_t pixel_count, const cl::Buffer& pass_radiance, const cl::Buffer& film) {
+    accumulate.setArg(0, cl_ulong(pass_start));
+    accumulate.setArg(1, cl_uint(pass_size));
+    accumulate.setArg(2, cl_uint(pixel_count));
+    accumulate.setArg(3, pass_radiance);
+    accumulate.setArg(4, film);
 }
 
 void Pipeline::set_queue(std::uint32_t queue, const std::vector<std::uint32_t>& slots) {

@@ -103,6 +103,16 @@ class Pipeline {
     void time_finished_kernels();
 };
 
+// The film's per-pixel RGB sums (double, or compensated float without fp64),
+// shared with the megakernel, which accumulates with the same accumulate.cl.
+std::vector<double> read_film_sums(cl::CommandQueue& queue, const cl::Buffer& film, std::size_t pixel_count,
+                                   bool film_double);
+// A zeroed film buffer for `pixel_count` pixels.
+cl::Buffer make_film(const cl::Context& context, cl::CommandQueue& queue, std::size_t pixel_count, bool film_double);
+// Binds accumulate.cl's arguments for the pass [pass_start, pass_start + pass_size).
+void set_accumulate_args(cl::Kernel& accumulate, std::uint64_t pass_start, std::uint32_t pass_size,
+                         std::size_t pixel_count, const cl::Buffer& pass_radiance, const cl::Buffer& film);
+
 // The kernel files of the program, in build order.
 const std::vector<std::string>& wavefront_kernel_files();
 

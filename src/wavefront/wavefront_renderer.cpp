@@ -18,15 +18,6 @@ namespace {
 // longer passes waste less; each item costs 12 bytes of pass radiance.
 constexpr std::size_t kPassesPerWavefront = 16;
 
-Image film_to_image(const std::vector<double>& sums, int width, int height, int spp) {
-    Image image;
-    image.width = width;
-    image.height = height;
-    image.rgb.resize(sums.size());
-    for (std::size_t i = 0; i < sums.size(); ++i) image.rgb[i] = static_cast<float>(sums[i] / spp);
-    return image;
-}
-
 // The scene's features plus every shape, material and light type: what an
 // unspecialised build compiles (lights and background stay as in the scene,
 // since next-event estimation needs at least one light).
@@ -57,6 +48,15 @@ void fill_profile(WavefrontProfile& profile, const std::vector<IterationRecord>&
 }
 
 }  // namespace
+
+Image film_to_image(const std::vector<double>& sums, int width, int height, int spp) {
+    Image image;
+    image.width = width;
+    image.height = height;
+    image.rgb.resize(sums.size());
+    for (std::size_t i = 0; i < sums.size(); ++i) image.rgb[i] = static_cast<float>(sums[i] / spp);
+    return image;
+}
 
 std::size_t default_wavefront_size(std::uint64_t work_items, std::size_t bytes_per_path, const DeviceInfo& device) {
     // On a CPU the state should stay near the caches: 2^16 paths rendered room.json

@@ -53,6 +53,9 @@ struct WavefrontReport {
 RenderResult render_wavefront(const Scene& scene, const WavefrontOptions& options, const ProgressFn& progress,
                               WavefrontReport* report = nullptr);
 
+// The image of a film's per-pixel sums over `spp` samples.
+Image film_to_image(const std::vector<double>& sums, int width, int height, int spp);
+
 // The automatic --wavefront size: up to 2^16 paths on a CPU and 2^20 on
 // other devices, no more than the work (pixels x spp), and the state within
 // a quarter of the device's memory.

@@ -160,7 +160,7 @@ TEST(ProgramBuild, SceneWithoutGlassBuildsWithoutDielectricCode) {
 
     fs::path dir = copy_kernels(kernels.path / "kernels");
     ScopedEnv kernel_env("WAVEPATH_KERNEL_DIR", dir.string());
-    replace_in_file(dir / "scatter.cl", "#ifdef WP_HAS_GLASS\n/* Fresnel", "#if 1\n/* Fresnel");
+    replace_in_file(dir / "common" / "vertex.h", "#ifdef WP_HAS_GLASS\n/* Fresnel", "#if 1\n/* Fresnel");
     try {
         build_wavefront(device, no_glass);
         FAIL() << "the glass code compiled without WP_HAS_GLASS";

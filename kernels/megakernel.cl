@@ -1,0 +1,76 @@
+/* The megakernel baseline (--backend megakernel): one work item traces one
+ * work item of the pass (pixel w % pixels, sample w / pixels) from the camera
+ * to its end, with the same per-vertex functions (vertex.h) and random
+ * numbers as the wavefront's stages, and writes its radiance to its pass
+ * entry for accumulate.cl. It keeps the whole path in registers: no path
+ * state, no queues, but divergent loops. */
+#include "wavefront.h"
+#include "vertex.h"
+
+/* Traces one path; returns its radiance and adds its rays to the counts. */
+WP_FN vec3 trace_path(WP_SCENE_PARAMS, uint px, uint s, uint *extension_rays, uint *shadow_rays) {
+    uint seed = scene->seed;
+    vec3 origin = make_vec3(REAL(0.0), REAL(0.0), REAL(0.0)); /* the camera, after loading */
+    vec3 d = camera_ray_direction(scene, px, s);
+    vec3 throughput = make_vec3(REAL(1.0), REAL(1.0), REAL(1.0));
+    vec3 radiance = make_vec3(REAL(0.0), REAL(0.0), REAL(0.0));
+    int after_specular = 1;
+    for (uint depth = 0u;; ++depth) {
+        ++*extension_rays;
+        Hit hit = closest_hit(WP_SCENE_ARGS, origin, d);
+        if (hit.shape == WP_NO_HIT) {
+#ifdef WP_HAS_BACKGROUND
+            radiance += throughput * vec3_at(scene->background);
+#endif
+            return radiance;
+        }
+        Surface surface = surface_at(WP_SCENE_ARGS, hit.shape, origin, d, hit.t);
+        __global const DeviceMaterial *m = &materials[surface.material];
+        real cos_incident = dot(d, surface.normal);
+        int entering = cos_incident < REAL(0.0);
+        vec3 nf = entering ? surface.normal : -surface.normal;
+        radiance += emission_seen(m, cos_incident, after_specular, throughput);
+        if (depth >= scene->max_depth || m->type == WP_MATERIAL_EMITTER) return radiance;
+#ifdef WP_HAS_NEE
+        vec3 shadow_origin, shadow_direction, contribution;
+        real distance;
+        if (m->type == WP_MATERIAL_DIFFUSE &&
+            sample_direct_light(WP_SCENE_ARGS, px, s, depth, surface.point, surface.error, nf,
+                                throughput * vec3_at(m->albedo), &shadow_origin, &shadow_direction, &distance,
+                                &contribution)) {
+            ++*shadow_rays;
+            if (!any_hit(WP_SCENE_ARGS, shadow_origin, shadow_direction, distance)) radiance += contribution;
+        }
+#endif
+        Scattered scattered = scatter_vertex(m, d, nf, entering, seed, px, s, depth);
+        throughput = throughput * scattered.weight;
+        if (!survives_roulette(&throughput, seed, px, s, depth, depth + 1u, scene->rr_depth)) return radiance;
+        origin = offset_ray_origin(surface.point, scattered.leave_side, surface.error);
+        d = scattered.direction;
+        after_specular = scattered.specular;
+    }
+}
+
+__kernel __attribute__((reqd_work_group_size(WP_GROUP_SIZE, 1, 1))) void megakernel(
+    WP_SCENE_PARAMS, ulong pass_start, uint pass_size, __global float *pass_radiance, __global uint *counts) {
+    __local uint group_extension_rays, group_shadow_rays;
+    if (get_local_id(0) == 0) group_extension_rays = group_shadow_rays = 0u;
+    barrier(CLK_LOCAL_MEM_FENCE);
+    uint item = get_global_id(0);
+    if (item < pass_size) {
+        ulong work = pass_start + item;
+        uint pixel_count = scene->width * scene->height;
+        uint extension_rays = 0u, shadow_rays = 0u;
+        vec3 radiance = trace_path(WP_SCENE_ARGS, (uint)(work % pixel_count), (uint)(work / pixel_count),
+                                   &extension_rays, &shadow_rays);
+        finish_path(pass_radiance, counts, item, radiance);
+        atomic_add(&group_extension_rays, extension_rays);
+        atomic_add(&group_shadow_rays, shadow_rays);
+    }
+    /* One global atomic per counter and work group. */
+    barrier(CLK_LOCAL_MEM_FENCE);
+    if (get_local_id(0) == 0) {
+        atomic_add(&counts[WP_COUNTER_EXTENSION_RAYS], group_extension_rays);
+        atomic_add(&counts[WP_COUNTER_SHADOW_RAYS], group_shadow_rays);
+    }
+}

@@ -1,0 +1,32 @@
+// The megakernel baseline (--backend megakernel): kernels/megakernel.cl traces
+// whole paths, one work item per sample, on the same device, with the same
+// per-vertex code, random numbers and deterministic accumulation as the
+// wavefront, so the two designs are compared like for like.
+#pragma once
+
+#include <string>
+
+#include "core/render.h"
+#include "scene/scene.h"
+#include "wavefront/profile.h"
+
+namespace wp {
+
+struct MegakernelOptions {
+    std::string device;    // as WavefrontOptions::device
+    bool profile = false;  // time the launches with OpenCL events
+};
+
+struct MegakernelReport {
+    std::string device;
+    std::string build_options;
+    bool cache_hit = false;
+    double build_seconds = 0.0;
+    WavefrontProfile profile;  // kernels "megakernel" and "accumulate", when profiling
+};
+
+// Renders on OpenCL; throws DeviceError (no device, kernel build failure).
+RenderResult render_megakernel(const Scene& scene, const MegakernelOptions& options, const ProgressFn& progress,
+                               MegakernelReport* report = nullptr);
+
+}  // namespace wp
