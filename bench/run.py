@@ -1,0 +1,303 @@
+#!/usr/bin/env python3
+"""wavepath benchmark: throughput, scaling and speed versus accuracy.
+
+Usage: python3 bench/run.py [--quick] [--out bench/out] [--binary build/wavepath]
+
+Runs the wavepath executable (build it first: bash scripts/setup.sh) and writes
+into --out: results.json, one CSV per study, PNG plots (when matplotlib is
+installed; pip install -r bench/requirements.txt) and summary.md. --quick
+shrinks every study to finish in under two minutes (CI runs it).
+"""
+import argparse
+import array
+import json
+import os
+import platform
+import statistics
+import struct
+import subprocess
+import sys
+import tempfile
+import time
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+
+
+class Runner:
+    def __init__(self, binary, scratch):
+        self.binary = binary
+        self.scratch = scratch
+        self.warm = set()
+
+    def render(self, scene, backend, width, height, spp, extra=(), profile=False, image=False):
+        """One render; returns the stats JSON (plus 'profile' and 'image' when asked).
+
+        The first render of each OpenCL configuration is run twice and the
+        first discarded: PoCL compiles each kernel for its launch geometry
+        when it is first enqueued, which is not the renderer's speed."""
+        key = (scene, backend, width, height, spp, tuple(extra), profile)
+        if backend != "reference" and key not in self.warm:
+            self.warm.add(key)
+            self.render(scene, backend, width, height, spp, extra, profile)
+        out = os.path.join(self.scratch, "image.pfm")
+        stats_path = os.path.join(self.scratch, "stats.json")
+        profile_path = os.path.join(self.scratch, "profile.json")
+        args = [self.binary, "render", scene, "-o", out, "-q", "--backend", backend, "--width", str(width),
+                "--height", str(height), "--spp", str(spp), "--stats-json", stats_path, *extra]
+        if backend == "reference":
+            args += ["--threads", str(os.cpu_count())]
+        if profile:
+            args += ["--profile-json", profile_path]
+        subprocess.run(args, check=True, cwd=ROOT)
+        with open(stats_path) as f:
+            stats = json.load(f)
+        if profile:
+            with open(profile_path) as f:
+                stats["profile"] = json.load(f)
+        if image:
+            stats["image"] = read_pfm(out)
+        return stats
+
+
+def read_pfm(path):
+    """Linear RGB floats of a colour PFM, as written by wavepath."""
+    with open(path, "rb") as f:
+        assert f.readline().strip() == b"PF"
+        width, height = map(int, f.readline().split())
+        scale = float(f.readline())
+        data = array.array("f")
+        data.frombytes(f.read(width * height * 12))
+        if (scale < 0) != (sys.byteorder == "little"):
+            data.byteswap()
+        return data
+
+
+def rel_mse(image, reference):
+    """Mean over pixels and channels of (x - r)^2 / (r^2 + 1e-2)."""
+    total = 0.0
+    for x, r in zip(image, reference):
+        total += (x - r) ** 2 / (r * r + 1e-2)
+    return total / len(reference)
+
+
+def machine():
+    cpu = platform.processor()
+    try:
+        with open("/proc/cpuinfo") as f:
+            cpu = next(line.split(":", 1)[1].strip() for line in f if line.startswith("model name"))
+    except (OSError, StopIteration):
+        pass
+    pocl = ""
+    try:
+        out = subprocess.run(["clinfo"], capture_output=True, text=True).stdout
+        pocl = next((l.split(None, 2)[-1].strip() for l in out.splitlines() if "Platform Version" in l), "")
+    except OSError:
+        pass
+    return {"cpu": cpu, "cores": os.cpu_count(), "opencl_platform": pocl, "python": platform.python_version()}
+
+
+def throughput(runner, cfg):
+    """Samples/s per scene and backend, interleaved, min and median over runs."""
+    rows = []
+    for scene in cfg["scenes"]:
+        path = os.path.join(ROOT, "scenes", scene)
+        runs = {b: [] for b in ("wavefront", "megakernel", "reference")}
+        profile = None
+        for _ in range(cfg["repeats"]):
+            for backend in runs:
+                s = runner.render(path, backend, cfg["size"], cfg["size"], cfg["spp"])
+                runs[backend].append(s)
+        profile = runner.render(path, "wavefront", cfg["size"], cfg["size"], cfg["spp"], profile=True)["profile"]
+        for backend, stats in runs.items():
+            sps = [s["samples_per_s"] for s in stats]
+            rays = [(s["extension_rays"] + s["shadow_rays"]) / s["time_s"] for s in stats]
+            rows.append({"scene": scene, "backend": backend, "size": cfg["size"], "spp": cfg["spp"],
+                         "runs": len(sps), "msamples_s_min": min(sps) / 1e6,
+                         "msamples_s_median": statistics.median(sps) / 1e6,
+                         "msamples_s_max": max(sps) / 1e6, "mrays_s_median": statistics.median(rays) / 1e6})
+        rows.append({"scene": scene, "backend": "wavefront-profile", "profile": profile})
+    return rows
+
+
+def scaling(runner, cfg):
+    """Wavefront size and resolution sweeps on the room."""
+    path = os.path.join(ROOT, "scenes", "room.json")
+    rows = []
+    for log2 in cfg["wavefront_log2"]:
+        # At least twice the wavefront's worth of samples, so that it runs full.
+        spp = max(cfg["spp"], -(-2 * 2 ** log2 // cfg["size"] ** 2))
+        s = runner.render(path, "wavefront", cfg["size"], cfg["size"], spp, extra=["--wavefront", str(2 ** log2)],
+                          profile=True)
+        rows.append({"study": "wavefront_size", "paths": 2 ** log2, "spp": spp, "msamples_s": s["samples_per_s"] / 1e6,
+                     "kernel_s": s["profile"]["kernel_s"], "gaps_s": s["profile"]["gaps_s"], "time_s": s["time_s"]})
+    for size in cfg["resolutions"]:
+        for backend in ("wavefront", "megakernel", "reference"):
+            s = runner.render(path, backend, size, size, 1)
+            rows.append({"study": "resolution", "backend": backend, "size": size,
+                         "msamples_s": s["samples_per_s"] / 1e6, "time_s": s["time_s"]})
+    return rows
+
+
+def accuracy(runner, cfg, out):
+    """relMSE against a converged reference versus time: spp series and max_depth series."""
+    path = os.path.join(ROOT, "scenes", "room.json")
+    size = cfg["accuracy_size"]
+    converged_file = os.path.join(out, f"converged-room-{size}-{cfg['converged_spp']}.pfm.json")
+    if os.path.exists(converged_file):
+        with open(converged_file) as f:
+            converged = array.array("f", json.load(f))
+    else:
+        converged = runner.render(path, "wavefront", size, size, cfg["converged_spp"], extra=["--seed", "12345"],
+                                  image=True)["image"]
+        with open(converged_file, "w") as f:
+            json.dump(list(converged), f)
+    rows = []
+    for backend in ("wavefront", "reference"):
+        for spp in cfg["spp_series"]:
+            errors, times = [], []
+            for seed in range(cfg["seeds"]):
+                s = runner.render(path, backend, size, size, spp, extra=["--seed", str(seed)], image=True)
+                errors.append(rel_mse(s["image"], converged))
+                times.append(s["time_s"])
+            e, t = statistics.mean(errors), statistics.mean(times)
+            rows.append({"study": "spp", "backend": backend, "spp": spp, "relmse": e, "time_s": t,
+                         "efficiency": 1.0 / (e * t) if e > 0 and t > 0 else 0.0})
+    for depth in cfg["depth_series"]:
+        errors, times = [], []
+        for seed in range(cfg["seeds"]):
+            s = runner.render(path, "wavefront", size, size, cfg["depth_spp"],
+                              extra=["--seed", str(seed), "--max-depth", str(depth)], image=True)
+            errors.append(rel_mse(s["image"], converged))
+            times.append(s["time_s"])
+        e, t = statistics.mean(errors), statistics.mean(times)
+        rows.append({"study": "max_depth", "max_depth": depth, "relmse": e, "time_s": t,
+                     "efficiency": 1.0 / (e * t) if e > 0 and t > 0 else 0.0})
+    return rows
+
+
+def write_csv(path, rows):
+    keys = []
+    for r in rows:
+        keys += [k for k in r if k not in keys and not isinstance(r[k], (dict, list))]
+    with open(path, "w") as f:
+        f.write(",".join(keys) + "\n")
+        for r in rows:
+            f.write(",".join(str(r.get(k, "")) for k in keys) + "\n")
+
+
+def plot(out, results):
+    try:
+        import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+    except ImportError:
+        return ["(matplotlib not installed: no plots; pip install -r bench/requirements.txt)"]
+    made = []
+    rows = [r for r in results["throughput"] if "msamples_s_median" in r]
+    scenes = sorted({r["scene"] for r in rows})
+    fig, ax = plt.subplots(figsize=(6, 3.5))
+    for i, backend in enumerate(("wavefront", "megakernel", "reference")):
+        vals = [next(r["msamples_s_median"] for r in rows if r["scene"] == s and r["backend"] == backend)
+                for s in scenes]
+        ax.bar([j + 0.27 * i for j in range(len(scenes))], vals, width=0.27, label=backend)
+    ax.set_xticks([j + 0.27 for j in range(len(scenes))], scenes)
+    ax.set_ylabel("Msamples/s (median)")
+    ax.legend()
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, "throughput.png"), dpi=80)
+    made.append("throughput.png")
+    ws = [r for r in results["scaling"] if r["study"] == "wavefront_size"]
+    fig, ax = plt.subplots(figsize=(6, 3.5))
+    ax.semilogx([r["paths"] for r in ws], [r["msamples_s"] for r in ws], "o-", base=2)
+    ax.set_xlabel("paths in flight")
+    ax.set_ylabel("Msamples/s")
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, "scaling_wavefront.png"), dpi=80)
+    made.append("scaling_wavefront.png")
+    fig, ax = plt.subplots(figsize=(6, 3.5))
+    for backend in ("wavefront", "reference"):
+        pts = [r for r in results["accuracy"] if r["study"] == "spp" and r["backend"] == backend]
+        ax.loglog([r["time_s"] for r in pts], [r["relmse"] for r in pts], "o-", label=f"{backend}, spp series")
+    pts = [r for r in results["accuracy"] if r["study"] == "max_depth"]
+    ax.loglog([r["time_s"] for r in pts], [r["relmse"] for r in pts], "s--", label="wavefront, max_depth series")
+    ax.set_xlabel("time (s)")
+    ax.set_ylabel("relMSE")
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, "relmse_vs_time.png"), dpi=80)
+    made.append("relmse_vs_time.png")
+    return made
+
+
+def summary(results, plots):
+    m = results["machine"]
+    lines = ["# wavepath benchmark", "",
+             f"Machine: {m['cpu']}, {m['cores']} cores; OpenCL: {m['opencl_platform']}. Mode: {results['mode']}; "
+             f"{results['elapsed_s']:.0f} s.", "", "## Throughput (interleaved runs)", "",
+             "| scene | backend | size | spp | runs | Msamples/s min | median | max | Mrays/s median |",
+             "|---|---|---|---|---|---|---|---|---|"]
+    for r in results["throughput"]:
+        if "msamples_s_median" in r:
+            lines.append(f"| {r['scene']} | {r['backend']} | {r['size']}^2 | {r['spp']} | {r['runs']} | "
+                         f"{r['msamples_s_min']:.3f} | {r['msamples_s_median']:.3f} | {r['msamples_s_max']:.3f} | "
+                         f"{r['mrays_s_median']:.2f} |")
+    for r in results["throughput"]:
+        if "profile" in r:
+            p = r["profile"]
+            lines += ["", f"Wavefront stages, {r['scene']} (one profiled run, render {p['render_s']:.3f} s, "
+                      f"between kernels {p['gaps_s']:.3f} s):", "",
+                      "| kernel | launches | items | device s | Mitems/s | share |", "|---|---|---|---|---|---|"]
+            for k in p["kernels"]:
+                lines.append(f"| {k['name']} | {k['launches']} | {k['items']} | {k['device_s']:.3f} | "
+                             f"{k['items_per_s'] / 1e6:.2f} | {100 * k['share']:.1f}% |")
+    lines += ["", "## Scaling (room)", "", "| study | paths / size | backend | Msamples/s |", "|---|---|---|---|"]
+    for r in results["scaling"]:
+        lines.append(f"| {r['study']} | {r.get('paths', r.get('size'))} | {r.get('backend', 'wavefront')} | "
+                     f"{r['msamples_s']:.3f} |")
+    lines += ["", "## Speed versus accuracy (room, relMSE against a converged wavefront image)", "",
+              "| study | backend | setting | relMSE | time s | 1/(relMSE x time) |", "|---|---|---|---|---|---|"]
+    for r in results["accuracy"]:
+        setting = f"spp {r['spp']}" if r["study"] == "spp" else f"max_depth {r['max_depth']}"
+        lines.append(f"| {r['study']} | {r.get('backend', 'wavefront')} | {setting} | {r['relmse']:.4g} | "
+                     f"{r['time_s']:.3f} | {r['efficiency']:.4g} |")
+    lines += [""] + [f"![{p}]({p})" if p.endswith(".png") else p for p in plots]
+    return "\n".join(lines) + "\n"
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--quick", action="store_true", help="small sizes, for CI (under two minutes)")
+    parser.add_argument("--out", default=os.path.join(ROOT, "bench", "out"))
+    parser.add_argument("--binary", default=os.path.join(ROOT, "build", "wavepath"))
+    args = parser.parse_args()
+    if args.quick:
+        cfg = {"scenes": ["room.json", "cornell.json"], "size": 128, "spp": 2, "repeats": 3,
+               "wavefront_log2": [12, 14, 16], "resolutions": [64, 128], "accuracy_size": 32, "converged_spp": 256,
+               "spp_series": [1, 4, 16], "seeds": 2, "depth_series": [1, 2, 4, 8], "depth_spp": 8}
+    else:
+        cfg = {"scenes": ["room.json", "cornell.json"], "size": 512, "spp": 4, "repeats": 3,
+               "wavefront_log2": [12, 14, 16, 18, 20, 22], "resolutions": [128, 256, 512, 1024, 2048],
+               "accuracy_size": 128, "converged_spp": 4096, "spp_series": [1, 4, 16, 64, 256], "seeds": 3,
+               "depth_series": [1, 2, 4, 8, 16, 32], "depth_spp": 16}
+    os.makedirs(args.out, exist_ok=True)
+    start = time.time()
+    with tempfile.TemporaryDirectory(prefix="wavepath-bench-") as scratch:
+        os.environ.setdefault("WAVEPATH_CACHE_DIR", os.path.join(args.out, "program-cache"))
+        runner = Runner(os.path.abspath(args.binary), scratch)
+        results = {"mode": "quick" if args.quick else "full", "config": cfg, "machine": machine()}
+        results["throughput"] = throughput(runner, cfg)
+        results["scaling"] = scaling(runner, cfg)
+        results["accuracy"] = accuracy(runner, cfg, args.out)
+    results["elapsed_s"] = time.time() - start
+    with open(os.path.join(args.out, "results.json"), "w") as f:
+        json.dump(results, f, indent=1)
+    for study in ("throughput", "scaling", "accuracy"):
+        write_csv(os.path.join(args.out, f"{study}.csv"), results[study])
+    plots = plot(args.out, results)
+    with open(os.path.join(args.out, "summary.md"), "w") as f:
+        f.write(summary(results, plots))
+    print(f"bench: wrote {args.out}/summary.md in {results['elapsed_s']:.0f} s")
+
+
+if __name__ == "__main__":
+    main()
