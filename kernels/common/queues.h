@@ -10,6 +10,12 @@
 #define WP_QUEUE_SHADOW 3u  /* shadow rays to trace, for intersect_shadow */
 #define WP_QUEUE_SCATTER 4u /* paths that scatter at their hit, for scatter */
 #define WP_QUEUE_COUNT 5u
+/* With -DWP_COMPACT_SCAN the queues buffer also holds, after the queues, one
+ * array of marks (0 or 1 per slot) per queue, from which kernels/compact.cl
+ * builds the queue with a prefix sum. */
+#define WP_QUEUE_MARKS(queue) (WP_QUEUE_COUNT + (queue))
+/* Slots each work item of the compaction kernels handles, in order. */
+#define WP_COMPACT_BLOCK 256u
 
 #define WP_COUNTER_WORK 5u      /* work items of the pass handed out (may overshoot the pass) */
 #define WP_COUNTER_NONFINITE 6u /* samples dropped for non-finite radiance */

@@ -68,6 +68,12 @@ WP_FN uint queue_position(__global const uint *counts, uint queue) {
  * pass_radiance entry, and accumulation sums those in sample order. */
 WP_FN void queue_push(__global uint *queues, __global uint *counts, uint capacity, uint queue, int push,
                       uint slot, __local uint *group_count, __local uint *group_base) {
+#ifdef WP_COMPACT_SCAN
+    /* Prefix-sum compaction (kernels/compact.cl) builds the queue from these
+     * marks, in ascending slot order: no atomics, no barriers here. */
+    if (push) queues[WP_QUEUE_MARKS(queue) * capacity + slot] = 1u;
+    return;
+#endif
     if (get_local_id(0) == 0) *group_count = 0u;
     barrier(CLK_LOCAL_MEM_FENCE);
     uint offset = push ? atomic_inc(group_count) : 0u;

@@ -38,6 +38,7 @@ RenderResult render_on_wavefront(const Scene& scene, const BackendOptions& optio
     try {
         WavefrontOptions wavefront{options.device, options.wavefront};
         wavefront.profile = options.profile || !options.profile_json.empty();
+        wavefront.scan_compaction = options.compaction == "scan";
         RenderResult result = render_wavefront(scene, wavefront, progress, &report);
         if (options.explain) std::cout << report.explain() << std::flush;
         if (options.profile) std::cerr << format_profile_table(report.profile) << std::flush;
@@ -101,6 +102,12 @@ void add_backend_options(CLI::App& render, BackendOptions& options) {
                       "OpenCL device for the wavefront backend: index or name substring (see `wavepath devices`)");
     render.add_flag("--explain", options.explain,
                     "Print the wavefront's feature set, build options, program cache hit or miss and state size");
+    render
+        .add_option("--compaction", options.compaction,
+                    "How the wavefront fills its queues: atomic (pushes aggregated per work group) or scan "
+                    "(stable prefix sum)")
+        ->check(CLI::IsMember({"atomic", "scan"}))
+        ->capture_default_str();
     render.add_flag("--profile", options.profile,
                     "Print the wavefront's per-kernel profile (launches, items, device time, items/s) on stderr");
     render.add_option("--profile-json", options.profile_json, "Also write the wavefront's profile to this JSON file");

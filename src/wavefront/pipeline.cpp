@@ -13,29 +13,34 @@ std::size_t round_up(std::size_t n, std::size_t multiple) { return (n + multiple
 }  // namespace
 
 const std::vector<std::string>& wavefront_kernel_files() {
-    static const std::vector<std::string> files{"generate.cl",         "intersect.cl", "shade_direct.cl",
-                                                "intersect_shadow.cl", "scatter.cl",   "accumulate.cl"};
+    static const std::vector<std::string> files{"generate.cl", "intersect.cl", "shade_direct.cl", "intersect_shadow.cl",
+                                                "scatter.cl",  "compact.cl",   "accumulate.cl"};
     return files;
 }
 
 Pipeline::Pipeline(const Scene& scene, const DeviceInfo& device, std::size_t capacity, std::size_t pass_capacity,
-                   const FeatureSet& kernel_features, bool profile)
+                   const FeatureSet& kernel_features, const PipelineOptions& options)
     : capacity_(capacity),
       pass_capacity_(pass_capacity),
       pixel_count_(std::size_t(scene.camera.width) * scene.camera.height),
       film_double_(device.fp64),
       context_(device.device),
-      queue_(context_, device.device, profile ? cl_command_queue_properties(CL_QUEUE_PROFILING_ENABLE) : 0),
+      queue_(context_, device.device, options.profile ? cl_command_queue_properties(CL_QUEUE_PROFILING_ENABLE) : 0),
       program_(build_program(context_, device, wavefront_kernel_files(),
                              kernel_build_options(kernel_features, !scene.lights.empty(), device.fp64) +
-                                 (profile ? " -DWP_PROFILE" : ""))),
+                                 (options.profile ? " -DWP_PROFILE" : "") +
+                                 (options.compaction == Compaction::Scan ? " -DWP_COMPACT_SCAN" : ""))),
       scene_(context_, flatten_scene(scene)),
       state_(context_, capacity, kernel_features, !scene.lights.empty()),
-      queues_(context_, CL_MEM_READ_WRITE, sizeof(std::uint32_t) * WP_QUEUE_COUNT * capacity),
+      queues_(context_, CL_MEM_READ_WRITE,
+              sizeof(std::uint32_t) * WP_QUEUE_COUNT * capacity * (options.compaction == Compaction::Scan ? 2 : 1)),
       counts_(context_, CL_MEM_READ_WRITE, sizeof(std::uint32_t) * WP_COUNTS_PROFILED_SIZE),
       pass_radiance_(context_, CL_MEM_READ_WRITE, sizeof(float) * 3 * pass_capacity),
       film_(make_film(context_, queue_, pixel_count_, film_double_)),
-      profiling_(profile) {
+      profiling_(options.profile),
+      compaction_(options.compaction),
+      block_counts_(context_, CL_MEM_READ_WRITE,
+                    sizeof(std::uint32_t) * WP_QUEUE_COUNT * ((capacity + WP_COMPACT_BLOCK - 1) / WP_COMPACT_BLOCK)) {
     std::vector<std::uint32_t> identity(capacity);
     std::iota(identity.begin(), identity.end(), 0u);
     identity_slots_ = cl::Buffer(context_, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(std::uint32_t) * capacity,
@@ -55,6 +60,19 @@ Pipeline::Pipeline(const Scene& scene, const DeviceInfo& device, std::size_t cap
         stages_.push_back(kernel);
     }
     accumulate_ = cl::Kernel(program_.program, "accumulate");
+    compact_count_ = cl::Kernel(program_.program, "compact_count");
+    compact_scan_ = cl::Kernel(program_.program, "compact_scan");
+    compact_write_ = cl::Kernel(program_.program, "compact_write");
+    for (cl::Kernel* k : {&compact_count_, &compact_write_}) {
+        k->setArg(0, queues_);
+        k->setArg(1, cl_uint(capacity_));
+        k->setArg(3, block_counts_);
+    }
+    compact_scan_.setArg(0, cl_uint(capacity_));
+    compact_scan_.setArg(2, block_counts_);
+    compact_scan_.setArg(3, counts_);
+    if (compaction_ == Compaction::Scan)
+        queue_.enqueueFillBuffer(queues_, std::uint32_t(0), 0, queues_.getInfo<CL_MEM_SIZE>());
 }
 
 // Argument positions of the pass in WP_STAGE_PARAMS.
@@ -67,6 +85,9 @@ void Pipeline::begin_pass(std::uint64_t start, std::uint32_t size) {
         k.setArg(kPassStartArg, cl_ulong(start));
         k.setArg(kPassSizeArg, cl_uint(size));
     }
+    if (compaction_ == Compaction::Scan)  // no marks left from the last pass
+        queue_.enqueueFillBuffer(queues_, std::uint32_t(0), WP_QUEUE_COUNT * capacity_ * sizeof(std::uint32_t),
+                                 WP_QUEUE_COUNT * capacity_ * sizeof(std::uint32_t));
     queue_.enqueueCopyBuffer(identity_slots_, queues_, 0, WP_QUEUE_FREE * capacity_ * sizeof(std::uint32_t),
                              capacity_ * sizeof(std::uint32_t));
     DeviceCounts counts{};
@@ -74,16 +95,61 @@ void Pipeline::begin_pass(std::uint64_t start, std::uint32_t size) {
     queue_.enqueueWriteBuffer(counts_, CL_TRUE, 0, sizeof counts, counts.data());
 }
 
-void Pipeline::enqueue(cl::Kernel& kernel, const char* name, std::size_t items) {
+void Pipeline::enqueue(cl::Kernel& kernel, const char* name, std::size_t items, std::size_t group) {
     cl::Event event;
-    queue_.enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(round_up(items, WP_GROUP_SIZE)),
-                                cl::NDRange(WP_GROUP_SIZE), nullptr, profiling_ ? &event : nullptr);
+    queue_.enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(group ? round_up(items, group) : items),
+                                group ? cl::NDRange(group) : cl::NullRange, nullptr, profiling_ ? &event : nullptr);
     if (profiling_) pending_events_.emplace_back(name, event);
 }
 
 void Pipeline::run(Stage stage) {
     int index = static_cast<int>(stage);
     enqueue(stages_[index], stage_kernel_names[index], capacity_);
+}
+
+void Pipeline::finish_stage(Stage stage) {
+    auto bit = [](std::uint32_t queue) { return 1u << queue; };
+    if (compaction_ == Compaction::Atomic) {
+        if (stage == Stage::Generate) clear_counts(WP_QUEUE_FREE, 2);  // FREE consumed; HIT filled next
+        if (stage == Stage::Intersect) clear_counts(WP_QUEUE_RAY, 3);  // RAY consumed; SHADOW, SCATTER filled next
+        return;
+    }
+    switch (stage) {
+        case Stage::Generate:
+            clear_marks(WP_QUEUE_FREE);
+            compact(bit(WP_QUEUE_RAY));  // continuing paths and new camera rays
+            break;
+        case Stage::Intersect:
+            clear_marks(WP_QUEUE_RAY);
+            compact(bit(WP_QUEUE_HIT));
+            break;
+        case Stage::ShadeDirect:
+            clear_marks(WP_QUEUE_HIT);
+            compact(bit(WP_QUEUE_SHADOW) | bit(WP_QUEUE_SCATTER));
+            break;
+        case Stage::IntersectShadow:
+            clear_marks(WP_QUEUE_SHADOW);
+            break;
+        case Stage::Scatter:
+            clear_marks(WP_QUEUE_SCATTER);
+            compact(bit(WP_QUEUE_FREE) | bit(WP_QUEUE_RAY));
+            break;
+    }
+}
+
+void Pipeline::clear_marks(std::uint32_t queue) {
+    queue_.enqueueFillBuffer(queues_, std::uint32_t(0), WP_QUEUE_MARKS(queue) * capacity_ * sizeof(std::uint32_t),
+                             capacity_ * sizeof(std::uint32_t));
+}
+
+void Pipeline::compact(std::uint32_t queue_mask) {
+    std::size_t blocks = (capacity_ + WP_COMPACT_BLOCK - 1) / WP_COMPACT_BLOCK;
+    compact_count_.setArg(2, cl_uint(queue_mask));
+    compact_scan_.setArg(1, cl_uint(queue_mask));
+    compact_write_.setArg(2, cl_uint(queue_mask));
+    enqueue(compact_count_, "compact_count", blocks, 0);
+    enqueue(compact_scan_, "compact_scan", WP_QUEUE_COUNT, 0);
+    enqueue(compact_write_, "compact_write", blocks, 0);
 }
 
 void Pipeline::time_finished_kernels() {

@@ -26,6 +26,17 @@ enum class Stage { Generate, Intersect, ShadeDirect, IntersectShadow, Scatter };
 inline constexpr std::array<const char*, 5> stage_kernel_names{"generate", "intersect", "shade_direct",
                                                                "intersect_shadow", "scatter"};
 
+// How the stages fill the next stage's queue.
+enum class Compaction {
+    Atomic,  // a push through a global atomic counter, aggregated per work group (queue order not stable)
+    Scan,    // marks per slot, then a prefix sum over them (kernels/compact.cl): ascending slot order
+};
+
+struct PipelineOptions {
+    bool profile = false;  // time every kernel with OpenCL events; build with -DWP_PROFILE (rays per depth)
+    Compaction compaction = Compaction::Atomic;
+};
+
 // Queue lengths then counters, as in kernels/common/queues.h.
 using DeviceCounts = std::array<std::uint32_t, WP_COUNTS_SIZE>;
 
@@ -33,11 +44,9 @@ class Pipeline {
  public:
     // capacity: paths in flight; pass_capacity: most work items per pass.
     // The kernels are compiled for `kernel_features`, normally scene.features()
-    // (a superset also renders the scene, only slower). `profile` times every
-    // kernel with OpenCL events and builds the kernels with -DWP_PROFILE
-    // (rays counted per depth).
+    // (a superset also renders the scene, only slower).
     Pipeline(const Scene& scene, const DeviceInfo& device, std::size_t capacity, std::size_t pass_capacity,
-             const FeatureSet& kernel_features, bool profile = false);
+             const FeatureSet& kernel_features, const PipelineOptions& options = {});
     Pipeline(const Scene& scene, const DeviceInfo& device, std::size_t capacity, std::size_t pass_capacity)
         : Pipeline(scene, device, capacity, pass_capacity, scene.features()) {}
 
@@ -52,6 +61,13 @@ class Pipeline {
     void begin_pass(std::uint64_t start, std::uint32_t size);
     // Enqueues a stage over the queues' capacity (it reads its queue's length on the device).
     void run(Stage stage);
+    // The queue bookkeeping once `stage` has run, so that the queues it filled
+    // are ready for their consumers and the ones it consumed can refill.
+    // Atomic: clears the lengths of the queues filled next. Scan: clears the
+    // marks of the queue it consumed and compacts the queues it filled whose
+    // consumer runs next (FREE and RAY after scatter, so that the iteration's
+    // lengths can be read).
+    void finish_stage(Stage stage);
     // Sets lengths [first, first + n) of `counts` to 0.
     void clear_counts(std::uint32_t first, std::uint32_t n);
     // Waits for the queue; with profiling, adds the finished kernels' times to profile().
@@ -91,15 +107,21 @@ class Pipeline {
     PathState state_;
     cl::Buffer queues_, counts_, pass_radiance_, film_, identity_slots_;
     std::vector<cl::Kernel> stages_;
-    cl::Kernel accumulate_;
+    cl::Kernel accumulate_, compact_count_, compact_scan_, compact_write_;
+    cl::Buffer block_counts_;
+
+    void clear_marks(std::uint32_t queue);
+    void compact(std::uint32_t queue_mask);
     std::uint64_t pass_start_ = 0;
     std::uint32_t pass_size_ = 0;
     bool profiling_;
+    Compaction compaction_;
     WavefrontProfile profile_;
     std::vector<std::pair<const char*, cl::Event>> pending_events_;  // launched, not yet timed
     cl_ulong last_kernel_end_ = 0;
 
-    void enqueue(cl::Kernel& kernel, const char* name, std::size_t items);
+    // Launches `items` work items (rounded up to whole groups of `group`; 0: exactly, groups left to the driver).
+    void enqueue(cl::Kernel& kernel, const char* name, std::size_t items, std::size_t group = WP_GROUP_SIZE);
     void time_finished_kernels();
 };
 

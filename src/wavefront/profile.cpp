@@ -31,6 +31,10 @@ KernelProfile& WavefrontProfile::kernel(const std::string& name) {
     return kernels.back();
 }
 
+bool WavefrontProfile::has_kernel(const std::string& name) const {
+    return std::any_of(kernels.begin(), kernels.end(), [&](const KernelProfile& k) { return k.name == name; });
+}
+
 double WavefrontProfile::kernel_s() const {
     double sum = 0.0;
     for (const KernelProfile& k : kernels) sum += k.device_s;

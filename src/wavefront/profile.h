@@ -28,7 +28,8 @@ struct WavefrontProfile {
     std::vector<std::uint64_t> shadow_rays_by_depth;
 
     KernelProfile& kernel(const std::string& name);  // added if absent
-    double kernel_s() const;                         // sum over the kernels
+    bool has_kernel(const std::string& name) const;
+    double kernel_s() const;  // sum over the kernels
 };
 
 // An aligned table for people (stderr).

@@ -5,18 +5,18 @@
 namespace wp {
 namespace {
 
-// One iteration of the stage loop. Each queue's length is cleared just
-// before the first stage that pushes to it, and after its consumer has run,
-// so at the end the lengths are this iteration's: FREE the paths ended, HIT
-// the hits, SHADOW the shadow rays, RAY the paths continuing next iteration.
+// One iteration of the stage loop. Pipeline::finish_stage readies the queues
+// each stage filled, so at the end the lengths are this iteration's: FREE
+// the paths ended, HIT the hits, SHADOW the shadow rays, SCATTER the paths
+// scatter sampled, RAY the paths continuing next iteration.
 DeviceCounts run_iteration(Pipeline& p, bool has_lights) {
-    p.run(Stage::Generate);
-    p.clear_counts(WP_QUEUE_FREE, 2);  // FREE consumed; HIT filled next
-    p.run(Stage::Intersect);
-    p.clear_counts(WP_QUEUE_RAY, 3);  // RAY consumed; SHADOW and SCATTER filled next
-    p.run(Stage::ShadeDirect);
-    if (has_lights) p.run(Stage::IntersectShadow);
-    p.run(Stage::Scatter);
+    std::vector<Stage> stages{Stage::Generate, Stage::Intersect, Stage::ShadeDirect, Stage::IntersectShadow,
+                              Stage::Scatter};
+    for (Stage stage : stages) {
+        if (stage == Stage::IntersectShadow && !has_lights) continue;
+        p.run(stage);
+        p.finish_stage(stage);
+    }
     return p.read_counts();
 }
 

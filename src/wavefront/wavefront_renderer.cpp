@@ -29,8 +29,12 @@ FeatureSet every_shape_and_material(FeatureSet f) {
 }
 
 // Items each kernel processed: its input queue's length summed over the
-// iterations (accumulate: the pass entries it summed).
-void fill_profile(WavefrontProfile& profile, const std::vector<IterationRecord>& iterations, std::uint64_t samples) {
+// iterations (accumulate: the pass entries it summed; compaction: the slots
+// its launches went through).
+void fill_profile(WavefrontProfile& profile, const std::vector<IterationRecord>& iterations, std::uint64_t samples,
+                  std::size_t wavefront) {
+    for (const char* name : {"compact_count", "compact_write"})
+        if (profile.has_kernel(name)) profile.kernel(name).items = profile.kernel(name).launches * wavefront;
     const std::map<std::string, std::uint32_t IterationRecord::*> input_queue{
         {"generate", &IterationRecord::free_slots},
         {"intersect", &IterationRecord::traced},
@@ -95,7 +99,7 @@ RenderResult render_wavefront(const Scene& scene, const WavefrontOptions& option
             : default_wavefront_size(total, PathState::bytes_per_path(scene.features(), has_lights), device);
     FeatureSet features = options.specialise ? scene.features() : every_shape_and_material(scene.features());
     Pipeline pipeline(scene, device, wavefront, std::min<std::uint64_t>(total, kPassesPerWavefront * wavefront),
-                      features, options.profile);
+                      features, {options.profile, options.scan_compaction ? Compaction::Scan : Compaction::Atomic});
 
     WavefrontReport local_report;
     WavefrontReport& r = report ? *report : local_report;
@@ -120,7 +124,7 @@ RenderResult render_wavefront(const Scene& scene, const WavefrontOptions& option
     result.stats.time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - render_start).count();
     if (options.profile) {
         r.profile = pipeline.profile();
-        fill_profile(r.profile, r.iterations, total);
+        fill_profile(r.profile, r.iterations, total, wavefront);
         r.profile.render_s = result.stats.time_s;
         r.profile.build_s = r.build_seconds;
         pipeline.read_rays_by_depth(r.profile);

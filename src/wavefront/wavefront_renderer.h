@@ -14,10 +14,11 @@
 namespace wp {
 
 struct WavefrontOptions {
-    std::string device;         // "" (prefer a GPU), an index, or a name substring
-    std::size_t wavefront = 0;  // paths in flight; 0 = chosen from device memory and image size
-    bool specialise = true;     // compile only the scene's features (false: every shape and material, for comparison)
-    bool profile = false;       // time every kernel (WavefrontReport::profile)
+    std::string device;           // "" (prefer a GPU), an index, or a name substring
+    std::size_t wavefront = 0;    // paths in flight; 0 = chosen from device memory and image size
+    bool specialise = true;       // compile only the scene's features (false: every shape and material, for comparison)
+    bool profile = false;         // time every kernel (WavefrontReport::profile)
+    bool scan_compaction = true;  // stable prefix-sum compaction (false: aggregated atomic pushes)
 };
 
 // Queue lengths of one iteration of the stage loop, for the profiler.

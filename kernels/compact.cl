@@ -1,0 +1,50 @@
+/* Stable compaction by prefix sum (built with -DWP_COMPACT_SCAN): stage
+ * kernels mark the slots they push (queue_push), then these three kernels
+ * turn each queue's marks into the queue, in ascending slot order, so the
+ * next stage reads the path state in memory order. Each work item handles
+ * one block of WP_COMPACT_BLOCK consecutive slots; no atomics, no barriers.
+ * queue_mask selects the queues (bit q for queue q). */
+#include "queues.h"
+
+__kernel void compact_count(__global const uint *queues, uint capacity, uint queue_mask,
+                            __global uint *block_counts) {
+    uint block = get_global_id(0), blocks = (capacity + WP_COMPACT_BLOCK - 1u) / WP_COMPACT_BLOCK;
+    if (block >= blocks) return;
+    uint end = min(capacity, (block + 1u) * WP_COMPACT_BLOCK);
+    for (uint q = 0u; q < WP_QUEUE_COUNT; ++q) {
+        if (!(queue_mask & (1u << q))) continue;
+        __global const uint *marks = queues + WP_QUEUE_MARKS(q) * capacity;
+        uint n = 0u;
+        for (uint slot = block * WP_COMPACT_BLOCK; slot < end; ++slot) n += marks[slot];
+        block_counts[q * blocks + block] = n;
+    }
+}
+
+/* One work item per queue: block counts become block offsets (exclusive
+ * prefix sum), and the total the queue's length. */
+__kernel void compact_scan(uint capacity, uint queue_mask, __global uint *block_counts, __global uint *counts) {
+    uint q = get_global_id(0), blocks = (capacity + WP_COMPACT_BLOCK - 1u) / WP_COMPACT_BLOCK;
+    if (q >= WP_QUEUE_COUNT || !(queue_mask & (1u << q))) return;
+    uint sum = 0u;
+    for (uint block = 0u; block < blocks; ++block) {
+        uint n = block_counts[q * blocks + block];
+        block_counts[q * blocks + block] = sum;
+        sum += n;
+    }
+    counts[q] = sum;
+}
+
+__kernel void compact_write(__global uint *queues, uint capacity, uint queue_mask,
+                            __global const uint *block_counts) {
+    uint block = get_global_id(0), blocks = (capacity + WP_COMPACT_BLOCK - 1u) / WP_COMPACT_BLOCK;
+    if (block >= blocks) return;
+    uint end = min(capacity, (block + 1u) * WP_COMPACT_BLOCK);
+    for (uint q = 0u; q < WP_QUEUE_COUNT; ++q) {
+        if (!(queue_mask & (1u << q))) continue;
+        __global const uint *marks = queues + WP_QUEUE_MARKS(q) * capacity;
+        __global uint *queue = queues + q * capacity;
+        uint at = block_counts[q * blocks + block];
+        for (uint slot = block * WP_COMPACT_BLOCK; slot < end; ++slot)
+            if (marks[slot]) queue[at++] = slot;
+    }
+}

@@ -1,0 +1,88 @@
+// Queue compaction: both ways of filling a queue keep exactly the live paths;
+// the prefix-sum compaction also keeps them in ascending slot order.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <glm/geometric.hpp>
+#include <random>
+
+#include "wavefront/wavefront_renderer.h"
+#include "wavefront_test_support.h"
+
+namespace wp {
+namespace {
+
+// A sphere in front of the camera: rays in random directions hit it or miss.
+constexpr const char* kScene = R"({
+  "camera": {"position": [0, 0, 0], "look_at": [0, 0, -1], "up": [0, 1, 0], "fov_y": 40, "width": 8, "height": 8},
+  "render": {"spp": 1, "max_depth": 4, "rr_depth": 3, "seed": 0},
+  "background": [0.1, 0.2, 0.3],
+  "materials": {"white": {"type": "diffuse", "albedo": [0.5, 0.5, 0.5]}},
+  "shapes": [{"type": "sphere", "center": [0, 0, -3], "radius": 1.5, "material": "white"}]
+})";
+
+constexpr std::uint32_t kCapacity = 4096;  // 16 compaction blocks
+
+// Runs intersect on `queued` (in that order) and returns (HIT queue, the slots whose ray hit).
+std::pair<std::vector<std::uint32_t>, std::vector<std::uint32_t>> hits_after_intersect(
+    Compaction compaction, const std::vector<std::uint32_t>& queued) {
+    Scene scene = test::scene_from_json(kScene);
+    Pipeline pipeline(scene, choose_device(""), kCapacity, kCapacity, scene.features(), {false, compaction});
+    std::mt19937 random(7);
+    std::uniform_real_distribution<float> coordinate(-1.0f, 1.0f);
+    std::vector<test::TestRay> rays(kCapacity);
+    for (test::TestRay& r : rays)
+        r = test::TestRay{glm::vec3(0.0f), glm::normalize(glm::vec3(coordinate(random), coordinate(random), -1.0f))};
+    test::start_paths(pipeline, rays);
+    pipeline.set_queue(WP_QUEUE_RAY, queued);
+    pipeline.run(Stage::Intersect);
+    pipeline.finish_stage(Stage::Intersect);
+    std::vector<std::uint32_t> shape = pipeline.read_field<std::uint32_t>("hit_shape"), expected;
+    for (std::uint32_t slot : queued)
+        if (shape[slot] != WP_NO_HIT) expected.push_back(slot);
+    std::sort(expected.begin(), expected.end());
+    return {pipeline.read_queue(WP_QUEUE_HIT), expected};
+}
+
+// 3000 of the 4096 slots, shuffled: the queue holds exactly the queued slots that hit.
+std::vector<std::uint32_t> shuffled_subset() {
+    std::vector<std::uint32_t> slots(kCapacity);
+    for (std::uint32_t i = 0; i < kCapacity; ++i) slots[i] = i;
+    std::mt19937 random(11);
+    std::shuffle(slots.begin(), slots.end(), random);
+    slots.resize(3000);
+    return slots;
+}
+
+TEST(Compaction, PrefixSumKeepsExactlyTheLivePathsInAscendingOrder) {
+    auto [queue, expected] = hits_after_intersect(Compaction::Scan, shuffled_subset());
+    EXPECT_GT(expected.size(), 300u);
+    EXPECT_LT(expected.size(), 2700u);  // both outcomes occur
+    EXPECT_EQ(queue, expected);         // the same slots, in ascending order
+}
+
+TEST(Compaction, AtomicPushKeepsExactlyTheLivePaths) {
+    auto [queue, expected] = hits_after_intersect(Compaction::Atomic, shuffled_subset());
+    std::sort(queue.begin(), queue.end());  // its order is not stable
+    EXPECT_EQ(queue, expected);
+}
+
+// The image does not depend on how the queues are filled (nor on their order).
+TEST(Compaction, BothCompactionsRenderTheSameImage) {
+    Scene scene = test::scene_from_file("scenes/room.json");
+    scene.camera.width = scene.camera.height = 32;
+    scene.render.spp = 3;
+    WavefrontOptions options;
+    options.wavefront = 512;
+    options.scan_compaction = true;
+    RenderResult scan = render_wavefront(scene, options, {});
+    options.scan_compaction = false;
+    RenderResult atomic = render_wavefront(scene, options, {});
+    EXPECT_EQ(scan.image.rgb, atomic.image.rgb);
+    EXPECT_EQ(scan.stats.extension_rays, atomic.stats.extension_rays);
+    EXPECT_EQ(scan.stats.shadow_rays, atomic.stats.shadow_rays);
+}
+
+}  // namespace
+}  // namespace wp
