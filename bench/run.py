@@ -152,26 +152,27 @@ def accuracy(runner, cfg, out):
         with open(converged_file, "w") as f:
             json.dump(list(converged), f)
     rows = []
-    for backend in ("wavefront", "reference"):
-        for spp in cfg["spp_series"]:
-            errors, times = [], []
-            for seed in range(cfg["seeds"]):
-                s = runner.render(path, backend, size, size, spp, extra=["--seed", str(seed)], image=True)
-                errors.append(rel_mse(s["image"], converged))
-                times.append(s["time_s"])
-            e, t = statistics.mean(errors), statistics.mean(times)
-            rows.append({"study": "spp", "backend": backend, "spp": spp, "relmse": e, "time_s": t,
-                         "efficiency": 1.0 / (e * t) if e > 0 and t > 0 else 0.0})
-    for depth in cfg["depth_series"]:
+
+    def measure(study, backend, spp, extra, **setting):
+        """Mean relMSE and time over the seeds for one setting."""
         errors, times = [], []
         for seed in range(cfg["seeds"]):
-            s = runner.render(path, "wavefront", size, size, cfg["depth_spp"],
-                              extra=["--seed", str(seed), "--max-depth", str(depth)], image=True)
+            s = runner.render(path, backend, size, size, spp, extra=["--seed", str(seed), *extra], image=True)
             errors.append(rel_mse(s["image"], converged))
             times.append(s["time_s"])
         e, t = statistics.mean(errors), statistics.mean(times)
-        rows.append({"study": "max_depth", "max_depth": depth, "relmse": e, "time_s": t,
+        rows.append({"study": study, "backend": backend, "spp": spp, **setting, "relmse": e,
+                     "relmse_sd": statistics.stdev(errors) if len(errors) > 1 else 0.0, "time_s": t,
                      "efficiency": 1.0 / (e * t) if e > 0 and t > 0 else 0.0})
+
+    for spp in cfg["spp_series"]:
+        for backend in ("wavefront", "reference"):
+            measure("spp", backend, spp, [])
+        measure("spp", "reference", spp, ["--precision", "double"], precision="double")
+    for depth in cfg["depth_series"]:
+        measure("max_depth", "wavefront", cfg["depth_spp"], ["--max-depth", str(depth)], max_depth=depth)
+    for rr in cfg["rr_series"]:  # Russian roulette start depth; beyond max_depth it is off
+        measure("rr_depth", "wavefront", cfg["depth_spp"], ["--rr-depth", str(rr)], rr_depth=rr)
     return rows
 
 
@@ -215,11 +216,14 @@ def plot(out, results):
     fig.savefig(os.path.join(out, "scaling_wavefront.png"), dpi=80)
     made.append("scaling_wavefront.png")
     fig, ax = plt.subplots(figsize=(6, 3.5))
-    for backend in ("wavefront", "reference"):
-        pts = [r for r in results["accuracy"] if r["study"] == "spp" and r["backend"] == backend]
-        ax.loglog([r["time_s"] for r in pts], [r["relmse"] for r in pts], "o-", label=f"{backend}, spp series")
-    pts = [r for r in results["accuracy"] if r["study"] == "max_depth"]
-    ax.loglog([r["time_s"] for r in pts], [r["relmse"] for r in pts], "s--", label="wavefront, max_depth series")
+    series = [("spp", "wavefront", None, "o-"), ("spp", "reference", None, "o-"),
+              ("spp", "reference", "double", "o:"), ("max_depth", "wavefront", None, "s--"),
+              ("rr_depth", "wavefront", None, "^--")]
+    for study, backend, precision, style in series:
+        pts = [r for r in results["accuracy"]
+               if r["study"] == study and r["backend"] == backend and r.get("precision") == precision]
+        label = f"{backend}{' ' + precision if precision else ''}, {study} series"
+        ax.loglog([r["time_s"] for r in pts], [r["relmse"] for r in pts], style, label=label)
     ax.set_xlabel("time (s)")
     ax.set_ylabel("relMSE")
     ax.legend(fontsize=8)
@@ -255,10 +259,12 @@ def summary(results, plots):
         lines.append(f"| {r['study']} | {r.get('paths', r.get('size'))} | {r.get('backend', 'wavefront')} | "
                      f"{r['msamples_s']:.3f} |")
     lines += ["", "## Speed versus accuracy (room, relMSE against a converged wavefront image)", "",
+              "relMSE is the mean over seeds (+- their standard deviation); the spread over seeds is the variance, "
+              "the level it stops falling at is the bias (max_depth truncation).", "",
               "| study | backend | setting | relMSE | time s | 1/(relMSE x time) |", "|---|---|---|---|---|---|"]
     for r in results["accuracy"]:
-        setting = f"spp {r['spp']}" if r["study"] == "spp" else f"max_depth {r['max_depth']}"
-        lines.append(f"| {r['study']} | {r.get('backend', 'wavefront')} | {setting} | {r['relmse']:.4g} | "
+        setting = ", ".join(f"{k} {r[k]}" for k in ("spp", "precision", "max_depth", "rr_depth") if k in r)
+        lines.append(f"| {r['study']} | {r['backend']} | {setting} | {r['relmse']:.4g} +- {r['relmse_sd']:.2g} | "
                      f"{r['time_s']:.3f} | {r['efficiency']:.4g} |")
     lines += [""] + [f"![{p}]({p})" if p.endswith(".png") else p for p in plots]
     return "\n".join(lines) + "\n"
@@ -273,12 +279,13 @@ def main():
     if args.quick:
         cfg = {"scenes": ["room.json", "cornell.json"], "size": 128, "spp": 2, "repeats": 3,
                "wavefront_log2": [12, 14, 16], "resolutions": [64, 128], "accuracy_size": 32, "converged_spp": 256,
-               "spp_series": [1, 4, 16], "seeds": 2, "depth_series": [1, 2, 4, 8], "depth_spp": 8}
+               "spp_series": [1, 4, 16], "seeds": 2, "depth_series": [1, 2, 4, 8], "depth_spp": 8,
+               "rr_series": [1, 3, 1000]}
     else:
         cfg = {"scenes": ["room.json", "cornell.json"], "size": 512, "spp": 4, "repeats": 3,
                "wavefront_log2": [12, 14, 16, 18, 20, 22], "resolutions": [128, 256, 512, 1024, 2048],
                "accuracy_size": 128, "converged_spp": 4096, "spp_series": [1, 4, 16, 64, 256], "seeds": 3,
-               "depth_series": [1, 2, 4, 8, 16, 32], "depth_spp": 16}
+               "depth_series": [1, 2, 4, 8, 16, 32], "depth_spp": 16, "rr_series": [1, 2, 3, 5, 8, 1000]}
     os.makedirs(args.out, exist_ok=True)
     start = time.time()
     with tempfile.TemporaryDirectory(prefix="wavepath-bench-") as scratch:
