@@ -6,14 +6,21 @@
  * queue_mask selects the queues (bit q for queue q). */
 #include "queues.h"
 
+static inline uint compact_blocks(uint capacity) { return (capacity + WP_COMPACT_BLOCK - 1u) / WP_COMPACT_BLOCK; }
+
+/* The marks of queue q, or 0 when queue_mask leaves it out. */
+static inline __global const uint *queue_marks(__global const uint *queues, uint capacity, uint queue_mask, uint q) {
+    return (queue_mask & (1u << q)) ? queues + WP_QUEUE_MARKS(q) * capacity : 0;
+}
+
 __kernel void compact_count(__global const uint *queues, uint capacity, uint queue_mask,
                             __global uint *block_counts) {
-    uint block = get_global_id(0), blocks = (capacity + WP_COMPACT_BLOCK - 1u) / WP_COMPACT_BLOCK;
+    uint block = get_global_id(0), blocks = compact_blocks(capacity);
     if (block >= blocks) return;
     uint end = min(capacity, (block + 1u) * WP_COMPACT_BLOCK);
     for (uint q = 0u; q < WP_QUEUE_COUNT; ++q) {
-        if (!(queue_mask & (1u << q))) continue;
-        __global const uint *marks = queues + WP_QUEUE_MARKS(q) * capacity;
+        __global const uint *marks = queue_marks(queues, capacity, queue_mask, q);
+        if (!marks) continue;
         uint n = 0u;
         for (uint slot = block * WP_COMPACT_BLOCK; slot < end; ++slot) n += marks[slot];
         block_counts[q * blocks + block] = n;
@@ -23,7 +30,7 @@ __kernel void compact_count(__global const uint *queues, uint capacity, uint que
 /* One work item per queue: block counts become block offsets (exclusive
  * prefix sum), and the total the queue's length. */
 __kernel void compact_scan(uint capacity, uint queue_mask, __global uint *block_counts, __global uint *counts) {
-    uint q = get_global_id(0), blocks = (capacity + WP_COMPACT_BLOCK - 1u) / WP_COMPACT_BLOCK;
+    uint q = get_global_id(0), blocks = compact_blocks(capacity);
     if (q >= WP_QUEUE_COUNT || !(queue_mask & (1u << q))) return;
     uint sum = 0u;
     for (uint block = 0u; block < blocks; ++block) {
@@ -36,12 +43,12 @@ __kernel void compact_scan(uint capacity, uint queue_mask, __global uint *block_
 
 __kernel void compact_write(__global uint *queues, uint capacity, uint queue_mask,
                             __global const uint *block_counts) {
-    uint block = get_global_id(0), blocks = (capacity + WP_COMPACT_BLOCK - 1u) / WP_COMPACT_BLOCK;
+    uint block = get_global_id(0), blocks = compact_blocks(capacity);
     if (block >= blocks) return;
     uint end = min(capacity, (block + 1u) * WP_COMPACT_BLOCK);
     for (uint q = 0u; q < WP_QUEUE_COUNT; ++q) {
-        if (!(queue_mask & (1u << q))) continue;
-        __global const uint *marks = queues + WP_QUEUE_MARKS(q) * capacity;
+        __global const uint *marks = queue_marks(queues, capacity, queue_mask, q);
+        if (!marks) continue;
         __global uint *queue = queues + q * capacity;
         uint at = block_counts[q * blocks + block];
         for (uint slot = block * WP_COMPACT_BLOCK; slot < end; ++slot)

@@ -26,21 +26,21 @@ struct Backend {
     RenderFn render;
 };
 
+bool wants_profile(const BackendOptions& options) { return options.profile || !options.profile_json.empty(); }
+
 RenderResult render_on_reference(const Scene& scene, const BackendOptions& options, const ProgressFn& progress) {
-    if (options.profile || !options.profile_json.empty())
+    if (wants_profile(options))
         throw UsageError("--profile/--profile-json: the reference backend has no kernels to profile");
     return render_reference(scene, ReferenceOptions{options.threads, options.precision == "double"}, progress);
 }
 
-// A kernel that fails to build shows the compiler's log before the one-line error.
-RenderResult render_on_wavefront(const Scene& scene, const BackendOptions& options, const ProgressFn& progress) {
-    WavefrontReport report;
+// Runs an OpenCL backend: a kernel that fails to build shows the compiler's
+// log before the one-line error; the profile is printed and written as asked.
+template <class Report, class Render>
+RenderResult render_on_opencl(const BackendOptions& options, Render render) {
+    Report report;
     try {
-        WavefrontOptions wavefront{options.device, options.wavefront};
-        wavefront.profile = options.profile || !options.profile_json.empty();
-        wavefront.scan_compaction = options.compaction == "scan";
-        RenderResult result = render_wavefront(scene, wavefront, progress, &report);
-        if (options.explain) std::cout << report.explain() << std::flush;
+        RenderResult result = render(report);
         if (options.profile) std::cerr << format_profile_table(report.profile) << std::flush;
         if (!options.profile_json.empty()) write_profile_json(report.profile, options.profile_json);
         return result;
@@ -50,19 +50,21 @@ RenderResult render_on_wavefront(const Scene& scene, const BackendOptions& optio
     }
 }
 
-// The same for the megakernel baseline.
-RenderResult render_on_megakernel(const Scene& scene, const BackendOptions& options, const ProgressFn& progress) {
-    MegakernelReport report;
-    try {
-        MegakernelOptions megakernel{options.device, options.profile || !options.profile_json.empty()};
-        RenderResult result = render_megakernel(scene, megakernel, progress, &report);
-        if (options.profile) std::cerr << format_profile_table(report.profile) << std::flush;
-        if (!options.profile_json.empty()) write_profile_json(report.profile, options.profile_json);
+RenderResult render_on_wavefront(const Scene& scene, const BackendOptions& options, const ProgressFn& progress) {
+    return render_on_opencl<WavefrontReport>(options, [&](WavefrontReport& report) {
+        WavefrontOptions wavefront{options.device, options.wavefront};
+        wavefront.profile = wants_profile(options);
+        wavefront.scan_compaction = options.compaction == "scan";
+        RenderResult result = render_wavefront(scene, wavefront, progress, &report);
+        if (options.explain) std::cout << report.explain() << std::flush;
         return result;
-    } catch (const KernelBuildError& error) {
-        std::cerr << error.log() << std::endl;
-        throw;
-    }
+    });
+}
+
+RenderResult render_on_megakernel(const Scene& scene, const BackendOptions& options, const ProgressFn& progress) {
+    return render_on_opencl<MegakernelReport>(options, [&](MegakernelReport& report) {
+        return render_megakernel(scene, {options.device, wants_profile(options)}, progress, &report);
+    });
 }
 
 constexpr std::array<Backend, 3> kBackends{{

@@ -1,11 +1,8 @@
 #include "cli/summary.h"
 
-#include <cerrno>
 #include <cstdio>
-#include <cstring>
-#include <fstream>
 
-#include "core/atomic_file.h"
+#include "core/json_file.h"
 
 namespace wp::cli {
 
@@ -49,13 +46,7 @@ nlohmann::json stats_json(const RunSummary& summary) {
 }
 
 void write_stats_json(const RunSummary& summary, const std::string& path) {
-    check_writable_destination(path);
-    write_atomically(path, [&](const std::filesystem::path& temporary) {
-        std::ofstream out(temporary);
-        out << stats_json(summary).dump(2) << '\n';
-        out.close();
-        if (!out) throw OutputError("cannot write " + path + ": " + std::strerror(errno));
-    });
+    write_json_atomically(stats_json(summary), path);
 }
 
 }  // namespace wp::cli

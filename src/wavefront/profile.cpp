@@ -1,12 +1,9 @@
 #include "wavefront/profile.h"
 
 #include <algorithm>
-#include <cerrno>
 #include <cstdio>
-#include <cstring>
-#include <fstream>
 
-#include "core/atomic_file.h"
+#include "core/json_file.h"
 
 namespace wp {
 namespace {
@@ -88,13 +85,7 @@ nlohmann::json profile_json(const WavefrontProfile& p) {
 }
 
 void write_profile_json(const WavefrontProfile& profile, const std::string& path) {
-    check_writable_destination(path);
-    write_atomically(path, [&](const std::filesystem::path& temporary) {
-        std::ofstream out(temporary);
-        out << profile_json(profile).dump(2) << '\n';
-        out.close();
-        if (!out) throw OutputError("cannot write " + path + ": " + std::strerror(errno));
-    });
+    write_json_atomically(profile_json(profile), path);
 }
 
 }  // namespace wp

@@ -7,38 +7,22 @@
 
 #include "megakernel/megakernel_renderer.h"
 #include "reference/reference_renderer.h"
+#include "support/image_statistics.h"
 #include "wavefront/wavefront_renderer.h"
 #include "wavefront/wavefront_test_support.h"
 
 namespace wp {
 namespace {
 
-Scene small_room(int size, int spp) {
-    Scene scene = test::scene_from_file("scenes/room.json");
-    scene.camera.width = size;
-    scene.camera.height = size;
-    scene.render.spp = spp;
-    return scene;
-}
-
 // As the wavefront's test: float rounding (OpenCL built-ins against libm) may
 // rarely change a path's course, so at least 99% of the pixels agree within 1e-4.
 TEST(Megakernel, OneSampleMatchesReferencePathForPath) {
-    Scene scene = small_room(48, 1);
+    Scene scene = test::small_room(48, 1);
     RenderResult megakernel = render_megakernel(scene, {}, {});
     RenderResult reference = render_reference(scene, ReferenceOptions{2, false});
     ASSERT_EQ(megakernel.image.rgb.size(), reference.image.rgb.size());
-    std::size_t pixels = megakernel.image.rgb.size() / 3, agreeing = 0;
-    for (std::size_t p = 0; p < pixels; ++p) {
-        bool all = true;
-        for (int c = 0; c < 3; ++c) {
-            double a = megakernel.image.rgb[3 * p + c], b = reference.image.rgb[3 * p + c];
-            all = all && std::fabs(a - b) <= 1e-4 * std::max(std::fabs(a), std::fabs(b)) + 1e-30;
-        }
-        agreeing += all;
-    }
-    double fraction = double(agreeing) / double(pixels);
-    std::printf("pixels within 1e-4 relative of the reference: %.4f (%zu of %zu)\n", fraction, agreeing, pixels);
+    double fraction = test::fraction_of_pixels_within(megakernel.image, reference.image, 1e-4);
+    std::printf("pixels within 1e-4 relative of the reference: %.4f\n", fraction);
     EXPECT_GE(fraction, 0.99);
     EXPECT_EQ(megakernel.stats.samples, reference.stats.samples);
     EXPECT_EQ(megakernel.stats.extension_rays, reference.stats.extension_rays);
@@ -48,7 +32,7 @@ TEST(Megakernel, OneSampleMatchesReferencePathForPath) {
 // Both OpenCL backends run the same float code per vertex and accumulate each
 // pixel's samples in sample order, so their images are bit-identical.
 TEST(Megakernel, BitIdenticalToWavefront) {
-    Scene scene = small_room(40, 3);
+    Scene scene = test::small_room(40, 3);
     RenderResult megakernel = render_megakernel(scene, {}, {});
     RenderResult wavefront = render_wavefront(scene, {}, {});
     EXPECT_EQ(megakernel.image.rgb, wavefront.image.rgb);
@@ -57,7 +41,7 @@ TEST(Megakernel, BitIdenticalToWavefront) {
 }
 
 TEST(Megakernel, ProfileTimesItsLaunches) {
-    Scene scene = small_room(32, 2);
+    Scene scene = test::small_room(32, 2);
     MegakernelReport report;
     MegakernelOptions options;
     options.profile = true;

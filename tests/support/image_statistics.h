@@ -4,6 +4,7 @@
 // error of their mean.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 
@@ -24,6 +25,21 @@ inline RunningMean channel_mean(
         for (int x = 0; x < image.width; ++x)
             if (keep(x, y)) mean.add(pixel_channel(image, x, y, channel));
     return mean;
+}
+
+// The fraction of pixels whose three channels all agree within `relative`
+// (of the larger magnitude) between two images of the same size.
+inline double fraction_of_pixels_within(const Image& a, const Image& b, double relative) {
+    std::size_t pixels = a.rgb.size() / 3, agreeing = 0;
+    for (std::size_t p = 0; p < pixels; ++p) {
+        bool all = true;
+        for (int c = 0; c < 3; ++c) {
+            double x = a.rgb[3 * p + c], y = b.rgb[3 * p + c];
+            all = all && std::fabs(x - y) <= relative * std::max(std::fabs(x), std::fabs(y)) + 1e-30;
+        }
+        agreeing += all;
+    }
+    return pixels ? double(agreeing) / double(pixels) : 0.0;
 }
 
 }  // namespace wp::test

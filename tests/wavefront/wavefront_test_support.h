@@ -30,6 +30,15 @@ inline Scene scene_from_file(const std::string& relative_path) {
     return load_scene(std::string(WAVEPATH_SOURCE_DIR) + "/" + relative_path);
 }
 
+// scenes/room.json at size x size pixels and `spp` samples per pixel.
+inline Scene small_room(int size, int spp) {
+    Scene scene = scene_from_file("scenes/room.json");
+    scene.camera.width = size;
+    scene.camera.height = size;
+    scene.render.spp = spp;
+    return scene;
+}
+
 struct TestRay {
     glm::vec3 origin, direction;
 };
