@@ -16,9 +16,10 @@ __kernel __attribute__((reqd_work_group_size(WP_GROUP_SIZE, 1, 1))) void interse
         if (missed) {
             vec3 radiance = LOAD_RGB(radiance, slot);
 #ifdef WP_HAS_BACKGROUND
-            radiance += LOAD_RGB(throughput, slot) * vec3_at(scene->background);
+            radiance = add_finite(radiance, LOAD_RGB(throughput, slot) * vec3_at(scene->background), counts,
+                                  WP_COUNTER_NONFINITE_EMISSION);
 #endif
-            finish_path(pass_radiance, counts, pass_item[slot], radiance);
+            finish_path(pass_radiance, pass_item[slot], radiance);
         }
     }
     queue_push(queues, counts, capacity, WP_QUEUE_HIT, hit_something, slot, &group_count, &group_base);

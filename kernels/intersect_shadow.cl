@@ -10,8 +10,12 @@ __kernel __attribute__((reqd_work_group_size(WP_GROUP_SIZE, 1, 1))) void interse
     uint k = queue_position(counts, WP_QUEUE_SHADOW);
     uint slot = k != ~0u ? queues[WP_QUEUE_SHADOW * capacity + k] : 0u;
     if (k != ~0u && !any_hit(WP_SCENE_ARGS, LOAD_XYZ(shadow_origin, slot), LOAD_XYZ(shadow_direction, slot),
-                             shadow_distance[slot]))
-        STORE_RGB(radiance, slot, LOAD_RGB(radiance, slot) + LOAD_RGB(shadow_radiance, slot));
+                             shadow_distance[slot])) {
+        /* Not inside STORE_RGB, which evaluates its value once per channel. */
+        vec3 radiance_with_light =
+            add_finite(LOAD_RGB(radiance, slot), LOAD_RGB(shadow_radiance, slot), counts, WP_COUNTER_NONFINITE_DIRECT);
+        STORE_RGB(radiance, slot, radiance_with_light);
+    }
     COUNT_BY_DEPTH(WP_PROFILE_SHADOW_BY_DEPTH, k != ~0u, depth[slot]);
 #endif
 }

@@ -7,8 +7,10 @@
 #include "wavefront.h"
 #include "vertex.h"
 
-/* Traces one path; returns its radiance and adds its rays to the counts. */
-WP_FN vec3 trace_path(WP_SCENE_PARAMS, uint px, uint s, uint *extension_rays, uint *shadow_rays) {
+/* Traces one path; returns its radiance, adds its rays to extension_rays and
+ * shadow_rays and the non-finite values it drops to their counters. */
+WP_FN vec3 trace_path(WP_SCENE_PARAMS, __global uint *counts, uint px, uint s, uint *extension_rays,
+                      uint *shadow_rays) {
     uint seed = scene->seed;
     vec3 origin = make_vec3(REAL(0.0), REAL(0.0), REAL(0.0)); /* the camera, after loading */
     vec3 d = camera_ray_direction(scene, px, s);
@@ -20,7 +22,8 @@ WP_FN vec3 trace_path(WP_SCENE_PARAMS, uint px, uint s, uint *extension_rays, ui
         Hit hit = closest_hit(WP_SCENE_ARGS, origin, d);
         if (hit.shape == WP_NO_HIT) {
 #ifdef WP_HAS_BACKGROUND
-            radiance += throughput * vec3_at(scene->background);
+            radiance = add_finite(radiance, throughput * vec3_at(scene->background), counts,
+                                  WP_COUNTER_NONFINITE_EMISSION);
 #endif
             return radiance;
         }
@@ -29,7 +32,8 @@ WP_FN vec3 trace_path(WP_SCENE_PARAMS, uint px, uint s, uint *extension_rays, ui
         real cos_incident = dot(d, surface.normal);
         int entering = cos_incident < REAL(0.0);
         vec3 nf = entering ? surface.normal : -surface.normal;
-        radiance += emission_seen(m, cos_incident, after_specular, throughput);
+        radiance = add_finite(radiance, emission_seen(m, cos_incident, after_specular, throughput), counts,
+                              WP_COUNTER_NONFINITE_EMISSION);
         if (depth >= scene->max_depth || m->type == WP_MATERIAL_EMITTER) return radiance;
 #ifdef WP_HAS_NEE
         vec3 shadow_origin, shadow_direction, contribution;
@@ -39,12 +43,15 @@ WP_FN vec3 trace_path(WP_SCENE_PARAMS, uint px, uint s, uint *extension_rays, ui
                                 throughput * vec3_at(m->albedo), &shadow_origin, &shadow_direction, &distance,
                                 &contribution)) {
             ++*shadow_rays;
-            if (!any_hit(WP_SCENE_ARGS, shadow_origin, shadow_direction, distance)) radiance += contribution;
+            if (!any_hit(WP_SCENE_ARGS, shadow_origin, shadow_direction, distance))
+                radiance = add_finite(radiance, contribution, counts, WP_COUNTER_NONFINITE_DIRECT);
         }
 #endif
         Scattered scattered = scatter_vertex(m, d, nf, entering, seed, px, s, depth);
         throughput = throughput * scattered.weight;
-        if (!survives_roulette(&throughput, seed, px, s, depth, depth + 1u, scene->rr_depth)) return radiance;
+        if (!survives_roulette(&throughput, seed, px, s, depth, depth + 1u, scene->rr_depth) ||
+            !throughput_is_finite(throughput, counts))
+            return radiance;
         origin = offset_ray_origin(surface.point, scattered.leave_side, surface.error);
         d = scattered.direction;
         after_specular = scattered.specular;
@@ -61,9 +68,9 @@ __kernel __attribute__((reqd_work_group_size(WP_GROUP_SIZE, 1, 1))) void megaker
         ulong work = pass_start + item;
         uint pixel_count = scene->width * scene->height;
         uint extension_rays = 0u, shadow_rays = 0u;
-        vec3 radiance = trace_path(WP_SCENE_ARGS, (uint)(work % pixel_count), (uint)(work / pixel_count),
+        vec3 radiance = trace_path(WP_SCENE_ARGS, counts, (uint)(work % pixel_count), (uint)(work / pixel_count),
                                    &extension_rays, &shadow_rays);
-        finish_path(pass_radiance, counts, item, radiance);
+        finish_path(pass_radiance, item, radiance);
         atomic_add(&group_extension_rays, extension_rays);
         atomic_add(&group_shadow_rays, shadow_rays);
     }

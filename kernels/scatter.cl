@@ -16,7 +16,8 @@ __kernel __attribute__((reqd_work_group_size(WP_GROUP_SIZE, 1, 1))) void scatter
         Scattered scattered = scatter_vertex(m, d, nf, entering, seed, px, s, bounce);
         vec3 throughput = LOAD_RGB(throughput, slot) * scattered.weight;
         uint new_depth = bounce + 1u;
-        continues = survives_roulette(&throughput, seed, px, s, bounce, new_depth, scene->rr_depth);
+        continues = survives_roulette(&throughput, seed, px, s, bounce, new_depth, scene->rr_depth) &&
+                    throughput_is_finite(throughput, counts);
         if (continues) {
             STORE_XYZ(origin, slot, offset_ray_origin(surface.point, scattered.leave_side, surface.error));
             STORE_XYZ(direction, slot, scattered.direction);
@@ -26,7 +27,7 @@ __kernel __attribute__((reqd_work_group_size(WP_GROUP_SIZE, 1, 1))) void scatter
             specular[slot] = scattered.specular;
 #endif
         } else {
-            finish_path(pass_radiance, counts, pass_item[slot], LOAD_RGB(radiance, slot));
+            finish_path(pass_radiance, pass_item[slot], LOAD_RGB(radiance, slot));
         }
         ends = !continues;
     }

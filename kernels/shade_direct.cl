@@ -21,10 +21,11 @@ __kernel __attribute__((reqd_work_group_size(WP_GROUP_SIZE, 1, 1))) void shade_d
 #ifdef WP_HAS_SPECULAR
         after_specular = specular[slot] != 0u;
 #endif
-        radiance += emission_seen(m, cos_incident, after_specular, throughput);
+        radiance = add_finite(radiance, emission_seen(m, cos_incident, after_specular, throughput), counts,
+                              WP_COUNTER_NONFINITE_EMISSION);
         ends = bounce >= scene->max_depth || m->type == WP_MATERIAL_EMITTER;
         if (ends) {
-            finish_path(pass_radiance, counts, pass_item[slot], radiance);
+            finish_path(pass_radiance, pass_item[slot], radiance);
         } else {
             STORE_RGB(radiance, slot, radiance);
             scatters = 1;

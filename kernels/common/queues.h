@@ -18,10 +18,15 @@
 #define WP_COMPACT_BLOCK 256u
 
 #define WP_COUNTER_WORK 5u      /* work items of the pass handed out (may overshoot the pass) */
-#define WP_COUNTER_NONFINITE 6u /* samples dropped for non-finite radiance */
-#define WP_COUNTER_EXTENSION_RAYS 7u /* megakernel only: rays traced (the wavefront counts its queues) */
-#define WP_COUNTER_SHADOW_RAYS 8u
-#define WP_COUNTS_SIZE 9u
+/* Non-finite values dropped, one counter per stage where one can arise, in
+ * the order of wp::nonfinite_stage_names (src/core/render.h): */
+#define WP_COUNTER_NONFINITE_EMISSION 6u /* emission or background added to the radiance */
+#define WP_COUNTER_NONFINITE_DIRECT 7u   /* a light sample's contribution added to the radiance */
+#define WP_COUNTER_NONFINITE_SCATTER 8u  /* throughput after BSDF sampling and roulette (ends the path) */
+#define WP_NONFINITE_STAGE_COUNT 3u
+#define WP_COUNTER_EXTENSION_RAYS 9u /* megakernel only: rays traced (the wavefront counts its queues) */
+#define WP_COUNTER_SHADOW_RAYS 10u
+#define WP_COUNTS_SIZE 11u
 
 /* Built with -DWP_PROFILE, the kernels also count rays per path depth in two
  * histograms after the counters (the last bin takes every deeper ray). */

@@ -177,13 +177,26 @@ WP_FN Surface surface_at(WP_SCENE_PARAMS, uint shape, vec3 origin, vec3 directio
     return s;
 }
 
-/* Ends the path in `slot`: its radiance becomes its pass entry (0 and counted
- * when not finite) and the slot is freed for generate (the caller pushes it). */
-WP_FN void finish_path(__global float *pass_radiance, __global uint *counts, uint item, vec3 radiance) {
-    if (!vec3_is_finite(radiance)) {
-        atomic_inc(&counts[WP_COUNTER_NONFINITE]);
-        radiance = make_vec3(REAL(0.0), REAL(0.0), REAL(0.0));
-    }
+/* Adds `term` to the path's radiance unless the sum is not finite (a NaN or
+ * Inf term, or an overflowing sum): then it is dropped and counted in the
+ * stage's counter, so no non-finite value reaches the film. */
+WP_FN vec3 add_finite(vec3 radiance, vec3 term, __global uint *counts, uint stage_counter) {
+    vec3 sum = radiance + term;
+    if (vec3_is_finite(sum)) return sum;
+    atomic_inc(&counts[stage_counter]);
+    return radiance;
+}
+
+/* Whether the throughput may carry the path on; a non-finite one ends it and is counted. */
+WP_FN int throughput_is_finite(vec3 throughput, __global uint *counts) {
+    if (vec3_is_finite(throughput)) return 1;
+    atomic_inc(&counts[WP_COUNTER_NONFINITE_SCATTER]);
+    return 0;
+}
+
+/* Ends the path in `slot`: its radiance (finite: every addition was checked)
+ * becomes its pass entry and the slot is freed for generate (the caller pushes it). */
+WP_FN void finish_path(__global float *pass_radiance, uint item, vec3 radiance) {
     pass_radiance[3u * item + 0u] = radiance.x;
     pass_radiance[3u * item + 1u] = radiance.y;
     pass_radiance[3u * item + 2u] = radiance.z;

@@ -13,18 +13,36 @@ double per_second(std::uint64_t count, double time_s) {
     return time_s > 0.0 ? static_cast<double>(count) / time_s : 0.0;
 }
 
+// " (emission 1, direct 0, scatter 2)" when any value was dropped, else "".
+std::string nonfinite_breakdown(const RenderStats& s) {
+    if (s.nonfinite == 0) return "";
+    std::string text = " (";
+    for (std::size_t i = 0; i < s.nonfinite_by_stage.size(); ++i) {
+        text += (i ? ", " : "") + std::string(nonfinite_stage_names[i]) + " " + std::to_string(s.nonfinite_by_stage[i]);
+    }
+    return text + ")";
+}
+
+nlohmann::json nonfinite_by_stage_json(const RenderStats& s) {
+    nlohmann::json by_stage = nlohmann::json::object();
+    for (std::size_t i = 0; i < s.nonfinite_by_stage.size(); ++i) {
+        by_stage[std::string(nonfinite_stage_names[i])] = s.nonfinite_by_stage[i];
+    }
+    return by_stage;
+}
+
 }  // namespace
 
 std::string format_summary_line(const RunSummary& summary) {
     const RenderStats& s = summary.stats;
     char figures[256];
     std::snprintf(figures, sizeof figures,
-                  "in %.3f s: %.3f Msamples/s, extension %.2f Mrays/s, shadow %.2f Mrays/s, %llu non-finite samples",
+                  "in %.3f s: %.3f Msamples/s, extension %.2f Mrays/s, shadow %.2f Mrays/s, %llu non-finite values",
                   s.time_s, per_second(s.samples, s.time_s) * 1e-6, per_second(s.extension_rays, s.time_s) * 1e-6,
                   per_second(s.shadow_rays, s.time_s) * 1e-6, static_cast<unsigned long long>(s.nonfinite));
     return "wavepath: wrote " + summary.output_path + " (" + std::to_string(summary.width) + "x" +
            std::to_string(summary.height) + ", " + std::to_string(summary.spp) + " spp, " + summary.backend + ") " +
-           figures;
+           figures + nonfinite_breakdown(s);
 }
 
 nlohmann::json stats_json(const RunSummary& summary) {
@@ -42,6 +60,7 @@ nlohmann::json stats_json(const RunSummary& summary) {
         {"shadow_rays", s.shadow_rays},
         {"shadow_rays_per_s", per_second(s.shadow_rays, s.time_s)},
         {"nonfinite", s.nonfinite},
+        {"nonfinite_by_stage", nonfinite_by_stage_json(s)},
     };
 }
 

@@ -17,11 +17,13 @@ struct RunSummary {
 };
 
 // "wavepath: wrote out.png (512x512, 64 spp, reference) in 12.3 s: 1.36 Msamples/s,
-//  extension 5.12 Mrays/s, shadow 3.40 Mrays/s, 0 non-finite samples"
+//  extension 5.12 Mrays/s, shadow 3.40 Mrays/s, 0 non-finite values", then, when
+//  any value was dropped, the count per stage: " (emission 1, direct 0, scatter 2)"
 std::string format_summary_line(const RunSummary& summary);
 
 // {"backend","width","height","spp","time_s","samples","samples_per_s",
-//  "extension_rays","extension_rays_per_s","shadow_rays","shadow_rays_per_s","nonfinite"}
+//  "extension_rays","extension_rays_per_s","shadow_rays","shadow_rays_per_s","nonfinite",
+//  "nonfinite_by_stage": {"emission","direct","scatter"}}
 nlohmann::json stats_json(const RunSummary& summary);
 
 // Writes stats_json atomically; throws OutputError.

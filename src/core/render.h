@@ -1,8 +1,11 @@
 // What every backend produces: a linear RGB image and the figures of the run.
 #pragma once
 
+#include <array>
+#include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <string_view>
 #include <vector>
 
 namespace wp {
@@ -14,12 +17,31 @@ struct Image {
     std::vector<float> rgb;
 };
 
+// Where a non-finite value can arise; each backend checks it there, drops it
+// and counts it (docs/robustness.md, "Guards"). Same order as the kernels'
+// WP_COUNTER_NONFINITE_* counters (kernels/common/queues.h).
+enum class NonfiniteStage : std::size_t {
+    emission,  // emission or background added to the radiance
+    direct,    // a light sample's contribution added to the radiance
+    scatter,   // throughput after BSDF sampling and roulette: the path ends
+};
+inline constexpr std::array<std::string_view, 3> nonfinite_stage_names{"emission", "direct", "scatter"};
+using NonfiniteCounts = std::array<std::uint64_t, nonfinite_stage_names.size()>;
+
 struct RenderStats {
     double time_s = 0.0;
     std::uint64_t samples = 0;         // camera samples (pixels x spp)
     std::uint64_t extension_rays = 0;  // camera and bounce rays
     std::uint64_t shadow_rays = 0;
-    std::uint64_t nonfinite = 0;       // samples whose radiance was NaN or Inf, dropped and counted
+    NonfiniteCounts nonfinite_by_stage{};  // non-finite values dropped, per NonfiniteStage
+    std::uint64_t nonfinite = 0;           // their sum
+
+    void add_nonfinite(const NonfiniteCounts& counts) {
+        for (std::size_t i = 0; i < counts.size(); ++i) {
+            nonfinite_by_stage[i] += counts[i];
+            nonfinite += counts[i];
+        }
+    }
 };
 
 struct RenderResult {

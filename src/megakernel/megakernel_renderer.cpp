@@ -90,7 +90,7 @@ RenderResult render_megakernel(const Scene& scene, const MegakernelOptions& opti
         queue.enqueueFillBuffer(counts, std::uint32_t(0), 0, sizeof(std::uint32_t) * WP_COUNTS_SIZE);
         result.stats.extension_rays += figures[WP_COUNTER_EXTENSION_RAYS];
         result.stats.shadow_rays += figures[WP_COUNTER_SHADOW_RAYS];
-        result.stats.nonfinite += figures[WP_COUNTER_NONFINITE];
+        result.stats.add_nonfinite(nonfinite_counts(figures.data()));
         if (progress) progress(double(start + size) / double(total));
     }
     result.image = film_to_image(read_film_sums(queue, film, pixel_count, device.fp64), camera.width, camera.height,

@@ -23,14 +23,30 @@
 #include <glm/vec3.hpp>
 #include <numbers>
 
+#include "core/render.h"
 #include "reference/reference_scene.h"
 
 namespace wp::reference {
 
+// What the paths of one thread traced and dropped.
 struct RayCounts {
     std::uint64_t extension = 0;  // camera and bounce rays
     std::uint64_t shadow = 0;
+    NonfiniteCounts nonfinite{};  // non-finite values dropped, per NonfiniteStage
 };
+
+// Adds `term` to `radiance` unless the sum is not finite (a NaN or Inf term,
+// or an overflowing sum): then it is dropped and counted in `stage`, as the
+// kernels' add_finite does (kernels/common/wavefront.h).
+template <class Real>
+void add_finite(Vec3<Real>& radiance, const Vec3<Real>& term, NonfiniteStage stage, RayCounts& counts) {
+    Vec3<Real> sum = radiance + term;
+    if (SharedMath<Real>::vec3_is_finite(sum)) {
+        radiance = sum;
+    } else {
+        ++counts.nonfinite[static_cast<std::size_t>(stage)];
+    }
+}
 
 // The random numbers of one camera sample.
 template <class Real>
@@ -241,20 +257,24 @@ Vec3<Real> trace_path(const ReferenceScene<Real>& scene, Ray<Real> ray, const Sa
         ++counts.extension;
         ShapeHit<Real> hit = closest_hit(scene, ray);
         if (!hit.found()) {
-            radiance += throughput * scene.background;
+            add_finite<Real>(radiance, throughput * scene.background, NonfiniteStage::emission, counts);
             break;
         }
         SurfacePoint<Real> surface = surface_at(scene, ray, hit);
         const auto& material = scene.materials[surface.material];
         bool front = glm::dot(ray.direction, surface.normal) < Real(0);
         vec3 nf = front ? surface.normal : -surface.normal;
-        if (material.emits && (material.two_sided || front) && specular) radiance += throughput * material.emission;
+        if (material.emits && (material.two_sided || front) && specular) {
+            add_finite<Real>(radiance, throughput * material.emission, NonfiniteStage::emission, counts);
+        }
         if (depth >= scene.render.max_depth || material.type == MaterialType::Emitter) break;
 
         auto bounce = static_cast<std::uint32_t>(depth);
         if (material.type == MaterialType::Diffuse && !scene.lights.empty()) {
-            radiance += sample_direct_light(scene, surface.point, surface.error, nf, throughput * material.albedo, rng,
-                                            bounce, counts);
+            add_finite<Real>(radiance,
+                             sample_direct_light(scene, surface.point, surface.error, nf, throughput * material.albedo,
+                                                 rng, bounce, counts),
+                             NonfiniteStage::direct, counts);
         }
         Scattered<Real> next = scatter(material, surface, ray.direction, nf, rng, bounce);
         throughput *= next.weight;
@@ -266,6 +286,10 @@ Vec3<Real> trace_path(const ReferenceScene<Real>& scene, Ray<Real> ray, const Sa
             Real survival = M::wp_clamp(M::max_component(throughput), Real(0.05), Real(1));
             if (rng(bounce, DIM_ROULETTE) >= survival) break;
             throughput /= survival;
+        }
+        if (!SharedMath<Real>::vec3_is_finite(throughput)) {  // would carry NaN or Inf into every later term
+            ++counts.nonfinite[static_cast<std::size_t>(NonfiniteStage::scatter)];
+            break;
         }
     }
     return radiance;
@@ -281,7 +305,7 @@ Ray<Real> camera_ray(const ReferenceScene<Real>& scene, int px, int py, const Sa
     return {c.position, M::camera_direction(c.right, c.up, c.forward, c.tan_half_fov_y, c.aspect, x, y)};
 }
 
-// Radiance of one camera sample, before the non-finite check.
+// Radiance of one camera sample (finite: every addition was checked).
 template <class Real>
 Vec3<Real> trace_camera_sample(const ReferenceScene<Real>& scene, int px, int py, int sample, RayCounts& counts) {
     auto pixel = static_cast<std::uint32_t>(py * scene.camera.width + px);

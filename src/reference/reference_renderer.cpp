@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
-#include <cmath>
 #include <stdexcept>
 #include <thread>
 #include <vector>
@@ -28,26 +27,17 @@ struct TileGrid {
     }
 };
 
-struct WorkerCounts {
-    reference::RayCounts rays;
-    std::uint64_t nonfinite = 0;
-};
-
 // Each pixel's samples are summed in double, in sample order, so the value
 // depends neither on threads nor on how small the contributions are.
 template <class Real>
-void render_tile(const reference::ReferenceScene<Real>& scene, const Tile& tile, Image& image, WorkerCounts& counts) {
+void render_tile(const reference::ReferenceScene<Real>& scene, const Tile& tile, Image& image,
+                 reference::RayCounts& counts) {
     int spp = scene.render.spp;
     for (int py = tile.y0; py < tile.y1; ++py) {
         for (int px = tile.x0; px < tile.x1; ++px) {
             glm::dvec3 sum(0.0);
             for (int s = 0; s < spp; ++s) {
-                glm::dvec3 radiance(reference::trace_camera_sample(scene, px, py, s, counts.rays));
-                if (std::isfinite(radiance.x) && std::isfinite(radiance.y) && std::isfinite(radiance.z)) {
-                    sum += radiance;
-                } else {
-                    ++counts.nonfinite;
-                }
+                sum += glm::dvec3(reference::trace_camera_sample(scene, px, py, s, counts));
             }
             glm::dvec3 mean = sum / static_cast<double>(spp);
             float* rgb = &image.rgb[3 * (static_cast<std::size_t>(py) * image.width + px)];
@@ -84,8 +74,8 @@ RenderResult render_with(const Scene& source, const ReferenceOptions& options, c
     int tile_count = grid.columns * grid.rows;
     std::atomic<int> next_tile{0};
     std::atomic<int> tiles_done{0};
-    std::vector<WorkerCounts> counts(worker_count(options, tile_count));
-    auto work = [&](WorkerCounts& mine) {
+    std::vector<reference::RayCounts> counts(worker_count(options, tile_count));
+    auto work = [&](reference::RayCounts& mine) {
         for (int t = next_tile++; t < tile_count; t = next_tile++) {
             render_tile(scene, grid.tile(t, width, height), result.image, mine);
             int done = ++tiles_done;
@@ -99,10 +89,10 @@ RenderResult render_with(const Scene& source, const ReferenceOptions& options, c
 
     RenderStats& stats = result.stats;
     stats.samples = static_cast<std::uint64_t>(width) * height * scene.render.spp;
-    for (const WorkerCounts& c : counts) {
-        stats.extension_rays += c.rays.extension;
-        stats.shadow_rays += c.rays.shadow;
-        stats.nonfinite += c.nonfinite;
+    for (const reference::RayCounts& c : counts) {
+        stats.extension_rays += c.extension;
+        stats.shadow_rays += c.shadow;
+        stats.add_nonfinite(c.nonfinite);
     }
     stats.time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return result;

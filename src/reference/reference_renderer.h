@@ -21,7 +21,7 @@ struct ReferenceOptions {
 RenderResult render_reference(const Scene& scene, const ReferenceOptions& options, const ProgressFn& progress = {});
 
 // Radiance of one camera sample, exactly as render_reference computes it
-// (before non-finite samples are dropped); Real is float or double.
+// (its non-finite values dropped); Real is float or double.
 template <class Real>
 glm::dvec3 trace_reference_sample(const Scene& scene, int px, int py, int sample);
 

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "core/render.h"
 #include "device/opencl_device.h"
 #include "device/program_cache.h"
 #include "scene/scene.h"
@@ -39,6 +40,15 @@ struct PipelineOptions {
 
 // Queue lengths then counters, as in kernels/common/queues.h.
 using DeviceCounts = std::array<std::uint32_t, WP_COUNTS_SIZE>;
+
+static_assert(WP_NONFINITE_STAGE_COUNT == nonfinite_stage_names.size());
+
+// The per-stage non-finite counters among the device counters (both backends).
+inline NonfiniteCounts nonfinite_counts(const std::uint32_t* counts) {
+    NonfiniteCounts by_stage{};
+    for (std::size_t i = 0; i < by_stage.size(); ++i) by_stage[i] = counts[WP_COUNTER_NONFINITE_EMISSION + i];
+    return by_stage;
+}
 
 class Pipeline {
  public:

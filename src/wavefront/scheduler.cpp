@@ -51,7 +51,8 @@ ScheduleTotals run_schedule(Pipeline& pipeline, std::uint64_t total, bool has_li
             continuing = r.continuing;
             if (progress) progress(double(finished) / double(total));
             if (issued == size && continuing == 0) {
-                totals.nonfinite += counts[WP_COUNTER_NONFINITE];  // reset by begin_pass
+                NonfiniteCounts pass_nonfinite = nonfinite_counts(counts.data());  // reset by begin_pass
+                for (std::size_t i = 0; i < pass_nonfinite.size(); ++i) totals.nonfinite[i] += pass_nonfinite[i];
                 break;
             }
         }

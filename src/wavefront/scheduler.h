@@ -13,7 +13,7 @@ namespace wp {
 struct ScheduleTotals {
     std::uint64_t extension_rays = 0;
     std::uint64_t shadow_rays = 0;
-    std::uint64_t nonfinite = 0;
+    NonfiniteCounts nonfinite{};  // per NonfiniteStage
 };
 
 // Renders work items [0, total) (w: pixel w % pixels, sample w / pixels) in

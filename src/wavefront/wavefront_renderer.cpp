@@ -120,7 +120,7 @@ RenderResult render_wavefront(const Scene& scene, const WavefrontOptions& option
     result.stats.samples = total;
     result.stats.extension_rays = totals.extension_rays;
     result.stats.shadow_rays = totals.shadow_rays;
-    result.stats.nonfinite = totals.nonfinite;
+    result.stats.add_nonfinite(totals.nonfinite);
     result.stats.time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - render_start).count();
     if (options.profile) {
         r.profile = pipeline.profile();

@@ -245,6 +245,7 @@ TEST_F(CliTest, StatsJsonHasConsistentFigures) {
     EXPECT_EQ(stats["spp"], 3);
     EXPECT_EQ(stats["samples"], 6 * 4 * 3);
     EXPECT_EQ(stats["nonfinite"], 0);
+    EXPECT_EQ(stats["nonfinite_by_stage"], (json{{"emission", 0}, {"direct", 0}, {"scatter", 0}}));
     const double time_s = stats["time_s"];
     ASSERT_GT(time_s, 0.0);
     EXPECT_NEAR(stats["samples_per_s"].get<double>(), 72.0 / time_s, 1e-9 * 72.0 / time_s);

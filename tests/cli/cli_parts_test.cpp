@@ -113,14 +113,21 @@ RunSummary example_summary() {
     summary.stats.samples = 640ull * 480 * 16;  // 4915200
     summary.stats.extension_rays = 12'000'000;
     summary.stats.shadow_rays = 5'000'000;
-    summary.stats.nonfinite = 3;
+    summary.stats.add_nonfinite({1, 0, 2});
     return summary;
 }
 
 TEST(Summary, LineHasTimeRatesNonfiniteAndPath) {
     EXPECT_EQ(format_summary_line(example_summary()),
               "wavepath: wrote out/room.png (640x480, 16 spp, reference) in 2.000 s: 2.458 Msamples/s, "
-              "extension 6.00 Mrays/s, shadow 2.50 Mrays/s, 3 non-finite samples");
+              "extension 6.00 Mrays/s, shadow 2.50 Mrays/s, 3 non-finite values (emission 1, direct 0, scatter 2)");
+}
+
+TEST(Summary, LineLeavesOutTheStagesWhenNothingWasDropped) {
+    RunSummary summary = example_summary();
+    summary.stats.nonfinite_by_stage = {};
+    summary.stats.nonfinite = 0;
+    EXPECT_TRUE(format_summary_line(summary).ends_with(", 0 non-finite values")) << format_summary_line(summary);
 }
 
 TEST(Summary, StatsJsonHasTheFiguresAndRates) {
@@ -137,6 +144,7 @@ TEST(Summary, StatsJsonHasTheFiguresAndRates) {
     EXPECT_EQ(stats["shadow_rays"], 5000000u);
     EXPECT_EQ(stats["shadow_rays_per_s"], 2.5e6);
     EXPECT_EQ(stats["nonfinite"], 3u);
+    EXPECT_EQ(stats["nonfinite_by_stage"], (nlohmann::json{{"emission", 1u}, {"direct", 0u}, {"scatter", 2u}}));
 }
 
 TEST(Summary, ZeroTimeGivesZeroRatesNotInfinity) {

@@ -111,6 +111,8 @@ TEST(ReferenceRenderer, DropsAndCountsNonFiniteSamples) {
     wp::Scene scene = wp::test::inside_emissive_sphere(block, {0.5, 0.5, 0.5}, {inf, 1.0, 1.0});
     wp::RenderResult result = render(scene, 2);
     EXPECT_EQ(result.stats.nonfinite, result.stats.samples);
+    EXPECT_EQ(result.stats.nonfinite_by_stage[static_cast<std::size_t>(wp::NonfiniteStage::emission)],
+              result.stats.samples);
     for (float v : result.image.rgb) EXPECT_EQ(v, 0.0f);
 }
 

@@ -41,16 +41,17 @@ TEST_P(RoomScale, MatchesTheUnitRoomWithinNoise) {
     }
 }
 
-// Every shipped scene, small: no sample may be dropped as non-finite.
+// Every shipped scene, small: no value may be dropped as non-finite, in any stage.
 TEST_P(RoomScale, ShippedScenesHaveNoNonFiniteSamples) {
     for (const char* path : {"scenes/room.json", "scenes/cornell.json"}) {
         Scene scene = scene_from_file(path);
         scene.camera.width = scene.camera.height = 24;
         scene.render.spp = 8;
         RenderResult result = render_on(GetParam(), scene);
-        report_figure(std::string("non-finite samples in ") + path, GetParam(),
+        report_figure(std::string("non-finite values in ") + path, GetParam(),
                       format("%.0f of %.0f", double(result.stats.nonfinite), double(result.stats.samples)));
         EXPECT_EQ(result.stats.nonfinite, 0u);
+        EXPECT_EQ(result.stats.nonfinite_by_stage, NonfiniteCounts{});
         EXPECT_TRUE(all_finite(result.image));
     }
 }
