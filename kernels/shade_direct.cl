@@ -1,5 +1,5 @@
 /* Stage 3: what the path sees at its hit. Emission (at depth 0 or after a
- * specular bounce), the max_depth cap and emitter materials (which end the
+ * specular bounce; at every hit with -DWP_NEE_OFF), the max_depth cap and emitter materials (which end the
  * path), and next-event estimation at diffuse vertices: one light sample
  * whose shadow ray goes to intersect_shadow with its would-be contribution. */
 #include "wavefront.h"

@@ -17,10 +17,14 @@ WP_FN vec3 camera_ray_direction(__global const SceneHeader *scene, uint px, uint
 }
 
 /* Emission the path adds at a hit: when the material emits towards the ray
- * (or is two-sided) and the previous vertex was the camera or specular. */
+ * (or is two-sided) and the previous vertex was the camera or specular, or
+ * at every hit when NEE is off (-DWP_NEE_OFF). */
 WP_FN vec3 emission_seen(__global const DeviceMaterial *m, real cos_incident, int after_specular, vec3 throughput) {
     vec3 emission = vec3_at(m->emission);
     int emits = emission.x > REAL(0.0) || emission.y > REAL(0.0) || emission.z > REAL(0.0);
+#ifdef WP_NEE_OFF
+    after_specular = 1; /* pure BSDF sampling: no light sample accounts for this emission */
+#endif
     if (emits && (m->two_sided || cos_incident < REAL(0.0)) && after_specular) return throughput * emission;
     return make_vec3(REAL(0.0), REAL(0.0), REAL(0.0));
 }
@@ -84,8 +88,14 @@ typedef struct {
 
 WP_FN Scattered scatter_diffuse(__global const DeviceMaterial *m, vec3 nf, real u, real v) {
     Scattered s;
-    s.direction = frame_to_world(frame_from_normal(nf), sample_cosine_hemisphere(u, v));
+#ifdef WP_UNIFORM_HEMISPHERE
+    vec3 in_frame = sample_uniform_hemisphere(u, v); /* `local` is an OpenCL keyword */
+    s.weight = vec3_at(m->albedo) * (REAL(2.0) * in_frame.z); /* albedo/pi * cos / (1/(2 pi)) */
+#else
+    vec3 in_frame = sample_cosine_hemisphere(u, v);
     s.weight = vec3_at(m->albedo);
+#endif
+    s.direction = frame_to_world(frame_from_normal(nf), in_frame);
     s.leave_side = nf;
     s.specular = 0u;
     return s;

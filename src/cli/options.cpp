@@ -33,6 +33,13 @@ void add_render_options(CLI::App& render, RenderCommand& command) {
                 std::numeric_limits<int>::max());
     add_integer(render, "--seed", o.seed, "Random seed (overrides render.seed)", 0,
                 std::numeric_limits<std::uint32_t>::max());
+    render
+        .add_option("--nee", o.nee, "Next-event estimation: on, or off for pure BSDF sampling (overrides render.nee)")
+        ->check(CLI::IsMember({"on", "off"}));
+    render
+        .add_option("--hemisphere", o.hemisphere,
+                    "Diffuse sampling: cosine or uniform hemisphere (overrides render.hemisphere)")
+        ->check(CLI::IsMember({"cosine", "uniform"}));
 
     add_backend_options(render, command.backend);
 
@@ -45,6 +52,9 @@ void apply_overrides(const RenderOverrides& overrides, Scene& scene) {
     if (overrides.max_depth) scene.render.max_depth = *overrides.max_depth;
     if (overrides.rr_depth) scene.render.rr_depth = *overrides.rr_depth;
     if (overrides.seed) scene.render.seed = static_cast<std::uint32_t>(*overrides.seed);
+    if (overrides.nee) scene.render.nee = *overrides.nee == "on";
+    if (overrides.hemisphere)
+        scene.render.hemisphere = *overrides.hemisphere == "uniform" ? Hemisphere::Uniform : Hemisphere::Cosine;
     if (overrides.width) scene.camera.width = *overrides.width;
     if (overrides.height) scene.camera.height = *overrides.height;
 

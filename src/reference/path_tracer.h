@@ -15,7 +15,8 @@
 //    shadow_target_error(x, light point, light magnitude)), with the unit
 //    direction and the distance between those two points;
 //  - the diffuse bounce direction is frame_to_world(frame_from_normal(nf),
-//    sample_cosine_hemisphere(u, v)), not renormalised.
+//    sample_cosine_hemisphere(u, v)) (or sample_uniform_hemisphere with
+//    render.hemisphere uniform), not renormalised.
 #pragma once
 
 #include <cstdint>
@@ -218,7 +219,8 @@ struct Scattered {
 // is the incoming direction, n the geometric normal, nf the one facing d.
 template <class Real>
 Scattered<Real> scatter(const typename ReferenceScene<Real>::SurfaceMaterial& material, const SurfacePoint<Real>& x,
-                        const Vec3<Real>& d, const Vec3<Real>& nf, const SampleRng<Real>& rng, std::uint32_t bounce) {
+                        const Vec3<Real>& d, const Vec3<Real>& nf, const SampleRng<Real>& rng, std::uint32_t bounce,
+                        Hemisphere hemisphere = Hemisphere::Cosine) {
     using M = SharedMath<Real>;
     using vec3 = typename M::vec3;
     const vec3& n = x.normal;
@@ -239,7 +241,13 @@ Scattered<Real> scatter(const typename ReferenceScene<Real>::SurfaceMaterial& ma
             return {leave(refracted, -nf), vec3(Real(1) / (eta * eta)), true};
         }
         default: {  // diffuse
-            vec3 local = M::sample_cosine_hemisphere(rng(bounce, DIM_BSDF_U), rng(bounce, DIM_BSDF_V));
+            Real u = rng(bounce, DIM_BSDF_U), v = rng(bounce, DIM_BSDF_V);
+            if (hemisphere == Hemisphere::Uniform) {  // weight albedo/pi * cos / (1/(2 pi))
+                vec3 local = M::sample_uniform_hemisphere(u, v);
+                return {leave(M::frame_to_world(M::frame_from_normal(nf), local), nf),
+                        material.albedo * (Real(2) * local.z), false};
+            }
+            vec3 local = M::sample_cosine_hemisphere(u, v);
             return {leave(M::frame_to_world(M::frame_from_normal(nf), local), nf), material.albedo, false};
         }
     }
@@ -264,19 +272,20 @@ Vec3<Real> trace_path(const ReferenceScene<Real>& scene, Ray<Real> ray, const Sa
         const auto& material = scene.materials[surface.material];
         bool front = glm::dot(ray.direction, surface.normal) < Real(0);
         vec3 nf = front ? surface.normal : -surface.normal;
-        if (material.emits && (material.two_sided || front) && specular) {
+        // Without NEE no light sample accounts for emission, so every hit counts it.
+        if (material.emits && (material.two_sided || front) && (specular || !scene.render.nee)) {
             add_finite<Real>(radiance, throughput * material.emission, NonfiniteStage::emission, counts);
         }
         if (depth >= scene.render.max_depth || material.type == MaterialType::Emitter) break;
 
         auto bounce = static_cast<std::uint32_t>(depth);
-        if (material.type == MaterialType::Diffuse && !scene.lights.empty()) {
+        if (material.type == MaterialType::Diffuse && scene.render.nee && !scene.lights.empty()) {
             add_finite<Real>(radiance,
                              sample_direct_light(scene, surface.point, surface.error, nf, throughput * material.albedo,
                                                  rng, bounce, counts),
                              NonfiniteStage::direct, counts);
         }
-        Scattered<Real> next = scatter(material, surface, ray.direction, nf, rng, bounce);
+        Scattered<Real> next = scatter(material, surface, ray.direction, nf, rng, bounce, scene.render.hemisphere);
         throughput *= next.weight;
         ray = next.ray;
         specular = next.specular;

@@ -21,11 +21,17 @@ struct Camera {
     int height = 0;
 };
 
+// How diffuse vertices choose the next direction (the weight keeps the
+// estimator unbiased either way; cosine has the lower variance).
+enum class Hemisphere { Cosine, Uniform };
+
 struct RenderSettings {
     int spp = 16;
     int max_depth = 8;  // most scattering events a path may have
     int rr_depth = 3;   // Russian roulette from this many scattering events on
     std::uint32_t seed = 0;
+    bool nee = true;  // next-event estimation; off: emission is counted at every hit (pure BSDF sampling)
+    Hemisphere hemisphere = Hemisphere::Cosine;
 };
 
 enum class MaterialType { Diffuse, Mirror, Glass, Emitter };

@@ -27,10 +27,15 @@ std::vector<std::pair<const char*, const char*>> features_in_use(const FeatureSe
 
 }  // namespace
 
-std::string kernel_build_options(const FeatureSet& features, bool has_lights, bool device_fp64) {
+bool uses_nee(const Scene& scene) { return scene.render.nee && !scene.lights.empty(); }
+
+std::string kernel_build_options(const FeatureSet& features, bool nee, bool device_fp64,
+                                 const RenderSettings& sampling) {
     std::string options;
     for (const auto& [name, macro] : features_in_use(features)) options += std::string(" -D") + macro;
-    if (has_lights) options += " -DWP_HAS_NEE";
+    if (nee) options += " -DWP_HAS_NEE";
+    if (!sampling.nee) options += " -DWP_NEE_OFF";
+    if (sampling.hemisphere == Hemisphere::Uniform) options += " -DWP_UNIFORM_HEMISPHERE";
     if (device_fp64) options += " -DWP_FILM_DOUBLE";
     return options.empty() ? options : options.substr(1);
 }

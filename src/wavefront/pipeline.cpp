@@ -27,11 +27,11 @@ Pipeline::Pipeline(const Scene& scene, const DeviceInfo& device, std::size_t cap
       context_(device.device),
       queue_(context_, device.device, options.profile ? cl_command_queue_properties(CL_QUEUE_PROFILING_ENABLE) : 0),
       program_(build_program(context_, device, wavefront_kernel_files(),
-                             kernel_build_options(kernel_features, !scene.lights.empty(), device.fp64) +
+                             kernel_build_options(kernel_features, uses_nee(scene), device.fp64, scene.render) +
                                  (options.profile ? " -DWP_PROFILE" : "") +
                                  (options.compaction == Compaction::Scan ? " -DWP_COMPACT_SCAN" : ""))),
       scene_(context_, flatten_scene(scene)),
-      state_(context_, capacity, kernel_features, !scene.lights.empty()),
+      state_(context_, capacity, kernel_features, uses_nee(scene)),
       queues_(context_, CL_MEM_READ_WRITE,
               sizeof(std::uint32_t) * WP_QUEUE_COUNT * capacity * (options.compaction == Compaction::Scan ? 2 : 1)),
       counts_(context_, CL_MEM_READ_WRITE, sizeof(std::uint32_t) * WP_COUNTS_PROFILED_SIZE),

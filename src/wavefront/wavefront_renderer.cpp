@@ -92,11 +92,10 @@ RenderResult render_wavefront(const Scene& scene, const WavefrontOptions& option
     DeviceInfo device = choose_device(options.device);
     const Camera& camera = scene.camera;
     std::uint64_t total = std::uint64_t(camera.width) * camera.height * scene.render.spp;
-    bool has_lights = !scene.lights.empty();
+    bool nee = uses_nee(scene);  // NEE compiled: shadow rays, their state and stage
     std::size_t wavefront =
-        options.wavefront
-            ? options.wavefront
-            : default_wavefront_size(total, PathState::bytes_per_path(scene.features(), has_lights), device);
+        options.wavefront ? options.wavefront
+                          : default_wavefront_size(total, PathState::bytes_per_path(scene.features(), nee), device);
     FeatureSet features = options.specialise ? scene.features() : every_shape_and_material(scene.features());
     Pipeline pipeline(scene, device, wavefront, std::min<std::uint64_t>(total, kPassesPerWavefront * wavefront),
                       features, {options.profile, options.scan_compaction ? Compaction::Scan : Compaction::Atomic});
@@ -104,7 +103,7 @@ RenderResult render_wavefront(const Scene& scene, const WavefrontOptions& option
     WavefrontReport local_report;
     WavefrontReport& r = report ? *report : local_report;
     r.device = device.name + " (" + device.platform + ")";
-    r.features = describe_features(features) + (has_lights ? " nee" : "");
+    r.features = describe_features(features) + (nee ? " nee" : "");
     r.build_options = pipeline.program().options;
     r.cache_hit = pipeline.program().cache_hit;
     r.build_seconds = pipeline.program().build_seconds;
@@ -114,7 +113,7 @@ RenderResult render_wavefront(const Scene& scene, const WavefrontOptions& option
     r.state_bytes_per_path = pipeline.state().bytes_per_path();
 
     auto render_start = std::chrono::steady_clock::now();  // time_s leaves out device setup and the build
-    ScheduleTotals totals = run_schedule(pipeline, total, has_lights, progress, r.iterations);
+    ScheduleTotals totals = run_schedule(pipeline, total, nee, progress, r.iterations);
     RenderResult result;
     result.image = film_to_image(pipeline.read_film(), camera.width, camera.height, scene.render.spp);
     result.stats.samples = total;

@@ -148,6 +148,8 @@ const UsageCase kUsageErrors[] = {
     {"NegativeThreads", {"--threads", "-1"}, "--threads: must be in [0, 4096], got -1"},
     {"UnknownBackend", {"--backend", "quantum"}, "--backend: "},
     {"UnknownPrecision", {"--precision", "half"}, "--precision: "},
+    {"UnknownNee", {"--nee", "maybe"}, "--nee: "},
+    {"UnknownHemisphere", {"--hemisphere", "cos"}, "--hemisphere: "},
     {"UnknownFlag", {"--sp", "4"}, "The following argument"},
     {"FlagWithoutValue", {"--spp"}, "--spp"},
 };
@@ -315,8 +317,8 @@ TEST_F(CliTest, HelpListsSubcommands) {
 TEST_F(CliTest, RenderHelpListsEveryFlag) {
     const CommandResult result = run({"render", "--help"});
     EXPECT_EQ(result.exit_code, 0);
-    for (const char* flag : {"--output", "--spp", "--width", "--height", "--max-depth", "--rr-depth", "--seed",
-                             "--backend", "--threads", "--precision", "--quiet", "--stats-json"})
+    for (const char* flag : {"--output", "--spp", "--width", "--height", "--max-depth", "--rr-depth", "--seed", "--nee",
+                             "--hemisphere", "--backend", "--threads", "--precision", "--quiet", "--stats-json"})
         EXPECT_NE(result.out.find(flag), std::string::npos) << flag;
 }
 

@@ -171,6 +171,21 @@ TEST(Overrides, ReplaceOnlyWhatIsGiven) {
     EXPECT_EQ(scene.camera.height, 10);
 }
 
+TEST(Overrides, NeeAndHemisphere) {
+    Scene scene;
+    RenderOverrides overrides;
+    overrides.nee = "off";
+    overrides.hemisphere = "uniform";
+    apply_overrides(overrides, scene);
+    EXPECT_FALSE(scene.render.nee);
+    EXPECT_EQ(scene.render.hemisphere, Hemisphere::Uniform);
+    overrides.nee = "on";
+    overrides.hemisphere = "cosine";
+    apply_overrides(overrides, scene);
+    EXPECT_TRUE(scene.render.nee);
+    EXPECT_EQ(scene.render.hemisphere, Hemisphere::Cosine);
+}
+
 TEST(Overrides, PixelLimitAppliesToTheCombination) {
     Scene scene;
     scene.camera.width = 16384;

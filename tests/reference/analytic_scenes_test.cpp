@@ -3,8 +3,8 @@
 //
 // Acceptance: per channel, |mean - expected| <= 4.5 standard errors of the
 // mean over pixels (pixels are independent; a normal estimate falls outside
-// with probability 6.8e-6, so the ~60 channel checks here fail spuriously
-// with probability < 5e-4; the seeds are fixed, so a pass is reproducible)
+// with probability 6.8e-6, so the ~120 channel checks here fail spuriously
+// with probability < 1e-3; the seeds are fixed, so a pass is reproducible)
 // plus an allowance for rounding: 2e-6 of the value in float (the path
 // arithmetic; measured deviations stay below 2e-7), 1.2e-7 in double (one
 // float ULP: the image stores float). Where the estimator has no variance at
@@ -20,6 +20,7 @@
 #include "reference/reference_renderer.h"
 #include "support/image_statistics.h"
 #include "support/real_types.h"
+#include "support/sampling_variants.h"
 
 namespace {
 
@@ -52,6 +53,26 @@ TYPED_TEST(ReferenceAnalytic, InsideEmissiveSphereTruncatedNeumannSeries) {
             double expected = wp::test::inside_emissive_sphere_radiance(kRho[c], kLe[c], max_depth);
             this->expect_channel(wp::test::channel_mean(result.image, c), expected,
                                  "max_depth " + std::to_string(max_depth) + " channel " + std::to_string(c));
+        }
+    }
+}
+
+// NEE off (emission counted at every hit) and uniform hemisphere sampling
+// (weight 2 cos albedo) estimate the same truncated series.
+TYPED_TEST(ReferenceAnalytic, InsideEmissiveSphereSamplingVariantsAgree) {
+    for (const wp::test::SamplingVariant& variant : wp::test::kSamplingVariants) {
+        for (int max_depth : {1, 5}) {
+            RenderBlock block{.width = 32, .height = 32, .spp = 16, .max_depth = max_depth};
+            wp::RenderResult result =
+                this->render(wp::test::with_sampling(wp::test::inside_emissive_sphere(block, kRho, kLe), variant));
+            EXPECT_EQ(result.stats.nonfinite, 0u);
+            if (!variant.nee) EXPECT_EQ(result.stats.shadow_rays, 0u);
+            for (int c = 0; c < 3; ++c) {
+                double expected = wp::test::inside_emissive_sphere_radiance(kRho[c], kLe[c], max_depth);
+                this->expect_channel(wp::test::channel_mean(result.image, c), expected,
+                                     std::string(variant.name) + " max_depth " + std::to_string(max_depth) +
+                                         " channel " + std::to_string(c));
+            }
         }
     }
 }
@@ -179,6 +200,29 @@ TYPED_TEST(ReferenceAnalytic, FloorUnderSquareLightMatchesFormFactor) {
                                      "max_depth " + std::to_string(max_depth) + " hidden light " +
                                          std::to_string(hidden_light) + " channel " + std::to_string(c));
             }
+        }
+    }
+}
+
+// Without NEE only the bounce rays that hit the light carry Le: under cosine
+// sampling with probability the form factor and weight albedo; under uniform
+// sampling the weight albedo * 2 cos makes up for the different probability
+// (here, unlike inside the emissive sphere, a wrong weight changes the mean).
+TYPED_TEST(ReferenceAnalytic, FloorUnderSquareLightWithoutNeeMatchesFormFactor) {
+    const glm::dvec3 albedo(0.9, 0.6, 0.3), radiance(5.0, 10.0, 20.0);
+    const double half_side = 0.5, height = 1.5;
+    for (wp::Hemisphere hemisphere : {wp::Hemisphere::Cosine, wp::Hemisphere::Uniform}) {
+        RenderBlock block{.width = 32, .height = 32, .spp = 64, .max_depth = 2};
+        wp::Scene scene = wp::test::plane_under_square_light(block, albedo, radiance, half_side, height);
+        scene.render.nee = false;
+        scene.render.hemisphere = hemisphere;
+        wp::RenderResult result = this->render(scene);
+        EXPECT_EQ(result.stats.shadow_rays, 0u);
+        for (int c = 0; c < 3; ++c) {
+            double expected = wp::test::plane_under_square_light_radiance(albedo[c], radiance[c], half_side, height);
+            this->expect_channel(
+                wp::test::channel_mean(result.image, c), expected,
+                "uniform " + std::to_string(hemisphere == wp::Hemisphere::Uniform) + " channel " + std::to_string(c));
         }
     }
 }

@@ -54,7 +54,7 @@ const PatchCase kPatchCases[] = {
     {"UnknownCameraKey", R"({"camera": {"fovy": 40}})",
      "camera.fovy: unknown key (expected one of: position, look_at, up, fov_y, width, height)"},
     {"UnknownRenderKey", R"({"render": {"samples": 4}})",
-     "render.samples: unknown key (expected one of: spp, max_depth, rr_depth, seed)"},
+     "render.samples: unknown key (expected one of: spp, max_depth, rr_depth, seed, nee, hemisphere)"},
     {"UnknownDiffuseKey", R"({"materials": {"white": {"colour": [1, 1, 1]}}})",
      "materials.white.colour: unknown key (expected one of: type, albedo, emission, two_sided)"},
     {"UnknownMirrorKey",
@@ -202,6 +202,10 @@ const PatchCase kPatchCases[] = {
     {"NegativeSeed", R"({"render": {"seed": -1}})", "render.seed: must be in [0, 4294967295], got -1"},
     {"SeedBeyond32Bits", R"({"render": {"seed": 4294967296}})",
      "render.seed: must be in [0, 4294967295], got 4294967296"},
+    {"NeeAsString", R"({"render": {"nee": "off"}})", "render.nee: must be a boolean, got string"},
+    {"UnknownHemisphere", R"({"render": {"hemisphere": "cos"}})",
+     "render.hemisphere: unknown hemisphere sampling \"cos\" (expected \"cosine\" or \"uniform\")"},
+    {"HemisphereAsNumber", R"({"render": {"hemisphere": 1}})", "render.hemisphere: must be a string, got number"},
 };
 
 class PatchedScene : public testing::TestWithParam<PatchCase> {};

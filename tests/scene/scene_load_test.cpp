@@ -94,6 +94,8 @@ TEST(SceneLoad, DefaultsApply) {
     EXPECT_EQ(scene.render.max_depth, 8);
     EXPECT_EQ(scene.render.rr_depth, 3);
     EXPECT_EQ(scene.render.seed, 0u);
+    EXPECT_TRUE(scene.render.nee);
+    EXPECT_EQ(scene.render.hemisphere, wp::Hemisphere::Cosine);
     expect_vec3_eq(scene.background, glm::dvec3(0.0));
     expect_vec3_eq(scene.camera.up, {0.0, 1.0, 0.0});
     EXPECT_TRUE(scene.materials.empty());
@@ -106,7 +108,8 @@ TEST(SceneLoad, ExplicitSettingsAtTheirLimits) {
     wp::Scene scene = wp::parse_scene(R"({
         "camera": {"position": [0, 0, 0], "look_at": [0, 0, -1], "up": [1, 0, 0], "fov_y": 179.5,
                    "width": 16384, "height": 8192},
-        "render": {"spp": 1048576, "max_depth": 100000, "rr_depth": 2147483647, "seed": 4294967295},
+        "render": {"spp": 1048576, "max_depth": 100000, "rr_depth": 2147483647, "seed": 4294967295,
+                   "nee": false, "hemisphere": "uniform"},
         "background": [0.25, 0.5, 1e12]})",
                                       "limits.json");
     EXPECT_EQ(scene.camera.width, 16384);
@@ -117,6 +120,8 @@ TEST(SceneLoad, ExplicitSettingsAtTheirLimits) {
     EXPECT_EQ(scene.render.max_depth, 100000);
     EXPECT_EQ(scene.render.rr_depth, 2147483647);
     EXPECT_EQ(scene.render.seed, 4294967295u);
+    EXPECT_FALSE(scene.render.nee);
+    EXPECT_EQ(scene.render.hemisphere, wp::Hemisphere::Uniform);
     expect_vec3_eq(scene.background, {0.25, 0.5, 1e12});
 }
 
