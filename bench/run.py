@@ -139,7 +139,7 @@ def scaling(runner, cfg):
 
 
 def accuracy(runner, cfg, out):
-    """relMSE against a converged reference versus time: spp series and max_depth series."""
+    """relMSE against a converged reference versus time: spp, max_depth, rr_depth, nee and hemisphere series."""
     path = os.path.join(ROOT, "scenes", "room.json")
     size = cfg["accuracy_size"]
     # The converged image: far more samples, its own seed, and paths up to
@@ -181,6 +181,10 @@ def accuracy(runner, cfg, out):
         measure("max_depth", "wavefront", cfg["depth_spp"], ["--max-depth", str(depth)], max_depth=depth)
     for rr in cfg["rr_series"]:  # Russian roulette start depth; beyond max_depth it is off
         measure("rr_depth", "wavefront", cfg["depth_spp"], ["--rr-depth", str(rr)], rr_depth=rr)
+    for nee in cfg["nee_series"]:  # off: pure BSDF sampling, the same image with more variance
+        measure("nee", "wavefront", cfg["depth_spp"], ["--nee", nee], nee=nee)
+    for hemisphere in cfg["hemisphere_series"]:  # diffuse sampling: cosine (the default) or uniform
+        measure("hemisphere", "wavefront", cfg["depth_spp"], ["--hemisphere", hemisphere], hemisphere=hemisphere)
     return rows
 
 
@@ -226,7 +230,8 @@ def plot(out, results):
     fig, ax = plt.subplots(figsize=(6, 3.5))
     series = [("spp", "wavefront", None, "o-"), ("spp", "reference", None, "o-"),
               ("spp", "reference", "double", "o:"), ("max_depth", "wavefront", None, "s--"),
-              ("rr_depth", "wavefront", None, "^--")]
+              ("rr_depth", "wavefront", None, "^--"), ("nee", "wavefront", None, "v"),
+              ("hemisphere", "wavefront", None, "D")]
     for study, backend, precision, style in series:
         pts = [r for r in results["accuracy"]
                if r["study"] == study and r["backend"] == backend and r.get("precision") == precision]
@@ -274,7 +279,7 @@ def summary(results, plots):
               "| study | backend | setting | relMSE | bias^2 | variance | time s | 1/(relMSE x time) |",
               "|---|---|---|---|---|---|---|---|"]
     for r in results["accuracy"]:
-        setting = ", ".join(f"{k} {r[k]}" for k in ("spp", "precision", "max_depth", "rr_depth") if k in r)
+        setting = ", ".join(f"{k} {r[k]}" for k in ("spp", "precision", "max_depth", "rr_depth", "nee", "hemisphere") if k in r)
         lines.append(f"| {r['study']} | {r['backend']} | {setting} | {r['relmse']:.4g} +- {r['relmse_sd']:.2g} | "
                      f"{r['bias2']:.3g} | {r['variance']:.3g} | {r['time_s']:.3f} | {r['efficiency']:.4g} |")
     lines += [""] + [f"![{p}]({p})" if p.endswith(".png") else p for p in plots]
@@ -291,12 +296,13 @@ def main():
         cfg = {"scenes": ["room.json", "cornell.json"], "size": 128, "spp": 2, "repeats": 3,
                "wavefront_log2": [12, 14, 16], "resolutions": [64, 128], "accuracy_size": 32, "converged_spp": 256,
                "spp_series": [1, 4, 16], "seeds": 2, "depth_series": [1, 2, 4, 8], "depth_spp": 8,
-               "rr_series": [1, 3, 1000]}
+               "rr_series": [1, 3, 1000], "nee_series": ["off"], "hemisphere_series": ["uniform"]}
     else:
         cfg = {"scenes": ["room.json", "cornell.json"], "size": 512, "spp": 4, "repeats": 3,
                "wavefront_log2": [12, 14, 16, 18, 20, 22], "resolutions": [128, 256, 512, 1024, 2048],
                "accuracy_size": 128, "converged_spp": 4096, "spp_series": [1, 4, 16, 64, 256], "seeds": 3,
-               "depth_series": [1, 2, 4, 8, 16, 32], "depth_spp": 16, "rr_series": [1, 2, 3, 5, 8, 1000]}
+               "depth_series": [1, 2, 4, 8, 16, 32], "depth_spp": 16, "rr_series": [1, 2, 3, 5, 8, 1000],
+               "nee_series": ["on", "off"], "hemisphere_series": ["cosine", "uniform"]}
     os.makedirs(args.out, exist_ok=True)
     start = time.time()
     with tempfile.TemporaryDirectory(prefix="wavepath-bench-") as scratch:
