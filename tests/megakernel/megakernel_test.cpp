@@ -8,25 +8,17 @@
 #include "megakernel/megakernel_renderer.h"
 #include "reference/reference_renderer.h"
 #include "support/image_statistics.h"
+#include "support/path_agreement.h"
 #include "wavefront/wavefront_renderer.h"
 #include "wavefront/wavefront_test_support.h"
 
 namespace wp {
 namespace {
 
-// As the wavefront's test: float rounding (OpenCL built-ins against libm) may
-// rarely change a path's course, so at least 99% of the pixels agree within 1e-4.
 TEST(Megakernel, OneSampleMatchesReferencePathForPath) {
     Scene scene = test::small_room(48, 1);
-    RenderResult megakernel = render_megakernel(scene, {}, {});
-    RenderResult reference = render_reference(scene, ReferenceOptions{2, false});
-    ASSERT_EQ(megakernel.image.rgb.size(), reference.image.rgb.size());
-    double fraction = test::fraction_of_pixels_within(megakernel.image, reference.image, 1e-4);
-    std::printf("pixels within 1e-4 relative of the reference: %.4f\n", fraction);
-    EXPECT_GE(fraction, 0.99);
-    EXPECT_EQ(megakernel.stats.samples, reference.stats.samples);
-    EXPECT_EQ(megakernel.stats.extension_rays, reference.stats.extension_rays);
-    EXPECT_EQ(megakernel.stats.shadow_rays, reference.stats.shadow_rays);
+    test::expect_path_for_path_agreement(render_megakernel(scene, {}, {}),
+                                         render_reference(scene, ReferenceOptions{2, false}), "megakernel");
 }
 
 // Both OpenCL backends run the same float code per vertex and accumulate each

@@ -16,6 +16,7 @@
 #include "reference/reference_renderer.h"
 #include "support/analytic_scenes.h"
 #include "support/image_statistics.h"
+#include "support/path_agreement.h"
 #include "wavefront/wavefront_renderer.h"
 #include "wavefront_test_support.h"
 
@@ -46,13 +47,8 @@ TEST(WavefrontSamplingVariants, OneSampleMatchesReferencePathForPath) {
     for (const test::SamplingVariant& variant : test::kSamplingVariants) {
         Scene scene = test::with_sampling(test::small_room(48, 1), variant);
         RenderResult wavefront = render_wavefront(scene, {}, {});
-        RenderResult reference = render_reference(scene, ReferenceOptions{2, false});
-        ASSERT_EQ(wavefront.image.rgb.size(), reference.image.rgb.size());
-        double fraction = test::fraction_of_pixels_within(wavefront.image, reference.image, 1e-4);
-        std::printf("%s: pixels within 1e-4 relative of the reference: %.4f\n", variant.name, fraction);
-        EXPECT_GE(fraction, 0.99) << variant.name;
-        EXPECT_EQ(wavefront.stats.extension_rays, reference.stats.extension_rays) << variant.name;
-        EXPECT_EQ(wavefront.stats.shadow_rays, reference.stats.shadow_rays) << variant.name;
+        test::expect_path_for_path_agreement(wavefront, render_reference(scene, ReferenceOptions{2, false}),
+                                             variant.name);
         if (!variant.nee) EXPECT_EQ(wavefront.stats.shadow_rays, 0u) << variant.name;
         EXPECT_EQ(render_megakernel(scene, {}, {}).image.rgb, wavefront.image.rgb) << variant.name;
     }
