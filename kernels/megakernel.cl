@@ -8,9 +8,9 @@
 #include "vertex.h"
 
 /* Traces one path; returns its radiance, adds its rays to extension_rays and
- * shadow_rays and the non-finite values it drops to their counters. */
-WP_FN vec3 trace_path(WP_SCENE_PARAMS, __global uint *counts, uint px, uint s, uint *extension_rays,
-                      uint *shadow_rays) {
+ * shadow_rays and the non-finite values it drops to dropped[stage]. */
+WP_FN vec3 trace_path(WP_SCENE_PARAMS, uint px, uint s, uint *extension_rays, uint *shadow_rays,
+                      uint dropped[WP_NONFINITE_STAGE_COUNT]) {
     uint seed = scene->seed;
     vec3 origin = make_vec3(REAL(0.0), REAL(0.0), REAL(0.0)); /* the camera, after loading */
     vec3 d = camera_ray_direction(scene, px, s);
@@ -22,35 +22,33 @@ WP_FN vec3 trace_path(WP_SCENE_PARAMS, __global uint *counts, uint px, uint s, u
         Hit hit = closest_hit(WP_SCENE_ARGS, origin, d);
         if (hit.shape == WP_NO_HIT) {
 #ifdef WP_HAS_BACKGROUND
-            radiance = add_finite(radiance, throughput * vec3_at(scene->background), counts,
-                                  WP_COUNTER_NONFINITE_EMISSION);
+            radiance = add_finite(radiance, v3_mul(throughput, vec3_at(scene->background)), &dropped[0]);
 #endif
             return radiance;
         }
         Surface surface = surface_at(WP_SCENE_ARGS, hit.shape, origin, d, hit.t);
         __global const DeviceMaterial *m = &materials[surface.material];
-        real cos_incident = dot(d, surface.normal);
+        real cos_incident = v3_dot(d, surface.normal);
         int entering = cos_incident < REAL(0.0);
-        vec3 nf = entering ? surface.normal : -surface.normal;
-        radiance = add_finite(radiance, emission_seen(m, cos_incident, after_specular, throughput), counts,
-                              WP_COUNTER_NONFINITE_EMISSION);
+        vec3 nf = v3_select(entering, surface.normal, v3_neg(surface.normal));
+        radiance = add_finite(radiance, emission_seen(m, cos_incident, after_specular, throughput), &dropped[0]);
         if (depth >= scene->max_depth || m->type == WP_MATERIAL_EMITTER) return radiance;
 #ifdef WP_HAS_NEE
         vec3 shadow_origin, shadow_direction, contribution;
         real distance;
         if (m->type == WP_MATERIAL_DIFFUSE &&
             sample_direct_light(WP_SCENE_ARGS, px, s, depth, surface.point, surface.error, nf,
-                                throughput * vec3_at(m->albedo), &shadow_origin, &shadow_direction, &distance,
+                                v3_mul(throughput, vec3_at(m->albedo)), &shadow_origin, &shadow_direction, &distance,
                                 &contribution)) {
             ++*shadow_rays;
             if (!any_hit(WP_SCENE_ARGS, shadow_origin, shadow_direction, distance))
-                radiance = add_finite(radiance, contribution, counts, WP_COUNTER_NONFINITE_DIRECT);
+                radiance = add_finite(radiance, contribution, &dropped[1]);
         }
 #endif
         Scattered scattered = scatter_vertex(m, d, nf, entering, seed, px, s, depth);
-        throughput = throughput * scattered.weight;
+        throughput = v3_mul(throughput, scattered.weight);
         if (!survives_roulette(&throughput, seed, px, s, depth, depth + 1u, scene->rr_depth) ||
-            !throughput_is_finite(throughput, counts))
+            !throughput_is_finite(throughput, &dropped[2]))
             return radiance;
         origin = offset_ray_origin(surface.point, scattered.leave_side, surface.error);
         d = scattered.direction;
@@ -60,24 +58,31 @@ WP_FN vec3 trace_path(WP_SCENE_PARAMS, __global uint *counts, uint px, uint s, u
 
 __kernel __attribute__((reqd_work_group_size(WP_GROUP_SIZE, 1, 1))) void megakernel(
     WP_SCENE_PARAMS, ulong pass_start, uint pass_size, __global float *pass_radiance, __global uint *counts) {
-    __local uint group_extension_rays, group_shadow_rays;
-    if (get_local_id(0) == 0) group_extension_rays = group_shadow_rays = 0u;
+    __local uint group_extension_rays, group_shadow_rays, group_dropped[WP_NONFINITE_STAGE_COUNT];
+    if (get_local_id(0) == 0) {
+        group_extension_rays = group_shadow_rays = 0u;
+        for (uint i = 0u; i < WP_NONFINITE_STAGE_COUNT; ++i) group_dropped[i] = 0u;
+    }
     barrier(CLK_LOCAL_MEM_FENCE);
     uint item = get_global_id(0);
     if (item < pass_size) {
         ulong work = pass_start + item;
         uint pixel_count = scene->width * scene->height;
-        uint extension_rays = 0u, shadow_rays = 0u;
-        vec3 radiance = trace_path(WP_SCENE_ARGS, counts, (uint)(work % pixel_count), (uint)(work / pixel_count),
-                                   &extension_rays, &shadow_rays);
+        uint extension_rays = 0u, shadow_rays = 0u, dropped[WP_NONFINITE_STAGE_COUNT] = {0u, 0u, 0u};
+        vec3 radiance = trace_path(WP_SCENE_ARGS, (uint)(work % pixel_count), (uint)(work / pixel_count),
+                                   &extension_rays, &shadow_rays, dropped);
         finish_path(pass_radiance, item, radiance);
         atomic_add(&group_extension_rays, extension_rays);
         atomic_add(&group_shadow_rays, shadow_rays);
+        for (uint i = 0u; i < WP_NONFINITE_STAGE_COUNT; ++i)
+            if (dropped[i] != 0u) atomic_add(&group_dropped[i], dropped[i]);
     }
     /* One global atomic per counter and work group. */
     barrier(CLK_LOCAL_MEM_FENCE);
     if (get_local_id(0) == 0) {
         atomic_add(&counts[WP_COUNTER_EXTENSION_RAYS], group_extension_rays);
         atomic_add(&counts[WP_COUNTER_SHADOW_RAYS], group_shadow_rays);
+        for (uint i = 0u; i < WP_NONFINITE_STAGE_COUNT; ++i)
+            if (group_dropped[i] != 0u) atomic_add(&counts[WP_COUNTER_NONFINITE_EMISSION + i], group_dropped[i]);
     }
 }

@@ -10,14 +10,15 @@ __kernel __attribute__((reqd_work_group_size(WP_GROUP_SIZE, 1, 1))) void scatter
         vec3 d = LOAD_XYZ(direction, slot);
         Surface surface = surface_at(WP_SCENE_ARGS, hit_shape[slot], LOAD_XYZ(origin, slot), d, hit_t[slot]);
         __global const DeviceMaterial *m = &materials[surface.material];
-        int entering = dot(d, surface.normal) < REAL(0.0);
-        vec3 nf = entering ? surface.normal : -surface.normal;
+        int entering = v3_dot(d, surface.normal) < REAL(0.0);
+        vec3 nf = v3_select(entering, surface.normal, v3_neg(surface.normal));
         uint seed = scene->seed, px = pixel[slot], s = sample[slot], bounce = depth[slot];
         Scattered scattered = scatter_vertex(m, d, nf, entering, seed, px, s, bounce);
-        vec3 throughput = LOAD_RGB(throughput, slot) * scattered.weight;
-        uint new_depth = bounce + 1u;
+        vec3 throughput = v3_mul(LOAD_RGB(throughput, slot), scattered.weight);
+        uint new_depth = bounce + 1u, dropped = 0u;
         continues = survives_roulette(&throughput, seed, px, s, bounce, new_depth, scene->rr_depth) &&
-                    throughput_is_finite(throughput, counts);
+                    throughput_is_finite(throughput, &dropped);
+        count_nonfinite(slot_nonfinite, capacity, WP_COUNTER_NONFINITE_SCATTER, slot, dropped);
         if (continues) {
             STORE_XYZ(origin, slot, offset_ray_origin(surface.point, scattered.leave_side, surface.error));
             STORE_XYZ(direction, slot, scattered.direction);

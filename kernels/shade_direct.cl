@@ -12,8 +12,8 @@ __kernel __attribute__((reqd_work_group_size(WP_GROUP_SIZE, 1, 1))) void shade_d
         vec3 d = LOAD_XYZ(direction, slot);
         Surface s = surface_at(WP_SCENE_ARGS, hit_shape[slot], LOAD_XYZ(origin, slot), d, hit_t[slot]);
         __global const DeviceMaterial *m = &materials[s.material];
-        real cos_incident = dot(d, s.normal);
-        vec3 nf = cos_incident < REAL(0.0) ? s.normal : -s.normal;
+        real cos_incident = v3_dot(d, s.normal);
+        vec3 nf = v3_select(cos_incident < REAL(0.0), s.normal, v3_neg(s.normal));
         uint bounce = depth[slot];
         vec3 throughput = LOAD_RGB(throughput, slot);
         vec3 radiance = LOAD_RGB(radiance, slot);
@@ -21,8 +21,9 @@ __kernel __attribute__((reqd_work_group_size(WP_GROUP_SIZE, 1, 1))) void shade_d
 #ifdef WP_HAS_SPECULAR
         after_specular = specular[slot] != 0u;
 #endif
-        radiance = add_finite(radiance, emission_seen(m, cos_incident, after_specular, throughput), counts,
-                              WP_COUNTER_NONFINITE_EMISSION);
+        uint dropped = 0u;
+        radiance = add_finite(radiance, emission_seen(m, cos_incident, after_specular, throughput), &dropped);
+        count_nonfinite(slot_nonfinite, capacity, WP_COUNTER_NONFINITE_EMISSION, slot, dropped);
         ends = bounce >= scene->max_depth || m->type == WP_MATERIAL_EMITTER;
         if (ends) {
             finish_path(pass_radiance, pass_item[slot], radiance);
@@ -34,7 +35,7 @@ __kernel __attribute__((reqd_work_group_size(WP_GROUP_SIZE, 1, 1))) void shade_d
             real distance;
             if (m->type == WP_MATERIAL_DIFFUSE &&
                 sample_direct_light(WP_SCENE_ARGS, pixel[slot], sample[slot], bounce, s.point, s.error, nf,
-                                    throughput * vec3_at(m->albedo), &shadow_origin, &shadow_direction, &distance,
+                                    v3_mul(throughput, vec3_at(m->albedo)), &shadow_origin, &shadow_direction, &distance,
                                     &contribution)) {
                 STORE_XYZ(shadow_origin, slot, shadow_origin);
                 STORE_XYZ(shadow_direction, slot, shadow_direction);

@@ -21,16 +21,16 @@ WP_FN real fresnel_dielectric(real cos_theta_i, real eta) {
 }
 
 /* Mirror direction of an incoming ray direction d about unit normal n. */
-WP_FN vec3 reflect_direction(vec3 d, vec3 n) { return d - REAL(2.0) * dot(d, n) * n; }
+WP_FN vec3 reflect_direction(vec3 d, vec3 n) { return v3_add_scaled(d, REAL(-2.0) * v3_dot(d, n), n); }
 
 /* Refracts ray direction d at unit normal n that faces the incident side
  * (dot(d, n) < 0), with eta = n_transmitted / n_incident. Returns 0 on total
  * internal reflection, else 1 with the unit transmitted direction in *out. */
 WP_FN int refract_direction(vec3 d, vec3 n, real eta, vec3* out) {
-    real cos_theta_i = -dot(d, n);
+    real cos_theta_i = -v3_dot(d, n);
     real sin2_theta_t = (REAL(1.0) - cos_theta_i * cos_theta_i) / (eta * eta);
     if (sin2_theta_t >= REAL(1.0)) return 0;
     real cos_theta_t = safe_sqrt(REAL(1.0) - sin2_theta_t);
-    *out = normalize(d / eta + (cos_theta_i / eta - cos_theta_t) * n);
+    *out = v3_normalize(v3_add_scaled(v3_div(d, eta), cos_theta_i / eta - cos_theta_t, n));
     return 1;
 }

@@ -57,9 +57,9 @@ WP_FN real ray_point_error(vec3 origin, real t, real shape_magnitude) {
  * the sample's own error plus the error with which the shadow ray would meet
  * the light there, so that the ray stops short of the light. */
 WP_FN real shadow_target_error(vec3 x, vec3 target, real light_magnitude) {
-    return shape_point_error(light_magnitude) + ray_point_error(x, length(target - x), light_magnitude);
+    return shape_point_error(light_magnitude) + ray_point_error(x, v3_length(v3_sub(target, x)), light_magnitude);
 }
 
 /* `n` is the unit geometric normal on the side the ray leaves into; `error`
  * bounds p's distance from the surface. */
-WP_FN vec3 offset_ray_origin(vec3 p, vec3 n, real error) { return p + (REAL(2.0) * error) * n; }
+WP_FN vec3 offset_ray_origin(vec3 p, vec3 n, real error) { return v3_add_scaled(p, REAL(2.0) * error, n); }

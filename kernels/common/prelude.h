@@ -3,10 +3,15 @@
  *
  * Rules for the code in kernels/common:
  *   - functions are WP_FN, take and return values (no references, no templates);
- *   - scalars are `real`, vectors `vec3` built with make_vec3(x, y, z);
+ *   - scalars are `real`, vectors `vec3` built with make_vec3(x, y, z) and
+ *     combined only through the v3_* functions below, never with operators:
+ *     in OpenCL C vec3 is a struct of three scalars, not float3, because
+ *     PoCL's loop vectoriser (which runs a work group's work items in SIMD
+ *     lanes) gives up on any instruction of a vector type;
+ *   - only sqrt, fabs, fmin, fmax, floor and copysign on scalars are assumed
+ *     to exist on both sides (no sin or cos: calls into the OpenCL library
+ *     cannot be vectorised; see wp_sincos_turns);
  *   - floating constants are written REAL(1.0) (always with a decimal point);
- *   - only dot, cross, normalize, length, sqrt, fabs, fmin, fmax, floor, sin,
- *     cos, atan2, acos and copysign on scalars are assumed to exist on both sides;
  *   - pointers into device memory are WP_GLOBAL.
  */
 #ifdef __OPENCL_C_VERSION__
@@ -14,9 +19,15 @@
 #define WP_FN static inline
 #define WP_GLOBAL __global
 typedef float real;
-typedef float3 vec3;
+typedef struct {
+    float x, y, z;
+} vec3;
 typedef int real_bits; /* integer of the same width as real, for ULP offsets */
-#define make_vec3(x, y, z) ((float3)((x), (y), (z)))
+WP_FN vec3 make_vec3(real x, real y, real z) {
+    vec3 v;
+    v.x = x, v.y = y, v.z = z;
+    return v;
+}
 #define REAL(x) (x##f)
 #define real_as_bits(x) as_int(x)
 #define bits_as_real(x) as_float(x)
@@ -38,6 +49,27 @@ typedef int real_bits; /* integer of the same width as real, for ULP offsets */
 #define WP_PI REAL(3.14159265358979323846)
 #define WP_INV_PI REAL(0.31830988618379067154)
 #define WP_INFINITY WP_REAL_MAX
+
+/* Vector arithmetic, written once for both sides and component by component
+ * in the same order, so kernels and C++ round alike. */
+WP_FN vec3 v3_add(vec3 a, vec3 b) { return make_vec3(a.x + b.x, a.y + b.y, a.z + b.z); }
+WP_FN vec3 v3_sub(vec3 a, vec3 b) { return make_vec3(a.x - b.x, a.y - b.y, a.z - b.z); }
+WP_FN vec3 v3_mul(vec3 a, vec3 b) { return make_vec3(a.x * b.x, a.y * b.y, a.z * b.z); } /* per component */
+WP_FN vec3 v3_scale(vec3 a, real s) { return make_vec3(a.x * s, a.y * s, a.z * s); }
+WP_FN vec3 v3_div(vec3 a, real s) { return make_vec3(a.x / s, a.y / s, a.z / s); }
+WP_FN vec3 v3_neg(vec3 a) { return make_vec3(-a.x, -a.y, -a.z); }
+/* a + s * b */
+WP_FN vec3 v3_add_scaled(vec3 a, real s, vec3 b) { return make_vec3(a.x + s * b.x, a.y + s * b.y, a.z + s * b.z); }
+WP_FN real v3_dot(vec3 a, vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+WP_FN vec3 v3_cross(vec3 a, vec3 b) {
+    return make_vec3(a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x);
+}
+WP_FN real v3_length(vec3 a) { return sqrt(v3_dot(a, a)); }
+WP_FN vec3 v3_normalize(vec3 a) { return v3_scale(a, REAL(1.0) / v3_length(a)); }
+/* a if choose_a, else b: a select in the kernels, not a branch. */
+WP_FN vec3 v3_select(int choose_a, vec3 a, vec3 b) {
+    return make_vec3(choose_a ? a.x : b.x, choose_a ? a.y : b.y, choose_a ? a.z : b.z);
+}
 
 WP_FN real wp_clamp(real x, real lo, real hi) { return fmin(fmax(x, lo), hi); }
 WP_FN real wp_sqr(real x) { return x * x; }

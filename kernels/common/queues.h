@@ -17,9 +17,11 @@
 /* Slots each work item of the compaction kernels handles, in order. */
 #define WP_COMPACT_BLOCK 256u
 
-#define WP_COUNTER_WORK 5u      /* work items of the pass handed out (may overshoot the pass) */
+#define WP_COUNTER_WORK 5u /* work items of the pass handed out before this generate (set by the host) */
 /* Non-finite values dropped, one counter per stage where one can arise, in
- * the order of wp::nonfinite_stage_names (src/core/render.h): */
+ * the order of wp::nonfinite_stage_names (src/core/render.h). The megakernel
+ * adds to these; the wavefront stages keep one counter per slot and stage
+ * instead (count_nonfinite in wavefront.h), which the host sums. */
 #define WP_COUNTER_NONFINITE_EMISSION 6u /* emission or background added to the radiance */
 #define WP_COUNTER_NONFINITE_DIRECT 7u   /* a light sample's contribution added to the radiance */
 #define WP_COUNTER_NONFINITE_SCATTER 8u  /* throughput after BSDF sampling and roulette (ends the path) */
@@ -28,7 +30,7 @@
 #define WP_COUNTER_SHADOW_RAYS 10u
 #define WP_COUNTS_SIZE 11u
 
-/* Built with -DWP_PROFILE, the kernels also count rays per path depth in two
+/* With --profile, count_depths.cl counts rays per path depth in two
  * histograms after the counters (the last bin takes every deeper ray). */
 #define WP_PROFILE_DEPTHS 64u
 #define WP_PROFILE_EXTENSION_BY_DEPTH WP_COUNTS_SIZE

@@ -18,14 +18,57 @@ WP_FN Frame frame_from_normal(vec3 n) {
 }
 
 WP_FN vec3 frame_to_world(Frame frame, vec3 local_direction) {
-    return local_direction.x * frame.tangent + local_direction.y * frame.bitangent + local_direction.z * frame.normal;
+    return v3_add(v3_add(v3_scale(frame.tangent, local_direction.x), v3_scale(frame.bitangent, local_direction.y)),
+                  v3_scale(frame.normal, local_direction.z));
+}
+
+typedef struct {
+    real cos_value, sin_value;
+} CosSin;
+
+/* cos and sin of the angle 2 pi u, u in [0, 1]: reduced to the nearest
+ * quarter turn and a remainder x in [-pi/4, pi/4], where Taylor polynomials
+ * through x^15 and x^16 are exact to 5e-17, below double's rounding.
+ * Written out instead of calling cos and sin, which PoCL cannot vectorise,
+ * and computed the same way on both sides. */
+WP_FN CosSin cos_sin_turns(real u) {
+    real quarter_turns = floor(REAL(4.0) * u + REAL(0.5));
+    real x = (REAL(4.0) * u - quarter_turns) * (WP_PI / REAL(2.0));
+    real x2 = x * x;
+    /* Horner form; the coefficients are (-1)^k / (2k+1)! and (-1)^k / (2k)!. */
+    real s = REAL(-1.0) / REAL(1307674368000.0);
+    s = s * x2 + REAL(1.0) / REAL(6227020800.0);
+    s = s * x2 - REAL(1.0) / REAL(39916800.0);
+    s = s * x2 + REAL(1.0) / REAL(362880.0);
+    s = s * x2 - REAL(1.0) / REAL(5040.0);
+    s = s * x2 + REAL(1.0) / REAL(120.0);
+    s = s * x2 - REAL(1.0) / REAL(6.0);
+    s = (s * x2 + REAL(1.0)) * x;
+    real c = REAL(1.0) / REAL(20922789888000.0);
+    c = c * x2 - REAL(1.0) / REAL(87178291200.0);
+    c = c * x2 + REAL(1.0) / REAL(479001600.0);
+    c = c * x2 - REAL(1.0) / REAL(3628800.0);
+    c = c * x2 + REAL(1.0) / REAL(40320.0);
+    c = c * x2 - REAL(1.0) / REAL(720.0);
+    c = c * x2 + REAL(1.0) / REAL(24.0);
+    c = c * x2 - REAL(1.0) / REAL(2.0);
+    c = c * x2 + REAL(1.0);
+    int quadrant = (int)quarter_turns & 3; /* rotate (c, s) by quadrant quarter turns */
+    CosSin r;
+    r.cos_value = quadrant == 0 ? c : quadrant == 1 ? -s : quadrant == 2 ? -c : s;
+    r.sin_value = quadrant == 0 ? s : quadrant == 1 ? c : quadrant == 2 ? -s : -c;
+    return r;
+}
+
+/* The point at radius r and angle 2 pi u of the plane z = z, as a vector. */
+WP_FN vec3 polar_vec3(real r, real u, real z) {
+    CosSin phi = cos_sin_turns(u);
+    return make_vec3(r * phi.cos_value, r * phi.sin_value, z);
 }
 
 /* Malley's method: pdf = cos(theta) / pi over the hemisphere. */
 WP_FN vec3 sample_cosine_hemisphere(real u1, real u2) {
-    real r = sqrt(u1);
-    real phi = REAL(2.0) * WP_PI * u2;
-    return make_vec3(r * cos(phi), r * sin(phi), safe_sqrt(REAL(1.0) - u1));
+    return polar_vec3(sqrt(u1), u2, safe_sqrt(REAL(1.0) - u1));
 }
 
 WP_FN real cosine_hemisphere_pdf(real cos_theta) { return fmax(cos_theta, REAL(0.0)) * WP_INV_PI; }
@@ -33,9 +76,7 @@ WP_FN real cosine_hemisphere_pdf(real cos_theta) { return fmax(cos_theta, REAL(0
 /* pdf = 1 / (2 pi) over the hemisphere. */
 WP_FN vec3 sample_uniform_hemisphere(real u1, real u2) {
     real z = u1;
-    real r = safe_sqrt(REAL(1.0) - z * z);
-    real phi = REAL(2.0) * WP_PI * u2;
-    return make_vec3(r * cos(phi), r * sin(phi), z);
+    return polar_vec3(safe_sqrt(REAL(1.0) - z * z), u2, z);
 }
 
 /* A point sampled on a light, with everything next-event estimation needs. */
@@ -47,19 +88,19 @@ typedef struct {
 
 /* Converts an area density at `point` to a solid-angle density seen from `reference`. */
 WP_FN real area_to_solid_angle_pdf(real pdf_area, vec3 reference, vec3 point, vec3 normal) {
-    vec3 to_reference = reference - point;
-    real distance_squared = dot(to_reference, to_reference);
-    real cos_light = fabs(dot(normal, to_reference)) / sqrt(distance_squared);
+    vec3 to_reference = v3_sub(reference, point);
+    real distance_squared = v3_dot(to_reference, to_reference);
+    real cos_light = fabs(v3_dot(normal, to_reference)) / sqrt(distance_squared);
     return cos_light > REAL(0.0) ? pdf_area * distance_squared / cos_light : REAL(0.0);
 }
 
 /* Uniform by area over the parallelogram corner + u*edge1 + v*edge2. */
 WP_FN LightSample sample_quad(vec3 corner, vec3 edge1, vec3 edge2, vec3 reference, real u1, real u2) {
-    vec3 n = cross(edge1, edge2);
-    real area = length(n);
+    vec3 n = v3_cross(edge1, edge2);
+    real area = v3_length(n);
     LightSample s;
-    s.point = corner + u1 * edge1 + u2 * edge2;
-    s.normal = n / area;
+    s.point = v3_add_scaled(v3_add_scaled(corner, u1, edge1), u2, edge2);
+    s.normal = v3_div(n, area);
     s.pdf_solid_angle = area_to_solid_angle_pdf(REAL(1.0) / area, reference, s.point, s.normal);
     return s;
 }
@@ -67,11 +108,9 @@ WP_FN LightSample sample_quad(vec3 corner, vec3 edge1, vec3 edge2, vec3 referenc
 /* Uniform by area over the whole sphere (used from inside or on the sphere). */
 WP_FN LightSample sample_sphere_area(vec3 center, real radius, vec3 reference, real u1, real u2) {
     real z = REAL(1.0) - REAL(2.0) * u1;
-    real r = safe_sqrt(REAL(1.0) - z * z);
-    real phi = REAL(2.0) * WP_PI * u2;
     LightSample s;
-    s.normal = make_vec3(r * cos(phi), r * sin(phi), z);
-    s.point = center + radius * s.normal;
+    s.normal = polar_vec3(safe_sqrt(REAL(1.0) - z * z), u2, z);
+    s.point = v3_add_scaled(center, radius, s.normal);
     s.pdf_solid_angle =
         area_to_solid_angle_pdf(REAL(1.0) / (REAL(4.0) * WP_PI * radius * radius), reference, s.point, s.normal);
     return s;
@@ -86,8 +125,8 @@ WP_FN LightSample sample_sphere_area(vec3 center, real radius, vec3 reference, r
  * small-angle branch instead approximates 1 - cos by sin^2 / 2, a bias of up
  * to 1.7e-4 near its 1.5 degree switch). */
 WP_FN LightSample sample_sphere_cone(vec3 center, real radius, vec3 reference, real u1, real u2) {
-    vec3 to_center = center - reference;
-    real distance = length(to_center);
+    vec3 to_center = v3_sub(center, reference);
+    real distance = v3_length(to_center);
     real sin_theta_max = radius / distance;
     real sin2_theta_max = sin_theta_max * sin_theta_max;
     real cos_theta_max = safe_sqrt(REAL(1.0) - sin2_theta_max);
@@ -98,12 +137,10 @@ WP_FN LightSample sample_sphere_cone(vec3 center, real radius, vec3 reference, r
     /* Angle alpha at the centre between the axis and the sampled point. */
     real cos_alpha = sin2_theta / sin_theta_max + cos_theta * safe_sqrt(REAL(1.0) - sin2_theta / sin2_theta_max);
     real sin_alpha = safe_sqrt(REAL(1.0) - cos_alpha * cos_alpha);
-    real phi = REAL(2.0) * WP_PI * u2;
-    Frame frame = frame_from_normal(to_center / distance);
-    vec3 local_direction = make_vec3(sin_alpha * cos(phi), sin_alpha * sin(phi), cos_alpha);
+    Frame frame = frame_from_normal(v3_div(to_center, distance));
     LightSample s;
-    s.normal = -frame_to_world(frame, local_direction);
-    s.point = center + radius * s.normal;
+    s.normal = v3_neg(frame_to_world(frame, polar_vec3(sin_alpha, u2, cos_alpha)));
+    s.point = v3_add_scaled(center, radius, s.normal);
     s.pdf_solid_angle = REAL(1.0) / (REAL(2.0) * WP_PI * one_minus_cos_theta_max);
     return s;
 }
@@ -112,23 +149,24 @@ WP_FN LightSample sample_sphere_cone(vec3 center, real radius, vec3 reference, r
  * where the cone degenerates. Both are unbiased; the switch is a choice of
  * strategy, not a tolerance. */
 WP_FN LightSample sample_sphere(vec3 center, real radius, vec3 reference, real u1, real u2) {
-    vec3 to_center = center - reference;
-    real distance_squared = dot(to_center, to_center);
+    vec3 to_center = v3_sub(center, reference);
+    real distance_squared = v3_dot(to_center, to_center);
     if (distance_squared > REAL(1.0001) * radius * radius) return sample_sphere_cone(center, radius, reference, u1, u2);
     return sample_sphere_area(center, radius, reference, u1, u2);
 }
 
-/* Index of the light whose cumulative-probability interval holds u.
- * cdf has `count` entries, increasing, the last equal to 1. */
+/* Index of the light whose cumulative-probability interval holds u (the
+ * first i with u < cdf[i]). cdf has `count` entries, increasing, the last
+ * equal to 1. A binary search whose steps depend on `count` alone and whose
+ * choices are selects, so a constant count unrolls it into vector code. */
 WP_FN uint select_light(WP_GLOBAL const real* cdf, uint count, real u) {
-    uint lo = 0u;
-    uint hi = count - 1u;
-    while (lo < hi) {
-        uint mid = (lo + hi) / 2u;
-        if (u < cdf[mid]) hi = mid;
-        else lo = mid + 1u;
+    uint first = 0u; /* the answer lies in [first, first + remaining) */
+    for (uint remaining = count; remaining > 1u;) {
+        uint step = remaining / 2u;
+        first = u >= cdf[first + step - 1u] ? first + step : first;
+        remaining -= step;
     }
-    return lo;
+    return first;
 }
 
 /* Probability that select_light returns `index`. */
@@ -142,5 +180,5 @@ WP_FN real light_selection_pmf(WP_GLOBAL const real* cdf, uint index) {
 WP_FN vec3 camera_direction(vec3 right, vec3 up, vec3 forward, real tan_half_fov_y, real aspect, real x, real y) {
     real sx = (REAL(2.0) * x - REAL(1.0)) * tan_half_fov_y * aspect;
     real sy = (REAL(1.0) - REAL(2.0) * y) * tan_half_fov_y;
-    return normalize(forward + sx * right + sy * up);
+    return v3_normalize(v3_add_scaled(v3_add_scaled(forward, sx, right), sy, up));
 }

@@ -41,6 +41,7 @@ typedef struct {
 
 typedef struct {
     float corner[3], edge1[3], edge2[3];
+    float plane_normal[3], plane_w[3]; /* quad_plane(edge1, edge2), geometry.h */
     uint material;
 } DeviceQuad;
 

@@ -25,8 +25,8 @@ WP_FN vec3 emission_seen(__global const DeviceMaterial *m, real cos_incident, in
 #ifdef WP_NEE_OFF
     after_specular = 1; /* pure BSDF sampling: no light sample accounts for this emission */
 #endif
-    if (emits && (m->two_sided || cos_incident < REAL(0.0)) && after_specular) return throughput * emission;
-    return make_vec3(REAL(0.0), REAL(0.0), REAL(0.0));
+    int seen = emits && (m->two_sided || cos_incident < REAL(0.0)) && after_specular;
+    return v3_select(seen, v3_mul(throughput, emission), make_vec3(REAL(0.0), REAL(0.0), REAL(0.0)));
 }
 
 /* Samples one light for the diffuse vertex (x, nf); returns 1 with the shadow
@@ -38,7 +38,7 @@ WP_FN int sample_direct_light(WP_SCENE_PARAMS, uint pixel, uint sample, uint bou
                               vec3 *shadow_origin, vec3 *shadow_direction, real *shadow_distance,
                               vec3 *contribution) {
     uint seed = scene->seed;
-    uint light = select_light(light_cdf, scene->light_count, rng_uniform(seed, pixel, sample, bounce, DIM_LIGHT_SELECT));
+    uint light = select_light(light_cdf, LIGHT_COUNT, rng_uniform(seed, pixel, sample, bounce, DIM_LIGHT_SELECT));
     real pmf = light_selection_pmf(light_cdf, light);
     real u = rng_uniform(seed, pixel, sample, bounce, DIM_LIGHT_U);
     real v = rng_uniform(seed, pixel, sample, bounce, DIM_LIGHT_V);
@@ -64,17 +64,21 @@ WP_FN int sample_direct_light(WP_SCENE_PARAMS, uint pixel, uint sample, uint bou
     }
 #endif
     if (ls.pdf_solid_angle == REAL(0.0)) return 0;
-    vec3 wi = normalize(ls.point - x);
-    real cos_surface = dot(wi, nf);
-    int light_faces_x = dot(ls.normal, x - ls.point) > REAL(0.0);
+    vec3 wi = v3_normalize(v3_sub(ls.point, x));
+    real cos_surface = v3_dot(wi, nf);
+    int light_faces_x = v3_dot(ls.normal, v3_sub(x, ls.point)) > REAL(0.0);
     if (!(cos_surface > REAL(0.0)) || !(materials[material].two_sided || light_faces_x)) return 0;
     vec3 from = offset_ray_origin(x, nf, x_error);
-    vec3 to = offset_ray_origin(ls.point, light_faces_x ? ls.normal : -ls.normal,
+    vec3 to = offset_ray_origin(ls.point, v3_select(light_faces_x, ls.normal, v3_neg(ls.normal)),
                                 shadow_target_error(x, ls.point, magnitude));
-    *shadow_distance = length(to - from);
-    *shadow_direction = (to - from) / *shadow_distance;
+    vec3 along = v3_sub(to, from);
+    *shadow_distance = v3_length(along);
+    *shadow_direction = v3_div(along, *shadow_distance);
     *shadow_origin = from;
-    *contribution = weight * WP_INV_PI * vec3_at(materials[material].emission) * cos_surface / (ls.pdf_solid_angle * pmf);
+    /* in the reference's order of operations */
+    *contribution = v3_div(v3_scale(v3_mul(v3_scale(weight, WP_INV_PI), vec3_at(materials[material].emission)),
+                                    cos_surface),
+                           ls.pdf_solid_angle * pmf);
     return 1;
 }
 #endif
@@ -90,7 +94,7 @@ WP_FN Scattered scatter_diffuse(__global const DeviceMaterial *m, vec3 nf, real 
     Scattered s;
 #ifdef WP_UNIFORM_HEMISPHERE
     vec3 in_frame = sample_uniform_hemisphere(u, v); /* `local` is an OpenCL keyword */
-    s.weight = vec3_at(m->albedo) * (REAL(2.0) * in_frame.z); /* albedo/pi * cos / (1/(2 pi)) */
+    s.weight = v3_scale(vec3_at(m->albedo), REAL(2.0) * in_frame.z); /* albedo/pi * cos / (1/(2 pi)) */
 #else
     vec3 in_frame = sample_cosine_hemisphere(u, v);
     s.weight = vec3_at(m->albedo);
@@ -117,7 +121,7 @@ WP_FN Scattered scatter_mirror(__global const DeviceMaterial *m, vec3 d, vec3 nf
 WP_FN Scattered scatter_glass(__global const DeviceMaterial *m, vec3 d, vec3 nf, int entering, real u_lobe) {
     Scattered s;
     real eta = entering ? m->ior : REAL(1.0) / m->ior;
-    real reflectance = fresnel_dielectric(-dot(d, nf), eta);
+    real reflectance = fresnel_dielectric(-v3_dot(d, nf), eta);
     s.specular = 1u;
     s.weight = make_vec3(REAL(1.0), REAL(1.0), REAL(1.0));
     s.leave_side = nf;
@@ -125,8 +129,8 @@ WP_FN Scattered scatter_glass(__global const DeviceMaterial *m, vec3 d, vec3 nf,
     vec3 refracted;
     if (u_lobe >= reflectance && refract_direction(d, nf, eta, &refracted)) {
         s.direction = refracted;
-        s.weight = s.weight / (eta * eta);
-        s.leave_side = -nf;
+        s.weight = v3_div(s.weight, eta * eta);
+        s.leave_side = v3_neg(nf);
     }
     return s;
 }
@@ -157,7 +161,7 @@ WP_FN int survives_roulette(vec3 *throughput, uint seed, uint px, uint s, uint b
     if (new_depth < rr_depth) return 1;
     real survival = wp_clamp(max_component(*throughput), REAL(0.05), REAL(1.0));
     int survives = rng_uniform(seed, px, s, bounce, DIM_ROULETTE) < survival;
-    *throughput = *throughput / survival;
+    *throughput = v3_div(*throughput, survival);
     return survives;
 }
 

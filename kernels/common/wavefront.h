@@ -34,7 +34,32 @@
  * once per kernel, src/wavefront/pipeline.cpp). */
 #define WP_STAGE_PARAMS                                                                                \
     WP_SCENE_PARAMS, __global uint *queues, __global uint *counts, uint capacity, ulong pass_start, uint pass_size, \
-        __global float *pass_radiance WP_PATH_STATE_PARAMS
+        __global float *pass_radiance, __global uint *slot_nonfinite WP_PATH_STATE_PARAMS
+
+/* Shape and light counts: compile-time constants where the host passes them
+ * (src/wavefront/kernel_options.cpp, small scenes), so the loops over them
+ * unroll into straight-line code that PoCL vectorises across work items;
+ * otherwise read from the scene header at run time. */
+#ifdef WP_SPHERE_COUNT
+#define SPHERE_COUNT WP_SPHERE_COUNT
+#else
+#define SPHERE_COUNT scene->sphere_count
+#endif
+#ifdef WP_PLANE_COUNT
+#define PLANE_COUNT WP_PLANE_COUNT
+#else
+#define PLANE_COUNT scene->plane_count
+#endif
+#ifdef WP_QUAD_COUNT
+#define QUAD_COUNT WP_QUAD_COUNT
+#else
+#define QUAD_COUNT scene->quad_count
+#endif
+#ifdef WP_LIGHT_COUNT
+#define LIGHT_COUNT WP_LIGHT_COUNT
+#else
+#define LIGHT_COUNT scene->light_count
+#endif
 
 #define LOAD_XYZ(name, i) make_vec3(name##_x[i], name##_y[i], name##_z[i])
 #define LOAD_RGB(name, i) make_vec3(name##_r[i], name##_g[i], name##_b[i])
@@ -90,52 +115,70 @@ typedef struct {
 
 WP_FN uint shape_id(uint type, uint index) { return (type << WP_SHAPE_TYPE_SHIFT) | index; }
 
+/* Each shape's test, t in (0, t_max) or WP_INFINITY. */
+WP_FN real sphere_t(__global const DeviceSphere *sphere, vec3 origin, vec3 direction, real t_max) {
+    return intersect_sphere(vec3_at(sphere->center), sphere->radius, origin, direction, t_max);
+}
+WP_FN real plane_t(__global const DevicePlane *plane, vec3 origin, vec3 direction, real t_max) {
+    return intersect_plane(vec3_at(plane->point), vec3_at(plane->normal), origin, direction, t_max);
+}
+WP_FN real quad_t(__global const DeviceQuad *quad, vec3 origin, vec3 direction, real t_max) {
+    QuadPlane plane;
+    plane.normal = vec3_at(quad->plane_normal);
+    plane.w = vec3_at(quad->plane_w);
+    return intersect_quad_plane(vec3_at(quad->corner), vec3_at(quad->edge1), vec3_at(quad->edge2), plane, origin,
+                                direction, t_max);
+}
+
 /* Closest hit over spheres, then planes, then quads, as the reference tests them. */
 WP_FN Hit closest_hit(WP_SCENE_PARAMS, vec3 origin, vec3 direction) {
     Hit hit;
     hit.t = WP_INFINITY;
     hit.shape = WP_NO_HIT;
 #ifdef WP_HAS_SPHERES
-    for (uint i = 0; i < scene->sphere_count; ++i) {
-        real t = intersect_sphere(vec3_at(spheres[i].center), spheres[i].radius, origin, direction, hit.t);
-        if (t < hit.t) hit.t = t, hit.shape = shape_id(WP_SHAPE_SPHERE, i);
+#pragma unroll
+    for (uint i = 0; i < SPHERE_COUNT; ++i) {
+        real t = sphere_t(&spheres[i], origin, direction, hit.t);
+        hit.shape = t < hit.t ? shape_id(WP_SHAPE_SPHERE, i) : hit.shape;
+        hit.t = fmin(t, hit.t);
     }
 #endif
 #ifdef WP_HAS_PLANES
-    for (uint i = 0; i < scene->plane_count; ++i) {
-        real t = intersect_plane(vec3_at(planes[i].point), vec3_at(planes[i].normal), origin, direction, hit.t);
-        if (t < hit.t) hit.t = t, hit.shape = shape_id(WP_SHAPE_PLANE, i);
+#pragma unroll
+    for (uint i = 0; i < PLANE_COUNT; ++i) {
+        real t = plane_t(&planes[i], origin, direction, hit.t);
+        hit.shape = t < hit.t ? shape_id(WP_SHAPE_PLANE, i) : hit.shape;
+        hit.t = fmin(t, hit.t);
     }
 #endif
 #ifdef WP_HAS_QUADS
-    for (uint i = 0; i < scene->quad_count; ++i) {
-        real t = intersect_quad(vec3_at(quads[i].corner), vec3_at(quads[i].edge1), vec3_at(quads[i].edge2), origin,
-                                direction, hit.t);
-        if (t < hit.t) hit.t = t, hit.shape = shape_id(WP_SHAPE_QUAD, i);
+#pragma unroll
+    for (uint i = 0; i < QUAD_COUNT; ++i) {
+        real t = quad_t(&quads[i], origin, direction, hit.t);
+        hit.shape = t < hit.t ? shape_id(WP_SHAPE_QUAD, i) : hit.shape;
+        hit.t = fmin(t, hit.t);
     }
 #endif
     return hit;
 }
 
-/* Whether any shape is hit at a distance below t_max. */
+/* Whether any shape is hit at a distance below t_max. Every shape is tested
+ * (no early exit), which keeps the unrolled loops free of branches. */
 WP_FN int any_hit(WP_SCENE_PARAMS, vec3 origin, vec3 direction, real t_max) {
+    int occluded = 0;
 #ifdef WP_HAS_SPHERES
-    for (uint i = 0; i < scene->sphere_count; ++i)
-        if (intersect_sphere(vec3_at(spheres[i].center), spheres[i].radius, origin, direction, t_max) < t_max)
-            return 1;
+#pragma unroll
+    for (uint i = 0; i < SPHERE_COUNT; ++i) occluded |= sphere_t(&spheres[i], origin, direction, t_max) < t_max;
 #endif
 #ifdef WP_HAS_PLANES
-    for (uint i = 0; i < scene->plane_count; ++i)
-        if (intersect_plane(vec3_at(planes[i].point), vec3_at(planes[i].normal), origin, direction, t_max) < t_max)
-            return 1;
+#pragma unroll
+    for (uint i = 0; i < PLANE_COUNT; ++i) occluded |= plane_t(&planes[i], origin, direction, t_max) < t_max;
 #endif
 #ifdef WP_HAS_QUADS
-    for (uint i = 0; i < scene->quad_count; ++i)
-        if (intersect_quad(vec3_at(quads[i].corner), vec3_at(quads[i].edge1), vec3_at(quads[i].edge2), origin,
-                           direction, t_max) < t_max)
-            return 1;
+#pragma unroll
+    for (uint i = 0; i < QUAD_COUNT; ++i) occluded |= quad_t(&quads[i], origin, direction, t_max) < t_max;
 #endif
-    return 0;
+    return occluded;
 }
 
 typedef struct {
@@ -147,7 +190,7 @@ typedef struct {
 
 WP_FN Surface surface_at(WP_SCENE_PARAMS, uint shape, vec3 origin, vec3 direction, real t) {
     Surface s;
-    s.point = origin + t * direction;
+    s.point = v3_add_scaled(origin, t, direction);
     uint index = shape & WP_SHAPE_INDEX_MASK;
     uint type = shape >> WP_SHAPE_TYPE_SHIFT;
 #ifdef WP_HAS_SPHERES
@@ -178,20 +221,29 @@ WP_FN Surface surface_at(WP_SCENE_PARAMS, uint shape, vec3 origin, vec3 directio
 }
 
 /* Adds `term` to the path's radiance unless the sum is not finite (a NaN or
- * Inf term, or an overflowing sum): then it is dropped and counted in the
- * stage's counter, so no non-finite value reaches the film. */
-WP_FN vec3 add_finite(vec3 radiance, vec3 term, __global uint *counts, uint stage_counter) {
-    vec3 sum = radiance + term;
-    if (vec3_is_finite(sum)) return sum;
-    atomic_inc(&counts[stage_counter]);
-    return radiance;
+ * Inf term, or an overflowing sum): then it is dropped and counted in
+ * *dropped, so no non-finite value reaches the film. The caller adds *dropped
+ * to the stage's counter (no atomics here: they would keep PoCL from
+ * vectorising the stage). */
+WP_FN vec3 add_finite(vec3 radiance, vec3 term, uint *dropped) {
+    vec3 sum = v3_add(radiance, term);
+    int finite = vec3_is_finite(sum);
+    *dropped += finite ? 0u : 1u;
+    return v3_select(finite, sum, radiance);
 }
 
-/* Whether the throughput may carry the path on; a non-finite one ends it and is counted. */
-WP_FN int throughput_is_finite(vec3 throughput, __global uint *counts) {
-    if (vec3_is_finite(throughput)) return 1;
-    atomic_inc(&counts[WP_COUNTER_NONFINITE_SCATTER]);
-    return 0;
+/* Adds a work item's dropped values to its slot's counter for the stage
+ * (WP_COUNTER_NONFINITE_*): one counter per slot and stage, so no atomics;
+ * the host sums them after each pass. */
+WP_FN void count_nonfinite(__global uint *slot_nonfinite, uint capacity, uint stage_counter, uint slot, uint dropped) {
+    if (dropped != 0u) slot_nonfinite[(stage_counter - WP_COUNTER_NONFINITE_EMISSION) * capacity + slot] += dropped;
+}
+
+/* Whether the throughput may carry the path on; a non-finite one ends it and is counted in *dropped. */
+WP_FN int throughput_is_finite(vec3 throughput, uint *dropped) {
+    int finite = vec3_is_finite(throughput);
+    *dropped += finite ? 0u : 1u;
+    return finite;
 }
 
 /* Ends the path in `slot`: its radiance (finite: every addition was checked)

@@ -44,7 +44,8 @@ RenderResult render_megakernel(const Scene& scene, const MegakernelOptions& opti
                            options.profile ? cl_command_queue_properties(CL_QUEUE_PROFILING_ENABLE) : 0);
     BuiltProgram program =
         build_program(context, device, {"megakernel.cl", "accumulate.cl"},
-                      kernel_build_options(scene.features(), uses_nee(scene), device.fp64, scene.render));
+                      kernel_build_options(scene.features(), uses_nee(scene), device.fp64, scene.render) +
+                          shape_count_options(scene));
     DeviceScene device_scene(context, flatten_scene(scene));
     const Camera& camera = scene.camera;
     std::size_t pixel_count = std::size_t(camera.width) * camera.height;

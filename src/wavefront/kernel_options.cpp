@@ -40,6 +40,18 @@ std::string kernel_build_options(const FeatureSet& features, bool nee, bool devi
     return options.empty() ? options : options.substr(1);
 }
 
+std::string shape_count_options(const Scene& scene) {
+    std::string options;
+    auto add = [&](const char* macro, std::size_t count) {
+        if (count <= kMaxUnrolledCount) options += " -D" + std::string(macro) + "=" + std::to_string(count) + "u";
+    };
+    add("WP_SPHERE_COUNT", scene.spheres.size());
+    add("WP_PLANE_COUNT", scene.planes.size());
+    add("WP_QUAD_COUNT", scene.quads.size());
+    add("WP_LIGHT_COUNT", scene.lights.size());
+    return options;
+}
+
 std::string describe_features(const FeatureSet& features) {
     std::string text;
     for (const auto& [name, macro] : features_in_use(features)) text += (text.empty() ? "" : " ") + std::string(name);

@@ -1,6 +1,7 @@
 // Which kernel code a scene needs: its FeatureSet as -D build options.
 #pragma once
 
+#include <cstddef>
 #include <string>
 
 #include "scene/scene.h"
@@ -19,6 +20,16 @@ bool uses_nee(const Scene& scene);
 // with the reference.
 std::string kernel_build_options(const FeatureSet& features, bool nee, bool device_fp64,
                                  const RenderSettings& sampling = {});
+
+// Shapes and lights of each kind per type a kernel unrolls its loops over.
+inline constexpr std::size_t kMaxUnrolledCount = 32;
+
+// " -DWP_SPHERE_COUNT=4 -DWP_QUAD_COUNT=7 -DWP_LIGHT_COUNT=1 ...": the scene's
+// counts of each kind, as compile-time constants, for the kinds with at most
+// kMaxUnrolledCount (larger ones are read at run time). Constant counts let
+// the loops over shapes and lights unroll into straight-line code, which is
+// what PoCL needs to run a work group's work items in SIMD lanes.
+std::string shape_count_options(const Scene& scene);
 
 // The features in use, space-separated ("spheres quads diffuse glass ..."), for --explain.
 std::string describe_features(const FeatureSet& features);

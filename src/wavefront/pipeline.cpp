@@ -13,8 +13,9 @@ std::size_t round_up(std::size_t n, std::size_t multiple) { return (n + multiple
 }  // namespace
 
 const std::vector<std::string>& wavefront_kernel_files() {
-    static const std::vector<std::string> files{"generate.cl", "intersect.cl", "shade_direct.cl", "intersect_shadow.cl",
-                                                "scatter.cl",  "compact.cl",   "accumulate.cl"};
+    static const std::vector<std::string> files{"generate.cl", "intersect.cl", "shade_direct.cl",
+                                                "intersect_shadow.cl", "scatter.cl", "compact.cl",
+                                                "accumulate.cl", "count_depths.cl"};
     return files;
 }
 
@@ -28,7 +29,7 @@ Pipeline::Pipeline(const Scene& scene, const DeviceInfo& device, std::size_t cap
       queue_(context_, device.device, options.profile ? cl_command_queue_properties(CL_QUEUE_PROFILING_ENABLE) : 0),
       program_(build_program(context_, device, wavefront_kernel_files(),
                              kernel_build_options(kernel_features, uses_nee(scene), device.fp64, scene.render) +
-                                 (options.profile ? " -DWP_PROFILE" : "") +
+                                 shape_count_options(scene) +
                                  (options.compaction == Compaction::Scan ? " -DWP_COMPACT_SCAN" : ""))),
       scene_(context_, flatten_scene(scene)),
       state_(context_, capacity, kernel_features, uses_nee(scene)),
@@ -36,6 +37,7 @@ Pipeline::Pipeline(const Scene& scene, const DeviceInfo& device, std::size_t cap
               sizeof(std::uint32_t) * WP_QUEUE_COUNT * capacity * (options.compaction == Compaction::Scan ? 2 : 1)),
       counts_(context_, CL_MEM_READ_WRITE, sizeof(std::uint32_t) * WP_COUNTS_PROFILED_SIZE),
       pass_radiance_(context_, CL_MEM_READ_WRITE, sizeof(float) * 3 * pass_capacity),
+      slot_nonfinite_(context_, CL_MEM_READ_WRITE, sizeof(std::uint32_t) * WP_NONFINITE_STAGE_COUNT * capacity),
       film_(make_film(context_, queue_, pixel_count_, film_double_)),
       profiling_(options.profile),
       compaction_(options.compaction),
@@ -56,6 +58,7 @@ Pipeline::Pipeline(const Scene& scene, const DeviceInfo& device, std::size_t cap
         kernel.setArg(arg++, cl_ulong(0));
         kernel.setArg(arg++, cl_uint(0));
         kernel.setArg(arg++, pass_radiance_);
+        kernel.setArg(arg++, slot_nonfinite_);
         for (const cl::Buffer& b : state_.buffers()) kernel.setArg(arg++, b);
         stages_.push_back(kernel);
     }
@@ -71,6 +74,12 @@ Pipeline::Pipeline(const Scene& scene, const DeviceInfo& device, std::size_t cap
     compact_scan_.setArg(0, cl_uint(capacity_));
     compact_scan_.setArg(2, block_counts_);
     compact_scan_.setArg(3, counts_);
+    count_depths_ = cl::Kernel(program_.program, "count_depths");
+    count_depths_.setArg(0, queues_);
+    count_depths_.setArg(1, counts_);
+    count_depths_.setArg(2, cl_uint(capacity_));
+    count_depths_.setArg(5, state_.field("depth"));
+    queue_.enqueueFillBuffer(slot_nonfinite_, std::uint32_t(0), 0, slot_nonfinite_.getInfo<CL_MEM_SIZE>());
     if (compaction_ == Compaction::Scan)
         queue_.enqueueFillBuffer(queues_, std::uint32_t(0), 0, queues_.getInfo<CL_MEM_SIZE>());
 }
@@ -102,9 +111,32 @@ void Pipeline::enqueue(cl::Kernel& kernel, const char* name, std::size_t items, 
     if (profiling_) pending_events_.emplace_back(name, event);
 }
 
+void Pipeline::set_issued(std::uint32_t issued) {
+    issued_ = issued;
+    queue_.enqueueWriteBuffer(counts_, CL_FALSE, WP_COUNTER_WORK * sizeof(std::uint32_t), sizeof issued_, &issued_);
+}
+
 void Pipeline::run(Stage stage) {
+    if (profiling_ && stage == Stage::Intersect) count_depths(WP_QUEUE_RAY, WP_PROFILE_EXTENSION_BY_DEPTH);
+    if (profiling_ && stage == Stage::IntersectShadow) count_depths(WP_QUEUE_SHADOW, WP_PROFILE_SHADOW_BY_DEPTH);
     int index = static_cast<int>(stage);
     enqueue(stages_[index], stage_kernel_names[index], capacity_);
+}
+
+void Pipeline::count_depths(std::uint32_t queue, std::uint32_t histogram_offset) {
+    count_depths_.setArg(3, cl_uint(queue));
+    count_depths_.setArg(4, cl_uint(histogram_offset));
+    enqueue(count_depths_, "count_depths", capacity_);
+}
+
+NonfiniteCounts Pipeline::take_nonfinite() {
+    std::vector<std::uint32_t> by_slot(WP_NONFINITE_STAGE_COUNT * capacity_);
+    queue_.enqueueReadBuffer(slot_nonfinite_, CL_TRUE, 0, sizeof(std::uint32_t) * by_slot.size(), by_slot.data());
+    queue_.enqueueFillBuffer(slot_nonfinite_, std::uint32_t(0), 0, slot_nonfinite_.getInfo<CL_MEM_SIZE>());
+    NonfiniteCounts by_stage{};
+    for (std::size_t stage = 0; stage < by_stage.size(); ++stage)
+        for (std::size_t slot = 0; slot < capacity_; ++slot) by_stage[stage] += by_slot[stage * capacity_ + slot];
+    return by_stage;
 }
 
 void Pipeline::finish_stage(Stage stage) {

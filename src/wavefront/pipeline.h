@@ -34,7 +34,7 @@ enum class Compaction {
 };
 
 struct PipelineOptions {
-    bool profile = false;  // time every kernel with OpenCL events; build with -DWP_PROFILE (rays per depth)
+    bool profile = false;  // time every kernel with OpenCL events and count rays per depth (count_depths.cl)
     Compaction compaction = Compaction::Atomic;
 };
 
@@ -43,7 +43,7 @@ using DeviceCounts = std::array<std::uint32_t, WP_COUNTS_SIZE>;
 
 static_assert(WP_NONFINITE_STAGE_COUNT == nonfinite_stage_names.size());
 
-// The per-stage non-finite counters among the device counters (both backends).
+// The per-stage non-finite counters among the device counters (the megakernel's).
 inline NonfiniteCounts nonfinite_counts(const std::uint32_t* counts) {
     NonfiniteCounts by_stage{};
     for (std::size_t i = 0; i < by_stage.size(); ++i) by_stage[i] = counts[WP_COUNTER_NONFINITE_EMISSION + i];
@@ -69,7 +69,10 @@ class Pipeline {
     // Starts the pass of work items [start, start + size): every slot free,
     // every other queue empty, the work counter at 0.
     void begin_pass(std::uint64_t start, std::uint32_t size);
-    // Enqueues a stage over the queues' capacity (it reads its queue's length on the device).
+    // Tells the next generate how many work items of the pass earlier ones handed out.
+    void set_issued(std::uint32_t issued);
+    // Enqueues a stage over the queues' capacity (it reads its queue's length on
+    // the device); with profiling, the count of its rays by depth first.
     void run(Stage stage);
     // The queue bookkeeping once `stage` has run, so that the queues it filled
     // are ready for their consumers and the ones it consumed can refill.
@@ -82,6 +85,8 @@ class Pipeline {
     void clear_counts(std::uint32_t first, std::uint32_t n);
     // Waits for the queue; with profiling, adds the finished kernels' times to profile().
     DeviceCounts read_counts();
+    // The non-finite values the stages dropped since the last call, by stage.
+    NonfiniteCounts take_nonfinite();
     // Adds the drained pass's entries to the film, per pixel in sample order.
     void accumulate();
     // Per-pixel RGB sums over all passes so far.
@@ -89,7 +94,7 @@ class Pipeline {
 
     // Kernel launches and device times so far (profiling only; items are the scheduler's to fill in).
     WavefrontProfile& profile() { return profile_; }
-    // Extension and shadow rays counted per depth by the -DWP_PROFILE kernels.
+    // Extension and shadow rays counted per depth (profiling only).
     void read_rays_by_depth(WavefrontProfile& profile);
 
     // For stage tests: set a queue's slots and length, read the pass entries.
@@ -115,13 +120,15 @@ class Pipeline {
     BuiltProgram program_;
     DeviceScene scene_;
     PathState state_;
-    cl::Buffer queues_, counts_, pass_radiance_, film_, identity_slots_;
+    cl::Buffer queues_, counts_, pass_radiance_, slot_nonfinite_, film_, identity_slots_;
     std::vector<cl::Kernel> stages_;
-    cl::Kernel accumulate_, compact_count_, compact_scan_, compact_write_;
+    cl::Kernel accumulate_, compact_count_, compact_scan_, compact_write_, count_depths_;
     cl::Buffer block_counts_;
 
     void clear_marks(std::uint32_t queue);
     void compact(std::uint32_t queue_mask);
+    void count_depths(std::uint32_t queue, std::uint32_t histogram_offset);
+    std::uint32_t issued_ = 0;  // host copy of the last set_issued value, read by the queue
     std::uint64_t pass_start_ = 0;
     std::uint32_t pass_size_ = 0;
     bool profiling_;

@@ -4,6 +4,8 @@
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
 
+#include "core/shared_math.h"
+
 namespace wp {
 namespace {
 using namespace device_layout;
@@ -11,7 +13,7 @@ using namespace device_layout;
 static_assert(sizeof(SceneHeader) == 24 * 4, "SceneHeader must match its OpenCL C layout");
 static_assert(sizeof(DeviceSphere) == 5 * 4, "DeviceSphere must match its OpenCL C layout");
 static_assert(sizeof(DevicePlane) == 7 * 4, "DevicePlane must match its OpenCL C layout");
-static_assert(sizeof(DeviceQuad) == 10 * 4, "DeviceQuad must match its OpenCL C layout");
+static_assert(sizeof(DeviceQuad) == 16 * 4, "DeviceQuad must match its OpenCL C layout");
 static_assert(sizeof(DeviceMaterial) == 12 * 4, "DeviceMaterial must match its OpenCL C layout");
 static_assert(sizeof(DeviceLight) == 4, "DeviceLight must match its OpenCL C layout");
 
@@ -92,6 +94,11 @@ SceneLayout flatten_scene(const Scene& scene) {
         put(d.corner, q.corner);
         put(d.edge1, q.edge1);
         put(d.edge2, q.edge2);
+        // In float, from the float edges, exactly as a kernel would compute it.
+        using M = SharedMath<float>;
+        M::QuadPlane plane = M::quad_plane(glm::vec3(glm::dvec3(q.edge1)), glm::vec3(glm::dvec3(q.edge2)));
+        put(d.plane_normal, glm::dvec3(plane.normal));
+        put(d.plane_w, glm::dvec3(plane.w));
         d.material = q.material;
         layout.quads.push_back(d);
     }

@@ -31,8 +31,9 @@ ScheduleTotals run_schedule(Pipeline& pipeline, std::uint64_t total, bool has_li
         pipeline.begin_pass(start, size);
         std::uint32_t continuing = 0, issued = 0, free_slots = static_cast<std::uint32_t>(pipeline.capacity());
         for (;;) {
+            pipeline.set_issued(issued);
             DeviceCounts counts = run_iteration(pipeline, has_lights);
-            std::uint32_t now_issued = std::min(counts[WP_COUNTER_WORK], size);
+            std::uint32_t now_issued = std::min(issued + free_slots, size);  // generate's rule
             IterationRecord r;
             r.free_slots = free_slots;
             r.generated = now_issued - issued;
@@ -51,7 +52,7 @@ ScheduleTotals run_schedule(Pipeline& pipeline, std::uint64_t total, bool has_li
             continuing = r.continuing;
             if (progress) progress(double(finished) / double(total));
             if (issued == size && continuing == 0) {
-                NonfiniteCounts pass_nonfinite = nonfinite_counts(counts.data());  // reset by begin_pass
+                NonfiniteCounts pass_nonfinite = pipeline.take_nonfinite();
                 for (std::size_t i = 0; i < pass_nonfinite.size(); ++i) totals.nonfinite[i] += pass_nonfinite[i];
                 break;
             }

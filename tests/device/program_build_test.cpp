@@ -131,7 +131,7 @@ TEST(ProgramBuild, BrokenKernelNamesFileAndLine) {
     ScopedEnv cache_env("WAVEPATH_CACHE_DIR", cache.path.string());
     fs::path dir = copy_kernels(kernels.path / "kernels");
     ScopedEnv kernel_env("WAVEPATH_KERNEL_DIR", dir.string());
-    replace_in_file(dir / "scatter.cl", "uint new_depth = bounce + 1u;", "uint new_depth = bounce + undeclared_thing;");
+    replace_in_file(dir / "scatter.cl", "uint new_depth = bounce + 1u,", "uint new_depth = bounce + undeclared_thing,");
     int line = line_of(dir / "scatter.cl", "undeclared_thing");
     try {
         build_wavefront(choose_device(""), diffuse_spheres());
