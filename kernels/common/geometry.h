@@ -13,25 +13,24 @@ WP_FN real intersect_sphere(vec3 center, real radius, vec3 origin, vec3 directio
     real b = -v3_dot(f, direction);
     vec3 closest = v3_add_scaled(f, b, direction); /* centre to the ray's closest point */
     real discriminant = radius * radius - v3_dot(closest, closest);
-    if (discriminant < REAL(0.0)) return WP_INFINITY;
     real c = v3_dot(f, f) - radius * radius;
-    real q = b + copysign(sqrt(discriminant), b);
+    real q = b + copysign(safe_sqrt(discriminant), b);
     real t0 = q != REAL(0.0) ? c / q : REAL(0.0);
     real t1 = q;
     real t_near = fmin(t0, t1);
     real t_far = fmax(t0, t1);
-    if (t_near > REAL(0.0) && t_near < t_max) return t_near;
-    if (t_far > REAL(0.0) && t_far < t_max) return t_far;
-    return WP_INFINITY;
+    real t = (t_near > REAL(0.0) && t_near < t_max) ? t_near
+             : (t_far > REAL(0.0) && t_far < t_max) ? t_far
+                                                    : WP_INFINITY;
+    return discriminant < REAL(0.0) ? WP_INFINITY : t;
 }
 
 /* Infinite plane through `point` with (not necessarily unit) `normal`. A ray
  * parallel to the plane misses it, also when it lies inside it. */
 WP_FN real intersect_plane(vec3 point, vec3 normal, vec3 origin, vec3 direction, real t_max) {
     real denominator = v3_dot(normal, direction);
-    if (denominator == REAL(0.0)) return WP_INFINITY;
     real t = v3_dot(v3_sub(point, origin), normal) / denominator;
-    return (t > REAL(0.0) && t < t_max) ? t : WP_INFINITY;
+    return (denominator != REAL(0.0) && t > REAL(0.0) && t < t_max) ? t : WP_INFINITY;
 }
 
 /* What the parallelogram test needs of a quad beyond its corner and edges,
@@ -57,8 +56,8 @@ WP_FN real intersect_quad_plane(vec3 corner, vec3 edge1, vec3 edge2, QuadPlane p
     vec3 p = v3_sub(v3_add_scaled(origin, t, direction), corner);
     real u = v3_dot(plane.w, v3_cross(p, edge2));
     real v = v3_dot(plane.w, v3_cross(edge1, p));
-    int inside = u >= REAL(0.0) && u <= REAL(1.0) && v >= REAL(0.0) && v <= REAL(1.0);
-    return (t != WP_INFINITY && inside) ? t : WP_INFINITY;
+    return (t != WP_INFINITY && u >= REAL(0.0) && u <= REAL(1.0) && v >= REAL(0.0) && v <= REAL(1.0)) ? t
+                                                                                                 : WP_INFINITY;
 }
 
 WP_FN real intersect_quad(vec3 corner, vec3 edge1, vec3 edge2, vec3 origin, vec3 direction, real t_max) {

@@ -1,16 +1,24 @@
 /* Type and function mapping that lets the shared math compile both as
  * OpenCL C (float only) and as C++ (float or double, via src/core/shared_math.h).
  *
- * Rules for the code in kernels/common:
+ * Lanes: in OpenCL C a work item may handle WP_LANES paths at once (built
+ * with -DWP_LANES=8, see kernels/common/lanes.h); `real` is then float8 and
+ * every operation runs on all lanes. PoCL does not vectorise the stage
+ * kernels across work items by itself (its SLP pass packs scalar code into
+ * small vectors first, which its loop vectoriser then refuses), so the SIMD
+ * the wavefront is built for is written out. WP_LANES is 1 by default.
+ *
+ * Rules for the code in kernels/common, so that it compiles for one lane or
+ * for many and as C++:
  *   - functions are WP_FN, take and return values (no references, no templates);
- *   - scalars are `real`, vectors `vec3` built with make_vec3(x, y, z) and
- *     combined only through the v3_* functions below, never with operators:
- *     in OpenCL C vec3 is a struct of three scalars, not float3, because
- *     PoCL's loop vectoriser (which runs a work group's work items in SIMD
- *     lanes) gives up on any instruction of a vector type;
+ *   - scalars are `real`, conditions on them `lane_int`; vectors are `vec3`,
+ *     built with make_vec3(x, y, z) and combined only through the v3_*
+ *     functions below, never with operators (vec3 is a struct of three
+ *     `real`s, not float3);
+ *   - code that must also run with many lanes chooses with `c ? a : b`, never
+ *     with `if` on a value, and combines conditions with && and ||;
  *   - only sqrt, fabs, fmin, fmax, floor and copysign on scalars are assumed
- *     to exist on both sides (no sin or cos: calls into the OpenCL library
- *     cannot be vectorised; see wp_sincos_turns);
+ *     to exist on both sides (no sin or cos: see cos_sin_turns);
  *   - floating constants are written REAL(1.0) (always with a decimal point);
  *   - pointers into device memory are WP_GLOBAL.
  */
@@ -18,32 +26,40 @@
 #pragma OPENCL FP_CONTRACT OFF
 #define WP_FN static inline
 #define WP_GLOBAL __global
+#ifndef WP_LANES
+#define WP_LANES 1
+#endif
+#if WP_LANES == 1
 typedef float real;
+typedef int lane_int;
+typedef uint lane_uint;
+#elif WP_LANES == 8
+typedef float8 real;
+typedef int8 lane_int; /* a condition: -1 (all bits) where true, as OpenCL's vector comparisons give */
+typedef uint8 lane_uint;
+#else
+#error "WP_LANES must be 1 or 8"
+#endif
 typedef struct {
-    float x, y, z;
+    real x, y, z;
 } vec3;
-typedef int real_bits; /* integer of the same width as real, for ULP offsets */
 WP_FN vec3 make_vec3(real x, real y, real z) {
     vec3 v;
     v.x = x, v.y = y, v.z = z;
     return v;
 }
 #define REAL(x) (x##f)
-#define real_as_bits(x) as_int(x)
-#define bits_as_real(x) as_float(x)
 #define WP_REAL_MAX FLT_MAX
-#define WP_REAL_MANTISSA_BITS 24
 #else
 /* C++: the including namespace (src/core/shared_math.h) defines `real`,
- * `real_bits`, `vec3`, `uint`, `real_max` and `real_mantissa_bits`. */
+ * `vec3`, `uint` and `real_max`; one lane. */
 #define WP_FN static inline
 #define WP_GLOBAL
+typedef int lane_int;
+typedef uint lane_uint;
 #define make_vec3(x, y, z) (vec3((x), (y), (z)))
 #define REAL(x) (static_cast<real>(x))
-#define real_as_bits(x) (std::bit_cast<real_bits>(static_cast<real>(x)))
-#define bits_as_real(x) (std::bit_cast<real>(static_cast<real_bits>(x)))
 #define WP_REAL_MAX real_max
-#define WP_REAL_MANTISSA_BITS real_mantissa_bits
 #endif
 
 #define WP_PI REAL(3.14159265358979323846)
@@ -67,15 +83,12 @@ WP_FN vec3 v3_cross(vec3 a, vec3 b) {
 WP_FN real v3_length(vec3 a) { return sqrt(v3_dot(a, a)); }
 WP_FN vec3 v3_normalize(vec3 a) { return v3_scale(a, REAL(1.0) / v3_length(a)); }
 /* a if choose_a, else b: a select in the kernels, not a branch. */
-WP_FN vec3 v3_select(int choose_a, vec3 a, vec3 b) {
+WP_FN vec3 v3_select(lane_int choose_a, vec3 a, vec3 b) {
     return make_vec3(choose_a ? a.x : b.x, choose_a ? a.y : b.y, choose_a ? a.z : b.z);
 }
 
 WP_FN real wp_clamp(real x, real lo, real hi) { return fmin(fmax(x, lo), hi); }
-WP_FN real wp_sqr(real x) { return x * x; }
 /* sqrt that tolerates arguments a rounding error below zero. */
 WP_FN real safe_sqrt(real x) { return sqrt(fmax(x, REAL(0.0))); }
 WP_FN real max_component(vec3 v) { return fmax(v.x, fmax(v.y, v.z)); }
-WP_FN int vec3_is_finite(vec3 v) { return isfinite(v.x) && isfinite(v.y) && isfinite(v.z); }
-/* Rec. 709 luminance, used for light selection by power. */
-WP_FN real luminance(vec3 c) { return REAL(0.2126) * c.x + REAL(0.7152) * c.y + REAL(0.0722) * c.z; }
+WP_FN lane_int vec3_is_finite(vec3 v) { return isfinite(v.x) && isfinite(v.y) && isfinite(v.z); }

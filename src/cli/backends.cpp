@@ -52,9 +52,12 @@ RenderResult render_on_opencl(const BackendOptions& options, Render render) {
 
 RenderResult render_on_wavefront(const Scene& scene, const BackendOptions& options, const ProgressFn& progress) {
     return render_on_opencl<WavefrontReport>(options, [&](WavefrontReport& report) {
+        if (options.lanes == 8 && options.compaction != "scan")
+            throw UsageError("--lanes 8 needs --compaction scan (atomic pushes are per work item)");
         WavefrontOptions wavefront{options.device, options.wavefront};
         wavefront.profile = wants_profile(options);
         wavefront.scan_compaction = options.compaction == "scan";
+        wavefront.lanes = options.lanes;
         RenderResult result = render_wavefront(scene, wavefront, progress, &report);
         if (options.explain) std::cout << report.explain() << std::flush;
         return result;
@@ -109,6 +112,12 @@ void add_backend_options(CLI::App& render, BackendOptions& options) {
                     "How the wavefront fills its queues: atomic (pushes aggregated per work group) or scan "
                     "(stable prefix sum)")
         ->check(CLI::IsMember({"atomic", "scan"}))
+        ->capture_default_str();
+    render
+        .add_option("--lanes", options.lanes,
+                    "Rays per work item in the wavefront's intersect stages, as vector code: 1 or 8 (8 needs "
+                    "--compaction scan; 0: 8 on CPU devices, 1 on others)")
+        ->check(CLI::IsMember({0u, 1u, 8u}))
         ->capture_default_str();
     render.add_flag("--profile", options.profile,
                     "Print the wavefront's per-kernel profile (launches, items, device time, items/s) on stderr");

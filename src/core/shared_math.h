@@ -5,7 +5,6 @@
 // on the scalar type reaches the right one through that alias.
 #pragma once
 
-#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -30,15 +29,13 @@ using std::isfinite;
 using std::sin;
 using std::sqrt;
 
-// One instantiation per precision; `RealBits` is the integer of the same width.
-template <class Real, class RealBits>
+// One instantiation per precision.
+template <class Real>
 struct Precision {
     using real = Real;
-    using real_bits = RealBits;
     using uint = std::uint32_t;
     using vec3 = glm::vec<3, real>;
     static constexpr real real_max = std::numeric_limits<real>::max();
-    static constexpr int real_mantissa_bits = std::numeric_limits<real>::digits;
 #include "common/wavepath.h"
 };
 
@@ -46,7 +43,6 @@ struct Precision {
 
 namespace wp {
 template <class Real>
-using SharedMath = std::conditional_t<std::is_same_v<Real, float>, shared_math_detail::Precision<float, std::int32_t>,
-                                      std::conditional_t<std::is_same_v<Real, double>,
-                                                         shared_math_detail::Precision<double, std::int64_t>, void>>;
+using SharedMath = std::conditional_t<std::is_same_v<Real, float> || std::is_same_v<Real, double>,
+                                      shared_math_detail::Precision<Real>, void>;
 }  // namespace wp

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <numeric>
+#include <stdexcept>
 
 #include "wavefront/kernel_options.h"
 
@@ -10,13 +11,36 @@ namespace {
 
 std::size_t round_up(std::size_t n, std::size_t multiple) { return (n + multiple - 1) / multiple * multiple; }
 
+std::string stage_options(const Scene& scene, const DeviceInfo& device, const FeatureSet& kernel_features,
+                          Compaction compaction) {
+    return kernel_build_options(kernel_features, uses_nee(scene), device.fp64, scene.render) +
+           shape_count_options(scene) + (compaction == Compaction::Scan ? " -DWP_COMPACT_SCAN" : "");
+}
+
+unsigned checked_lanes(unsigned lanes, Compaction compaction) {
+    if ((lanes != 1 && lanes != 8) || (lanes != 1 && compaction != Compaction::Scan))
+        throw std::invalid_argument("wavefront lanes must be 1, or 8 with scan compaction");
+    return lanes;
+}
+
+// The stages built in the tracing program, with WP_LANES rays per work item.
+bool traces(Stage stage) { return stage == Stage::Intersect || stage == Stage::IntersectShadow; }
+
 }  // namespace
 
 const std::vector<std::string>& wavefront_kernel_files() {
-    static const std::vector<std::string> files{"generate.cl", "intersect.cl", "shade_direct.cl",
-                                                "intersect_shadow.cl", "scatter.cl", "compact.cl",
-                                                "accumulate.cl", "count_depths.cl"};
+    static const std::vector<std::string> files{"generate.cl", "shade_direct.cl", "scatter.cl",
+                                                "compact.cl",  "accumulate.cl",   "count_depths.cl"};
     return files;
+}
+
+const std::vector<std::string>& wavefront_trace_files() {
+    static const std::vector<std::string> files{"intersect.cl", "intersect_shadow.cl"};
+    return files;
+}
+
+unsigned automatic_lanes(const DeviceInfo& device, Compaction compaction) {
+    return device.type == "CPU" && compaction == Compaction::Scan ? 8u : 1u;
 }
 
 Pipeline::Pipeline(const Scene& scene, const DeviceInfo& device, std::size_t capacity, std::size_t pass_capacity,
@@ -25,12 +49,15 @@ Pipeline::Pipeline(const Scene& scene, const DeviceInfo& device, std::size_t cap
       pass_capacity_(pass_capacity),
       pixel_count_(std::size_t(scene.camera.width) * scene.camera.height),
       film_double_(device.fp64),
+      lanes_(checked_lanes(options.lanes != 0 ? options.lanes : automatic_lanes(device, options.compaction),
+                           options.compaction)),
       context_(device.device),
       queue_(context_, device.device, options.profile ? cl_command_queue_properties(CL_QUEUE_PROFILING_ENABLE) : 0),
       program_(build_program(context_, device, wavefront_kernel_files(),
-                             kernel_build_options(kernel_features, uses_nee(scene), device.fp64, scene.render) +
-                                 shape_count_options(scene) +
-                                 (options.compaction == Compaction::Scan ? " -DWP_COMPACT_SCAN" : ""))),
+                             stage_options(scene, device, kernel_features, options.compaction))),
+      trace_program_(build_program(context_, device, wavefront_trace_files(),
+                                   stage_options(scene, device, kernel_features, options.compaction) +
+                                       " -DWP_LANES=" + std::to_string(lanes_))),
       scene_(context_, flatten_scene(scene)),
       state_(context_, capacity, kernel_features, uses_nee(scene)),
       queues_(context_, CL_MEM_READ_WRITE,
@@ -48,8 +75,9 @@ Pipeline::Pipeline(const Scene& scene, const DeviceInfo& device, std::size_t cap
     identity_slots_ = cl::Buffer(context_, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(std::uint32_t) * capacity,
                                  identity.data());
     queue_.enqueueFillBuffer(counts_, std::uint32_t(0), 0, counts_.getInfo<CL_MEM_SIZE>());
-    for (const char* name : stage_kernel_names) {
-        cl::Kernel kernel(program_.program, name);
+    for (Stage stage : {Stage::Generate, Stage::Intersect, Stage::ShadeDirect, Stage::IntersectShadow, Stage::Scatter}) {
+        cl::Kernel kernel(traces(stage) ? trace_program_.program : program_.program,
+                          stage_kernel_names[static_cast<int>(stage)]);
         cl_uint arg = 0;
         for (const cl::Buffer& b : scene_.buffers) kernel.setArg(arg++, b);
         kernel.setArg(arg++, queues_);
@@ -120,7 +148,7 @@ void Pipeline::run(Stage stage) {
     if (profiling_ && stage == Stage::Intersect) count_depths(WP_QUEUE_RAY, WP_PROFILE_EXTENSION_BY_DEPTH);
     if (profiling_ && stage == Stage::IntersectShadow) count_depths(WP_QUEUE_SHADOW, WP_PROFILE_SHADOW_BY_DEPTH);
     int index = static_cast<int>(stage);
-    enqueue(stages_[index], stage_kernel_names[index], capacity_);
+    enqueue(stages_[index], stage_kernel_names[index], traces(stage) ? (capacity_ + lanes_ - 1) / lanes_ : capacity_);
 }
 
 void Pipeline::count_depths(std::uint32_t queue, std::uint32_t histogram_offset) {

@@ -36,7 +36,13 @@ enum class Compaction {
 struct PipelineOptions {
     bool profile = false;  // time every kernel with OpenCL events and count rays per depth (count_depths.cl)
     Compaction compaction = Compaction::Atomic;
+    unsigned lanes = 0;  // rays per work item in the tracing stages (1 or 8); 0: automatic_lanes()
 };
+
+// The lanes the tracing stages use by default: 8 on CPU devices, where a work
+// item's vector code is the only SIMD there is (prelude.h), 1 elsewhere (GPUs
+// run work items in SIMD already); 1 with atomic compaction, whose pushes are per work item.
+unsigned automatic_lanes(const DeviceInfo& device, Compaction compaction);
 
 // Queue lengths then counters, as in kernels/common/queues.h.
 using DeviceCounts = std::array<std::uint32_t, WP_COUNTS_SIZE>;
@@ -60,7 +66,10 @@ class Pipeline {
     Pipeline(const Scene& scene, const DeviceInfo& device, std::size_t capacity, std::size_t pass_capacity)
         : Pipeline(scene, device, capacity, pass_capacity, scene.features()) {}
 
+    // The program of the one-lane stages and the one of the tracing stages (intersect, intersect_shadow).
     const BuiltProgram& program() const { return program_; }
+    const BuiltProgram& trace_program() const { return trace_program_; }
+    unsigned lanes() const { return lanes_; }
     const PathState& state() const { return state_; }
     std::size_t capacity() const { return capacity_; }
     std::size_t pass_capacity() const { return pass_capacity_; }
@@ -115,9 +124,10 @@ class Pipeline {
  private:
     std::size_t capacity_, pass_capacity_, pixel_count_;
     bool film_double_;
+    unsigned lanes_;
     cl::Context context_;
     cl::CommandQueue queue_;
-    BuiltProgram program_;
+    BuiltProgram program_, trace_program_;
     DeviceScene scene_;
     PathState state_;
     cl::Buffer queues_, counts_, pass_radiance_, slot_nonfinite_, film_, identity_slots_;
@@ -152,7 +162,8 @@ cl::Buffer make_film(const cl::Context& context, cl::CommandQueue& queue, std::s
 void set_accumulate_args(cl::Kernel& accumulate, std::uint64_t pass_start, std::uint32_t pass_size,
                          std::size_t pixel_count, const cl::Buffer& pass_radiance, const cl::Buffer& film);
 
-// The kernel files of the program, in build order.
+// The kernel files of the one-lane program and of the tracing program, in build order.
 const std::vector<std::string>& wavefront_kernel_files();
+const std::vector<std::string>& wavefront_trace_files();
 
 }  // namespace wp

@@ -81,7 +81,8 @@ std::string WavefrontReport::explain() const {
         << "build options: " << build_options << "\n"
         << "program: " << (cache_hit ? "cache hit" : "cache miss, compiled") << " in " << build_seconds << " s"
         << (cache_file.empty() ? " (no cache directory)" : " (" + cache_file + ")") << "\n"
-        << "wavefront: " << wavefront << " paths in flight, passes of up to " << pass_capacity << " samples\n"
+        << "wavefront: " << wavefront << " paths in flight, passes of up to " << pass_capacity << " samples, "
+        << lanes << (lanes == 1 ? " ray" : " rays") << " per work item in the intersect stages\n"
         << "path state: " << state_bytes_per_path << " bytes per path, " << state_bytes_per_path * wavefront / 1024
         << " KiB in all\n";
     return out.str();
@@ -98,16 +99,18 @@ RenderResult render_wavefront(const Scene& scene, const WavefrontOptions& option
                           : default_wavefront_size(total, PathState::bytes_per_path(scene.features(), nee), device);
     FeatureSet features = options.specialise ? scene.features() : every_shape_and_material(scene.features());
     Pipeline pipeline(scene, device, wavefront, std::min<std::uint64_t>(total, kPassesPerWavefront * wavefront),
-                      features, {options.profile, options.scan_compaction ? Compaction::Scan : Compaction::Atomic});
+                      features,
+                      {options.profile, options.scan_compaction ? Compaction::Scan : Compaction::Atomic, options.lanes});
 
     WavefrontReport local_report;
     WavefrontReport& r = report ? *report : local_report;
     r.device = device.name + " (" + device.platform + ")";
     r.features = describe_features(features) + (nee ? " nee" : "");
     r.build_options = pipeline.program().options;
-    r.cache_hit = pipeline.program().cache_hit;
-    r.build_seconds = pipeline.program().build_seconds;
+    r.cache_hit = pipeline.program().cache_hit && pipeline.trace_program().cache_hit;
+    r.build_seconds = pipeline.program().build_seconds + pipeline.trace_program().build_seconds;
     r.cache_file = pipeline.program().cache_file;
+    r.lanes = pipeline.lanes();
     r.wavefront = wavefront;
     r.pass_capacity = pipeline.pass_capacity();
     r.state_bytes_per_path = pipeline.state().bytes_per_path();

@@ -1,5 +1,5 @@
 // The wavefront through the wavepath executable: the default backend,
-// --explain, --wavefront, `wavepath devices`, and device errors.
+// --explain, --wavefront, --lanes, `wavepath devices`, and device errors.
 #include <gtest/gtest.h>
 
 #include <array>
@@ -40,7 +40,8 @@ TEST(WavefrontCli, DefaultBackendWithExplain) {
     EXPECT_EQ(r.exit_code, 0) << r.output;
     for (const char* text : {"features: spheres quads diffuse mirror glass emitter quad-lights nee",
                              "build options: -cl-std=CL1.2", "-DWP_HAS_GLASS", "program: cache",
-                             "wavefront: 256 paths in flight", "bytes per path", "spp, wavefront) in "})
+                             "wavefront: 256 paths in flight", "rays per work item in the intersect stages",
+                             "bytes per path", "spp, wavefront) in "})
         EXPECT_NE(r.output.find(text), std::string::npos) << text << "\n" << r.output;
     EXPECT_TRUE(std::filesystem::exists(out));
     std::filesystem::remove(out);
@@ -69,6 +70,15 @@ TEST(WavefrontCli, NoPlatformOrUnknownDeviceIsOneClearError) {
                                               "' --device no-such-device");
     EXPECT_EQ(unknown.exit_code, 1);
     EXPECT_NE(unknown.output.find("--device no-such-device: "), std::string::npos) << unknown.output;
+    EXPECT_FALSE(std::filesystem::exists(out));
+}
+
+TEST(WavefrontCli, EightLanesWithAtomicPushesIsAUsageError) {
+    std::string out = output_path("wavepath-lanes-atomic.png");
+    CommandRun r = run(cache_env(), "render '" WAVEPATH_SOURCE_DIR "/scenes/test/room_small.json' -o '" + out +
+                                        "' --lanes 8 --compaction atomic");
+    EXPECT_EQ(r.exit_code, 2) << r.output;
+    EXPECT_EQ(r.output, "wavepath: error: --lanes 8 needs --compaction scan (atomic pushes are per work item)\n");
     EXPECT_FALSE(std::filesystem::exists(out));
 }
 
