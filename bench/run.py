@@ -97,7 +97,8 @@ def machine():
 
 
 def throughput(runner, cfg):
-    """Samples/s per scene and backend, interleaved, min and median over runs."""
+    """Samples/s per scene and backend, interleaved, min and median over runs; per scene one profiled
+    wavefront run, with its tracing stages' rays/s as fractions of the intersect bound (the roofline)."""
     rows = []
     for scene in cfg["scenes"]:
         path = os.path.join(ROOT, "scenes", scene)
@@ -115,7 +116,11 @@ def throughput(runner, cfg):
                          "runs": len(sps), "msamples_s_min": min(sps) / 1e6,
                          "msamples_s_median": statistics.median(sps) / 1e6,
                          "msamples_s_max": max(sps) / 1e6, "mrays_s_median": statistics.median(rays) / 1e6})
-        rows.append({"scene": scene, "backend": "wavefront-profile", "profile": profile})
+        of_bound = profile["of_intersect_bound"]
+        rows.append({"scene": scene, "backend": "wavefront-profile", "profile": profile,
+                     "intersect_bound_mrays_s": profile["intersect_bound_rays_per_s"] / 1e6,
+                     "intersect_of_bound": of_bound["intersect"],
+                     "intersect_shadow_of_bound": of_bound["intersect_shadow"]})
     return rows
 
 
@@ -267,6 +272,18 @@ def summary(results, plots):
             for k in p["kernels"]:
                 lines.append(f"| {k['name']} | {k['launches']} | {k['items']} | {k['device_s']:.3f} | "
                              f"{k['items_per_s'] / 1e6:.2f} | {100 * k['share']:.1f}% |")
+    lines += ["", "## Roofline (wavefront tracing stages against the intersect bound)", "",
+              "The bound: camera rays traced with closest hit and nothing else (kernels/intersect_bound.cl: no "
+              "queues, no path state), best of three launches of 2^20 rays after the profiled render. "
+              "intersect_shadow runs any hit, cheaper per test, and is measured against the same bound.", "",
+              "| scene | bound Mrays/s | intersect Mrays/s | of bound | intersect_shadow Mrays/s | of bound |",
+              "|---|---|---|---|---|---|"]
+    for r in results["throughput"]:
+        if "intersect_bound_mrays_s" in r:
+            bound = r["intersect_bound_mrays_s"]
+            lines.append(f"| {r['scene']} | {bound:.2f} | {r['intersect_of_bound'] * bound:.2f} | "
+                         f"{100 * r['intersect_of_bound']:.0f}% | {r['intersect_shadow_of_bound'] * bound:.2f} | "
+                         f"{100 * r['intersect_shadow_of_bound']:.0f}% |")
     lines += ["", "## Scaling (room)", "", "| study | paths / size | backend | Msamples/s |", "|---|---|---|---|"]
     for r in results["scaling"]:
         lines.append(f"| {r['study']} | {r.get('paths', r.get('size'))} | {r.get('backend', 'wavefront')} | "

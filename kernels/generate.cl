@@ -1,34 +1,36 @@
-/* Stage 1: camera rays. The k-th free slot takes work item issued + k of
- * the pass (work item w: pixel w % pixels, sample w / pixels), where `issued`
- * (counts[WP_COUNTER_WORK], written by the host before the launch) is how
- * many the pass has handed out so far; no atomics. This is also path
- * regeneration, since slots freed by finished paths come back through the
- * free queue every iteration. */
+/* Stage 1: camera rays, WP_LANES per work item (lanes.h). The k-th free
+ * slot takes work item issued + k of the pass (work item w: pixel
+ * w % pixels, sample w / pixels), where `issued` (counts[WP_COUNTER_WORK],
+ * written by the host before the launch) is how many the pass has handed out
+ * so far; no atomics. This is also path regeneration, since slots freed by
+ * finished paths come back through the free queue every iteration. */
 #include "wavefront.h"
 #include "vertex.h"
 
 __kernel __attribute__((reqd_work_group_size(WP_GROUP_SIZE, 1, 1))) void generate(WP_STAGE_PARAMS) {
-    WP_STAGE_INPUT(WP_QUEUE_FREE);
+    __local uint group_count, group_base; /* queue_push's scratch (atomic compaction) */
+    Lanes lanes = queue_lanes(queues, counts, capacity, WP_QUEUE_FREE);
+    lane_uint slot = lanes.slot;
     uint issued = counts[WP_COUNTER_WORK];
-    int started = k != ~0u && k < pass_size - issued;
-    if (started) {
-        uint item = issued + k;
-        ulong work = pass_start + item;
-        uint pixel_count = scene->width * scene->height;
-        uint px = (uint)(work % pixel_count);
-        uint s = (uint)(work / pixel_count);
-        vec3 direction = camera_ray_direction(scene, px, s);
-        pixel[slot] = px;
-        sample[slot] = s;
-        pass_item[slot] = item;
-        depth[slot] = 0u;
-        STORE_XYZ(origin, slot, make_vec3(REAL(0.0), REAL(0.0), REAL(0.0))); /* the camera, after loading */
-        STORE_XYZ(direction, slot, direction);
-        STORE_RGB(throughput, slot, make_vec3(REAL(1.0), REAL(1.0), REAL(1.0)));
-        STORE_RGB(radiance, slot, make_vec3(REAL(0.0), REAL(0.0), REAL(0.0)));
+    lane_uint k = lane_positions();
+    lane_int started = lanes.active && k < pass_size - issued;
+    lane_uint item = issued + k;
+    /* work = pass_start + item, split into pixel and sample without 64-bit lanes:
+     * pass_pixel + item stays below 2^32 (limits.h: pixels <= 2^27, passes <= 2^30). */
+    uint pixel_count = scene->width * scene->height;
+    uint pass_pixel = (uint)(pass_start % pixel_count), pass_sample = (uint)(pass_start / pixel_count);
+    lane_uint px = (pass_pixel + item) % pixel_count;
+    lane_uint s = pass_sample + (pass_pixel + item) / pixel_count;
+    store_uint(pixel, slot, started, px);
+    store_uint(sample, slot, started, s);
+    store_uint(pass_item, slot, started, item);
+    store_uint(depth, slot, started, (lane_uint)0u);
+    STORE_LANES_XYZ(origin, slot, started, make_vec3(REAL(0.0), REAL(0.0), REAL(0.0))); /* the camera, after loading */
+    STORE_LANES_XYZ(direction, slot, started, camera_ray_direction(scene, px, s));
+    STORE_LANES_RGB(throughput, slot, started, make_vec3(REAL(1.0), REAL(1.0), REAL(1.0)));
+    STORE_LANES_RGB(radiance, slot, started, make_vec3(REAL(0.0), REAL(0.0), REAL(0.0)));
 #ifdef WP_HAS_SPECULAR
-        specular[slot] = 1u;
+    store_uint(specular, slot, started, (lane_uint)1u);
 #endif
-    }
-    queue_push(queues, counts, capacity, WP_QUEUE_RAY, started, slot, &group_count, &group_base);
+    push_lanes(queues, counts, capacity, WP_QUEUE_RAY, lanes, started, &group_count, &group_base);
 }

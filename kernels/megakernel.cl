@@ -27,18 +27,18 @@ WP_FN vec3 trace_path(WP_SCENE_PARAMS, uint px, uint s, uint *extension_rays, ui
             return radiance;
         }
         Surface surface = surface_at(WP_SCENE_ARGS, hit.shape, origin, d, hit.t);
-        __global const DeviceMaterial *m = &materials[surface.material];
+        Material m = material_at(materials, surface.material);
         real cos_incident = v3_dot(d, surface.normal);
         int entering = cos_incident < REAL(0.0);
         vec3 nf = v3_select(entering, surface.normal, v3_neg(surface.normal));
         radiance = add_finite(radiance, emission_seen(m, cos_incident, after_specular, throughput), &dropped[0]);
-        if (depth >= scene->max_depth || m->type == WP_MATERIAL_EMITTER) return radiance;
-#ifdef WP_HAS_NEE
+        if (depth >= scene->max_depth || m.type == WP_MATERIAL_EMITTER) return radiance;
+#if defined(WP_HAS_NEE) && defined(WP_HAS_DIFFUSE)
         vec3 shadow_origin, shadow_direction, contribution;
         real distance;
-        if (m->type == WP_MATERIAL_DIFFUSE &&
+        if (m.type == WP_MATERIAL_DIFFUSE &&
             sample_direct_light(WP_SCENE_ARGS, px, s, depth, surface.point, surface.error, nf,
-                                v3_mul(throughput, vec3_at(m->albedo)), &shadow_origin, &shadow_direction, &distance,
+                                v3_mul(throughput, m.albedo), &shadow_origin, &shadow_direction, &distance,
                                 &contribution)) {
             ++*shadow_rays;
             if (!any_hit(WP_SCENE_ARGS, shadow_origin, shadow_direction, distance))
@@ -71,7 +71,7 @@ __kernel __attribute__((reqd_work_group_size(WP_GROUP_SIZE, 1, 1))) void megaker
         uint extension_rays = 0u, shadow_rays = 0u, dropped[WP_NONFINITE_STAGE_COUNT] = {0u, 0u, 0u};
         vec3 radiance = trace_path(WP_SCENE_ARGS, (uint)(work % pixel_count), (uint)(work / pixel_count),
                                    &extension_rays, &shadow_rays, dropped);
-        finish_path(pass_radiance, item, radiance);
+        finish_paths(pass_radiance, item, 1, radiance);
         atomic_add(&group_extension_rays, extension_rays);
         atomic_add(&group_shadow_rays, shadow_rays);
         for (uint i = 0u; i < WP_NONFINITE_STAGE_COUNT; ++i)

@@ -1,37 +1,37 @@
-/* Stage 5: BSDF sampling at the hit, the throughput update, and Russian
- * roulette: the path continues with a new extension ray or ends. */
+/* Stage 5: BSDF sampling at the hit, the throughput update and Russian
+ * roulette, WP_LANES paths per work item (lanes.h): each path continues
+ * with a new extension ray or ends. */
 #include "wavefront.h"
 #include "vertex.h"
 
 __kernel __attribute__((reqd_work_group_size(WP_GROUP_SIZE, 1, 1))) void scatter(WP_STAGE_PARAMS) {
-    WP_STAGE_INPUT(WP_QUEUE_SCATTER);
-    int continues = 0, ends = 0;
-    if (k != ~0u) {
-        vec3 d = LOAD_XYZ(direction, slot);
-        Surface surface = surface_at(WP_SCENE_ARGS, hit_shape[slot], LOAD_XYZ(origin, slot), d, hit_t[slot]);
-        __global const DeviceMaterial *m = &materials[surface.material];
-        int entering = v3_dot(d, surface.normal) < REAL(0.0);
-        vec3 nf = v3_select(entering, surface.normal, v3_neg(surface.normal));
-        uint seed = scene->seed, px = pixel[slot], s = sample[slot], bounce = depth[slot];
-        Scattered scattered = scatter_vertex(m, d, nf, entering, seed, px, s, bounce);
-        vec3 throughput = v3_mul(LOAD_RGB(throughput, slot), scattered.weight);
-        uint new_depth = bounce + 1u, dropped = 0u;
-        continues = survives_roulette(&throughput, seed, px, s, bounce, new_depth, scene->rr_depth) &&
-                    throughput_is_finite(throughput, &dropped);
-        count_nonfinite(slot_nonfinite, capacity, WP_COUNTER_NONFINITE_SCATTER, slot, dropped);
-        if (continues) {
-            STORE_XYZ(origin, slot, offset_ray_origin(surface.point, scattered.leave_side, surface.error));
-            STORE_XYZ(direction, slot, scattered.direction);
-            STORE_RGB(throughput, slot, throughput);
-            depth[slot] = new_depth;
+    __local uint group_count, group_base; /* queue_push's scratch (atomic compaction) */
+    Lanes lanes = queue_lanes(queues, counts, capacity, WP_QUEUE_SCATTER);
+    lane_uint slot = lanes.slot;
+    vec3 d = LOAD_LANES_XYZ(direction, slot);
+    Surface surface = surface_at(WP_SCENE_ARGS, load_uint(hit_shape, slot), LOAD_LANES_XYZ(origin, slot), d,
+                                 load_real(hit_t, slot));
+    Material m = material_at(materials, surface.material);
+    lane_int entering = v3_dot(d, surface.normal) < REAL(0.0);
+    vec3 nf = v3_select(entering, surface.normal, v3_neg(surface.normal));
+    uint seed = scene->seed;
+    lane_uint px = load_uint(pixel, slot), s = load_uint(sample, slot), bounce = load_uint(depth, slot);
+    Scattered scattered = scatter_vertex(m, d, nf, entering, seed, px, s, bounce);
+    vec3 throughput = v3_mul(LOAD_LANES_RGB(throughput, slot), scattered.weight);
+    lane_uint new_depth = bounce + 1u, dropped = 0u;
+    lane_int survives = survives_roulette(&throughput, seed, px, s, bounce, new_depth, scene->rr_depth);
+    lane_int continues = lanes.active && survives && throughput_is_finite(throughput, &dropped);
+    /* only paths that survived roulette count a non-finite throughput (as with one lane, where && stops early) */
+    count_nonfinite(slot_nonfinite, capacity, WP_COUNTER_NONFINITE_SCATTER, lanes, survives ? dropped : (lane_uint)0u);
+    lane_int ends = lanes.active && !continues;
+    STORE_LANES_XYZ(origin, slot, continues, offset_ray_origin(surface.point, scattered.leave_side, surface.error));
+    STORE_LANES_XYZ(direction, slot, continues, scattered.direction);
+    STORE_LANES_RGB(throughput, slot, continues, throughput);
+    store_uint(depth, slot, continues, new_depth);
 #ifdef WP_HAS_SPECULAR
-            specular[slot] = scattered.specular;
+    store_uint(specular, slot, continues, scattered.specular);
 #endif
-        } else {
-            finish_path(pass_radiance, pass_item[slot], LOAD_RGB(radiance, slot));
-        }
-        ends = !continues;
-    }
-    queue_push(queues, counts, capacity, WP_QUEUE_RAY, continues, slot, &group_count, &group_base);
-    queue_push(queues, counts, capacity, WP_QUEUE_FREE, ends, slot, &group_count, &group_base);
+    finish_paths(pass_radiance, load_uint(pass_item, slot), ends, LOAD_LANES_RGB(radiance, slot));
+    push_lanes(queues, counts, capacity, WP_QUEUE_RAY, lanes, continues, &group_count, &group_base);
+    push_lanes(queues, counts, capacity, WP_QUEUE_FREE, lanes, ends, &group_count, &group_base);
 }

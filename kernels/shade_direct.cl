@@ -1,52 +1,50 @@
-/* Stage 3: what the path sees at its hit. Emission (at depth 0 or after a
- * specular bounce; at every hit with -DWP_NEE_OFF), the max_depth cap and emitter materials (which end the
- * path), and next-event estimation at diffuse vertices: one light sample
+/* Stage 3: what the path sees at its hit, WP_LANES paths per work item
+ * (lanes.h). Emission (at depth 0 or after a specular bounce; at every hit
+ * with -DWP_NEE_OFF), the max_depth cap and emitter materials (which end
+ * the path), and next-event estimation at diffuse vertices: one light sample
  * whose shadow ray goes to intersect_shadow with its would-be contribution. */
 #include "wavefront.h"
 #include "vertex.h"
 
 __kernel __attribute__((reqd_work_group_size(WP_GROUP_SIZE, 1, 1))) void shade_direct(WP_STAGE_PARAMS) {
-    WP_STAGE_INPUT(WP_QUEUE_HIT);
-    int ends = 0, scatters = 0, casts_shadow = 0;
-    if (k != ~0u) {
-        vec3 d = LOAD_XYZ(direction, slot);
-        Surface s = surface_at(WP_SCENE_ARGS, hit_shape[slot], LOAD_XYZ(origin, slot), d, hit_t[slot]);
-        __global const DeviceMaterial *m = &materials[s.material];
-        real cos_incident = v3_dot(d, s.normal);
-        vec3 nf = v3_select(cos_incident < REAL(0.0), s.normal, v3_neg(s.normal));
-        uint bounce = depth[slot];
-        vec3 throughput = LOAD_RGB(throughput, slot);
-        vec3 radiance = LOAD_RGB(radiance, slot);
-        int after_specular = bounce == 0u;
+    __local uint group_count, group_base; /* queue_push's scratch (atomic compaction) */
+    Lanes lanes = queue_lanes(queues, counts, capacity, WP_QUEUE_HIT);
+    lane_uint slot = lanes.slot;
+    vec3 d = LOAD_LANES_XYZ(direction, slot);
+    Surface s = surface_at(WP_SCENE_ARGS, load_uint(hit_shape, slot), LOAD_LANES_XYZ(origin, slot), d,
+                           load_real(hit_t, slot));
+    Material m = material_at(materials, s.material);
+    real cos_incident = v3_dot(d, s.normal);
+    vec3 nf = v3_select(cos_incident < REAL(0.0), s.normal, v3_neg(s.normal));
+    lane_uint bounce = load_uint(depth, slot);
+    vec3 throughput = LOAD_LANES_RGB(throughput, slot);
 #ifdef WP_HAS_SPECULAR
-        after_specular = specular[slot] != 0u;
+    lane_int after_specular = load_uint(specular, slot) != 0u;
+#else
+    lane_int after_specular = bounce == 0u;
 #endif
-        uint dropped = 0u;
-        radiance = add_finite(radiance, emission_seen(m, cos_incident, after_specular, throughput), &dropped);
-        count_nonfinite(slot_nonfinite, capacity, WP_COUNTER_NONFINITE_EMISSION, slot, dropped);
-        ends = bounce >= scene->max_depth || m->type == WP_MATERIAL_EMITTER;
-        if (ends) {
-            finish_path(pass_radiance, pass_item[slot], radiance);
-        } else {
-            STORE_RGB(radiance, slot, radiance);
-            scatters = 1;
-#ifdef WP_HAS_NEE
-            vec3 shadow_origin, shadow_direction, contribution;
-            real distance;
-            if (m->type == WP_MATERIAL_DIFFUSE &&
-                sample_direct_light(WP_SCENE_ARGS, pixel[slot], sample[slot], bounce, s.point, s.error, nf,
-                                    v3_mul(throughput, vec3_at(m->albedo)), &shadow_origin, &shadow_direction, &distance,
-                                    &contribution)) {
-                STORE_XYZ(shadow_origin, slot, shadow_origin);
-                STORE_XYZ(shadow_direction, slot, shadow_direction);
-                shadow_distance[slot] = distance;
-                STORE_RGB(shadow_radiance, slot, contribution);
-                casts_shadow = 1;
-            }
+    lane_uint dropped = 0u;
+    vec3 radiance =
+        add_finite(LOAD_LANES_RGB(radiance, slot), emission_seen(m, cos_incident, after_specular, throughput), &dropped);
+    count_nonfinite(slot_nonfinite, capacity, WP_COUNTER_NONFINITE_EMISSION, lanes, dropped);
+    lane_int ends = lanes.active && (bounce >= scene->max_depth || m.type == WP_MATERIAL_EMITTER);
+    lane_int scatters = lanes.active && !ends;
+    finish_paths(pass_radiance, load_uint(pass_item, slot), ends, radiance);
+    STORE_LANES_RGB(radiance, slot, scatters, radiance);
+    lane_int casts_shadow = 0;
+#if defined(WP_HAS_NEE) && defined(WP_HAS_DIFFUSE)
+    vec3 shadow_from, shadow_towards, contribution;
+    real distance;
+    lane_int carries = sample_direct_light(WP_SCENE_ARGS, load_uint(pixel, slot), load_uint(sample, slot), bounce,
+                                           s.point, s.error, nf, v3_mul(throughput, m.albedo), &shadow_from,
+                                           &shadow_towards, &distance, &contribution);
+    casts_shadow = scatters && m.type == WP_MATERIAL_DIFFUSE && carries;
+    STORE_LANES_XYZ(shadow_origin, slot, casts_shadow, shadow_from);
+    STORE_LANES_XYZ(shadow_direction, slot, casts_shadow, shadow_towards);
+    store_real(shadow_distance, slot, casts_shadow, distance);
+    STORE_LANES_RGB(shadow_radiance, slot, casts_shadow, contribution);
 #endif
-        }
-    }
-    queue_push(queues, counts, capacity, WP_QUEUE_SHADOW, casts_shadow, slot, &group_count, &group_base);
-    queue_push(queues, counts, capacity, WP_QUEUE_SCATTER, scatters, slot, &group_count, &group_base);
-    queue_push(queues, counts, capacity, WP_QUEUE_FREE, ends, slot, &group_count, &group_base);
+    push_lanes(queues, counts, capacity, WP_QUEUE_SHADOW, lanes, casts_shadow, &group_count, &group_base);
+    push_lanes(queues, counts, capacity, WP_QUEUE_SCATTER, lanes, scatters, &group_count, &group_base);
+    push_lanes(queues, counts, capacity, WP_QUEUE_FREE, lanes, ends, &group_count, &group_base);
 }

@@ -29,17 +29,26 @@
 #ifndef WP_LANES
 #define WP_LANES 1
 #endif
+typedef float real_element; /* what a `real` is stored as in device memory */
 #if WP_LANES == 1
 typedef float real;
 typedef int lane_int;
 typedef uint lane_uint;
+#define TO_REAL(x) ((real)(x))
+#define TO_LANE_INT(x) ((lane_int)(x))
 #elif WP_LANES == 8
 typedef float8 real;
 typedef int8 lane_int; /* a condition: -1 (all bits) where true, as OpenCL's vector comparisons give */
 typedef uint8 lane_uint;
+#define TO_REAL(x) convert_float8(x)
+#define TO_LANE_INT(x) convert_int8(x) /* toward zero, as a C cast */
+/* F(s0) F(s1) ... F(s7): code once per lane (lane_memory.h). */
+#define WP_FOR_LANES(F) F(s0) F(s1) F(s2) F(s3) F(s4) F(s5) F(s6) F(s7)
 #else
 #error "WP_LANES must be 1 or 8"
 #endif
+#include "lane_memory.h"
+#define WP_LOAD(p, index) load_real((p), (index))
 typedef struct {
     real x, y, z;
 } vec3;
@@ -57,6 +66,10 @@ WP_FN vec3 make_vec3(real x, real y, real z) {
 #define WP_GLOBAL
 typedef int lane_int;
 typedef uint lane_uint;
+typedef real real_element;
+#define TO_REAL(x) (static_cast<real>(x))
+#define TO_LANE_INT(x) (static_cast<lane_int>(x))
+#define WP_LOAD(p, index) ((p)[index])
 #define make_vec3(x, y, z) (vec3((x), (y), (z)))
 #define REAL(x) (static_cast<real>(x))
 #define WP_REAL_MAX real_max

@@ -19,7 +19,7 @@
 #define DIM_COUNT 9u        /* dimensions per bounce; fits in 6 bits */
 
 typedef struct {
-    uint x, y, z, w;
+    lane_uint x, y, z, w;
 } RngKey;
 
 WP_FN RngKey pcg4d(RngKey v) {
@@ -43,7 +43,7 @@ WP_FN RngKey pcg4d(RngKey v) {
 }
 
 /* 32 random bits for one (seed, pixel, sample, bounce, dimension). */
-WP_FN uint rng_bits(uint seed, uint pixel, uint sample, uint bounce, uint dimension) {
+WP_FN lane_uint rng_bits(uint seed, lane_uint pixel, lane_uint sample, lane_uint bounce, uint dimension) {
     RngKey key;
     key.x = pixel;
     key.y = sample;
@@ -54,6 +54,6 @@ WP_FN uint rng_bits(uint seed, uint pixel, uint sample, uint bounce, uint dimens
 
 /* Uniform in [0, 1) with 24 bits: exactly representable in float, so the
  * float and double builds draw identical numbers. */
-WP_FN real rng_uniform(uint seed, uint pixel, uint sample, uint bounce, uint dimension) {
-    return (real)(rng_bits(seed, pixel, sample, bounce, dimension) >> 8u) * REAL(5.9604644775390625e-8);
+WP_FN real rng_uniform(uint seed, lane_uint pixel, lane_uint sample, lane_uint bounce, uint dimension) {
+    return TO_REAL(rng_bits(seed, pixel, sample, bounce, dimension) >> 8u) * REAL(5.9604644775390625e-8);
 }

@@ -53,7 +53,7 @@ WP_FN CosSin cos_sin_turns(real u) {
     c = c * x2 + REAL(1.0) / REAL(24.0);
     c = c * x2 - REAL(1.0) / REAL(2.0);
     c = c * x2 + REAL(1.0);
-    int quadrant = (int)quarter_turns & 3; /* rotate (c, s) by quadrant quarter turns */
+    lane_int quadrant = TO_LANE_INT(quarter_turns) & 3; /* rotate (c, s) by quadrant quarter turns */
     CosSin r;
     r.cos_value = quadrant == 0 ? c : quadrant == 1 ? -s : quadrant == 2 ? -c : s;
     r.sin_value = quadrant == 0 ? s : quadrant == 1 ? c : quadrant == 2 ? -s : -c;
@@ -145,33 +145,44 @@ WP_FN LightSample sample_sphere_cone(vec3 center, real radius, vec3 reference, r
     return s;
 }
 
+WP_FN LightSample select_light_sample(lane_int choose_a, LightSample a, LightSample b) {
+    LightSample s;
+    s.point = v3_select(choose_a, a.point, b.point);
+    s.normal = v3_select(choose_a, a.normal, b.normal);
+    s.pdf_solid_angle = choose_a ? a.pdf_solid_angle : b.pdf_solid_angle;
+    return s;
+}
+
 /* Cone sampling from outside; area sampling from inside or on the surface,
  * where the cone degenerates. Both are unbiased; the switch is a choice of
- * strategy, not a tolerance. */
+ * strategy, not a tolerance. Both are computed and one chosen, so that lanes
+ * on either side run the same code. */
 WP_FN LightSample sample_sphere(vec3 center, real radius, vec3 reference, real u1, real u2) {
     vec3 to_center = v3_sub(center, reference);
     real distance_squared = v3_dot(to_center, to_center);
-    if (distance_squared > REAL(1.0001) * radius * radius) return sample_sphere_cone(center, radius, reference, u1, u2);
-    return sample_sphere_area(center, radius, reference, u1, u2);
+    return select_light_sample(distance_squared > REAL(1.0001) * radius * radius,
+                               sample_sphere_cone(center, radius, reference, u1, u2),
+                               sample_sphere_area(center, radius, reference, u1, u2));
 }
 
 /* Index of the light whose cumulative-probability interval holds u (the
  * first i with u < cdf[i]). cdf has `count` entries, increasing, the last
  * equal to 1. A binary search whose steps depend on `count` alone and whose
  * choices are selects, so a constant count unrolls it into vector code. */
-WP_FN uint select_light(WP_GLOBAL const real* cdf, uint count, real u) {
-    uint first = 0u; /* the answer lies in [first, first + remaining) */
+WP_FN lane_uint select_light(WP_GLOBAL const real_element* cdf, uint count, real u) {
+    lane_uint first = 0u; /* the answer lies in [first, first + remaining) */
     for (uint remaining = count; remaining > 1u;) {
         uint step = remaining / 2u;
-        first = u >= cdf[first + step - 1u] ? first + step : first;
+        first = u >= WP_LOAD(cdf, first + step - 1u) ? first + step : first;
         remaining -= step;
     }
     return first;
 }
 
 /* Probability that select_light returns `index`. */
-WP_FN real light_selection_pmf(WP_GLOBAL const real* cdf, uint index) {
-    return index == 0u ? cdf[0] : cdf[index] - cdf[index - 1u];
+WP_FN real light_selection_pmf(WP_GLOBAL const real_element* cdf, lane_uint index) {
+    real below = WP_LOAD(cdf, index == 0u ? index : index - 1u);
+    return index == 0u ? WP_LOAD(cdf, index) : WP_LOAD(cdf, index) - below;
 }
 
 /* Unit direction through the film point (x, y) in [0,1]^2 (y down) of a

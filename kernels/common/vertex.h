@@ -2,114 +2,151 @@
  * the megakernel so that both compute exactly the reference's estimator
  * (docs/architecture.md, "Conventions"): the camera ray, emission seen at a
  * hit, the light sample of next-event estimation, BSDF sampling and Russian
- * roulette. Needs wavefront.h (scene layout, Surface) first. */
+ * roulette. Written for any number of lanes (prelude.h): every choice is a
+ * select, so a lane computes what every other lane's case needs and keeps
+ * its own. Needs wavefront.h first. */
 #ifndef WP_VERTEX_H
 #define WP_VERTEX_H
 
 /* The camera ray direction of sample s of pixel px (the camera is at the origin). */
-WP_FN vec3 camera_ray_direction(__global const SceneHeader *scene, uint px, uint s) {
-    uint x = px % scene->width, y = px / scene->width;
+WP_FN vec3 camera_ray_direction(__global const SceneHeader *scene, lane_uint px, lane_uint s) {
+    lane_uint x = px % scene->width, y = px / scene->width;
     real u0 = rng_uniform(scene->seed, px, s, 0u, DIM_FILM_X);
     real u1 = rng_uniform(scene->seed, px, s, 0u, DIM_FILM_Y);
     return camera_direction(vec3_at(scene->camera_right), vec3_at(scene->camera_up), vec3_at(scene->camera_forward),
-                            scene->tan_half_fov_y, scene->aspect, ((real)x + u0) / (real)scene->width,
-                            ((real)y + u1) / (real)scene->height);
+                            scene->tan_half_fov_y, scene->aspect, (TO_REAL(x) + u0) / (real)scene->width,
+                            (TO_REAL(y) + u1) / (real)scene->height);
 }
 
 /* Emission the path adds at a hit: when the material emits towards the ray
  * (or is two-sided) and the previous vertex was the camera or specular, or
- * at every hit when NEE is off (-DWP_NEE_OFF). */
-WP_FN vec3 emission_seen(__global const DeviceMaterial *m, real cos_incident, int after_specular, vec3 throughput) {
-    vec3 emission = vec3_at(m->emission);
-    int emits = emission.x > REAL(0.0) || emission.y > REAL(0.0) || emission.z > REAL(0.0);
-#ifdef WP_NEE_OFF
-    after_specular = 1; /* pure BSDF sampling: no light sample accounts for this emission */
+ * at every hit when NEE is off (-DWP_NEE_OFF: pure BSDF sampling, no light
+ * sample accounts for it). */
+WP_FN vec3 emission_seen(Material m, real cos_incident, lane_int after_specular, vec3 throughput) {
+    lane_int emits = m.emission.x > REAL(0.0) || m.emission.y > REAL(0.0) || m.emission.z > REAL(0.0);
+    lane_int seen = emits && (m.two_sided || cos_incident < REAL(0.0));
+#ifndef WP_NEE_OFF
+    seen = seen && after_specular;
 #endif
-    int seen = emits && (m->two_sided || cos_incident < REAL(0.0)) && after_specular;
-    return v3_select(seen, v3_mul(throughput, emission), make_vec3(REAL(0.0), REAL(0.0), REAL(0.0)));
+    return v3_select(seen, v3_mul(throughput, m.emission), make_vec3(REAL(0.0), REAL(0.0), REAL(0.0)));
 }
 
-/* Samples one light for the diffuse vertex (x, nf); returns 1 with the shadow
- * ray and the contribution it adds when unoccluded, 0 when the sample carries
- * nothing. */
 #ifdef WP_HAS_NEE
-WP_FN int sample_direct_light(WP_SCENE_PARAMS, uint pixel, uint sample, uint bounce, vec3 x, real x_error, vec3 nf,
-                              vec3 weight,
-                              vec3 *shadow_origin, vec3 *shadow_direction, real *shadow_distance,
-                              vec3 *contribution) {
-    uint seed = scene->seed;
-    uint light = select_light(light_cdf, LIGHT_COUNT, rng_uniform(seed, pixel, sample, bounce, DIM_LIGHT_SELECT));
-    real pmf = light_selection_pmf(light_cdf, light);
-    real u = rng_uniform(seed, pixel, sample, bounce, DIM_LIGHT_U);
-    real v = rng_uniform(seed, pixel, sample, bounce, DIM_LIGHT_V);
-    uint index = lights[light].shape & WP_SHAPE_INDEX_MASK;
-    LightSample ls;
-    uint material = 0u;
-    real magnitude = REAL(0.0);
+/* A point sampled on the light `shape` (type and index packed as in
+ * hit_shape), with its material and magnitude (offset.h). A lane whose
+ * light is of another kind reads that kind's arrays at index 0. */
+typedef struct {
+    LightSample sample;
+    lane_uint material;
+    real magnitude;
+} LightPoint;
+
+WP_FN LightPoint sample_light_shape(WP_SCENE_PARAMS, lane_uint shape, vec3 x, real u, real v) {
+    lane_uint index = shape & WP_SHAPE_INDEX_MASK, type = shape >> WP_SHAPE_TYPE_SHIFT;
+    LightPoint p;
 #ifdef WP_HAS_SPHERE_LIGHTS
-    if ((lights[light].shape >> WP_SHAPE_TYPE_SHIFT) == WP_SHAPE_SPHERE) {
-        vec3 center = vec3_at(spheres[index].center);
-        ls = sample_sphere(center, spheres[index].radius, x, u, v);
-        material = spheres[index].material;
-        magnitude = sphere_magnitude(center, spheres[index].radius);
+    {
+        lane_int is_sphere = type == WP_SHAPE_SPHERE;
+        lane_uint i = is_sphere ? index : (lane_uint)0u;
+        vec3 center = LOAD_MEMBER_XYZ(spheres, i, center);
+        real radius = LOAD_MEMBER(spheres, i, radius);
+        p.sample = sample_sphere(center, radius, x, u, v);
+        p.material = LOAD_MEMBER_UINT(spheres, i, material);
+        p.magnitude = sphere_magnitude(center, radius);
     }
 #endif
 #ifdef WP_HAS_QUAD_LIGHTS
-    if ((lights[light].shape >> WP_SHAPE_TYPE_SHIFT) == WP_SHAPE_QUAD) {
-        vec3 corner = vec3_at(quads[index].corner), edge1 = vec3_at(quads[index].edge1);
-        vec3 edge2 = vec3_at(quads[index].edge2);
-        ls = sample_quad(corner, edge1, edge2, x, u, v);
-        material = quads[index].material;
-        magnitude = quad_magnitude(corner, edge1, edge2);
+    {
+        lane_int is_quad = type == WP_SHAPE_QUAD;
+        lane_uint i = is_quad ? index : (lane_uint)0u;
+        vec3 corner = LOAD_MEMBER_XYZ(quads, i, corner), edge1 = LOAD_MEMBER_XYZ(quads, i, edge1);
+        vec3 edge2 = LOAD_MEMBER_XYZ(quads, i, edge2);
+#ifdef WP_HAS_SPHERE_LIGHTS
+        p.sample = select_light_sample(is_quad, sample_quad(corner, edge1, edge2, x, u, v), p.sample);
+        p.material = is_quad ? LOAD_MEMBER_UINT(quads, i, material) : p.material;
+        p.magnitude = is_quad ? quad_magnitude(corner, edge1, edge2) : p.magnitude;
+#else
+        p.sample = sample_quad(corner, edge1, edge2, x, u, v);
+        p.material = LOAD_MEMBER_UINT(quads, i, material);
+        p.magnitude = quad_magnitude(corner, edge1, edge2);
+#endif
     }
 #endif
-    if (ls.pdf_solid_angle == REAL(0.0)) return 0;
+    return p;
+}
+
+/* Samples one light for the diffuse vertex (x, nf); returns where the sample
+ * carries light, with the shadow ray and the contribution it adds when
+ * unoccluded (the outputs hold no ray elsewhere). */
+WP_FN lane_int sample_direct_light(WP_SCENE_PARAMS, lane_uint pixel, lane_uint sample, lane_uint bounce, vec3 x,
+                                   real x_error, vec3 nf, vec3 weight, vec3 *shadow_origin, vec3 *shadow_direction,
+                                   real *shadow_distance, vec3 *contribution) {
+    uint seed = scene->seed;
+    lane_uint light =
+        select_light(light_cdf, LIGHT_COUNT, rng_uniform(seed, pixel, sample, bounce, DIM_LIGHT_SELECT));
+    real pmf = light_selection_pmf(light_cdf, light);
+    LightPoint p = sample_light_shape(WP_SCENE_ARGS, LOAD_MEMBER_UINT(lights, light, shape), x,
+                                      rng_uniform(seed, pixel, sample, bounce, DIM_LIGHT_U),
+                                      rng_uniform(seed, pixel, sample, bounce, DIM_LIGHT_V));
+    LightSample ls = p.sample;
+    Material emitter = material_at(materials, p.material);
     vec3 wi = v3_normalize(v3_sub(ls.point, x));
     real cos_surface = v3_dot(wi, nf);
-    int light_faces_x = v3_dot(ls.normal, v3_sub(x, ls.point)) > REAL(0.0);
-    if (!(cos_surface > REAL(0.0)) || !(materials[material].two_sided || light_faces_x)) return 0;
+    lane_int light_faces_x = v3_dot(ls.normal, v3_sub(x, ls.point)) > REAL(0.0);
+    lane_int carries = ls.pdf_solid_angle != REAL(0.0) && cos_surface > REAL(0.0) &&
+                       (emitter.two_sided || light_faces_x);
     vec3 from = offset_ray_origin(x, nf, x_error);
     vec3 to = offset_ray_origin(ls.point, v3_select(light_faces_x, ls.normal, v3_neg(ls.normal)),
-                                shadow_target_error(x, ls.point, magnitude));
+                                shadow_target_error(x, ls.point, p.magnitude));
     vec3 along = v3_sub(to, from);
     *shadow_distance = v3_length(along);
     *shadow_direction = v3_div(along, *shadow_distance);
     *shadow_origin = from;
     /* in the reference's order of operations */
-    *contribution = v3_div(v3_scale(v3_mul(v3_scale(weight, WP_INV_PI), vec3_at(materials[material].emission)),
-                                    cos_surface),
+    *contribution = v3_div(v3_scale(v3_mul(v3_scale(weight, WP_INV_PI), emitter.emission), cos_surface),
                            ls.pdf_solid_angle * pmf);
-    return 1;
+    return carries;
 }
 #endif
 
 typedef struct {
     vec3 direction;
-    vec3 weight;      /* throughput factor */
-    vec3 leave_side;  /* normal on the side the new ray leaves into */
-    uint specular;
+    vec3 weight;     /* throughput factor */
+    vec3 leave_side; /* normal on the side the new ray leaves into */
+    lane_uint specular;
 } Scattered;
 
-WP_FN Scattered scatter_diffuse(__global const DeviceMaterial *m, vec3 nf, real u, real v) {
+WP_FN Scattered select_scattered(lane_int choose_a, Scattered a, Scattered b) {
+    Scattered s;
+    s.direction = v3_select(choose_a, a.direction, b.direction);
+    s.weight = v3_select(choose_a, a.weight, b.weight);
+    s.leave_side = v3_select(choose_a, a.leave_side, b.leave_side);
+    s.specular = choose_a ? a.specular : b.specular;
+    return s;
+}
+
+#ifdef WP_HAS_DIFFUSE
+WP_FN Scattered scatter_diffuse(Material m, vec3 nf, real u, real v) {
     Scattered s;
 #ifdef WP_UNIFORM_HEMISPHERE
     vec3 in_frame = sample_uniform_hemisphere(u, v); /* `local` is an OpenCL keyword */
-    s.weight = v3_scale(vec3_at(m->albedo), REAL(2.0) * in_frame.z); /* albedo/pi * cos / (1/(2 pi)) */
+    s.weight = v3_scale(m.albedo, REAL(2.0) * in_frame.z); /* albedo/pi * cos / (1/(2 pi)) */
 #else
     vec3 in_frame = sample_cosine_hemisphere(u, v);
-    s.weight = vec3_at(m->albedo);
+    s.weight = m.albedo;
 #endif
     s.direction = frame_to_world(frame_from_normal(nf), in_frame);
     s.leave_side = nf;
     s.specular = 0u;
     return s;
 }
+#endif
 
 #ifdef WP_HAS_MIRROR
-WP_FN Scattered scatter_mirror(__global const DeviceMaterial *m, vec3 d, vec3 nf) {
+WP_FN Scattered scatter_mirror(Material m, vec3 d, vec3 nf) {
     Scattered s;
     s.direction = reflect_direction(d, nf);
-    s.weight = vec3_at(m->reflectance);
+    s.weight = m.reflectance;
     s.leave_side = nf;
     s.specular = 1u;
     return s;
@@ -118,51 +155,53 @@ WP_FN Scattered scatter_mirror(__global const DeviceMaterial *m, vec3 d, vec3 nf
 
 #ifdef WP_HAS_GLASS
 /* Fresnel chooses reflection or refraction; refraction scales radiance by 1/eta^2. */
-WP_FN Scattered scatter_glass(__global const DeviceMaterial *m, vec3 d, vec3 nf, int entering, real u_lobe) {
-    Scattered s;
-    real eta = entering ? m->ior : REAL(1.0) / m->ior;
+WP_FN Scattered scatter_glass(Material m, vec3 d, vec3 nf, lane_int entering, real u_lobe) {
+    real eta = entering ? m.ior : REAL(1.0) / m.ior;
     real reflectance = fresnel_dielectric(-v3_dot(d, nf), eta);
-    s.specular = 1u;
-    s.weight = make_vec3(REAL(1.0), REAL(1.0), REAL(1.0));
-    s.leave_side = nf;
-    s.direction = reflect_direction(d, nf);
     vec3 refracted;
-    if (u_lobe >= reflectance && refract_direction(d, nf, eta, &refracted)) {
-        s.direction = refracted;
-        s.weight = v3_div(s.weight, eta * eta);
-        s.leave_side = v3_neg(nf);
-    }
+    lane_int refracts = u_lobe >= reflectance && refract_direction(d, nf, eta, &refracted);
+    Scattered s;
+    s.specular = 1u;
+    s.direction = v3_select(refracts, refracted, reflect_direction(d, nf));
+    s.weight = v3_div(make_vec3(REAL(1.0), REAL(1.0), REAL(1.0)), refracts ? eta * eta : REAL(1.0));
+    s.leave_side = v3_select(refracts, v3_neg(nf), nf);
     return s;
 }
 #endif
 
-/* BSDF sampling at bounce `bounce` for the material's type. */
-WP_FN Scattered scatter_vertex(__global const DeviceMaterial *m, vec3 d, vec3 nf, int entering, uint seed, uint px,
-                               uint s, uint bounce) {
+/* BSDF sampling at bounce `bounce` for the material's type (every kind in
+ * the scene is sampled; each lane keeps its material's). */
+WP_FN Scattered scatter_vertex(Material m, vec3 d, vec3 nf, lane_int entering, uint seed, lane_uint px, lane_uint s,
+                               lane_uint bounce) {
     Scattered scattered;
+    scattered.direction = scattered.weight = scattered.leave_side = make_vec3(REAL(0.0), REAL(0.0), REAL(0.0));
+    scattered.specular = 0u;
 #ifdef WP_HAS_DIFFUSE
-    if (m->type == WP_MATERIAL_DIFFUSE)
-        return scatter_diffuse(m, nf, rng_uniform(seed, px, s, bounce, DIM_BSDF_U),
-                                    rng_uniform(seed, px, s, bounce, DIM_BSDF_V));
+    scattered = select_scattered(m.type == WP_MATERIAL_DIFFUSE,
+                                 scatter_diffuse(m, nf, rng_uniform(seed, px, s, bounce, DIM_BSDF_U),
+                                                 rng_uniform(seed, px, s, bounce, DIM_BSDF_V)),
+                                 scattered);
 #endif
 #ifdef WP_HAS_MIRROR
-    if (m->type == WP_MATERIAL_MIRROR) return scatter_mirror(m, d, nf);
+    scattered = select_scattered(m.type == WP_MATERIAL_MIRROR, scatter_mirror(m, d, nf), scattered);
 #endif
 #ifdef WP_HAS_GLASS
-    if (m->type == WP_MATERIAL_GLASS)
-        return scatter_glass(m, d, nf, entering, rng_uniform(seed, px, s, bounce, DIM_BSDF_LOBE));
+    scattered = select_scattered(m.type == WP_MATERIAL_GLASS,
+                                 scatter_glass(m, d, nf, entering, rng_uniform(seed, px, s, bounce, DIM_BSDF_LOBE)),
+                                 scattered);
 #endif
     return scattered;
 }
 
 /* Russian roulette once new_depth reaches rr_depth: survival probability
  * clamp(max_component(T), 0.05, 1), and T /= survival when the path survives. */
-WP_FN int survives_roulette(vec3 *throughput, uint seed, uint px, uint s, uint bounce, uint new_depth, uint rr_depth) {
-    if (new_depth < rr_depth) return 1;
+WP_FN lane_int survives_roulette(vec3 *throughput, uint seed, lane_uint px, lane_uint s, lane_uint bounce,
+                                 lane_uint new_depth, uint rr_depth) {
+    lane_int plays = new_depth >= rr_depth;
     real survival = wp_clamp(max_component(*throughput), REAL(0.05), REAL(1.0));
-    int survives = rng_uniform(seed, px, s, bounce, DIM_ROULETTE) < survival;
-    *throughput = v3_div(*throughput, survival);
-    return survives;
+    lane_int survives = rng_uniform(seed, px, s, bounce, DIM_ROULETTE) < survival;
+    *throughput = v3_select(plays, v3_div(*throughput, survival), *throughput);
+    return !plays || survives;
 }
 
 #endif

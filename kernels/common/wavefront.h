@@ -1,10 +1,10 @@
-/* What the one-lane stage kernels share beyond trace.h: the shared math of
- * sampling and shading, path state access by slot, the queue push, the hit
- * surface and the end of a path. */
+/* What the stage kernels and the megakernel share beyond lanes.h: the shared
+ * math of sampling and shading, and the surface and material at a hit, read
+ * per lane. Features absent from the scene (WP_HAS_* options) are compiled out. */
 #ifndef WP_WAVEFRONT_H
 #define WP_WAVEFRONT_H
 
-#include "trace.h"
+#include "lanes.h"
 #include "rng.h"
 #include "offset.h"
 #include "sampling.h"
@@ -16,86 +16,98 @@
 #pragma GCC poison fresnel_dielectric refract_direction
 #endif
 
-#define LOAD_XYZ(name, i) make_vec3(name##_x[i], name##_y[i], name##_z[i])
-#define LOAD_RGB(name, i) make_vec3(name##_r[i], name##_g[i], name##_b[i])
-#define STORE_XYZ(name, i, v) (name##_x[i] = (v).x, name##_y[i] = (v).y, name##_z[i] = (v).z)
-#define STORE_RGB(name, i, v) (name##_r[i] = (v).x, name##_g[i] = (v).y, name##_b[i] = (v).z)
-
-
-/* Index of this work item in its input queue, or ~0u past the queue's end.
- * Kernels are launched over the queues' capacity and read the length here,
- * so the host never waits for a length between stages. */
-WP_FN uint queue_position(__global const uint *counts, uint queue) {
-    uint k = get_global_id(0);
-    return k < counts[queue] ? k : ~0u;
-}
-
-/* The start of a stage kernel: the work group's push scratch, this work
- * item's position k in its input queue (~0u past the end) and the slot there. */
-#define WP_STAGE_INPUT(queue)                   \
-    __local uint group_count, group_base;       \
-    uint k = queue_position(counts, (queue));   \
-    uint slot = k != ~0u ? queues[(queue) * capacity + k] : 0u
-
 typedef struct {
     vec3 point;
     vec3 normal; /* geometric: outward (sphere), the plane's, normalize(edge1 x edge2) (quad) */
-    uint material;
+    lane_uint material;
     real error; /* bound on the point's distance from the surface (offset.h) */
 } Surface;
 
-WP_FN Surface surface_at(WP_SCENE_PARAMS, uint shape, vec3 origin, vec3 direction, real t) {
+/* The surface where the ray (origin, direction) hit `shape` at distance t.
+ * Every shape kind in the scene is evaluated and each lane keeps its own;
+ * a lane reads the arrays of the other kinds at index 0. */
+WP_FN Surface surface_at(WP_SCENE_PARAMS, lane_uint shape, vec3 origin, vec3 direction, real t) {
+    lane_uint index = shape & WP_SHAPE_INDEX_MASK;
+    lane_uint type = shape >> WP_SHAPE_TYPE_SHIFT;
     Surface s;
     s.point = v3_add_scaled(origin, t, direction);
-    uint index = shape & WP_SHAPE_INDEX_MASK;
-    uint type = shape >> WP_SHAPE_TYPE_SHIFT;
+    s.normal = make_vec3(REAL(0.0), REAL(0.0), REAL(0.0));
+    s.material = 0u;
+    s.error = REAL(0.0);
 #ifdef WP_HAS_SPHERES
-    if (type == WP_SHAPE_SPHERE) {
-        vec3 center = vec3_at(spheres[index].center);
-        s.point = sphere_reproject(center, spheres[index].radius, s.point);
-        s.normal = sphere_normal(center, s.point);
-        s.material = spheres[index].material;
-        s.error = shape_point_error(sphere_magnitude(center, spheres[index].radius));
+    {
+        lane_int is_sphere = type == WP_SHAPE_SPHERE;
+        lane_uint i = is_sphere ? index : (lane_uint)0u;
+        vec3 center = LOAD_MEMBER_XYZ(spheres, i, center);
+        real radius = LOAD_MEMBER(spheres, i, radius);
+        vec3 on_sphere = sphere_reproject(center, radius, s.point);
+        s.normal = v3_select(is_sphere, sphere_normal(center, on_sphere), s.normal);
+        s.material = is_sphere ? LOAD_MEMBER_UINT(spheres, i, material) : s.material;
+        s.error = is_sphere ? shape_point_error(sphere_magnitude(center, radius)) : s.error;
+        s.point = v3_select(is_sphere, on_sphere, s.point);
     }
 #endif
 #ifdef WP_HAS_PLANES
-    if (type == WP_SHAPE_PLANE) {
-        s.normal = vec3_at(planes[index].normal);
-        s.material = planes[index].material;
-        s.error = ray_point_error(origin, t, plane_magnitude(vec3_at(planes[index].point)));
+    {
+        lane_int is_plane = type == WP_SHAPE_PLANE;
+        lane_uint i = is_plane ? index : (lane_uint)0u;
+        s.normal = v3_select(is_plane, LOAD_MEMBER_XYZ(planes, i, normal), s.normal);
+        s.material = is_plane ? LOAD_MEMBER_UINT(planes, i, material) : s.material;
+        s.error = is_plane ? ray_point_error(origin, t, plane_magnitude(LOAD_MEMBER_XYZ(planes, i, point))) : s.error;
     }
 #endif
 #ifdef WP_HAS_QUADS
-    if (type == WP_SHAPE_QUAD) {
-        vec3 edge1 = vec3_at(quads[index].edge1), edge2 = vec3_at(quads[index].edge2);
-        s.normal = quad_normal(edge1, edge2);
-        s.material = quads[index].material;
-        s.error = ray_point_error(origin, t, quad_magnitude(vec3_at(quads[index].corner), edge1, edge2));
+    {
+        lane_int is_quad = type == WP_SHAPE_QUAD;
+        lane_uint i = is_quad ? index : (lane_uint)0u;
+        vec3 edge1 = LOAD_MEMBER_XYZ(quads, i, edge1), edge2 = LOAD_MEMBER_XYZ(quads, i, edge2);
+        s.normal = v3_select(is_quad, quad_normal(edge1, edge2), s.normal);
+        s.material = is_quad ? LOAD_MEMBER_UINT(quads, i, material) : s.material;
+        s.error = is_quad ? ray_point_error(origin, t, quad_magnitude(LOAD_MEMBER_XYZ(quads, i, corner), edge1, edge2))
+                          : s.error;
     }
 #endif
     return s;
 }
 
-/* Adds a work item's dropped values to its slot's counter for the stage
- * (WP_COUNTER_NONFINITE_*): one counter per slot and stage, so no atomics;
- * the host sums them after each pass. */
-WP_FN void count_nonfinite(__global uint *slot_nonfinite, uint capacity, uint stage_counter, uint slot, uint dropped) {
-    if (dropped != 0u) slot_nonfinite[(stage_counter - WP_COUNTER_NONFINITE_EMISSION) * capacity + slot] += dropped;
+/* A material's fields, per lane; only those of the material kinds in the scene. */
+typedef struct {
+    lane_uint type; /* WP_MATERIAL_* */
+    lane_int two_sided;
+    vec3 emission;
+#ifdef WP_HAS_DIFFUSE
+    vec3 albedo;
+#endif
+#ifdef WP_HAS_MIRROR
+    vec3 reflectance;
+#endif
+#ifdef WP_HAS_GLASS
+    real ior;
+#endif
+} Material;
+
+WP_FN Material material_at(__global const DeviceMaterial *materials, lane_uint index) {
+    Material m;
+    m.type = LOAD_MEMBER_UINT(materials, index, type);
+    m.two_sided = LOAD_MEMBER_UINT(materials, index, two_sided) != 0u;
+    m.emission = LOAD_MEMBER_XYZ(materials, index, emission);
+#ifdef WP_HAS_DIFFUSE
+    m.albedo = LOAD_MEMBER_XYZ(materials, index, albedo);
+#endif
+#ifdef WP_HAS_MIRROR
+    m.reflectance = LOAD_MEMBER_XYZ(materials, index, reflectance);
+#endif
+#ifdef WP_HAS_GLASS
+    m.ior = LOAD_MEMBER(materials, index, ior);
+#endif
+    return m;
 }
 
 /* Whether the throughput may carry the path on; a non-finite one ends it and is counted in *dropped. */
-WP_FN int throughput_is_finite(vec3 throughput, uint *dropped) {
-    int finite = vec3_is_finite(throughput);
-    *dropped += finite ? 0u : 1u;
+WP_FN lane_int throughput_is_finite(vec3 throughput, lane_uint *dropped) {
+    lane_int finite = vec3_is_finite(throughput);
+    *dropped += finite ? (lane_uint)0u : (lane_uint)1u;
     return finite;
-}
-
-/* Ends the path in `slot`: its radiance (finite: every addition was checked)
- * becomes its pass entry and the slot is freed for generate (the caller pushes it). */
-WP_FN void finish_path(__global float *pass_radiance, uint item, vec3 radiance) {
-    pass_radiance[3u * item + 0u] = radiance.x;
-    pass_radiance[3u * item + 1u] = radiance.y;
-    pass_radiance[3u * item + 2u] = radiance.z;
 }
 
 #endif

@@ -115,7 +115,7 @@ void add_backend_options(CLI::App& render, BackendOptions& options) {
         ->capture_default_str();
     render
         .add_option("--lanes", options.lanes,
-                    "Rays per work item in the wavefront's intersect stages, as vector code: 1 or 8 (8 needs "
+                    "Paths per work item in the wavefront's stage kernels, as vector code: 1 or 8 (8 needs "
                     "--compaction scan; 0: 8 on CPU devices, 1 on others)")
         ->check(CLI::IsMember({0u, 1u, 8u}))
         ->capture_default_str();

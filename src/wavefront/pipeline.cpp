@@ -1,6 +1,7 @@
 #include "wavefront/pipeline.h"
 
 #include <algorithm>
+#include <limits>
 #include <numeric>
 #include <stdexcept>
 
@@ -23,19 +24,12 @@ unsigned checked_lanes(unsigned lanes, Compaction compaction) {
     return lanes;
 }
 
-// The stages built in the tracing program, with WP_LANES rays per work item.
-bool traces(Stage stage) { return stage == Stage::Intersect || stage == Stage::IntersectShadow; }
-
 }  // namespace
 
 const std::vector<std::string>& wavefront_kernel_files() {
-    static const std::vector<std::string> files{"generate.cl", "shade_direct.cl", "scatter.cl",
-                                                "compact.cl",  "accumulate.cl",   "count_depths.cl"};
-    return files;
-}
-
-const std::vector<std::string>& wavefront_trace_files() {
-    static const std::vector<std::string> files{"intersect.cl", "intersect_shadow.cl"};
+    static const std::vector<std::string> files{"generate.cl", "intersect.cl",  "shade_direct.cl",
+                                                "intersect_shadow.cl", "scatter.cl", "compact.cl",
+                                                "accumulate.cl", "count_depths.cl", "intersect_bound.cl"};
     return files;
 }
 
@@ -54,10 +48,8 @@ Pipeline::Pipeline(const Scene& scene, const DeviceInfo& device, std::size_t cap
       context_(device.device),
       queue_(context_, device.device, options.profile ? cl_command_queue_properties(CL_QUEUE_PROFILING_ENABLE) : 0),
       program_(build_program(context_, device, wavefront_kernel_files(),
-                             stage_options(scene, device, kernel_features, options.compaction))),
-      trace_program_(build_program(context_, device, wavefront_trace_files(),
-                                   stage_options(scene, device, kernel_features, options.compaction) +
-                                       " -DWP_LANES=" + std::to_string(lanes_))),
+                             stage_options(scene, device, kernel_features, options.compaction) +
+                                 " -DWP_LANES=" + std::to_string(lanes_))),
       scene_(context_, flatten_scene(scene)),
       state_(context_, capacity, kernel_features, uses_nee(scene)),
       queues_(context_, CL_MEM_READ_WRITE,
@@ -75,9 +67,8 @@ Pipeline::Pipeline(const Scene& scene, const DeviceInfo& device, std::size_t cap
     identity_slots_ = cl::Buffer(context_, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(std::uint32_t) * capacity,
                                  identity.data());
     queue_.enqueueFillBuffer(counts_, std::uint32_t(0), 0, counts_.getInfo<CL_MEM_SIZE>());
-    for (Stage stage : {Stage::Generate, Stage::Intersect, Stage::ShadeDirect, Stage::IntersectShadow, Stage::Scatter}) {
-        cl::Kernel kernel(traces(stage) ? trace_program_.program : program_.program,
-                          stage_kernel_names[static_cast<int>(stage)]);
+    for (const char* name : stage_kernel_names) {
+        cl::Kernel kernel(program_.program, name);
         cl_uint arg = 0;
         for (const cl::Buffer& b : scene_.buffers) kernel.setArg(arg++, b);
         kernel.setArg(arg++, queues_);
@@ -148,7 +139,7 @@ void Pipeline::run(Stage stage) {
     if (profiling_ && stage == Stage::Intersect) count_depths(WP_QUEUE_RAY, WP_PROFILE_EXTENSION_BY_DEPTH);
     if (profiling_ && stage == Stage::IntersectShadow) count_depths(WP_QUEUE_SHADOW, WP_PROFILE_SHADOW_BY_DEPTH);
     int index = static_cast<int>(stage);
-    enqueue(stages_[index], stage_kernel_names[index], traces(stage) ? (capacity_ + lanes_ - 1) / lanes_ : capacity_);
+    enqueue(stages_[index], stage_kernel_names[index], (capacity_ + lanes_ - 1) / lanes_);
 }
 
 void Pipeline::count_depths(std::uint32_t queue, std::uint32_t histogram_offset) {
@@ -224,6 +215,32 @@ void Pipeline::time_finished_kernels() {
         last_kernel_end_ = std::max(last_kernel_end_, end);
     }
     pending_events_.clear();
+}
+
+IntersectBound Pipeline::measure_intersect_bound(std::uint32_t rays) {
+    if (!profiling_) throw std::logic_error("measure_intersect_bound needs a pipeline built with profiling");
+    std::size_t items = round_up((rays + lanes_ - 1) / lanes_, WP_GROUP_SIZE);
+    cl::Buffer sums(context_, CL_MEM_WRITE_ONLY, sizeof(float) * items);
+    cl::Kernel kernel(program_.program, "intersect_bound");
+    cl_uint arg = 0;
+    for (const cl::Buffer& b : scene_.buffers) kernel.setArg(arg++, b);
+    kernel.setArg(arg++, cl_uint(rays));
+    kernel.setArg(arg++, sums);
+    // Launch 0 is not timed: PoCL compiles the kernel for its launch geometry then.
+    double best_s = std::numeric_limits<double>::infinity();
+    for (int launch = 0; launch <= 3; ++launch) {
+        cl::Event event;
+        queue_.enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(items), cl::NDRange(WP_GROUP_SIZE), nullptr,
+                                    &event);
+        event.wait();
+        double seconds = double(event.getProfilingInfo<CL_PROFILING_COMMAND_END>() -
+                                event.getProfilingInfo<CL_PROFILING_COMMAND_START>()) *
+                         1e-9;
+        if (launch > 0) best_s = std::min(best_s, seconds);
+    }
+    std::vector<float> work_item_sums(items);
+    queue_.enqueueReadBuffer(sums, CL_TRUE, 0, sizeof(float) * items, work_item_sums.data());
+    return {double(rays) / best_s, std::accumulate(work_item_sums.begin(), work_item_sums.end(), 0.0)};
 }
 
 void Pipeline::read_rays_by_depth(WavefrontProfile& profile) {

@@ -36,13 +36,20 @@ enum class Compaction {
 struct PipelineOptions {
     bool profile = false;  // time every kernel with OpenCL events and count rays per depth (count_depths.cl)
     Compaction compaction = Compaction::Atomic;
-    unsigned lanes = 0;  // rays per work item in the tracing stages (1 or 8); 0: automatic_lanes()
+    unsigned lanes = 0;  // paths per work item in the stage kernels (1 or 8); 0: automatic_lanes()
 };
 
-// The lanes the tracing stages use by default: 8 on CPU devices, where a work
-// item's vector code is the only SIMD there is (prelude.h), 1 elsewhere (GPUs
-// run work items in SIMD already); 1 with atomic compaction, whose pushes are per work item.
+// The lanes the stage kernels use by default: 8 on CPU devices, where a work
+// item's vector code is the only SIMD there is (kernels/common/prelude.h), 1
+// elsewhere (GPUs run work items in SIMD already); 1 with atomic compaction,
+// whose pushes are per work item.
 unsigned automatic_lanes(const DeviceInfo& device, Compaction compaction);
+
+// The roofline of the tracing stages, measured by kernels/intersect_bound.cl.
+struct IntersectBound {
+    double rays_per_s = 0.0;        // rays over the best of three launches' device time
+    double hit_distance_sum = 0.0;  // over the rays that hit something: what the kernel computed, for tests
+};
 
 // Queue lengths then counters, as in kernels/common/queues.h.
 using DeviceCounts = std::array<std::uint32_t, WP_COUNTS_SIZE>;
@@ -66,9 +73,8 @@ class Pipeline {
     Pipeline(const Scene& scene, const DeviceInfo& device, std::size_t capacity, std::size_t pass_capacity)
         : Pipeline(scene, device, capacity, pass_capacity, scene.features()) {}
 
-    // The program of the one-lane stages and the one of the tracing stages (intersect, intersect_shadow).
+    // The program (every kernel file, built with -DWP_LANES=lanes()).
     const BuiltProgram& program() const { return program_; }
-    const BuiltProgram& trace_program() const { return trace_program_; }
     unsigned lanes() const { return lanes_; }
     const PathState& state() const { return state_; }
     std::size_t capacity() const { return capacity_; }
@@ -106,6 +112,12 @@ class Pipeline {
     // Extension and shadow rays counted per depth (profiling only).
     void read_rays_by_depth(WavefrontProfile& profile);
 
+    // Traces `rays` camera rays through pixel centres with nothing but the
+    // ray-primitive tests (intersect_bound.cl): the bound the intersect stages'
+    // rays/s is measured against. Needs profiling (it times with events); not
+    // added to profile(), so call it after the render.
+    IntersectBound measure_intersect_bound(std::uint32_t rays);
+
     // For stage tests: set a queue's slots and length, read the pass entries.
     void set_queue(std::uint32_t queue, const std::vector<std::uint32_t>& slots);
     std::vector<std::uint32_t> read_queue(std::uint32_t queue);
@@ -127,7 +139,7 @@ class Pipeline {
     unsigned lanes_;
     cl::Context context_;
     cl::CommandQueue queue_;
-    BuiltProgram program_, trace_program_;
+    BuiltProgram program_;
     DeviceScene scene_;
     PathState state_;
     cl::Buffer queues_, counts_, pass_radiance_, slot_nonfinite_, film_, identity_slots_;
@@ -162,8 +174,7 @@ cl::Buffer make_film(const cl::Context& context, cl::CommandQueue& queue, std::s
 void set_accumulate_args(cl::Kernel& accumulate, std::uint64_t pass_start, std::uint32_t pass_size,
                          std::size_t pixel_count, const cl::Buffer& pass_radiance, const cl::Buffer& film);
 
-// The kernel files of the one-lane program and of the tracing program, in build order.
+// The kernel files of the program, in build order.
 const std::vector<std::string>& wavefront_kernel_files();
-const std::vector<std::string>& wavefront_trace_files();
 
 }  // namespace wp

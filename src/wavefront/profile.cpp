@@ -19,23 +19,32 @@ std::string depth_list(const std::vector<std::uint64_t>& by_depth) {
     return text.empty() ? "-" : text;
 }
 
+template <class Kernels>
+auto find_kernel(Kernels& kernels, const std::string& name) {
+    return std::find_if(kernels.begin(), kernels.end(), [&](const KernelProfile& k) { return k.name == name; });
+}
+
 }  // namespace
 
 KernelProfile& WavefrontProfile::kernel(const std::string& name) {
-    auto it = std::find_if(kernels.begin(), kernels.end(), [&](const KernelProfile& k) { return k.name == name; });
+    auto it = find_kernel(kernels, name);
     if (it != kernels.end()) return *it;
     kernels.push_back({name});
     return kernels.back();
 }
 
-bool WavefrontProfile::has_kernel(const std::string& name) const {
-    return std::any_of(kernels.begin(), kernels.end(), [&](const KernelProfile& k) { return k.name == name; });
-}
+bool WavefrontProfile::has_kernel(const std::string& name) const { return find_kernel(kernels, name) != kernels.end(); }
 
 double WavefrontProfile::kernel_s() const {
     double sum = 0.0;
     for (const KernelProfile& k : kernels) sum += k.device_s;
     return sum;
+}
+
+double WavefrontProfile::fraction_of_intersect_bound(const std::string& name) const {
+    auto it = find_kernel(kernels, name);
+    if (it == kernels.end() || intersect_bound_rays_per_s <= 0.0) return 0.0;
+    return per_second(it->items, it->device_s) / intersect_bound_rays_per_s;
 }
 
 std::string format_profile_table(const WavefrontProfile& p) {
@@ -61,6 +70,14 @@ std::string format_profile_table(const WavefrontProfile& p) {
     out += line;
     out += "  extension rays by depth: " + depth_list(p.extension_rays_by_depth) + "\n";
     out += "  shadow rays by depth:    " + depth_list(p.shadow_rays_by_depth) + "\n";
+    if (p.intersect_bound_rays_per_s > 0.0) {
+        std::snprintf(line, sizeof line,
+                      "  intersect bound (ray-primitive tests only, no state traffic): %.1f Mrays/s; intersect at "
+                      "%.0f%% of it, intersect_shadow at %.0f%% (any hit: cheaper tests, same bound)\n",
+                      p.intersect_bound_rays_per_s * 1e-6, 100.0 * p.fraction_of_intersect_bound("intersect"),
+                      100.0 * p.fraction_of_intersect_bound("intersect_shadow"));
+        out += line;
+    }
     return out;
 }
 
@@ -73,15 +90,21 @@ nlohmann::json profile_json(const WavefrontProfile& p) {
                            {"device_s", k.device_s},
                            {"items_per_s", per_second(k.items, k.device_s)},
                            {"share", p.render_s > 0 ? k.device_s / p.render_s : 0.0}});
-    return {{"render_s", p.render_s},
-            {"kernel_s", p.kernel_s()},
-            {"gaps_s", p.gaps_s},
-            {"host_other_s", std::max(0.0, p.render_s - p.kernel_s() - p.gaps_s)},
-            {"build_s", p.build_s},
-            {"iterations", p.iterations},
-            {"kernels", kernels},
-            {"extension_rays_by_depth", p.extension_rays_by_depth},
-            {"shadow_rays_by_depth", p.shadow_rays_by_depth}};
+    nlohmann::json json = {{"render_s", p.render_s},
+                           {"kernel_s", p.kernel_s()},
+                           {"gaps_s", p.gaps_s},
+                           {"host_other_s", std::max(0.0, p.render_s - p.kernel_s() - p.gaps_s)},
+                           {"build_s", p.build_s},
+                           {"iterations", p.iterations},
+                           {"kernels", kernels},
+                           {"extension_rays_by_depth", p.extension_rays_by_depth},
+                           {"shadow_rays_by_depth", p.shadow_rays_by_depth}};
+    if (p.intersect_bound_rays_per_s > 0.0) {
+        json["intersect_bound_rays_per_s"] = p.intersect_bound_rays_per_s;
+        json["of_intersect_bound"] = {{"intersect", p.fraction_of_intersect_bound("intersect")},
+                                      {"intersect_shadow", p.fraction_of_intersect_bound("intersect_shadow")}};
+    }
+    return json;
 }
 
 void write_profile_json(const WavefrontProfile& profile, const std::string& path) {

@@ -18,6 +18,10 @@ namespace {
 // longer passes waste less; each item costs 12 bytes of pass radiance.
 constexpr std::size_t kPassesPerWavefront = 16;
 
+// Rays of the intersect bound (--profile): enough that launch overhead is
+// negligible, and the same for every image size.
+constexpr std::uint32_t kIntersectBoundRays = 1u << 20;
+
 // The scene's features plus every shape, material and light type: what an
 // unspecialised build compiles (lights and background stay as in the scene,
 // since next-event estimation needs at least one light).
@@ -82,7 +86,7 @@ std::string WavefrontReport::explain() const {
         << "program: " << (cache_hit ? "cache hit" : "cache miss, compiled") << " in " << build_seconds << " s"
         << (cache_file.empty() ? " (no cache directory)" : " (" + cache_file + ")") << "\n"
         << "wavefront: " << wavefront << " paths in flight, passes of up to " << pass_capacity << " samples, "
-        << lanes << (lanes == 1 ? " ray" : " rays") << " per work item in the intersect stages\n"
+        << lanes << (lanes == 1 ? " path" : " paths") << " per work item in the stage kernels\n"
         << "path state: " << state_bytes_per_path << " bytes per path, " << state_bytes_per_path * wavefront / 1024
         << " KiB in all\n";
     return out.str();
@@ -107,8 +111,8 @@ RenderResult render_wavefront(const Scene& scene, const WavefrontOptions& option
     r.device = device.name + " (" + device.platform + ")";
     r.features = describe_features(features) + (nee ? " nee" : "");
     r.build_options = pipeline.program().options;
-    r.cache_hit = pipeline.program().cache_hit && pipeline.trace_program().cache_hit;
-    r.build_seconds = pipeline.program().build_seconds + pipeline.trace_program().build_seconds;
+    r.cache_hit = pipeline.program().cache_hit;
+    r.build_seconds = pipeline.program().build_seconds;
     r.cache_file = pipeline.program().cache_file;
     r.lanes = pipeline.lanes();
     r.wavefront = wavefront;
@@ -130,6 +134,7 @@ RenderResult render_wavefront(const Scene& scene, const WavefrontOptions& option
         r.profile.render_s = result.stats.time_s;
         r.profile.build_s = r.build_seconds;
         pipeline.read_rays_by_depth(r.profile);
+        r.profile.intersect_bound_rays_per_s = pipeline.measure_intersect_bound(kIntersectBoundRays).rays_per_s;
     }
     return result;
 }

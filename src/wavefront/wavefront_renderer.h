@@ -19,7 +19,7 @@ struct WavefrontOptions {
     bool specialise = true;       // compile only the scene's features (false: every shape and material, for comparison)
     bool profile = false;         // time every kernel (WavefrontReport::profile)
     bool scan_compaction = true;  // stable prefix-sum compaction (false: aggregated atomic pushes)
-    unsigned lanes = 0;           // rays per work item in the tracing stages (1 or 8); 0 = automatic_lanes()
+    unsigned lanes = 0;           // paths per work item in the stage kernels (1 or 8); 0 = automatic_lanes()
 };
 
 // Queue lengths of one iteration of the stage loop, for the profiler.
@@ -45,7 +45,7 @@ struct WavefrontReport {
     std::size_t wavefront = 0;
     std::size_t pass_capacity = 0;
     std::size_t state_bytes_per_path = 0;
-    unsigned lanes = 1;  // rays per work item in intersect and intersect_shadow
+    unsigned lanes = 1;  // paths per work item in the stage kernels
     std::vector<IterationRecord> iterations;
     WavefrontProfile profile;  // filled when WavefrontOptions::profile
 

@@ -40,7 +40,7 @@ TEST(WavefrontCli, DefaultBackendWithExplain) {
     EXPECT_EQ(r.exit_code, 0) << r.output;
     for (const char* text : {"features: spheres quads diffuse mirror glass emitter quad-lights nee",
                              "build options: -cl-std=CL1.2", "-DWP_HAS_GLASS", "program: cache",
-                             "wavefront: 256 paths in flight", "rays per work item in the intersect stages",
+                             "wavefront: 256 paths in flight", "paths per work item in the stage kernels",
                              "bytes per path", "spp, wavefront) in "})
         EXPECT_NE(r.output.find(text), std::string::npos) << text << "\n" << r.output;
     EXPECT_TRUE(std::filesystem::exists(out));

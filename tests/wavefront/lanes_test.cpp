@@ -1,6 +1,6 @@
-// Tracing lanes (kernels/common/lanes.h): intersect and intersect_shadow with
-// 8 rays per work item as vector code compute exactly what one ray per work
-// item computes, in scenes with every shape kind, background and both light kinds.
+// Lanes (kernels/common/lanes.h): the stage kernels with 8 paths per work
+// item as vector code compute exactly what one path per work item computes,
+// in scenes with every shape kind and material, background and both light kinds.
 #include <gtest/gtest.h>
 
 #include "wavefront/wavefront_renderer.h"
@@ -24,12 +24,12 @@ void expect_same_image_with_one_and_eight_lanes(Scene scene) {
     EXPECT_GT(one.stats.shadow_rays, 0u);
 }
 
-TEST(TracingLanes, RoomRendersTheSameWithOneAndEightLanes) {
+TEST(StageLanes, RoomRendersTheSameWithOneAndEightLanes) {
     expect_same_image_with_one_and_eight_lanes(test::scene_from_file("scenes/room.json"));
 }
 
 // Planes, a sphere light and a background.
-TEST(TracingLanes, PlanesSphereLightAndBackgroundRenderTheSame) {
+TEST(StageLanes, PlanesSphereLightAndBackgroundRenderTheSame) {
     expect_same_image_with_one_and_eight_lanes(test::scene_from_json(R"({
       "camera": {"position": [0, 1, 4], "look_at": [0, 1, 0], "up": [0, 1, 0], "fov_y": 60, "width": 8, "height": 8},
       "render": {"spp": 1, "max_depth": 5, "rr_depth": 2, "seed": 3},

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -10,6 +11,8 @@
 #include <nlohmann/json.hpp>
 #include <numeric>
 
+#include "device/opencl_device.h"
+#include "reference/path_tracer.h"
 #include "wavefront/wavefront_renderer.h"
 #include "wavefront_test_support.h"
 
@@ -56,6 +59,64 @@ TEST(Profile, KernelItemsMatchTheRaysTheRenderCounted) {
               (result.stats.samples + report.pass_capacity - 1) / report.pass_capacity);
     EXPECT_GT(p.render_s, 0.0);
     EXPECT_EQ(p.render_s, result.stats.time_s);
+    EXPECT_GT(p.intersect_bound_rays_per_s, 0.0);
+    EXPECT_TRUE(std::isfinite(p.intersect_bound_rays_per_s));
+}
+
+// The sum of the reference's closest-hit distances over rays 0..rays-1 of
+// intersect_bound.cl: ray r through the centre of pixel r % (width * height).
+double reference_hit_distance_sum(const Scene& scene, std::uint32_t rays) {
+    using M = SharedMath<float>;
+    reference::ReferenceScene<float> ref(scene);
+    const auto& c = ref.camera;
+    double sum = 0.0;
+    for (std::uint32_t r = 0; r < rays; ++r) {
+        std::uint32_t pixel = r % std::uint32_t(c.width * c.height);
+        float x = (float(pixel % c.width) + 0.5f) / float(c.width),
+              y = (float(pixel / c.width) + 0.5f) / float(c.height);
+        reference::Ray<float> ray{c.position,
+                                  M::camera_direction(c.right, c.up, c.forward, c.tan_half_fov_y, c.aspect, x, y)};
+        auto hit = reference::closest_hit(ref, ray);
+        if (hit.found()) sum += hit.t;
+    }
+    return sum;
+}
+
+// The bound kernel traces what it claims to: the reference's hits, with one
+// lane and with eight, over more rays than pixels and a count that fills
+// neither the last work group nor the last work item's lanes.
+TEST(Profile, IntersectBoundTracesTheReferenceHits) {
+    Scene scene = test::scene_from_file("scenes/test/room_small.json");
+    constexpr std::uint32_t kRays = 2 * 32 * 32 + 77;
+    double expected = reference_hit_distance_sum(scene, kRays);
+    for (auto [lanes, compaction] : {std::pair{1u, Compaction::Atomic}, std::pair{8u, Compaction::Scan}}) {
+        SCOPED_TRACE(std::to_string(lanes) + " lanes");
+        Pipeline pipeline(scene, choose_device(""), 256, 256, scene.features(), {true, compaction, lanes});
+        IntersectBound bound = pipeline.measure_intersect_bound(kRays);
+        EXPECT_NEAR(bound.hit_distance_sum, expected, 1e-6 * expected);  // float sums of at most 8 distances
+        EXPECT_GT(bound.rays_per_s, 0.0);
+        EXPECT_TRUE(std::isfinite(bound.rays_per_s));
+    }
+}
+
+TEST(Profile, TableAndJsonReportTheTracingStagesAgainstTheBound) {
+    WavefrontProfile p;
+    p.kernel("intersect") = {"intersect", 3, 2'000'000, 0.5};                // 4 Mrays/s
+    p.kernel("intersect_shadow") = {"intersect_shadow", 3, 1'000'000, 0.5};  // 2 Mrays/s
+    p.intersect_bound_rays_per_s = 8e6;
+    EXPECT_NE(format_profile_table(p).find("  intersect bound (ray-primitive tests only, no state traffic): 8.0 "
+                                           "Mrays/s; intersect at 50% of it, intersect_shadow at 25%"),
+              std::string::npos)
+        << format_profile_table(p);
+    nlohmann::json json = profile_json(p);
+    EXPECT_EQ(json["intersect_bound_rays_per_s"], 8e6);
+    EXPECT_EQ(json["of_intersect_bound"]["intersect"], 0.5);
+    EXPECT_EQ(json["of_intersect_bound"]["intersect_shadow"], 0.25);
+
+    p.intersect_bound_rays_per_s = 0.0;  // not measured (the megakernel): not reported
+    EXPECT_EQ(format_profile_table(p).find("intersect bound"), std::string::npos);
+    EXPECT_FALSE(profile_json(p).contains("intersect_bound_rays_per_s"));
+    EXPECT_FALSE(profile_json(p).contains("of_intersect_bound"));
 }
 
 // Runs a shell command; returns its stdout and stderr, and its exit status.
@@ -106,6 +167,26 @@ TEST(Profile, CliWritesJsonConsistentWithStatsAndPrintsTable) {
     std::uint64_t by_depth = 0;
     for (std::uint64_t n : profile["extension_rays_by_depth"]) by_depth += n;
     EXPECT_EQ(by_depth, stats["extension_rays"].get<std::uint64_t>());
+
+    // The bound, and each tracing stage's rays/s as a fraction of it, printed as in the JSON.
+    double bound = profile["intersect_bound_rays_per_s"].get<double>();
+    EXPECT_GT(bound, 0.0);
+    EXPECT_TRUE(std::isfinite(bound));
+    double printed_mrays, printed_intersect, printed_shadow;
+    std::size_t line = output.find("intersect bound");
+    ASSERT_NE(line, std::string::npos) << output;
+    ASSERT_EQ(std::sscanf(output.c_str() + line,
+                          "intersect bound (ray-primitive tests only, no state traffic): %lf Mrays/s; intersect at "
+                          "%lf%% of it, intersect_shadow at %lf%%",
+                          &printed_mrays, &printed_intersect, &printed_shadow),
+              3)
+        << output;
+    EXPECT_NEAR(printed_mrays, bound * 1e-6, 0.05 + 1e-9);  // printed with one decimal
+    for (auto [name, printed] : {std::pair{"intersect", printed_intersect}, {"intersect_shadow", printed_shadow}}) {
+        double fraction = profile["of_intersect_bound"][name].get<double>();
+        EXPECT_NEAR(fraction, kernels[name]["items_per_s"].get<double>() / bound, 1e-9 * fraction) << name;
+        EXPECT_NEAR(printed, 100.0 * fraction, 0.5 + 1e-9) << name;  // printed as a whole percentage
+    }
     std::filesystem::remove_all(dir);
 }
 
