@@ -14,7 +14,8 @@ __kernel __attribute__((reqd_work_group_size(WP_GROUP_SIZE, 1, 1))) void count_d
     for (uint i = get_local_id(0); i < WP_PROFILE_DEPTHS; i += get_local_size(0)) group_histogram[i] = 0u;
     barrier(CLK_LOCAL_MEM_FENCE);
     uint k = get_global_id(0);
-    if (k < counts[queue]) atomic_inc(&group_histogram[min(depth[queues[queue * capacity + k]], WP_PROFILE_DEPTHS - 1u)]);
+    if (k < counts[queue])
+        atomic_inc(&group_histogram[min(depth[queues[queue * capacity + k]], WP_PROFILE_DEPTHS - 1u)]);
     barrier(CLK_LOCAL_MEM_FENCE);
     for (uint i = get_local_id(0); i < WP_PROFILE_DEPTHS; i += get_local_size(0))
         if (group_histogram[i] != 0u) atomic_add(&counts[histogram_offset + i], group_histogram[i]);

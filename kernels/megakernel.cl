@@ -26,18 +26,15 @@ WP_FN vec3 trace_path(WP_SCENE_PARAMS, uint px, uint s, uint *extension_rays, ui
 #endif
             return radiance;
         }
-        Surface surface = surface_at(WP_SCENE_ARGS, hit.shape, origin, d, hit.t);
-        Material m = material_at(materials, surface.material);
-        real cos_incident = v3_dot(d, surface.normal);
-        int entering = cos_incident < REAL(0.0);
-        vec3 nf = v3_select(entering, surface.normal, v3_neg(surface.normal));
-        radiance = add_finite(radiance, emission_seen(m, cos_incident, after_specular, throughput), &dropped[0]);
+        Vertex v = vertex_at(WP_SCENE_ARGS, hit.shape, origin, d, hit.t);
+        Material m = v.material;
+        radiance = add_finite(radiance, emission_seen(m, v.front, after_specular, throughput), &dropped[0]);
         if (depth >= scene->max_depth || m.type == WP_MATERIAL_EMITTER) return radiance;
 #if defined(WP_HAS_NEE) && defined(WP_HAS_DIFFUSE)
         vec3 shadow_origin, shadow_direction, contribution;
         real distance;
         if (m.type == WP_MATERIAL_DIFFUSE &&
-            sample_direct_light(WP_SCENE_ARGS, px, s, depth, surface.point, surface.error, nf,
+            sample_direct_light(WP_SCENE_ARGS, px, s, depth, v.surface.point, v.surface.error, v.nf,
                                 v3_mul(throughput, m.albedo), &shadow_origin, &shadow_direction, &distance,
                                 &contribution)) {
             ++*shadow_rays;
@@ -45,12 +42,12 @@ WP_FN vec3 trace_path(WP_SCENE_PARAMS, uint px, uint s, uint *extension_rays, ui
                 radiance = add_finite(radiance, contribution, &dropped[1]);
         }
 #endif
-        Scattered scattered = scatter_vertex(m, d, nf, entering, seed, px, s, depth);
+        Scattered scattered = scatter_vertex(m, d, v.nf, v.front, seed, px, s, depth);
         throughput = v3_mul(throughput, scattered.weight);
         if (!survives_roulette(&throughput, seed, px, s, depth, depth + 1u, scene->rr_depth) ||
             !throughput_is_finite(throughput, &dropped[2]))
             return radiance;
-        origin = offset_ray_origin(surface.point, scattered.leave_side, surface.error);
+        origin = offset_ray_origin(v.surface.point, scattered.leave_side, v.surface.error);
         d = scattered.direction;
         after_specular = scattered.specular;
     }

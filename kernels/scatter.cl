@@ -9,14 +9,11 @@ __kernel __attribute__((reqd_work_group_size(WP_GROUP_SIZE, 1, 1))) void scatter
     Lanes lanes = queue_lanes(queues, counts, capacity, WP_QUEUE_SCATTER);
     lane_uint slot = lanes.slot;
     vec3 d = LOAD_LANES_XYZ(direction, slot);
-    Surface surface = surface_at(WP_SCENE_ARGS, load_uint(hit_shape, slot), LOAD_LANES_XYZ(origin, slot), d,
-                                 load_real(hit_t, slot));
-    Material m = material_at(materials, surface.material);
-    lane_int entering = v3_dot(d, surface.normal) < REAL(0.0);
-    vec3 nf = v3_select(entering, surface.normal, v3_neg(surface.normal));
+    Vertex v = vertex_at(WP_SCENE_ARGS, load_uint(hit_shape, slot), LOAD_LANES_XYZ(origin, slot), d,
+                         load_real(hit_t, slot));
     uint seed = scene->seed;
     lane_uint px = load_uint(pixel, slot), s = load_uint(sample, slot), bounce = load_uint(depth, slot);
-    Scattered scattered = scatter_vertex(m, d, nf, entering, seed, px, s, bounce);
+    Scattered scattered = scatter_vertex(v.material, d, v.nf, v.front, seed, px, s, bounce);
     vec3 throughput = v3_mul(LOAD_LANES_RGB(throughput, slot), scattered.weight);
     lane_uint new_depth = bounce + 1u, dropped = 0u;
     lane_int survives = survives_roulette(&throughput, seed, px, s, bounce, new_depth, scene->rr_depth);
@@ -24,7 +21,7 @@ __kernel __attribute__((reqd_work_group_size(WP_GROUP_SIZE, 1, 1))) void scatter
     /* only paths that survived roulette count a non-finite throughput (as with one lane, where && stops early) */
     count_nonfinite(slot_nonfinite, capacity, WP_COUNTER_NONFINITE_SCATTER, lanes, survives ? dropped : (lane_uint)0u);
     lane_int ends = lanes.active && !continues;
-    STORE_LANES_XYZ(origin, slot, continues, offset_ray_origin(surface.point, scattered.leave_side, surface.error));
+    STORE_LANES_XYZ(origin, slot, continues, offset_ray_origin(v.surface.point, scattered.leave_side, v.surface.error));
     STORE_LANES_XYZ(direction, slot, continues, scattered.direction);
     STORE_LANES_RGB(throughput, slot, continues, throughput);
     store_uint(depth, slot, continues, new_depth);

@@ -10,12 +10,9 @@ __kernel __attribute__((reqd_work_group_size(WP_GROUP_SIZE, 1, 1))) void shade_d
     __local uint group_count, group_base; /* queue_push's scratch (atomic compaction) */
     Lanes lanes = queue_lanes(queues, counts, capacity, WP_QUEUE_HIT);
     lane_uint slot = lanes.slot;
-    vec3 d = LOAD_LANES_XYZ(direction, slot);
-    Surface s = surface_at(WP_SCENE_ARGS, load_uint(hit_shape, slot), LOAD_LANES_XYZ(origin, slot), d,
-                           load_real(hit_t, slot));
-    Material m = material_at(materials, s.material);
-    real cos_incident = v3_dot(d, s.normal);
-    vec3 nf = v3_select(cos_incident < REAL(0.0), s.normal, v3_neg(s.normal));
+    Vertex v = vertex_at(WP_SCENE_ARGS, load_uint(hit_shape, slot), LOAD_LANES_XYZ(origin, slot),
+                         LOAD_LANES_XYZ(direction, slot), load_real(hit_t, slot));
+    Material m = v.material;
     lane_uint bounce = load_uint(depth, slot);
     vec3 throughput = LOAD_LANES_RGB(throughput, slot);
 #ifdef WP_HAS_SPECULAR
@@ -25,7 +22,7 @@ __kernel __attribute__((reqd_work_group_size(WP_GROUP_SIZE, 1, 1))) void shade_d
 #endif
     lane_uint dropped = 0u;
     vec3 radiance =
-        add_finite(LOAD_LANES_RGB(radiance, slot), emission_seen(m, cos_incident, after_specular, throughput), &dropped);
+        add_finite(LOAD_LANES_RGB(radiance, slot), emission_seen(m, v.front, after_specular, throughput), &dropped);
     count_nonfinite(slot_nonfinite, capacity, WP_COUNTER_NONFINITE_EMISSION, lanes, dropped);
     lane_int ends = lanes.active && (bounce >= scene->max_depth || m.type == WP_MATERIAL_EMITTER);
     lane_int scatters = lanes.active && !ends;
@@ -36,7 +33,8 @@ __kernel __attribute__((reqd_work_group_size(WP_GROUP_SIZE, 1, 1))) void shade_d
     vec3 shadow_from, shadow_towards, contribution;
     real distance;
     lane_int carries = sample_direct_light(WP_SCENE_ARGS, load_uint(pixel, slot), load_uint(sample, slot), bounce,
-                                           s.point, s.error, nf, v3_mul(throughput, m.albedo), &shadow_from,
+                                           v.surface.point, v.surface.error, v.nf, v3_mul(throughput, m.albedo),
+                                           &shadow_from,
                                            &shadow_towards, &distance, &contribution);
     casts_shadow = scatters && m.type == WP_MATERIAL_DIFFUSE && carries;
     STORE_LANES_XYZ(shadow_origin, slot, casts_shadow, shadow_from);

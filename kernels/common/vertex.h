@@ -22,9 +22,9 @@ WP_FN vec3 camera_ray_direction(__global const SceneHeader *scene, lane_uint px,
  * (or is two-sided) and the previous vertex was the camera or specular, or
  * at every hit when NEE is off (-DWP_NEE_OFF: pure BSDF sampling, no light
  * sample accounts for it). */
-WP_FN vec3 emission_seen(Material m, real cos_incident, lane_int after_specular, vec3 throughput) {
+WP_FN vec3 emission_seen(Material m, lane_int front, lane_int after_specular, vec3 throughput) {
     lane_int emits = m.emission.x > REAL(0.0) || m.emission.y > REAL(0.0) || m.emission.z > REAL(0.0);
-    lane_int seen = emits && (m.two_sided || cos_incident < REAL(0.0));
+    lane_int seen = emits && (m.two_sided || front);
 #ifndef WP_NEE_OFF
     seen = seen && after_specular;
 #endif

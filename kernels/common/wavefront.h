@@ -103,6 +103,23 @@ WP_FN Material material_at(__global const DeviceMaterial *materials, lane_uint i
     return m;
 }
 
+/* A path's vertex where its ray (origin, direction) hit `shape` at t. */
+typedef struct {
+    Surface surface;
+    Material material;
+    lane_int front; /* the ray met the side the geometric normal points to */
+    vec3 nf;        /* the normal on the ray's side */
+} Vertex;
+
+WP_FN Vertex vertex_at(WP_SCENE_PARAMS, lane_uint shape, vec3 origin, vec3 direction, real t) {
+    Vertex v;
+    v.surface = surface_at(WP_SCENE_ARGS, shape, origin, direction, t);
+    v.material = material_at(materials, v.surface.material);
+    v.front = v3_dot(direction, v.surface.normal) < REAL(0.0);
+    v.nf = v3_select(v.front, v.surface.normal, v3_neg(v.surface.normal));
+    return v;
+}
+
 /* Whether the throughput may carry the path on; a non-finite one ends it and is counted in *dropped. */
 WP_FN lane_int throughput_is_finite(vec3 throughput, lane_uint *dropped) {
     lane_int finite = vec3_is_finite(throughput);

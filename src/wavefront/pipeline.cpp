@@ -27,9 +27,9 @@ unsigned checked_lanes(unsigned lanes, Compaction compaction) {
 }  // namespace
 
 const std::vector<std::string>& wavefront_kernel_files() {
-    static const std::vector<std::string> files{"generate.cl", "intersect.cl",  "shade_direct.cl",
-                                                "intersect_shadow.cl", "scatter.cl", "compact.cl",
-                                                "accumulate.cl", "count_depths.cl", "intersect_bound.cl"};
+    static const std::vector<std::string> files{"generate.cl",         "intersect.cl",    "shade_direct.cl",
+                                                "intersect_shadow.cl", "scatter.cl",      "compact.cl",
+                                                "accumulate.cl",       "count_depths.cl", "intersect_bound.cl"};
     return files;
 }
 
@@ -47,9 +47,9 @@ Pipeline::Pipeline(const Scene& scene, const DeviceInfo& device, std::size_t cap
                            options.compaction)),
       context_(device.device),
       queue_(context_, device.device, options.profile ? cl_command_queue_properties(CL_QUEUE_PROFILING_ENABLE) : 0),
-      program_(build_program(context_, device, wavefront_kernel_files(),
-                             stage_options(scene, device, kernel_features, options.compaction) +
-                                 " -DWP_LANES=" + std::to_string(lanes_))),
+      program_(build_program(
+          context_, device, wavefront_kernel_files(),
+          stage_options(scene, device, kernel_features, options.compaction) + " -DWP_LANES=" + std::to_string(lanes_))),
       scene_(context_, flatten_scene(scene)),
       state_(context_, capacity, kernel_features, uses_nee(scene)),
       queues_(context_, CL_MEM_READ_WRITE,
@@ -220,12 +220,12 @@ void Pipeline::time_finished_kernels() {
 IntersectBound Pipeline::measure_intersect_bound(std::uint32_t rays) {
     if (!profiling_) throw std::logic_error("measure_intersect_bound needs a pipeline built with profiling");
     std::size_t items = round_up((rays + lanes_ - 1) / lanes_, WP_GROUP_SIZE);
-    cl::Buffer sums(context_, CL_MEM_WRITE_ONLY, sizeof(float) * items);
+    cl::Buffer hit_t(context_, CL_MEM_WRITE_ONLY, sizeof(float) * rays);
     cl::Kernel kernel(program_.program, "intersect_bound");
     cl_uint arg = 0;
     for (const cl::Buffer& b : scene_.buffers) kernel.setArg(arg++, b);
     kernel.setArg(arg++, cl_uint(rays));
-    kernel.setArg(arg++, sums);
+    kernel.setArg(arg++, hit_t);
     // Launch 0 is not timed: PoCL compiles the kernel for its launch geometry then.
     double best_s = std::numeric_limits<double>::infinity();
     for (int launch = 0; launch <= 3; ++launch) {
@@ -238,9 +238,9 @@ IntersectBound Pipeline::measure_intersect_bound(std::uint32_t rays) {
                          1e-9;
         if (launch > 0) best_s = std::min(best_s, seconds);
     }
-    std::vector<float> work_item_sums(items);
-    queue_.enqueueReadBuffer(sums, CL_TRUE, 0, sizeof(float) * items, work_item_sums.data());
-    return {double(rays) / best_s, std::accumulate(work_item_sums.begin(), work_item_sums.end(), 0.0)};
+    std::vector<float> distances(rays);
+    queue_.enqueueReadBuffer(hit_t, CL_TRUE, 0, sizeof(float) * rays, distances.data());
+    return {double(rays) / best_s, std::accumulate(distances.begin(), distances.end(), 0.0)};
 }
 
 void Pipeline::read_rays_by_depth(WavefrontProfile& profile) {

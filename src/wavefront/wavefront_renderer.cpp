@@ -85,8 +85,8 @@ std::string WavefrontReport::explain() const {
         << "build options: " << build_options << "\n"
         << "program: " << (cache_hit ? "cache hit" : "cache miss, compiled") << " in " << build_seconds << " s"
         << (cache_file.empty() ? " (no cache directory)" : " (" + cache_file + ")") << "\n"
-        << "wavefront: " << wavefront << " paths in flight, passes of up to " << pass_capacity << " samples, "
-        << lanes << (lanes == 1 ? " path" : " paths") << " per work item in the stage kernels\n"
+        << "wavefront: " << wavefront << " paths in flight, passes of up to " << pass_capacity << " samples, " << lanes
+        << (lanes == 1 ? " path" : " paths") << " per work item in the stage kernels\n"
         << "path state: " << state_bytes_per_path << " bytes per path, " << state_bytes_per_path * wavefront / 1024
         << " KiB in all\n";
     return out.str();
@@ -102,9 +102,9 @@ RenderResult render_wavefront(const Scene& scene, const WavefrontOptions& option
         options.wavefront ? options.wavefront
                           : default_wavefront_size(total, PathState::bytes_per_path(scene.features(), nee), device);
     FeatureSet features = options.specialise ? scene.features() : every_shape_and_material(scene.features());
-    Pipeline pipeline(scene, device, wavefront, std::min<std::uint64_t>(total, kPassesPerWavefront * wavefront),
-                      features,
-                      {options.profile, options.scan_compaction ? Compaction::Scan : Compaction::Atomic, options.lanes});
+    Pipeline pipeline(
+        scene, device, wavefront, std::min<std::uint64_t>(total, kPassesPerWavefront * wavefront), features,
+        {options.profile, options.scan_compaction ? Compaction::Scan : Compaction::Atomic, options.lanes});
 
     WavefrontReport local_report;
     WavefrontReport& r = report ? *report : local_report;

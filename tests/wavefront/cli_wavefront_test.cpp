@@ -38,10 +38,10 @@ TEST(WavefrontCli, DefaultBackendWithExplain) {
     CommandRun r = run(cache_env(), "render '" WAVEPATH_SOURCE_DIR "/scenes/test/room_small.json' -o '" + out +
                                         "' --spp 1 --wavefront 256 --explain");
     EXPECT_EQ(r.exit_code, 0) << r.output;
-    for (const char* text : {"features: spheres quads diffuse mirror glass emitter quad-lights nee",
-                             "build options: -cl-std=CL1.2", "-DWP_HAS_GLASS", "program: cache",
-                             "wavefront: 256 paths in flight", "paths per work item in the stage kernels",
-                             "bytes per path", "spp, wavefront) in "})
+    for (const char* text :
+         {"features: spheres quads diffuse mirror glass emitter quad-lights nee", "build options: -cl-std=CL1.2",
+          "-DWP_HAS_GLASS", "program: cache", "wavefront: 256 paths in flight",
+          "paths per work item in the stage kernels", "bytes per path", "spp, wavefront) in "})
         EXPECT_NE(r.output.find(text), std::string::npos) << text << "\n" << r.output;
     EXPECT_TRUE(std::filesystem::exists(out));
     std::filesystem::remove(out);
