@@ -102,12 +102,13 @@ def throughput(runner, cfg):
     rows = []
     for scene in cfg["scenes"]:
         path = os.path.join(ROOT, "scenes", scene)
-        runs = {b: [] for b in ("wavefront", "megakernel", "reference")}
-        profile = None
+        # (label, backend, flags); the wavefront also with one path per work item, to show what its lanes give
+        configurations = [("wavefront", "wavefront", []), ("wavefront-1-lane", "wavefront", ["--lanes", "1"]),
+                          ("megakernel", "megakernel", []), ("reference", "reference", [])]
+        runs = {label: [] for label, _, _ in configurations}
         for _ in range(cfg["repeats"]):
-            for backend in runs:
-                s = runner.render(path, backend, cfg["size"], cfg["size"], cfg["spp"])
-                runs[backend].append(s)
+            for label, backend, flags in configurations:
+                runs[label].append(runner.render(path, backend, cfg["size"], cfg["size"], cfg["spp"], extra=flags))
         profile = runner.render(path, "wavefront", cfg["size"], cfg["size"], cfg["spp"], profile=True)["profile"]
         for backend, stats in runs.items():
             sps = [s["samples_per_s"] for s in stats]
