@@ -34,11 +34,20 @@ FeatureSet every_shape_and_material(FeatureSet f) {
 
 // Items each kernel processed: its input queue's length summed over the
 // iterations (accumulate: the pass entries it summed; compaction: the slots
-// its launches went through).
+// its launches went through; compact_scan: the blocks of slots it summed;
+// count_depths: the rays it counted).
 void fill_profile(WavefrontProfile& profile, const std::vector<IterationRecord>& iterations, std::uint64_t samples,
                   std::size_t wavefront) {
     for (const char* name : {"compact_count", "compact_write"})
         if (profile.has_kernel(name)) profile.kernel(name).items = profile.kernel(name).launches * wavefront;
+    if (profile.has_kernel("compact_scan"))
+        profile.kernel("compact_scan").items =
+            profile.kernel("compact_scan").launches * ((wavefront + WP_COMPACT_BLOCK - 1) / WP_COMPACT_BLOCK);
+    if (profile.has_kernel("count_depths")) {
+        KernelProfile& k = profile.kernel("count_depths");
+        k.items = 0;
+        for (const IterationRecord& r : iterations) k.items += r.traced + r.shadow;
+    }
     const std::map<std::string, std::uint32_t IterationRecord::*> input_queue{
         {"generate", &IterationRecord::free_slots},
         {"intersect", &IterationRecord::traced},
