@@ -10,7 +10,6 @@
 __kernel __attribute__((reqd_work_group_size(WP_GROUP_SIZE, 1, 1))) void generate(WP_STAGE_PARAMS) {
     __local uint group_count, group_base; /* queue_push's scratch (atomic compaction) */
     Lanes lanes = queue_lanes(queues, counts, capacity, WP_QUEUE_FREE);
-    lane_uint slot = lanes.slot;
     uint issued = counts[WP_COUNTER_WORK];
     lane_uint k = lane_positions();
     lane_int started = lanes.active && k < pass_size - issued;
@@ -21,16 +20,16 @@ __kernel __attribute__((reqd_work_group_size(WP_GROUP_SIZE, 1, 1))) void generat
     uint pass_pixel = (uint)(pass_start % pixel_count), pass_sample = (uint)(pass_start / pixel_count);
     lane_uint px = (pass_pixel + item) % pixel_count;
     lane_uint s = pass_sample + (pass_pixel + item) / pixel_count;
-    store_uint(pixel, slot, started, px);
-    store_uint(sample, slot, started, s);
-    store_uint(pass_item, slot, started, item);
-    store_uint(depth, slot, started, (lane_uint)0u);
-    STORE_LANES_XYZ(origin, slot, started, make_vec3(REAL(0.0), REAL(0.0), REAL(0.0))); /* the camera, after loading */
-    STORE_LANES_XYZ(direction, slot, started, camera_ray_direction(scene, px, s));
-    STORE_LANES_RGB(throughput, slot, started, make_vec3(REAL(1.0), REAL(1.0), REAL(1.0)));
-    STORE_LANES_RGB(radiance, slot, started, make_vec3(REAL(0.0), REAL(0.0), REAL(0.0)));
+    lanes_store_uint(pixel, lanes, started, px);
+    lanes_store_uint(sample, lanes, started, s);
+    lanes_store_uint(pass_item, lanes, started, item);
+    lanes_store_uint(depth, lanes, started, (lane_uint)0u);
+    STORE_LANES_XYZ(origin, lanes, started, make_vec3(REAL(0.0), REAL(0.0), REAL(0.0))); /* the camera, after loading */
+    STORE_LANES_XYZ(direction, lanes, started, camera_ray_direction(scene, px, s));
+    STORE_LANES_RGB(throughput, lanes, started, make_vec3(REAL(1.0), REAL(1.0), REAL(1.0)));
+    STORE_LANES_RGB(radiance, lanes, started, make_vec3(REAL(0.0), REAL(0.0), REAL(0.0)));
 #ifdef WP_HAS_SPECULAR
-    store_uint(specular, slot, started, (lane_uint)1u);
+    lanes_store_uint(specular, lanes, started, (lane_uint)1u);
 #endif
     push_lanes(queues, counts, capacity, WP_QUEUE_RAY, lanes, started, &group_count, &group_base);
 }

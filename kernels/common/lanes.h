@@ -21,6 +21,7 @@
 typedef struct {
     lane_uint slot;   /* the path's slot (meaningless where inactive) */
     lane_int active;  /* the lane holds a queue entry */
+    int contiguous;   /* every lane active, the slots consecutive: whole-vector loads and stores */
 } Lanes;
 
 /* Positions get_global_id(0) * WP_LANES onwards of `queue`, and their slots. */
@@ -31,19 +32,67 @@ WP_FN Lanes queue_lanes(__global const uint *queues, __global const uint *counts
     lane_uint position = lane_positions();
     lanes.active = position < counts[queue];
     lanes.slot = load_uint(queues + queue * capacity, lanes.active ? position : (lane_uint)0u);
+#if WP_LANES == 1
+    lanes.contiguous = 0;
+#else
+    /* Queues are compacted in slot order and freed slots are refilled each
+     * iteration, so runs of consecutive slots are the common case. */
+    lanes.contiguous = all(lanes.active) && all(lanes.slot == lanes.slot.s0 + LANE_INDEX);
+#endif
     return lanes;
 }
 
-#define LOAD_LANES_XYZ(name, slot) \
-    make_vec3(load_real(name##_x, slot), load_real(name##_y, slot), load_real(name##_z, slot))
-#define LOAD_LANES_RGB(name, slot) \
-    make_vec3(load_real(name##_r, slot), load_real(name##_g, slot), load_real(name##_b, slot))
-#define STORE_LANES_XYZ(name, slot, where, v)                                                    \
-    (store_real(name##_x, slot, where, (v).x), store_real(name##_y, slot, where, (v).y), \
-     store_real(name##_z, slot, where, (v).z))
-#define STORE_LANES_RGB(name, slot, where, v)                                                    \
-    (store_real(name##_r, slot, where, (v).x), store_real(name##_g, slot, where, (v).y), \
-     store_real(name##_b, slot, where, (v).z))
+/* The lanes' path state field p[slot]: one vector load when the slots are
+ * consecutive, else a load per lane. */
+WP_FN real lanes_load_real(__global const float *p, Lanes lanes) {
+#if WP_LANES > 1
+    if (lanes.contiguous) return vload8(0, p + lanes.slot.s0);
+#endif
+    return load_real(p, lanes.slot);
+}
+
+WP_FN lane_uint lanes_load_uint(__global const uint *p, Lanes lanes) {
+#if WP_LANES > 1
+    if (lanes.contiguous) return vload8(0, p + lanes.slot.s0);
+#endif
+    return load_uint(p, lanes.slot);
+}
+
+/* p[slot] = value where `where` holds (it must imply the lane is active).
+ * Consecutive slots all belong to this work item, so a vector
+ * read-select-write leaves the other lanes' values as they were. */
+WP_FN void lanes_store_real(__global float *p, Lanes lanes, lane_int where, real value) {
+#if WP_LANES > 1
+    if (lanes.contiguous) {
+        __global float *at = p + lanes.slot.s0;
+        vstore8(select(vload8(0, at), value, where), 0, at);
+        return;
+    }
+#endif
+    store_real(p, lanes.slot, where, value);
+}
+
+WP_FN void lanes_store_uint(__global uint *p, Lanes lanes, lane_int where, lane_uint value) {
+#if WP_LANES > 1
+    if (lanes.contiguous) {
+        __global uint *at = p + lanes.slot.s0;
+        vstore8(select(vload8(0, at), value, where), 0, at);
+        return;
+    }
+#endif
+    store_uint(p, lanes.slot, where, value);
+}
+
+#define LOAD_LANES_XYZ(name, lanes) \
+    make_vec3(lanes_load_real(name##_x, lanes), lanes_load_real(name##_y, lanes), lanes_load_real(name##_z, lanes))
+#define LOAD_LANES_RGB(name, lanes) \
+    make_vec3(lanes_load_real(name##_r, lanes), lanes_load_real(name##_g, lanes), lanes_load_real(name##_b, lanes))
+#define STORE_LANES_XYZ(name, lanes, where, v)                                                             \
+    (lanes_store_real(name##_x, lanes, where, (v).x), lanes_store_real(name##_y, lanes, where, (v).y), \
+     lanes_store_real(name##_z, lanes, where, (v).z))
+#define STORE_LANES_RGB(name, lanes, where, v)                                                             \
+    (lanes_store_real(name##_r, lanes, where, (v).x), lanes_store_real(name##_g, lanes, where, (v).y), \
+     lanes_store_real(name##_b, lanes, where, (v).z))
 
 /* Marks (scan compaction) or pushes (atomic compaction, one lane) the
  * lanes where `push` holds (it must imply the lane is active). Every work
@@ -51,7 +100,7 @@ WP_FN Lanes queue_lanes(__global const uint *queues, __global const uint *counts
 WP_FN void push_lanes(__global uint *queues, __global uint *counts, uint capacity, uint queue, Lanes lanes,
                       lane_int push, __local uint *group_count, __local uint *group_base) {
 #ifdef WP_COMPACT_SCAN
-    store_uint(queues + WP_QUEUE_MARKS(queue) * capacity, lanes.slot, push, (lane_uint)1u);
+    lanes_store_uint(queues + WP_QUEUE_MARKS(queue) * capacity, lanes, push, (lane_uint)1u);
 #else
     queue_push(queues, counts, capacity, queue, push, lanes.slot, group_count, group_base);
 #endif
