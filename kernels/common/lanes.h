@@ -42,46 +42,37 @@ WP_FN Lanes queue_lanes(__global const uint *queues, __global const uint *counts
     return lanes;
 }
 
-/* The lanes' path state field p[slot]: one vector load when the slots are
- * consecutive, else a load per lane. */
-WP_FN real lanes_load_real(__global const float *p, Lanes lanes) {
-#if WP_LANES > 1
-    if (lanes.contiguous) return vload8(0, p + lanes.slot.s0);
-#endif
-    return load_real(p, lanes.slot);
-}
-
-WP_FN lane_uint lanes_load_uint(__global const uint *p, Lanes lanes) {
-#if WP_LANES > 1
-    if (lanes.contiguous) return vload8(0, p + lanes.slot.s0);
-#endif
-    return load_uint(p, lanes.slot);
-}
-
-/* p[slot] = value where `where` holds (it must imply the lane is active).
- * Consecutive slots all belong to this work item, so a vector
- * read-select-write leaves the other lanes' values as they were. */
-WP_FN void lanes_store_real(__global float *p, Lanes lanes, lane_int where, real value) {
-#if WP_LANES > 1
-    if (lanes.contiguous) {
-        __global float *at = p + lanes.slot.s0;
-        vstore8(select(vload8(0, at), value, where), 0, at);
-        return;
+/* The lanes' path state field p[slot] (lanes_load_real, lanes_load_uint):
+ * one vector load when the slots are consecutive, else a load per lane. And
+ * p[slot] = value where `where` holds (lanes_store_real, lanes_store_uint;
+ * `where` must imply the lane is active): consecutive slots all belong to
+ * this work item, so a vector read-select-write leaves the other lanes'
+ * values as they were. */
+#if WP_LANES == 1
+#define WP_LANES_ACCESS(kind, element, value_type)                                                    \
+    WP_FN value_type lanes_load_##kind(__global const element *p, Lanes lanes) {                      \
+        return load_##kind(p, lanes.slot);                                                            \
+    }                                                                                                 \
+    WP_FN void lanes_store_##kind(__global element *p, Lanes lanes, lane_int where, value_type value) { \
+        store_##kind(p, lanes.slot, where, value);                                                    \
+    }
+#else
+#define WP_LANES_ACCESS(kind, element, value_type)                                                    \
+    WP_FN value_type lanes_load_##kind(__global const element *p, Lanes lanes) {                      \
+        return lanes.contiguous ? vload8(0, p + lanes.slot.s0) : load_##kind(p, lanes.slot);          \
+    }                                                                                                 \
+    WP_FN void lanes_store_##kind(__global element *p, Lanes lanes, lane_int where, value_type value) { \
+        if (!lanes.contiguous) {                                                                      \
+            store_##kind(p, lanes.slot, where, value);                                                \
+            return;                                                                                   \
+        }                                                                                             \
+        __global element *at = p + lanes.slot.s0;                                                     \
+        vstore8(select(vload8(0, at), value, where), 0, at);                                          \
     }
 #endif
-    store_real(p, lanes.slot, where, value);
-}
-
-WP_FN void lanes_store_uint(__global uint *p, Lanes lanes, lane_int where, lane_uint value) {
-#if WP_LANES > 1
-    if (lanes.contiguous) {
-        __global uint *at = p + lanes.slot.s0;
-        vstore8(select(vload8(0, at), value, where), 0, at);
-        return;
-    }
-#endif
-    store_uint(p, lanes.slot, where, value);
-}
+WP_LANES_ACCESS(real, float, real)
+WP_LANES_ACCESS(uint, uint, lane_uint)
+#undef WP_LANES_ACCESS
 
 #define LOAD_LANES_XYZ(name, lanes) \
     make_vec3(lanes_load_real(name##_x, lanes), lanes_load_real(name##_y, lanes), lanes_load_real(name##_z, lanes))
