@@ -77,6 +77,13 @@ WP_FN real quad_t(__global const DeviceQuad *quad, vec3 origin, vec3 direction, 
                                 direction, t_max);
 }
 
+/* `hit` moved to `shape` at t in the lanes where t is closer. */
+WP_FN Hit keep_closer(Hit hit, real t, uint shape) {
+    hit.shape = t < hit.t ? (lane_uint)shape : hit.shape;
+    hit.t = fmin(t, hit.t);
+    return hit;
+}
+
 /* Closest hit over spheres, then planes, then quads, as the reference tests them. */
 WP_FN Hit closest_hit(WP_SCENE_PARAMS, vec3 origin, vec3 direction) {
     Hit hit;
@@ -84,27 +91,18 @@ WP_FN Hit closest_hit(WP_SCENE_PARAMS, vec3 origin, vec3 direction) {
     hit.shape = (lane_uint)WP_NO_HIT;
 #ifdef WP_HAS_SPHERES
 #pragma unroll
-    for (uint i = 0; i < SPHERE_COUNT; ++i) {
-        real t = sphere_t(&spheres[i], origin, direction, hit.t);
-        hit.shape = t < hit.t ? (lane_uint)shape_id(WP_SHAPE_SPHERE, i) : hit.shape;
-        hit.t = fmin(t, hit.t);
-    }
+    for (uint i = 0; i < SPHERE_COUNT; ++i)
+        hit = keep_closer(hit, sphere_t(&spheres[i], origin, direction, hit.t), shape_id(WP_SHAPE_SPHERE, i));
 #endif
 #ifdef WP_HAS_PLANES
 #pragma unroll
-    for (uint i = 0; i < PLANE_COUNT; ++i) {
-        real t = plane_t(&planes[i], origin, direction, hit.t);
-        hit.shape = t < hit.t ? (lane_uint)shape_id(WP_SHAPE_PLANE, i) : hit.shape;
-        hit.t = fmin(t, hit.t);
-    }
+    for (uint i = 0; i < PLANE_COUNT; ++i)
+        hit = keep_closer(hit, plane_t(&planes[i], origin, direction, hit.t), shape_id(WP_SHAPE_PLANE, i));
 #endif
 #ifdef WP_HAS_QUADS
 #pragma unroll
-    for (uint i = 0; i < QUAD_COUNT; ++i) {
-        real t = quad_t(&quads[i], origin, direction, hit.t);
-        hit.shape = t < hit.t ? (lane_uint)shape_id(WP_SHAPE_QUAD, i) : hit.shape;
-        hit.t = fmin(t, hit.t);
-    }
+    for (uint i = 0; i < QUAD_COUNT; ++i)
+        hit = keep_closer(hit, quad_t(&quads[i], origin, direction, hit.t), shape_id(WP_SHAPE_QUAD, i));
 #endif
     return hit;
 }
