@@ -27,8 +27,8 @@ inline constexpr std::size_t kMaxUnrolledCount = 32;
 // " -DWP_SPHERE_COUNT=4 -DWP_QUAD_COUNT=7 -DWP_LIGHT_COUNT=1 ...": the scene's
 // counts of each kind, as compile-time constants, for the kinds with at most
 // kMaxUnrolledCount (larger ones are read at run time). Constant counts let
-// the loops over shapes and lights unroll into straight-line code, which is
-// what PoCL needs to run a work group's work items in SIMD lanes.
+// the loops over shapes and lights unroll into straight-line vector code
+// (kernels/common/prelude.h, "Lanes").
 std::string shape_count_options(const Scene& scene);
 
 // The features in use, space-separated ("spheres quads diffuse glass ..."), for --explain.
