@@ -1,18 +1,32 @@
 #!/usr/bin/env bash
-# Installs wavepath's Debian 12 packages (idempotent) and builds it in build/.
-# Usage: bash scripts/setup.sh
+# Installs what wavepath needs on Debian 12 (idempotent) and builds it in build/.
+# Usage: bash scripts/setup.sh [render|test|--list-packages]
+#   render           the renderer alone: its packages, then the wavepath binary
+#   test (default)   also the test suite and the benchmark: every package, every target
+#   --list-packages  print the Debian packages of `test` (what tests/packages checks against)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-PACKAGES=(
+# What building and running the renderer needs.
+RENDER_PACKAGES=(
   build-essential cmake pkg-config
-  ocl-icd-opencl-dev opencl-headers opencl-clhpp-headers pocl-opencl-icd clinfo
-  libglm-dev libopenimageio-dev nlohmann-json3-dev libcli11-dev libtinyobjloader-dev
-  libgtest-dev libbenchmark-dev python3 python3-pip
+  ocl-icd-opencl-dev opencl-headers opencl-clhpp-headers pocl-opencl-icd
+  libglm-dev libopenimageio-dev nlohmann-json3-dev libcli11-dev
 )
+# What the tests and the benchmark add: GoogleTest (whose CMake config also
+# loads GoogleMock's), python3-pip for the benchmark's plots.
+TEST_PACKAGES=(libgtest-dev libgmock-dev python3 python3-pip)
+
+mode=${1:-test}
+case "$mode" in
+  render) packages=("${RENDER_PACKAGES[@]}") ;;
+  test) packages=("${RENDER_PACKAGES[@]}" "${TEST_PACKAGES[@]}") ;;
+  --list-packages) printf '%s\n' "${RENDER_PACKAGES[@]}" "${TEST_PACKAGES[@]}"; exit 0 ;;
+  *) echo "setup: unknown mode '$mode' (render, test or --list-packages)" >&2; exit 2 ;;
+esac
 
 missing=()
-for package in "${PACKAGES[@]}"; do
+for package in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$package" 2>/dev/null | grep -q "install ok installed" || missing+=("$package")
 done
 if ((${#missing[@]})); then
@@ -26,6 +40,12 @@ if ((${#missing[@]})); then
   DEBIAN_FRONTEND=noninteractive "${SUDO[@]}" apt-get install -y "${missing[@]}"
 fi
 
+if [[ $mode == render ]]; then
+  cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DWAVEPATH_BUILD_TESTS=OFF -DWAVEPATH_BUILD_BENCH=OFF
+  cmake --build build -j "$(nproc)" --target wavepath
+  exit 0
+fi
+
 # matplotlib for bench/run.py's plots (the benchmark runs without it, plots left out).
 if ! python3 -c "import matplotlib" 2>/dev/null; then
   pip3 install --quiet -r bench/requirements.txt 2>/dev/null ||
@@ -33,5 +53,5 @@ if ! python3 -c "import matplotlib" 2>/dev/null; then
     echo "setup: could not install matplotlib; bench/run.py will skip its plots" >&2
 fi
 
-cmake -S . -B build -DCMAKE_BUILD_TYPE=Release
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DWAVEPATH_BUILD_TESTS=ON -DWAVEPATH_BUILD_BENCH=ON
 cmake --build build -j "$(nproc)"

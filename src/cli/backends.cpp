@@ -18,7 +18,7 @@ namespace {
 constexpr int kMaxThreads = 4096;
 constexpr std::int64_t kMaxWavefront = std::int64_t(1) << 26;
 
-using RenderFn = RenderResult (*)(const Scene&, const BackendOptions&, const ProgressFn&);
+using RenderFn = RenderResult (*)(const Scene&, const BackendOptions&, const Progress&);
 
 struct Backend {
     const char* name;
@@ -28,7 +28,7 @@ struct Backend {
 
 bool wants_profile(const BackendOptions& options) { return options.profile || !options.profile_json.empty(); }
 
-RenderResult render_on_reference(const Scene& scene, const BackendOptions& options, const ProgressFn& progress) {
+RenderResult render_on_reference(const Scene& scene, const BackendOptions& options, const Progress& progress) {
     if (wants_profile(options))
         throw UsageError("--profile/--profile-json: the reference backend has no kernels to profile");
     return render_reference(scene, ReferenceOptions{options.threads, options.precision == "double"}, progress);
@@ -50,7 +50,7 @@ RenderResult render_on_opencl(const BackendOptions& options, Render render) {
     }
 }
 
-RenderResult render_on_wavefront(const Scene& scene, const BackendOptions& options, const ProgressFn& progress) {
+RenderResult render_on_wavefront(const Scene& scene, const BackendOptions& options, const Progress& progress) {
     return render_on_opencl<WavefrontReport>(options, [&](WavefrontReport& report) {
         if (options.lanes == 8 && options.compaction != "scan")
             throw UsageError("--lanes 8 needs --compaction scan (atomic pushes are per work item)");
@@ -64,7 +64,7 @@ RenderResult render_on_wavefront(const Scene& scene, const BackendOptions& optio
     });
 }
 
-RenderResult render_on_megakernel(const Scene& scene, const BackendOptions& options, const ProgressFn& progress) {
+RenderResult render_on_megakernel(const Scene& scene, const BackendOptions& options, const Progress& progress) {
     return render_on_opencl<MegakernelReport>(options, [&](MegakernelReport& report) {
         return render_megakernel(scene, {options.device, wants_profile(options)}, progress, &report);
     });
@@ -124,7 +124,7 @@ void add_backend_options(CLI::App& render, BackendOptions& options) {
     render.add_option("--profile-json", options.profile_json, "Also write the wavefront's profile to this JSON file");
 }
 
-RenderResult render_with_backend(const Scene& scene, const BackendOptions& options, const ProgressFn& progress) {
+RenderResult render_with_backend(const Scene& scene, const BackendOptions& options, const Progress& progress) {
     const auto backend = std::find_if(kBackends.begin(), kBackends.end(),
                                       [&](const Backend& candidate) { return options.name == candidate.name; });
     if (backend == kBackends.end()) throw UsageError("--backend: unknown backend '" + options.name + "'");

@@ -33,6 +33,6 @@ std::vector<std::string> backend_names();
 
 // Renders with the backend named in `options` (already validated by the
 // parser). Throws UsageError for an option the backend does not support.
-RenderResult render_with_backend(const Scene& scene, const BackendOptions& options, const ProgressFn& progress);
+RenderResult render_with_backend(const Scene& scene, const BackendOptions& options, const Progress& progress);
 
 }  // namespace wp::cli

@@ -14,10 +14,12 @@ constexpr auto kBarInterval = std::chrono::milliseconds(100);  // ~10 Hz redraw
 constexpr auto kLineInterval = std::chrono::seconds(5);        // sparse enough for CI logs
 constexpr int kBarWidth = 30;
 
-std::string eta_text(double fraction, double elapsed_s) {
-    if (fraction <= 0.0) return "ETA --";
-    return "ETA " + format_duration(elapsed_s * (1.0 - fraction) / fraction);
+std::string eta_text(double fraction, double sampling_s) {
+    if (fraction <= 0.0 || sampling_s <= 0.0) return "ETA --";
+    return "ETA " + format_duration(sampling_s * (1.0 - fraction) / fraction);
 }
+
+double seconds(ProgressReporter::Clock::duration d) { return std::chrono::duration<double>(d).count(); }
 
 }  // namespace
 
@@ -38,18 +40,18 @@ std::string format_duration(double seconds) {
     return text;
 }
 
-std::string format_progress_bar(double fraction, double elapsed_s) {
+std::string format_progress_bar(double fraction, double elapsed_s, double sampling_s) {
     const int filled = static_cast<int>(fraction * kBarWidth);
     std::string bar(1, '[');
     bar.append(filled, '#').append(kBarWidth - filled, '-');
     char percent[32];
     std::snprintf(percent, sizeof percent, "] %5.1f%%  elapsed ", 100.0 * fraction);
-    return bar.append(percent).append(format_duration(elapsed_s)).append("  ").append(eta_text(fraction, elapsed_s));
+    return bar.append(percent).append(format_duration(elapsed_s)).append("  ").append(eta_text(fraction, sampling_s));
 }
 
-std::string format_progress_line(double fraction, double elapsed_s) {
+std::string format_progress_line(double fraction, double elapsed_s, double sampling_s) {
     return "wavepath: " + std::to_string(static_cast<int>(100.0 * fraction)) + "% done, " + format_duration(elapsed_s) +
-           " elapsed, " + eta_text(fraction, elapsed_s);
+           " elapsed, " + eta_text(fraction, sampling_s);
 }
 
 ProgressReporter::ProgressReporter(ProgressStyle style, std::ostream& out)
@@ -58,8 +60,11 @@ ProgressReporter::ProgressReporter(ProgressStyle style, std::ostream& out)
 ProgressReporter::ProgressReporter(ProgressStyle style, std::ostream& out, Clock::duration interval)
     : style_(style), out_(out), interval_(interval) {}
 
-ProgressReporter::~ProgressReporter() {
+ProgressReporter::~ProgressReporter() { end_bar_line(); }
+
+void ProgressReporter::end_bar_line() {
     if (bar_open_) out_ << std::endl;
+    bar_open_ = false;
 }
 
 double ProgressReporter::record(double fraction_done) {
@@ -71,35 +76,47 @@ double ProgressReporter::record(double fraction_done) {
 }
 
 void ProgressReporter::update(double fraction_done) {
+    std::call_once(sampling_started_, [this] { sampling_start_ = Clock::now(); });
     if (style_ == ProgressStyle::Silent) return;
     const double fraction = record(fraction_done);
+    if (fraction <= 0.0) return;  // nothing measured to show yet
     // Another thread drawing right now already shows (nearly) this fraction.
     std::unique_lock lock(draw_mutex_, std::try_to_lock);
     if (!lock) return;
     const Clock::time_point now = Clock::now();
     if (now - last_output_ < interval_) return;
     last_output_ = now;
-    draw(fraction, std::chrono::duration<double>(now - start_).count());
+    draw(fraction, now);
 }
 
-ProgressFn ProgressReporter::callback() {
-    return [this](double fraction_done) { update(fraction_done); };
+void ProgressReporter::step(std::string_view what) {
+    if (style_ == ProgressStyle::Silent) return;
+    std::lock_guard lock(draw_mutex_);
+    end_bar_line();
+    out_ << "wavepath: " << what << std::endl;
+}
+
+Progress ProgressReporter::callback() {
+    return {[this](std::string_view what) { step(what); }, [this](double fraction_done) { update(fraction_done); }};
 }
 
 void ProgressReporter::finish() {
     if (style_ != ProgressStyle::Bar) return;
     std::lock_guard lock(draw_mutex_);
-    draw(1.0, std::chrono::duration<double>(Clock::now() - start_).count());
-    out_ << std::endl;
-    bar_open_ = false;
+    draw(1.0, Clock::now());
+    end_bar_line();
 }
 
-void ProgressReporter::draw(double fraction, double elapsed_s) {
+void ProgressReporter::draw(double fraction, Clock::time_point now) {
+    const double elapsed_s = seconds(now - start_);
+    // Before the first update() nothing has been sampled (finish() without one).
+    const double sampling_s = fraction > 0.0 ? seconds(now - sampling_start_) : 0.0;
     if (style_ == ProgressStyle::Bar) {
-        out_ << "\r" << format_progress_bar(fraction, elapsed_s) << "\033[K" << std::flush;  // clear leftovers
+        out_ << "\r" << format_progress_bar(fraction, elapsed_s, sampling_s) << "\033[K"
+             << std::flush;  // clear leftovers
         bar_open_ = true;
     } else {
-        out_ << format_progress_line(fraction, elapsed_s) << std::endl;
+        out_ << format_progress_line(fraction, elapsed_s, sampling_s) << std::endl;
     }
 }
 

@@ -7,6 +7,7 @@
 #include <mutex>
 #include <ostream>
 #include <string>
+#include <string_view>
 
 #include "core/render.h"
 
@@ -19,10 +20,12 @@ ProgressStyle choose_progress_style(bool quiet);
 
 // "7s", "2m05s", "1h02m".
 std::string format_duration(double seconds);
+// The ETA extrapolates the time spent sampling (sampling_s, which leaves out
+// the kernel build and other setup); "ETA --" until samples are done.
 // "[#########-----------]  45.0%  elapsed 7s  ETA 9s" (no line ending).
-std::string format_progress_bar(double fraction, double elapsed_s);
+std::string format_progress_bar(double fraction, double elapsed_s, double sampling_s);
 // "wavepath: 45% done, 7s elapsed, ETA 9s".
-std::string format_progress_line(double fraction, double elapsed_s);
+std::string format_progress_line(double fraction, double elapsed_s, double sampling_s);
 
 class ProgressReporter {
  public:
@@ -38,21 +41,28 @@ class ProgressReporter {
     ProgressReporter(const ProgressReporter&) = delete;
     ProgressReporter& operator=(const ProgressReporter&) = delete;
 
-    // Thread-safe; fractions may arrive out of order, the largest counts.
+    // Thread-safe; fractions may arrive out of order, the largest counts. The
+    // first call starts the sampling clock the ETA is measured on.
     void update(double fraction_done);
-    ProgressFn callback();
+    // Writes "wavepath: <what>" on a line of its own at once (not when Silent).
+    void step(std::string_view what);
+    // step() and update() for a renderer.
+    Progress callback();
     // Draws the complete bar and ends its line (no-op for other styles).
     void finish();
 
  private:
     double record(double fraction_done);
-    void draw(double fraction, double elapsed_s);
+    void draw(double fraction, Clock::time_point now);
+    void end_bar_line();
 
     ProgressStyle style_;
     std::ostream& out_;
     Clock::duration interval_;
     Clock::time_point start_ = Clock::now();
     std::atomic<double> fraction_{0.0};
+    std::once_flag sampling_started_;
+    Clock::time_point sampling_start_;  // set once, by the first update()
     std::mutex draw_mutex_;
     Clock::time_point last_output_ = start_;
     bool bar_open_ = false;  // a bar is on screen without its line ending

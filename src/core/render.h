@@ -49,7 +49,20 @@ struct RenderResult {
     RenderStats stats;
 };
 
-// Called with the fraction of samples done, from any thread, possibly often.
-using ProgressFn = std::function<void(double fraction_done)>;
+// What a renderer tells its user while it works. Either callback may be empty.
+struct Progress {
+    // A step before sampling that takes a while (building kernels), in words.
+    std::function<void(std::string_view what)> step;
+    // The fraction of samples done, from any thread, possibly often. Sampling
+    // starts at the first call: renderers report 0 just before their first sample.
+    std::function<void(double fraction_done)> samples;
+
+    void announce(std::string_view what) const {
+        if (step) step(what);
+    }
+    void report(double fraction_done) const {
+        if (samples) samples(fraction_done);
+    }
+};
 
 }  // namespace wp

@@ -132,7 +132,7 @@ std::string program_cache_directory() {
 }
 
 BuiltProgram build_program(const cl::Context& context, const DeviceInfo& device, const std::vector<std::string>& files,
-                           const std::string& options) {
+                           const std::string& options, const Progress& progress) {
     fs::path dir = kernel_directory();
     BuiltProgram built;
     // Correctly rounded divide and sqrt, as in C++; never fast-math or -cl-mad-enable.
@@ -145,6 +145,11 @@ BuiltProgram build_program(const cl::Context& context, const DeviceInfo& device,
     auto start = std::chrono::steady_clock::now();
     built.cache_hit = build_from_binary(context, device, built.cache_file, built.options, built.program);
     if (!built.cache_hit) {
+        progress.announce(built.cache_file.empty()
+                              ? "building the kernels for this scene (no cache directory: every run rebuilds them)"
+                              : "building the kernels for this scene; later runs with the same features reuse "
+                                "them from " +
+                                    fs::path(built.cache_file).parent_path().string());
         built.program = build_from_source(context, device, dir, files, built.options);
         if (!built.cache_file.empty()) {
             std::vector<std::vector<unsigned char>> binaries = built.program.getInfo<CL_PROGRAM_BINARIES>();

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "core/render.h"
 #include "device/opencl_device.h"
 
 namespace wp {
@@ -39,7 +40,8 @@ std::string program_cache_directory();
 // program for `device`, with -I for the kernel directories, -cl-std=CL1.2 and
 // `options`. The cache key hashes the platform, device, driver, options, the
 // names in `files` and every file in the kernel directories (the headers included).
+// On a cache miss, announces the compilation on `progress` before it starts.
 BuiltProgram build_program(const cl::Context& context, const DeviceInfo& device, const std::vector<std::string>& files,
-                           const std::string& options);
+                           const std::string& options, const Progress& progress = {});
 
 }  // namespace wp

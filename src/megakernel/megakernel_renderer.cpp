@@ -36,16 +36,16 @@ void time_launches(std::vector<std::pair<const char*, cl::Event>>& events, Wavef
 
 }  // namespace
 
-RenderResult render_megakernel(const Scene& scene, const MegakernelOptions& options, const ProgressFn& progress,
+RenderResult render_megakernel(const Scene& scene, const MegakernelOptions& options, const Progress& progress,
                                MegakernelReport* report) {
     DeviceInfo device = choose_device(options.device);
     cl::Context context(device.device);
     cl::CommandQueue queue(context, device.device,
                            options.profile ? cl_command_queue_properties(CL_QUEUE_PROFILING_ENABLE) : 0);
-    BuiltProgram program =
-        build_program(context, device, {"megakernel.cl", "accumulate.cl"},
-                      kernel_build_options(scene.features(), uses_nee(scene), device.fp64, scene.render) +
-                          shape_count_options(scene));
+    BuiltProgram program = build_program(
+        context, device, {"megakernel.cl", "accumulate.cl"},
+        kernel_build_options(scene.features(), uses_nee(scene), device.fp64, scene.render) + shape_count_options(scene),
+        progress);
     DeviceScene device_scene(context, flatten_scene(scene));
     const Camera& camera = scene.camera;
     std::size_t pixel_count = std::size_t(camera.width) * camera.height;
@@ -79,6 +79,7 @@ RenderResult render_megakernel(const Scene& scene, const MegakernelOptions& opti
 
     RenderResult result;
     auto render_start = std::chrono::steady_clock::now();
+    progress.report(0.0);
     for (std::uint64_t start = 0; start < total; start += pass_capacity) {
         auto size = static_cast<std::uint32_t>(std::min(pass_capacity, total - start));
         megakernel.setArg(pass_start_arg, cl_ulong(start));
@@ -93,7 +94,7 @@ RenderResult render_megakernel(const Scene& scene, const MegakernelOptions& opti
         result.stats.extension_rays += figures[WP_COUNTER_EXTENSION_RAYS];
         result.stats.shadow_rays += figures[WP_COUNTER_SHADOW_RAYS];
         result.stats.add_nonfinite(nonfinite_counts(figures.data()));
-        if (progress) progress(double(start + size) / double(total));
+        progress.report(double(start + size) / double(total));
     }
     result.image = film_to_image(read_film_sums(queue, film, pixel_count, device.fp64), camera.width, camera.height,
                                  scene.render.spp);

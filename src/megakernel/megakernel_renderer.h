@@ -26,7 +26,7 @@ struct MegakernelReport {
 };
 
 // Renders on OpenCL; throws DeviceError (no device, kernel build failure).
-RenderResult render_megakernel(const Scene& scene, const MegakernelOptions& options, const ProgressFn& progress,
+RenderResult render_megakernel(const Scene& scene, const MegakernelOptions& options, const Progress& progress,
                                MegakernelReport* report = nullptr);
 
 }  // namespace wp

@@ -62,7 +62,7 @@ void check_settings(const Scene& scene) {
 }
 
 template <class Real>
-RenderResult render_with(const Scene& source, const ReferenceOptions& options, const ProgressFn& progress) {
+RenderResult render_with(const Scene& source, const ReferenceOptions& options, const Progress& progress) {
     auto start = std::chrono::steady_clock::now();
     reference::ReferenceScene<Real> scene(source);
     int width = scene.camera.width;
@@ -75,11 +75,12 @@ RenderResult render_with(const Scene& source, const ReferenceOptions& options, c
     std::atomic<int> next_tile{0};
     std::atomic<int> tiles_done{0};
     std::vector<reference::RayCounts> counts(worker_count(options, tile_count));
+    progress.report(0.0);
     auto work = [&](reference::RayCounts& mine) {
         for (int t = next_tile++; t < tile_count; t = next_tile++) {
             render_tile(scene, grid.tile(t, width, height), result.image, mine);
             int done = ++tiles_done;
-            if (progress) progress(static_cast<double>(done) / tile_count);
+            progress.report(static_cast<double>(done) / tile_count);
         }
     };
     std::vector<std::thread> workers;
@@ -100,7 +101,7 @@ RenderResult render_with(const Scene& source, const ReferenceOptions& options, c
 
 }  // namespace
 
-RenderResult render_reference(const Scene& scene, const ReferenceOptions& options, const ProgressFn& progress) {
+RenderResult render_reference(const Scene& scene, const ReferenceOptions& options, const Progress& progress) {
     check_settings(scene);
     return options.double_precision ? render_with<double>(scene, options, progress)
                                     : render_with<float>(scene, options, progress);

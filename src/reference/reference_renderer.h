@@ -18,7 +18,7 @@ struct ReferenceOptions {
 // Renders the scene with its own render settings and camera resolution. The
 // image is bit-identical for any thread count. Throws std::invalid_argument
 // for a resolution or spp below 1 or a negative max_depth.
-RenderResult render_reference(const Scene& scene, const ReferenceOptions& options, const ProgressFn& progress = {});
+RenderResult render_reference(const Scene& scene, const ReferenceOptions& options, const Progress& progress = {});
 
 // Radiance of one camera sample, exactly as render_reference computes it
 // (its non-finite values dropped); Real is float or double.

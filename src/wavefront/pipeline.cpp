@@ -49,7 +49,8 @@ Pipeline::Pipeline(const Scene& scene, const DeviceInfo& device, std::size_t cap
       queue_(context_, device.device, options.profile ? cl_command_queue_properties(CL_QUEUE_PROFILING_ENABLE) : 0),
       program_(build_program(
           context_, device, wavefront_kernel_files(),
-          stage_options(scene, device, kernel_features, options.compaction) + " -DWP_LANES=" + std::to_string(lanes_))),
+          stage_options(scene, device, kernel_features, options.compaction) + " -DWP_LANES=" + std::to_string(lanes_),
+          options.progress)),
       scene_(context_, flatten_scene(scene)),
       state_(context_, capacity, kernel_features, uses_nee(scene)),
       queues_(context_, CL_MEM_READ_WRITE,

@@ -37,6 +37,7 @@ struct PipelineOptions {
     bool profile = false;  // time every kernel with OpenCL events and count rays per depth (count_depths.cl)
     Compaction compaction = Compaction::Atomic;
     unsigned lanes = 0;  // paths per work item in the stage kernels (1 or 8); 0: automatic_lanes()
+    Progress progress;   // told when the kernels are compiled (a program cache miss)
 };
 
 // The lanes the stage kernels use by default: 8 on CPU devices, where a work

@@ -22,7 +22,7 @@ DeviceCounts run_iteration(Pipeline& p, bool has_lights) {
 
 }  // namespace
 
-ScheduleTotals run_schedule(Pipeline& pipeline, std::uint64_t total, bool has_lights, const ProgressFn& progress,
+ScheduleTotals run_schedule(Pipeline& pipeline, std::uint64_t total, bool has_lights, const Progress& progress,
                             std::vector<IterationRecord>& iterations) {
     ScheduleTotals totals;
     std::uint64_t finished = 0;
@@ -50,7 +50,7 @@ ScheduleTotals run_schedule(Pipeline& pipeline, std::uint64_t total, bool has_li
             issued = now_issued;
             free_slots = r.finished;
             continuing = r.continuing;
-            if (progress) progress(double(finished) / double(total));
+            progress.report(double(finished) / double(total));
             if (issued == size && continuing == 0) {
                 NonfiniteCounts pass_nonfinite = pipeline.take_nonfinite();
                 for (std::size_t i = 0; i < pass_nonfinite.size(); ++i) totals.nonfinite[i] += pass_nonfinite[i];

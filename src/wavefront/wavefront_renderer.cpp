@@ -101,7 +101,7 @@ std::string WavefrontReport::explain() const {
     return out.str();
 }
 
-RenderResult render_wavefront(const Scene& scene, const WavefrontOptions& options, const ProgressFn& progress,
+RenderResult render_wavefront(const Scene& scene, const WavefrontOptions& options, const Progress& progress,
                               WavefrontReport* report) {
     DeviceInfo device = choose_device(options.device);
     const Camera& camera = scene.camera;
@@ -113,7 +113,7 @@ RenderResult render_wavefront(const Scene& scene, const WavefrontOptions& option
     FeatureSet features = options.specialise ? scene.features() : every_shape_and_material(scene.features());
     Pipeline pipeline(
         scene, device, wavefront, std::min<std::uint64_t>(total, kPassesPerWavefront * wavefront), features,
-        {options.profile, options.scan_compaction ? Compaction::Scan : Compaction::Atomic, options.lanes});
+        {options.profile, options.scan_compaction ? Compaction::Scan : Compaction::Atomic, options.lanes, progress});
 
     WavefrontReport local_report;
     WavefrontReport& r = report ? *report : local_report;
@@ -129,6 +129,7 @@ RenderResult render_wavefront(const Scene& scene, const WavefrontOptions& option
     r.state_bytes_per_path = pipeline.state().bytes_per_path();
 
     auto render_start = std::chrono::steady_clock::now();  // time_s leaves out device setup and the build
+    progress.report(0.0);
     ScheduleTotals totals = run_schedule(pipeline, total, nee, progress, r.iterations);
     RenderResult result;
     result.image = film_to_image(pipeline.read_film(), camera.width, camera.height, scene.render.spp);

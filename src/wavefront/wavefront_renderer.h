@@ -53,7 +53,7 @@ struct WavefrontReport {
 };
 
 // Renders on OpenCL; throws DeviceError (no device, kernel build failure).
-RenderResult render_wavefront(const Scene& scene, const WavefrontOptions& options, const ProgressFn& progress,
+RenderResult render_wavefront(const Scene& scene, const WavefrontOptions& options, const Progress& progress,
                               WavefrontReport* report = nullptr);
 
 // The image of a film's per-pixel sums over `spp` samples.

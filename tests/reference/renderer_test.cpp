@@ -120,13 +120,17 @@ TEST(ReferenceRenderer, ReportsProgressPerTileUpToOne) {
     wp::Scene scene = room();  // 37 x 23: 3 x 2 tiles of 16
     std::mutex mutex;
     std::vector<double> fractions;
-    wp::render_reference(scene, {.threads = 2}, [&](double f) {
+    wp::Progress progress;
+    progress.samples = [&](double f) {
         std::lock_guard<std::mutex> lock(mutex);
         fractions.push_back(f);
-    });
-    ASSERT_EQ(fractions.size(), 6u);
+    };
+    wp::render_reference(scene, {.threads = 2}, progress);
+    // 0 as sampling starts, then one fraction per tile.
+    ASSERT_EQ(fractions.size(), 7u);
+    EXPECT_EQ(fractions.front(), 0.0);
     std::sort(fractions.begin(), fractions.end());
-    for (std::size_t i = 0; i < fractions.size(); ++i) EXPECT_DOUBLE_EQ(fractions[i], (i + 1) / 6.0);
+    for (std::size_t i = 0; i < fractions.size(); ++i) EXPECT_DOUBLE_EQ(fractions[i], i / 6.0);
 }
 
 TEST(ReferenceRenderer, RejectsImpossibleSettings) {

@@ -47,6 +47,32 @@ TEST(WavefrontCli, DefaultBackendWithExplain) {
     std::filesystem::remove(out);
 }
 
+// A cold program cache: the first progress line says the kernels are being
+// built, and no progress line gives an ETA before samples were measured; the
+// same render again reuses the cache and says nothing of a build.
+TEST(WavefrontCli, ColdCacheSaysKernelsAreBuiltWarmCacheDoesNot) {
+    const std::filesystem::path cache = std::filesystem::temp_directory_path() / "wavepath-cold-cache-test";
+    std::filesystem::remove_all(cache);
+    const std::string environment = "WAVEPATH_CACHE_DIR='" + cache.string() + "'";
+    const std::string out = output_path("wavepath-cold-cache.pfm");
+    const std::string args =
+        "render '" WAVEPATH_SOURCE_DIR "/scenes/test/room_small.json' -o '" + out + "' --spp 1 --wavefront 256";
+    const CommandRun cold = run(environment, args);
+    ASSERT_EQ(cold.exit_code, 0) << cold.output;
+    EXPECT_EQ(cold.output.rfind("wavepath: building the kernels for this scene; later runs with the same features "
+                                "reuse them from " +
+                                    cache.string() + "\n",
+                                0),
+              0u)
+        << cold.output;
+    EXPECT_EQ(cold.output.find("0% done"), std::string::npos) << "a progress line before any sample:\n" << cold.output;
+    const CommandRun warm = run(environment, args);
+    ASSERT_EQ(warm.exit_code, 0) << warm.output;
+    EXPECT_EQ(warm.output.find("building the kernels"), std::string::npos) << warm.output;
+    std::filesystem::remove_all(cache);
+    std::filesystem::remove(out);
+}
+
 TEST(WavefrontCli, DevicesListed) {
     CommandRun r = run("", "devices");
     EXPECT_EQ(r.exit_code, 0);
