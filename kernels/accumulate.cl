@@ -2,6 +2,9 @@
  * pixel's pass entries in sample order, in double (or compensated float
  * where the device lacks fp64), exactly as the reference sums its samples.
  * No atomics: the image does not depend on scheduling or wavefront size. */
+#include "device/parameters.h"
+#include "interface/kernel_parameters.h"
+
 #ifdef WP_FILM_DOUBLE
 #pragma OPENCL EXTENSION cl_khr_fp64 : enable
 typedef double film_real;
@@ -10,8 +13,7 @@ typedef float film_real;
 #endif
 
 /* film holds 3 sums per pixel, then (compensated float only) 3 compensations. */
-__kernel void accumulate(ulong pass_start, uint pass_size, uint pixel_count, __global const float *pass_radiance,
-                         __global film_real *film) {
+__kernel void accumulate(WP_PARAMETERS(WP_ACCUMULATE_PARAMETERS)) {
     uint px = get_global_id(0);
     if (px >= pixel_count) return;
     uint first = (uint)((px + pixel_count - pass_start % pixel_count) % pixel_count);

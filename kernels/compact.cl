@@ -1,10 +1,12 @@
 /* Stable compaction by prefix sum (built with -DWP_COMPACT_SCAN): stage
- * kernels mark the slots they push (queue_push), then these three kernels
+ * kernels mark the slots they push (push_lanes), then these three kernels
  * turn each queue's marks into the queue, in ascending slot order, so the
  * next stage reads the path state in memory order. Each work item handles
  * one block of WP_COMPACT_BLOCK consecutive slots; no atomics, no barriers.
  * queue_mask selects the queues (bit q for queue q). */
-#include "queues.h"
+#include "device/parameters.h"
+#include "interface/kernel_parameters.h"
+#include "interface/queues.h"
 
 static inline uint compact_blocks(uint capacity) { return (capacity + WP_COMPACT_BLOCK - 1u) / WP_COMPACT_BLOCK; }
 
@@ -13,8 +15,7 @@ static inline __global const uint *queue_marks(__global const uint *queues, uint
     return (queue_mask & (1u << q)) ? queues + WP_QUEUE_MARKS(q) * capacity : 0;
 }
 
-__kernel void compact_count(__global const uint *queues, uint capacity, uint queue_mask,
-                            __global uint *block_counts) {
+__kernel void compact_count(WP_PARAMETERS(WP_COMPACT_COUNT_PARAMETERS)) {
     uint block = get_global_id(0), blocks = compact_blocks(capacity);
     if (block >= blocks) return;
     uint end = min(capacity, (block + 1u) * WP_COMPACT_BLOCK);
@@ -29,7 +30,7 @@ __kernel void compact_count(__global const uint *queues, uint capacity, uint que
 
 /* One work item per queue: block counts become block offsets (exclusive
  * prefix sum), and the total the queue's length. */
-__kernel void compact_scan(uint capacity, uint queue_mask, __global uint *block_counts, __global uint *counts) {
+__kernel void compact_scan(WP_PARAMETERS(WP_COMPACT_SCAN_PARAMETERS)) {
     uint q = get_global_id(0), blocks = compact_blocks(capacity);
     if (q >= WP_QUEUE_COUNT || !(queue_mask & (1u << q))) return;
     uint sum = 0u;
@@ -41,8 +42,7 @@ __kernel void compact_scan(uint capacity, uint queue_mask, __global uint *block_
     counts[q] = sum;
 }
 
-__kernel void compact_write(__global uint *queues, uint capacity, uint queue_mask,
-                            __global const uint *block_counts) {
+__kernel void compact_write(WP_PARAMETERS(WP_COMPACT_WRITE_PARAMETERS)) {
     uint block = get_global_id(0), blocks = compact_blocks(capacity);
     if (block >= blocks) return;
     uint end = min(capacity, (block + 1u) * WP_COMPACT_BLOCK);

@@ -5,11 +5,12 @@
  * atomics and barriers counting needs would keep them from vectorising.
  * Each work group fills a histogram in local memory and adds it to the
  * global one with one atomic per non-empty bin. */
-#include "queues.h"
+#include "device/parameters.h"
+#include "interface/kernel_parameters.h"
+#include "interface/queues.h"
 
 __kernel __attribute__((reqd_work_group_size(WP_GROUP_SIZE, 1, 1))) void count_depths(
-    __global const uint *queues, __global uint *counts, uint capacity, uint queue, uint histogram_offset,
-    __global const uint *depth) {
+    WP_PARAMETERS(WP_COUNT_DEPTHS_PARAMETERS)) {
     __local uint group_histogram[WP_PROFILE_DEPTHS];
     for (uint i = get_local_id(0); i < WP_PROFILE_DEPTHS; i += get_local_size(0)) group_histogram[i] = 0u;
     barrier(CLK_LOCAL_MEM_FENCE);

@@ -1,11 +1,13 @@
-/* Stage 1: camera rays, WP_LANES per work item (lanes.h). The k-th free
+/* Stage 1: camera rays, WP_LANES per work item (device/lanes.h). The k-th free
  * slot takes work item issued + k of the pass (work item w: pixel
  * w % pixels, sample w / pixels), where `issued` (counts[WP_COUNTER_WORK],
  * written by the host before the launch) is how many the pass has handed out
  * so far; no atomics. This is also path regeneration, since slots freed by
  * finished paths come back through the free queue every iteration. */
-#include "wavefront.h"
-#include "vertex.h"
+#include "device/lanes.h"
+#include "device/parameters.h"
+#include "device/path_queues.h"
+#include "device/path_vertex.h"
 
 __kernel __attribute__((reqd_work_group_size(WP_GROUP_SIZE, 1, 1))) void generate(WP_STAGE_PARAMS) {
     __local uint group_count, group_base; /* queue_push's scratch (atomic compaction) */
@@ -20,16 +22,16 @@ __kernel __attribute__((reqd_work_group_size(WP_GROUP_SIZE, 1, 1))) void generat
     uint pass_pixel = (uint)(pass_start % pixel_count), pass_sample = (uint)(pass_start / pixel_count);
     lane_uint px = (pass_pixel + item) % pixel_count;
     lane_uint s = pass_sample + (pass_pixel + item) / pixel_count;
-    lanes_store_uint(pixel, lanes, started, px);
-    lanes_store_uint(sample, lanes, started, s);
-    lanes_store_uint(pass_item, lanes, started, item);
-    lanes_store_uint(depth, lanes, started, (lane_uint)0u);
-    STORE_LANES_XYZ(origin, lanes, started, make_vec3(REAL(0.0), REAL(0.0), REAL(0.0))); /* the camera, after loading */
-    STORE_LANES_XYZ(direction, lanes, started, camera_ray_direction(scene, px, s));
-    STORE_LANES_RGB(throughput, lanes, started, make_vec3(REAL(1.0), REAL(1.0), REAL(1.0)));
-    STORE_LANES_RGB(radiance, lanes, started, make_vec3(REAL(0.0), REAL(0.0), REAL(0.0)));
+    PATH_WRITE(pixel, lanes, started, px);
+    PATH_WRITE(sample, lanes, started, s);
+    PATH_WRITE(pass_item, lanes, started, item);
+    PATH_WRITE(depth, lanes, started, (lane_uint)0u);
+    PATH_WRITE(origin, lanes, started, make_vec3(REAL(0.0), REAL(0.0), REAL(0.0))); /* the camera, after loading */
+    PATH_WRITE(direction, lanes, started, camera_ray_direction(scene, px, s));
+    PATH_WRITE(throughput, lanes, started, make_vec3(REAL(1.0), REAL(1.0), REAL(1.0)));
+    PATH_WRITE(radiance, lanes, started, make_vec3(REAL(0.0), REAL(0.0), REAL(0.0)));
 #ifdef WP_HAS_SPECULAR
-    lanes_store_uint(specular, lanes, started, (lane_uint)1u);
+    PATH_WRITE(specular, lanes, started, (lane_uint)1u);
 #endif
-    push_lanes(queues, counts, capacity, WP_QUEUE_RAY, lanes, started, &group_count, &group_base);
+    push_lanes(queues, counts, WP_QUEUE_RAY, lanes, started, &group_count, &group_base);
 }

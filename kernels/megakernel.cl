@@ -1,11 +1,16 @@
 /* The megakernel baseline (--backend megakernel): one work item traces one
  * work item of the pass (pixel w % pixels, sample w / pixels) from the camera
- * to its end, with the same per-vertex functions (vertex.h) and random
+ * to its end, with the same per-vertex functions (device/path_vertex.h) and random
  * numbers as the wavefront's stages, and writes its radiance to its pass
  * entry for accumulate.cl. It keeps the whole path in registers: no path
  * state, no queues, but divergent loops. */
-#include "wavefront.h"
-#include "vertex.h"
+#include "device/guards.h"
+#include "device/parameters.h"
+#include "device/path_queues.h"
+#include "device/path_vertex.h"
+#include "device/scene_hits.h"
+#include "device/surface.h"
+#include "interface/queues.h"
 
 /* Traces one path; returns its radiance, adds its rays to extension_rays and
  * shadow_rays and the non-finite values it drops to dropped[stage]. */
@@ -22,7 +27,7 @@ WP_FN vec3 trace_path(WP_SCENE_PARAMS, uint px, uint s, uint *extension_rays, ui
         Hit hit = closest_hit(WP_SCENE_ARGS, origin, d);
         if (hit.shape == WP_NO_HIT) {
 #ifdef WP_HAS_BACKGROUND
-            radiance = add_finite(radiance, v3_mul(throughput, vec3_at(scene->background)), &dropped[0]);
+            radiance = add_finite(radiance, v3_mul(throughput, uniform_vec3(scene->background)), &dropped[0]);
 #endif
             return radiance;
         }
@@ -30,7 +35,7 @@ WP_FN vec3 trace_path(WP_SCENE_PARAMS, uint px, uint s, uint *extension_rays, ui
         Material m = v.material;
         radiance = add_finite(radiance, emission_seen(m, v.front, after_specular, throughput), &dropped[0]);
         if (depth >= scene->max_depth || m.type == WP_MATERIAL_EMITTER) return radiance;
-#if defined(WP_HAS_NEE) && defined(WP_HAS_DIFFUSE)
+#if defined(WP_NEE) && defined(WP_HAS_DIFFUSE)
         vec3 shadow_origin, shadow_direction, contribution;
         real distance;
         if (m.type == WP_MATERIAL_DIFFUSE &&
@@ -54,7 +59,7 @@ WP_FN vec3 trace_path(WP_SCENE_PARAMS, uint px, uint s, uint *extension_rays, ui
 }
 
 __kernel __attribute__((reqd_work_group_size(WP_GROUP_SIZE, 1, 1))) void megakernel(
-    WP_SCENE_PARAMS, ulong pass_start, uint pass_size, __global float *pass_radiance, __global uint *counts) {
+    WP_PARAMETERS(WP_MEGAKERNEL_PARAMETERS)) {
     __local uint group_extension_rays, group_shadow_rays, group_dropped[WP_NONFINITE_STAGE_COUNT];
     if (get_local_id(0) == 0) {
         group_extension_rays = group_shadow_rays = 0u;

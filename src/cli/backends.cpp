@@ -3,11 +3,12 @@
 #include <algorithm>
 #include <array>
 #include <iostream>
+#include <map>
 
 #include "cli/errors.h"
 #include "cli/flag_checks.h"
-#include "device/program_cache.h"
 #include "megakernel/megakernel_renderer.h"
+#include "opencl/program_cache.h"
 #include "reference/reference_renderer.h"
 #include "wavefront/wavefront_renderer.h"
 
@@ -52,11 +53,12 @@ RenderResult render_on_opencl(const BackendOptions& options, Render render) {
 
 RenderResult render_on_wavefront(const Scene& scene, const BackendOptions& options, const Progress& progress) {
     return render_on_opencl<WavefrontReport>(options, [&](WavefrontReport& report) {
-        if (options.lanes == 8 && options.compaction != "scan")
-            throw UsageError("--lanes 8 needs --compaction scan (atomic pushes are per work item)");
+        if (options.lanes != 0)
+            if (std::string problem = lanes_problem(options.lanes, options.compaction); !problem.empty())
+                throw UsageError(problem);
         WavefrontOptions wavefront{options.device, options.wavefront};
         wavefront.profile = wants_profile(options);
-        wavefront.scan_compaction = options.compaction == "scan";
+        wavefront.compaction = options.compaction;
         wavefront.lanes = options.lanes;
         RenderResult result = render_wavefront(scene, wavefront, progress, &report);
         if (options.explain) std::cout << report.explain() << std::flush;
@@ -111,8 +113,9 @@ void add_backend_options(CLI::App& render, BackendOptions& options) {
         .add_option("--compaction", options.compaction,
                     "How the wavefront fills its queues: atomic (pushes aggregated per work group) or scan "
                     "(stable prefix sum)")
-        ->check(CLI::IsMember({"atomic", "scan"}))
-        ->capture_default_str();
+        ->transform(CLI::CheckedTransformer(
+            std::map<std::string, Compaction>{{"atomic", Compaction::Atomic}, {"scan", Compaction::Scan}}))
+        ->default_str(kDefaultCompaction == Compaction::Scan ? "scan" : "atomic");
     render
         .add_option("--lanes", options.lanes,
                     "Paths per work item in the wavefront's stage kernels, as vector code: 1 or 8 (8 needs "

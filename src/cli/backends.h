@@ -10,6 +10,7 @@
 
 #include "core/render.h"
 #include "scene/scene.h"
+#include "wavefront/compaction.h"
 
 namespace wp::cli {
 
@@ -17,13 +18,13 @@ struct BackendOptions {
     std::string name = "wavefront";
     int threads = 0;  // CPU threads for the reference; 0 = all hardware threads
     std::string precision = "float";
-    std::size_t wavefront = 0;        // paths in flight for the wavefront; 0 = automatic
-    std::string device;               // OpenCL device index or name substring; "" = prefer a GPU
-    bool explain = false;             // print the wavefront's features, build and state size
-    std::string compaction = "scan";  // the wavefront's queue filling: atomic or scan
-    unsigned lanes = 0;               // paths per work item in the wavefront's stage kernels; 0 = automatic
-    bool profile = false;             // print the wavefront's per-kernel profile on stderr
-    std::string profile_json;         // also write the profile to this JSON file; "" = none
+    std::size_t wavefront = 0;                   // paths in flight for the wavefront; 0 = automatic
+    std::string device;                          // OpenCL device index or name substring; "" = prefer a GPU
+    bool explain = false;                        // print the wavefront's features, build and state size
+    Compaction compaction = kDefaultCompaction;  // the wavefront's queue filling
+    unsigned lanes = 0;                          // paths per work item in the wavefront's stage kernels; 0 = automatic
+    bool profile = false;                        // print the wavefront's per-kernel profile on stderr
+    std::string profile_json;                    // also write the profile to this JSON file; "" = none
 };
 
 // --backend and the flags of every backend.

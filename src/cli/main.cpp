@@ -6,7 +6,7 @@
 
 #include "cli/errors.h"
 #include "cli/render_command.h"
-#include "device/opencl_device.h"
+#include "opencl/device.h"
 
 int main(int argc, char** argv) {
     using namespace wp::cli;

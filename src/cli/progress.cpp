@@ -14,10 +14,7 @@ constexpr auto kBarInterval = std::chrono::milliseconds(100);  // ~10 Hz redraw
 constexpr auto kLineInterval = std::chrono::seconds(5);        // sparse enough for CI logs
 constexpr int kBarWidth = 30;
 
-std::string eta_text(double fraction, double sampling_s) {
-    if (fraction <= 0.0 || sampling_s <= 0.0) return "ETA --";
-    return "ETA " + format_duration(sampling_s * (1.0 - fraction) / fraction);
-}
+std::string eta_text(double eta_s) { return eta_s < 0.0 ? "ETA --" : "ETA " + format_duration(eta_s); }
 
 double seconds(ProgressReporter::Clock::duration d) { return std::chrono::duration<double>(d).count(); }
 
@@ -40,18 +37,23 @@ std::string format_duration(double seconds) {
     return text;
 }
 
-std::string format_progress_bar(double fraction, double elapsed_s, double sampling_s) {
+double estimate_eta(double fraction, double first_fraction, double since_first_s) {
+    if (fraction <= first_fraction || since_first_s <= 0.0) return -1.0;
+    return since_first_s * (1.0 - fraction) / (fraction - first_fraction);
+}
+
+std::string format_progress_bar(double fraction, double elapsed_s, double eta_s) {
     const int filled = static_cast<int>(fraction * kBarWidth);
     std::string bar(1, '[');
     bar.append(filled, '#').append(kBarWidth - filled, '-');
     char percent[32];
     std::snprintf(percent, sizeof percent, "] %5.1f%%  elapsed ", 100.0 * fraction);
-    return bar.append(percent).append(format_duration(elapsed_s)).append("  ").append(eta_text(fraction, sampling_s));
+    return bar.append(percent).append(format_duration(elapsed_s)).append("  ").append(eta_text(eta_s));
 }
 
-std::string format_progress_line(double fraction, double elapsed_s, double sampling_s) {
+std::string format_progress_line(double fraction, double elapsed_s, double eta_s) {
     return "wavepath: " + std::to_string(static_cast<int>(100.0 * fraction)) + "% done, " + format_duration(elapsed_s) +
-           " elapsed, " + eta_text(fraction, sampling_s);
+           " elapsed, " + eta_text(eta_s);
 }
 
 ProgressReporter::ProgressReporter(ProgressStyle style, std::ostream& out)
@@ -76,9 +78,13 @@ double ProgressReporter::record(double fraction_done) {
 }
 
 void ProgressReporter::update(double fraction_done) {
-    std::call_once(sampling_started_, [this] { sampling_start_ = Clock::now(); });
     if (style_ == ProgressStyle::Silent) return;
     const double fraction = record(fraction_done);
+    if (fraction > 0.0)
+        std::call_once(first_samples_, [&] {
+            first_samples_time_ = Clock::now();
+            first_fraction_ = fraction;
+        });
     if (fraction <= 0.0) return;  // nothing measured to show yet
     // Another thread drawing right now already shows (nearly) this fraction.
     std::unique_lock lock(draw_mutex_, std::try_to_lock);
@@ -110,13 +116,14 @@ void ProgressReporter::finish() {
 void ProgressReporter::draw(double fraction, Clock::time_point now) {
     const double elapsed_s = seconds(now - start_);
     // Before the first update() nothing has been sampled (finish() without one).
-    const double sampling_s = fraction > 0.0 ? seconds(now - sampling_start_) : 0.0;
+    // Nothing measured yet when finish() comes before any samples.
+    const double eta_s =
+        fraction >= 1.0 ? 0.0 : estimate_eta(fraction, first_fraction_, seconds(now - first_samples_time_));
     if (style_ == ProgressStyle::Bar) {
-        out_ << "\r" << format_progress_bar(fraction, elapsed_s, sampling_s) << "\033[K"
-             << std::flush;  // clear leftovers
+        out_ << "\r" << format_progress_bar(fraction, elapsed_s, eta_s) << "\033[K" << std::flush;  // clear leftovers
         bar_open_ = true;
     } else {
-        out_ << format_progress_line(fraction, elapsed_s, sampling_s) << std::endl;
+        out_ << format_progress_line(fraction, elapsed_s, eta_s) << std::endl;
     }
 }
 

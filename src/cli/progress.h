@@ -20,12 +20,18 @@ ProgressStyle choose_progress_style(bool quiet);
 
 // "7s", "2m05s", "1h02m".
 std::string format_duration(double seconds);
-// The ETA extrapolates the time spent sampling (sampling_s, which leaves out
-// the kernel build and other setup); "ETA --" until samples are done.
+// Seconds left at `fraction` done, from the rate since the first samples were
+// reported done (at first_fraction, since_first_s ago): the kernel build,
+// the first launches' compilation (PoCL compiles a kernel at its first
+// launch) and the filling of the wavefront all come before them and would
+// make the ETA absurd. -1: not measured yet.
+double estimate_eta(double fraction, double first_fraction, double since_first_s);
+
+// eta_s < 0 shows "ETA --".
 // "[#########-----------]  45.0%  elapsed 7s  ETA 9s" (no line ending).
-std::string format_progress_bar(double fraction, double elapsed_s, double sampling_s);
+std::string format_progress_bar(double fraction, double elapsed_s, double eta_s);
 // "wavepath: 45% done, 7s elapsed, ETA 9s".
-std::string format_progress_line(double fraction, double elapsed_s, double sampling_s);
+std::string format_progress_line(double fraction, double elapsed_s, double eta_s);
 
 class ProgressReporter {
  public:
@@ -42,7 +48,7 @@ class ProgressReporter {
     ProgressReporter& operator=(const ProgressReporter&) = delete;
 
     // Thread-safe; fractions may arrive out of order, the largest counts. The
-    // first call starts the sampling clock the ETA is measured on.
+    // first fraction above 0 starts the clock the ETA is measured on.
     void update(double fraction_done);
     // Writes "wavepath: <what>" on a line of its own at once (not when Silent).
     void step(std::string_view what);
@@ -61,8 +67,9 @@ class ProgressReporter {
     Clock::duration interval_;
     Clock::time_point start_ = Clock::now();
     std::atomic<double> fraction_{0.0};
-    std::once_flag sampling_started_;
-    Clock::time_point sampling_start_;  // set once, by the first update()
+    std::once_flag first_samples_;
+    Clock::time_point first_samples_time_;  // when a fraction above 0 first arrived
+    double first_fraction_ = 0.0;           // that fraction
     std::mutex draw_mutex_;
     Clock::time_point last_output_ = start_;
     bool bar_open_ = false;  // a bar is on screen without its line ending

@@ -19,7 +19,7 @@ struct Image {
 
 // Where a non-finite value can arise; each backend checks it there, drops it
 // and counts it (docs/robustness.md, "Guards"). Same order as the kernels'
-// WP_COUNTER_NONFINITE_* counters (kernels/common/queues.h).
+// WP_COUNTER_NONFINITE_* counters (kernels/interface/queues.h).
 enum class NonfiniteStage : std::size_t {
     emission,  // emission or background added to the radiance
     direct,    // a light sample's contribution added to the radiance

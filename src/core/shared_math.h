@@ -1,4 +1,4 @@
-// The shared math of kernels/common/ compiled as C++, once per precision.
+// The shared math of kernels/shared/ compiled as C++, once per precision.
 // The code is included inside a class template, so its functions become
 // static members: wp::SharedMath<float> matches the OpenCL kernels and
 // wp::SharedMath<double> is the double-precision build, and code templated
@@ -7,11 +7,10 @@
 
 #include <cmath>
 #include <cstdint>
-#include <limits>
-#include <type_traits>
-
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
+#include <limits>
+#include <type_traits>
 
 namespace wp::shared_math_detail {
 
@@ -36,7 +35,7 @@ struct Precision {
     using uint = std::uint32_t;
     using vec3 = glm::vec<3, real>;
     static constexpr real real_max = std::numeric_limits<real>::max();
-#include "common/wavepath.h"
+#include "shared/shared_math.h"
 };
 
 }  // namespace wp::shared_math_detail

@@ -7,8 +7,8 @@
 #include <string>
 
 #include "core/render.h"
+#include "opencl/profile.h"
 #include "scene/scene.h"
-#include "wavefront/profile.h"
 
 namespace wp {
 
@@ -22,7 +22,7 @@ struct MegakernelReport {
     std::string build_options;
     bool cache_hit = false;
     double build_seconds = 0.0;
-    WavefrontProfile profile;  // kernels "megakernel" and "accumulate", when profiling
+    RenderProfile profile;  // kernels "megakernel" and "accumulate", when profiling
 };
 
 // Renders on OpenCL; throws DeviceError (no device, kernel build failure).

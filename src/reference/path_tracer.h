@@ -38,7 +38,7 @@ struct RayCounts {
 
 // Adds `term` to `radiance` unless the sum is not finite (a NaN or Inf term,
 // or an overflowing sum): then it is dropped and counted in `stage`, as the
-// kernels' add_finite does (kernels/common/wavefront.h).
+// kernels' add_finite does (kernels/device/guards.h).
 template <class Real>
 void add_finite(Vec3<Real>& radiance, const Vec3<Real>& term, NonfiniteStage stage, RayCounts& counts) {
     Vec3<Real> sum = radiance + term;
@@ -273,13 +273,13 @@ Vec3<Real> trace_path(const ReferenceScene<Real>& scene, Ray<Real> ray, const Sa
         bool front = glm::dot(ray.direction, surface.normal) < Real(0);
         vec3 nf = front ? surface.normal : -surface.normal;
         // Without NEE no light sample accounts for emission, so every hit counts it.
-        if (material.emits && (material.two_sided || front) && (specular || !scene.render.nee)) {
+        if (material.emits && (material.two_sided || front) && (specular || !scene.nee)) {
             add_finite<Real>(radiance, throughput * material.emission, NonfiniteStage::emission, counts);
         }
         if (depth >= scene.render.max_depth || material.type == MaterialType::Emitter) break;
 
         auto bounce = static_cast<std::uint32_t>(depth);
-        if (material.type == MaterialType::Diffuse && scene.render.nee && !scene.lights.empty()) {
+        if (material.type == MaterialType::Diffuse && scene.nee) {
             add_finite<Real>(radiance,
                              sample_direct_light(scene, surface.point, surface.error, nf, throughput * material.albedo,
                                                  rng, bounce, counts),

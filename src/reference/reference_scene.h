@@ -58,6 +58,7 @@ struct ReferenceScene {
 
     PinholeCamera camera;
     RenderSettings render;
+    bool nee;  // next-event estimation runs (FeatureSet::nee)
     vec3 background;
     std::vector<SurfaceMaterial> materials;
     std::vector<SphereShape> spheres;
@@ -66,7 +67,8 @@ struct ReferenceScene {
     std::vector<LightRef> lights;
     std::vector<Real> light_cdf;
 
-    explicit ReferenceScene(const Scene& scene) : render(scene.render), background(scene.background) {
+    explicit ReferenceScene(const Scene& scene)
+        : render(scene.render), nee(scene.features().nee), background(scene.background) {
         camera = convert_camera(scene.camera);
         for (const Material& m : scene.materials) {
             materials.push_back(

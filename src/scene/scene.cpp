@@ -31,6 +31,7 @@ FeatureSet Scene::features() const {
         f.quad_lights |= light.shape == ShapeType::Quad;
     }
     f.background = background.x > 0.0 || background.y > 0.0 || background.z > 0.0;
+    f.nee = render.nee && !lights.empty();
     return f;
 }
 
@@ -41,7 +42,8 @@ void build_light_table(Scene& scene) {
         const Sphere& s = scene.spheres[i];
         const Material& m = scene.materials[s.material];
         if (m.emits()) {
-            scene.lights.push_back({ShapeType::Sphere, i, emitted_power(m, 4.0 * std::numbers::pi * s.radius * s.radius)});
+            scene.lights.push_back(
+                {ShapeType::Sphere, i, emitted_power(m, 4.0 * std::numbers::pi * s.radius * s.radius)});
         }
     }
     for (int i = 0; i < static_cast<int>(scene.quads.size()); ++i) {

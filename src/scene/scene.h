@@ -4,11 +4,10 @@
 #pragma once
 
 #include <cstdint>
+#include <glm/vec3.hpp>
 #include <stdexcept>
 #include <string>
 #include <vector>
-
-#include <glm/vec3.hpp>
 
 namespace wp {
 
@@ -71,8 +70,8 @@ enum class ShapeType { Sphere, Plane, Quad };
 // An emitting sphere or quad; planes cannot emit (infinite power).
 struct Light {
     ShapeType shape = ShapeType::Quad;
-    int index = 0;        // into Scene::spheres or Scene::quads
-    double power = 0.0;   // pi * luminance(emission) * area * (two_sided ? 2 : 1)
+    int index = 0;       // into Scene::spheres or Scene::quads
+    double power = 0.0;  // pi * luminance(emission) * area * (two_sided ? 2 : 1)
 };
 
 // Which features occur, so kernels and path state can leave the rest out.
@@ -81,6 +80,7 @@ struct FeatureSet {
     bool diffuse = false, mirror = false, glass = false, emitter_material = false;
     bool sphere_lights = false, quad_lights = false;
     bool background = false;  // a non-black background
+    bool nee = false;         // next-event estimation runs: render.nee is on and the scene has a light
 };
 
 struct Scene {
@@ -102,7 +102,7 @@ struct Scene {
 // One line: "<source>: <json path>: <problem>", e.g.
 // "scenes/bad.json: shapes[3].radius: must be > 0, got -1".
 class SceneError : public std::runtime_error {
-   public:
+ public:
     using std::runtime_error::runtime_error;
 };
 

@@ -1,19 +1,24 @@
 #include "wavefront/path_state.h"
 
 #include <algorithm>
+#include <array>
 #include <cstdint>
 #include <sstream>
 #include <stdexcept>
 
+#include "opencl/kernel_arguments.h"
+
 namespace wp {
 namespace path_state_types {
 using uint = std::uint32_t;
+using vec3 = std::array<float, 3>;  // three planes of floats on the device
 }  // namespace path_state_types
 
-#include "common/path_state.h"
+#include "interface/path_state.h"
 
 const std::vector<PathStateField>& path_state_fields() {
     using path_state_types::uint;
+    using path_state_types::vec3;
 #define WP_PATH_STATE_ENTRY(type, name, feature, writers, readers) \
     {#type, #name, PathFeature::feature, sizeof(type), writers, readers},
     static const std::vector<PathStateField> fields{WP_PATH_STATE(WP_PATH_STATE_ENTRY)};
@@ -21,20 +26,20 @@ const std::vector<PathStateField>& path_state_fields() {
     return fields;
 }
 
-bool path_feature_compiled(PathFeature feature, const FeatureSet& features, bool has_lights) {
+bool path_feature_compiled(PathFeature feature, const FeatureSet& features) {
     switch (feature) {
         case PathFeature::ALWAYS:
             return true;
         case PathFeature::SPECULAR:
             return features.mirror || features.glass;
         case PathFeature::NEE:
-            return has_lights;
+            return features.nee;
     }
     return false;
 }
 
 std::string path_state_table_markdown() {
-    static const char* feature_names[] = {"always", "specular (mirror or glass)", "nee (any light)"};
+    static const char* feature_names[] = {"always", "specular (mirror or glass)", "nee (next-event estimation runs)"};
     std::ostringstream table;
     table << "| field | type | bytes/path | exists when | written by | read by |\n"
           << "|---|---|---|---|---|---|\n";
@@ -45,20 +50,24 @@ std::string path_state_table_markdown() {
     return table.str();
 }
 
-std::size_t PathState::bytes_per_path(const FeatureSet& features, bool has_lights) {
+std::size_t PathState::bytes_per_path(const FeatureSet& features) {
     std::size_t bytes = 0;
     for (const PathStateField& f : path_state_fields())
-        if (path_feature_compiled(f.feature, features, has_lights)) bytes += f.bytes;
+        if (path_feature_compiled(f.feature, features)) bytes += f.bytes;
     return bytes;
 }
 
-PathState::PathState(const cl::Context& context, std::size_t capacity, const FeatureSet& features, bool has_lights) {
+PathState::PathState(const cl::Context& context, std::size_t capacity, const FeatureSet& features) {
     for (const PathStateField& f : path_state_fields()) {
-        if (!path_feature_compiled(f.feature, features, has_lights)) continue;
+        if (!path_feature_compiled(f.feature, features)) continue;
         buffers_.emplace_back(context, CL_MEM_READ_WRITE, f.bytes * capacity);
         names_.emplace_back(f.name);
         bytes_per_path_ += f.bytes;
     }
+}
+
+void PathState::bind(cl::Kernel& stage) const {
+    for (std::size_t i = 0; i < buffers_.size(); ++i) stage.setArg(arg::Stage::count + cl_uint(i), buffers_[i]);
 }
 
 bool PathState::has_field(const std::string& name) const {

@@ -1,4 +1,4 @@
-// The host side of kernels/common/path_state.h: one device buffer per path
+// The host side of kernels/interface/path_state.h: one device buffer per path
 // state field whose feature the scene uses, in the order the kernels take them.
 #pragma once
 
@@ -17,7 +17,7 @@ struct PathStateField {
     const char* type;
     const char* name;
     PathFeature feature;
-    std::size_t bytes;    // per path
+    std::size_t bytes;    // per path (a vec3 field: 3 floats, as three planes of `capacity` floats)
     const char* writers;  // stages, space-separated
     const char* readers;
 };
@@ -25,8 +25,8 @@ struct PathStateField {
 // Every field of the X-macro list, in order.
 const std::vector<PathStateField>& path_state_fields();
 
-// Whether the kernels compiled for this scene have the feature's fields.
-bool path_feature_compiled(PathFeature feature, const FeatureSet& features, bool has_lights);
+// Whether the kernels compiled for `features` have the feature's fields.
+bool path_feature_compiled(PathFeature feature, const FeatureSet& features);
 
 // The markdown table of docs/architecture.md: field, type, bytes per path,
 // feature, written by, read by.
@@ -34,17 +34,17 @@ std::string path_state_table_markdown();
 
 class PathState {
  public:
-    PathState(const cl::Context& context, std::size_t capacity, const FeatureSet& features, bool has_lights);
+    PathState(const cl::Context& context, std::size_t capacity, const FeatureSet& features);
 
-    // The buffers of the compiled fields, in X-macro order (kernel argument order).
-    const std::vector<cl::Buffer>& buffers() const { return buffers_; }
+    // Sets a stage kernel's path state arguments (after WP_STAGE_PARAMETERS, in X-macro order).
+    void bind(cl::Kernel& stage) const;
     // The buffer of a compiled field; throws std::out_of_range otherwise.
     const cl::Buffer& field(const std::string& name) const;
     bool has_field(const std::string& name) const;
     std::size_t bytes_per_path() const { return bytes_per_path_; }
 
     // The bytes per path the kernels for this scene need, without allocating.
-    static std::size_t bytes_per_path(const FeatureSet& features, bool has_lights);
+    static std::size_t bytes_per_path(const FeatureSet& features);
 
  private:
     std::vector<cl::Buffer> buffers_;

@@ -9,11 +9,11 @@ namespace {
 // each stage filled, so at the end the lengths are this iteration's: FREE
 // the paths ended, HIT the hits, SHADOW the shadow rays, SCATTER the paths
 // scatter sampled, RAY the paths continuing next iteration.
-DeviceCounts run_iteration(Pipeline& p, bool has_lights) {
+DeviceCounts run_iteration(Pipeline& p, bool nee) {
     std::vector<Stage> stages{Stage::Generate, Stage::Intersect, Stage::ShadeDirect, Stage::IntersectShadow,
                               Stage::Scatter};
     for (Stage stage : stages) {
-        if (stage == Stage::IntersectShadow && !has_lights) continue;
+        if (stage == Stage::IntersectShadow && !nee) continue;
         p.run(stage);
         p.finish_stage(stage);
     }
@@ -22,7 +22,7 @@ DeviceCounts run_iteration(Pipeline& p, bool has_lights) {
 
 }  // namespace
 
-ScheduleTotals run_schedule(Pipeline& pipeline, std::uint64_t total, bool has_lights, const Progress& progress,
+ScheduleTotals run_schedule(Pipeline& pipeline, std::uint64_t total, bool nee, const Progress& progress,
                             std::vector<IterationRecord>& iterations) {
     ScheduleTotals totals;
     std::uint64_t finished = 0;
@@ -32,14 +32,14 @@ ScheduleTotals run_schedule(Pipeline& pipeline, std::uint64_t total, bool has_li
         std::uint32_t continuing = 0, issued = 0, free_slots = static_cast<std::uint32_t>(pipeline.capacity());
         for (;;) {
             pipeline.set_issued(issued);
-            DeviceCounts counts = run_iteration(pipeline, has_lights);
+            DeviceCounts counts = run_iteration(pipeline, nee);
             std::uint32_t now_issued = std::min(issued + free_slots, size);  // generate's rule
             IterationRecord r;
             r.free_slots = free_slots;
             r.generated = now_issued - issued;
             r.traced = continuing + r.generated;
             r.hits = counts[WP_QUEUE_HIT];
-            r.shadow = has_lights ? counts[WP_QUEUE_SHADOW] : 0;
+            r.shadow = nee ? counts[WP_QUEUE_SHADOW] : 0;
             r.scattered = counts[WP_QUEUE_SCATTER];
             r.continuing = counts[WP_QUEUE_RAY];
             r.finished = counts[WP_QUEUE_FREE];

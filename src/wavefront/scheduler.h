@@ -21,7 +21,7 @@ struct ScheduleTotals {
 // generate, intersect, shade_direct, intersect_shadow, scatter until every
 // item is issued and every path has ended, then accumulate. Appends one
 // record per iteration.
-ScheduleTotals run_schedule(Pipeline& pipeline, std::uint64_t total, bool has_lights, const Progress& progress,
+ScheduleTotals run_schedule(Pipeline& pipeline, std::uint64_t total, bool nee, const Progress& progress,
                             std::vector<IterationRecord>& iterations);
 
 }  // namespace wp

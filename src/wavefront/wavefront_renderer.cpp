@@ -5,8 +5,9 @@
 #include <map>
 #include <sstream>
 
-#include "device/opencl_device.h"
-#include "wavefront/kernel_options.h"
+#include "opencl/device.h"
+#include "opencl/film.h"
+#include "opencl/kernel_options.h"
 #include "wavefront/pipeline.h"
 #include "wavefront/scheduler.h"
 
@@ -36,13 +37,13 @@ FeatureSet every_shape_and_material(FeatureSet f) {
 // iterations (accumulate: the pass entries it summed; compaction: the slots
 // its launches went through; compact_scan: the blocks of slots it summed;
 // count_depths: the rays it counted).
-void fill_profile(WavefrontProfile& profile, const std::vector<IterationRecord>& iterations, std::uint64_t samples,
+void fill_profile(RenderProfile& profile, const std::vector<IterationRecord>& iterations, std::uint64_t samples,
                   std::size_t wavefront) {
     for (const char* name : {"compact_count", "compact_write"})
         if (profile.has_kernel(name)) profile.kernel(name).items = profile.kernel(name).launches * wavefront;
     if (profile.has_kernel("compact_scan"))
         profile.kernel("compact_scan").items =
-            profile.kernel("compact_scan").launches * ((wavefront + WP_COMPACT_BLOCK - 1) / WP_COMPACT_BLOCK);
+            profile.kernel("compact_scan").launches * divide_rounding_up(wavefront, WP_COMPACT_BLOCK);
     if (profile.has_kernel("count_depths")) {
         KernelProfile& k = profile.kernel("count_depths");
         k.items = 0;
@@ -66,15 +67,6 @@ void fill_profile(WavefrontProfile& profile, const std::vector<IterationRecord>&
 
 }  // namespace
 
-Image film_to_image(const std::vector<double>& sums, int width, int height, int spp) {
-    Image image;
-    image.width = width;
-    image.height = height;
-    image.rgb.resize(sums.size());
-    for (std::size_t i = 0; i < sums.size(); ++i) image.rgb[i] = static_cast<float>(sums[i] / spp);
-    return image;
-}
-
 std::size_t default_wavefront_size(std::uint64_t work_items, std::size_t bytes_per_path, const DeviceInfo& device) {
     // On a CPU the state should stay near the caches: 2^16 paths rendered room.json
     // at 512x512 1.7x faster than 2^20 on PoCL (2 cores); GPUs need many paths in flight.
@@ -84,7 +76,7 @@ std::size_t default_wavefront_size(std::uint64_t work_items, std::size_t bytes_p
     std::size_t bytes_per_slot = bytes_per_path + WP_QUEUE_COUNT * 4 + kPassesPerWavefront * 12;
     std::size_t by_memory = std::size_t(device.global_memory_bytes / 4 / bytes_per_slot);
     std::size_t size = std::min<std::uint64_t>({most, work_items, by_memory});
-    return std::max(kGroup, (size + kGroup - 1) / kGroup * kGroup);
+    return std::max(kGroup, round_up(size, kGroup));
 }
 
 std::string WavefrontReport::explain() const {
@@ -106,19 +98,17 @@ RenderResult render_wavefront(const Scene& scene, const WavefrontOptions& option
     DeviceInfo device = choose_device(options.device);
     const Camera& camera = scene.camera;
     std::uint64_t total = std::uint64_t(camera.width) * camera.height * scene.render.spp;
-    bool nee = uses_nee(scene);  // NEE compiled: shadow rays, their state and stage
-    std::size_t wavefront =
-        options.wavefront ? options.wavefront
-                          : default_wavefront_size(total, PathState::bytes_per_path(scene.features(), nee), device);
+    std::size_t wavefront = options.wavefront
+                                ? options.wavefront
+                                : default_wavefront_size(total, PathState::bytes_per_path(scene.features()), device);
     FeatureSet features = options.specialise ? scene.features() : every_shape_and_material(scene.features());
-    Pipeline pipeline(
-        scene, device, wavefront, std::min<std::uint64_t>(total, kPassesPerWavefront * wavefront), features,
-        {options.profile, options.scan_compaction ? Compaction::Scan : Compaction::Atomic, options.lanes, progress});
+    Pipeline pipeline(scene, device, wavefront, std::min<std::uint64_t>(total, kPassesPerWavefront * wavefront),
+                      features, {options.profile, options.compaction, options.lanes, progress});
 
     WavefrontReport local_report;
     WavefrontReport& r = report ? *report : local_report;
     r.device = device.name + " (" + device.platform + ")";
-    r.features = describe_features(features) + (nee ? " nee" : "");
+    r.features = describe_features(features);
     r.build_options = pipeline.program().options;
     r.cache_hit = pipeline.program().cache_hit;
     r.build_seconds = pipeline.program().build_seconds;
@@ -130,7 +120,7 @@ RenderResult render_wavefront(const Scene& scene, const WavefrontOptions& option
 
     auto render_start = std::chrono::steady_clock::now();  // time_s leaves out device setup and the build
     progress.report(0.0);
-    ScheduleTotals totals = run_schedule(pipeline, total, nee, progress, r.iterations);
+    ScheduleTotals totals = run_schedule(pipeline, total, features.nee, progress, r.iterations);
     RenderResult result;
     result.image = film_to_image(pipeline.read_film(), camera.width, camera.height, scene.render.spp);
     result.stats.samples = total;

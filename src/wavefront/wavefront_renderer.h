@@ -7,19 +7,20 @@
 #include <vector>
 
 #include "core/render.h"
-#include "device/opencl_device.h"
+#include "opencl/device.h"
+#include "opencl/profile.h"
 #include "scene/scene.h"
-#include "wavefront/profile.h"
+#include "wavefront/compaction.h"
 
 namespace wp {
 
 struct WavefrontOptions {
-    std::string device;           // "" (prefer a GPU), an index, or a name substring
-    std::size_t wavefront = 0;    // paths in flight; 0 = chosen from device memory and image size
-    bool specialise = true;       // compile only the scene's features (false: every shape and material, for comparison)
-    bool profile = false;         // time every kernel (WavefrontReport::profile)
-    bool scan_compaction = true;  // stable prefix-sum compaction (false: aggregated atomic pushes)
-    unsigned lanes = 0;           // paths per work item in the stage kernels (1 or 8); 0 = automatic_lanes()
+    std::string device;         // "" (prefer a GPU), an index, or a name substring
+    std::size_t wavefront = 0;  // paths in flight; 0 = chosen from device memory and image size
+    bool specialise = true;     // compile only the scene's features (false: every shape and material, for comparison)
+    bool profile = false;       // time every kernel (WavefrontReport::profile)
+    Compaction compaction = kDefaultCompaction;
+    unsigned lanes = 0;  // paths per work item in the stage kernels (1 or 8); 0 = resolve_lanes' choice
 };
 
 // Queue lengths of one iteration of the stage loop, for the profiler.
@@ -47,7 +48,7 @@ struct WavefrontReport {
     std::size_t state_bytes_per_path = 0;
     unsigned lanes = 1;  // paths per work item in the stage kernels
     std::vector<IterationRecord> iterations;
-    WavefrontProfile profile;  // filled when WavefrontOptions::profile
+    RenderProfile profile;  // filled when WavefrontOptions::profile
 
     std::string explain() const;
 };
@@ -55,9 +56,6 @@ struct WavefrontReport {
 // Renders on OpenCL; throws DeviceError (no device, kernel build failure).
 RenderResult render_wavefront(const Scene& scene, const WavefrontOptions& options, const Progress& progress,
                               WavefrontReport* report = nullptr);
-
-// The image of a film's per-pixel sums over `spp` samples.
-Image film_to_image(const std::vector<double>& sums, int width, int height, int spp);
 
 // The automatic --wavefront size: up to 2^16 paths on a CPU and 2^20 on
 // other devices, no more than the work (pixels x spp), and the state within

@@ -24,57 +24,46 @@ TEST(Progress, DurationFormats) {
 }
 
 TEST(Progress, BarShowsFillPercentAndEta) {
-    // 25% after 10 s of sampling: 30 s to go.
-    EXPECT_EQ(format_progress_bar(0.25, 10.0, 10.0), "[#######-----------------------]  25.0%  elapsed 10s  ETA 30s");
-    EXPECT_EQ(format_progress_bar(0.0, 1.0, 1.0), "[------------------------------]   0.0%  elapsed 1s  ETA --");
-    EXPECT_EQ(format_progress_bar(1.0, 61.0, 50.0), "[##############################] 100.0%  elapsed 1m01s  ETA 0s");
+    EXPECT_EQ(format_progress_bar(0.25, 10.0, 30.0), "[#######-----------------------]  25.0%  elapsed 10s  ETA 30s");
+    EXPECT_EQ(format_progress_bar(0.0, 1.0, -1.0), "[------------------------------]   0.0%  elapsed 1s  ETA --");
+    EXPECT_EQ(format_progress_bar(1.0, 61.0, 0.0), "[##############################] 100.0%  elapsed 1m01s  ETA 0s");
 }
 
 TEST(Progress, LineShowsPercentAndEta) {
-    EXPECT_EQ(format_progress_line(0.4, 20.0, 20.0), "wavepath: 40% done, 20s elapsed, ETA 30s");
+    EXPECT_EQ(format_progress_line(0.4, 20.0, 30.0), "wavepath: 40% done, 20s elapsed, ETA 30s");
+    EXPECT_EQ(format_progress_line(0.0, 20.0, -1.0), "wavepath: 0% done, 20s elapsed, ETA --");
 }
 
-TEST(Progress, EtaExtrapolatesSamplingTimeAlone) {
-    // 11 s elapsed of which 10 s built kernels: 1% in 1 s of sampling leaves
-    // 99 s, not the 1089 s that the whole elapsed time would predict.
-    EXPECT_EQ(format_progress_line(0.01, 11.0, 1.0), "wavepath: 1% done, 11s elapsed, ETA 1m39s");
-    // No time sampled yet: no ETA, whatever the fraction.
-    EXPECT_EQ(format_progress_line(0.01, 11.0, 0.0), "wavepath: 1% done, 11s elapsed, ETA --");
+TEST(Progress, EtaExtrapolatesTheRateSinceTheFirstSamples) {
+    // 1e-4 done when the first samples came in (after the kernel build and
+    // the first launches), 10% 1 s later: 0.0999 per second, 9 s to go; from
+    // the start of the render 11 s ago it would be 99 s.
+    EXPECT_NEAR(estimate_eta(0.1, 1e-4, 1.0), 0.9 / 0.0999, 1e-9);
+    EXPECT_EQ(estimate_eta(1e-4, 1e-4, 5.0), -1.0);  // no samples since the first: nothing measured
+    EXPECT_EQ(estimate_eta(0.0, 0.0, 5.0), -1.0);
+    EXPECT_EQ(estimate_eta(0.5, 0.1, 0.0), -1.0);
 }
 
-TEST(Progress, EtaClockStartsAtTheFirstUpdate) {
+TEST(Progress, EtaClockStartsAtTheFirstSamples) {
     std::ostringstream out;
     ProgressReporter reporter(ProgressStyle::Lines, out, ProgressReporter::Clock::duration::zero());
     const Progress progress = reporter.callback();
     progress.announce("building the kernels");
     std::this_thread::sleep_for(std::chrono::milliseconds(2000));  // the "build"
-    progress.report(0.0);                                          // sampling starts
+    progress.report(0.0);                                          // sampling starts: nothing shown
+    progress.report(0.1);                                          // the first samples: the ETA's clock starts
     std::this_thread::sleep_for(std::chrono::milliseconds(100));
     progress.report(0.5);
     const std::string text = out.str();
     EXPECT_EQ(text.rfind("wavepath: building the kernels\n", 0), 0u) << text;
-    // Half done after ~0.1 s of sampling: ETA 0s (1s on a very busy machine);
-    // extrapolating the whole elapsed time, build included, would give 2s or more.
+    EXPECT_EQ(text.find("wavepath: 0% done"), std::string::npos) << text;
+    EXPECT_NE(text.find("wavepath: 10% done, 2s elapsed, ETA --\n"), std::string::npos) << text;
+    // 40% more in ~0.1 s: ETA 0s (1s on a very busy machine); extrapolating
+    // the whole elapsed time, build included, would give 2s or more.
     const std::size_t line = text.find("wavepath: 50% done, 2s elapsed, ETA ");
     ASSERT_NE(line, std::string::npos) << text;
     const std::string eta = text.substr(line + 36, text.find('\n', line) - line - 36);
     EXPECT_TRUE(eta == "0s" || eta == "1s") << text;
-}
-
-TEST(Progress, StepEndsAnOpenBarFirst) {
-    std::ostringstream out;
-    ProgressReporter reporter(ProgressStyle::Bar, out, ProgressReporter::Clock::duration::zero());
-    reporter.update(0.1);
-    reporter.step("building the kernels");
-    const std::string text = out.str();
-    EXPECT_NE(text.find("ETA"), std::string::npos) << text;
-    EXPECT_NE(text.find("\nwavepath: building the kernels\n"), std::string::npos) << text;
-}
-
-TEST(Progress, SilentShowsNoStep) {
-    std::ostringstream out;
-    ProgressReporter(ProgressStyle::Silent, out).step("building the kernels");
-    EXPECT_TRUE(out.str().empty()) << out.str();
 }
 
 TEST(Progress, LinesStyleWritesOneLinePerUpdateAtZeroInterval) {

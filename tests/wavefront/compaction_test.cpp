@@ -28,21 +28,21 @@ constexpr std::uint32_t kCapacity = 4096;  // 16 compaction blocks
 std::pair<std::vector<std::uint32_t>, std::vector<std::uint32_t>> hits_after_intersect(
     Compaction compaction, const std::vector<std::uint32_t>& queued) {
     Scene scene = test::scene_from_json(kScene);
-    Pipeline pipeline(scene, choose_device(""), kCapacity, kCapacity, scene.features(), {false, compaction});
+    Pipeline pipeline(scene, choose_device(""), kCapacity, kCapacity, scene.features(), {false, compaction, 1});
     std::mt19937 random(7);
     std::uniform_real_distribution<float> coordinate(-1.0f, 1.0f);
     std::vector<test::TestRay> rays(kCapacity);
     for (test::TestRay& r : rays)
         r = test::TestRay{glm::vec3(0.0f), glm::normalize(glm::vec3(coordinate(random), coordinate(random), -1.0f))};
     test::start_paths(pipeline, rays);
-    pipeline.set_queue(WP_QUEUE_RAY, queued);
+    pipeline.queues().set_queue(WP_QUEUE_RAY, queued);
     pipeline.run(Stage::Intersect);
     pipeline.finish_stage(Stage::Intersect);
     std::vector<std::uint32_t> shape = pipeline.read_field<std::uint32_t>("hit_shape"), expected;
     for (std::uint32_t slot : queued)
         if (shape[slot] != WP_NO_HIT) expected.push_back(slot);
     std::sort(expected.begin(), expected.end());
-    return {pipeline.read_queue(WP_QUEUE_HIT), expected};
+    return {pipeline.queues().read_queue(WP_QUEUE_HIT), expected};
 }
 
 // 3000 of the 4096 slots, shuffled: the queue holds exactly the queued slots that hit.
@@ -75,9 +75,10 @@ TEST(Compaction, BothCompactionsRenderTheSameImage) {
     scene.render.spp = 3;
     WavefrontOptions options;
     options.wavefront = 512;
-    options.scan_compaction = true;
+    options.compaction = Compaction::Scan;
+    options.lanes = 1;  // as atomic compaction needs
     RenderResult scan = render_wavefront(scene, options, {});
-    options.scan_compaction = false;
+    options.compaction = Compaction::Atomic;
     RenderResult atomic = render_wavefront(scene, options, {});
     EXPECT_EQ(scan.image.rgb, atomic.image.rgb);
     EXPECT_EQ(scan.stats.extension_rays, atomic.stats.extension_rays);

@@ -1,4 +1,4 @@
-// Lanes (kernels/common/lanes.h): the stage kernels with 8 paths per work
+// Lanes (kernels/device/lanes.h): the stage kernels with 8 paths per work
 // item as vector code compute exactly what one path per work item computes,
 // in scenes with every shape kind and material, background and both light kinds.
 #include <gtest/gtest.h>

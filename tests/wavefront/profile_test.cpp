@@ -11,7 +11,7 @@
 #include <nlohmann/json.hpp>
 #include <numeric>
 
-#include "device/opencl_device.h"
+#include "opencl/device.h"
 #include "reference/path_tracer.h"
 #include "wavefront/wavefront_renderer.h"
 #include "wavefront_test_support.h"
@@ -32,7 +32,7 @@ TEST(Profile, KernelItemsMatchTheRaysTheRenderCounted) {
     options.profile = true;
     WavefrontReport report;
     RenderResult result = render_wavefront(scene, options, {}, &report);
-    WavefrontProfile& p = report.profile;
+    RenderProfile& p = report.profile;
 
     EXPECT_EQ(p.kernel("intersect").items, result.stats.extension_rays);
     EXPECT_EQ(p.kernel("intersect_shadow").items, result.stats.shadow_rays);
@@ -100,7 +100,7 @@ TEST(Profile, IntersectBoundTracesTheReferenceHits) {
 }
 
 TEST(Profile, TableAndJsonReportTheTracingStagesAgainstTheBound) {
-    WavefrontProfile p;
+    RenderProfile p;
     p.kernel("intersect") = {"intersect", 3, 2'000'000, 0.5};                // 4 Mrays/s
     p.kernel("intersect_shadow") = {"intersect_shadow", 3, 1'000'000, 0.5};  // 2 Mrays/s
     p.intersect_bound_rays_per_s = 8e6;

@@ -3,7 +3,7 @@
 
 #include <algorithm>
 
-#include "device/opencl_device.h"
+#include "opencl/device.h"
 #include "reference/path_tracer.h"
 #include "wavefront/pipeline.h"
 #include "wavefront_test_support.h"
@@ -47,13 +47,14 @@ std::vector<test::TestRay> hand_built_rays() {
 TEST(IntersectStage, MatchesReferenceClosestHit) {
     Scene scene = test::scene_from_json(kScene);
     std::vector<test::TestRay> rays = hand_built_rays();
-    Pipeline pipeline(scene, choose_device(""), 64, 64);
+    Pipeline pipeline(scene, choose_device(""), 64, 64, scene.features());
     test::start_paths(pipeline, rays);
-    pipeline.run(Stage::Intersect);
+    pipeline.run_alone(Stage::Intersect);
 
     std::vector<float> t = pipeline.read_field<float>("hit_t");
     std::vector<std::uint32_t> shape = pipeline.read_field<std::uint32_t>("hit_shape");
-    std::vector<std::uint32_t> hits = pipeline.read_queue(WP_QUEUE_HIT), misses = pipeline.read_queue(WP_QUEUE_FREE);
+    std::vector<std::uint32_t> hits = pipeline.queues().read_queue(WP_QUEUE_HIT),
+                               misses = pipeline.queues().read_queue(WP_QUEUE_FREE);
     std::sort(hits.begin(), hits.end());
     std::sort(misses.begin(), misses.end());
 

@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "device/opencl_device.h"
+#include "opencl/device.h"
 #include "reference/path_tracer.h"
 #include "wavefront/pipeline.h"
 #include "wavefront_test_support.h"
@@ -17,9 +17,9 @@ using vec3 = M::vec3;
 
 // Runs intersect on the started paths and hands its hits to `next`.
 std::vector<std::uint32_t> intersect_and_queue_hits(Pipeline& pipeline, std::uint32_t next) {
-    pipeline.run(Stage::Intersect);
-    std::vector<std::uint32_t> hits = pipeline.read_queue(WP_QUEUE_HIT);
-    pipeline.set_queue(next, hits);
+    pipeline.run_alone(Stage::Intersect);
+    std::vector<std::uint32_t> hits = pipeline.queues().read_queue(WP_QUEUE_HIT);
+    pipeline.queues().set_queue(next, hits);
     return hits;
 }
 
@@ -45,17 +45,16 @@ TEST(ShadeDirectStage, LightSampleMatchesReference) {
         float u = (i % 64) / 63.0f, v = (i / 64) / 31.0f;
         rays.push_back({vec3(0), glm::normalize(vec3(-1 + 2 * u, -1, -2.5f - 1.5f * v))});
     }
-    Pipeline pipeline(scene, choose_device(""), kPaths, kPaths);
+    Pipeline pipeline(scene, choose_device(""), kPaths, kPaths, scene.features());
     test::start_paths(pipeline, rays, 100);
     std::vector<std::uint32_t> hits = intersect_and_queue_hits(pipeline, WP_QUEUE_HIT);
     ASSERT_EQ(hits.size(), std::size_t(kPaths));
-    pipeline.clear_counts(WP_QUEUE_SHADOW, 2);
-    pipeline.run(Stage::ShadeDirect);
-    EXPECT_EQ(pipeline.read_queue(WP_QUEUE_SCATTER).size(), std::size_t(kPaths));
-    pipeline.run(Stage::IntersectShadow);
-    std::vector<float> radiance[3] = {pipeline.read_field<float>("radiance_r"),
-                                      pipeline.read_field<float>("radiance_g"),
-                                      pipeline.read_field<float>("radiance_b")};
+    pipeline.run_alone(Stage::ShadeDirect);
+    EXPECT_EQ(pipeline.queues().read_queue(WP_QUEUE_SCATTER).size(), std::size_t(kPaths));
+    pipeline.run_alone(Stage::IntersectShadow);
+    std::vector<float> radiance[3] = {pipeline.read_field<float>("radiance", 0),
+                                      pipeline.read_field<float>("radiance", 1),
+                                      pipeline.read_field<float>("radiance", 2)};
     int lit = 0, shadowed = 0;
     for (int i = 0; i < kPaths; ++i) {
         reference::Ray<float> ray{rays[i].origin, rays[i].direction};
@@ -94,18 +93,17 @@ TEST(ScatterStage, GlassSplitFollowsFresnelAndMatchesReference) {
         bool inside;
     };
     const Case cases[] = {{0.8660254f, false}, {0.4358899f, true}, {0.8f, true}};
-    Pipeline pipeline(scene, choose_device(""), 3 * kPerCase, 3 * kPerCase);
+    Pipeline pipeline(scene, choose_device(""), 3 * kPerCase, 3 * kPerCase, scene.features());
     std::vector<test::TestRay> rays;
     for (const Case& c : cases)
         for (int i = 0; i < kPerCase; ++i) rays.push_back({vec3(0, c.height, c.inside ? -5 : 0), vec3(0, 0, -1)});
     test::start_paths(pipeline, rays);
     ASSERT_EQ(intersect_and_queue_hits(pipeline, WP_QUEUE_SCATTER).size(), rays.size());
-    pipeline.clear_counts(WP_QUEUE_RAY, 1);
-    pipeline.run(Stage::Scatter);
-    ASSERT_EQ(pipeline.read_queue(WP_QUEUE_RAY).size(), rays.size());  // rr_depth 8: no roulette yet
-    std::vector<float> dir[3] = {pipeline.read_field<float>("direction_x"), pipeline.read_field<float>("direction_y"),
-                                 pipeline.read_field<float>("direction_z")};
-    std::vector<float> weight = pipeline.read_field<float>("throughput_r");
+    pipeline.run_alone(Stage::Scatter);
+    ASSERT_EQ(pipeline.queues().read_queue(WP_QUEUE_RAY).size(), rays.size());  // rr_depth 8: no roulette yet
+    std::vector<float> dir[3] = {pipeline.read_field<float>("direction", 0), pipeline.read_field<float>("direction", 1),
+                                 pipeline.read_field<float>("direction", 2)};
+    std::vector<float> weight = pipeline.read_field<float>("throughput", 0);
     for (int k = 0; k < 3; ++k) {
         SCOPED_TRACE("case " + std::to_string(k));
         int reflected = 0;

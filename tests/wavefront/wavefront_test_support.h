@@ -55,14 +55,11 @@ inline void start_paths(Pipeline& pipeline, const std::vector<TestRay>& rays, st
         slots[i] = std::uint32_t(i);
         samples[i] = first_sample + std::uint32_t(i);
     }
-    const char* axes[] = {"x", "y", "z"};
-    for (int a = 0; a < 3; ++a) {
-        pipeline.write_field(std::string("origin_") + axes[a], o[a]);
-        pipeline.write_field(std::string("direction_") + axes[a], d[a]);
-    }
-    for (const char* c : {"r", "g", "b"}) {
-        pipeline.write_field(std::string("radiance_") + c, std::vector<float>(n, 0.0f));
-        pipeline.write_field(std::string("throughput_") + c, std::vector<float>(n, 1.0f));
+    for (std::size_t a = 0; a < 3; ++a) {
+        pipeline.write_field("origin", o[a], a);
+        pipeline.write_field("direction", d[a], a);
+        pipeline.write_field("radiance", std::vector<float>(n, 0.0f), a);
+        pipeline.write_field("throughput", std::vector<float>(n, 1.0f), a);
     }
     pipeline.write_field("pixel", std::vector<std::uint32_t>(n, 0u));
     pipeline.write_field("sample", samples);
@@ -70,8 +67,8 @@ inline void start_paths(Pipeline& pipeline, const std::vector<TestRay>& rays, st
     pipeline.write_field("depth", std::vector<std::uint32_t>(n, 0u));
     if (pipeline.state().has_field("specular")) pipeline.write_field("specular", std::vector<std::uint32_t>(n, 1u));
     pipeline.begin_pass(0, std::uint32_t(n));
-    pipeline.clear_counts(WP_QUEUE_FREE, 1);
-    pipeline.set_queue(WP_QUEUE_RAY, slots);
+    pipeline.queues().set_queue(WP_QUEUE_FREE, {});  // no slot free: misses and ended paths land there
+    pipeline.queues().set_queue(WP_QUEUE_RAY, slots);
 }
 
 }  // namespace wp::test

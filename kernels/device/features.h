@@ -1,0 +1,51 @@
+/* What a program is compiled for. The host passes the scene's features as
+ * build options (src/opencl/kernel_options.cpp): WP_HAS_<kind> for each
+ * shape, material and light kind in use, WP_NEE when next-event estimation
+ * runs, and, for small scenes, each kind's count as a constant. Code for what
+ * the scene lacks is compiled out. This header derives the rest. */
+#ifndef WP_DEVICE_FEATURES_H
+#define WP_DEVICE_FEATURES_H
+
+#if defined(WP_HAS_MIRROR) || defined(WP_HAS_GLASS)
+#define WP_HAS_SPECULAR
+#endif
+
+/* WP_IF_<feature>(...) keeps its arguments only when the path state
+ * feature (interface/path_state.h) is compiled in. */
+#define WP_IF_ALWAYS(...) __VA_ARGS__
+#ifdef WP_HAS_SPECULAR
+#define WP_IF_SPECULAR(...) __VA_ARGS__
+#else
+#define WP_IF_SPECULAR(...)
+#endif
+#ifdef WP_NEE
+#define WP_IF_NEE(...) __VA_ARGS__
+#else
+#define WP_IF_NEE(...)
+#endif
+
+/* Shape and light counts: compile-time constants where the host passes them
+ * (small scenes), so the loops over them unroll into straight-line code that
+ * runs as SIMD lanes; otherwise read from the scene header at run time. */
+#ifdef WP_SPHERE_COUNT
+#define SPHERE_COUNT WP_SPHERE_COUNT
+#else
+#define SPHERE_COUNT scene->sphere_count
+#endif
+#ifdef WP_PLANE_COUNT
+#define PLANE_COUNT WP_PLANE_COUNT
+#else
+#define PLANE_COUNT scene->plane_count
+#endif
+#ifdef WP_QUAD_COUNT
+#define QUAD_COUNT WP_QUAD_COUNT
+#else
+#define QUAD_COUNT scene->quad_count
+#endif
+#ifdef WP_LIGHT_COUNT
+#define LIGHT_COUNT WP_LIGHT_COUNT
+#else
+#define LIGHT_COUNT scene->light_count
+#endif
+
+#endif

@@ -1,0 +1,55 @@
+/* Where a stage sends its paths: into the queues of the stages that take
+ * them next, or, when a path ends, its radiance into its pass entry. */
+#ifndef WP_DEVICE_PATH_QUEUES_H
+#define WP_DEVICE_PATH_QUEUES_H
+
+#include "device/lane_memory.h"
+#include "device/lanes.h"
+#include "interface/queues.h"
+#include "shared/prelude.h"
+
+#ifndef WP_COMPACT_SCAN
+/* Appends `slot` to `queue` where `push` is set, one global atomic per work
+ * group (atomic compaction, one lane). Every work item of the group must
+ * call it (it has barriers); work items past their queue's end push nothing.
+ * Kernels do not return early before it, not even whole work groups: PoCL
+ * 3.1 then loses private values across the barriers (the stage tests catch
+ * it). The order inside a queue is not stable; nothing depends on it: a
+ * path's random numbers are keyed by (pixel, sample, bounce), its result goes
+ * to its own pass_radiance entry, and accumulation sums those in sample order. */
+WP_FN void queue_push(__global uint *queues, __global uint *counts, uint capacity, uint queue, int push, uint slot,
+                      __local uint *group_count, __local uint *group_base) {
+    if (get_local_id(0) == 0) *group_count = 0u;
+    barrier(CLK_LOCAL_MEM_FENCE);
+    uint offset = push ? atomic_inc(group_count) : 0u;
+    barrier(CLK_LOCAL_MEM_FENCE);
+    if (get_local_id(0) == 0 && *group_count > 0u) *group_base = atomic_add(&counts[queue], *group_count);
+    barrier(CLK_LOCAL_MEM_FENCE);
+    if (push) queues[queue * capacity + *group_base + offset] = slot;
+}
+#endif
+
+/* Queues the lanes where `push` holds (it must imply the lane is active) for
+ * `queue`'s stage. Scan compaction (the default, kernels/compact.cl): marks
+ * their slots, from which the queue is built in ascending slot order, with
+ * no atomics and no barriers here. Atomic compaction: queue_push. Every work
+ * item of the group must call it. */
+WP_FN void push_lanes(__global uint *queues, __global uint *counts, uint queue, Lanes lanes, lane_int push,
+                      __local uint *group_count, __local uint *group_base) {
+#ifdef WP_COMPACT_SCAN
+    slot_write(queues + WP_QUEUE_MARKS(queue) * lanes.capacity, lanes, push, (lane_uint)1u);
+#else
+    queue_push(queues, counts, lanes.capacity, queue, push, lanes.slot, group_count, group_base);
+#endif
+}
+
+/* Ends the paths of the lanes where `where` holds: their radiance (finite:
+ * every addition was checked) becomes their pass entry (index `item`), and
+ * their slots are freed for generate (the caller pushes them). */
+WP_FN void finish_paths(__global float *pass_radiance, lane_uint item, lane_int where, vec3 radiance) {
+    store_where(pass_radiance, 3u * item + 0u, where, radiance.x);
+    store_where(pass_radiance, 3u * item + 1u, where, radiance.y);
+    store_where(pass_radiance, 3u * item + 2u, where, radiance.z);
+}
+
+#endif

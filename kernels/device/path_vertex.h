@@ -1,0 +1,222 @@
+/* The work at one path vertex, shared by the wavefront's stage kernels and
+ * the megakernel so that both compute exactly the reference's estimator
+ * (docs/architecture.md, "Conventions"): the camera ray, emission seen at a
+ * hit, the light sample of next-event estimation, BSDF sampling and Russian
+ * roulette. Written for any number of lanes (shared/prelude.h): every choice
+ * is a select, so a lane computes what every other lane's case needs and
+ * keeps its own. */
+#ifndef WP_DEVICE_PATH_VERTEX_H
+#define WP_DEVICE_PATH_VERTEX_H
+
+#include "shared/offset.h"
+#include "shared/prelude.h"
+#include "shared/rng.h"
+#include "shared/sampling.h"
+#if defined(WP_HAS_MIRROR) || defined(WP_HAS_GLASS)
+#include "shared/fresnel.h"
+#endif
+#ifndef WP_HAS_GLASS
+/* Without glass the dielectric code must not be compiled in: any use is a build error. */
+#pragma GCC poison fresnel_dielectric refract_direction
+#endif
+#include "device/features.h"
+#include "device/lane_memory.h"
+#include "device/parameters.h"
+#include "device/surface.h"
+
+/* The camera ray direction of sample s of pixel px (the camera is at the origin). */
+WP_FN vec3 camera_ray_direction(__global const SceneHeader *scene, lane_uint px, lane_uint s) {
+    lane_uint x = px % scene->width, y = px / scene->width;
+    real u0 = rng_uniform(scene->seed, px, s, 0u, DIM_FILM_X);
+    real u1 = rng_uniform(scene->seed, px, s, 0u, DIM_FILM_Y);
+    return camera_direction(uniform_vec3(scene->camera_right), uniform_vec3(scene->camera_up),
+                            uniform_vec3(scene->camera_forward), scene->tan_half_fov_y, scene->aspect,
+                            (TO_REAL(x) + u0) / (real)scene->width, (TO_REAL(y) + u1) / (real)scene->height);
+}
+
+/* Emission the path adds at a hit: when the material emits towards the ray
+ * (or is two-sided) and the previous vertex was the camera or specular, or
+ * at every hit without next-event estimation (pure BSDF sampling: no light
+ * sample accounts for it). */
+WP_FN vec3 emission_seen(Material m, lane_int front, lane_int after_specular, vec3 throughput) {
+    lane_int emits = m.emission.x > REAL(0.0) || m.emission.y > REAL(0.0) || m.emission.z > REAL(0.0);
+    lane_int seen = emits && (m.two_sided || front);
+#ifdef WP_NEE
+    seen = seen && after_specular;
+#endif
+    return v3_select(seen, v3_mul(throughput, m.emission), make_vec3(REAL(0.0), REAL(0.0), REAL(0.0)));
+}
+
+#ifdef WP_NEE
+/* A point sampled on the light `shape` (type and index packed as in
+ * hit_shape), with its material and magnitude (offset.h). A lane whose
+ * light is of another kind reads that kind's arrays at index 0. */
+typedef struct {
+    LightSample sample;
+    lane_uint material;
+    real magnitude;
+} LightPoint;
+
+WP_FN LightPoint sample_light_shape(WP_SCENE_PARAMS, lane_uint shape, vec3 x, real u, real v) {
+    lane_uint index = shape & WP_SHAPE_INDEX_MASK, type = shape >> WP_SHAPE_TYPE_SHIFT;
+    LightPoint p;
+#ifdef WP_HAS_SPHERE_LIGHTS
+    {
+        lane_int is_sphere = type == WP_SHAPE_SPHERE;
+        lane_uint i = is_sphere ? index : (lane_uint)0u;
+        vec3 center = SCENE_FIELD(spheres, i, center);
+        real radius = SCENE_FIELD(spheres, i, radius);
+        p.sample = sample_sphere(center, radius, x, u, v);
+        p.material = SCENE_FIELD(spheres, i, material);
+        p.magnitude = sphere_magnitude(center, radius);
+    }
+#endif
+#ifdef WP_HAS_QUAD_LIGHTS
+    {
+        lane_int is_quad = type == WP_SHAPE_QUAD;
+        lane_uint i = is_quad ? index : (lane_uint)0u;
+        vec3 corner = SCENE_FIELD(quads, i, corner), edge1 = SCENE_FIELD(quads, i, edge1);
+        vec3 edge2 = SCENE_FIELD(quads, i, edge2);
+#ifdef WP_HAS_SPHERE_LIGHTS
+        p.sample = select_light_sample(is_quad, sample_quad(corner, edge1, edge2, x, u, v), p.sample);
+        p.material = is_quad ? SCENE_FIELD(quads, i, material) : p.material;
+        p.magnitude = is_quad ? quad_magnitude(corner, edge1, edge2) : p.magnitude;
+#else
+        p.sample = sample_quad(corner, edge1, edge2, x, u, v);
+        p.material = SCENE_FIELD(quads, i, material);
+        p.magnitude = quad_magnitude(corner, edge1, edge2);
+#endif
+    }
+#endif
+    return p;
+}
+
+/* Samples one light for the diffuse vertex (x, nf); returns where the sample
+ * carries light, with the shadow ray and the contribution it adds when
+ * unoccluded (the outputs hold no ray elsewhere). */
+WP_FN lane_int sample_direct_light(WP_SCENE_PARAMS, lane_uint pixel, lane_uint sample, lane_uint bounce, vec3 x,
+                                   real x_error, vec3 nf, vec3 weight, vec3 *shadow_origin, vec3 *shadow_direction,
+                                   real *shadow_distance, vec3 *contribution) {
+    uint seed = scene->seed;
+    lane_uint light = select_light(light_cdf, LIGHT_COUNT, rng_uniform(seed, pixel, sample, bounce, DIM_LIGHT_SELECT));
+    real pmf = light_selection_pmf(light_cdf, light);
+    LightPoint p = sample_light_shape(WP_SCENE_ARGS, SCENE_FIELD(lights, light, shape), x,
+                                      rng_uniform(seed, pixel, sample, bounce, DIM_LIGHT_U),
+                                      rng_uniform(seed, pixel, sample, bounce, DIM_LIGHT_V));
+    LightSample ls = p.sample;
+    Material emitter = material_at(materials, p.material);
+    vec3 wi = v3_normalize(v3_sub(ls.point, x));
+    real cos_surface = v3_dot(wi, nf);
+    lane_int light_faces_x = v3_dot(ls.normal, v3_sub(x, ls.point)) > REAL(0.0);
+    lane_int carries =
+        ls.pdf_solid_angle != REAL(0.0) && cos_surface > REAL(0.0) && (emitter.two_sided || light_faces_x);
+    vec3 from = offset_ray_origin(x, nf, x_error);
+    vec3 to = offset_ray_origin(ls.point, v3_select(light_faces_x, ls.normal, v3_neg(ls.normal)),
+                                shadow_target_error(x, ls.point, p.magnitude));
+    vec3 along = v3_sub(to, from);
+    *shadow_distance = v3_length(along);
+    *shadow_direction = v3_div(along, *shadow_distance);
+    *shadow_origin = from;
+    /* in the reference's order of operations */
+    *contribution =
+        v3_div(v3_scale(v3_mul(v3_scale(weight, WP_INV_PI), emitter.emission), cos_surface), ls.pdf_solid_angle * pmf);
+    return carries;
+}
+#endif
+
+typedef struct {
+    vec3 direction;
+    vec3 weight;     /* throughput factor */
+    vec3 leave_side; /* normal on the side the new ray leaves into */
+    lane_uint specular;
+} Scattered;
+
+WP_FN Scattered select_scattered(lane_int choose_a, Scattered a, Scattered b) {
+    Scattered s;
+    s.direction = v3_select(choose_a, a.direction, b.direction);
+    s.weight = v3_select(choose_a, a.weight, b.weight);
+    s.leave_side = v3_select(choose_a, a.leave_side, b.leave_side);
+    s.specular = choose_a ? a.specular : b.specular;
+    return s;
+}
+
+#ifdef WP_HAS_DIFFUSE
+WP_FN Scattered scatter_diffuse(Material m, vec3 nf, real u, real v) {
+    Scattered s;
+#ifdef WP_UNIFORM_HEMISPHERE
+    vec3 in_frame = sample_uniform_hemisphere(u, v);       /* `local` is an OpenCL keyword */
+    s.weight = v3_scale(m.albedo, REAL(2.0) * in_frame.z); /* albedo/pi * cos / (1/(2 pi)) */
+#else
+    vec3 in_frame = sample_cosine_hemisphere(u, v);
+    s.weight = m.albedo;
+#endif
+    s.direction = frame_to_world(frame_from_normal(nf), in_frame);
+    s.leave_side = nf;
+    s.specular = 0u;
+    return s;
+}
+#endif
+
+#ifdef WP_HAS_MIRROR
+WP_FN Scattered scatter_mirror(Material m, vec3 d, vec3 nf) {
+    Scattered s;
+    s.direction = reflect_direction(d, nf);
+    s.weight = m.reflectance;
+    s.leave_side = nf;
+    s.specular = 1u;
+    return s;
+}
+#endif
+
+#ifdef WP_HAS_GLASS
+/* Fresnel chooses reflection or refraction; refraction scales radiance by 1/eta^2. */
+WP_FN Scattered scatter_glass(Material m, vec3 d, vec3 nf, lane_int entering, real u_lobe) {
+    real eta = entering ? m.ior : REAL(1.0) / m.ior;
+    real reflectance = fresnel_dielectric(-v3_dot(d, nf), eta);
+    vec3 refracted;
+    lane_int refracts = u_lobe >= reflectance && refract_direction(d, nf, eta, &refracted);
+    Scattered s;
+    s.specular = 1u;
+    s.direction = v3_select(refracts, refracted, reflect_direction(d, nf));
+    s.weight = v3_div(make_vec3(REAL(1.0), REAL(1.0), REAL(1.0)), refracts ? eta * eta : REAL(1.0));
+    s.leave_side = v3_select(refracts, v3_neg(nf), nf);
+    return s;
+}
+#endif
+
+/* BSDF sampling at bounce `bounce` for the material's type (every kind in
+ * the scene is sampled; each lane keeps its material's). */
+WP_FN Scattered scatter_vertex(Material m, vec3 d, vec3 nf, lane_int entering, uint seed, lane_uint px, lane_uint s,
+                               lane_uint bounce) {
+    Scattered scattered;
+    scattered.direction = scattered.weight = scattered.leave_side = make_vec3(REAL(0.0), REAL(0.0), REAL(0.0));
+    scattered.specular = 0u;
+#ifdef WP_HAS_DIFFUSE
+    scattered = select_scattered(m.type == WP_MATERIAL_DIFFUSE,
+                                 scatter_diffuse(m, nf, rng_uniform(seed, px, s, bounce, DIM_BSDF_U),
+                                                 rng_uniform(seed, px, s, bounce, DIM_BSDF_V)),
+                                 scattered);
+#endif
+#ifdef WP_HAS_MIRROR
+    scattered = select_scattered(m.type == WP_MATERIAL_MIRROR, scatter_mirror(m, d, nf), scattered);
+#endif
+#ifdef WP_HAS_GLASS
+    scattered =
+        select_scattered(m.type == WP_MATERIAL_GLASS,
+                         scatter_glass(m, d, nf, entering, rng_uniform(seed, px, s, bounce, DIM_BSDF_LOBE)), scattered);
+#endif
+    return scattered;
+}
+
+/* Russian roulette once new_depth reaches rr_depth: survival probability
+ * clamp(max_component(T), 0.05, 1), and T /= survival when the path survives. */
+WP_FN lane_int survives_roulette(vec3 *throughput, uint seed, lane_uint px, lane_uint s, lane_uint bounce,
+                                 lane_uint new_depth, uint rr_depth) {
+    lane_int plays = new_depth >= rr_depth;
+    real survival = wp_clamp(max_component(*throughput), REAL(0.05), REAL(1.0));
+    lane_int survives = rng_uniform(seed, px, s, bounce, DIM_ROULETTE) < survival;
+    *throughput = v3_select(plays, v3_div(*throughput, survival), *throughput);
+    return !plays || survives;
+}
+
+#endif

@@ -1,0 +1,117 @@
+/* The surface and the material a path's ray hit, read per lane: every
+ * shape kind compiled in is evaluated and each lane keeps its own kind's. */
+#ifndef WP_DEVICE_SURFACE_H
+#define WP_DEVICE_SURFACE_H
+
+#include "device/features.h"
+#include "device/lane_memory.h"
+#include "device/parameters.h"
+#include "shared/geometry.h"
+#include "shared/offset.h"
+#include "shared/prelude.h"
+
+typedef struct {
+    vec3 point;
+    vec3 normal; /* geometric: outward (sphere), the plane's, normalize(edge1 x edge2) (quad) */
+    lane_uint material;
+    real error; /* bound on the point's distance from the surface (offset.h) */
+} Surface;
+
+/* The surface where the ray (origin, direction) hit `shape` at distance t.
+ * Every shape kind in the scene is evaluated and each lane keeps its own;
+ * a lane reads the arrays of the other kinds at index 0. */
+WP_FN Surface surface_at(WP_SCENE_PARAMS, lane_uint shape, vec3 origin, vec3 direction, real t) {
+    lane_uint index = shape & WP_SHAPE_INDEX_MASK;
+    lane_uint type = shape >> WP_SHAPE_TYPE_SHIFT;
+    Surface s;
+    s.point = v3_add_scaled(origin, t, direction);
+    s.normal = make_vec3(REAL(0.0), REAL(0.0), REAL(0.0));
+    s.material = 0u;
+    s.error = REAL(0.0);
+#ifdef WP_HAS_SPHERES
+    {
+        lane_int is_sphere = type == WP_SHAPE_SPHERE;
+        lane_uint i = is_sphere ? index : (lane_uint)0u;
+        vec3 center = SCENE_FIELD(spheres, i, center);
+        real radius = SCENE_FIELD(spheres, i, radius);
+        vec3 on_sphere = sphere_reproject(center, radius, s.point);
+        s.normal = v3_select(is_sphere, sphere_normal(center, on_sphere), s.normal);
+        s.material = is_sphere ? SCENE_FIELD(spheres, i, material) : s.material;
+        s.error = is_sphere ? shape_point_error(sphere_magnitude(center, radius)) : s.error;
+        s.point = v3_select(is_sphere, on_sphere, s.point);
+    }
+#endif
+#ifdef WP_HAS_PLANES
+    {
+        lane_int is_plane = type == WP_SHAPE_PLANE;
+        lane_uint i = is_plane ? index : (lane_uint)0u;
+        s.normal = v3_select(is_plane, SCENE_FIELD(planes, i, normal), s.normal);
+        s.material = is_plane ? SCENE_FIELD(planes, i, material) : s.material;
+        s.error = is_plane ? ray_point_error(origin, t, plane_magnitude(SCENE_FIELD(planes, i, point))) : s.error;
+    }
+#endif
+#ifdef WP_HAS_QUADS
+    {
+        lane_int is_quad = type == WP_SHAPE_QUAD;
+        lane_uint i = is_quad ? index : (lane_uint)0u;
+        vec3 edge1 = SCENE_FIELD(quads, i, edge1), edge2 = SCENE_FIELD(quads, i, edge2);
+        s.normal = v3_select(is_quad, quad_normal(edge1, edge2), s.normal);
+        s.material = is_quad ? SCENE_FIELD(quads, i, material) : s.material;
+        s.error =
+            is_quad ? ray_point_error(origin, t, quad_magnitude(SCENE_FIELD(quads, i, corner), edge1, edge2)) : s.error;
+    }
+#endif
+    return s;
+}
+
+/* A material's fields, per lane; only those of the material kinds in the scene. */
+typedef struct {
+    lane_uint type; /* WP_MATERIAL_* */
+    lane_int two_sided;
+    vec3 emission;
+#ifdef WP_HAS_DIFFUSE
+    vec3 albedo;
+#endif
+#ifdef WP_HAS_MIRROR
+    vec3 reflectance;
+#endif
+#ifdef WP_HAS_GLASS
+    real ior;
+#endif
+} Material;
+
+WP_FN Material material_at(__global const DeviceMaterial *materials, lane_uint index) {
+    Material m;
+    m.type = SCENE_FIELD(materials, index, type);
+    m.two_sided = SCENE_FIELD(materials, index, two_sided) != 0u;
+    m.emission = SCENE_FIELD(materials, index, emission);
+#ifdef WP_HAS_DIFFUSE
+    m.albedo = SCENE_FIELD(materials, index, albedo);
+#endif
+#ifdef WP_HAS_MIRROR
+    m.reflectance = SCENE_FIELD(materials, index, reflectance);
+#endif
+#ifdef WP_HAS_GLASS
+    m.ior = SCENE_FIELD(materials, index, ior);
+#endif
+    return m;
+}
+
+/* A path's vertex where its ray (origin, direction) hit `shape` at t. */
+typedef struct {
+    Surface surface;
+    Material material;
+    lane_int front; /* the ray met the side the geometric normal points to */
+    vec3 nf;        /* the normal on the ray's side */
+} Vertex;
+
+WP_FN Vertex vertex_at(WP_SCENE_PARAMS, lane_uint shape, vec3 origin, vec3 direction, real t) {
+    Vertex v;
+    v.surface = surface_at(WP_SCENE_ARGS, shape, origin, direction, t);
+    v.material = material_at(materials, v.surface.material);
+    v.front = v3_dot(direction, v.surface.normal) < REAL(0.0);
+    v.nf = v3_select(v.front, v.surface.normal, v3_neg(v.surface.normal));
+    return v;
+}
+
+#endif

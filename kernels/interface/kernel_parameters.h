@@ -1,0 +1,82 @@
+/* Every kernel's parameter list, declared once. The kernels expand a list
+ * into their parameters (WP_PARAMETERS, kernels/device/parameters.h) and the
+ * host into argument indices (src/opencl/kernel_arguments.h), so a parameter
+ * added to a list moves every later index on both sides at once; no index is
+ * counted by hand.
+ *
+ * A list takes two macros, FIRST(type, name) for its first entry and
+ * NEXT(type, name) for the others, so that an expansion can put a comma
+ * before every entry but the first. Types are OpenCL C; the host reads only
+ * the names. */
+#ifndef WP_INTERFACE_KERNEL_PARAMETERS_H
+#define WP_INTERFACE_KERNEL_PARAMETERS_H
+
+/* The scene's buffers (interface/scene_layout.h), first in every kernel that traces. */
+#define WP_SCENE_PARAMETERS(FIRST, NEXT)             \
+    FIRST(__global const SceneHeader *, scene)       \
+    NEXT(__global const DeviceSphere *, spheres)     \
+    NEXT(__global const DevicePlane *, planes)       \
+    NEXT(__global const DeviceQuad *, quads)         \
+    NEXT(__global const DeviceMaterial *, materials) \
+    NEXT(__global const DeviceLight *, lights)       \
+    NEXT(__global const float *, light_cdf)
+
+/* generate, intersect, shade_direct, intersect_shadow and scatter; the path
+ * state's fields (interface/path_state.h) follow these. */
+#define WP_STAGE_PARAMETERS(FIRST, NEXT)  \
+    WP_SCENE_PARAMETERS(FIRST, NEXT)      \
+    NEXT(__global uint *, queues)         \
+    NEXT(__global uint *, counts)         \
+    NEXT(uint, capacity)                  \
+    NEXT(ulong, pass_start)               \
+    NEXT(uint, pass_size)                 \
+    NEXT(__global float *, pass_radiance) \
+    NEXT(__global uint *, slot_nonfinite)
+
+#define WP_MEGAKERNEL_PARAMETERS(FIRST, NEXT) \
+    WP_SCENE_PARAMETERS(FIRST, NEXT)          \
+    NEXT(ulong, pass_start)                   \
+    NEXT(uint, pass_size)                     \
+    NEXT(__global float *, pass_radiance)     \
+    NEXT(__global uint *, counts)
+
+#define WP_INTERSECT_BOUND_PARAMETERS(FIRST, NEXT) \
+    WP_SCENE_PARAMETERS(FIRST, NEXT)               \
+    NEXT(uint, ray_count)                          \
+    NEXT(__global float *, hit_t)
+
+/* film_real: double, or float for the compensated film (accumulate.cl). */
+#define WP_ACCUMULATE_PARAMETERS(FIRST, NEXT)   \
+    FIRST(ulong, pass_start)                    \
+    NEXT(uint, pass_size)                       \
+    NEXT(uint, pixel_count)                     \
+    NEXT(__global const float *, pass_radiance) \
+    NEXT(__global film_real *, film)
+
+#define WP_COMPACT_COUNT_PARAMETERS(FIRST, NEXT) \
+    FIRST(__global const uint *, queues)         \
+    NEXT(uint, capacity)                         \
+    NEXT(uint, queue_mask)                       \
+    NEXT(__global uint *, block_counts)
+
+#define WP_COMPACT_SCAN_PARAMETERS(FIRST, NEXT) \
+    FIRST(uint, capacity)                       \
+    NEXT(uint, queue_mask)                      \
+    NEXT(__global uint *, block_counts)         \
+    NEXT(__global uint *, counts)
+
+#define WP_COMPACT_WRITE_PARAMETERS(FIRST, NEXT) \
+    FIRST(__global uint *, queues)               \
+    NEXT(uint, capacity)                         \
+    NEXT(uint, queue_mask)                       \
+    NEXT(__global const uint *, block_counts)
+
+#define WP_COUNT_DEPTHS_PARAMETERS(FIRST, NEXT) \
+    FIRST(__global const uint *, queues)        \
+    NEXT(__global uint *, counts)               \
+    NEXT(uint, capacity)                        \
+    NEXT(uint, queue)                           \
+    NEXT(uint, histogram_offset)                \
+    NEXT(__global const uint *, depth)
+
+#endif

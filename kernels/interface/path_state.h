@@ -1,0 +1,38 @@
+/* The wavefront's path state, declared once. Every field is one device buffer
+ * with one row per path slot (structure of arrays); a vec3 field's buffer
+ * holds three planes of `capacity` floats (x, then y, then z), so that each
+ * component is read and written as consecutive slots. The list expands into
+ * the host's buffers (src/wavefront/path_state.cpp), the kernels' parameter
+ * lists (WP_PATH_STATE_PARAMS, kernels/device/parameters.h), the
+ * bytes-per-path estimate and the table in docs/architecture.md, so adding a
+ * field is one line here. Kernels reach a field through PATH_READ and
+ * PATH_WRITE (kernels/device/lanes.h).
+ *
+ * X(type, name, feature, written by, read by), type uint, float or vec3,
+ * where feature says when the buffer exists:
+ *   ALWAYS   every scene;
+ *   SPECULAR the scene has a mirror or glass material (otherwise every
+ *            bounce is diffuse and "previous vertex specular" is depth == 0);
+ *   NEE      next-event estimation runs (render.nee on and a light in the scene). */
+#ifndef WP_INTERFACE_PATH_STATE_H
+#define WP_INTERFACE_PATH_STATE_H
+
+#define WP_PATH_STATE(X)                                                              \
+    X(uint, pixel, ALWAYS, "generate", "shade_direct scatter")                        \
+    X(uint, sample, ALWAYS, "generate", "shade_direct scatter")                       \
+    X(uint, pass_item, ALWAYS, "generate", "intersect shade_direct scatter")          \
+    X(uint, depth, ALWAYS, "generate scatter", "shade_direct scatter")                \
+    X(vec3, origin, ALWAYS, "generate scatter", "intersect shade_direct scatter")     \
+    X(vec3, direction, ALWAYS, "generate scatter", "intersect shade_direct scatter")  \
+    X(vec3, throughput, ALWAYS, "generate scatter", "intersect shade_direct scatter") \
+    X(vec3, radiance, ALWAYS, "generate intersect shade_direct intersect_shadow",     \
+      "intersect shade_direct intersect_shadow scatter")                              \
+    X(float, hit_t, ALWAYS, "intersect", "shade_direct scatter")                      \
+    X(uint, hit_shape, ALWAYS, "intersect", "shade_direct scatter")                   \
+    X(uint, specular, SPECULAR, "generate scatter", "shade_direct")                   \
+    X(vec3, shadow_origin, NEE, "shade_direct", "intersect_shadow")                   \
+    X(vec3, shadow_direction, NEE, "shade_direct", "intersect_shadow")                \
+    X(float, shadow_distance, NEE, "shade_direct", "intersect_shadow")                \
+    X(vec3, shadow_radiance, NEE, "shade_direct", "intersect_shadow")
+
+#endif

@@ -1,0 +1,43 @@
+/* Queue and counter indices shared by the host (src/wavefront/queue_set.h)
+ * and the kernels. `queues` holds WP_QUEUE_COUNT queues of path slots, each
+ * `capacity` long; `counts` holds their lengths, then the counters. */
+#ifndef WP_INTERFACE_QUEUES_H
+#define WP_INTERFACE_QUEUES_H
+
+#define WP_QUEUE_FREE 0u    /* slots without a path, refilled by generate */
+#define WP_QUEUE_HIT 1u     /* extension rays that hit a surface, for shade_direct */
+#define WP_QUEUE_RAY 2u     /* paths with an extension ray to trace, for intersect */
+#define WP_QUEUE_SHADOW 3u  /* shadow rays to trace, for intersect_shadow */
+#define WP_QUEUE_SCATTER 4u /* paths that scatter at their hit, for scatter */
+#define WP_QUEUE_COUNT 5u
+/* With scan compaction (-DWP_COMPACT_SCAN) the queues buffer also holds, after the queues, one
+ * array of marks (0 or 1 per slot) per queue, from which kernels/compact.cl
+ * builds the queue with a prefix sum. */
+#define WP_QUEUE_MARKS(queue) (WP_QUEUE_COUNT + (queue))
+/* Slots each work item of the compaction kernels handles, in order. */
+#define WP_COMPACT_BLOCK 256u
+
+#define WP_COUNTER_WORK 5u /* work items of the pass handed out before this generate (set by the host) */
+/* Non-finite values dropped, one counter per stage where one can arise, in
+ * the order of wp::nonfinite_stage_names (src/core/render.h). The megakernel
+ * adds to these; the wavefront stages keep one counter per slot and stage
+ * instead (count_nonfinite in kernels/device/guards.h), which the host sums. */
+#define WP_COUNTER_NONFINITE_EMISSION 6u /* emission or background added to the radiance */
+#define WP_COUNTER_NONFINITE_DIRECT 7u   /* a light sample's contribution added to the radiance */
+#define WP_COUNTER_NONFINITE_SCATTER 8u  /* throughput after BSDF sampling and roulette (ends the path) */
+#define WP_NONFINITE_STAGE_COUNT 3u
+#define WP_COUNTER_EXTENSION_RAYS 9u /* megakernel only: rays traced (the wavefront counts its queues) */
+#define WP_COUNTER_SHADOW_RAYS 10u
+#define WP_COUNTS_SIZE 11u
+
+/* With --profile, count_depths.cl counts rays per path depth in two
+ * histograms after the counters (the last bin takes every deeper ray). */
+#define WP_PROFILE_DEPTHS 64u
+#define WP_PROFILE_EXTENSION_BY_DEPTH WP_COUNTS_SIZE
+#define WP_PROFILE_SHADOW_BY_DEPTH (WP_COUNTS_SIZE + WP_PROFILE_DEPTHS)
+#define WP_COUNTS_PROFILED_SIZE (WP_COUNTS_SIZE + 2u * WP_PROFILE_DEPTHS)
+
+/* Work-group size of the stage kernels (the aggregated queue push uses local memory). */
+#define WP_GROUP_SIZE 64
+
+#endif

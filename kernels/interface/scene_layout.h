@@ -1,0 +1,61 @@
+/* The scene as flat device buffers, shared by the host (src/opencl/scene_upload.cpp)
+ * and the kernels. Only 4-byte float and uint fields (no float3, whose
+ * size and alignment differ between OpenCL C and C++), so both sides lay the
+ * structs out identically; the host static_asserts the sizes.
+ * In C++ this file is included inside a namespace that defines `uint`. */
+#ifndef WP_INTERFACE_SCENE_LAYOUT_H
+#define WP_INTERFACE_SCENE_LAYOUT_H
+
+/* hit_shape packs the shape type into the top two bits and the index below. */
+#define WP_SHAPE_SPHERE 0u
+#define WP_SHAPE_PLANE 1u
+#define WP_SHAPE_QUAD 2u
+#define WP_SHAPE_TYPE_SHIFT 30u
+#define WP_SHAPE_INDEX_MASK 0x3fffffffu
+#define WP_NO_HIT 0xffffffffu
+
+#define WP_MATERIAL_DIFFUSE 0u
+#define WP_MATERIAL_MIRROR 1u
+#define WP_MATERIAL_GLASS 2u
+#define WP_MATERIAL_EMITTER 3u
+
+typedef struct {
+    float camera_right[3], camera_up[3], camera_forward[3];
+    float tan_half_fov_y, aspect;
+    float background[3];
+    uint width, height, spp, max_depth, rr_depth, seed;
+    uint sphere_count, plane_count, quad_count, light_count;
+} SceneHeader;
+
+typedef struct {
+    float center[3];
+    float radius;
+    uint material;
+} DeviceSphere;
+
+typedef struct {
+    float point[3];
+    float normal[3];
+    uint material;
+} DevicePlane;
+
+typedef struct {
+    float corner[3], edge1[3], edge2[3];
+    float plane_normal[3], plane_w[3]; /* quad_plane(edge1, edge2), shared/geometry.h */
+    uint material;
+} DeviceQuad;
+
+typedef struct {
+    float albedo[3];      /* diffuse */
+    float reflectance[3]; /* mirror */
+    float emission[3];    /* diffuse (optional) and emitter */
+    float ior;            /* glass */
+    uint type;            /* WP_MATERIAL_* */
+    uint two_sided;       /* emission on both sides */
+} DeviceMaterial;
+
+typedef struct {
+    uint shape; /* WP_SHAPE_SPHERE or WP_SHAPE_QUAD, index included as in hit_shape */
+} DeviceLight;
+
+#endif

@@ -1,0 +1,135 @@
+/* Type and function mapping that lets the shared math compile both as
+ * OpenCL C (float only) and as C++ (float or double, via src/core/shared_math.h).
+ *
+ * Lanes: in OpenCL C a work item may handle WP_LANES paths at once (built
+ * with -DWP_LANES=8, see kernels/device/lanes.h); `real` is then float8 and
+ * every operation runs on all lanes. PoCL does not vectorise the stage
+ * kernels across work items by itself (its SLP pass packs scalar code into
+ * small vectors first, which its loop vectoriser then refuses), so the SIMD
+ * the wavefront is built for is written out. WP_LANES is 1 by default.
+ *
+ * Rules for the code in kernels/shared, so that it compiles for one lane or
+ * for many and as C++:
+ *   - functions are WP_FN, take and return values (no references, no templates);
+ *   - scalars are `real`, conditions on them `lane_int`; vectors are `vec3`,
+ *     built with make_vec3(x, y, z) and combined only through the v3_*
+ *     functions below, never with operators (vec3 is a struct of three
+ *     `real`s, not float3);
+ *   - code that must also run with many lanes chooses with `c ? a : b`, never
+ *     with `if` on a value, and combines conditions with && and ||;
+ *   - only sqrt, fabs, fmin, fmax, floor and copysign on scalars are assumed
+ *     to exist on both sides (no sin or cos: see cos_sin_turns);
+ *   - floating constants are written REAL(1.0) (always with a decimal point);
+ *   - device memory is read at per-lane indices with gather(p, index), and
+ *     pointers into it are WP_GLOBAL.
+ */
+#ifndef WP_SHARED_PRELUDE_H
+#define WP_SHARED_PRELUDE_H
+
+#ifdef __OPENCL_C_VERSION__
+#pragma OPENCL FP_CONTRACT OFF
+#define WP_FN static inline
+#define WP_GLOBAL __global
+#ifndef WP_LANES
+#define WP_LANES 1
+#endif
+typedef float real_element; /* what a `real` is stored as in device memory */
+#if WP_LANES == 1
+typedef float real;
+typedef int lane_int;
+typedef uint lane_uint;
+#define TO_REAL(x) ((real)(x))
+#define TO_LANE_INT(x) ((lane_int)(x))
+#elif WP_LANES == 8
+typedef float8 real;
+typedef int8 lane_int; /* a condition: -1 (all bits) where true, as OpenCL's vector comparisons give */
+typedef uint8 lane_uint;
+#define TO_REAL(x) convert_float8(x)
+#define TO_LANE_INT(x) convert_int8(x) /* toward zero, as a C cast */
+/* F(s0) F(s1) ... F(s7): code once per lane (kernels/device/lane_memory.h, kernels/device/lanes.h). */
+#define WP_FOR_LANES(F) F(s0) F(s1) F(s2) F(s3) F(s4) F(s5) F(s6) F(s7)
+#else
+#error "WP_LANES must be 1 or 8"
+#endif
+/* Kernel-side functions overloaded on their pointer's type (clang's
+ * extension, which every OpenCL C compiler built on clang has). */
+#define WP_OVERLOAD __attribute__((overloadable))
+typedef struct {
+    real x, y, z;
+} vec3;
+WP_FN vec3 make_vec3(real x, real y, real z) {
+    vec3 v;
+    v.x = x, v.y = y, v.z = z;
+    return v;
+}
+#define REAL(x) (x##f)
+#define WP_REAL_MAX FLT_MAX
+
+/* p[index] for each lane's index: a plain load with one lane, one load per
+ * lane (a gather) with several. */
+#if WP_LANES == 1
+WP_OVERLOAD WP_FN real gather(__global const float *p, lane_uint index) { return p[index]; }
+WP_OVERLOAD WP_FN lane_uint gather(__global const uint *p, lane_uint index) { return p[index]; }
+#else
+#define WP_GATHER_LANE(s) p[index.s],
+WP_OVERLOAD WP_FN real gather(__global const float *p, lane_uint index) {
+    float values[WP_LANES] = {WP_FOR_LANES(WP_GATHER_LANE)};
+    return vload8(0, values);
+}
+WP_OVERLOAD WP_FN lane_uint gather(__global const uint *p, lane_uint index) {
+    uint values[WP_LANES] = {WP_FOR_LANES(WP_GATHER_LANE)};
+    return vload8(0, values);
+}
+#undef WP_GATHER_LANE
+#endif
+#else
+/* C++: the including namespace (src/core/shared_math.h) defines `real`,
+ * `vec3`, `uint` and `real_max`; one lane. */
+#define WP_FN static inline
+#define WP_GLOBAL
+typedef int lane_int;
+typedef uint lane_uint;
+typedef real real_element;
+#define TO_REAL(x) (static_cast<real>(x))
+#define TO_LANE_INT(x) (static_cast<lane_int>(x))
+template <class T>
+static T gather(const T *p, uint index) {
+    return p[index];
+}
+#define make_vec3(x, y, z) (vec3((x), (y), (z)))
+#define REAL(x) (static_cast<real>(x))
+#define WP_REAL_MAX real_max
+#endif
+
+#define WP_PI REAL(3.14159265358979323846)
+#define WP_INV_PI REAL(0.31830988618379067154)
+#define WP_INFINITY WP_REAL_MAX
+
+/* Vector arithmetic, written once for both sides and component by component
+ * in the same order, so kernels and C++ round alike. */
+WP_FN vec3 v3_add(vec3 a, vec3 b) { return make_vec3(a.x + b.x, a.y + b.y, a.z + b.z); }
+WP_FN vec3 v3_sub(vec3 a, vec3 b) { return make_vec3(a.x - b.x, a.y - b.y, a.z - b.z); }
+WP_FN vec3 v3_mul(vec3 a, vec3 b) { return make_vec3(a.x * b.x, a.y * b.y, a.z * b.z); } /* per component */
+WP_FN vec3 v3_scale(vec3 a, real s) { return make_vec3(a.x * s, a.y * s, a.z * s); }
+WP_FN vec3 v3_div(vec3 a, real s) { return make_vec3(a.x / s, a.y / s, a.z / s); }
+WP_FN vec3 v3_neg(vec3 a) { return make_vec3(-a.x, -a.y, -a.z); }
+/* a + s * b */
+WP_FN vec3 v3_add_scaled(vec3 a, real s, vec3 b) { return make_vec3(a.x + s * b.x, a.y + s * b.y, a.z + s * b.z); }
+WP_FN real v3_dot(vec3 a, vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+WP_FN vec3 v3_cross(vec3 a, vec3 b) {
+    return make_vec3(a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x);
+}
+WP_FN real v3_length(vec3 a) { return sqrt(v3_dot(a, a)); }
+WP_FN vec3 v3_normalize(vec3 a) { return v3_scale(a, REAL(1.0) / v3_length(a)); }
+/* a if choose_a, else b: a select in the kernels, not a branch. */
+WP_FN vec3 v3_select(lane_int choose_a, vec3 a, vec3 b) {
+    return make_vec3(choose_a ? a.x : b.x, choose_a ? a.y : b.y, choose_a ? a.z : b.z);
+}
+
+WP_FN real wp_clamp(real x, real lo, real hi) { return fmin(fmax(x, lo), hi); }
+/* sqrt that tolerates arguments a rounding error below zero. */
+WP_FN real safe_sqrt(real x) { return sqrt(fmax(x, REAL(0.0))); }
+WP_FN real max_component(vec3 v) { return fmax(v.x, fmax(v.y, v.z)); }
+WP_FN lane_int vec3_is_finite(vec3 v) { return isfinite(v.x) && isfinite(v.y) && isfinite(v.z); }
+
+#endif

@@ -1,0 +1,65 @@
+/* Counter-based random numbers: every number is a pure function of
+ * (seed, pixel, sample, bounce, dimension). No generator state exists, so an
+ * image does not depend on thread count, scheduling or queue slots, and the
+ * wavefront kernels retrace the reference's paths exactly.
+ *
+ * The hash is pcg4d (Jarzynski and Olano, "Hash Functions for GPU Rendering",
+ * JCGT 2020), a 4-lane PCG variant with good avalanche on correlated inputs. */
+#ifndef WP_SHARED_RNG_H
+#define WP_SHARED_RNG_H
+
+#include "shared/prelude.h"
+
+/* Sample dimensions consumed at each bounce. */
+#define DIM_FILM_X 0u /* pixel jitter, bounce 0 only */
+#define DIM_FILM_Y 1u
+#define DIM_LIGHT_SELECT 2u /* which light next-event estimation samples */
+#define DIM_LIGHT_U 3u      /* point on that light */
+#define DIM_LIGHT_V 4u
+#define DIM_BSDF_LOBE 5u /* reflect or refract at glass */
+#define DIM_BSDF_U 6u    /* scattered direction */
+#define DIM_BSDF_V 7u
+#define DIM_ROULETTE 8u
+#define DIM_COUNT 9u /* dimensions per bounce; fits in 6 bits */
+
+typedef struct {
+    lane_uint x, y, z, w;
+} RngKey;
+
+WP_FN RngKey pcg4d(RngKey v) {
+    v.x = v.x * 1664525u + 1013904223u;
+    v.y = v.y * 1664525u + 1013904223u;
+    v.z = v.z * 1664525u + 1013904223u;
+    v.w = v.w * 1664525u + 1013904223u;
+    v.x += v.y * v.w;
+    v.y += v.z * v.x;
+    v.z += v.x * v.y;
+    v.w += v.y * v.z;
+    v.x ^= v.x >> 16u;
+    v.y ^= v.y >> 16u;
+    v.z ^= v.z >> 16u;
+    v.w ^= v.w >> 16u;
+    v.x += v.y * v.w;
+    v.y += v.z * v.x;
+    v.z += v.x * v.y;
+    v.w += v.y * v.z;
+    return v;
+}
+
+/* 32 random bits for one (seed, pixel, sample, bounce, dimension). */
+WP_FN lane_uint rng_bits(uint seed, lane_uint pixel, lane_uint sample, lane_uint bounce, uint dimension) {
+    RngKey key;
+    key.x = pixel;
+    key.y = sample;
+    key.z = (bounce << 6u) | dimension;
+    key.w = seed;
+    return pcg4d(key).x;
+}
+
+/* Uniform in [0, 1) with 24 bits: exactly representable in float, so the
+ * float and double builds draw identical numbers. */
+WP_FN real rng_uniform(uint seed, lane_uint pixel, lane_uint sample, lane_uint bounce, uint dimension) {
+    return TO_REAL(rng_bits(seed, pixel, sample, bounce, dimension) >> 8u) * REAL(5.9604644775390625e-8);
+}
+
+#endif

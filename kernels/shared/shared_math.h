@@ -1,0 +1,14 @@
+/* All the math shared by the OpenCL kernels and the C++ reference renderer,
+ * for C++: src/core/shared_math.h includes it once per precision. Kernels
+ * include the headers they use one by one. */
+#ifndef WP_SHARED_MATH_H
+#define WP_SHARED_MATH_H
+
+#include "shared/fresnel.h"
+#include "shared/geometry.h"
+#include "shared/offset.h"
+#include "shared/prelude.h"
+#include "shared/rng.h"
+#include "shared/sampling.h"
+
+#endif

@@ -1,0 +1,59 @@
+#include "opencl/kernel_options.h"
+
+#include <utility>
+#include <vector>
+
+namespace wp {
+namespace {
+
+// (name for --explain, macro) for each feature in use; no macro where no
+// kernel code depends on the feature.
+std::vector<std::pair<const char*, const char*>> features_in_use(const FeatureSet& f) {
+    std::vector<std::pair<const char*, const char*>> in_use;
+    auto add = [&](bool on, const char* name, const char* macro) {
+        if (on) in_use.emplace_back(name, macro);
+    };
+    add(f.spheres, "spheres", "WP_HAS_SPHERES");
+    add(f.planes, "planes", "WP_HAS_PLANES");
+    add(f.quads, "quads", "WP_HAS_QUADS");
+    add(f.diffuse, "diffuse", "WP_HAS_DIFFUSE");
+    add(f.mirror, "mirror", "WP_HAS_MIRROR");
+    add(f.glass, "glass", "WP_HAS_GLASS");
+    add(f.emitter_material, "emitter", nullptr);
+    add(f.sphere_lights, "sphere-lights", "WP_HAS_SPHERE_LIGHTS");
+    add(f.quad_lights, "quad-lights", "WP_HAS_QUAD_LIGHTS");
+    add(f.background, "background", "WP_HAS_BACKGROUND");
+    add(f.nee, "nee", "WP_NEE");
+    return in_use;
+}
+
+}  // namespace
+
+std::string kernel_build_options(const FeatureSet& features, bool film_double, Hemisphere hemisphere) {
+    std::string options;
+    for (const auto& [name, macro] : features_in_use(features))
+        if (macro) options += std::string(" -D") + macro;
+    if (hemisphere == Hemisphere::Uniform) options += " -DWP_UNIFORM_HEMISPHERE";
+    if (film_double) options += " -DWP_FILM_DOUBLE";
+    return options.empty() ? options : options.substr(1);
+}
+
+std::string shape_count_options(const Scene& scene) {
+    std::string options;
+    auto add = [&](const char* macro, std::size_t count) {
+        if (count <= kMaxUnrolledCount) options += " -D" + std::string(macro) + "=" + std::to_string(count) + "u";
+    };
+    add("WP_SPHERE_COUNT", scene.spheres.size());
+    add("WP_PLANE_COUNT", scene.planes.size());
+    add("WP_QUAD_COUNT", scene.quads.size());
+    add("WP_LIGHT_COUNT", scene.lights.size());
+    return options;
+}
+
+std::string describe_features(const FeatureSet& features) {
+    std::string text;
+    for (const auto& [name, macro] : features_in_use(features)) text += (text.empty() ? "" : " ") + std::string(name);
+    return text;
+}
+
+}  // namespace wp

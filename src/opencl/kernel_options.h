@@ -1,0 +1,31 @@
+// Which kernel code a scene needs: its FeatureSet as -D build options.
+#pragma once
+
+#include <cstddef>
+#include <string>
+
+#include "scene/scene.h"
+
+namespace wp {
+
+// "-DWP_HAS_SPHERES -DWP_HAS_DIFFUSE ...", one option per shape, material
+// and light kind in use, -DWP_NEE when next-event estimation runs (without
+// it emission counts at every hit), -DWP_UNIFORM_HEMISPHERE for uniform
+// diffuse sampling and -DWP_FILM_DOUBLE for a double film (devices with
+// fp64). Never fast-math options: the kernels must agree with the reference.
+std::string kernel_build_options(const FeatureSet& features, bool film_double, Hemisphere hemisphere);
+
+// Shapes and lights of each kind per type a kernel unrolls its loops over.
+inline constexpr std::size_t kMaxUnrolledCount = 32;
+
+// " -DWP_SPHERE_COUNT=4 -DWP_QUAD_COUNT=7 -DWP_LIGHT_COUNT=1 ...": the scene's
+// counts of each kind, as compile-time constants, for the kinds with at most
+// kMaxUnrolledCount (larger ones are read at run time). Constant counts let
+// the loops over shapes and lights unroll into straight-line vector code
+// (kernels/shared/prelude.h, "Lanes").
+std::string shape_count_options(const Scene& scene);
+
+// The features in use, space-separated ("spheres quads diffuse glass ..."), for --explain.
+std::string describe_features(const FeatureSet& features);
+
+}  // namespace wp

@@ -1,0 +1,34 @@
+#include "opencl/launcher.h"
+
+#include <algorithm>
+
+namespace wp {
+
+void KernelLauncher::launch(cl::Kernel& kernel, const char* name, std::size_t items, std::size_t group) {
+    cl::Event event;
+    queue_.enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(group ? round_up(items, group) : items),
+                                group ? cl::NDRange(group) : cl::NullRange, nullptr, profiling_ ? &event : nullptr);
+    if (profiling_) pending_.emplace_back(name, event);
+}
+
+void KernelLauncher::time_finished(RenderProfile& profile) {
+    for (auto& [name, event] : pending_) {
+        cl_ulong start = event.getProfilingInfo<CL_PROFILING_COMMAND_START>();
+        cl_ulong end = event.getProfilingInfo<CL_PROFILING_COMMAND_END>();
+        KernelProfile& k = profile.kernel(name);
+        ++k.launches;
+        k.device_s += double(end - start) * 1e-9;
+        if (last_kernel_end_ != 0 && start > last_kernel_end_)
+            profile.gaps_s += double(start - last_kernel_end_) * 1e-9;
+        last_kernel_end_ = std::max(last_kernel_end_, end);
+    }
+    pending_.clear();
+}
+
+double event_seconds(const cl::Event& event) {
+    return double(event.getProfilingInfo<CL_PROFILING_COMMAND_END>() -
+                  event.getProfilingInfo<CL_PROFILING_COMMAND_START>()) *
+           1e-9;
+}
+
+}  // namespace wp

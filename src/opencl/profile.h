@@ -1,0 +1,52 @@
+// The figures of `wavepath render --profile`: per kernel the launches, items
+// processed, device time (OpenCL event profiling) and items/s; the device's
+// idle time between kernels (host synchronisation, transfers, launch
+// latency); rays per path depth; the tracing stages' rays/s against the
+// intersect bound (the roofline); and the program build time apart.
+#pragma once
+
+#include <cstdint>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+namespace wp {
+
+struct KernelProfile {
+    std::string name;
+    std::uint64_t launches = 0;
+    std::uint64_t items = 0;  // queue entries (or pixels, for accumulate) the launches processed
+    double device_s = 0.0;    // sum of the launches' end - start
+};
+
+struct RenderProfile {
+    std::vector<KernelProfile> kernels;
+    double render_s = 0.0;         // wall time of the render (the build left out)
+    double gaps_s = 0.0;           // device time between one kernel's end and the next one's start
+    double build_s = 0.0;          // program build or cache load
+    std::uint64_t iterations = 0;  // of the stage loop, over all passes
+    std::vector<std::uint64_t> extension_rays_by_depth;  // index = depth; the last entry counts that depth and deeper
+    std::vector<std::uint64_t> shadow_rays_by_depth;
+    // The tracing stages' roofline (Pipeline::measure_intersect_bound); 0: not measured (the megakernel).
+    double intersect_bound_rays_per_s = 0.0;
+
+    KernelProfile& kernel(const std::string& name);  // added if absent
+    bool has_kernel(const std::string& name) const;
+    double kernel_s() const;  // sum over the kernels
+    // The kernel's items/s as a fraction of intersect_bound_rays_per_s.
+    double fraction_of_intersect_bound(const std::string& name) const;
+};
+
+// An aligned table for people (stderr).
+std::string format_profile_table(const RenderProfile& profile);
+
+// {"render_s","kernel_s","gaps_s","host_other_s","build_s","iterations",
+//  "kernels":[{"name","launches","items","device_s","items_per_s","share"}],
+//  "extension_rays_by_depth":[...], "shadow_rays_by_depth":[...]}, and when the bound was measured
+//  "intersect_bound_rays_per_s" and "of_intersect_bound":{"intersect","intersect_shadow"} (fractions)
+nlohmann::json profile_json(const RenderProfile& profile);
+
+// Writes profile_json atomically; throws OutputError.
+void write_profile_json(const RenderProfile& profile, const std::string& path);
+
+}  // namespace wp

@@ -1,0 +1,47 @@
+// Builds OpenCL programs from kernels/*.cl at run time, with the program
+// binaries cached on disk so that scene-specialised builds are paid once.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "core/render.h"
+#include "opencl/device.h"
+
+namespace wp {
+
+// A kernel that does not compile: what() is one line naming the file and
+// line of the first error; log() is the compiler's full output.
+class KernelBuildError : public DeviceError {
+ public:
+    KernelBuildError(const std::string& first_error, std::string log)
+        : DeviceError("kernel build failed: " + first_error), log_(std::move(log)) {}
+    const std::string& log() const { return log_; }
+
+ private:
+    std::string log_;
+};
+
+struct BuiltProgram {
+    cl::Program program;
+    std::string options;     // the full build options
+    bool cache_hit = false;  // the binary came from the cache
+    double build_seconds = 0.0;
+    std::string cache_file;  // empty when the cache directory is unusable
+};
+
+// $WAVEPATH_KERNEL_DIR, else the kernels/ directory of the source tree.
+std::string kernel_directory();
+
+// $WAVEPATH_CACHE_DIR, else $XDG_CACHE_HOME/wavepath, else ~/.cache/wavepath.
+std::string program_cache_directory();
+
+// Builds the concatenation of `files` (names in kernel_directory()) as one
+// program for `device`, with -I for the kernel directory, -cl-std=CL1.2 and
+// `options`. The cache key hashes the platform, device, driver, options, the
+// names in `files` and every file under the kernel directory (the headers included).
+// On a cache miss, announces the compilation on `progress` before it starts.
+BuiltProgram build_program(const cl::Context& context, const DeviceInfo& device, const std::vector<std::string>& files,
+                           const std::string& options, const Progress& progress = {});
+
+}  // namespace wp

@@ -1,0 +1,136 @@
+#include "opencl/scene_upload.h"
+
+#include <cmath>
+#include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
+
+#include "core/shared_math.h"
+
+namespace wp {
+namespace {
+using namespace device_layout;
+
+static_assert(sizeof(SceneHeader) == 24 * 4, "SceneHeader must match its OpenCL C layout");
+static_assert(sizeof(DeviceSphere) == 5 * 4, "DeviceSphere must match its OpenCL C layout");
+static_assert(sizeof(DevicePlane) == 7 * 4, "DevicePlane must match its OpenCL C layout");
+static_assert(sizeof(DeviceQuad) == 16 * 4, "DeviceQuad must match its OpenCL C layout");
+static_assert(sizeof(DeviceMaterial) == 12 * 4, "DeviceMaterial must match its OpenCL C layout");
+static_assert(sizeof(DeviceLight) == 4, "DeviceLight must match its OpenCL C layout");
+
+void put(float (&out)[3], const glm::dvec3& v) {
+    out[0] = static_cast<float>(v.x);
+    out[1] = static_cast<float>(v.y);
+    out[2] = static_cast<float>(v.z);
+}
+
+std::uint32_t shape_ref(std::uint32_t type, int index) { return (type << WP_SHAPE_TYPE_SHIFT) | std::uint32_t(index); }
+
+SceneHeader make_header(const Scene& scene) {
+    SceneHeader h{};
+    const Camera& c = scene.camera;
+    glm::dvec3 forward = glm::normalize(c.look_at - c.position);
+    glm::dvec3 right = glm::normalize(glm::cross(forward, c.up));
+    glm::dvec3 up = glm::cross(right, forward);
+    put(h.camera_right, right);
+    put(h.camera_up, up);
+    put(h.camera_forward, forward);
+    h.tan_half_fov_y = static_cast<float>(std::tan(glm::radians(c.fov_y_degrees) / 2.0));
+    h.aspect = static_cast<float>(static_cast<double>(c.width) / static_cast<double>(c.height));
+    put(h.background, scene.background);
+    h.width = c.width;
+    h.height = c.height;
+    h.spp = scene.render.spp;
+    h.max_depth = scene.render.max_depth;
+    h.rr_depth = scene.render.rr_depth;
+    h.seed = scene.render.seed;
+    h.sphere_count = scene.spheres.size();
+    h.plane_count = scene.planes.size();
+    h.quad_count = scene.quads.size();
+    h.light_count = scene.lights.size();
+    return h;
+}
+
+std::uint32_t material_type(MaterialType type) {
+    switch (type) {
+        case MaterialType::Diffuse:
+            return WP_MATERIAL_DIFFUSE;
+        case MaterialType::Mirror:
+            return WP_MATERIAL_MIRROR;
+        case MaterialType::Glass:
+            return WP_MATERIAL_GLASS;
+        case MaterialType::Emitter:
+            return WP_MATERIAL_EMITTER;
+    }
+    return WP_MATERIAL_DIFFUSE;
+}
+
+template <class T>
+cl::Buffer upload(const cl::Context& context, std::vector<T> items) {
+    if (items.empty()) items.resize(1);
+    return cl::Buffer(context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(T) * items.size(), items.data());
+}
+
+}  // namespace
+
+SceneLayout flatten_scene(const Scene& scene) {
+    SceneLayout layout;
+    layout.header = make_header(scene);
+    for (const Sphere& s : scene.spheres) {
+        DeviceSphere d{};
+        put(d.center, s.center);
+        d.radius = static_cast<float>(s.radius);
+        d.material = s.material;
+        layout.spheres.push_back(d);
+    }
+    for (const Plane& p : scene.planes) {
+        DevicePlane d{};
+        put(d.point, p.point);
+        put(d.normal, p.normal);
+        d.material = p.material;
+        layout.planes.push_back(d);
+    }
+    for (const Quad& q : scene.quads) {
+        DeviceQuad d{};
+        put(d.corner, q.corner);
+        put(d.edge1, q.edge1);
+        put(d.edge2, q.edge2);
+        // In float, from the float edges, exactly as a kernel would compute it.
+        using M = SharedMath<float>;
+        M::QuadPlane plane = M::quad_plane(glm::vec3(glm::dvec3(q.edge1)), glm::vec3(glm::dvec3(q.edge2)));
+        put(d.plane_normal, glm::dvec3(plane.normal));
+        put(d.plane_w, glm::dvec3(plane.w));
+        d.material = q.material;
+        layout.quads.push_back(d);
+    }
+    for (const Material& m : scene.materials) {
+        DeviceMaterial d{};
+        put(d.albedo, m.albedo);
+        put(d.reflectance, m.reflectance);
+        put(d.emission, m.emission);
+        d.ior = static_cast<float>(m.ior);
+        d.type = material_type(m.type);
+        d.two_sided = m.two_sided ? 1u : 0u;
+        layout.materials.push_back(d);
+    }
+    for (const Light& light : scene.lights)
+        layout.lights.push_back(
+            {shape_ref(light.shape == ShapeType::Sphere ? WP_SHAPE_SPHERE : WP_SHAPE_QUAD, light.index)});
+    for (double c : scene.light_cdf) layout.light_cdf.push_back(static_cast<float>(c));
+    return layout;
+}
+
+DeviceScene::DeviceScene(const cl::Context& context, const SceneLayout& layout) {
+    buffers_[arg::Scene::scene] = upload(context, std::vector<SceneHeader>{layout.header});
+    buffers_[arg::Scene::spheres] = upload(context, layout.spheres);
+    buffers_[arg::Scene::planes] = upload(context, layout.planes);
+    buffers_[arg::Scene::quads] = upload(context, layout.quads);
+    buffers_[arg::Scene::materials] = upload(context, layout.materials);
+    buffers_[arg::Scene::lights] = upload(context, layout.lights);
+    buffers_[arg::Scene::light_cdf] = upload(context, layout.light_cdf);
+}
+
+void DeviceScene::bind(cl::Kernel& kernel) const {
+    for (cl_uint index = 0; index < buffers_.size(); ++index) kernel.setArg(index, buffers_[index]);
+}
+
+}  // namespace wp

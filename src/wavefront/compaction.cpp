@@ -1,0 +1,54 @@
+#include "wavefront/compaction.h"
+
+#include <stdexcept>
+
+#include "interface/queues.h"
+#include "opencl/kernel_arguments.h"
+
+namespace wp {
+
+std::string compaction_build_option(Compaction compaction) {
+    return compaction == Compaction::Scan ? "-DWP_COMPACT_SCAN" : "";
+}
+
+std::string lanes_problem(unsigned lanes, Compaction compaction) {
+    if (lanes != 1 && lanes != 8) return "wavefront lanes must be 1 or 8, not " + std::to_string(lanes);
+    if (lanes != 1 && compaction != Compaction::Scan)
+        return "--lanes " + std::to_string(lanes) + " needs --compaction scan (atomic pushes are per work item)";
+    return "";
+}
+
+unsigned resolve_lanes(unsigned requested, Compaction compaction, const DeviceInfo& device) {
+    unsigned lanes = requested != 0 ? requested : device.type == "CPU" && compaction == Compaction::Scan ? 8u : 1u;
+    if (std::string problem = lanes_problem(lanes, compaction); !problem.empty()) throw std::invalid_argument(problem);
+    return lanes;
+}
+
+ScanCompaction::ScanCompaction(const cl::Context& context, const cl::Program& program, const cl::Buffer& queues,
+                               const cl::Buffer& counts, std::size_t capacity)
+    : blocks_(divide_rounding_up(capacity, WP_COMPACT_BLOCK)),
+      block_counts_(context, CL_MEM_READ_WRITE, sizeof(std::uint32_t) * WP_QUEUE_COUNT * blocks_),
+      count_(program, "compact_count"),
+      scan_(program, "compact_scan"),
+      write_(program, "compact_write") {
+    count_.setArg(arg::CompactCount::queues, queues);
+    count_.setArg(arg::CompactCount::capacity, cl_uint(capacity));
+    count_.setArg(arg::CompactCount::block_counts, block_counts_);
+    scan_.setArg(arg::CompactScan::capacity, cl_uint(capacity));
+    scan_.setArg(arg::CompactScan::block_counts, block_counts_);
+    scan_.setArg(arg::CompactScan::counts, counts);
+    write_.setArg(arg::CompactWrite::queues, queues);
+    write_.setArg(arg::CompactWrite::capacity, cl_uint(capacity));
+    write_.setArg(arg::CompactWrite::block_counts, block_counts_);
+}
+
+void ScanCompaction::compact(KernelLauncher& launcher, std::uint32_t queue_mask) {
+    count_.setArg(arg::CompactCount::queue_mask, cl_uint(queue_mask));
+    scan_.setArg(arg::CompactScan::queue_mask, cl_uint(queue_mask));
+    write_.setArg(arg::CompactWrite::queue_mask, cl_uint(queue_mask));
+    launcher.launch(count_, "compact_count", blocks_, 0);
+    launcher.launch(scan_, "compact_scan", WP_QUEUE_COUNT, 0);
+    launcher.launch(write_, "compact_write", blocks_, 0);
+}
+
+}  // namespace wp

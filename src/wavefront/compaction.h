@@ -1,0 +1,51 @@
+// How the stage kernels fill the queues of the stages after them, decided
+// once here: the default, the lanes it allows, and the prefix-sum kernels.
+#pragma once
+
+#include <CL/opencl.hpp>
+#include <cstdint>
+#include <string>
+
+#include "opencl/device.h"
+#include "opencl/launcher.h"
+
+namespace wp {
+
+enum class Compaction {
+    Atomic,  // a push through a global atomic counter, aggregated per work group (queue order not stable)
+    Scan,    // marks per slot, then a prefix sum over them (kernels/compact.cl): ascending slot order
+};
+// Scan: the stages then read the path state in memory order, and may run 8
+// lanes (room 512x512 4 spp at 2^16 paths: 1.40-1.52 s a frame against
+// 2.17-2.27 s with atomic pushes, bench/results).
+inline constexpr Compaction kDefaultCompaction = Compaction::Scan;
+
+// "-DWP_COMPACT_SCAN" for scan compaction, "" for atomic.
+std::string compaction_build_option(Compaction compaction);
+
+// Why `lanes` paths per work item cannot run with `compaction` (atomic pushes
+// are per work item, so only one lane), or "" when they can.
+std::string lanes_problem(unsigned lanes, Compaction compaction);
+
+// The lanes the stage kernels use: `requested` (1 or 8), or when 0, 8 on CPU
+// devices with scan compaction (a work item's vector code is the only SIMD
+// PoCL gives, kernels/shared/prelude.h) and 1 elsewhere (GPUs run work items
+// in SIMD already). Throws std::invalid_argument with lanes_problem's words.
+unsigned resolve_lanes(unsigned requested, Compaction compaction, const DeviceInfo& device);
+
+// The three kernels of kernels/compact.cl over one queues buffer: each queue
+// selected by a mask is rebuilt from its marks, in ascending slot order.
+class ScanCompaction {
+ public:
+    ScanCompaction(const cl::Context& context, const cl::Program& program, const cl::Buffer& queues,
+                   const cl::Buffer& counts, std::size_t capacity);
+    // Rebuilds queue q (and sets its length) for every bit q of queue_mask.
+    void compact(KernelLauncher& launcher, std::uint32_t queue_mask);
+
+ private:
+    std::size_t blocks_;
+    cl::Buffer block_counts_;
+    cl::Kernel count_, scan_, write_;
+};
+
+}  // namespace wp

@@ -1,0 +1,58 @@
+#include "wavefront/profiling.h"
+
+#include <algorithm>
+#include <limits>
+#include <numeric>
+#include <vector>
+
+#include "interface/queues.h"
+#include "opencl/kernel_arguments.h"
+
+namespace wp {
+
+RayDepthCounter::RayDepthCounter(const cl::Program& program, const cl::Buffer& queues, const cl::Buffer& counts,
+                                 std::size_t capacity, const cl::Buffer& depth)
+    : kernel_(program, "count_depths"), counts_(counts), capacity_(capacity) {
+    kernel_.setArg(arg::CountDepths::queues, queues);
+    kernel_.setArg(arg::CountDepths::counts, counts);
+    kernel_.setArg(arg::CountDepths::capacity, cl_uint(capacity));
+    kernel_.setArg(arg::CountDepths::depth, depth);
+}
+
+void RayDepthCounter::count(KernelLauncher& launcher, std::uint32_t queue, std::uint32_t histogram_offset) {
+    kernel_.setArg(arg::CountDepths::queue, cl_uint(queue));
+    kernel_.setArg(arg::CountDepths::histogram_offset, cl_uint(histogram_offset));
+    launcher.launch(kernel_, "count_depths", capacity_);
+}
+
+void RayDepthCounter::read(cl::CommandQueue& queue, RenderProfile& profile) const {
+    std::vector<std::uint32_t> histograms(2 * WP_PROFILE_DEPTHS);
+    queue.enqueueReadBuffer(counts_, CL_TRUE, WP_PROFILE_EXTENSION_BY_DEPTH * sizeof(std::uint32_t),
+                            histograms.size() * sizeof(std::uint32_t), histograms.data());
+    profile.extension_rays_by_depth.assign(histograms.begin(), histograms.begin() + WP_PROFILE_DEPTHS);
+    profile.shadow_rays_by_depth.assign(histograms.begin() + WP_PROFILE_DEPTHS, histograms.end());
+}
+
+IntersectBound measure_intersect_bound(const cl::Context& context, cl::CommandQueue& queue, const cl::Program& program,
+                                       const DeviceScene& scene, unsigned lanes, std::uint32_t rays) {
+    cl::Buffer hit_t(context, CL_MEM_WRITE_ONLY, sizeof(float) * rays);
+    cl::Kernel kernel(program, "intersect_bound");
+    scene.bind(kernel);
+    kernel.setArg(arg::IntersectBound::ray_count, cl_uint(rays));
+    kernel.setArg(arg::IntersectBound::hit_t, hit_t);
+    std::size_t items = round_up(divide_rounding_up(rays, lanes), WP_GROUP_SIZE);
+    // Launch 0 is not timed: PoCL compiles the kernel for its launch geometry then.
+    double best_s = std::numeric_limits<double>::infinity();
+    for (int launch = 0; launch <= 3; ++launch) {
+        cl::Event event;
+        queue.enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(items), cl::NDRange(WP_GROUP_SIZE), nullptr,
+                                   &event);
+        event.wait();
+        if (launch > 0) best_s = std::min(best_s, event_seconds(event));
+    }
+    std::vector<float> distances(rays);
+    queue.enqueueReadBuffer(hit_t, CL_TRUE, 0, sizeof(float) * rays, distances.data());
+    return {double(rays) / best_s, std::accumulate(distances.begin(), distances.end(), 0.0)};
+}
+
+}  // namespace wp

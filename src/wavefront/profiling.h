@@ -1,0 +1,43 @@
+// What --profile measures of a wavefront render besides kernel times: rays
+// per path depth (kernels/count_depths.cl) and the roofline of the tracing
+// stages (kernels/intersect_bound.cl).
+#pragma once
+
+#include <CL/opencl.hpp>
+#include <cstdint>
+
+#include "opencl/launcher.h"
+#include "opencl/profile.h"
+#include "opencl/scene_upload.h"
+
+namespace wp {
+
+// Counts the depths of the paths in a queue into a histogram among the counters.
+class RayDepthCounter {
+ public:
+    RayDepthCounter(const cl::Program& program, const cl::Buffer& queues, const cl::Buffer& counts,
+                    std::size_t capacity, const cl::Buffer& depth);
+    // Counts queue `queue` (RAY before intersect, SHADOW before intersect_shadow)
+    // into the histogram at `histogram_offset` of the counters.
+    void count(KernelLauncher& launcher, std::uint32_t queue, std::uint32_t histogram_offset);
+    // Extension and shadow rays per depth, counted so far.
+    void read(cl::CommandQueue& queue, RenderProfile& profile) const;
+
+ private:
+    cl::Kernel kernel_;
+    cl::Buffer counts_;
+    std::size_t capacity_;
+};
+
+struct IntersectBound {
+    double rays_per_s = 0.0;        // rays over the best of three launches' device time
+    double hit_distance_sum = 0.0;  // over the rays that hit something: what the kernel computed, for tests
+};
+
+// Traces `rays` camera rays through pixel centres with nothing but the
+// ray-primitive tests, `lanes` per work item: the bound the intersect
+// stages' rays/s is measured against. `queue` must be a profiling queue.
+IntersectBound measure_intersect_bound(const cl::Context& context, cl::CommandQueue& queue, const cl::Program& program,
+                                       const DeviceScene& scene, unsigned lanes, std::uint32_t rays);
+
+}  // namespace wp

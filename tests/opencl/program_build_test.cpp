@@ -1,0 +1,205 @@
+// Device listing, the program binary cache, build errors that name the file
+// and line, scene specialisation (no dielectric code without glass), and
+// kernel headers that each include what they use.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+
+#include "opencl/device.h"
+#include "opencl/kernel_options.h"
+#include "opencl/program_cache.h"
+#include "wavefront/pipeline.h"
+
+namespace wp {
+namespace {
+namespace fs = std::filesystem;
+
+// A fresh directory under the system temp dir, removed afterwards.
+struct TempDir {
+    fs::path path;
+    TempDir() {
+        path = fs::temp_directory_path() /
+               ("wavepath-test-" + std::to_string(::getpid()) + "-" + std::to_string(counter()++));
+        fs::remove_all(path);
+        fs::create_directories(path);
+    }
+    ~TempDir() { fs::remove_all(path); }
+    static int& counter() {
+        static int n = 0;
+        return n;
+    }
+};
+
+// Sets an environment variable for the scope, restoring the old value.
+struct ScopedEnv {
+    std::string name, old;
+    bool had;
+    ScopedEnv(const std::string& n, const std::string& value) : name(n) {
+        const char* v = std::getenv(n.c_str());
+        had = v != nullptr;
+        if (had) old = v;
+        ::setenv(n.c_str(), value.c_str(), 1);
+    }
+    ~ScopedEnv() { had ? (void)::setenv(name.c_str(), old.c_str(), 1) : (void)::unsetenv(name.c_str()); }
+};
+
+FeatureSet diffuse_spheres() {
+    FeatureSet f;
+    f.spheres = f.diffuse = true;
+    return f;
+}
+
+BuiltProgram build_wavefront(const DeviceInfo& device, const FeatureSet& features) {
+    cl::Context context(device.device);
+    return build_program(context, device, wavefront_kernel_files(),
+                         kernel_build_options(features, device.fp64, Hemisphere::Cosine));
+}
+
+TEST(Devices, ListedWithTheirProperties) {
+    std::vector<DeviceInfo> devices = list_devices();
+    ASSERT_FALSE(devices.empty());
+    for (const DeviceInfo& d : devices) {
+        EXPECT_FALSE(d.name.empty());
+        EXPECT_GT(d.compute_units, 0u);
+        EXPECT_GT(d.global_memory_bytes, 0u);
+        EXPECT_NE(d.opencl_c_version.find("OpenCL C"), std::string::npos);
+    }
+    std::string table = describe_devices(devices);
+    EXPECT_NE(table.find(devices[0].name), std::string::npos);
+    EXPECT_NE(table.find("compute units"), std::string::npos);
+}
+
+TEST(Devices, ChosenByIndexOrNameAndBadChoicesNamed) {
+    std::vector<DeviceInfo> devices = list_devices();
+    EXPECT_EQ(choose_device("0").name, devices[0].name);
+    EXPECT_EQ(choose_device(devices[0].name.substr(0, 4)).name, devices[0].name);
+    EXPECT_THROW(choose_device(std::to_string(devices.size())), DeviceError);
+    try {
+        choose_device("no-such-device-xyz");
+        FAIL() << "expected DeviceError";
+    } catch (const DeviceError& e) {
+        EXPECT_NE(std::string(e.what()).find("no-such-device-xyz"), std::string::npos);
+    }
+}
+
+TEST(ProgramCache, MissThenHitKeyedByOptionsAndSource) {
+    TempDir cache;
+    ScopedEnv env("WAVEPATH_CACHE_DIR", cache.path.string());
+    DeviceInfo device = choose_device("");
+    BuiltProgram first = build_wavefront(device, diffuse_spheres());
+    EXPECT_FALSE(first.cache_hit);
+    EXPECT_TRUE(fs::exists(first.cache_file));
+    BuiltProgram second = build_wavefront(device, diffuse_spheres());
+    EXPECT_TRUE(second.cache_hit);
+    EXPECT_EQ(second.cache_file, first.cache_file);
+    EXPECT_LT(second.build_seconds, first.build_seconds);
+    std::printf("build: %.2f s from source, %.3f s from the cache\n", first.build_seconds, second.build_seconds);
+
+    FeatureSet with_glass = diffuse_spheres();
+    with_glass.glass = true;
+    BuiltProgram other = build_wavefront(device, with_glass);
+    EXPECT_FALSE(other.cache_hit);
+    EXPECT_NE(other.cache_file, first.cache_file);
+}
+
+// Copies kernels/ into a temp dir (for WAVEPATH_KERNEL_DIR) and lets the test edit one file.
+fs::path copy_kernels(const fs::path& to) {
+    fs::copy(WAVEPATH_SOURCE_DIR "/kernels", to, fs::copy_options::recursive);
+    return to;
+}
+
+void replace_in_file(const fs::path& file, const std::string& from, const std::string& to) {
+    std::ifstream in(file);
+    std::string text((std::istreambuf_iterator<char>(in)), {});
+    std::size_t at = text.find(from);
+    ASSERT_NE(at, std::string::npos) << from;
+    text.replace(at, from.size(), to);
+    std::ofstream(file) << text;
+}
+
+int line_of(const fs::path& file, const std::string& needle) {
+    std::ifstream in(file);
+    std::string line;
+    for (int n = 1; std::getline(in, line); ++n)
+        if (line.find(needle) != std::string::npos) return n;
+    return -1;
+}
+
+TEST(ProgramBuild, BrokenKernelNamesFileAndLine) {
+    TempDir cache, kernels;
+    ScopedEnv cache_env("WAVEPATH_CACHE_DIR", cache.path.string());
+    fs::path dir = copy_kernels(kernels.path / "kernels");
+    ScopedEnv kernel_env("WAVEPATH_KERNEL_DIR", dir.string());
+    replace_in_file(dir / "scatter.cl", "uint new_depth = bounce + 1u,", "uint new_depth = bounce + undeclared_thing,");
+    int line = line_of(dir / "scatter.cl", "undeclared_thing");
+    try {
+        build_wavefront(choose_device(""), diffuse_spheres());
+        FAIL() << "expected KernelBuildError";
+    } catch (const KernelBuildError& e) {
+        std::string expected = (dir / "scatter.cl").string() + ":" + std::to_string(line) + ": ";
+        EXPECT_NE(std::string(e.what()).find(expected), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("undeclared_thing"), std::string::npos) << e.what();
+        EXPECT_NE(e.log().find("undeclared_thing"), std::string::npos);
+    }
+}
+
+// Without glass the kernels are built without WP_HAS_GLASS, and
+// kernels/device/path_vertex.h then poisons the dielectric functions: the
+// build succeeding proves no dielectric code is compiled in. The poison is
+// checked too: the same program with the glass branch forced in fails.
+TEST(ProgramBuild, SceneWithoutGlassBuildsWithoutDielectricCode) {
+    TempDir cache, kernels;
+    ScopedEnv cache_env("WAVEPATH_CACHE_DIR", cache.path.string());
+    FeatureSet no_glass = diffuse_spheres();
+    no_glass.mirror = true;
+    std::string options = kernel_build_options(no_glass, false, Hemisphere::Cosine);
+    EXPECT_EQ(options.find("GLASS"), std::string::npos) << options;
+    DeviceInfo device = choose_device("");
+    EXPECT_NO_THROW(build_wavefront(device, no_glass));
+
+    fs::path dir = copy_kernels(kernels.path / "kernels");
+    ScopedEnv kernel_env("WAVEPATH_KERNEL_DIR", dir.string());
+    replace_in_file(dir / "device" / "path_vertex.h", "#ifdef WP_HAS_GLASS\n/* Fresnel", "#if 1\n/* Fresnel");
+    try {
+        build_wavefront(device, no_glass);
+        FAIL() << "the glass code compiled without WP_HAS_GLASS";
+    } catch (const KernelBuildError& e) {
+        EXPECT_TRUE(std::regex_search(std::string(e.what()), std::regex("poisoned|fresnel_dielectric"))) << e.what();
+    }
+}
+
+// Every kernel header compiles as the only include of a program, with one
+// lane and with eight, and twice in a row (include guards): each includes
+// what it uses, so no header depends on what an includer happened to include first.
+TEST(ProgramBuild, EveryKernelHeaderCompilesOnItsOwn) {
+    DeviceInfo device = choose_device("");
+    cl::Context context(device.device);
+    int headers = 0;
+    for (const char* folder : {"shared", "interface", "device"}) {
+        for (const fs::directory_entry& entry :
+             fs::directory_iterator(fs::path(WAVEPATH_SOURCE_DIR "/kernels") / folder)) {
+            const std::string include =
+                std::string("#include \"") + folder + "/" + entry.path().filename().string() + "\"\n";
+            for (const char* lanes : {"1", "8"}) {
+                SCOPED_TRACE(include + " with " + lanes + " lanes");
+                cl::Program program(context, include + include);
+                const std::string options =
+                    std::string("-cl-std=CL1.2 -I " WAVEPATH_SOURCE_DIR "/kernels -DWP_LANES=") + lanes +
+                    (lanes[0] == '8' ? " -DWP_COMPACT_SCAN" : "");
+                try {
+                    program.build({device.device}, options.c_str());
+                } catch (const cl::BuildError&) {
+                    ADD_FAILURE() << program.getBuildInfo<CL_PROGRAM_BUILD_LOG>(device.device);
+                }
+            }
+            ++headers;
+        }
+    }
+    EXPECT_GE(headers, 18);
+}
+
+}  // namespace
+}  // namespace wp
