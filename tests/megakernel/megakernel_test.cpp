@@ -38,10 +38,17 @@ TEST(Megakernel, ProfileTimesItsLaunches) {
     MegakernelOptions options;
     options.profile = true;
     RenderResult result = render_megakernel(scene, options, {}, &report);
-    EXPECT_EQ(report.profile.kernel("megakernel").items, result.stats.samples);
+    // Items: the scene's samples, counted here (the renderer sets both the
+    // profile's items and stats.samples from one variable of its own).
+    const std::uint64_t samples = std::uint64_t(scene.camera.width) * scene.camera.height * scene.render.spp;
+    EXPECT_EQ(report.profile.kernel("megakernel").items, samples);
+    EXPECT_EQ(result.stats.samples, samples);
     EXPECT_EQ(report.profile.kernel("megakernel").launches, 1u);
+    EXPECT_EQ(report.profile.kernel("accumulate").launches, 1u);
     EXPECT_GT(report.profile.kernel("megakernel").device_s, 0.0);
-    EXPECT_EQ(report.profile.render_s, result.stats.time_s);
+    // The launches ran inside the timed render: their device times (event
+    // nanoseconds, converted) add up to less than its wall time.
+    EXPECT_LE(report.profile.kernel_s(), report.profile.render_s);
 }
 
 }  // namespace

@@ -11,6 +11,23 @@ namespace {
 
 constexpr int kSize = 32, kSpp = 16, kRegions = 4;
 
+// Same-seed tolerances, a small factor above the figures measured with
+// these seeds (docs/robustness.md), since the renders are deterministic:
+// - scaled or translated room against the unit room: the double reference
+//   renders them identically (measured 0: its rounding differences, ~1e-16,
+//   vanish when the pixels are stored as float), so 1e-9 and 1e-8 allow a
+//   few pixels to round to a neighbouring float (6e-8 each, 1/64 of that
+//   in a region's mean) and nothing else;
+//   the float wavefront measured at most 3.5e-8 for the whole image, 6.8e-7
+//   for a region and 2 of 1024 pixels outside 1e-4, so 2e-7, 3e-6 and 6;
+// - float against double: at most 1.4e-7 for the whole image, 5.7e-6 for a
+//   region and 1 of 1024 pixels outside 1e-3, so 5e-7, 2e-5 and 4.
+// One path that rounding sends elsewhere moves its region by ~1e-3, a
+// fixed-size offset or a 1e-5 bias in any stage far more than these.
+constexpr double kScaleWholeReference = 1e-9, kScaleRegionReference = 1e-8;
+constexpr double kScaleWholeWavefront = 2e-7, kScaleRegionWavefront = 3e-6, kScaleAgreeing = 1.0 - 6.0 / 1024;
+constexpr double kFloatBias = 5e-7, kFloatRegion = 2e-5, kFloatAgreeing = 1.0 - 4.0 / 1024;
+
 struct Extreme {
     const char* name;
     double scale;
@@ -24,20 +41,28 @@ const Extreme kExtremes[] = {
 
 class RoomScale : public ::testing::TestWithParam<Backend> {};
 
-// Independent seeds, so every region's mean difference is zero-mean noise
-// with a measurable standard error (see compare_regions); 16 regions per
-// extreme.
-TEST_P(RoomScale, MatchesTheUnitRoomWithinNoise) {
+// The same seed as the unit room: the scaled and translated rooms are the
+// same scene up to rounding, so they draw the same random numbers and every
+// path takes the same course unless rounding flips one of its decisions.
+// Checked against the unit room: the whole-image mean and every region's
+// mean (4x4 regions) within the tolerances above (relative), and the
+// fraction of pixels whose channels all agree within 1e-4 relative.
+TEST_P(RoomScale, MatchesTheUnitRoom) {
     RenderResult unit = render_on(GetParam(), transformed_room(1.0, {0, 0, 0}, kSize, kSpp, 1));
     for (const Extreme& extreme : kExtremes) {
         SCOPED_TRACE(extreme.name);
         RenderResult moved =
-            render_on(GetParam(), transformed_room(extreme.scale, extreme.translation, kSize, kSpp, 2));
+            render_on(GetParam(), transformed_room(extreme.scale, extreme.translation, kSize, kSpp, 1));
         EXPECT_EQ(moved.stats.nonfinite, 0u);
         RegionComparison c = compare_regions(moved.image, unit.image, kRegions);
-        report_figure(std::string(extreme.name) + " vs unit room (independent seeds)", GetParam(), describe(c));
-        EXPECT_LE(c.worst_z, kSigmaTolerance);
-        EXPECT_LE(std::fabs(c.whole_z), kSigmaTolerance);
+        double agreeing = fraction_within(moved.image, unit.image, 1e-4);
+        report_figure(std::string(extreme.name) + " vs unit room (same seed)", GetParam(),
+                      format("whole image %+.1e, worst region %.1e, pixels within 1e-4: %.4f", c.whole_relative,
+                             c.worst_relative, agreeing));
+        bool reference = GetParam() == Backend::Reference;
+        EXPECT_LE(std::fabs(c.whole_relative), reference ? kScaleWholeReference : kScaleWholeWavefront);
+        EXPECT_LE(c.worst_relative, reference ? kScaleRegionReference : kScaleRegionWavefront);
+        EXPECT_GE(agreeing, kScaleAgreeing);
     }
 }
 
@@ -60,11 +85,10 @@ INSTANTIATE_TEST_SUITE_P(Backends, RoomScale, ::testing::Values(Backend::Referen
                          BackendNames());
 
 // Same seed: the float wavefront retraces the double reference's paths
-// until rounding sends one elsewhere. Reported: the fraction of pixels
-// within 1e-3, and the whole-image bias with its region z; required: no
-// region's mean differs by more than kSigmaTolerance standard errors of the
-// per-pixel differences plus 1e-3 of its level (float's own rounding of a
-// 16-sample sum).
+// until rounding sends one elsewhere. Required: the whole-image mean within
+// kFloatBias relative and every region's mean within kFloatRegion relative
+// of the double image, and at least kFloatAgreeing of the pixels within
+// 1e-3 (the tolerances above).
 TEST(FloatAgainstDouble, BiasAtEachExtreme) {
     std::vector<Extreme> cases = {{"unit room", 1.0, {0, 0, 0}}};
     cases.insert(cases.end(), std::begin(kExtremes), std::end(kExtremes));
@@ -76,10 +100,11 @@ TEST(FloatAgainstDouble, BiasAtEachExtreme) {
         RegionComparison c = compare_regions(flt.image, dbl.image, kRegions);
         double agreeing = fraction_within(flt.image, dbl.image, 1e-3);
         report_figure(std::string(extreme.name) + ": float minus double (same seed)", Backend::Wavefront,
-                      format("whole image %+.2e, worst region z %.2f, pixels within 1e-3: %.3f", c.whole_relative,
-                             c.worst_z, agreeing));
-        EXPECT_LE(std::fabs(c.whole_relative), 1e-3) << "bias";
-        EXPECT_TRUE(c.worst_z <= kSigmaTolerance || c.worst_relative <= 1e-3) << c.worst_z;
+                      format("whole image %+.1e, worst region %.1e, pixels within 1e-3: %.4f", c.whole_relative,
+                             c.worst_relative, agreeing));
+        EXPECT_LE(std::fabs(c.whole_relative), kFloatBias) << "bias";
+        EXPECT_LE(c.worst_relative, kFloatRegion);
+        EXPECT_GE(agreeing, kFloatAgreeing);
     }
 }
 

@@ -2,10 +2,16 @@
 // wavefront size, statistical agreement with the reference, analytic scenes.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <numbers>
+#include <utility>
+#include <vector>
 
 #include "reference/reference_renderer.h"
+#include "support/image_statistics.h"
+#include "support/statistics.h"
 #include "wavefront/wavefront_renderer.h"
 #include "wavefront_test_support.h"
 
@@ -31,33 +37,72 @@ TEST(WavefrontImage, BitIdenticalRunToRunAndAcrossWavefrontSizes) {
     EXPECT_EQ(a.stats.shadow_rays, c.stats.shadow_rays);
 }
 
-// Independent estimates (different seeds) of the same image: the difference
-// of two 8x8-pixel region means has a standard deviation of at most
-// sqrt(s1^2 + s2^2 / n) where s are the pixel standard deviations within the
-// region (which include the image's own variation, so the bound is
-// conservative). |z| < 4.4 per region: a false failure below 1e-5 per region,
-// 2e-4 for the 16 regions.
-TEST(WavefrontImage, RegionMeansAgreeWithReferenceAt64Spp) {
-    RenderResult wavefront = render_wavefront(small_room(64, 1), {}, {});
-    RenderResult reference = render_reference(small_room(64, 2), ReferenceOptions{2, false});
-    const Image& w = wavefront.image;
-    constexpr int kRegion = 8;
-    for (int ry = 0; ry < w.height / kRegion; ++ry)
-        for (int rx = 0; rx < w.width / kRegion; ++rx)
-            for (int c = 0; c < 3; ++c) {
-                double sum[2] = {0, 0}, sum2[2] = {0, 0};
-                for (int y = ry * kRegion; y < (ry + 1) * kRegion; ++y)
-                    for (int x = rx * kRegion; x < (rx + 1) * kRegion; ++x) {
-                        std::size_t i = 3 * (std::size_t(y) * w.width + x) + c;
-                        double v[2] = {w.rgb[i], reference.image.rgb[i]};
-                        for (int k = 0; k < 2; ++k) sum[k] += v[k], sum2[k] += v[k] * v[k];
-                    }
-                double n = kRegion * kRegion, variance = 0;
-                for (int k = 0; k < 2; ++k) variance += (sum2[k] - sum[k] * sum[k] / n) / (n - 1) / n;
-                double difference = sum[0] / n - sum[1] / n;
-                EXPECT_LE(std::fabs(difference), 4.4 * std::sqrt(variance) + 1e-6)
-                    << "region (" << rx << ", " << ry << ") channel " << c;
+// Independent estimates of the same image, 256 spp on each backend as
+// kSeeds renders of 32 spp with seeds of their own (wavefront 1..8,
+// reference 9..16). The standard error of each 8x8-pixel region mean comes
+// from the estimator's own variance: for every pixel, the sample variance
+// of its kSeeds values (each render independent of the others), summed
+// over the region's pixels (independent too) for both backends:
+//   SE^2 = sum_p (s_w,p^2 + s_r,p^2) / kSeeds / n^2.
+// Image structure does not enter it (each pixel is compared with itself
+// across seeds). The same for the whole image per channel. With 64 x 7 x 2
+// degrees of freedom per region's estimate the normal law holds:
+// |z| <= kSigmaTolerance (4.5) rejects a correct pair with probability
+// 6.8e-6 per comparison, < 4e-4 for the 51 (fixed seeds: a passing run
+// passes every time). Measured: worst region |z| 2.3; the whole image's
+// standard error is 0.7% of its level, so a bias of 3% fails.
+TEST(WavefrontImage, RegionMeansAgreeWithReference) {
+    constexpr int kSeeds = 8, kSppPerSeed = 32, kRegion = 8;
+    std::vector<Image> wavefront, reference;
+    for (int k = 0; k < kSeeds; ++k) {
+        wavefront.push_back(render_wavefront(small_room(kSppPerSeed, 1 + k), {}, {}).image);
+        reference.push_back(
+            render_reference(small_room(kSppPerSeed, 1 + kSeeds + k), ReferenceOptions{2, false}).image);
+    }
+    const int width = wavefront[0].width, height = wavefront[0].height;
+    // Per pixel and channel: the mean over seeds and the variance of that mean.
+    auto mean_and_variance = [&](const std::vector<Image>& renders, std::size_t i) {
+        test::RunningMean m;
+        for (const Image& image : renders) m.add(image.rgb[i]);
+        return std::pair{m.mean(), m.standard_error() * m.standard_error()};
+    };
+    // |region mean difference| / its standard error over the pixels [x0, x1) x [y0, y1), channel c.
+    auto z_of = [&](int x0, int x1, int y0, int y1, int c, double& relative_se) {
+        double difference = 0.0, variance = 0.0, level = 0.0, n = double(x1 - x0) * (y1 - y0);
+        for (int y = y0; y < y1; ++y)
+            for (int x = x0; x < x1; ++x) {
+                std::size_t i = 3 * (std::size_t(y) * width + x) + c;
+                auto [w, w_variance] = mean_and_variance(wavefront, i);
+                auto [r, r_variance] = mean_and_variance(reference, i);
+                difference += (w - r) / n;
+                variance += (w_variance + r_variance) / (n * n);
+                level += r / n;
             }
+        double standard_error = std::sqrt(variance);
+        relative_se = standard_error / level;
+        EXPECT_GT(standard_error, 0.0);
+        return std::fabs(difference) / standard_error;
+    };
+    double worst_z = 0.0, largest_relative_se = 0.0, relative_se = 0.0;
+    for (int ry = 0; ry < height / kRegion; ++ry)
+        for (int rx = 0; rx < width / kRegion; ++rx)
+            for (int c = 0; c < 3; ++c) {
+                double z = z_of(rx * kRegion, (rx + 1) * kRegion, ry * kRegion, (ry + 1) * kRegion, c, relative_se);
+                worst_z = std::max(worst_z, z);
+                largest_relative_se = std::max(largest_relative_se, relative_se);
+                EXPECT_LE(z, test::kSigmaTolerance) << "region (" << rx << ", " << ry << ") channel " << c;
+            }
+    double whole_worst_z = 0.0, whole_relative_se = 0.0;
+    for (int c = 0; c < 3; ++c) {
+        double z = z_of(0, width, 0, height, c, relative_se);
+        whole_worst_z = std::max(whole_worst_z, z);
+        whole_relative_se = std::max(whole_relative_se, relative_se);
+        EXPECT_LE(z, test::kSigmaTolerance) << "whole image, channel " << c;
+    }
+    std::printf(
+        "wavefront vs reference at %d spp: 8x8 regions worst |z| %.2f, largest SE %.3f of the level; "
+        "whole image worst |z| %.2f, SE %.4f of the level\n",
+        kSeeds * kSppPerSeed, worst_z, largest_relative_se, whole_worst_z, whole_relative_se);
 }
 
 constexpr const char* kEmissiveSphereInterior = R"({
@@ -134,17 +179,27 @@ double form_factor_below_centre(double half_size, double height) {
 // A diffuse plane lit by a one-sided square light (direct light only):
 // L = rho / pi * E = rho * Le * F. The camera sees a patch about 0.009 wide
 // below the centre, where F differs from its centre value by under 1e-4
-// relative. The image mean is compared within 4.4 standard errors (from the
-// pixel spread; false failure about 1e-5).
+// relative, so every pixel is an independent 64-sample estimate of the same
+// value and the pixels' spread is the estimator's own variance. The light
+// and the floor are grey, so the three channels are one estimate, not
+// three: they must be equal, and only one enters the mean. The mean of the
+// 256 pixels is compared within kSigmaTolerance (4.5) standard errors plus
+// 1e-4 for F's variation: false failure about 1e-5 (t with 255 degrees of
+// freedom; fixed seed).
 TEST(WavefrontAnalytic, PlaneUnderQuadLight) {
     Scene scene = test::scene_from_json(kPlaneUnderQuadLight);
     RenderResult result = render_wavefront(scene, {}, {});
     double expected = 0.6 * 5 * form_factor_below_centre(0.5, 1.0);
-    double sum = 0, sum2 = 0, n = result.image.rgb.size();
-    for (float v : result.image.rgb) sum += v, sum2 += double(v) * v;
-    double mean = sum / n, standard_error = std::sqrt((sum2 / n - mean * mean) / (n - 1));
-    EXPECT_NEAR(mean, expected, 4.4 * standard_error + 1e-4 * expected);
-    EXPECT_GT(standard_error, 0.0);  // next-event estimation over an area light is not exact
+    for (std::size_t p = 0; p < result.image.rgb.size() / 3; ++p) {
+        ASSERT_EQ(result.image.rgb[3 * p + 1], result.image.rgb[3 * p]) << "pixel " << p;
+        ASSERT_EQ(result.image.rgb[3 * p + 2], result.image.rgb[3 * p]) << "pixel " << p;
+    }
+    test::RunningMean mean = test::channel_mean(result.image, 0);
+    ASSERT_EQ(mean.count(), 256u);
+    std::printf("plane under a quad light: mean %.6f, expected %.6f, standard error %.2e (z %+.2f)\n", mean.mean(),
+                expected, mean.standard_error(), (mean.mean() - expected) / mean.standard_error());
+    EXPECT_NEAR(mean.mean(), expected, test::kSigmaTolerance * mean.standard_error() + 1e-4 * expected);
+    EXPECT_GT(mean.standard_error(), 0.0);  // next-event estimation over an area light is not exact
 }
 
 }  // namespace

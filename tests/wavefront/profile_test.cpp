@@ -13,6 +13,7 @@
 
 #include "opencl/device.h"
 #include "reference/path_tracer.h"
+#include "reference/reference_renderer.h"
 #include "wavefront/wavefront_renderer.h"
 #include "wavefront_test_support.h"
 
@@ -23,30 +24,39 @@ std::uint64_t sum(const std::vector<std::uint64_t>& values) {
     return std::accumulate(values.begin(), values.end(), std::uint64_t(0));
 }
 
+// The stage kernels' items against counts from sources independent of the
+// host's queue bookkeeping (IterationRecord, from which fill_profile sums
+// the items): the scalar reference renderer's rays for the same scene
+// (the same random numbers, so the same paths; ImageAgreement checks the
+// paths themselves), the count_depths kernel's histograms (counted on the
+// device from the queues' contents), and the scene's pixels x spp.
 TEST(Profile, KernelItemsMatchTheRaysTheRenderCounted) {
     Scene scene = test::scene_from_file("scenes/test/room_small.json");
     scene.camera.width = scene.camera.height = 32;
     scene.render.spp = 2;
+    const std::uint64_t samples = std::uint64_t(scene.camera.width) * scene.camera.height * scene.render.spp;
     WavefrontOptions options;
     options.wavefront = 512;  // several passes and a regenerating wavefront
     options.profile = true;
     WavefrontReport report;
     RenderResult result = render_wavefront(scene, options, {}, &report);
     RenderProfile& p = report.profile;
+    RenderResult reference = render_reference(scene, ReferenceOptions{2, false});
+    ASSERT_EQ(reference.stats.samples, samples);
 
-    EXPECT_EQ(p.kernel("intersect").items, result.stats.extension_rays);
-    EXPECT_EQ(p.kernel("intersect_shadow").items, result.stats.shadow_rays);
-    EXPECT_EQ(p.kernel("accumulate").items, result.stats.samples);
-    EXPECT_GE(p.kernel("generate").items, result.stats.samples);  // every camera ray took a free slot
+    EXPECT_EQ(p.kernel("intersect").items, reference.stats.extension_rays);
+    EXPECT_EQ(p.kernel("intersect_shadow").items, reference.stats.shadow_rays);
+    EXPECT_EQ(p.kernel("accumulate").items, samples);
+    EXPECT_GE(p.kernel("generate").items, samples);  // every camera ray took a free slot
     // Every hit is shaded; those that did not end there scatter.
     EXPECT_LE(p.kernel("scatter").items, p.kernel("shade_direct").items);
     EXPECT_LE(p.kernel("shade_direct").items, p.kernel("intersect").items);
 
-    // The kernels' own per-depth counts add up to the same rays; depth 0 is the camera rays.
-    EXPECT_EQ(sum(p.extension_rays_by_depth), result.stats.extension_rays);
-    EXPECT_EQ(sum(p.shadow_rays_by_depth), result.stats.shadow_rays);
+    // The kernels' own per-depth counts add up to the reference's rays; depth 0 is the camera rays.
+    EXPECT_EQ(sum(p.extension_rays_by_depth), reference.stats.extension_rays);
+    EXPECT_EQ(sum(p.shadow_rays_by_depth), reference.stats.shadow_rays);
     ASSERT_FALSE(p.extension_rays_by_depth.empty());
-    EXPECT_EQ(p.extension_rays_by_depth[0], result.stats.samples);
+    EXPECT_EQ(p.extension_rays_by_depth[0], samples);
     for (std::size_t d = 1; d < p.extension_rays_by_depth.size(); ++d)
         EXPECT_LE(p.extension_rays_by_depth[d], p.extension_rays_by_depth[d - 1]) << "depth " << d;
 
@@ -55,10 +65,12 @@ TEST(Profile, KernelItemsMatchTheRaysTheRenderCounted) {
         EXPECT_GT(p.kernel(stage).device_s, 0.0) << stage;
     }
     EXPECT_EQ(p.iterations, report.iterations.size());
-    EXPECT_EQ(p.kernel("accumulate").launches,
-              (result.stats.samples + report.pass_capacity - 1) / report.pass_capacity);
-    EXPECT_GT(p.render_s, 0.0);
-    EXPECT_EQ(p.render_s, result.stats.time_s);
+    EXPECT_EQ(p.kernel("accumulate").launches, (samples + report.pass_capacity - 1) / report.pass_capacity);
+    // The kernels ran one after another inside the timed render, so their
+    // device times (event nanoseconds, converted) add up to less than its
+    // wall time: a wrong unit, or a render time that left sampling out, fails.
+    EXPECT_GT(p.kernel_s(), 0.0);
+    EXPECT_LE(p.kernel_s(), p.render_s);
     EXPECT_GT(p.intersect_bound_rays_per_s, 0.0);
     EXPECT_TRUE(std::isfinite(p.intersect_bound_rays_per_s));
 }
