@@ -1,7 +1,13 @@
 /* Adds a drained pass into the film: one work item per pixel sums that
  * pixel's pass entries in sample order, in double (or compensated float
  * where the device lacks fp64), exactly as the reference sums its samples.
- * No atomics: the image does not depend on scheduling or wavefront size. */
+ * No atomics: the image does not depend on scheduling or wavefront size.
+ *
+ * The compensated float film (Kahan summation) holds each sum times
+ * film_scale, a power of two at most 1/spp set by the host: the scaling is
+ * exact, and a sum of spp finite floats then stays finite (each entry is at
+ * most FLT_MAX), where an unscaled sum could overflow to Inf and Kahan's
+ * correction then turn it into NaN. */
 #include "device/parameters.h"
 #include "interface/kernel_parameters.h"
 
@@ -27,7 +33,7 @@ __kernel void accumulate(WP_PARAMETERS(WP_ACCUMULATE_PARAMETERS)) {
 #ifdef WP_FILM_DOUBLE
             sum += (film_real)pass_radiance[3u * item + c];
 #else
-            film_real y = pass_radiance[3u * item + c] - compensation;
+            film_real y = pass_radiance[3u * item + c] * film_scale - compensation;
             film_real t = sum + y;
             compensation = (t - sum) - y;
             sum = t;

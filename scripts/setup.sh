@@ -14,8 +14,9 @@ RENDER_PACKAGES=(
   libglm-dev libopenimageio-dev nlohmann-json3-dev libcli11-dev
 )
 # What the tests and the benchmark add: GoogleTest (whose CMake config also
-# loads GoogleMock's), python3-pip for the benchmark's plots.
-TEST_PACKAGES=(libgtest-dev libgmock-dev python3 python3-pip)
+# loads GoogleMock's), clang-format for the format check, python3-pip for the
+# benchmark's plots.
+TEST_PACKAGES=(libgtest-dev libgmock-dev clang-format python3 python3-pip)
 
 mode=${1:-test}
 case "$mode" in

@@ -45,11 +45,13 @@
     NEXT(uint, ray_count)                          \
     NEXT(__global float *, hit_t)
 
-/* film_real: double, or float for the compensated film (accumulate.cl). */
+/* film_real: double, or float for the compensated film (accumulate.cl),
+ * which holds its sums times film_scale. */
 #define WP_ACCUMULATE_PARAMETERS(FIRST, NEXT)   \
     FIRST(ulong, pass_start)                    \
     NEXT(uint, pass_size)                       \
     NEXT(uint, pixel_count)                     \
+    NEXT(float, film_scale)                     \
     NEXT(__global const float *, pass_radiance) \
     NEXT(__global film_real *, film)
 

@@ -46,7 +46,7 @@ RenderResult render_megakernel(const Scene& scene, const MegakernelOptions& opti
     cl::Buffer pass_radiance(context, CL_MEM_READ_WRITE, sizeof(float) * 3 * pass_capacity);
     cl::Buffer counts(context, CL_MEM_READ_WRITE, sizeof(std::uint32_t) * WP_COUNTS_SIZE);
     queue.enqueueFillBuffer(counts, std::uint32_t(0), 0, sizeof(std::uint32_t) * WP_COUNTS_SIZE);
-    Film film(context, queue, program.program, pixel_count, device.fp64);
+    Film film(context, queue, program.program, pixel_count, scene.render.spp, device.fp64);
 
     cl::Kernel megakernel(program.program, "megakernel");
     device_scene.bind(megakernel);

@@ -15,9 +15,10 @@ namespace wp {
 
 class Film {
  public:
-    // `program` holds accumulate.cl, built with -DWP_FILM_DOUBLE exactly when `film_double`.
+    // `program` holds accumulate.cl, built with -DWP_FILM_DOUBLE exactly when
+    // `film_double`; each pixel will get `spp` samples.
     Film(const cl::Context& context, cl::CommandQueue& queue, const cl::Program& program, std::size_t pixel_count,
-         bool film_double);
+         int spp, bool film_double);
 
     // Adds the pass [pass_start, pass_start + pass_size) from its entries (3 floats each).
     void accumulate(KernelLauncher& launcher, std::uint64_t pass_start, std::uint32_t pass_size,
@@ -28,6 +29,7 @@ class Film {
  private:
     std::size_t pixel_count_;
     bool double_;
+    double scale_;     // what the film's sums are multiplied by (compensated float: a power of two <= 1/spp)
     cl::Buffer sums_;  // 3 per pixel, then (compensated float only) 3 compensations per pixel
     cl::Kernel accumulate_;
 };

@@ -1,4 +1,4 @@
-// The reference path tracer: the estimator of HELPERS.md, one camera sample
+// The reference path tracer: the estimator of docs/architecture.md ("Conventions"), one camera sample
 // at a time, in plain scalar code over ReferenceScene<Real>. Every random
 // number comes from rng_uniform(seed, pixel, sample, bounce, dimension), so a
 // sample's path depends on nothing but those five numbers.

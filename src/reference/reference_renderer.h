@@ -1,5 +1,6 @@
 // The scalar reference renderer: plain C++ on the CPU, float or double,
-// computing exactly the estimator the OpenCL kernels compute (HELPERS.md).
+// computing exactly the estimator the OpenCL kernels compute
+// (docs/architecture.md, "Conventions").
 // It validates the wavefront backend, path for path.
 #pragma once
 

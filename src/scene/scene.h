@@ -3,6 +3,7 @@
 // float kernels keep full precision near the viewer wherever the scene sits.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <glm/vec3.hpp>
 #include <stdexcept>
@@ -65,20 +66,32 @@ struct Quad {
     int material = 0;
 };
 
-enum class ShapeType { Sphere, Plane, Quad };
+// A triangle mesh from a file (docs/scene-format.md, "mesh"), in the scene's
+// camera-relative world space: transformed and rebased in double at load.
+struct Mesh {
+    std::string file;                   // as the scene names it, for messages
+    std::vector<glm::dvec3> positions;  // finite
+    std::vector<glm::dvec3> normals;    // one per position, unit length; empty: face normals only
+    std::vector<glm::uvec3> triangles;  // indices into positions, none of zero area; the front is
+                                        // the side of (p1 - p0) x (p2 - p0) (counter-clockwise)
+    int material = 0;
+    std::size_t degenerate_dropped = 0;  // zero-area triangles of the file left out
+};
 
-// An emitting sphere or quad; planes cannot emit (infinite power).
+enum class ShapeType { Sphere, Plane, Quad, Mesh };
+
+// An emitting sphere, quad or mesh; planes cannot emit (infinite power).
 struct Light {
     ShapeType shape = ShapeType::Quad;
-    int index = 0;       // into Scene::spheres or Scene::quads
+    int index = 0;       // into Scene::spheres, Scene::quads or Scene::meshes
     double power = 0.0;  // pi * luminance(emission) * area * (two_sided ? 2 : 1)
 };
 
 // Which features occur, so kernels and path state can leave the rest out.
 struct FeatureSet {
-    bool spheres = false, planes = false, quads = false;
+    bool spheres = false, planes = false, quads = false, meshes = false;
     bool diffuse = false, mirror = false, glass = false, emitter_material = false;
-    bool sphere_lights = false, quad_lights = false;
+    bool sphere_lights = false, quad_lights = false, mesh_lights = false;
     bool background = false;  // a non-black background
     bool nee = false;         // next-event estimation runs: render.nee is on and the scene has a light
 };
@@ -93,6 +106,7 @@ struct Scene {
     std::vector<Sphere> spheres;
     std::vector<Plane> planes;
     std::vector<Quad> quads;
+    std::vector<Mesh> meshes;
     std::vector<Light> lights;
     std::vector<double> light_cdf;  // cumulative selection probability, proportional to power; last = 1
 

@@ -8,9 +8,13 @@
 namespace wp {
 namespace {
 
-std::string program_options(const Scene& scene, const DeviceInfo& device, const FeatureSet& kernel_features,
+bool film_double(const DeviceInfo& device, const PipelineOptions& options) {
+    return device.fp64 && !options.float_film;
+}
+
+std::string program_options(const Scene& scene, bool film_double, const FeatureSet& kernel_features,
                             Compaction compaction, unsigned lanes) {
-    return kernel_build_options(kernel_features, device.fp64, scene.render.hemisphere) + shape_count_options(scene) +
+    return kernel_build_options(kernel_features, film_double, scene.render.hemisphere) + shape_count_options(scene) +
            " " + compaction_build_option(compaction) + " -DWP_LANES=" + std::to_string(lanes);
 }
 
@@ -31,13 +35,15 @@ Pipeline::Pipeline(const Scene& scene, const DeviceInfo& device, std::size_t cap
       context_(device.device),
       queue_(context_, device.device, options.profile ? cl_command_queue_properties(CL_QUEUE_PROFILING_ENABLE) : 0),
       launcher_(queue_, options.profile),
-      program_(build_program(context_, device, wavefront_kernel_files(),
-                             program_options(scene, device, kernel_features, options.compaction, lanes_),
-                             options.progress)),
+      program_(build_program(
+          context_, device, wavefront_kernel_files(),
+          program_options(scene, film_double(device, options), kernel_features, options.compaction, lanes_),
+          options.progress)),
       scene_(context_, flatten_scene(scene)),
       state_(context_, capacity, kernel_features),
       queues_(context_, queue_, program_.program, capacity, options.compaction),
-      film_(context_, queue_, program_.program, std::size_t(scene.camera.width) * scene.camera.height, device.fp64),
+      film_(context_, queue_, program_.program, std::size_t(scene.camera.width) * scene.camera.height, scene.render.spp,
+            film_double(device, options)),
       pass_radiance_(context_, CL_MEM_READ_WRITE, sizeof(float) * 3 * pass_capacity),
       slot_nonfinite_(context_, CL_MEM_READ_WRITE, sizeof(std::uint32_t) * WP_NONFINITE_STAGE_COUNT * capacity) {
     for (const char* name : stage_kernel_names) {

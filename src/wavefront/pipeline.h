@@ -32,8 +32,9 @@ namespace wp {
 struct PipelineOptions {
     bool profile = false;  // time every kernel with OpenCL events and count rays per depth (count_depths.cl)
     Compaction compaction = kDefaultCompaction;
-    unsigned lanes = 0;  // paths per work item in the stage kernels (1 or 8); 0: resolve_lanes' choice
-    Progress progress;   // told when the kernels are compiled (a program cache miss)
+    unsigned lanes = 0;       // paths per work item in the stage kernels (1 or 8); 0: resolve_lanes' choice
+    Progress progress;        // told when the kernels are compiled (a program cache miss)
+    bool float_film = false;  // the compensated float film even where the device has fp64 (to test it)
 };
 
 static_assert(WP_NONFINITE_STAGE_COUNT == nonfinite_stage_names.size());

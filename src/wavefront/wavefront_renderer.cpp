@@ -103,7 +103,7 @@ RenderResult render_wavefront(const Scene& scene, const WavefrontOptions& option
                                 : default_wavefront_size(total, PathState::bytes_per_path(scene.features()), device);
     FeatureSet features = options.specialise ? scene.features() : every_shape_and_material(scene.features());
     Pipeline pipeline(scene, device, wavefront, std::min<std::uint64_t>(total, kPassesPerWavefront * wavefront),
-                      features, {options.profile, options.compaction, options.lanes, progress});
+                      features, {options.profile, options.compaction, options.lanes, progress, options.float_film});
 
     WavefrontReport local_report;
     WavefrontReport& r = report ? *report : local_report;

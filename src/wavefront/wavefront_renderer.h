@@ -20,7 +20,8 @@ struct WavefrontOptions {
     bool specialise = true;     // compile only the scene's features (false: every shape and material, for comparison)
     bool profile = false;       // time every kernel (WavefrontReport::profile)
     Compaction compaction = kDefaultCompaction;
-    unsigned lanes = 0;  // paths per work item in the stage kernels (1 or 8); 0 = resolve_lanes' choice
+    unsigned lanes = 0;       // paths per work item in the stage kernels (1 or 8); 0 = resolve_lanes' choice
+    bool float_film = false;  // the compensated float film even where the device has fp64 (to test it)
 };
 
 // Queue lengths of one iteration of the stage loop, for the profiler.

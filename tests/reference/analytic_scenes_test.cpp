@@ -229,7 +229,7 @@ TYPED_TEST(ReferenceAnalytic, FloorUnderSquareLightWithoutNeeMatchesFormFactor) 
 
 TYPED_TEST(ReferenceAnalytic, FloorUnderSphereLightMatchesSubtendedCone) {
     const glm::dvec3 albedo(0.9, 0.6, 0.3), radiance(50.0, 100.0, 200.0);
-    for (double radius : {0.25, 1e-3}) {  // a small light takes the cone's small-angle regime
+    for (double radius : {0.25, 1e-3}) {  // a small light: 1 - cos theta_max = 1.25e-7
         const double height = 2.0;
         RenderBlock block{.width = 32, .height = 32, .spp = 16, .max_depth = 2};
         glm::dvec3 scaled = radiance * (0.25 * 0.25 / (radius * radius));  // same irradiance for both sizes

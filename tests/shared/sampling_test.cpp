@@ -162,7 +162,8 @@ TYPED_TEST(Sampling, SphereConeIsUniformOverTheSubtendedCone) {
     using M = wp::SharedMath<R>;
     const glm::dvec3 axis = glm::normalize(glm::dvec3(1, 2, -3));
     const glm::dvec3 reference(0.5, -0.25, 0.125);
-    // Wide, medium and tiny cones; the tiny one takes the small-angle branch.
+    // Wide, medium and tiny cones (the tiny one: 1 - cos theta_max = 5e-7, where
+    // forming it by subtracting cosines would cancel in float).
     for (Cone cone : {Cone{0.8, 1.0}, Cone{1.0, 3.0}, Cone{1.0, 1000.0}}) {
         const glm::dvec3 center = reference + cone.distance * axis;
         const double sin2_max = cone.radius * cone.radius / (cone.distance * cone.distance);
