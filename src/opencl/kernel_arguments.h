@@ -43,7 +43,9 @@ struct CountDepths {
 
 // The kernels that trace take the scene's buffers first, so DeviceScene binds
 // them at the same indices in all of them.
-static_assert(Stage::light_cdf == Scene::light_cdf && Megakernel::light_cdf == Scene::light_cdf &&
-              IntersectBound::light_cdf == Scene::light_cdf);
+constexpr cl_uint kSceneArgumentCount = Scene::count;
+static_assert(cl_uint(Stage::light_cdf) + 1 == kSceneArgumentCount &&
+              cl_uint(Megakernel::light_cdf) + 1 == kSceneArgumentCount &&
+              cl_uint(IntersectBound::light_cdf) + 1 == kSceneArgumentCount);
 
 }  // namespace wp::arg
