@@ -12,6 +12,7 @@ RENDER_PACKAGES=(
   build-essential cmake pkg-config
   ocl-icd-opencl-dev opencl-headers opencl-clhpp-headers pocl-opencl-icd
   libglm-dev libopenimageio-dev nlohmann-json3-dev libcli11-dev
+  libembree-dev
 )
 # What the tests and the benchmark add: GoogleTest (whose CMake config also
 # loads GoogleMock's), clang-format for the format check, python3-pip for the

@@ -9,6 +9,8 @@
 #include "interface/kernel_parameters.h"
 #include "interface/path_state.h"
 #include "interface/scene_layout.h"
+#include "shared/bvh.h"
+#include "shared/triangle.h"
 
 #define WP_PARAMETER_FIRST(type, name) type name
 #define WP_PARAMETER_NEXT(type, name) , type name

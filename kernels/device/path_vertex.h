@@ -12,6 +12,7 @@
 #include "shared/prelude.h"
 #include "shared/rng.h"
 #include "shared/sampling.h"
+#include "shared/triangle.h"
 #if defined(WP_HAS_MIRROR) || defined(WP_HAS_GLASS)
 #include "shared/fresnel.h"
 #endif
@@ -48,27 +49,43 @@ WP_FN vec3 emission_seen(Material m, lane_int front, lane_int after_specular, ve
 }
 
 #ifdef WP_NEE
-/* A point sampled on the light `shape` (type and index packed as in
- * hit_shape), with its material and magnitude (offset.h). A lane whose
- * light is of another kind reads that kind's arrays at index 0. */
+/* A point sampled on light `light`, with its material and magnitude
+ * (offset.h). Every light kind in the scene is sampled and each lane keeps
+ * its own kind's; a lane whose light is of another kind reads that kind's
+ * arrays at index 0. u and v place the point; u_triangle picks a mesh
+ * light's triangle in proportion to area. */
 typedef struct {
     LightSample sample;
     lane_uint material;
     real magnitude;
 } LightPoint;
 
-WP_FN LightPoint sample_light_shape(WP_SCENE_PARAMS, lane_uint shape, vec3 x, real u, real v) {
-    lane_uint index = shape & WP_SHAPE_INDEX_MASK, type = shape >> WP_SHAPE_TYPE_SHIFT;
+WP_FN LightPoint select_light_point(lane_int choose_a, LightPoint a, LightPoint b) {
     LightPoint p;
+    p.sample = select_light_sample(choose_a, a.sample, b.sample);
+    p.material = choose_a ? a.material : b.material;
+    p.magnitude = choose_a ? a.magnitude : b.magnitude;
+    return p;
+}
+
+WP_FN LightPoint sample_light_shape(WP_SCENE_PARAMS, lane_uint light, vec3 x, real u, real v, real u_triangle) {
+    lane_uint shape = SCENE_FIELD(lights, light, shape);
+    lane_uint index = shape & WP_SHAPE_INDEX_MASK, type = shape >> WP_SHAPE_TYPE_SHIFT;
+    LightPoint p, kind;
+    p.sample.point = p.sample.normal = make_vec3(REAL(0.0), REAL(0.0), REAL(0.0));
+    p.sample.pdf_solid_angle = REAL(0.0);
+    p.material = 0u;
+    p.magnitude = REAL(0.0);
 #ifdef WP_HAS_SPHERE_LIGHTS
     {
         lane_int is_sphere = type == WP_SHAPE_SPHERE;
         lane_uint i = is_sphere ? index : (lane_uint)0u;
         vec3 center = SCENE_FIELD(spheres, i, center);
         real radius = SCENE_FIELD(spheres, i, radius);
-        p.sample = sample_sphere(center, radius, x, u, v);
-        p.material = SCENE_FIELD(spheres, i, material);
-        p.magnitude = sphere_magnitude(center, radius);
+        kind.sample = sample_sphere(center, radius, x, u, v);
+        kind.material = SCENE_FIELD(spheres, i, material);
+        kind.magnitude = sphere_magnitude(center, radius);
+        p = select_light_point(is_sphere, kind, p);
     }
 #endif
 #ifdef WP_HAS_QUAD_LIGHTS
@@ -77,15 +94,24 @@ WP_FN LightPoint sample_light_shape(WP_SCENE_PARAMS, lane_uint shape, vec3 x, re
         lane_uint i = is_quad ? index : (lane_uint)0u;
         vec3 corner = SCENE_FIELD(quads, i, corner), edge1 = SCENE_FIELD(quads, i, edge1);
         vec3 edge2 = SCENE_FIELD(quads, i, edge2);
-#ifdef WP_HAS_SPHERE_LIGHTS
-        p.sample = select_light_sample(is_quad, sample_quad(corner, edge1, edge2, x, u, v), p.sample);
-        p.material = is_quad ? SCENE_FIELD(quads, i, material) : p.material;
-        p.magnitude = is_quad ? quad_magnitude(corner, edge1, edge2) : p.magnitude;
-#else
-        p.sample = sample_quad(corner, edge1, edge2, x, u, v);
-        p.material = SCENE_FIELD(quads, i, material);
-        p.magnitude = quad_magnitude(corner, edge1, edge2);
+        kind.sample = sample_quad(corner, edge1, edge2, x, u, v);
+        kind.material = SCENE_FIELD(quads, i, material);
+        kind.magnitude = quad_magnitude(corner, edge1, edge2);
+        p = select_light_point(is_quad, kind, p);
+    }
 #endif
+#ifdef WP_HAS_MESH_LIGHTS
+    {
+        /* meshes run one lane (device/scene_hits.h), so the triangle search is scalar */
+        lane_int is_mesh = type == WP_SHAPE_TRIANGLE;
+        uint first = is_mesh ? index : 0u, count = is_mesh ? SCENE_FIELD(lights, light, triangle_count) : 0u;
+        uint k = first + select_light(light_triangle_cdf + first, count, u_triangle);
+        vec3 p0 = SCENE_FIELD(light_triangles, k, p0), p1 = SCENE_FIELD(light_triangles, k, p1);
+        vec3 p2 = SCENE_FIELD(light_triangles, k, p2);
+        kind.sample = sample_triangle(p0, p1, p2, SCENE_FIELD(lights, light, area), x, u, v);
+        kind.material = SCENE_FIELD(light_triangles, k, material);
+        kind.magnitude = triangle_magnitude(p0, p1, p2);
+        p = select_light_point(is_mesh, kind, p);
     }
 #endif
     return p;
@@ -100,9 +126,13 @@ WP_FN lane_int sample_direct_light(WP_SCENE_PARAMS, lane_uint pixel, lane_uint s
     uint seed = scene->seed;
     lane_uint light = select_light(light_cdf, LIGHT_COUNT, rng_uniform(seed, pixel, sample, bounce, DIM_LIGHT_SELECT));
     real pmf = light_selection_pmf(light_cdf, light);
-    LightPoint p = sample_light_shape(WP_SCENE_ARGS, SCENE_FIELD(lights, light, shape), x,
-                                      rng_uniform(seed, pixel, sample, bounce, DIM_LIGHT_U),
-                                      rng_uniform(seed, pixel, sample, bounce, DIM_LIGHT_V));
+#ifdef WP_HAS_MESH_LIGHTS
+    real u_triangle = rng_uniform(seed, pixel, sample, bounce, DIM_LIGHT_TRIANGLE);
+#else
+    real u_triangle = REAL(0.0);
+#endif
+    LightPoint p = sample_light_shape(WP_SCENE_ARGS, light, x, rng_uniform(seed, pixel, sample, bounce, DIM_LIGHT_U),
+                                      rng_uniform(seed, pixel, sample, bounce, DIM_LIGHT_V), u_triangle);
     LightSample ls = p.sample;
     Material emitter = material_at(materials, p.material);
     vec3 wi = v3_normalize(v3_sub(ls.point, x));

@@ -7,6 +7,7 @@
 #include "device/features.h"
 #include "device/lane_memory.h"
 #include "device/parameters.h"
+#include "shared/bvh.h"
 #include "shared/geometry.h"
 #include "shared/prelude.h"
 
@@ -39,7 +40,12 @@ WP_FN Hit keep_closer(Hit hit, real t, uint shape) {
     return hit;
 }
 
-/* Closest hit over spheres, then planes, then quads, as the reference tests them. */
+#if defined(WP_HAS_MESHES) && WP_LANES != 1
+#error "meshes are traced with one lane per work item (the BVH traversal is scalar code)"
+#endif
+
+/* Closest hit over spheres, then planes, then quads, then the meshes'
+ * triangles through their BVH, as the reference tests them. */
 WP_FN Hit closest_hit(WP_SCENE_PARAMS, vec3 origin, vec3 direction) {
     Hit hit;
     hit.t = WP_INFINITY;
@@ -59,6 +65,11 @@ WP_FN Hit closest_hit(WP_SCENE_PARAMS, vec3 origin, vec3 direction) {
     for (uint i = 0; i < QUAD_COUNT; ++i)
         hit = keep_closer(hit, quad_t(&quads[i], origin, direction, hit.t), shape_id(WP_SHAPE_QUAD, i));
 #endif
+#ifdef WP_HAS_MESHES
+    uint triangle = 0u;
+    real t = bvh_trace(bvh_nodes, triangles, origin, direction, hit.t, 0, &triangle);
+    hit = keep_closer(hit, t, shape_id(WP_SHAPE_TRIANGLE, triangle));
+#endif
     return hit;
 }
 
@@ -77,6 +88,10 @@ WP_FN lane_int any_hit(WP_SCENE_PARAMS, vec3 origin, vec3 direction, real t_max)
 #ifdef WP_HAS_QUADS
 #pragma unroll
     for (uint i = 0; i < QUAD_COUNT; ++i) occluded |= quad_t(&quads[i], origin, direction, t_max) < t_max;
+#endif
+#ifdef WP_HAS_MESHES
+    uint triangle = 0u;
+    occluded |= bvh_trace(bvh_nodes, triangles, origin, direction, t_max, 1, &triangle) < t_max;
 #endif
     return occluded;
 }

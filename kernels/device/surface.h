@@ -9,10 +9,11 @@
 #include "shared/geometry.h"
 #include "shared/offset.h"
 #include "shared/prelude.h"
+#include "shared/triangle.h"
 
 typedef struct {
     vec3 point;
-    vec3 normal; /* geometric: outward (sphere), the plane's, normalize(edge1 x edge2) (quad) */
+    vec3 normal; /* geometric: outward (sphere), the plane's, normalize(edge1 x edge2) (quad), the front (triangle) */
     lane_uint material;
     real error; /* bound on the point's distance from the surface (offset.h) */
 } Surface;
@@ -59,6 +60,16 @@ WP_FN Surface surface_at(WP_SCENE_PARAMS, lane_uint shape, vec3 origin, vec3 dir
         s.material = is_quad ? SCENE_FIELD(quads, i, material) : s.material;
         s.error =
             is_quad ? ray_point_error(origin, t, quad_magnitude(SCENE_FIELD(quads, i, corner), edge1, edge2)) : s.error;
+    }
+#endif
+#ifdef WP_HAS_MESHES
+    {
+        lane_int is_triangle = type == WP_SHAPE_TRIANGLE;
+        lane_uint i = is_triangle ? index : (lane_uint)0u;
+        vec3 p0 = SCENE_FIELD(triangles, i, p0), p1 = SCENE_FIELD(triangles, i, p1), p2 = SCENE_FIELD(triangles, i, p2);
+        s.normal = v3_select(is_triangle, triangle_normal(p0, p1, p2), s.normal);
+        s.material = is_triangle ? SCENE_FIELD(triangles, i, material) : s.material;
+        s.error = is_triangle ? ray_point_error(origin, t, triangle_magnitude(p0, p1, p2)) : s.error;
     }
 #endif
     return s;

@@ -10,6 +10,7 @@
 #define WP_SHAPE_SPHERE 0u
 #define WP_SHAPE_PLANE 1u
 #define WP_SHAPE_QUAD 2u
+#define WP_SHAPE_TRIANGLE 3u /* a mesh triangle, by its index in the BVH's leaf order */
 #define WP_SHAPE_TYPE_SHIFT 30u
 #define WP_SHAPE_INDEX_MASK 0x3fffffffu
 #define WP_NO_HIT 0xffffffffu
@@ -55,7 +56,10 @@ typedef struct {
 } DeviceMaterial;
 
 typedef struct {
-    uint shape; /* WP_SHAPE_SPHERE or WP_SHAPE_QUAD, index included as in hit_shape */
+    uint shape;          /* WP_SHAPE_SPHERE or WP_SHAPE_QUAD, index included as in hit_shape; a mesh:
+                          * WP_SHAPE_TRIANGLE with its first triangle in light_triangles as the index */
+    uint triangle_count; /* a mesh: its triangles in light_triangles (and light_triangle_cdf) */
+    float area;          /* a mesh: its area */
 } DeviceLight;
 
 #endif

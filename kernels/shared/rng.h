@@ -20,7 +20,8 @@
 #define DIM_BSDF_U 6u    /* scattered direction */
 #define DIM_BSDF_V 7u
 #define DIM_ROULETTE 8u
-#define DIM_COUNT 9u /* dimensions per bounce; fits in 6 bits */
+#define DIM_LIGHT_TRIANGLE 9u /* which triangle of a mesh light */
+#define DIM_COUNT 10u         /* dimensions per bounce; fits in 6 bits */
 
 typedef struct {
     lane_uint x, y, z, w;

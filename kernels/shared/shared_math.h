@@ -4,11 +4,13 @@
 #ifndef WP_SHARED_MATH_H
 #define WP_SHARED_MATH_H
 
+#include "shared/bvh.h"
 #include "shared/fresnel.h"
 #include "shared/geometry.h"
 #include "shared/offset.h"
 #include "shared/prelude.h"
 #include "shared/rng.h"
 #include "shared/sampling.h"
+#include "shared/triangle.h"
 
 #endif

@@ -54,7 +54,8 @@ RenderResult render_on_opencl(const BackendOptions& options, Render render) {
 RenderResult render_on_wavefront(const Scene& scene, const BackendOptions& options, const Progress& progress) {
     return render_on_opencl<WavefrontReport>(options, [&](WavefrontReport& report) {
         if (options.lanes != 0)
-            if (std::string problem = lanes_problem(options.lanes, options.compaction); !problem.empty())
+            if (std::string problem = lanes_problem(options.lanes, options.compaction, scene.features().meshes);
+                !problem.empty())
                 throw UsageError(problem);
         WavefrontOptions wavefront{options.device, options.wavefront};
         wavefront.profile = wants_profile(options);

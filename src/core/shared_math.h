@@ -25,6 +25,7 @@ using std::floor;
 using std::fmax;
 using std::fmin;
 using std::isfinite;
+using std::isinf;
 using std::sin;
 using std::sqrt;
 

@@ -16,12 +16,14 @@ std::vector<std::pair<const char*, const char*>> features_in_use(const FeatureSe
     add(f.spheres, "spheres", "WP_HAS_SPHERES");
     add(f.planes, "planes", "WP_HAS_PLANES");
     add(f.quads, "quads", "WP_HAS_QUADS");
+    add(f.meshes, "meshes", "WP_HAS_MESHES");
     add(f.diffuse, "diffuse", "WP_HAS_DIFFUSE");
     add(f.mirror, "mirror", "WP_HAS_MIRROR");
     add(f.glass, "glass", "WP_HAS_GLASS");
     add(f.emitter_material, "emitter", nullptr);
     add(f.sphere_lights, "sphere-lights", "WP_HAS_SPHERE_LIGHTS");
     add(f.quad_lights, "quad-lights", "WP_HAS_QUAD_LIGHTS");
+    add(f.mesh_lights, "mesh-lights", "WP_HAS_MESH_LIGHTS");
     add(f.background, "background", "WP_HAS_BACKGROUND");
     add(f.nee, "nee", "WP_NEE");
     return in_use;

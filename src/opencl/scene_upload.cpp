@@ -1,10 +1,13 @@
 #include "opencl/scene_upload.h"
 
+#include <algorithm>
 #include <cmath>
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
 
+#include "accel/bvh.h"
 #include "core/shared_math.h"
+#include "scene/mesh_lights.h"
 
 namespace wp {
 namespace {
@@ -15,7 +18,9 @@ static_assert(sizeof(DeviceSphere) == 5 * 4, "DeviceSphere must match its OpenCL
 static_assert(sizeof(DevicePlane) == 7 * 4, "DevicePlane must match its OpenCL C layout");
 static_assert(sizeof(DeviceQuad) == 16 * 4, "DeviceQuad must match its OpenCL C layout");
 static_assert(sizeof(DeviceMaterial) == 12 * 4, "DeviceMaterial must match its OpenCL C layout");
-static_assert(sizeof(DeviceLight) == 4, "DeviceLight must match its OpenCL C layout");
+static_assert(sizeof(DeviceLight) == 3 * 4, "DeviceLight must match its OpenCL C layout");
+static_assert(sizeof(SharedMath<float>::MeshTriangle) == 11 * 4, "MeshTriangle must match its OpenCL C layout");
+static_assert(sizeof(SharedMath<float>::BvhNode) == 64, "BvhNode must match its OpenCL C layout");
 
 void put(float (&out)[3], const glm::dvec3& v) {
     out[0] = static_cast<float>(v.x);
@@ -70,11 +75,37 @@ cl::Buffer upload(const cl::Context& context, std::vector<T> items) {
     return cl::Buffer(context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(T) * items.size(), items.data());
 }
 
+SharedMath<float>::MeshTriangle mesh_triangle(const TrianglePositions& p, int material, int mesh) {
+    SharedMath<float>::MeshTriangle d{};
+    put(d.p0, p[0]);
+    put(d.p1, p[1]);
+    put(d.p2, p[2]);
+    d.material = material;
+    d.mesh = mesh;
+    return d;
+}
+
+// The meshes' triangles in leaf order and the BVH's nodes, as the kernels read them.
+void flatten_meshes(const Scene& scene, SceneLayout& layout) {
+    SceneBvh bvh = build_scene_bvh(scene);
+    for (const SceneTriangle& t : bvh.triangles)
+        layout.triangles.push_back(mesh_triangle(t.positions, t.material, t.mesh));
+    for (const BvhTree::Node& n : bvh.tree.nodes) {
+        SharedMath<float>::BvhNode d{};
+        for (int i = 0; i < 2; ++i) {
+            std::copy(n.bounds[i].begin(), n.bounds[i].end(), d.bounds[i]);
+            d.child[i] = n.child[i];
+        }
+        layout.bvh_nodes.push_back(d);
+    }
+}
+
 }  // namespace
 
 SceneLayout flatten_scene(const Scene& scene) {
     SceneLayout layout;
     layout.header = make_header(scene);
+    flatten_meshes(scene, layout);
     for (const Sphere& s : scene.spheres) {
         DeviceSphere d{};
         put(d.center, s.center);
@@ -112,9 +143,29 @@ SceneLayout flatten_scene(const Scene& scene) {
         d.two_sided = m.two_sided ? 1u : 0u;
         layout.materials.push_back(d);
     }
-    for (const Light& light : scene.lights)
-        layout.lights.push_back(
-            {shape_ref(light.shape == ShapeType::Sphere ? WP_SHAPE_SPHERE : WP_SHAPE_QUAD, light.index)});
+    MeshLightTriangles mesh_lights = mesh_light_triangles(scene);
+    for (std::size_t i = 0; i < scene.lights.size(); ++i) {
+        const Light& light = scene.lights[i];
+        const MeshLightTriangles::Range& range = mesh_lights.ranges[i];
+        DeviceLight d{};
+        switch (light.shape) {
+            case ShapeType::Sphere:
+                d.shape = shape_ref(WP_SHAPE_SPHERE, light.index);
+                break;
+            case ShapeType::Mesh:
+                d.shape = shape_ref(WP_SHAPE_TRIANGLE, int(range.first));
+                d.triangle_count = range.count;
+                d.area = static_cast<float>(range.area);
+                break;
+            default:
+                d.shape = shape_ref(WP_SHAPE_QUAD, light.index);
+        }
+        layout.lights.push_back(d);
+    }
+    for (std::size_t k = 0; k < mesh_lights.triangles.size(); ++k) {
+        layout.light_triangles.push_back(mesh_triangle(mesh_lights.triangles[k], mesh_lights.materials[k], 0));
+        layout.light_triangle_cdf.push_back(static_cast<float>(mesh_lights.cdf[k]));
+    }
     for (double c : scene.light_cdf) layout.light_cdf.push_back(static_cast<float>(c));
     return layout;
 }
@@ -124,9 +175,13 @@ DeviceScene::DeviceScene(const cl::Context& context, const SceneLayout& layout) 
     buffers_[arg::Scene::spheres] = upload(context, layout.spheres);
     buffers_[arg::Scene::planes] = upload(context, layout.planes);
     buffers_[arg::Scene::quads] = upload(context, layout.quads);
+    buffers_[arg::Scene::triangles] = upload(context, layout.triangles);
+    buffers_[arg::Scene::bvh_nodes] = upload(context, layout.bvh_nodes);
     buffers_[arg::Scene::materials] = upload(context, layout.materials);
     buffers_[arg::Scene::lights] = upload(context, layout.lights);
     buffers_[arg::Scene::light_cdf] = upload(context, layout.light_cdf);
+    buffers_[arg::Scene::light_triangles] = upload(context, layout.light_triangles);
+    buffers_[arg::Scene::light_triangle_cdf] = upload(context, layout.light_triangle_cdf);
 }
 
 void DeviceScene::bind(cl::Kernel& kernel) const {

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/shared_math.h"
 #include "opencl/kernel_arguments.h"
 #include "scene/scene.h"
 
@@ -23,9 +24,13 @@ struct SceneLayout {
     std::vector<device_layout::DeviceSphere> spheres;
     std::vector<device_layout::DevicePlane> planes;
     std::vector<device_layout::DeviceQuad> quads;
+    std::vector<SharedMath<float>::MeshTriangle> triangles;  // in the BVH's leaf order
+    std::vector<SharedMath<float>::BvhNode> bvh_nodes;
     std::vector<device_layout::DeviceMaterial> materials;
     std::vector<device_layout::DeviceLight> lights;
     std::vector<float> light_cdf;
+    std::vector<SharedMath<float>::MeshTriangle> light_triangles;  // scene/mesh_lights.h
+    std::vector<float> light_triangle_cdf;
 };
 
 SceneLayout flatten_scene(const Scene& scene);

@@ -100,6 +100,12 @@ ShapeHit<Real> closest_hit(const ReferenceScene<Real>& scene, const Ray<Real>& r
         keep_if_closer(M::intersect_quad(q.corner, q.edge1, q.edge2, ray.origin, ray.direction, hit.t), ShapeType::Quad,
                        i);
     }
+    if (!scene.bvh_nodes.empty()) {
+        std::uint32_t triangle = 0;
+        Real t = M::bvh_trace(scene.bvh_nodes.data(), scene.triangles.data(), ray.origin, ray.direction, hit.t, 0,
+                              &triangle);
+        keep_if_closer(t, ShapeType::Mesh, static_cast<int>(triangle));
+    }
     return hit;
 }
 
@@ -116,7 +122,9 @@ bool occluded(const ReferenceScene<Real>& scene, const Ray<Real>& ray, Real dist
     for (const auto& q : scene.quads) {
         if (M::intersect_quad(q.corner, q.edge1, q.edge2, ray.origin, ray.direction, distance) < distance) return true;
     }
-    return false;
+    std::uint32_t triangle = 0;
+    return !scene.bvh_nodes.empty() && M::bvh_trace(scene.bvh_nodes.data(), scene.triangles.data(), ray.origin,
+                                                    ray.direction, distance, 1, &triangle) < distance;
 }
 
 template <class Real>
@@ -139,37 +147,51 @@ SurfacePoint<Real> surface_at(const ReferenceScene<Real>& scene, const Ray<Real>
             return {point, q.normal, q.material,
                     M::ray_point_error(ray.origin, hit.t, M::quad_magnitude(q.corner, q.edge1, q.edge2))};
         }
+        case ShapeType::Mesh: {
+            const auto& tri = scene.triangles[hit.index];
+            Vec3<Real> p0 = M::triangle_vertex(tri.p0), p1 = M::triangle_vertex(tri.p1),
+                       p2 = M::triangle_vertex(tri.p2);
+            return {point, M::triangle_normal(p0, p1, p2), static_cast<int>(tri.material),
+                    M::ray_point_error(ray.origin, hit.t, M::triangle_magnitude(p0, p1, p2))};
+        }
     }
     return {};
 }
 
+// A point sampled on a light, with the material that emits there and the
+// magnitude its error bound comes from (offset.h).
 template <class Real>
-typename SharedMath<Real>::LightSample sample_light(const ReferenceScene<Real>& scene,
-                                                    const typename ReferenceScene<Real>::LightRef& light,
-                                                    const Vec3<Real>& reference, Real u1, Real u2) {
-    using M = SharedMath<Real>;
-    if (light.shape == ShapeType::Sphere) {
-        const auto& s = scene.spheres[light.index];
-        return M::sample_sphere(s.center, s.radius, reference, u1, u2);
-    }
-    const auto& q = scene.quads[light.index];
-    return M::sample_quad(q.corner, q.edge1, q.edge2, reference, u1, u2);
-}
+struct LightPoint {
+    typename SharedMath<Real>::LightSample sample;
+    int material;
+    Real magnitude;
+};
 
+// u1, u2 place the point; u_triangle picks a mesh light's triangle by area.
 template <class Real>
-Real light_magnitude(const ReferenceScene<Real>& scene, const typename ReferenceScene<Real>::LightRef& light) {
+LightPoint<Real> sample_light(const ReferenceScene<Real>& scene, const typename ReferenceScene<Real>::LightRef& light,
+                              const Vec3<Real>& reference, Real u1, Real u2, Real u_triangle) {
     using M = SharedMath<Real>;
-    if (light.shape == ShapeType::Sphere) {
-        const auto& s = scene.spheres[light.index];
-        return M::sphere_magnitude(s.center, s.radius);
+    switch (light.shape) {
+        case ShapeType::Sphere: {
+            const auto& s = scene.spheres[light.index];
+            return {M::sample_sphere(s.center, s.radius, reference, u1, u2), s.material,
+                    M::sphere_magnitude(s.center, s.radius)};
+        }
+        case ShapeType::Mesh: {
+            std::uint32_t k = light.first_triangle + M::select_light(&scene.light_triangle_cdf[light.first_triangle],
+                                                                     light.triangle_count, u_triangle);
+            const auto& t = scene.light_triangles[k];
+            Vec3<Real> p0 = M::triangle_vertex(t.p0), p1 = M::triangle_vertex(t.p1), p2 = M::triangle_vertex(t.p2);
+            return {M::sample_triangle(p0, p1, p2, light.area, reference, u1, u2), static_cast<int>(t.material),
+                    M::triangle_magnitude(p0, p1, p2)};
+        }
+        default: {
+            const auto& q = scene.quads[light.index];
+            return {M::sample_quad(q.corner, q.edge1, q.edge2, reference, u1, u2), q.material,
+                    M::quad_magnitude(q.corner, q.edge1, q.edge2)};
+        }
     }
-    const auto& q = scene.quads[light.index];
-    return M::quad_magnitude(q.corner, q.edge1, q.edge2);
-}
-
-template <class Real>
-int light_material(const ReferenceScene<Real>& scene, const typename ReferenceScene<Real>::LightRef& light) {
-    return light.shape == ShapeType::Sphere ? scene.spheres[light.index].material : scene.quads[light.index].material;
 }
 
 // Next-event estimation at a diffuse point x (with error bound x_error) and
@@ -188,19 +210,21 @@ Vec3<Real> sample_direct_light(const ReferenceScene<Real>& scene, const Vec3<Rea
     std::uint32_t index = M::select_light(scene.light_cdf.data(), light_count, rng(bounce, DIM_LIGHT_SELECT));
     Real pmf = M::light_selection_pmf(scene.light_cdf.data(), index);
     const auto& light = scene.lights[index];
-    auto s = sample_light(scene, light, x, rng(bounce, DIM_LIGHT_U), rng(bounce, DIM_LIGHT_V));
+    LightPoint<Real> p = sample_light(scene, light, x, rng(bounce, DIM_LIGHT_U), rng(bounce, DIM_LIGHT_V),
+                                      rng(bounce, DIM_LIGHT_TRIANGLE));
+    const auto& s = p.sample;
     if (s.pdf_solid_angle == Real(0)) return none;
 
     vec3 wi = glm::normalize(s.point - x);
     Real cos_surface = glm::dot(wi, nf);
     if (!(cos_surface > Real(0))) return none;
-    const auto& emitter = scene.materials[light_material(scene, light)];
+    const auto& emitter = scene.materials[p.material];
     bool light_faces_x = glm::dot(s.normal, x - s.point) > Real(0);
     if (!emitter.two_sided && !light_faces_x) return none;
 
     vec3 origin = M::offset_ray_origin(x, nf, x_error);
     vec3 target = M::offset_ray_origin(s.point, light_faces_x ? s.normal : -s.normal,
-                                       M::shadow_target_error(x, s.point, light_magnitude(scene, light)));
+                                       M::shadow_target_error(x, s.point, p.magnitude));
     vec3 to_target = target - origin;
     Real distance = glm::length(to_target);
     ++counts.shadow;

@@ -2,12 +2,16 @@
 // all path arithmetic runs in Real, as the kernels' runs in float.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
 #include <vector>
 
+#include "accel/bvh.h"
 #include "core/shared_math.h"
+#include "scene/mesh_lights.h"
 #include "scene/scene.h"
 
 namespace wp::reference {
@@ -45,8 +49,10 @@ struct ReferenceScene {
         bool emits;
     };
     struct LightRef {
-        ShapeType shape;  // Sphere or Quad
-        int index;        // into spheres or quads
+        ShapeType shape;                               // Sphere, Quad or Mesh
+        int index;                                     // into spheres, quads or the scene's meshes
+        std::uint32_t first_triangle, triangle_count;  // a mesh: its triangles in light_triangles
+        Real area;                                     // a mesh: its area
     };
     // Pinhole camera; the basis is built in double and then rounded, as a
     // host would do before handing it to a kernel.
@@ -64,8 +70,12 @@ struct ReferenceScene {
     std::vector<SphereShape> spheres;
     std::vector<PlaneShape> planes;
     std::vector<QuadShape> quads;
+    std::vector<typename M::MeshTriangle> triangles;  // in the BVH's leaf order
+    std::vector<typename M::BvhNode> bvh_nodes;
     std::vector<LightRef> lights;
     std::vector<Real> light_cdf;
+    std::vector<typename M::MeshTriangle> light_triangles;  // mesh lights' (scene/mesh_lights.h)
+    std::vector<Real> light_triangle_cdf;
 
     explicit ReferenceScene(const Scene& scene)
         : render(scene.render), nee(scene.features().nee), background(scene.background) {
@@ -80,11 +90,51 @@ struct ReferenceScene {
             vec3 edge1(q.edge1), edge2(q.edge2);
             quads.push_back({vec3(q.corner), edge1, edge2, M::quad_normal(edge1, edge2), q.material});
         }
-        for (const Light& light : scene.lights) lights.push_back({light.shape, light.index});
+        add_meshes(scene);
+        add_lights(scene);
         for (double c : scene.light_cdf) light_cdf.push_back(Real(c));
     }
 
  private:
+    void add_lights(const Scene& scene) {
+        MeshLightTriangles mesh_lights = mesh_light_triangles(scene);
+        for (std::size_t i = 0; i < scene.lights.size(); ++i) {
+            const MeshLightTriangles::Range& range = mesh_lights.ranges[i];
+            lights.push_back(
+                {scene.lights[i].shape, scene.lights[i].index, range.first, range.count, Real(range.area)});
+        }
+        for (std::size_t k = 0; k < mesh_lights.triangles.size(); ++k) {
+            light_triangles.push_back(to_real(mesh_lights.triangles[k], mesh_lights.materials[k], 0));
+            light_triangle_cdf.push_back(Real(mesh_lights.cdf[k]));
+        }
+    }
+
+    static typename M::MeshTriangle to_real(const TrianglePositions& p, int material, int mesh) {
+        typename M::MeshTriangle r{};
+        for (int i = 0; i < 3; ++i) {
+            r.p0[i] = Real(p[0][i]);
+            r.p1[i] = Real(p[1][i]);
+            r.p2[i] = Real(p[2][i]);
+        }
+        r.material = std::uint32_t(material);
+        r.mesh = std::uint32_t(mesh);
+        return r;
+    }
+
+    // The same tree and leaf order as the kernels', with the vertices in Real.
+    void add_meshes(const Scene& scene) {
+        SceneBvh bvh = build_scene_bvh(scene);
+        for (const SceneTriangle& t : bvh.triangles) triangles.push_back(to_real(t.positions, t.material, t.mesh));
+        for (const BvhTree::Node& n : bvh.tree.nodes) {
+            typename M::BvhNode r{};
+            for (int i = 0; i < 2; ++i) {
+                std::copy(n.bounds[i].begin(), n.bounds[i].end(), r.bounds[i]);
+                r.child[i] = n.child[i];
+            }
+            bvh_nodes.push_back(r);
+        }
+    }
+
     static PinholeCamera convert_camera(const Camera& c) {
         glm::dvec3 forward = glm::normalize(c.look_at - c.position);
         glm::dvec3 right = glm::normalize(glm::cross(forward, c.up));

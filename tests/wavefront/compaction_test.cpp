@@ -28,7 +28,10 @@ constexpr std::uint32_t kCapacity = 4096;  // 16 compaction blocks
 std::pair<std::vector<std::uint32_t>, std::vector<std::uint32_t>> hits_after_intersect(
     Compaction compaction, const std::vector<std::uint32_t>& queued) {
     Scene scene = test::scene_from_json(kScene);
-    Pipeline pipeline(scene, choose_device(""), kCapacity, kCapacity, scene.features(), {false, compaction, 1});
+    PipelineOptions options;
+    options.compaction = compaction;
+    options.lanes = 1;
+    Pipeline pipeline(scene, choose_device(""), kCapacity, kCapacity, scene.features(), options);
     std::mt19937 random(7);
     std::uniform_real_distribution<float> coordinate(-1.0f, 1.0f);
     std::vector<test::TestRay> rays(kCapacity);

@@ -103,7 +103,11 @@ TEST(Profile, IntersectBoundTracesTheReferenceHits) {
     double expected = reference_hit_distance_sum(scene, kRays);
     for (auto [lanes, compaction] : {std::pair{1u, Compaction::Atomic}, std::pair{8u, Compaction::Scan}}) {
         SCOPED_TRACE(std::to_string(lanes) + " lanes");
-        Pipeline pipeline(scene, choose_device(""), 256, 256, scene.features(), {true, compaction, lanes});
+        PipelineOptions options;
+        options.profile = true;
+        options.compaction = compaction;
+        options.lanes = lanes;
+        Pipeline pipeline(scene, choose_device(""), 256, 256, scene.features(), options);
         IntersectBound bound = pipeline.measure_intersect_bound(kRays);
         EXPECT_NEAR(bound.hit_distance_sum, expected, 1e-6 * expected);  // float sums of at most 8 distances
         EXPECT_GT(bound.rays_per_s, 0.0);

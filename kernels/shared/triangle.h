@@ -1,0 +1,84 @@
+/* Triangles of meshes: the watertight ray-triangle test of Woop, Benthin and
+ * Wald ("Watertight Ray/Triangle Intersection", JCGT 2(1), 2013), in the form
+ * pbrt-v4 uses (shapes.cpp, IntersectTriangle): translate the vertices to the
+ * ray origin, permute so that the direction's largest component is z, shear
+ * so that the ray becomes the +z axis, then decide with 2D edge functions,
+ * which are evaluated identically for the two triangles sharing an edge, so
+ * no ray passes between them. No division comes before the distance test.
+ *
+ * An edge function that is exactly 0 (the ray through an edge or vertex)
+ * counts for both triangles there: both report the hit and the closest-hit
+ * search keeps one, so the mesh stays watertight without the double
+ * precision fallback of the paper (devices need not have fp64). Branch-free,
+ * for any number of lanes. */
+#ifndef WP_SHARED_TRIANGLE_H
+#define WP_SHARED_TRIANGLE_H
+
+#include "shared/offset.h"
+#include "shared/prelude.h"
+#include "shared/sampling.h"
+
+/* A mesh triangle as the kernels and the reference store it, in the order of
+ * the BVH's leaves; front side: that of (p1 - p0) x (p2 - p0). */
+typedef struct {
+    real_element p0[3], p1[3], p2[3];
+    uint material;
+    uint mesh; /* index into Scene::meshes */
+} MeshTriangle;
+
+/* v with its components rotated so that axis `z_axis` (0, 1, 2) comes last. */
+WP_FN vec3 rotate_axes_to_z(vec3 v, lane_int z_is_x, lane_int z_is_y) {
+    vec3 z_was_x = make_vec3(v.y, v.z, v.x), z_was_y = make_vec3(v.z, v.x, v.y);
+    return v3_select(z_is_x, z_was_x, v3_select(z_is_y, z_was_y, v));
+}
+
+/* Distance t in (0, t_max) at which the ray meets the triangle, or WP_INFINITY. */
+WP_FN real intersect_triangle(vec3 p0, vec3 p1, vec3 p2, vec3 origin, vec3 direction, real t_max) {
+    real ax = fabs(direction.x), ay = fabs(direction.y), az = fabs(direction.z);
+    lane_int z_is_x = ax > ay && ax > az;
+    lane_int z_is_y = !z_is_x && ay > az;
+    vec3 d = rotate_axes_to_z(direction, z_is_x, z_is_y);
+    vec3 a = rotate_axes_to_z(v3_sub(p0, origin), z_is_x, z_is_y);
+    vec3 b = rotate_axes_to_z(v3_sub(p1, origin), z_is_x, z_is_y);
+    vec3 c = rotate_axes_to_z(v3_sub(p2, origin), z_is_x, z_is_y);
+    real shear_x = -d.x / d.z, shear_y = -d.y / d.z, scale_z = REAL(1.0) / d.z;
+    real ax2 = a.x + shear_x * a.z, ay2 = a.y + shear_y * a.z;
+    real bx2 = b.x + shear_x * b.z, by2 = b.y + shear_y * b.z;
+    real cx2 = c.x + shear_x * c.z, cy2 = c.y + shear_y * c.z;
+    /* Edge functions: twice the signed areas seen from the ray. */
+    real e0 = bx2 * cy2 - by2 * cx2;
+    real e1 = cx2 * ay2 - cy2 * ax2;
+    real e2 = ax2 * by2 - ay2 * bx2;
+    lane_int mixed_signs =
+        (e0 < REAL(0.0) || e1 < REAL(0.0) || e2 < REAL(0.0)) && (e0 > REAL(0.0) || e1 > REAL(0.0) || e2 > REAL(0.0));
+    real det = e0 + e1 + e2;
+    real t_scaled = e0 * (scale_z * a.z) + e1 * (scale_z * b.z) + e2 * (scale_z * c.z);
+    /* 0 < t_scaled / det < t_max, compared without dividing */
+    real t_max_scaled = t_max * fabs(det);
+    real t_signed = det < REAL(0.0) ? -t_scaled : t_scaled;
+    lane_int in_range = t_signed > REAL(0.0) && t_signed < t_max_scaled;
+    real t = t_scaled / det;
+    lane_int hit = !mixed_signs && det != REAL(0.0) && in_range && t > REAL(0.0) && t < t_max;
+    return hit ? t : WP_INFINITY;
+}
+
+WP_FN vec3 triangle_normal(vec3 p0, vec3 p1, vec3 p2) { return v3_normalize(v3_cross(v3_sub(p1, p0), v3_sub(p2, p0))); }
+
+/* A point uniform by area on the triangle (the square-root warp,
+ * b0 = 1 - sqrt(u1), b1 = u2 sqrt(u1)), the triangle having been chosen in
+ * proportion to its area among a mesh's of total area mesh_area: the point's
+ * density is 1 / mesh_area, here in solid angle from `reference`. */
+WP_FN LightSample sample_triangle(vec3 p0, vec3 p1, vec3 p2, real mesh_area, vec3 reference, real u1, real u2) {
+    real root = sqrt(u1);
+    real b0 = REAL(1.0) - root, b1 = u2 * root;
+    LightSample s;
+    s.point = v3_add(v3_add(v3_scale(p0, b0), v3_scale(p1, b1)), v3_scale(p2, REAL(1.0) - b0 - b1));
+    s.normal = triangle_normal(p0, p1, p2);
+    s.pdf_solid_angle = area_to_solid_angle_pdf(REAL(1.0) / mesh_area, reference, s.point, s.normal);
+    return s;
+}
+
+/* The magnitude a triangle's points and intersections are computed from (offset.h). */
+WP_FN real triangle_magnitude(vec3 p0, vec3 p1, vec3 p2) { return fmax(max_abs(p0), fmax(max_abs(p1), max_abs(p2))); }
+
+#endif

@@ -1,0 +1,49 @@
+// The bounding volume hierarchy over the scene's mesh triangles: a binary
+// tree built with Embree's SAH builder into nodes of our own, then flattened
+// depth first into the layout the kernels and the reference traverse
+// (kernels/shared/bvh.h). The flattened tree is a function of the triangles
+// alone: the same bytes for any thread count and run.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <glm/vec3.hpp>
+#include <vector>
+
+#include "scene/scene.h"
+
+namespace wp {
+
+using TrianglePositions = std::array<glm::dvec3, 3>;
+
+struct BvhTree {
+    struct Node {
+        std::array<std::array<float, 6>, 2> bounds{};  // per child: lower xyz, upper xyz, rounded outward
+        std::array<std::uint32_t, 2> child{};          // as kernels/shared/bvh.h encodes them
+    };
+    std::vector<Node> nodes;                // nodes[0] is the root
+    std::vector<std::uint32_t> leaf_order;  // for each triangle slot of the leaves, the input triangle's index
+    int depth = 0;                          // levels of nodes
+};
+
+// Builds the tree (binned SAH, leaves of up to 4 triangles) on `threads`
+// threads (0: all). Throws std::runtime_error when Embree fails.
+BvhTree build_bvh(const std::vector<TrianglePositions>& triangles, int threads = 0);
+
+// Every mesh triangle of the scene in one list: mesh by mesh, in file order.
+struct SceneTriangle {
+    TrianglePositions positions;
+    int material = 0;
+    int mesh = 0;
+};
+std::vector<SceneTriangle> scene_triangles(const Scene& scene);
+
+// The scene's triangles and their tree, ready to lay out for a renderer:
+// `triangles` in the tree's leaf order.
+struct SceneBvh {
+    std::vector<SceneTriangle> triangles;
+    BvhTree tree;
+};
+SceneBvh build_scene_bvh(const Scene& scene);
+
+}  // namespace wp

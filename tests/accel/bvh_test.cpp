@@ -1,0 +1,229 @@
+// The meshes' BVH (src/accel/bvh.cpp, kernels/shared/bvh.h) and the
+// watertight triangle test (kernels/shared/triangle.h): the tree finds what
+// a test of every triangle finds, bit for bit; it is the same for any thread
+// count; and no ray passes through a closed mesh, at any scale.
+#include "accel/bvh.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <functional>
+#include <random>
+
+#include "core/shared_math.h"
+#include "support/meshes.h"
+
+namespace wp {
+namespace {
+
+using M = SharedMath<float>;
+using vec3 = M::vec3;
+
+struct FlatMeshes {
+    std::vector<M::MeshTriangle> triangles;  // leaf order
+    std::vector<M::BvhNode> nodes;
+};
+
+FlatMeshes flatten(const std::vector<Mesh>& meshes) {
+    Scene scene;
+    scene.meshes = meshes;
+    SceneBvh bvh = build_scene_bvh(scene);
+    FlatMeshes flat;
+    for (const SceneTriangle& t : bvh.triangles) {
+        M::MeshTriangle d{};
+        for (int i = 0; i < 3; ++i) {
+            d.p0[i] = float(t.positions[0][i]);
+            d.p1[i] = float(t.positions[1][i]);
+            d.p2[i] = float(t.positions[2][i]);
+        }
+        flat.triangles.push_back(d);
+    }
+    for (const BvhTree::Node& n : bvh.tree.nodes) {
+        M::BvhNode d{};
+        for (int i = 0; i < 2; ++i) {
+            std::copy(n.bounds[i].begin(), n.bounds[i].end(), d.bounds[i]);
+            d.child[i] = n.child[i];
+        }
+        flat.nodes.push_back(d);
+    }
+    return flat;
+}
+
+// Every triangle tested in turn, keeping the first of equal distances.
+float brute_force(const FlatMeshes& flat, vec3 origin, vec3 direction, float t_max, std::uint32_t& index) {
+    for (std::uint32_t k = 0; k < flat.triangles.size(); ++k) {
+        float t = M::mesh_triangle_t(&flat.triangles[k], origin, direction, t_max);
+        if (t < t_max) t_max = t, index = k;
+    }
+    return t_max;
+}
+
+// A dense, overlapping soup: 8 icospheres of 1280 triangles, shuffled about.
+std::vector<Mesh> soup() {
+    std::vector<Mesh> meshes;
+    std::mt19937 random(5);
+    std::uniform_real_distribution<double> position(-3.0, 3.0), size(0.3, 1.5);
+    for (int i = 0; i < 8; ++i)
+        meshes.push_back(test::transformed(test::icosphere(3, 0), size(random),
+                                           {position(random), position(random), position(random)}));
+    return meshes;
+}
+
+TEST(Bvh, FindsWhatTestingEveryTriangleFinds) {
+    FlatMeshes flat = flatten(soup());
+    std::mt19937 random(9);
+    std::uniform_real_distribution<float> coordinate(-5.0f, 5.0f);
+    int hits = 0;
+    constexpr int kRays = 20000;
+    for (int r = 0; r < kRays; ++r) {
+        vec3 origin(coordinate(random), coordinate(random), coordinate(random));
+        vec3 direction = glm::normalize(vec3(coordinate(random), coordinate(random), coordinate(random)));
+        std::uint32_t expected = ~0u, found = ~0u;
+        float t_expected = brute_force(flat, origin, direction, M::real_max, expected);
+        float t_found =
+            M::bvh_trace(flat.nodes.data(), flat.triangles.data(), origin, direction, M::real_max, 0, &found);
+        ASSERT_EQ(t_found, t_expected) << "ray " << r;  // bit-identical distance
+        if (found != expected) {                        // only a tie: another triangle at the very same distance
+            ASSERT_NE(found, ~0u) << "ray " << r;
+            EXPECT_EQ(M::mesh_triangle_t(&flat.triangles[found], origin, direction, M::real_max), t_expected);
+        }
+        hits += expected != ~0u;
+        // Any hit: occluded exactly when something lies closer than the distance asked about.
+        float limit = t_expected < M::real_max ? t_expected * 1.0001f : 10.0f;
+        std::uint32_t any = ~0u;
+        EXPECT_EQ(M::bvh_trace(flat.nodes.data(), flat.triangles.data(), origin, direction, limit, 1, &any) < limit,
+                  expected != ~0u)
+            << "ray " << r;
+    }
+    std::printf("[figure] BVH against brute force: %d rays, %d hits, all with bit-identical distances\n", kRays, hits);
+    EXPECT_GT(hits, kRays / 10);
+    EXPECT_LT(hits, kRays);
+}
+
+TEST(Bvh, SameTreeForAnyThreadCountAndRun) {
+    std::vector<TrianglePositions> triangles;
+    for (const SceneTriangle& t : scene_triangles([] {
+             Scene s;
+             s.meshes = soup();
+             return s;
+         }()))
+        triangles.push_back(t.positions);
+    BvhTree one = build_bvh(triangles, 1), two = build_bvh(triangles, 2), again = build_bvh(triangles, 2);
+    for (const BvhTree* other : {&two, &again}) {
+        ASSERT_EQ(other->nodes.size(), one.nodes.size());
+        EXPECT_EQ(other->leaf_order, one.leaf_order);
+        for (std::size_t i = 0; i < one.nodes.size(); ++i) {
+            EXPECT_EQ(other->nodes[i].bounds, one.nodes[i].bounds) << i;
+            EXPECT_EQ(other->nodes[i].child, one.nodes[i].child) << i;
+        }
+    }
+    EXPECT_LE(one.depth, 32);
+}
+
+// Every float box holds its subtree's triangles in double: rounding outward
+// leaves no sliver of a triangle outside its box.
+TEST(Bvh, BoxesHoldTheirTrianglesExactly) {
+    std::vector<Mesh> meshes = soup();
+    Scene scene;
+    scene.meshes = meshes;
+    SceneBvh bvh = build_scene_bvh(scene);
+    std::function<void(std::uint32_t, const std::array<float, 6>&)> check = [&](std::uint32_t word,
+                                                                                const std::array<float, 6>& box) {
+        if (word & WP_BVH_LEAF) {
+            std::uint32_t first = (word & ~WP_BVH_LEAF) >> WP_BVH_LEAF_COUNT_BITS, count = (word & 7u) + 1;
+            for (std::uint32_t k = first; k < first + count; ++k)
+                for (const glm::dvec3& p : bvh.triangles[k].positions)
+                    for (int a = 0; a < 3; ++a) {
+                        EXPECT_LE(double(box[a]), p[a]);
+                        EXPECT_GE(double(box[3 + a]), p[a]);
+                    }
+            return;
+        }
+        for (int i = 0; i < 2; ++i)
+            if (bvh.tree.nodes[word].child[i] != WP_BVH_NO_CHILD)
+                check(bvh.tree.nodes[word].child[i], bvh.tree.nodes[word].bounds[i]);
+    };
+    check(0, {});
+    EXPECT_EQ(bvh.triangles.size(), 8u * 1280u);
+}
+
+// Rays aimed exactly at the vertices and edge midpoints of closed meshes,
+// from inside and from outside, at scales 1e-4 to 1e4 and moved by 1e5: every
+// one meets the mesh (through the BVH, in float and in double).
+template <class Real>
+int rays_through_closed_mesh(const Mesh& mesh) {
+    using R = SharedMath<Real>;
+    using rvec3 = typename R::vec3;
+    Scene scene;
+    scene.meshes = {mesh};
+    SceneBvh bvh = build_scene_bvh(scene);
+    std::vector<typename R::MeshTriangle> triangles;
+    for (const SceneTriangle& t : bvh.triangles) {
+        typename R::MeshTriangle d{};
+        for (int i = 0; i < 3; ++i) {
+            d.p0[i] = Real(t.positions[0][i]);
+            d.p1[i] = Real(t.positions[1][i]);
+            d.p2[i] = Real(t.positions[2][i]);
+        }
+        triangles.push_back(d);
+    }
+    std::vector<typename R::BvhNode> nodes;
+    for (const BvhTree::Node& n : bvh.tree.nodes) {
+        typename R::BvhNode d{};
+        for (int i = 0; i < 2; ++i) {
+            std::copy(n.bounds[i].begin(), n.bounds[i].end(), d.bounds[i]);
+            d.child[i] = n.child[i];
+        }
+        nodes.push_back(d);
+    }
+    glm::dvec3 centre(0.0);
+    for (const glm::dvec3& p : mesh.positions) centre += p / double(mesh.positions.size());
+    std::vector<glm::dvec3> targets = mesh.positions;
+    for (const glm::uvec3& t : mesh.triangles)
+        for (int e = 0; e < 3; ++e) targets.push_back((mesh.positions[t[e]] + mesh.positions[t[(e + 1) % 3]]) / 2.0);
+    int misses = 0;
+    for (const glm::dvec3& target : targets) {
+        rvec3 to(target);
+        // From the centre out, and from outside in along the same line: through the target, across the surface.
+        for (glm::dvec3 from : {centre, centre + 3.0 * (target - centre)}) {
+            rvec3 origin(from);
+            rvec3 direction = glm::normalize(to - origin);
+            std::uint32_t index = 0;
+            Real t = R::bvh_trace(nodes.data(), triangles.data(), origin, direction, R::real_max, 0, &index);
+            misses += !(t < R::real_max);
+        }
+    }
+    return misses;
+}
+
+TEST(Watertight, NoRayPassesThroughAClosedMeshAtAnyScale) {
+    for (double scale : {1e-4, 1e-2, 1.0, 1e2, 1e4}) {
+        for (glm::dvec3 offset : {glm::dvec3(0.0), glm::dvec3(1e5, -1e5, 1e5)}) {
+            SCOPED_TRACE("scale " + std::to_string(scale) + ", offset " + std::to_string(offset.x));
+            // Float spaces its values 2^-7 apart near 1e5: a mesh smaller than 1 there is a few
+            // float steps across, its centre no longer inside it.
+            bool float_can_hold_it = offset.x == 0.0 || scale >= 1.0;
+            for (const Mesh& mesh : {test::icosphere(2, 0), test::unit_cube(0)}) {
+                Mesh placed = test::transformed(mesh, scale, offset);
+                if (float_can_hold_it) {
+                    EXPECT_EQ(rays_through_closed_mesh<float>(placed), 0) << mesh.file;
+                }
+                EXPECT_EQ(rays_through_closed_mesh<double>(placed), 0) << mesh.file;
+            }
+        }
+    }
+}
+
+TEST(Watertight, TestMeshesFaceOutward) {
+    for (const Mesh& mesh : {test::icosphere(2, 0), test::unit_cube(0)}) {
+        glm::dvec3 centre(0.0);
+        for (const glm::dvec3& p : mesh.positions) centre += p / double(mesh.positions.size());
+        for (const glm::uvec3& t : mesh.triangles) {
+            glm::dvec3 p0 = mesh.positions[t.x], p1 = mesh.positions[t.y], p2 = mesh.positions[t.z];
+            EXPECT_GT(glm::dot(glm::cross(p1 - p0, p2 - p0), (p0 + p1 + p2) / 3.0 - centre), 0.0) << mesh.file;
+        }
+    }
+}
+
+}  // namespace
+}  // namespace wp

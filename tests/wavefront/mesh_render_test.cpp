@@ -1,0 +1,77 @@
+// Meshes rendered: every OpenCL backend retraces the reference's paths
+// through a scene of triangle meshes (diffuse, mirror and glass), at 1 spp,
+// on every pixel.
+#include <gtest/gtest.h>
+
+#include "megakernel/megakernel_renderer.h"
+#include "reference/reference_renderer.h"
+#include "support/analytic_scenes.h"
+#include "support/meshes.h"
+#include "support/path_agreement.h"
+#include "wavefront/wavefront_renderer.h"
+
+namespace wp {
+namespace {
+
+// A diffuse cube on a plane, a glass and a mirror icosphere, under a quad light.
+Scene mesh_scene(int size, int spp) {
+    test::RenderBlock block{.width = size, .height = size, .spp = spp, .max_depth = 6, .rr_depth = 3, .seed = 3};
+    Scene scene = test::empty_scene(block, {0.0, -0.6, -4.0}, 45.0);
+    int white = test::add_material(scene, test::diffuse({0.7, 0.7, 0.7}));
+    int red = test::add_material(scene, test::diffuse({0.7, 0.2, 0.1}));
+    int clear = test::add_material(scene, test::glass(1.5));
+    int chrome = test::add_material(scene, test::mirror({0.9, 0.9, 0.9}));
+    int lamp = test::add_material(scene, test::emitter({8.0, 8.0, 8.0}));
+    scene.planes.push_back({{0.0, -1.5, 0.0}, {0.0, 1.0, 0.0}, white});
+    scene.meshes.push_back(test::transformed(test::unit_cube(red), 0.8, {-1.4, -1.5, -4.5}));
+    scene.meshes.push_back(test::transformed(test::icosphere(2, clear), 0.5, {0.2, -1.0, -3.6}));
+    scene.meshes.push_back(test::transformed(test::icosphere(1, chrome), 0.45, {1.2, -1.05, -4.6}));
+    scene.quads.push_back({{-0.75, 1.5, -4.75}, {1.5, 0.0, 0.0}, {0.0, 0.0, 1.5}, lamp});
+    build_light_table(scene);
+    return scene;
+}
+
+TEST(MeshRender, WavefrontRetracesTheReferencePathForPath) {
+    Scene scene = mesh_scene(48, 1);
+    ASSERT_TRUE(scene.features().meshes);
+    test::expect_path_for_path_agreement(render_wavefront(scene, {}, {}),
+                                         render_reference(scene, ReferenceOptions{2, false}), "wavefront, meshes");
+}
+
+TEST(MeshRender, MegakernelRetracesTheReferencePathForPath) {
+    Scene scene = mesh_scene(48, 1);
+    test::expect_path_for_path_agreement(render_megakernel(scene, {}, {}),
+                                         render_reference(scene, ReferenceOptions{2, false}), "megakernel, meshes");
+}
+
+// The same scene lit by an emissive mesh (a triangulated, two-sided lamp)
+// instead of the quad: next-event estimation samples the mesh's triangles.
+TEST(MeshRender, MeshLightRetracesTheReferencePathForPath) {
+    Scene scene = mesh_scene(48, 1);
+    int lamp = scene.quads.back().material;
+    scene.quads.pop_back();
+    scene.materials[lamp].two_sided = true;
+    scene.meshes.push_back(test::transformed(test::icosphere(1, lamp), 0.3, {0.0, 0.9, -4.2}));
+    build_light_table(scene);
+    ASSERT_TRUE(scene.features().mesh_lights);
+    RenderResult reference = render_reference(scene, ReferenceOptions{2, false});
+    EXPECT_GT(reference.stats.shadow_rays, 0u);
+    test::expect_path_for_path_agreement(render_wavefront(scene, {}, {}), reference, "wavefront, mesh light");
+    test::expect_path_for_path_agreement(render_megakernel(scene, {}, {}), reference, "megakernel, mesh light");
+}
+
+// Meshes make the wavefront pick one lane; asking for eight is refused by name.
+TEST(MeshRender, EightLanesAreRefusedForMeshes) {
+    Scene scene = mesh_scene(8, 1);
+    WavefrontOptions options;
+    options.lanes = 8;
+    try {
+        render_wavefront(scene, options, {});
+        FAIL() << "rendered meshes with 8 lanes";
+    } catch (const std::invalid_argument& error) {
+        EXPECT_NE(std::string(error.what()).find("cannot render meshes"), std::string::npos) << error.what();
+    }
+}
+
+}  // namespace
+}  // namespace wp
