@@ -13,6 +13,15 @@ double emitted_power(const Material& material, double area) {
     return std::numbers::pi * luminance(material.emission) * area * (material.two_sided ? 2.0 : 1.0);
 }
 
+double surface_area(const Mesh& mesh) {
+    double area = 0.0;
+    for (const glm::uvec3& t : mesh.triangles) {
+        const glm::dvec3& p0 = mesh.positions[t.x];
+        area += 0.5 * glm::length(glm::cross(mesh.positions[t.y] - p0, mesh.positions[t.z] - p0));
+    }
+    return area;
+}
+
 }  // namespace
 
 FeatureSet Scene::features() const {
@@ -20,6 +29,7 @@ FeatureSet Scene::features() const {
     f.spheres = !spheres.empty();
     f.planes = !planes.empty();
     f.quads = !quads.empty();
+    f.meshes = !meshes.empty();
     for (const Material& m : materials) {
         f.diffuse |= m.type == MaterialType::Diffuse;
         f.mirror |= m.type == MaterialType::Mirror;
@@ -29,6 +39,7 @@ FeatureSet Scene::features() const {
     for (const Light& light : lights) {
         f.sphere_lights |= light.shape == ShapeType::Sphere;
         f.quad_lights |= light.shape == ShapeType::Quad;
+        f.mesh_lights |= light.shape == ShapeType::Mesh;
     }
     f.background = background.x > 0.0 || background.y > 0.0 || background.z > 0.0;
     f.nee = render.nee && !lights.empty();
@@ -52,6 +63,11 @@ void build_light_table(Scene& scene) {
         if (m.emits()) {
             scene.lights.push_back({ShapeType::Quad, i, emitted_power(m, glm::length(glm::cross(q.edge1, q.edge2)))});
         }
+    }
+    for (int i = 0; i < static_cast<int>(scene.meshes.size()); ++i) {
+        const Mesh& mesh = scene.meshes[i];
+        const Material& m = scene.materials[mesh.material];
+        if (m.emits()) scene.lights.push_back({ShapeType::Mesh, i, emitted_power(m, surface_area(mesh))});
     }
     double total = 0.0;
     for (const Light& light : scene.lights) total += light.power;

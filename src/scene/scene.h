@@ -120,8 +120,8 @@ class SceneError : public std::runtime_error {
     using std::runtime_error::runtime_error;
 };
 
-// Fills Scene::lights and Scene::light_cdf from the emitting spheres and
-// quads. The loader calls it; tests that build scenes in code call it too.
+// Fills Scene::lights and Scene::light_cdf from the emitting spheres, quads
+// and meshes (in that order). The loader calls it; tests that build scenes in code call it too.
 void build_light_table(Scene& scene);
 
 Scene load_scene(const std::string& path);
