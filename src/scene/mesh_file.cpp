@@ -204,8 +204,7 @@ class MeshMerger {
             glm::dvec3 position(to_world * glm::dvec4(to_dvec3(source.mVertices[v]), 1.0));
             if (!within_scene_magnitude(position)) {
                 throw MeshFileError("vertex " + vector_text(position) +
-                                    " after the transform: every coordinate must be within +-" +
-                                    format_number(kMaxSceneMagnitude));
+                                    " after the transform: magnitude must be <= " + format_number(kMaxSceneMagnitude));
             }
             mesh_.positions.push_back(position);
             if (source.mNormals) mesh_.normals.push_back(normal_to_world * to_dvec3(source.mNormals[v]));
