@@ -451,5 +451,37 @@ TEST_F(MeshLoad, StanfordBunny) {
                 mesh.degenerate_dropped, seconds);
 }
 
+// Each quad of cornell.json is two triangles of cornell_mesh.json with the
+// same material and orientation (within float: assimp reads coordinates as float).
+TEST(BundledMeshScenes, CornellMeshIsTheQuadCornell) {
+    const Scene quads = load_scene(kSceneDir + "cornell.json");
+    const Scene meshes = load_scene(kSceneDir + "cornell_mesh.json");
+    std::vector<std::pair<const Mesh*, glm::uvec3>> triangles;
+    for (const Mesh& mesh : meshes.meshes) {
+        EXPECT_EQ(mesh.degenerate_dropped, 0u);
+        EXPECT_TRUE(mesh.normals.empty());
+        for (const glm::uvec3& t : mesh.triangles) triangles.emplace_back(&mesh, t);
+    }
+    ASSERT_EQ(triangles.size(), 2 * quads.quads.size());
+    auto near = [](const glm::dvec3& a, const glm::dvec3& b) { return glm::length(a - b) < 1e-3; };
+    for (const Quad& q : quads.quads) {
+        const glm::dvec3 corners[2][3] = {{q.corner, q.corner + q.edge1, q.corner + q.edge1 + q.edge2},
+                                          {q.corner, q.corner + q.edge1 + q.edge2, q.corner + q.edge2}};
+        for (const auto& corner : corners) {
+            auto same = [&](const auto& entry) {
+                const auto& [mesh, t] = entry;
+                return near(mesh->positions[t.x], corner[0]) && near(mesh->positions[t.y], corner[1]) &&
+                       near(mesh->positions[t.z], corner[2]);
+            };
+            auto found = std::find_if(triangles.begin(), triangles.end(), same);
+            ASSERT_NE(found, triangles.end()) << "no triangle for a quad at " << q.corner.x << ", " << q.corner.z;
+            EXPECT_EQ(meshes.materials[found->first->material].name, quads.materials[q.material].name);
+        }
+    }
+    ASSERT_EQ(meshes.lights.size(), 1u);
+    EXPECT_EQ(meshes.lights[0].shape, ShapeType::Mesh);
+    EXPECT_NEAR(meshes.lights[0].power, quads.lights.at(0).power, 1e-6 * quads.lights[0].power);
+}
+
 }  // namespace
 }  // namespace wp::test
