@@ -7,13 +7,14 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-# What building and running the renderer needs (assimp reads mesh files;
-# glmark2-data ships the Stanford bunny that scenes/meshes/bunny.obj links to).
+# What building and running the renderer needs (assimp reads mesh files, and
+# its CMake config names libz.so without libassimp-dev depending on
+# zlib1g-dev; glmark2-data ships the bunny that scenes/meshes/bunny.obj links to).
 RENDER_PACKAGES=(
   build-essential cmake pkg-config
   ocl-icd-opencl-dev opencl-headers opencl-clhpp-headers pocl-opencl-icd
   libglm-dev libopenimageio-dev nlohmann-json3-dev libcli11-dev
-  libassimp-dev glmark2-data
+  libassimp-dev zlib1g-dev glmark2-data
 )
 # What the tests and the benchmark add: GoogleTest (whose CMake config also
 # loads GoogleMock's), clang-format for the format check, python3-pip for the
