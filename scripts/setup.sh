@@ -7,12 +7,14 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-# What building and running the renderer needs.
+# What building and running the renderer needs (assimp reads mesh files, and
+# its CMake config names libz.so without libassimp-dev depending on
+# zlib1g-dev; glmark2-data ships the bunny that scenes/meshes/bunny.obj links to).
 RENDER_PACKAGES=(
   build-essential cmake pkg-config
   ocl-icd-opencl-dev opencl-headers opencl-clhpp-headers pocl-opencl-icd
   libglm-dev libopenimageio-dev nlohmann-json3-dev libcli11-dev
-  libembree-dev
+  libembree-dev libassimp-dev zlib1g-dev glmark2-data
 )
 # What the tests and the benchmark add: GoogleTest (whose CMake config also
 # loads GoogleMock's), clang-format for the format check, python3-pip for the
@@ -41,6 +43,11 @@ if ((${#missing[@]})); then
   "${SUDO[@]}" apt-get update
   DEBIAN_FRONTEND=noninteractive "${SUDO[@]}" apt-get install -y "${missing[@]}"
 fi
+
+# scenes/meshes/bunny.obj: a link to glmark2-data's Stanford bunny, so that
+# scenes name it relative to themselves and never by its absolute path.
+mkdir -p scenes/meshes
+ln -sfn /usr/share/glmark2/models/bunny.obj scenes/meshes/bunny.obj
 
 if [[ $mode == render ]]; then
   cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DWAVEPATH_BUILD_TESTS=OFF -DWAVEPATH_BUILD_BENCH=OFF

@@ -29,6 +29,12 @@ class JsonField {
 
     const std::string& path() const { return path_; }
     [[noreturn]] void fail(std::string_view problem) const;
+    // "must be <expected>, got <JSON type>".
+    [[noreturn]] void fail_type(std::string_view expected) const;
+
+    // For values that may take more than one form.
+    bool is_number() const { return value_.is_number(); }
+    bool is_array() const { return value_.is_array(); }
 
     // Objects. `allow_only_keys` also checks that this is an object.
     void allow_only_keys(std::initializer_list<std::string_view> keys) const;
@@ -50,7 +56,6 @@ class JsonField {
     glm::dvec3 vec3_in(double min, double max, std::string_view max_reason = {}) const;
 
  private:
-    [[noreturn]] void fail_type(std::string_view expected) const;
     JsonField child(const nlohmann::json& value, std::string path) const;
 
     const nlohmann::json& value_;

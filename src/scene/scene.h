@@ -125,7 +125,7 @@ double triangle_area(const Mesh& mesh, const glm::uvec3& triangle);
 double mesh_area(const Mesh& mesh);
 
 // Fills Scene::lights and Scene::light_cdf from the emitting spheres, quads
-// and meshes. The loader calls it; tests that build scenes in code call it too.
+// and meshes (in that order). The loader calls it; tests that build scenes in code call it too.
 void build_light_table(Scene& scene);
 
 Scene load_scene(const std::string& path);

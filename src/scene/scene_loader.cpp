@@ -22,6 +22,9 @@ void rebase_to_camera(Scene& scene) {
     for (Sphere& sphere : scene.spheres) sphere.center -= origin;
     for (Plane& plane : scene.planes) plane.point -= origin;
     for (Quad& quad : scene.quads) quad.corner -= origin;
+    for (Mesh& mesh : scene.meshes) {
+        for (glm::dvec3& position : mesh.positions) position -= origin;
+    }
 }
 
 std::string read_text_file(const std::string& path) {

@@ -2,8 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <glm/geometric.hpp>
+#include <glm/gtc/matrix_access.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/matrix.hpp>
 #include <limits>
+
+#include "scene/mesh_file.h"
 
 namespace wp {
 namespace {
@@ -168,6 +174,105 @@ Quad read_quad(const JsonField& field, const std::vector<Material>& materials) {
     return quad;
 }
 
+// ---- meshes ----
+
+// A JSON array of exactly `count` numbers.
+std::vector<double> read_numbers(const JsonField& field, std::size_t count) {
+    const std::string expected = "an array of " + std::to_string(count) + " numbers";
+    if (!field.is_array()) field.fail_type(expected);
+    std::size_t size = field.array_size();
+    if (size != count) field.fail("must be " + expected + ", got " + std::to_string(size) + " elements");
+    std::vector<double> numbers;
+    for (std::size_t i = 0; i < count; ++i) numbers.push_back(field.element(i).number());
+    return numbers;
+}
+
+glm::dvec3 read_scale(const JsonField& field) {
+    glm::dvec3 scale;
+    if (field.is_number()) {
+        scale = glm::dvec3(field.number());
+        if (scale.x == 0.0) field.fail("must not be 0");
+        return scale;
+    }
+    if (!field.is_array()) field.fail_type("a number or an array of 3 numbers");
+    scale = field.vec3();
+    for (int i = 0; i < 3; ++i) {
+        if (scale[i] == 0.0) field.element(i).fail("must not be 0");
+    }
+    return scale;
+}
+
+glm::dmat4 read_rotation(const JsonField& field) {
+    std::vector<double> numbers = read_numbers(field, 4);  // axis x, y, z, degrees
+    glm::dvec3 axis(numbers[0], numbers[1], numbers[2]);
+    if (axis == glm::dvec3(0.0)) field.fail("the axis (the first 3 numbers) must not be zero-length");
+    return glm::rotate(glm::dmat4(1.0), glm::radians(numbers[3]), safe_normalize(axis));
+}
+
+// Row-major in the file, as written on paper; affine and invertible.
+glm::dmat4 read_matrix(const JsonField& field) {
+    const std::size_t rows = field.array_size();
+    if (rows != 4) field.fail("must be an array of 4 rows, got " + std::to_string(rows) + " elements");
+    glm::dmat4 matrix;
+    for (int row = 0; row < 4; ++row) {
+        std::vector<double> numbers = read_numbers(field.element(row), 4);
+        for (int column = 0; column < 4; ++column) matrix[column][row] = numbers[column];
+    }
+    if (glm::row(matrix, 3) != glm::dvec4(0.0, 0.0, 0.0, 1.0))
+        field.element(3).fail("must be [0, 0, 0, 1] (affine transforms only)");
+    if (glm::determinant(glm::dmat3(matrix)) == 0.0) field.fail("must be invertible (its 3x3 part is singular)");
+    return matrix;
+}
+
+// Scale, then rotate, then translate; or a whole matrix.
+glm::dmat4 read_transform(const JsonField& field) {
+    field.allow_only_keys({"translate", "rotate", "scale", "matrix"});
+    if (std::optional<JsonField> matrix = field.optional_member("matrix")) {
+        if (field.object().size() > 1) matrix->fail("cannot be combined with translate, rotate or scale");
+        return read_matrix(*matrix);
+    }
+    glm::dmat4 transform(1.0);
+    if (auto translate = field.optional_member("translate")) transform = glm::translate(transform, translate->vec3());
+    if (auto rotate = field.optional_member("rotate")) transform = transform * read_rotation(*rotate);
+    if (auto scale = field.optional_member("scale")) transform = glm::scale(transform, read_scale(*scale));
+    return transform;
+}
+
+std::vector<std::string> read_object_names(const JsonField& field) {
+    std::vector<std::string> names;
+    std::size_t count = field.array_size();
+    if (count == 0) field.fail("must name at least one object (leave it out to load all)");
+    for (std::size_t i = 0; i < count; ++i) names.push_back(field.element(i).string());
+    return names;
+}
+
+MeshFileOptions read_mesh_options(const JsonField& field) {
+    MeshFileOptions options;
+    if (auto transform = field.optional_member("transform")) options.to_world = read_transform(*transform);
+    if (auto face_normals = field.optional_member("face_normals")) options.face_normals = face_normals->boolean();
+    if (auto objects = field.optional_member("objects")) options.objects = read_object_names(*objects);
+    return options;
+}
+
+// The mesh file's path is relative to the scene file's directory.
+Mesh read_mesh(const JsonField& field, const Scene& scene) {
+    field.allow_only_keys({"type", "file", "material", "transform", "face_normals", "objects"});
+    JsonField file_field = field.member("file");
+    const std::string file = file_field.string();
+    if (file.empty()) file_field.fail("must not be empty");
+    const MeshFileOptions options = read_mesh_options(field);
+    const int material = resolve_material(field, scene.materials);
+    Mesh mesh;
+    try {
+        mesh = read_mesh_file(std::filesystem::path(scene.source).parent_path() / file, options);
+    } catch (const MeshFileError& error) {
+        file_field.fail(file + ": " + error.what());
+    }
+    mesh.file = file;
+    mesh.material = material;
+    return mesh;
+}
+
 void read_shape(const JsonField& field, Scene& scene) {
     JsonField type_field = field.member("type");
     std::string type = type_field.string();
@@ -177,9 +282,11 @@ void read_shape(const JsonField& field, Scene& scene) {
         scene.planes.push_back(read_plane(field, scene.materials));
     } else if (type == "quad") {
         scene.quads.push_back(read_quad(field, scene.materials));
+    } else if (type == "mesh") {
+        scene.meshes.push_back(read_mesh(field, scene));
     } else {
         type_field.fail("unknown shape type " + nlohmann::json(type).dump() +
-                        " (expected one of: sphere, plane, quad)");
+                        " (expected one of: sphere, plane, quad, mesh)");
     }
 }
 

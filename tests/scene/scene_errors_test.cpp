@@ -166,7 +166,7 @@ const PatchCase kPatchCases[] = {
     {"UnknownMaterialType", R"({"materials": {"white": {"type": "metal"}}})",
      R"(materials.white.type: unknown material type "metal" (expected one of: diffuse, mirror, glass, emitter))"},
     {"UnknownShapeType", R"({"shapes": [{"type": "box", "material": "white"}]})",
-     R"(shapes[0].type: unknown shape type "box" (expected one of: sphere, plane, quad))"},
+     R"(shapes[0].type: unknown shape type "box" (expected one of: sphere, plane, quad, mesh))"},
     {"NegativeAlbedo", R"({"materials": {"white": {"albedo": [0.5, -0.1, 0.5]}}})",
      "materials.white.albedo[1]: must be >= 0, got -0.1"},
     {"AlbedoAboveOne", R"({"materials": {"white": {"albedo": [1.2, 0.5, 0.5]}}})",
