@@ -1,9 +1,11 @@
 #include "opencl/scene_upload.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
+#include <sstream>
 
 #include "accel/bvh.h"
 #include "core/shared_math.h"
@@ -87,6 +89,7 @@ SharedMath<float>::MeshTriangle mesh_triangle(const TrianglePositions& p, int ma
 
 // The meshes' triangles in leaf order and the BVH's nodes, as the kernels read them.
 void flatten_meshes(const Scene& scene, SceneLayout& layout) {
+    auto start = std::chrono::steady_clock::now();
     SceneBvh bvh = build_scene_bvh(scene);
     for (const SceneTriangle& t : bvh.triangles)
         layout.triangles.push_back(mesh_triangle(t.positions, t.material, t.mesh));
@@ -98,6 +101,13 @@ void flatten_meshes(const Scene& scene, SceneLayout& layout) {
         }
         layout.bvh_nodes.push_back(d);
     }
+    MeshSummary& summary = layout.meshes;
+    summary.meshes = scene.meshes.size();
+    summary.triangles = bvh.triangles.size();
+    for (const Mesh& mesh : scene.meshes) summary.degenerate_dropped += mesh.degenerate_dropped;
+    summary.bvh_nodes = bvh.tree.nodes.size();
+    summary.bvh_depth = bvh.tree.depth;
+    summary.bvh_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 }  // namespace
@@ -170,7 +180,16 @@ SceneLayout flatten_scene(const Scene& scene) {
     return layout;
 }
 
-DeviceScene::DeviceScene(const cl::Context& context, const SceneLayout& layout) {
+std::string MeshSummary::describe() const {
+    if (meshes == 0) return "";
+    std::ostringstream out;
+    out << meshes << (meshes == 1 ? " mesh, " : " meshes, ") << triangles << " triangles (" << degenerate_dropped
+        << " degenerate dropped); BVH of " << bvh_nodes << " nodes, depth " << bvh_depth << ", built in " << bvh_seconds
+        << " s";
+    return out.str();
+}
+
+DeviceScene::DeviceScene(const cl::Context& context, const SceneLayout& layout) : meshes_(layout.meshes) {
     buffers_[arg::Scene::scene] = upload(context, std::vector<SceneHeader>{layout.header});
     buffers_[arg::Scene::spheres] = upload(context, layout.spheres);
     buffers_[arg::Scene::planes] = upload(context, layout.planes);

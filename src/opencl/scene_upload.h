@@ -4,6 +4,7 @@
 #include <CL/opencl.hpp>
 #include <array>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "core/shared_math.h"
@@ -16,6 +17,16 @@ namespace device_layout {
 using uint = std::uint32_t;
 #include "interface/scene_layout.h"
 }  // namespace device_layout
+
+// What --explain says of the meshes and their BVH.
+struct MeshSummary {
+    std::size_t meshes = 0, triangles = 0, degenerate_dropped = 0, bvh_nodes = 0;
+    int bvh_depth = 0;
+    double bvh_seconds = 0.0;  // building and flattening the tree
+
+    // "2 meshes, 69666 triangles (3 degenerate dropped); BVH of 37650 nodes, depth 24, built in 0.061 s", or "".
+    std::string describe() const;
+};
 
 // Host copies of the device structs, converted from the scene's doubles once
 // (the camera basis computed in double, then rounded, as the reference does).
@@ -31,6 +42,7 @@ struct SceneLayout {
     std::vector<float> light_cdf;
     std::vector<SharedMath<float>::MeshTriangle> light_triangles;  // scene/mesh_lights.h
     std::vector<float> light_triangle_cdf;
+    MeshSummary meshes;
 };
 
 SceneLayout flatten_scene(const Scene& scene);
@@ -42,9 +54,11 @@ class DeviceScene {
     DeviceScene(const cl::Context& context, const SceneLayout& layout);
     // Sets a kernel's scene arguments (WP_SCENE_PARAMETERS, first in every kernel that traces).
     void bind(cl::Kernel& kernel) const;
+    const MeshSummary& meshes() const { return meshes_; }
 
  private:
     std::array<cl::Buffer, arg::Scene::count> buffers_;
+    MeshSummary meshes_;
 };
 
 }  // namespace wp

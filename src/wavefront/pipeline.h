@@ -51,6 +51,7 @@ class Pipeline {
     const BuiltProgram& program() const { return program_; }
     unsigned lanes() const { return lanes_; }
     const PathState& state() const { return state_; }
+    const DeviceScene& device_scene() const { return scene_; }
     std::size_t capacity() const { return capacity_; }
     std::size_t pass_capacity() const { return pass_capacity_; }
     QueueSet& queues() { return queues_; }

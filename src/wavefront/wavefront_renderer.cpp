@@ -90,6 +90,7 @@ std::string WavefrontReport::explain() const {
         << (lanes == 1 ? " path" : " paths") << " per work item in the stage kernels\n"
         << "path state: " << state_bytes_per_path << " bytes per path, " << state_bytes_per_path * wavefront / 1024
         << " KiB in all\n";
+    if (!meshes.empty()) out << "meshes: " << meshes << "\n";
     return out.str();
 }
 
@@ -117,6 +118,7 @@ RenderResult render_wavefront(const Scene& scene, const WavefrontOptions& option
     r.wavefront = wavefront;
     r.pass_capacity = pipeline.pass_capacity();
     r.state_bytes_per_path = pipeline.state().bytes_per_path();
+    r.meshes = pipeline.device_scene().meshes().describe();
 
     auto render_start = std::chrono::steady_clock::now();  // time_s leaves out device setup and the build
     progress.report(0.0);

@@ -48,6 +48,7 @@ struct WavefrontReport {
     std::size_t pass_capacity = 0;
     std::size_t state_bytes_per_path = 0;
     unsigned lanes = 1;  // paths per work item in the stage kernels
+    std::string meshes;  // MeshSummary::describe(), "" without meshes
     std::vector<IterationRecord> iterations;
     RenderProfile profile;  // filled when WavefrontOptions::profile
 
