@@ -1,0 +1,774 @@
+// mesh_bench: what triangle meshes cost (issue 11, "Benchmark").
+//
+//  a. BVH build (build_bvh, and flatten_scene's whole mesh part: gathering,
+//     build, leaf order, device structs) and bytes per triangle as uploaded
+//     (64-byte nodes, 44-byte MeshTriangle), for meshes of about 1k to 1M
+//     triangles made from the bunny: vertex clustering below its 69,666
+//     triangles, 1->4 midpoint subdivision above.
+//  b. Rays/s of closest hit and any hit on the bunny scene, side by side in
+//     one run: the wavefront's intersect and intersect_shadow stages
+//     (OpenCL, timed by their kernel events), the scalar C++ traversal on 2
+//     threads, and Embree's rtcIntersect1 / rtcOccluded1 on 2 threads, on
+//     the same rays and the same float triangles; repetitions interleaved.
+//  c. Whole-frame samples/s of the wavefront against triangle count.
+//
+// The traced scene is scenes/bunny.json with its two spheres left out and
+// each wall quad as two triangles, so that both tracers see exactly the same
+// geometry (Embree has no quad of ours and no sphere of ours).
+//
+// Usage: mesh_bench [--quick] [--json FILE] [--scene FILE] [--device CHOICE] [--repeats N]
+#include <embree3/rtcore.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <ctime>
+#include <fstream>
+#include <functional>
+#include <glm/geometric.hpp>
+#include <iostream>
+#include <limits>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <stdexcept>
+#include <string>
+#include <thread>
+#include <unordered_map>
+#include <vector>
+
+#include "accel/bvh.h"
+#include "opencl/device.h"
+#include "opencl/scene_upload.h"
+#include "reference/path_tracer.h"
+#include "scene/scene.h"
+#include "wavefront/pipeline.h"
+#include "wavefront/wavefront_renderer.h"
+
+namespace {
+
+using namespace wp;
+using json = nlohmann::json;
+using M = SharedMath<float>;
+using Ray = reference::Ray<float>;
+using Clock = std::chrono::steady_clock;
+
+constexpr unsigned kThreads = 2;  // the scalar C++ traversal's and Embree's tracing threads
+
+double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+
+double median(std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    std::size_t n = v.size();
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+double minimum(const std::vector<double>& v) { return *std::min_element(v.begin(), v.end()); }
+
+std::string command_output(const std::string& command) {
+    std::string out;
+    if (FILE* pipe = ::popen(command.c_str(), "r")) {
+        char buffer[256];
+        while (std::fgets(buffer, sizeof buffer, pipe)) out += buffer;
+        ::pclose(pipe);
+    }
+    while (!out.empty() && (out.back() == '\n' || out.back() == ' ')) out.pop_back();
+    return out;
+}
+
+// Commit, date, machine and OpenCL platform: recorded with every result.
+json run_metadata(const DeviceInfo& device, bool quick) {
+    std::string git = "git -C '" WAVEPATH_SOURCE_DIR "' ";
+    std::string commit = command_output(git + "rev-parse --short=12 HEAD 2>/dev/null");
+    if (commit.empty()) commit = "unknown";
+    if (!command_output(git + "status --porcelain --untracked-files=no 2>/dev/null").empty()) commit += "+dirty";
+    std::time_t now = std::time(nullptr);
+    char date[32];
+    std::strftime(date, sizeof date, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
+    std::string cpu = "unknown";
+    std::ifstream cpuinfo("/proc/cpuinfo");
+    for (std::string line; std::getline(cpuinfo, line);) {
+        if (line.rfind("model name", 0) == 0) {
+            cpu = line.substr(line.find(':') + 2);
+            break;
+        }
+    }
+    return {{"commit", commit},
+            {"date", date},
+            {"cpu", cpu},
+            {"cores", std::thread::hardware_concurrency()},
+            {"opencl_platform", device.platform_version},
+            {"opencl_device", device.name},
+            {"embree", RTC_VERSION_STRING},
+            {"mode", quick ? "quick" : "full"}};
+}
+
+// ---- meshes of every size, from the bunny ----
+
+Mesh with_geometry(const Mesh& like, std::vector<glm::dvec3> positions, std::vector<glm::uvec3> triangles) {
+    Mesh m;
+    m.file = like.file;
+    m.material = like.material;
+    m.positions = std::move(positions);
+    m.triangles = std::move(triangles);
+    return m;  // face normals only, at every size
+}
+
+// 1->4 midpoint subdivision; shared edges share their midpoint, so a closed mesh stays closed.
+Mesh subdivide(const Mesh& mesh) {
+    std::vector<glm::dvec3> positions = mesh.positions;
+    std::unordered_map<std::uint64_t, std::uint32_t> midpoints;
+    auto midpoint = [&](std::uint32_t a, std::uint32_t b) {
+        std::uint64_t key = std::uint64_t(std::min(a, b)) << 32 | std::max(a, b);
+        auto [it, added] = midpoints.try_emplace(key, std::uint32_t(positions.size()));
+        if (added) positions.push_back(0.5 * (mesh.positions[a] + mesh.positions[b]));
+        return it->second;
+    };
+    std::vector<glm::uvec3> triangles;
+    triangles.reserve(4 * mesh.triangles.size());
+    for (const glm::uvec3& t : mesh.triangles) {
+        std::uint32_t ab = midpoint(t.x, t.y), bc = midpoint(t.y, t.z), ca = midpoint(t.z, t.x);
+        triangles.insert(triangles.end(), {{t.x, ab, ca}, {ab, t.y, bc}, {ca, bc, t.z}, {ab, bc, ca}});
+    }
+    return with_geometry(mesh, std::move(positions), std::move(triangles));
+}
+
+// Vertex clustering on a grid of `cells` along the longest side: each cell's
+// vertices merge into their mean; collapsed and zero-area triangles are dropped.
+Mesh cluster(const Mesh& mesh, int cells) {
+    glm::dvec3 lower(std::numeric_limits<double>::infinity()), upper(-std::numeric_limits<double>::infinity());
+    for (const glm::dvec3& p : mesh.positions) lower = glm::min(lower, p), upper = glm::max(upper, p);
+    glm::dvec3 extent = upper - lower;
+    double cell = std::max({extent.x, extent.y, extent.z}) / cells;
+    std::map<std::array<int, 3>, std::uint32_t> cell_vertex;
+    std::vector<std::uint32_t> remap(mesh.positions.size());
+    std::vector<glm::dvec3> sums;
+    std::vector<int> counts;
+    for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
+        glm::dvec3 q = (mesh.positions[i] - lower) / cell;
+        std::array<int, 3> key{std::min(int(q.x), cells), std::min(int(q.y), cells), std::min(int(q.z), cells)};
+        auto [it, added] = cell_vertex.try_emplace(key, std::uint32_t(sums.size()));
+        if (added) sums.emplace_back(0.0), counts.push_back(0);
+        remap[i] = it->second;
+        sums[it->second] += mesh.positions[i];
+        ++counts[it->second];
+    }
+    for (std::size_t v = 0; v < sums.size(); ++v) sums[v] /= double(counts[v]);
+    Mesh out = with_geometry(mesh, std::move(sums), {});
+    for (const glm::uvec3& t : mesh.triangles) {
+        glm::uvec3 r(remap[t.x], remap[t.y], remap[t.z]);
+        if (r.x == r.y || r.y == r.z || r.z == r.x) continue;
+        if (triangle_area(out, r) > 0.0) out.triangles.push_back(r);
+    }
+    return out;
+}
+
+// The clustering whose triangle count is nearest `target` (counts grow with the grid).
+Mesh decimate(const Mesh& mesh, std::size_t target) {
+    int lo = 2, hi = 4096;
+    while (lo < hi) {  // the first grid with at least `target` triangles
+        int mid = (lo + hi) / 2;
+        if (cluster(mesh, mid).triangles.size() < target)
+            lo = mid + 1;
+        else
+            hi = mid;
+    }
+    Mesh above = cluster(mesh, lo), below = cluster(mesh, std::max(2, lo - 1));
+    auto off = [target](const Mesh& m) { return std::abs(double(m.triangles.size()) - double(target)); };
+    return off(below) < off(above) ? below : above;
+}
+
+// The bunny at each benchmark size: ~1k and ~10k clustered, itself, one and two subdivisions.
+std::vector<Mesh> mesh_sizes(const Mesh& bunny, bool quick) {
+    std::vector<Mesh> sizes{decimate(bunny, 1000)};
+    if (!quick) sizes.push_back(decimate(bunny, 10000));
+    sizes.push_back(with_geometry(bunny, bunny.positions, bunny.triangles));
+    if (!quick) {
+        sizes.push_back(subdivide(sizes.back()));
+        sizes.push_back(subdivide(sizes.back()));
+    }
+    return sizes;
+}
+
+// ---- scenes ----
+
+std::size_t largest_mesh(const Scene& scene) {
+    if (scene.meshes.empty()) throw std::runtime_error(scene.source + ": the benchmark needs a mesh in the scene");
+    std::size_t best = 0;
+    for (std::size_t i = 1; i < scene.meshes.size(); ++i)
+        if (scene.meshes[i].triangles.size() > scene.meshes[best].triangles.size()) best = i;
+    return best;
+}
+
+// The scene with triangles alone: spheres left out, each quad two triangles (a mesh of its own).
+Scene triangles_only(const Scene& scene) {
+    if (!scene.planes.empty()) throw std::runtime_error(scene.source + ": infinite planes cannot be triangulated");
+    Scene out = scene;
+    out.spheres.clear();
+    out.quads.clear();
+    for (const Quad& q : scene.quads) {
+        Mesh m;
+        m.file = "quad";
+        m.material = q.material;
+        m.positions = {q.corner, q.corner + q.edge1, q.corner + q.edge1 + q.edge2, q.corner + q.edge2};
+        m.triangles = {{0, 1, 2}, {0, 2, 3}};  // counter-clockwise about edge1 x edge2, like the quad's front
+        out.meshes.push_back(m);
+    }
+    build_light_table(out);
+    return out;
+}
+
+// The scene with its largest mesh replaced.
+Scene with_mesh(const Scene& scene, const Mesh& mesh) {
+    Scene out = scene;
+    out.meshes[largest_mesh(scene)] = mesh;
+    build_light_table(out);
+    return out;
+}
+
+// ---- a. BVH build ----
+
+json build_figures(const Scene& base, const std::vector<Mesh>& meshes, int repeats) {
+    json rows = json::array();
+    std::printf("\n## a. BVH build (min / median of %d; Embree binned SAH on all cores, then our flattening)\n\n",
+                repeats);
+    std::printf("%10s %8s %6s %14s %16s %10s %14s\n", "triangles", "nodes", "depth", "build_bvh s", "flatten_scene s",
+                "bytes/tri", "flatten/tri ns");
+    for (const Mesh& mesh : meshes) {
+        Scene scene = base;  // the mesh alone, in the scene's first material
+        scene.spheres.clear(), scene.planes.clear(), scene.quads.clear();
+        scene.meshes = {mesh};
+        scene.meshes[0].material = 0;
+        build_light_table(scene);
+        std::vector<TrianglePositions> triangles;
+        for (const glm::uvec3& t : mesh.triangles)
+            triangles.push_back({mesh.positions[t.x], mesh.positions[t.y], mesh.positions[t.z]});
+        std::vector<double> build_s, flatten_s;
+        std::size_t nodes = 0, uploaded = 0;
+        int depth = 0;
+        for (int r = 0; r < repeats; ++r) {  // interleaved: build, then the whole of flatten_scene
+            auto start = Clock::now();
+            BvhTree tree = build_bvh(triangles);
+            build_s.push_back(seconds_since(start));
+            start = Clock::now();
+            SceneLayout layout = flatten_scene(scene);
+            flatten_s.push_back(seconds_since(start));
+            nodes = layout.bvh_nodes.size();
+            depth = tree.depth;
+            uploaded = sizeof(layout.bvh_nodes[0]) * layout.bvh_nodes.size() +
+                       sizeof(layout.triangles[0]) * layout.triangles.size();
+        }
+        std::size_t n = mesh.triangles.size();
+        double per_triangle = double(uploaded) / double(n);
+        std::printf("%10zu %8zu %6d %6.3f / %5.3f %7.3f / %6.3f %10.1f %14.0f\n", n, nodes, depth, minimum(build_s),
+                    median(build_s), minimum(flatten_s), median(flatten_s), per_triangle,
+                    1e9 * median(flatten_s) / double(n));
+        rows.push_back({{"triangles", n},
+                        {"nodes", nodes},
+                        {"depth", depth},
+                        {"repeats", repeats},
+                        {"build_bvh_s_min", minimum(build_s)},
+                        {"build_bvh_s_median", median(build_s)},
+                        {"flatten_scene_s_min", minimum(flatten_s)},
+                        {"flatten_scene_s_median", median(flatten_s)},
+                        {"uploaded_bytes", uploaded},
+                        {"bytes_per_triangle", per_triangle}});
+    }
+    return rows;
+}
+
+// ---- b. traversal: the wavefront's stages, the scalar C++ traversal, Embree ----
+
+struct RaySet {
+    std::string name;
+    std::vector<Ray> rays;
+    std::vector<float> segment;  // any hit: t_max, 0.99 of the closest hit (infinity where none)
+};
+
+struct ClosestResult {
+    std::vector<float> t;            // infinity where nothing is hit
+    std::vector<std::uint32_t> tri;  // leaf-order triangle index; ~0u where nothing is hit
+};
+
+const std::uint32_t kNone = ~0u;
+
+void split_threads(std::size_t n, const std::function<void(std::size_t, std::size_t)>& work) {
+    std::vector<std::thread> threads;
+    for (unsigned k = 0; k < kThreads; ++k) threads.emplace_back(work, n * k / kThreads, n * (k + 1) / kThreads);
+    for (std::thread& t : threads) t.join();
+}
+
+// The wavefront's intersect and intersect_shadow stages, run alone on given rays.
+class StageTracer {
+ public:
+    StageTracer(const Scene& scene, const DeviceInfo& device, std::size_t n)
+        : n_(n), pipeline_(scene, device, n, n, scene.features(), options()) {
+        if (!scene.features().nee) throw std::runtime_error("the benchmark scene needs a light (intersect_shadow)");
+        for (std::size_t i = 0; i < n; ++i) slots_.push_back(std::uint32_t(i));
+    }
+    unsigned lanes() const { return pipeline_.lanes(); }
+
+    // Device seconds of the intersect kernel.
+    double closest(const std::vector<Ray>& rays, ClosestResult& out) {
+        std::size_t n = rays.size();
+        std::vector<std::uint32_t> slots(slots_.begin(), slots_.begin() + std::ptrdiff_t(n));
+        std::vector<float> o[3], d[3];
+        split(rays, o, d);
+        for (std::size_t a = 0; a < 3; ++a) {
+            pipeline_.write_field("origin", o[a], a);
+            pipeline_.write_field("direction", d[a], a);
+            pipeline_.write_field("radiance", std::vector<float>(n, 0.0f), a);
+            pipeline_.write_field("throughput", std::vector<float>(n, 1.0f), a);
+        }
+        pipeline_.write_field("pixel", std::vector<std::uint32_t>(n, 0u));
+        pipeline_.write_field("sample", slots);
+        pipeline_.write_field("pass_item", slots);
+        pipeline_.write_field("depth", std::vector<std::uint32_t>(n, 0u));
+        if (pipeline_.state().has_field("specular"))
+            pipeline_.write_field("specular", std::vector<std::uint32_t>(n, 1u));
+        pipeline_.begin_pass(0, std::uint32_t(n));
+        pipeline_.queues().set_queue(WP_QUEUE_FREE, {});
+        pipeline_.queues().set_queue(WP_QUEUE_RAY, slots);
+        double seconds = timed("intersect", [this] { pipeline_.run_alone(Stage::Intersect); });
+        std::vector<float> t = pipeline_.read_field<float>("hit_t");
+        std::vector<std::uint32_t> shape = pipeline_.read_field<std::uint32_t>("hit_shape");
+        out.t.assign(n, std::numeric_limits<float>::infinity());
+        out.tri.assign(n, kNone);
+        for (std::size_t i = 0; i < n; ++i) {
+            if (shape[i] == WP_NO_HIT) continue;
+            if (shape[i] >> WP_SHAPE_TYPE_SHIFT != WP_SHAPE_TRIANGLE)
+                throw std::logic_error("a hit that is no triangle");
+            out.t[i] = t[i];
+            out.tri[i] = shape[i] & ((1u << WP_SHAPE_TYPE_SHIFT) - 1u);
+        }
+        return seconds;
+    }
+
+    // Device seconds of the intersect_shadow kernel; occluded[i] 1 where something is hit before segment[i].
+    double any(const std::vector<Ray>& rays, const std::vector<float>& segment, std::vector<std::uint8_t>& occluded) {
+        std::size_t n = rays.size();
+        std::vector<std::uint32_t> slots(slots_.begin(), slots_.begin() + std::ptrdiff_t(n));
+        std::vector<float> o[3], d[3];
+        split(rays, o, d);
+        for (std::size_t a = 0; a < 3; ++a) {
+            pipeline_.write_field("shadow_origin", o[a], a);
+            pipeline_.write_field("shadow_direction", d[a], a);
+            pipeline_.write_field("radiance", std::vector<float>(n, 0.0f), a);
+            pipeline_.write_field("shadow_radiance", std::vector<float>(n, 1.0f), a);
+        }
+        pipeline_.write_field("shadow_distance", segment);
+        pipeline_.write_field("depth", std::vector<std::uint32_t>(n, 0u));
+        pipeline_.begin_pass(0, std::uint32_t(n));
+        pipeline_.queues().set_queue(WP_QUEUE_FREE, {});
+        pipeline_.queues().set_queue(WP_QUEUE_SHADOW, slots);
+        double seconds = timed("intersect_shadow", [this] { pipeline_.run_alone(Stage::IntersectShadow); });
+        std::vector<float> radiance = pipeline_.read_field<float>("radiance");
+        occluded.assign(n, 0);
+        for (std::size_t i = 0; i < n; ++i) occluded[i] = radiance[i] == 1.0f ? 0 : 1;
+        return seconds;
+    }
+
+ private:
+    static PipelineOptions options() {
+        PipelineOptions o;
+        o.profile = true;
+        return o;
+    }
+    void split(const std::vector<Ray>& rays, std::vector<float> (&o)[3], std::vector<float> (&d)[3]) const {
+        if (rays.size() > n_) throw std::logic_error("more rays than slots");
+        for (const Ray& r : rays)
+            for (int a = 0; a < 3; ++a) o[a].push_back(r.origin[a]), d[a].push_back(r.direction[a]);
+    }
+    double kernel_seconds(const std::string& name) {
+        double s = 0.0;
+        for (const KernelProfile& k : pipeline_.profile().kernels)
+            if (k.name == name) s += k.device_s;
+        return s;
+    }
+    double timed(const std::string& kernel, const std::function<void()>& run) {
+        pipeline_.read_counts();  // earlier kernels' times in
+        double before = kernel_seconds(kernel);
+        run();
+        pipeline_.read_counts();
+        return kernel_seconds(kernel) - before;
+    }
+
+    std::size_t n_;
+    Pipeline pipeline_;
+    std::vector<std::uint32_t> slots_;
+};
+
+// Embree's own scene of the same float triangles (primID = our leaf-order index).
+class EmbreeTracer {
+ public:
+    explicit EmbreeTracer(const std::vector<M::MeshTriangle>& triangles) {
+        device_ = rtcNewDevice("threads=2");
+        if (!device_) throw std::runtime_error("Embree: cannot create a device");
+        scene_ = rtcNewScene(device_);
+        rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_MEDIUM);
+        rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_NONE);  // not robust
+        RTCGeometry geometry = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
+        auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
+            geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), 3 * triangles.size()));
+        auto* indices = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
+            geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), triangles.size()));
+        for (std::size_t i = 0; i < triangles.size(); ++i) {
+            const M::MeshTriangle& t = triangles[i];
+            for (int a = 0; a < 3; ++a) {
+                vertices[9 * i + a] = t.p0[a];
+                vertices[9 * i + 3 + a] = t.p1[a];
+                vertices[9 * i + 6 + a] = t.p2[a];
+            }
+            for (int k = 0; k < 3; ++k) indices[3 * i + k] = unsigned(3 * i + k);
+        }
+        rtcCommitGeometry(geometry);
+        rtcAttachGeometry(scene_, geometry);
+        rtcReleaseGeometry(geometry);
+        rtcCommitScene(scene_);
+    }
+    ~EmbreeTracer() {
+        rtcReleaseScene(scene_);
+        rtcReleaseDevice(device_);
+    }
+
+    double closest(const std::vector<Ray>& rays, ClosestResult& out) {
+        out.t.assign(rays.size(), std::numeric_limits<float>::infinity());
+        out.tri.assign(rays.size(), kNone);
+        auto start = Clock::now();
+        split_threads(rays.size(), [&](std::size_t begin, std::size_t end) {
+            RTCIntersectContext context;
+            rtcInitIntersectContext(&context);
+            for (std::size_t i = begin; i < end; ++i) {
+                RTCRayHit rh{};
+                set_ray(rh.ray, rays[i], std::numeric_limits<float>::infinity());
+                rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+                rtcIntersect1(scene_, &context, &rh);
+                if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) continue;
+                out.t[i] = rh.ray.tfar;
+                out.tri[i] = rh.hit.primID;
+            }
+        });
+        return seconds_since(start);
+    }
+
+    double any(const std::vector<Ray>& rays, const std::vector<float>& segment, std::vector<std::uint8_t>& occluded) {
+        occluded.assign(rays.size(), 0);
+        auto start = Clock::now();
+        split_threads(rays.size(), [&](std::size_t begin, std::size_t end) {
+            RTCIntersectContext context;
+            rtcInitIntersectContext(&context);
+            for (std::size_t i = begin; i < end; ++i) {
+                RTCRay ray{};
+                set_ray(ray, rays[i], segment[i]);
+                rtcOccluded1(scene_, &context, &ray);
+                occluded[i] = ray.tfar < 0.0f;
+            }
+        });
+        return seconds_since(start);
+    }
+
+ private:
+    static void set_ray(RTCRay& r, const Ray& ray, float t_max) {
+        r.org_x = ray.origin.x, r.org_y = ray.origin.y, r.org_z = ray.origin.z;
+        r.dir_x = ray.direction.x, r.dir_y = ray.direction.y, r.dir_z = ray.direction.z;
+        r.tnear = 0.0f;
+        r.tfar = t_max;
+        r.mask = ~0u;
+    }
+    RTCDevice device_;
+    RTCScene scene_;
+};
+
+// The scalar C++ traversal (the reference's, kernels/shared/bvh.h) on kThreads threads.
+double scalar_closest(const reference::ReferenceScene<float>& scene, const std::vector<Ray>& rays, ClosestResult& out) {
+    out.t.assign(rays.size(), std::numeric_limits<float>::infinity());
+    out.tri.assign(rays.size(), kNone);
+    auto start = Clock::now();
+    split_threads(rays.size(), [&](std::size_t begin, std::size_t end) {
+        for (std::size_t i = begin; i < end; ++i) {
+            reference::ShapeHit<float> hit = reference::closest_hit(scene, rays[i]);
+            if (!hit.found()) continue;
+            out.t[i] = hit.t;
+            out.tri[i] = std::uint32_t(hit.index);
+        }
+    });
+    return seconds_since(start);
+}
+
+double scalar_any(const reference::ReferenceScene<float>& scene, const std::vector<Ray>& rays,
+                  const std::vector<float>& segment, std::vector<std::uint8_t>& occluded) {
+    occluded.assign(rays.size(), 0);
+    auto start = Clock::now();
+    split_threads(rays.size(), [&](std::size_t begin, std::size_t end) {
+        for (std::size_t i = begin; i < end; ++i) occluded[i] = reference::occluded(scene, rays[i], segment[i]);
+    });
+    return seconds_since(start);
+}
+
+// Primary rays (one per pixel, jittered as the renderer's first sample) and
+// incoherent rays: a cosine-distributed bounce from each primary hit, its
+// origin offset along the normal as the renderer offsets it.
+std::vector<RaySet> make_rays(const reference::ReferenceScene<float>& scene) {
+    RaySet primary{"primary", {}, {}}, bounce{"incoherent", {}, {}};
+    const auto& camera = scene.camera;
+    for (int py = 0; py < camera.height; ++py) {
+        for (int px = 0; px < camera.width; ++px) {
+            auto pixel = std::uint32_t(py * camera.width + px);
+            reference::SampleRng<float> rng{scene.render.seed, pixel, 0u};
+            Ray ray = reference::camera_ray(scene, px, py, rng);
+            primary.rays.push_back(ray);
+            reference::ShapeHit<float> hit = reference::closest_hit(scene, ray);
+            if (!hit.found()) continue;
+            reference::SurfacePoint<float> x = reference::surface_at(scene, ray, hit);
+            M::vec3 nf = glm::dot(ray.direction, x.normal) < 0.0f ? x.normal : -x.normal;
+            M::vec3 local = M::sample_cosine_hemisphere(rng(0, DIM_BSDF_U), rng(0, DIM_BSDF_V));
+            bounce.rays.push_back(
+                {M::offset_ray_origin(x.point, nf, x.error), M::frame_to_world(M::frame_from_normal(nf), local)});
+        }
+    }
+    for (RaySet* set : {&primary, &bounce}) {
+        for (const Ray& ray : set->rays) {
+            reference::ShapeHit<float> hit = reference::closest_hit(scene, ray);
+            set->segment.push_back(hit.found() ? 0.99f * hit.t : std::numeric_limits<float>::infinity());
+        }
+    }
+    return {primary, bounce};
+}
+
+// Rays whose hit differs beyond float tolerance: one hits and the other not,
+// or the distances differ by more than 1e-4 relative. Hits of another
+// triangle at the same distance (a shared edge or vertex) are counted apart.
+struct Agreement {
+    std::size_t hits_a = 0, hits_b = 0, differ = 0, other_triangle_same_t = 0, bit_identical = 0;
+};
+Agreement compare(const ClosestResult& a, const ClosestResult& b) {
+    Agreement g;
+    for (std::size_t i = 0; i < a.t.size(); ++i) {
+        bool ha = a.tri[i] != kNone, hb = b.tri[i] != kNone;
+        g.hits_a += ha, g.hits_b += hb;
+        if (a.tri[i] == b.tri[i] && (a.t[i] == b.t[i] || (!ha && !hb))) ++g.bit_identical;
+        if (ha != hb) {
+            ++g.differ;
+        } else if (ha) {
+            if (std::abs(a.t[i] - b.t[i]) > 1e-4f * std::max(1.0f, std::abs(b.t[i])))
+                ++g.differ;
+            else if (a.tri[i] != b.tri[i])
+                ++g.other_triangle_same_t;
+        }
+    }
+    return g;
+}
+
+json traversal_figures(const Scene& traced, const DeviceInfo& device, int repeats, json& agreement_rows) {
+    reference::ReferenceScene<float> reference_scene(traced);
+    std::vector<RaySet> sets = make_rays(reference_scene);
+    std::size_t capacity = 0;
+    for (const RaySet& s : sets) capacity = std::max(capacity, s.rays.size());
+    StageTracer stages(traced, device, capacity);
+    EmbreeTracer embree(reference_scene.triangles);
+    std::printf(
+        "\n## b. Traversal: %zu triangles, %zu primary and %zu incoherent rays, %d interleaved repetitions, %u threads "
+        "for the "
+        "scalar C++ and Embree, OpenCL stage lanes %u\n",
+        reference_scene.triangles.size(), sets[0].rays.size(), sets[1].rays.size(), repeats, kThreads, stages.lanes());
+
+    const char* impls[] = {"opencl_stage", "scalar_cpp", "embree"};
+    const char* queries[] = {"closest", "any"};
+    // times[set][query][impl]
+    std::vector<std::vector<std::vector<std::vector<double>>>> times(
+        sets.size(), std::vector<std::vector<std::vector<double>>>(2, std::vector<std::vector<double>>(3)));
+    std::vector<std::vector<ClosestResult>> closest(sets.size(), std::vector<ClosestResult>(3));
+    std::vector<std::vector<std::vector<std::uint8_t>>> any(sets.size(), std::vector<std::vector<std::uint8_t>>(3));
+    for (int r = -1; r < repeats; ++r) {  // r = -1: warm-up, not recorded (PoCL compiles at the first launch)
+        for (std::size_t s = 0; s < sets.size(); ++s) {
+            const RaySet& set = sets[s];
+            double t[2][3] = {
+                {stages.closest(set.rays, closest[s][0]), scalar_closest(reference_scene, set.rays, closest[s][1]),
+                 embree.closest(set.rays, closest[s][2])},
+                {stages.any(set.rays, set.segment, any[s][0]),
+                 scalar_any(reference_scene, set.rays, set.segment, any[s][1]),
+                 embree.any(set.rays, set.segment, any[s][2])}};
+            if (r < 0) continue;
+            for (int q = 0; q < 2; ++q)
+                for (int i = 0; i < 3; ++i) times[s][q][i].push_back(t[q][i]);
+        }
+    }
+
+    json rows = json::array();
+    std::printf("\n%-11s %-8s %-13s %12s %14s %16s %8s\n", "rays", "query", "tracer", "Mrays/s best", "Mrays/s median",
+                "of Embree (med)", "hits");
+    for (std::size_t s = 0; s < sets.size(); ++s) {
+        const std::size_t count = sets[s].rays.size();
+        for (int q = 0; q < 2; ++q) {
+            double embree_median = double(count) / median(times[s][q][2]);
+            for (int i = 0; i < 3; ++i) {
+                double best = double(count) / minimum(times[s][q][i]) / 1e6;
+                double med = double(count) / median(times[s][q][i]) / 1e6;
+                std::size_t hits = 0;
+                if (q == 0)
+                    for (std::uint32_t tri : closest[s][i].tri) hits += tri != kNone;
+                else
+                    for (std::uint8_t o : any[s][i]) hits += o;
+                double ratio = med * 1e6 / embree_median;
+                std::printf("%-11s %-8s %-13s %12.2f %14.2f %15.2fx %8zu\n", sets[s].name.c_str(), queries[q], impls[i],
+                            best, med, ratio, hits);
+                rows.push_back({{"rays", sets[s].name},
+                                {"query", queries[q]},
+                                {"tracer", impls[i]},
+                                {"ray_count", count},
+                                {"repeats", repeats},
+                                {"mrays_s_best", best},
+                                {"mrays_s_median", med},
+                                {"of_embree_median", ratio},
+                                {"hits", hits}});
+            }
+        }
+    }
+
+    std::printf(
+        "\nAgreement (last repetition): closest hit, a ray differs where one tracer hits and the other does "
+        "not or the distances differ by more than 1e-4 relative; any hit, where the verdicts differ. Any-hit "
+        "rays are segments ending at 0.99 of their closest hit.\n\n");
+    std::printf("%-11s %-8s %-28s %10s %10s %12s %18s %14s\n", "rays", "query", "pair", "hits a", "hits b", "differ",
+                "other tri same t", "bit-identical");
+    for (std::size_t s = 0; s < sets.size(); ++s) {
+        const std::size_t count = sets[s].rays.size();
+        for (auto [a, b] : {std::pair{0, 2}, std::pair{0, 1}}) {
+            std::string pair = std::string(impls[a]) + " vs " + impls[b];
+            Agreement g = compare(closest[s][a], closest[s][b]);
+            std::printf("%-11s %-8s %-28s %10zu %10zu %11.5f%% %18zu %13.2f%%\n", sets[s].name.c_str(), "closest",
+                        pair.c_str(), g.hits_a, g.hits_b, 100.0 * double(g.differ) / double(count),
+                        g.other_triangle_same_t, 100.0 * double(g.bit_identical) / double(count));
+            agreement_rows.push_back({{"rays", sets[s].name},
+                                      {"query", "closest"},
+                                      {"pair", pair},
+                                      {"ray_count", count},
+                                      {"hits_a", g.hits_a},
+                                      {"hits_b", g.hits_b},
+                                      {"differ_fraction", double(g.differ) / double(count)},
+                                      {"other_triangle_same_t", g.other_triangle_same_t},
+                                      {"bit_identical_fraction", double(g.bit_identical) / double(count)}});
+            std::size_t occluded_a = 0, occluded_b = 0, differ = 0;
+            for (std::size_t i = 0; i < count; ++i) {
+                occluded_a += any[s][a][i], occluded_b += any[s][b][i];
+                differ += any[s][a][i] != any[s][b][i];
+            }
+            std::printf("%-11s %-8s %-28s %10zu %10zu %11.5f%%\n", sets[s].name.c_str(), "any", pair.c_str(),
+                        occluded_a, occluded_b, 100.0 * double(differ) / double(count));
+            agreement_rows.push_back({{"rays", sets[s].name},
+                                      {"query", "any"},
+                                      {"pair", pair},
+                                      {"ray_count", count},
+                                      {"hits_a", occluded_a},
+                                      {"hits_b", occluded_b},
+                                      {"differ_fraction", double(differ) / double(count)}});
+        }
+    }
+    return rows;
+}
+
+// ---- c. whole frames ----
+
+json render_figures(const Scene& traced, const std::vector<Mesh>& meshes, int size, int spp, int repeats) {
+    std::printf(
+        "\n## c. Whole frames: wavefront, %dx%d, %d spp, %d interleaved repetitions (after one warm-up "
+        "render), the traced scene with the bunny at each size\n\n",
+        size, size, spp, repeats);
+    std::vector<Scene> scenes;
+    for (const Mesh& mesh : meshes) {
+        Scene scene = with_mesh(traced, mesh);
+        scene.camera.width = scene.camera.height = size;
+        scene.render.spp = spp;
+        scenes.push_back(scene);
+    }
+    std::vector<std::vector<double>> sps(scenes.size()), rps(scenes.size());
+    render_wavefront(scenes[0], WavefrontOptions{}, Progress{});  // warm-up: kernel compilation
+    for (int r = 0; r < repeats; ++r) {
+        for (std::size_t k = 0; k < scenes.size(); ++k) {
+            RenderStats stats = render_wavefront(scenes[k], WavefrontOptions{}, Progress{}).stats;
+            sps[k].push_back(double(stats.samples) / stats.time_s);
+            rps[k].push_back(double(stats.extension_rays + stats.shadow_rays) / stats.time_s);
+        }
+    }
+    json rows = json::array();
+    std::printf("%12s %16s %18s %18s\n", "triangles", "scene triangles", "Msamples/s min", "median   Mrays/s");
+    for (std::size_t k = 0; k < scenes.size(); ++k) {
+        std::size_t total = 0;
+        for (const Mesh& m : scenes[k].meshes) total += m.triangles.size();
+        std::printf("%12zu %16zu %11.4f %11.4f %9.3f\n", meshes[k].triangles.size(), total, minimum(sps[k]) / 1e6,
+                    median(sps[k]) / 1e6, median(rps[k]) / 1e6);
+        rows.push_back({{"triangles", meshes[k].triangles.size()},
+                        {"scene_triangles", total},
+                        {"width", size},
+                        {"height", size},
+                        {"spp", spp},
+                        {"repeats", repeats},
+                        {"msamples_s_min", minimum(sps[k]) / 1e6},
+                        {"msamples_s_median", median(sps[k]) / 1e6},
+                        {"mrays_s_median", median(rps[k]) / 1e6}});
+    }
+    return rows;
+}
+
+int run(int argc, char** argv) {
+    bool quick = false;
+    std::string json_path, scene_path = WAVEPATH_SOURCE_DIR "/scenes/bunny.json", device_choice;
+    int repeats = 0;
+    for (int i = 1; i < argc; ++i) {
+        std::string a = argv[i];
+        auto value = [&]() -> std::string {
+            if (i + 1 >= argc) throw std::runtime_error(a + " needs a value");
+            return argv[++i];
+        };
+        if (a == "--quick") {
+            quick = true;
+        } else if (a == "--json") {
+            json_path = value();
+        } else if (a == "--scene") {
+            scene_path = value();
+        } else if (a == "--device") {
+            device_choice = value();
+        } else if (a == "--repeats") {
+            repeats = std::stoi(value());
+        } else {
+            std::cerr << "usage: mesh_bench [--quick] [--json FILE] [--scene FILE] [--device CHOICE] [--repeats N]\n";
+            return 2;
+        }
+    }
+    if (repeats <= 0) repeats = quick ? 5 : 7;
+    DeviceInfo device = choose_device(device_choice);
+    json results;
+    results["meta"] = run_metadata(device, quick);
+    std::printf("mesh_bench (%s): commit %s, %s; %s, %u cores; OpenCL %s, device %s; Embree %s\n",
+                quick ? "quick" : "full", results["meta"]["commit"].get<std::string>().c_str(),
+                results["meta"]["date"].get<std::string>().c_str(), results["meta"]["cpu"].get<std::string>().c_str(),
+                std::thread::hardware_concurrency(), device.platform_version.c_str(), device.name.c_str(),
+                RTC_VERSION_STRING);
+
+    Scene scene = load_scene(scene_path);
+    Scene traced = triangles_only(scene);
+    traced.camera.width = traced.camera.height = quick ? 128 : 512;
+    std::vector<Mesh> meshes = mesh_sizes(traced.meshes[largest_mesh(traced)], quick);
+
+    results["build"] = build_figures(traced, meshes, 3);
+    json agreement = json::array();
+    results["traversal"] = traversal_figures(traced, device, repeats, agreement);
+    results["agreement"] = agreement;
+    results["render"] = quick ? render_figures(traced, meshes, 64, 1, 2) : render_figures(traced, meshes, 256, 4, 3);
+    if (!json_path.empty()) {
+        std::ofstream out(json_path);
+        out << results.dump(1) << "\n";
+        if (!out) throw std::runtime_error("cannot write " + json_path);
+    }
+    return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    try {
+        return run(argc, argv);
+    } catch (const std::exception& e) {
+        std::cerr << "mesh_bench: " << e.what() << "\n";
+        return 1;
+    }
+}
