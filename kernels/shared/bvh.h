@@ -39,13 +39,20 @@ typedef struct {
     real enter, leave;
 } Slab;
 
+/* min and max by comparison: the slabs below make no NaN, and these compile
+ * to one instruction where C++'s fmin and fmax are library calls (their NaN
+ * rules keep compilers from inlining them), which made the reference's
+ * traversal 3x slower than the kernel's. */
+WP_FN real min_of(real a, real b) { return a < b ? a : b; }
+WP_FN real max_of(real a, real b) { return a > b ? a : b; }
+
 WP_FN Slab slab(real lower, real upper, real origin, real inverse_direction) {
     real t0 = (lower - origin) * inverse_direction, t1 = (upper - origin) * inverse_direction;
     lane_int parallel = isinf(inverse_direction);
     lane_int between = origin >= lower && origin <= upper;
     Slab s;
-    s.enter = parallel ? (between ? -WP_INFINITY : WP_INFINITY) : fmin(t0, t1);
-    s.leave = parallel ? (between ? WP_INFINITY : -WP_INFINITY) : fmax(t0, t1);
+    s.enter = parallel ? (between ? -WP_INFINITY : WP_INFINITY) : min_of(t0, t1);
+    s.leave = parallel ? (between ? WP_INFINITY : -WP_INFINITY) : max_of(t0, t1);
     return s;
 }
 
@@ -57,8 +64,8 @@ WP_FN real box_entry(WP_GLOBAL const float *bounds, vec3 origin, vec3 inverse_di
     Slab x = slab((real)bounds[0], (real)bounds[3], origin.x, inverse_direction.x);
     Slab y = slab((real)bounds[1], (real)bounds[4], origin.y, inverse_direction.y);
     Slab z = slab((real)bounds[2], (real)bounds[5], origin.z, inverse_direction.z);
-    real enter = fmax(fmax(x.enter, y.enter), fmax(z.enter, REAL(0.0)));
-    real leave = fmin(fmin(x.leave, y.leave), fmin(z.leave, t_max / leave_scale)) * leave_scale;
+    real enter = max_of(max_of(x.enter, y.enter), max_of(z.enter, REAL(0.0)));
+    real leave = min_of(min_of(x.leave, y.leave), min_of(z.leave, t_max / leave_scale)) * leave_scale;
     return enter <= leave ? enter : WP_INFINITY;
 }
 
