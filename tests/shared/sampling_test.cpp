@@ -130,6 +130,57 @@ TYPED_TEST(Sampling, QuadPointsAreUniformByArea) {
     expect_uniform(histogram);
 }
 
+// Points on a triangle are uniform by area: N^2 congruent cells of the
+// barycentric simplex (N strips each way, every square cell split along its
+// anti-diagonal), each hit with probability 1 / N^2.
+TYPED_TEST(Sampling, TrianglePointsAreUniformByArea) {
+    using R = TypeParam;
+    using M = wp::SharedMath<R>;
+    const glm::dvec3 p0(-1, 0.5, -3), p1(1.5, 0.75, -3.2), p2(-0.25, 2.0, -2.5);
+    const glm::dvec3 e1 = p1 - p0, e2 = p2 - p0, normal = glm::cross(e1, e2);
+    const glm::dvec3 w = normal / glm::dot(normal, normal);
+    constexpr int kStrips = 20;
+    std::vector<std::uint64_t> cells(kStrips * kStrips, 0);
+    for (int i = 0; i < kSamples; ++i) {
+        auto [u1, u2] = uniform_pair<R>(7, i);
+        auto s = M::sample_triangle(Vec3<R>(p0), Vec3<R>(p1), Vec3<R>(p2), R(0.5 * glm::length(normal)),
+                                    Vec3<R>(0.2, -0.3, 1.0), u1, u2);
+        glm::dvec3 p = glm::dvec3(s.point) - p0;
+        double b1 = std::clamp(glm::dot(w, glm::cross(p, e2)), 0.0, 1.0);
+        double b2 = std::clamp(glm::dot(w, glm::cross(e1, p)), 0.0, 1.0);
+        int i1 = std::min(int(b1 * kStrips), kStrips - 1), i2 = std::min(int(b2 * kStrips), kStrips - 1);
+        bool upper = b1 * kStrips - i1 + b2 * kStrips - i2 >= 1.0;
+        // lower cells at (i1, i2) with i1 + i2 < N, upper ones folded into the free slots above the diagonal
+        int cell = upper ? (kStrips - 1 - i1) * kStrips + (kStrips - 1 - i2) : i1 * kStrips + i2;
+        ++cells[std::clamp(cell, 0, kStrips * kStrips - 1)];
+        ASSERT_NEAR(glm::length(glm::dvec3(s.normal) - glm::normalize(normal)), 0.0, kRoundingTolerance<R>);
+    }
+    wp::test::ChiSquare chi =
+        wp::test::chi_square_test(cells, std::vector<double>(cells.size(), 1.0 / (kStrips * kStrips)));
+    EXPECT_GT(chi.p_value, kChiSquareAlpha) << "chi2 " << chi.statistic << " with " << chi.dof << " dof";
+}
+
+// E[1/pdf] is the solid angle the triangle subtends (Van Oosterom and
+// Strackee, IEEE Trans. Biomed. Eng. 30(2), 1983).
+TYPED_TEST(Sampling, TrianglePdfIntegratesToTheSubtendedSolidAngle) {
+    using R = TypeParam;
+    using M = wp::SharedMath<R>;
+    const glm::dvec3 p0(-1, 0.5, -3), p1(1.5, 0.75, -3.2), p2(-0.25, 2.0, -2.5), x(0.2, -0.3, 1.0);
+    const glm::dvec3 a = p0 - x, b = p1 - x, c = p2 - x;
+    const double la = glm::length(a), lb = glm::length(b), lc = glm::length(c);
+    const double solid_angle =
+        2.0 * std::atan2(std::abs(glm::dot(a, glm::cross(b, c))),
+                         la * lb * lc + glm::dot(a, b) * lc + glm::dot(a, c) * lb + glm::dot(b, c) * la);
+    const double area = 0.5 * glm::length(glm::cross(p1 - p0, p2 - p0));
+    wp::test::RunningMean inverse_pdf;
+    for (int i = 0; i < kSamples; ++i) {
+        auto [u1, u2] = uniform_pair<R>(8, i);
+        auto s = M::sample_triangle(Vec3<R>(p0), Vec3<R>(p1), Vec3<R>(p2), R(area), Vec3<R>(x), u1, u2);
+        inverse_pdf.add(1.0 / double(s.pdf_solid_angle));
+    }
+    expect_mean(inverse_pdf, solid_angle);
+}
+
 // From a point at height h above a corner of an a x b rectangle, the solid
 // angle is atan(a b / (h sqrt(a^2 + b^2 + h^2))), and E[1/pdf] must equal it.
 TYPED_TEST(Sampling, QuadPdfIntegratesToTheSubtendedSolidAngle) {
