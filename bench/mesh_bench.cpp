@@ -310,24 +310,10 @@ class StageTracer {
     // Device seconds of the intersect kernel.
     double closest(const std::vector<Ray>& rays, ClosestResult& out) {
         std::size_t n = rays.size();
-        std::vector<std::uint32_t> slots(slots_.begin(), slots_.begin() + std::ptrdiff_t(n));
-        std::vector<float> o[3], d[3];
-        split(rays, o, d);
-        for (std::size_t a = 0; a < 3; ++a) {
-            pipeline_.write_field("origin", o[a], a);
-            pipeline_.write_field("direction", d[a], a);
-            pipeline_.write_field("radiance", std::vector<float>(n, 0.0f), a);
-            pipeline_.write_field("throughput", std::vector<float>(n, 1.0f), a);
-        }
-        pipeline_.write_field("pixel", std::vector<std::uint32_t>(n, 0u));
-        pipeline_.write_field("sample", slots);
-        pipeline_.write_field("pass_item", slots);
-        pipeline_.write_field("depth", std::vector<std::uint32_t>(n, 0u));
-        if (pipeline_.state().has_field("specular"))
-            pipeline_.write_field("specular", std::vector<std::uint32_t>(n, 1u));
-        pipeline_.begin_pass(0, std::uint32_t(n));
-        pipeline_.queues().set_queue(WP_QUEUE_FREE, {});
-        pipeline_.queues().set_queue(WP_QUEUE_RAY, slots);
+        if (n > n_) throw std::logic_error("more rays than slots");
+        std::vector<glm::vec3> origins, directions;
+        for (const Ray& r : rays) origins.push_back(r.origin), directions.push_back(r.direction);
+        pipeline_.start_paths(origins, directions);
         double seconds = timed("intersect", [this] { pipeline_.run_alone(Stage::Intersect); });
         std::vector<float> t = pipeline_.read_field<float>("hit_t");
         std::vector<std::uint32_t> shape = pipeline_.read_field<std::uint32_t>("hit_shape");

@@ -7,7 +7,7 @@
 #include <glm/trigonometric.hpp>
 #include <sstream>
 
-#include "accel/bvh.h"
+#include "accel/bvh_layout.h"
 #include "core/shared_math.h"
 #include "scene/mesh_lights.h"
 
@@ -77,30 +77,13 @@ cl::Buffer upload(const cl::Context& context, std::vector<T> items) {
     return cl::Buffer(context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(T) * items.size(), items.data());
 }
 
-SharedMath<float>::MeshTriangle mesh_triangle(const TrianglePositions& p, int material, int mesh) {
-    SharedMath<float>::MeshTriangle d{};
-    put(d.p0, p[0]);
-    put(d.p1, p[1]);
-    put(d.p2, p[2]);
-    d.material = material;
-    d.mesh = mesh;
-    return d;
-}
-
 // The meshes' triangles in leaf order and the BVH's nodes, as the kernels read them.
 void flatten_meshes(const Scene& scene, SceneLayout& layout) {
     auto start = std::chrono::steady_clock::now();
     SceneBvh bvh = build_scene_bvh(scene);
-    for (const SceneTriangle& t : bvh.triangles)
-        layout.triangles.push_back(mesh_triangle(t.positions, t.material, t.mesh));
-    for (const BvhTree::Node& n : bvh.tree.nodes) {
-        SharedMath<float>::BvhNode d{};
-        for (int i = 0; i < 2; ++i) {
-            std::copy(n.bounds[i].begin(), n.bounds[i].end(), d.bounds[i]);
-            d.child[i] = n.child[i];
-        }
-        layout.bvh_nodes.push_back(d);
-    }
+    TraversableBvh<float> flat = traversable_bvh<float>(bvh);
+    layout.triangles = std::move(flat.triangles);
+    layout.bvh_nodes = std::move(flat.nodes);
     MeshSummary& summary = layout.meshes;
     summary.meshes = scene.meshes.size();
     summary.triangles = bvh.triangles.size();
@@ -173,7 +156,7 @@ SceneLayout flatten_scene(const Scene& scene) {
         layout.lights.push_back(d);
     }
     for (std::size_t k = 0; k < mesh_lights.triangles.size(); ++k) {
-        layout.light_triangles.push_back(mesh_triangle(mesh_lights.triangles[k], mesh_lights.materials[k], 0));
+        layout.light_triangles.push_back(mesh_triangle<float>(mesh_lights.triangles[k], mesh_lights.materials[k], 0));
         layout.light_triangle_cdf.push_back(static_cast<float>(mesh_lights.cdf[k]));
     }
     for (double c : scene.light_cdf) layout.light_cdf.push_back(static_cast<float>(c));

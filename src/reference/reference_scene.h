@@ -2,14 +2,13 @@
 // all path arithmetic runs in Real, as the kernels' runs in float.
 #pragma once
 
-#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
 #include <vector>
 
-#include "accel/bvh.h"
+#include "accel/bvh_layout.h"
 #include "core/shared_math.h"
 #include "scene/mesh_lights.h"
 #include "scene/scene.h"
@@ -104,35 +103,16 @@ struct ReferenceScene {
                 {scene.lights[i].shape, scene.lights[i].index, range.first, range.count, Real(range.area)});
         }
         for (std::size_t k = 0; k < mesh_lights.triangles.size(); ++k) {
-            light_triangles.push_back(to_real(mesh_lights.triangles[k], mesh_lights.materials[k], 0));
+            light_triangles.push_back(mesh_triangle<Real>(mesh_lights.triangles[k], mesh_lights.materials[k], 0));
             light_triangle_cdf.push_back(Real(mesh_lights.cdf[k]));
         }
     }
 
-    static typename M::MeshTriangle to_real(const TrianglePositions& p, int material, int mesh) {
-        typename M::MeshTriangle r{};
-        for (int i = 0; i < 3; ++i) {
-            r.p0[i] = Real(p[0][i]);
-            r.p1[i] = Real(p[1][i]);
-            r.p2[i] = Real(p[2][i]);
-        }
-        r.material = std::uint32_t(material);
-        r.mesh = std::uint32_t(mesh);
-        return r;
-    }
-
     // The same tree and leaf order as the kernels', with the vertices in Real.
     void add_meshes(const Scene& scene) {
-        SceneBvh bvh = build_scene_bvh(scene);
-        for (const SceneTriangle& t : bvh.triangles) triangles.push_back(to_real(t.positions, t.material, t.mesh));
-        for (const BvhTree::Node& n : bvh.tree.nodes) {
-            typename M::BvhNode r{};
-            for (int i = 0; i < 2; ++i) {
-                std::copy(n.bounds[i].begin(), n.bounds[i].end(), r.bounds[i]);
-                r.child[i] = n.child[i];
-            }
-            bvh_nodes.push_back(r);
-        }
+        TraversableBvh<Real> flat = traversable_bvh<Real>(build_scene_bvh(scene));
+        triangles = std::move(flat.triangles);
+        bvh_nodes = std::move(flat.nodes);
     }
 
     static PinholeCamera convert_camera(const Camera& c) {

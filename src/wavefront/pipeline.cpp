@@ -1,5 +1,6 @@
 #include "wavefront/pipeline.h"
 
+#include <numeric>
 #include <stdexcept>
 
 #include "opencl/kernel_arguments.h"
@@ -78,6 +79,30 @@ void Pipeline::run(Stage stage) {
         ray_depths_->count(launcher_, WP_QUEUE_SHADOW, WP_PROFILE_SHADOW_BY_DEPTH);
     auto index = static_cast<std::size_t>(stage);
     launcher_.launch(stages_[index], stage_kernel_names[index], divide_rounding_up(capacity_, lanes_));
+}
+
+void Pipeline::start_paths(const std::vector<glm::vec3>& origins, const std::vector<glm::vec3>& directions,
+                           std::uint32_t first_sample) {
+    std::size_t n = origins.size();
+    std::vector<std::uint32_t> slots(n), samples(n);
+    std::iota(slots.begin(), slots.end(), 0u);
+    std::iota(samples.begin(), samples.end(), first_sample);
+    for (std::size_t a = 0; a < 3; ++a) {
+        std::vector<float> origin(n), direction(n);
+        for (std::size_t i = 0; i < n; ++i) origin[i] = origins[i][a], direction[i] = directions[i][a];
+        write_field("origin", origin, a);
+        write_field("direction", direction, a);
+        write_field("radiance", std::vector<float>(n, 0.0f), a);
+        write_field("throughput", std::vector<float>(n, 1.0f), a);
+    }
+    write_field("pixel", std::vector<std::uint32_t>(n, 0u));
+    write_field("sample", samples);
+    write_field("pass_item", slots);
+    write_field("depth", std::vector<std::uint32_t>(n, 0u));
+    if (state_.has_field("specular")) write_field("specular", std::vector<std::uint32_t>(n, 1u));
+    begin_pass(0, std::uint32_t(n));
+    queues_.set_queue(WP_QUEUE_FREE, {});  // misses and ended paths land there
+    queues_.set_queue(WP_QUEUE_RAY, slots);
 }
 
 void Pipeline::run_alone(Stage stage) {

@@ -7,6 +7,7 @@
 
 #include <CL/opencl.hpp>
 #include <cstdint>
+#include <glm/vec3.hpp>
 #include <memory>
 #include <optional>
 #include <string>
@@ -83,6 +84,12 @@ class Pipeline {
     // profile(), so call it after the render.
     IntersectBound measure_intersect_bound(std::uint32_t rays);
 
+    // For stage tests and benchmarks: puts fresh paths (depth 0, throughput 1,
+    // no radiance, after a "specular" camera vertex) with these rays into
+    // slots 0..n-1, path i being sample `first_sample + i` of pixel 0, and
+    // queues them all for intersect, with no slot free.
+    void start_paths(const std::vector<glm::vec3>& origins, const std::vector<glm::vec3>& directions,
+                     std::uint32_t first_sample = 0);
     // For stage tests: runs `stage` alone, its output queues emptied first
     // and readable after (QueueSet::read_queue).
     void run_alone(Stage stage);

@@ -2,14 +2,13 @@
 // watertight triangle test (kernels/shared/triangle.h): the tree finds what
 // a test of every triangle finds, bit for bit; it is the same for any thread
 // count; and no ray passes through a closed mesh, at any scale.
-#include "accel/bvh.h"
-
 #include <gtest/gtest.h>
 
 #include <cstdio>
 #include <functional>
 #include <random>
 
+#include "accel/bvh_layout.h"
 #include "core/shared_math.h"
 #include "scene/scene.h"
 #include "support/meshes.h"
@@ -20,34 +19,12 @@ namespace {
 using M = SharedMath<float>;
 using vec3 = M::vec3;
 
-struct FlatMeshes {
-    std::vector<M::MeshTriangle> triangles;  // leaf order
-    std::vector<M::BvhNode> nodes;
-};
+using FlatMeshes = TraversableBvh<float>;
 
 FlatMeshes flatten(const std::vector<Mesh>& meshes) {
     Scene scene;
     scene.meshes = meshes;
-    SceneBvh bvh = build_scene_bvh(scene);
-    FlatMeshes flat;
-    for (const SceneTriangle& t : bvh.triangles) {
-        M::MeshTriangle d{};
-        for (int i = 0; i < 3; ++i) {
-            d.p0[i] = float(t.positions[0][i]);
-            d.p1[i] = float(t.positions[1][i]);
-            d.p2[i] = float(t.positions[2][i]);
-        }
-        flat.triangles.push_back(d);
-    }
-    for (const BvhTree::Node& n : bvh.tree.nodes) {
-        M::BvhNode d{};
-        for (int i = 0; i < 2; ++i) {
-            std::copy(n.bounds[i].begin(), n.bounds[i].end(), d.bounds[i]);
-            d.child[i] = n.child[i];
-        }
-        flat.nodes.push_back(d);
-    }
-    return flat;
+    return traversable_bvh<float>(build_scene_bvh(scene));
 }
 
 // Every triangle tested in turn, keeping the first of equal distances.
@@ -187,26 +164,7 @@ int rays_through_closed_mesh(const Mesh& mesh) {
     using rvec3 = typename R::vec3;
     Scene scene;
     scene.meshes = {mesh};
-    SceneBvh bvh = build_scene_bvh(scene);
-    std::vector<typename R::MeshTriangle> triangles;
-    for (const SceneTriangle& t : bvh.triangles) {
-        typename R::MeshTriangle d{};
-        for (int i = 0; i < 3; ++i) {
-            d.p0[i] = Real(t.positions[0][i]);
-            d.p1[i] = Real(t.positions[1][i]);
-            d.p2[i] = Real(t.positions[2][i]);
-        }
-        triangles.push_back(d);
-    }
-    std::vector<typename R::BvhNode> nodes;
-    for (const BvhTree::Node& n : bvh.tree.nodes) {
-        typename R::BvhNode d{};
-        for (int i = 0; i < 2; ++i) {
-            std::copy(n.bounds[i].begin(), n.bounds[i].end(), d.bounds[i]);
-            d.child[i] = n.child[i];
-        }
-        nodes.push_back(d);
-    }
+    TraversableBvh<Real> flat = traversable_bvh<Real>(build_scene_bvh(scene));
     glm::dvec3 centre(0.0);
     for (const glm::dvec3& p : mesh.positions) centre += p / double(mesh.positions.size());
     std::vector<glm::dvec3> targets = mesh.positions;
@@ -220,7 +178,7 @@ int rays_through_closed_mesh(const Mesh& mesh) {
             rvec3 origin(from);
             rvec3 direction = glm::normalize(to - origin);
             std::uint32_t index = 0;
-            Real t = R::bvh_trace(nodes.data(), triangles.data(), origin, direction, R::real_max, 0, &index);
+            Real t = R::bvh_trace(flat.nodes.data(), flat.triangles.data(), origin, direction, R::real_max, 0, &index);
             misses += !(t < R::real_max);
         }
     }

@@ -1,0 +1,49 @@
+// The meshes' BVH and triangles in the layout kernels/shared/bvh.h traverses,
+// for one precision: the device upload takes SharedMath<float>'s, the
+// reference its own Real's. The one conversion from the builder's double data.
+#pragma once
+
+#include <algorithm>
+#include <vector>
+
+#include "accel/bvh.h"
+#include "core/shared_math.h"
+
+namespace wp {
+
+template <class Real>
+typename SharedMath<Real>::MeshTriangle mesh_triangle(const TrianglePositions& p, int material, int mesh) {
+    typename SharedMath<Real>::MeshTriangle t{};
+    for (int i = 0; i < 3; ++i) {
+        t.p0[i] = static_cast<Real>(p[0][i]);
+        t.p1[i] = static_cast<Real>(p[1][i]);
+        t.p2[i] = static_cast<Real>(p[2][i]);
+    }
+    t.material = static_cast<std::uint32_t>(material);
+    t.mesh = static_cast<std::uint32_t>(mesh);
+    return t;
+}
+
+template <class Real>
+struct TraversableBvh {
+    std::vector<typename SharedMath<Real>::MeshTriangle> triangles;  // in the tree's leaf order
+    std::vector<typename SharedMath<Real>::BvhNode> nodes;
+};
+
+template <class Real>
+TraversableBvh<Real> traversable_bvh(const SceneBvh& bvh) {
+    TraversableBvh<Real> flat;
+    for (const SceneTriangle& t : bvh.triangles)
+        flat.triangles.push_back(mesh_triangle<Real>(t.positions, t.material, t.mesh));
+    for (const BvhTree::Node& n : bvh.tree.nodes) {
+        typename SharedMath<Real>::BvhNode node{};
+        for (int i = 0; i < 2; ++i) {
+            std::copy(n.bounds[i].begin(), n.bounds[i].end(), node.bounds[i]);
+            node.child[i] = n.child[i];
+        }
+        flat.nodes.push_back(node);
+    }
+    return flat;
+}
+
+}  // namespace wp
