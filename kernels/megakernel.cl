@@ -39,7 +39,7 @@ WP_FN vec3 trace_path(WP_SCENE_PARAMS, uint px, uint s, uint *extension_rays, ui
         vec3 shadow_origin, shadow_direction, contribution;
         real distance;
         if (m.type == WP_MATERIAL_DIFFUSE &&
-            sample_direct_light(WP_SCENE_ARGS, px, s, depth, v.surface.point, v.surface.error, v.nf,
+            sample_direct_light(WP_SCENE_ARGS, px, s, depth, v.surface.point, v.surface.error, v.nf, v.ns,
                                 v3_mul(throughput, m.albedo), &shadow_origin, &shadow_direction, &distance,
                                 &contribution)) {
             ++*shadow_rays;
@@ -47,9 +47,9 @@ WP_FN vec3 trace_path(WP_SCENE_PARAMS, uint px, uint s, uint *extension_rays, ui
                 radiance = add_finite(radiance, contribution, &dropped[1]);
         }
 #endif
-        Scattered scattered = scatter_vertex(m, d, v.nf, v.front, seed, px, s, depth);
+        Scattered scattered = scatter_vertex(v, d, seed, px, s, depth);
         throughput = v3_mul(throughput, scattered.weight);
-        if (!survives_roulette(&throughput, seed, px, s, depth, depth + 1u, scene->rr_depth) ||
+        if (!scattered.valid || !survives_roulette(&throughput, seed, px, s, depth, depth + 1u, scene->rr_depth) ||
             !throughput_is_finite(throughput, &dropped[2]))
             return radiance;
         origin = offset_ray_origin(v.surface.point, scattered.leave_side, v.surface.error);

@@ -16,13 +16,15 @@ __kernel __attribute__((reqd_work_group_size(WP_GROUP_SIZE, 1, 1))) void scatter
         vertex_at(WP_SCENE_ARGS, PATH_READ(hit_shape, lanes), PATH_READ(origin, lanes), d, PATH_READ(hit_t, lanes));
     uint seed = scene->seed;
     lane_uint px = PATH_READ(pixel, lanes), s = PATH_READ(sample, lanes), bounce = PATH_READ(depth, lanes);
-    Scattered scattered = scatter_vertex(v.material, d, v.nf, v.front, seed, px, s, bounce);
+    Scattered scattered = scatter_vertex(v, d, seed, px, s, bounce);
     vec3 throughput = v3_mul(PATH_READ(throughput, lanes), scattered.weight);
     lane_uint new_depth = bounce + 1u, dropped = 0u;
     lane_int survives = survives_roulette(&throughput, seed, px, s, bounce, new_depth, scene->rr_depth);
-    lane_int continues = lanes.active && survives && throughput_is_finite(throughput, &dropped);
-    /* only paths that survived roulette count a non-finite throughput (as with one lane, where && stops early) */
-    count_nonfinite(slot_nonfinite, WP_COUNTER_NONFINITE_SCATTER, lanes, survives ? dropped : (lane_uint)0u);
+    lane_int continues = lanes.active && scattered.valid && survives && throughput_is_finite(throughput, &dropped);
+    /* only paths that left validly and survived roulette count a non-finite throughput (as with one lane, where
+     * && stops early) */
+    count_nonfinite(slot_nonfinite, WP_COUNTER_NONFINITE_SCATTER, lanes,
+                    scattered.valid && survives ? dropped : (lane_uint)0u);
     lane_int ends = lanes.active && !continues;
     PATH_WRITE(origin, lanes, continues, offset_ray_origin(v.surface.point, scattered.leave_side, v.surface.error));
     PATH_WRITE(direction, lanes, continues, scattered.direction);

@@ -36,7 +36,7 @@ __kernel __attribute__((reqd_work_group_size(WP_GROUP_SIZE, 1, 1))) void shade_d
     vec3 shadow_from, shadow_towards, contribution;
     real distance;
     lane_int carries = sample_direct_light(WP_SCENE_ARGS, PATH_READ(pixel, lanes), PATH_READ(sample, lanes), bounce,
-                                           v.surface.point, v.surface.error, v.nf, v3_mul(throughput, m.albedo),
+                                           v.surface.point, v.surface.error, v.nf, v.ns, v3_mul(throughput, m.albedo),
                                            &shadow_from, &shadow_towards, &distance, &contribution);
     casts_shadow = scatters && m.type == WP_MATERIAL_DIFFUSE && carries;
     PATH_WRITE(shadow_origin, lanes, casts_shadow, shadow_from);

@@ -25,6 +25,21 @@
 #include "device/parameters.h"
 #include "device/surface.h"
 
+/* Whether `direction` leaves on the side `normal` points to. Shading
+ * normals bend directions but only the geometric normal says where a ray
+ * really goes: a direction sampled or reflected about ns that points into the
+ * surface as nf sees it, or a ray arriving from behind ns, ends the path (as
+ * in Mitsuba 3 and pbrt-v4's treatment of the two normals): continuing would
+ * leak light through the surface or shade from the wrong side. Without
+ * shading normals ns is nf and every such test passes. */
+WP_FN lane_int same_side(vec3 direction, vec3 normal) {
+#ifdef WP_HAS_SHADING_NORMALS
+    return v3_dot(direction, normal) > REAL(0.0);
+#else
+    return 1;
+#endif
+}
+
 /* The camera ray direction of sample s of pixel px (the camera is at the origin). */
 WP_FN vec3 camera_ray_direction(__global const SceneHeader *scene, lane_uint px, lane_uint s) {
     lane_uint x = px % scene->width, y = px / scene->width;
@@ -117,12 +132,12 @@ WP_FN LightPoint sample_light_shape(WP_SCENE_PARAMS, lane_uint light, vec3 x, re
     return p;
 }
 
-/* Samples one light for the diffuse vertex (x, nf); returns where the sample
- * carries light, with the shadow ray and the contribution it adds when
+/* Samples one light for the diffuse vertex (x, nf, ns); returns where the
+ * sample carries light, with the shadow ray and the contribution it adds when
  * unoccluded (the outputs hold no ray elsewhere). */
 WP_FN lane_int sample_direct_light(WP_SCENE_PARAMS, lane_uint pixel, lane_uint sample, lane_uint bounce, vec3 x,
-                                   real x_error, vec3 nf, vec3 weight, vec3 *shadow_origin, vec3 *shadow_direction,
-                                   real *shadow_distance, vec3 *contribution) {
+                                   real x_error, vec3 nf, vec3 ns, vec3 weight, vec3 *shadow_origin,
+                                   vec3 *shadow_direction, real *shadow_distance, vec3 *contribution) {
     uint seed = scene->seed;
     lane_uint light = select_light(light_cdf, LIGHT_COUNT, rng_uniform(seed, pixel, sample, bounce, DIM_LIGHT_SELECT));
     real pmf = light_selection_pmf(light_cdf, light);
@@ -136,10 +151,10 @@ WP_FN lane_int sample_direct_light(WP_SCENE_PARAMS, lane_uint pixel, lane_uint s
     LightSample ls = p.sample;
     Material emitter = material_at(materials, p.material);
     vec3 wi = v3_normalize(v3_sub(ls.point, x));
-    real cos_surface = v3_dot(wi, nf);
+    real cos_surface = v3_dot(wi, ns);
     lane_int light_faces_x = v3_dot(ls.normal, v3_sub(x, ls.point)) > REAL(0.0);
-    lane_int carries =
-        ls.pdf_solid_angle != REAL(0.0) && cos_surface > REAL(0.0) && (emitter.two_sided || light_faces_x);
+    lane_int carries = ls.pdf_solid_angle != REAL(0.0) && cos_surface > REAL(0.0) && same_side(wi, nf) &&
+                       (emitter.two_sided || light_faces_x);
     vec3 from = offset_ray_origin(x, nf, x_error);
     vec3 to = offset_ray_origin(ls.point, v3_select(light_faces_x, ls.normal, v3_neg(ls.normal)),
                                 shadow_target_error(x, ls.point, p.magnitude));
@@ -157,8 +172,9 @@ WP_FN lane_int sample_direct_light(WP_SCENE_PARAMS, lane_uint pixel, lane_uint s
 typedef struct {
     vec3 direction;
     vec3 weight;     /* throughput factor */
-    vec3 leave_side; /* normal on the side the new ray leaves into */
+    vec3 leave_side; /* geometric normal on the side the new ray leaves into */
     lane_uint specular;
+    lane_int valid; /* the direction leaves on leave_side (same_side): else the path ends */
 } Scattered;
 
 WP_FN Scattered select_scattered(lane_int choose_a, Scattered a, Scattered b) {
@@ -167,11 +183,12 @@ WP_FN Scattered select_scattered(lane_int choose_a, Scattered a, Scattered b) {
     s.weight = v3_select(choose_a, a.weight, b.weight);
     s.leave_side = v3_select(choose_a, a.leave_side, b.leave_side);
     s.specular = choose_a ? a.specular : b.specular;
+    s.valid = choose_a ? a.valid : b.valid;
     return s;
 }
 
 #ifdef WP_HAS_DIFFUSE
-WP_FN Scattered scatter_diffuse(Material m, vec3 nf, real u, real v) {
+WP_FN Scattered scatter_diffuse(Material m, vec3 nf, vec3 ns, real u, real v) {
     Scattered s;
 #ifdef WP_UNIFORM_HEMISPHERE
     vec3 in_frame = sample_uniform_hemisphere(u, v);       /* `local` is an OpenCL keyword */
@@ -180,60 +197,65 @@ WP_FN Scattered scatter_diffuse(Material m, vec3 nf, real u, real v) {
     vec3 in_frame = sample_cosine_hemisphere(u, v);
     s.weight = m.albedo;
 #endif
-    s.direction = frame_to_world(frame_from_normal(nf), in_frame);
+    s.direction = frame_to_world(frame_from_normal(ns), in_frame);
     s.leave_side = nf;
     s.specular = 0u;
+    s.valid = same_side(s.direction, nf);
     return s;
 }
 #endif
 
 #ifdef WP_HAS_MIRROR
-WP_FN Scattered scatter_mirror(Material m, vec3 d, vec3 nf) {
+WP_FN Scattered scatter_mirror(Material m, vec3 d, vec3 nf, vec3 ns) {
     Scattered s;
-    s.direction = reflect_direction(d, nf);
+    s.direction = reflect_direction(d, ns);
     s.weight = m.reflectance;
     s.leave_side = nf;
     s.specular = 1u;
+    s.valid = same_side(v3_neg(d), ns) && same_side(s.direction, nf);
     return s;
 }
 #endif
 
 #ifdef WP_HAS_GLASS
 /* Fresnel chooses reflection or refraction; refraction scales radiance by 1/eta^2. */
-WP_FN Scattered scatter_glass(Material m, vec3 d, vec3 nf, lane_int entering, real u_lobe) {
+WP_FN Scattered scatter_glass(Material m, vec3 d, vec3 nf, vec3 ns, lane_int entering, real u_lobe) {
     real eta = entering ? m.ior : REAL(1.0) / m.ior;
-    real reflectance = fresnel_dielectric(-v3_dot(d, nf), eta);
+    real reflectance = fresnel_dielectric(-v3_dot(d, ns), eta);
     vec3 refracted;
-    lane_int refracts = u_lobe >= reflectance && refract_direction(d, nf, eta, &refracted);
+    lane_int refracts = u_lobe >= reflectance && refract_direction(d, ns, eta, &refracted);
     Scattered s;
     s.specular = 1u;
-    s.direction = v3_select(refracts, refracted, reflect_direction(d, nf));
+    s.direction = v3_select(refracts, refracted, reflect_direction(d, ns));
     s.weight = v3_div(make_vec3(REAL(1.0), REAL(1.0), REAL(1.0)), refracts ? eta * eta : REAL(1.0));
     s.leave_side = v3_select(refracts, v3_neg(nf), nf);
+    s.valid = same_side(v3_neg(d), ns) && same_side(s.direction, s.leave_side);
     return s;
 }
 #endif
 
-/* BSDF sampling at bounce `bounce` for the material's type (every kind in
- * the scene is sampled; each lane keeps its material's). */
-WP_FN Scattered scatter_vertex(Material m, vec3 d, vec3 nf, lane_int entering, uint seed, lane_uint px, lane_uint s,
-                               lane_uint bounce) {
+/* BSDF sampling at bounce `bounce` of vertex v, reached along d, for its
+ * material's type (every kind in the scene is sampled; each lane keeps its
+ * material's). */
+WP_FN Scattered scatter_vertex(Vertex v, vec3 d, uint seed, lane_uint px, lane_uint s, lane_uint bounce) {
+    Material m = v.material;
     Scattered scattered;
     scattered.direction = scattered.weight = scattered.leave_side = make_vec3(REAL(0.0), REAL(0.0), REAL(0.0));
     scattered.specular = 0u;
+    scattered.valid = 0;
 #ifdef WP_HAS_DIFFUSE
     scattered = select_scattered(m.type == WP_MATERIAL_DIFFUSE,
-                                 scatter_diffuse(m, nf, rng_uniform(seed, px, s, bounce, DIM_BSDF_U),
+                                 scatter_diffuse(m, v.nf, v.ns, rng_uniform(seed, px, s, bounce, DIM_BSDF_U),
                                                  rng_uniform(seed, px, s, bounce, DIM_BSDF_V)),
                                  scattered);
 #endif
 #ifdef WP_HAS_MIRROR
-    scattered = select_scattered(m.type == WP_MATERIAL_MIRROR, scatter_mirror(m, d, nf), scattered);
+    scattered = select_scattered(m.type == WP_MATERIAL_MIRROR, scatter_mirror(m, d, v.nf, v.ns), scattered);
 #endif
 #ifdef WP_HAS_GLASS
-    scattered =
-        select_scattered(m.type == WP_MATERIAL_GLASS,
-                         scatter_glass(m, d, nf, entering, rng_uniform(seed, px, s, bounce, DIM_BSDF_LOBE)), scattered);
+    scattered = select_scattered(
+        m.type == WP_MATERIAL_GLASS,
+        scatter_glass(m, d, v.nf, v.ns, v.front, rng_uniform(seed, px, s, bounce, DIM_BSDF_LOBE)), scattered);
 #endif
     return scattered;
 }

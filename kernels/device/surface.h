@@ -13,10 +13,25 @@
 
 typedef struct {
     vec3 point;
-    vec3 normal; /* geometric: outward (sphere), the plane's, normalize(edge1 x edge2) (quad), the front (triangle) */
+    vec3 normal;  /* geometric: outward (sphere), the plane's, normalize(edge1 x edge2) (quad), the front (triangle) */
+    vec3 shading; /* on normal's side: the interpolated vertex normal on triangles that have them, else normal */
     lane_uint material;
     real error; /* bound on the point's distance from the surface (offset.h) */
 } Surface;
+
+#ifdef WP_HAS_SHADING_NORMALS
+/* The shading normal at `point` of `shape` with geometric normal `normal`
+ * (shared/triangle.h); `normal` itself on shapes other than triangles. */
+WP_FN vec3 shading_normal(WP_SCENE_PARAMS, lane_uint shape, vec3 normal, vec3 point) {
+    lane_int is_triangle = shape >> WP_SHAPE_TYPE_SHIFT == WP_SHAPE_TRIANGLE;
+    lane_uint i = is_triangle ? shape & WP_SHAPE_INDEX_MASK : (lane_uint)0u;
+    vec3 shading = triangle_shading_normal(SCENE_FIELD(triangles, i, p0), SCENE_FIELD(triangles, i, p1),
+                                           SCENE_FIELD(triangles, i, p2), SCENE_FIELD(triangle_normals, i, n0),
+                                           SCENE_FIELD(triangle_normals, i, n1), SCENE_FIELD(triangle_normals, i, n2),
+                                           normal, point);
+    return v3_select(is_triangle, shading, normal);
+}
+#endif
 
 /* The surface where the ray (origin, direction) hit `shape` at distance t.
  * Every shape kind in the scene is evaluated and each lane keeps its own;
@@ -72,6 +87,11 @@ WP_FN Surface surface_at(WP_SCENE_PARAMS, lane_uint shape, vec3 origin, vec3 dir
         s.error = is_triangle ? ray_point_error(origin, t, triangle_magnitude(p0, p1, p2)) : s.error;
     }
 #endif
+#ifdef WP_HAS_SHADING_NORMALS
+    s.shading = shading_normal(WP_SCENE_ARGS, shape, s.normal, s.point);
+#else
+    s.shading = s.normal;
+#endif
     return s;
 }
 
@@ -113,7 +133,8 @@ typedef struct {
     Surface surface;
     Material material;
     lane_int front; /* the ray met the side the geometric normal points to */
-    vec3 nf;        /* the normal on the ray's side */
+    vec3 nf;        /* the geometric normal on the ray's side: where spawned rays start */
+    vec3 ns;        /* the shading normal on the same side: what BSDFs and cosines use */
 } Vertex;
 
 WP_FN Vertex vertex_at(WP_SCENE_PARAMS, lane_uint shape, vec3 origin, vec3 direction, real t) {
@@ -122,6 +143,7 @@ WP_FN Vertex vertex_at(WP_SCENE_PARAMS, lane_uint shape, vec3 origin, vec3 direc
     v.material = material_at(materials, v.surface.material);
     v.front = v3_dot(direction, v.surface.normal) < REAL(0.0);
     v.nf = v3_select(v.front, v.surface.normal, v3_neg(v.surface.normal));
+    v.ns = v3_select(v.front, v.surface.shading, v3_neg(v.surface.shading));
     return v;
 }
 

@@ -14,17 +14,18 @@
 /* The scene's buffers (interface/scene_layout.h; the meshes' triangles and
  * BVH nodes of shared/triangle.h and shared/bvh.h; the mesh lights'
  * triangles, src/scene/mesh_lights.h), first in every kernel that traces. */
-#define WP_SCENE_PARAMETERS(FIRST, NEXT)                 \
-    FIRST(__global const SceneHeader *, scene)           \
-    NEXT(__global const DeviceSphere *, spheres)         \
-    NEXT(__global const DevicePlane *, planes)           \
-    NEXT(__global const DeviceQuad *, quads)             \
-    NEXT(__global const MeshTriangle *, triangles)       \
-    NEXT(__global const BvhNode *, bvh_nodes)            \
-    NEXT(__global const DeviceMaterial *, materials)     \
-    NEXT(__global const DeviceLight *, lights)           \
-    NEXT(__global const float *, light_cdf)              \
-    NEXT(__global const MeshTriangle *, light_triangles) \
+#define WP_SCENE_PARAMETERS(FIRST, NEXT)                     \
+    FIRST(__global const SceneHeader *, scene)               \
+    NEXT(__global const DeviceSphere *, spheres)             \
+    NEXT(__global const DevicePlane *, planes)               \
+    NEXT(__global const DeviceQuad *, quads)                 \
+    NEXT(__global const MeshTriangle *, triangles)           \
+    NEXT(__global const TriangleNormals *, triangle_normals) \
+    NEXT(__global const BvhNode *, bvh_nodes)                \
+    NEXT(__global const DeviceMaterial *, materials)         \
+    NEXT(__global const DeviceLight *, lights)               \
+    NEXT(__global const float *, light_cdf)                  \
+    NEXT(__global const MeshTriangle *, light_triangles)     \
     NEXT(__global const float *, light_triangle_cdf)
 
 /* generate, intersect, shade_direct, intersect_shadow and scatter; the path

@@ -6,13 +6,15 @@
 #ifndef WP_INTERFACE_SCENE_LAYOUT_H
 #define WP_INTERFACE_SCENE_LAYOUT_H
 
-/* hit_shape packs the shape type into the top two bits and the index below. */
+/* hit_shape packs the shape type into the top three bits and the index
+ * below. WP_NO_HIT's type bits (7) name no shape, so code that decodes a stale
+ * or missed hit (an inactive lane's) reads every array at index 0. */
 #define WP_SHAPE_SPHERE 0u
 #define WP_SHAPE_PLANE 1u
 #define WP_SHAPE_QUAD 2u
 #define WP_SHAPE_TRIANGLE 3u /* a mesh triangle, by its index in the BVH's leaf order */
-#define WP_SHAPE_TYPE_SHIFT 30u
-#define WP_SHAPE_INDEX_MASK 0x3fffffffu
+#define WP_SHAPE_TYPE_SHIFT 29u
+#define WP_SHAPE_INDEX_MASK 0x1fffffffu
 #define WP_NO_HIT 0xffffffffu
 
 #define WP_MATERIAL_DIFFUSE 0u

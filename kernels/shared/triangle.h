@@ -26,6 +26,13 @@ typedef struct {
     uint mesh; /* index into Scene::meshes */
 } MeshTriangle;
 
+/* A mesh triangle's vertex normals from its file, in world space and unit
+ * length, parallel to the triangles; all zero where the mesh has none (or
+ * asks for face normals): such a triangle shades with its geometric normal. */
+typedef struct {
+    real_element n0[3], n1[3], n2[3];
+} TriangleNormals;
+
 /* v with its components rotated so that axis `z_axis` (0, 1, 2) comes last. */
 WP_FN vec3 rotate_axes_to_z(vec3 v, lane_int z_is_x, lane_int z_is_y) {
     vec3 z_was_x = make_vec3(v.y, v.z, v.x), z_was_y = make_vec3(v.z, v.x, v.y);
@@ -63,6 +70,25 @@ WP_FN real intersect_triangle(vec3 p0, vec3 p1, vec3 p2, vec3 origin, vec3 direc
 }
 
 WP_FN vec3 triangle_normal(vec3 p0, vec3 p1, vec3 p2) { return v3_normalize(v3_cross(v3_sub(p1, p0), v3_sub(p2, p0))); }
+
+/* The shading normal at point p of the triangle with geometric normal
+ * `geometric`: the vertex normals n0, n1, n2 interpolated with p's
+ * barycentric coordinates (from the areas p makes with the edges, stable for
+ * thin triangles), normalised and turned to the geometric normal's side, so
+ * that the front of a triangle is the same for both. Vertex normals that are
+ * all zero, or that cancel, give the geometric normal. */
+WP_FN vec3 triangle_shading_normal(vec3 p0, vec3 p1, vec3 p2, vec3 n0, vec3 n1, vec3 n2, vec3 geometric, vec3 p) {
+    vec3 e1 = v3_sub(p1, p0), e2 = v3_sub(p2, p0), to_p = v3_sub(p, p0);
+    vec3 area = v3_cross(e1, e2);
+    real area_squared = v3_dot(area, area);
+    real b1 = v3_dot(v3_cross(to_p, e2), area) / area_squared;
+    real b2 = v3_dot(v3_cross(e1, to_p), area) / area_squared;
+    vec3 interpolated = v3_add(v3_add(v3_scale(n0, REAL(1.0) - b1 - b2), v3_scale(n1, b1)), v3_scale(n2, b2));
+    real length = v3_length(interpolated);
+    lane_int usable = length > REAL(0.0) && length < WP_INFINITY; /* false for NaN */
+    vec3 shading = v3_select(usable, v3_div(interpolated, length), geometric);
+    return v3_select(v3_dot(shading, geometric) < REAL(0.0), v3_neg(shading), shading);
+}
 
 /* A point uniform by area on the triangle (the square-root warp,
  * b0 = 1 - sqrt(u1), b1 = u2 sqrt(u1)), the triangle having been chosen in

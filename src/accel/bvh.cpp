@@ -172,9 +172,13 @@ std::vector<SceneTriangle> scene_triangles(const Scene& scene) {
     std::vector<SceneTriangle> triangles;
     for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
         const Mesh& mesh = scene.meshes[m];
-        for (const glm::uvec3& t : mesh.triangles)
-            triangles.push_back(
-                {{mesh.positions[t.x], mesh.positions[t.y], mesh.positions[t.z]}, mesh.material, static_cast<int>(m)});
+        for (const glm::uvec3& t : mesh.triangles) {
+            SceneTriangle triangle{{mesh.positions[t.x], mesh.positions[t.y], mesh.positions[t.z]}};
+            if (!mesh.normals.empty()) triangle.normals = {mesh.normals[t.x], mesh.normals[t.y], mesh.normals[t.z]};
+            triangle.material = mesh.material;
+            triangle.mesh = static_cast<int>(m);
+            triangles.push_back(triangle);
+        }
     }
     return triangles;
 }

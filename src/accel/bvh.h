@@ -33,6 +33,7 @@ BvhTree build_bvh(const std::vector<TrianglePositions>& triangles, int threads =
 // Every mesh triangle of the scene in one list: mesh by mesh, in file order.
 struct SceneTriangle {
     TrianglePositions positions;
+    std::array<glm::dvec3, 3> normals{};  // the vertices' shading normals; all zero: the mesh has none
     int material = 0;
     int mesh = 0;
 };

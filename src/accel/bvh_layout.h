@@ -24,6 +24,24 @@ typename SharedMath<Real>::MeshTriangle mesh_triangle(const TrianglePositions& p
     return t;
 }
 
+// The triangles' vertex normals in the tree's leaf order, for scenes that
+// shade with them (FeatureSet::shading_normals).
+template <class Real>
+std::vector<typename SharedMath<Real>::TriangleNormals> triangle_normals(const SceneBvh& bvh) {
+    std::vector<typename SharedMath<Real>::TriangleNormals> normals;
+    normals.reserve(bvh.triangles.size());
+    for (const SceneTriangle& t : bvh.triangles) {
+        typename SharedMath<Real>::TriangleNormals n{};
+        for (int i = 0; i < 3; ++i) {
+            n.n0[i] = static_cast<Real>(t.normals[0][i]);
+            n.n1[i] = static_cast<Real>(t.normals[1][i]);
+            n.n2[i] = static_cast<Real>(t.normals[2][i]);
+        }
+        normals.push_back(n);
+    }
+    return normals;
+}
+
 template <class Real>
 struct TraversableBvh {
     std::vector<typename SharedMath<Real>::MeshTriangle> triangles;  // in the tree's leaf order

@@ -17,6 +17,7 @@ std::vector<std::pair<const char*, const char*>> features_in_use(const FeatureSe
     add(f.planes, "planes", "WP_HAS_PLANES");
     add(f.quads, "quads", "WP_HAS_QUADS");
     add(f.meshes, "meshes", "WP_HAS_MESHES");
+    add(f.shading_normals, "shading-normals", "WP_HAS_SHADING_NORMALS");
     add(f.diffuse, "diffuse", "WP_HAS_DIFFUSE");
     add(f.mirror, "mirror", "WP_HAS_MIRROR");
     add(f.glass, "glass", "WP_HAS_GLASS");

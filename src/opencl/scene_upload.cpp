@@ -82,6 +82,7 @@ void flatten_meshes(const Scene& scene, SceneLayout& layout) {
     auto start = std::chrono::steady_clock::now();
     SceneBvh bvh = build_scene_bvh(scene);
     TraversableBvh<float> flat = traversable_bvh<float>(bvh);
+    if (scene.features().shading_normals) layout.triangle_normals = triangle_normals<float>(bvh);
     layout.triangles = std::move(flat.triangles);
     layout.bvh_nodes = std::move(flat.nodes);
     MeshSummary& summary = layout.meshes;
@@ -178,6 +179,7 @@ DeviceScene::DeviceScene(const cl::Context& context, const SceneLayout& layout) 
     buffers_[arg::Scene::planes] = upload(context, layout.planes);
     buffers_[arg::Scene::quads] = upload(context, layout.quads);
     buffers_[arg::Scene::triangles] = upload(context, layout.triangles);
+    buffers_[arg::Scene::triangle_normals] = upload(context, layout.triangle_normals);
     buffers_[arg::Scene::bvh_nodes] = upload(context, layout.bvh_nodes);
     buffers_[arg::Scene::materials] = upload(context, layout.materials);
     buffers_[arg::Scene::lights] = upload(context, layout.lights);

@@ -35,7 +35,8 @@ struct SceneLayout {
     std::vector<device_layout::DeviceSphere> spheres;
     std::vector<device_layout::DevicePlane> planes;
     std::vector<device_layout::DeviceQuad> quads;
-    std::vector<SharedMath<float>::MeshTriangle> triangles;  // in the BVH's leaf order
+    std::vector<SharedMath<float>::MeshTriangle> triangles;            // in the BVH's leaf order
+    std::vector<SharedMath<float>::TriangleNormals> triangle_normals;  // parallel, if FeatureSet::shading_normals
     std::vector<SharedMath<float>::BvhNode> bvh_nodes;
     std::vector<device_layout::DeviceMaterial> materials;
     std::vector<device_layout::DeviceLight> lights;

@@ -14,9 +14,13 @@
 //    offset_ray_origin(light point, light normal facing x,
 //    shadow_target_error(x, light point, light magnitude)), with the unit
 //    direction and the distance between those two points;
-//  - the diffuse bounce direction is frame_to_world(frame_from_normal(nf),
+//  - the diffuse bounce direction is frame_to_world(frame_from_normal(ns),
 //    sample_cosine_hemisphere(u, v)) (or sample_uniform_hemisphere with
-//    render.hemisphere uniform), not renormalised.
+//    render.hemisphere uniform), not renormalised;
+//  - with shading normals (a mesh's vertex normals, ns), BSDFs and the light
+//    sample's cosine use ns, spawned rays leave on the side of the geometric
+//    normal nf, and a path whose new direction is not on the side nf says it
+//    leaves to (or that arrives from behind ns at a mirror or glass) ends.
 #pragma once
 
 #include <cstdint>
@@ -75,7 +79,8 @@ struct ShapeHit {
 template <class Real>
 struct SurfacePoint {
     Vec3<Real> point;
-    Vec3<Real> normal;  // geometric: outward, plane normal, or edge1 x edge2
+    Vec3<Real> normal;   // geometric: outward, plane normal, or edge1 x edge2
+    Vec3<Real> shading;  // on normal's side: a triangle's interpolated vertex normal, else normal
     int material;
     Real error;  // bound on the point's distance from the surface (offset.h)
 };
@@ -135,23 +140,30 @@ SurfacePoint<Real> surface_at(const ReferenceScene<Real>& scene, const Ray<Real>
         case ShapeType::Sphere: {
             const auto& s = scene.spheres[hit.index];
             point = M::sphere_reproject(s.center, s.radius, point);
-            return {point, M::sphere_normal(s.center, point), s.material,
-                    M::shape_point_error(M::sphere_magnitude(s.center, s.radius))};
+            Vec3<Real> normal = M::sphere_normal(s.center, point);
+            return {point, normal, normal, s.material, M::shape_point_error(M::sphere_magnitude(s.center, s.radius))};
         }
         case ShapeType::Plane: {
             const auto& p = scene.planes[hit.index];
-            return {point, p.normal, p.material, M::ray_point_error(ray.origin, hit.t, M::plane_magnitude(p.point))};
+            return {point, p.normal, p.normal, p.material,
+                    M::ray_point_error(ray.origin, hit.t, M::plane_magnitude(p.point))};
         }
         case ShapeType::Quad: {
             const auto& q = scene.quads[hit.index];
-            return {point, q.normal, q.material,
+            return {point, q.normal, q.normal, q.material,
                     M::ray_point_error(ray.origin, hit.t, M::quad_magnitude(q.corner, q.edge1, q.edge2))};
         }
         case ShapeType::Mesh: {
             const auto& tri = scene.triangles[hit.index];
             Vec3<Real> p0 = M::triangle_vertex(tri.p0), p1 = M::triangle_vertex(tri.p1),
                        p2 = M::triangle_vertex(tri.p2);
-            return {point, M::triangle_normal(p0, p1, p2), static_cast<int>(tri.material),
+            Vec3<Real> normal = M::triangle_normal(p0, p1, p2), shading = normal;
+            if (scene.shading_normals) {
+                const auto& n = scene.triangle_normals[hit.index];
+                shading = M::triangle_shading_normal(p0, p1, p2, M::triangle_vertex(n.n0), M::triangle_vertex(n.n1),
+                                                     M::triangle_vertex(n.n2), normal, point);
+            }
+            return {point, normal, shading, static_cast<int>(tri.material),
                     M::ray_point_error(ray.origin, hit.t, M::triangle_magnitude(p0, p1, p2))};
         }
     }
@@ -194,15 +206,22 @@ LightPoint<Real> sample_light(const ReferenceScene<Real>& scene, const typename 
     }
 }
 
-// Next-event estimation at a diffuse point x (with error bound x_error) and
-// front-facing normal nf:
+// Whether `direction` leaves on the side `normal` points to; always true
+// without shading normals (kernels/device/path_vertex.h, same_side).
+template <class Real>
+bool same_side(const ReferenceScene<Real>& scene, const Vec3<Real>& direction, const Vec3<Real>& normal) {
+    return !scene.shading_normals || glm::dot(direction, normal) > Real(0);
+}
+
+// Next-event estimation at a diffuse point x (with error bound x_error) with
+// front-facing geometric and shading normals nf and ns:
 // one light chosen by the power CDF, one point on it, one shadow ray.
 // `weight` is the path throughput times the albedo; returns the radiance the
 // sample adds to the path.
 template <class Real>
 Vec3<Real> sample_direct_light(const ReferenceScene<Real>& scene, const Vec3<Real>& x, Real x_error,
-                               const Vec3<Real>& nf, const Vec3<Real>& weight, const SampleRng<Real>& rng,
-                               std::uint32_t bounce, RayCounts& counts) {
+                               const Vec3<Real>& nf, const Vec3<Real>& ns, const Vec3<Real>& weight,
+                               const SampleRng<Real>& rng, std::uint32_t bounce, RayCounts& counts) {
     using M = SharedMath<Real>;
     using vec3 = typename M::vec3;
     const vec3 none(Real(0));
@@ -216,8 +235,8 @@ Vec3<Real> sample_direct_light(const ReferenceScene<Real>& scene, const Vec3<Rea
     if (s.pdf_solid_angle == Real(0)) return none;
 
     vec3 wi = glm::normalize(s.point - x);
-    Real cos_surface = glm::dot(wi, nf);
-    if (!(cos_surface > Real(0))) return none;
+    Real cos_surface = glm::dot(wi, ns);
+    if (!(cos_surface > Real(0)) || !same_side(scene, wi, nf)) return none;
     const auto& emitter = scene.materials[p.material];
     bool light_faces_x = glm::dot(s.normal, x - s.point) > Real(0);
     if (!emitter.two_sided && !light_faces_x) return none;
@@ -237,42 +256,46 @@ struct Scattered {
     Ray<Real> ray;
     Vec3<Real> weight;  // throughput factor
     bool specular;
+    bool valid;  // the ray leaves on the side it was spawned for (same_side): else the path ends
 };
 
 // Samples the continuation of the path at a non-emitter surface point x. d
-// is the incoming direction, n the geometric normal, nf the one facing d.
+// is the incoming direction, nf and ns the geometric and shading normals
+// facing d.
 template <class Real>
-Scattered<Real> scatter(const typename ReferenceScene<Real>::SurfaceMaterial& material, const SurfacePoint<Real>& x,
-                        const Vec3<Real>& d, const Vec3<Real>& nf, const SampleRng<Real>& rng, std::uint32_t bounce,
-                        Hemisphere hemisphere = Hemisphere::Cosine) {
+Scattered<Real> scatter(const ReferenceScene<Real>& scene,
+                        const typename ReferenceScene<Real>::SurfaceMaterial& material, const SurfacePoint<Real>& x,
+                        const Vec3<Real>& d, const Vec3<Real>& nf, const Vec3<Real>& ns, const SampleRng<Real>& rng,
+                        std::uint32_t bounce) {
     using M = SharedMath<Real>;
     using vec3 = typename M::vec3;
-    const vec3& n = x.normal;
-    auto leave = [&x](const vec3& direction, const vec3& side) {
-        return Ray<Real>{M::offset_ray_origin(x.point, side, x.error), direction};
+    auto leave = [&](const vec3& direction, const vec3& side, const vec3& weight, bool specular) {
+        bool arrives_validly = !specular || same_side(scene, -d, ns);
+        return Scattered<Real>{Ray<Real>{M::offset_ray_origin(x.point, side, x.error), direction}, weight, specular,
+                               arrives_validly && same_side(scene, direction, side)};
     };
     switch (material.type) {
         case MaterialType::Mirror:
-            return {leave(M::reflect_direction(d, nf), nf), material.reflectance, true};
+            return leave(M::reflect_direction(d, ns), nf, material.reflectance, true);
         case MaterialType::Glass: {
-            bool entering = glm::dot(d, n) < Real(0);
+            bool entering = glm::dot(d, x.normal) < Real(0);
             Real eta = entering ? material.ior : Real(1) / material.ior;
-            Real reflectance = M::fresnel_dielectric(-glm::dot(d, nf), eta);
+            Real reflectance = M::fresnel_dielectric(-glm::dot(d, ns), eta);
             vec3 refracted;
-            if (rng(bounce, DIM_BSDF_LOBE) < reflectance || !M::refract_direction(d, nf, eta, &refracted)) {
-                return {leave(M::reflect_direction(d, nf), nf), vec3(Real(1)), true};
+            if (rng(bounce, DIM_BSDF_LOBE) < reflectance || !M::refract_direction(d, ns, eta, &refracted)) {
+                return leave(M::reflect_direction(d, ns), nf, vec3(Real(1)), true);
             }
-            return {leave(refracted, -nf), vec3(Real(1) / (eta * eta)), true};
+            return leave(refracted, -nf, vec3(Real(1) / (eta * eta)), true);
         }
         default: {  // diffuse
             Real u = rng(bounce, DIM_BSDF_U), v = rng(bounce, DIM_BSDF_V);
-            if (hemisphere == Hemisphere::Uniform) {  // weight albedo/pi * cos / (1/(2 pi))
+            if (scene.render.hemisphere == Hemisphere::Uniform) {  // weight albedo/pi * cos / (1/(2 pi))
                 vec3 local = M::sample_uniform_hemisphere(u, v);
-                return {leave(M::frame_to_world(M::frame_from_normal(nf), local), nf),
-                        material.albedo * (Real(2) * local.z), false};
+                return leave(M::frame_to_world(M::frame_from_normal(ns), local), nf,
+                             material.albedo * (Real(2) * local.z), false);
             }
             vec3 local = M::sample_cosine_hemisphere(u, v);
-            return {leave(M::frame_to_world(M::frame_from_normal(nf), local), nf), material.albedo, false};
+            return leave(M::frame_to_world(M::frame_from_normal(ns), local), nf, material.albedo, false);
         }
     }
 }
@@ -296,6 +319,7 @@ Vec3<Real> trace_path(const ReferenceScene<Real>& scene, Ray<Real> ray, const Sa
         const auto& material = scene.materials[surface.material];
         bool front = glm::dot(ray.direction, surface.normal) < Real(0);
         vec3 nf = front ? surface.normal : -surface.normal;
+        vec3 ns = front ? surface.shading : -surface.shading;
         // Without NEE no light sample accounts for emission, so every hit counts it.
         if (material.emits && (material.two_sided || front) && (specular || !scene.nee)) {
             add_finite<Real>(radiance, throughput * material.emission, NonfiniteStage::emission, counts);
@@ -305,11 +329,12 @@ Vec3<Real> trace_path(const ReferenceScene<Real>& scene, Ray<Real> ray, const Sa
         auto bounce = static_cast<std::uint32_t>(depth);
         if (material.type == MaterialType::Diffuse && scene.nee) {
             add_finite<Real>(radiance,
-                             sample_direct_light(scene, surface.point, surface.error, nf, throughput * material.albedo,
-                                                 rng, bounce, counts),
+                             sample_direct_light(scene, surface.point, surface.error, nf, ns,
+                                                 throughput * material.albedo, rng, bounce, counts),
                              NonfiniteStage::direct, counts);
         }
-        Scattered<Real> next = scatter(material, surface, ray.direction, nf, rng, bounce, scene.render.hemisphere);
+        Scattered<Real> next = scatter(scene, material, surface, ray.direction, nf, ns, rng, bounce);
+        if (!next.valid) break;
         throughput *= next.weight;
         ray = next.ray;
         specular = next.specular;

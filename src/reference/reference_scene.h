@@ -63,13 +63,15 @@ struct ReferenceScene {
 
     PinholeCamera camera;
     RenderSettings render;
-    bool nee;  // next-event estimation runs (FeatureSet::nee)
+    bool nee;              // next-event estimation runs (FeatureSet::nee)
+    bool shading_normals;  // some mesh shades with vertex normals (FeatureSet::shading_normals)
     vec3 background;
     std::vector<SurfaceMaterial> materials;
     std::vector<SphereShape> spheres;
     std::vector<PlaneShape> planes;
     std::vector<QuadShape> quads;
-    std::vector<typename M::MeshTriangle> triangles;  // in the BVH's leaf order
+    std::vector<typename M::MeshTriangle> triangles;            // in the BVH's leaf order
+    std::vector<typename M::TriangleNormals> triangle_normals;  // parallel to triangles, if shading_normals
     std::vector<typename M::BvhNode> bvh_nodes;
     std::vector<LightRef> lights;
     std::vector<Real> light_cdf;
@@ -77,7 +79,10 @@ struct ReferenceScene {
     std::vector<Real> light_triangle_cdf;
 
     explicit ReferenceScene(const Scene& scene)
-        : render(scene.render), nee(scene.features().nee), background(scene.background) {
+        : render(scene.render),
+          nee(scene.features().nee),
+          shading_normals(scene.features().shading_normals),
+          background(scene.background) {
         camera = convert_camera(scene.camera);
         for (const Material& m : scene.materials) {
             materials.push_back(
@@ -110,7 +115,9 @@ struct ReferenceScene {
 
     // The same tree and leaf order as the kernels', with the vertices in Real.
     void add_meshes(const Scene& scene) {
-        TraversableBvh<Real> flat = traversable_bvh<Real>(build_scene_bvh(scene));
+        SceneBvh bvh = build_scene_bvh(scene);
+        TraversableBvh<Real> flat = traversable_bvh<Real>(bvh);
+        if (shading_normals) triangle_normals = wp::triangle_normals<Real>(bvh);
         triangles = std::move(flat.triangles);
         bvh_nodes = std::move(flat.nodes);
     }

@@ -2,6 +2,7 @@
 // for; docs/scene-format.md lists them.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 
 namespace wp {
@@ -10,5 +11,7 @@ inline constexpr int kMaxResolution = 16384;
 inline constexpr std::int64_t kMaxPixels = std::int64_t{1} << 27;
 inline constexpr int kMaxSpp = 1 << 20;
 inline constexpr int kMaxDepthLimit = 100000;
+// What a hit's shape index holds (kernels/interface/scene_layout.h, WP_SHAPE_INDEX_MASK + 1).
+inline constexpr std::size_t kMaxTriangles = std::size_t{1} << 29;
 
 }  // namespace wp

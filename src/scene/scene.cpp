@@ -32,6 +32,8 @@ FeatureSet Scene::features() const {
     f.planes = !planes.empty();
     f.quads = !quads.empty();
     f.meshes = !meshes.empty();
+    for (const Mesh& mesh : meshes)  // an emitter ends its paths: its normals shade nothing
+        f.shading_normals |= !mesh.normals.empty() && materials[mesh.material].type != MaterialType::Emitter;
     for (const Material& m : materials) {
         f.diffuse |= m.type == MaterialType::Diffuse;
         f.mirror |= m.type == MaterialType::Mirror;

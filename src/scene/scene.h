@@ -91,6 +91,7 @@ struct Light {
 struct FeatureSet {
     bool spheres = false, planes = false, quads = false, meshes = false;
     bool diffuse = false, mirror = false, glass = false, emitter_material = false;
+    bool shading_normals = false;  // a mesh shades with its vertex normals
     bool sphere_lights = false, quad_lights = false, mesh_lights = false;
     bool background = false;  // a non-black background
     bool nee = false;         // next-event estimation runs: render.nee is on and the scene has a light

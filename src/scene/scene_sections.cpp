@@ -8,7 +8,9 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/matrix.hpp>
 #include <limits>
+#include <string>
 
+#include "scene/limits.h"
 #include "scene/mesh_file.h"
 
 namespace wp {
@@ -284,6 +286,11 @@ void read_shape(const JsonField& field, Scene& scene) {
         scene.quads.push_back(read_quad(field, scene.materials));
     } else if (type == "mesh") {
         scene.meshes.push_back(read_mesh(field, scene));
+        std::size_t triangles = 0;
+        for (const Mesh& mesh : scene.meshes) triangles += mesh.triangles.size();
+        if (triangles > kMaxTriangles)
+            field.fail("the meshes so far have " + std::to_string(triangles) + " triangles, more than the " +
+                       std::to_string(kMaxTriangles) + " a scene may have");
     } else {
         type_field.fail("unknown shape type " + nlohmann::json(type).dump() +
                         " (expected one of: sphere, plane, quad, mesh)");

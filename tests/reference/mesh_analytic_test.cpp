@@ -10,6 +10,8 @@
 // seeds) plus a rounding allowance of 2e-6 of the value.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <numbers>
 #include <string>
 
 #include "reference/reference_renderer.h"
@@ -46,6 +48,31 @@ Scene inside_emissive_icosphere(const RenderBlock& block, const glm::dvec3& albe
     Scene scene = test::empty_scene(block, {0.3, -0.1, -1}, 90.0);
     int material = test::add_material(scene, test::diffuse(albedo, emission, /*two_sided=*/true));
     scene.meshes.push_back(test::transformed(test::icosphere(2, material), 1.0, {0.1, -0.2, 0.05}));
+    build_light_table(scene);
+    return scene;
+}
+
+// A square of two triangles, 100 units wide, under a uniform background L and
+// seen straight down, whose vertex normals all lean by theta from its
+// geometric normal. Cosine-sampling about the shading normal ns, a fraction
+// (1 + cos theta) / 2 of directions leaves on the front of the geometric
+// normal (the cosine lobe projects to the unit disk uniformly; the plane
+// through the surface cuts it along a half-ellipse of semi-axes 1 and
+// cos theta); the rest would cross the surface and end. Nothing else is in
+// the scene, so every sample carries albedo * L * (1 + cos theta) / 2 in
+// expectation: theta 0 is the face-normal floor, and ignoring the shading
+// normals, or continuing the paths that cross the surface, changes the value.
+Scene floor_with_leaning_normals(const RenderBlock& block, const glm::dvec3& albedo, const glm::dvec3& background,
+                                 double theta) {
+    Scene scene = test::empty_scene(block, {0, -1, 0}, 60.0);
+    scene.background = background;
+    Mesh mesh;
+    mesh.file = "leaning square (test)";
+    mesh.material = test::add_material(scene, test::diffuse(albedo));
+    mesh.positions = {{-50, -1, 50}, {50, -1, 50}, {50, -1, -50}, {-50, -1, -50}};
+    mesh.normals.assign(4, glm::dvec3(std::sin(theta), std::cos(theta), 0.0));
+    mesh.triangles = {{0, 1, 2}, {0, 2, 3}};
+    scene.meshes.push_back(mesh);
     build_light_table(scene);
     return scene;
 }
@@ -91,6 +118,20 @@ TEST_P(MeshAnalytic, InsideEmissiveIcosphereTruncatedNeumannSeries) {
             expect_channel(test::channel_mean(result.image, c),
                            test::inside_emissive_sphere_radiance(rho[c], le[c], max_depth),
                            "max_depth " + std::to_string(max_depth) + " channel " + std::to_string(c));
+    }
+}
+
+TEST_P(MeshAnalytic, FloorWithLeaningShadingNormalsKeepsTheFrontHalfOfTheLobe) {
+    const glm::dvec3 albedo(0.9, 0.6, 0.3), background(1.0, 2.0, 4.0);
+    for (double theta_degrees : {0.0, 60.0, 85.0}) {
+        RenderBlock block{.width = 16, .height = 16, .spp = 16, .max_depth = 3};
+        const double theta = theta_degrees * std::numbers::pi / 180.0;
+        Scene scene = floor_with_leaning_normals(block, albedo, background, theta);
+        ASSERT_TRUE(scene.features().shading_normals);
+        RenderResult result = render(scene, GetParam());
+        for (int c = 0; c < 3; ++c)
+            expect_channel(test::channel_mean(result.image, c), albedo[c] * background[c] * (1 + std::cos(theta)) / 2,
+                           "theta " + std::to_string(theta_degrees) + " channel " + std::to_string(c));
     }
 }
 

@@ -60,6 +60,22 @@ TEST(MeshRender, MeshLightRetracesTheReferencePathForPath) {
     test::expect_path_for_path_agreement(render_megakernel(scene, {}, {}), reference, "megakernel, mesh light");
 }
 
+// The same scene with smooth icospheres (vertex normals: the unit sphere's),
+// so that BSDFs and light samples use shading normals.
+TEST(MeshRender, ShadingNormalsRetraceTheReferencePathForPath) {
+    Scene scene = mesh_scene(48, 1);
+    for (Mesh& mesh : scene.meshes) {
+        if (mesh.file != "icosphere (test)") continue;
+        glm::dvec3 center(0.0);
+        for (const glm::dvec3& p : mesh.positions) center += p / double(mesh.positions.size());
+        for (const glm::dvec3& p : mesh.positions) mesh.normals.push_back(glm::normalize(p - center));
+    }
+    ASSERT_TRUE(scene.features().shading_normals);
+    RenderResult reference = render_reference(scene, ReferenceOptions{2, false});
+    test::expect_path_for_path_agreement(render_wavefront(scene, {}, {}), reference, "wavefront, shading normals");
+    test::expect_path_for_path_agreement(render_megakernel(scene, {}, {}), reference, "megakernel, shading normals");
+}
+
 // Meshes make the wavefront pick one lane; asking for eight is refused by name.
 TEST(MeshRender, EightLanesAreRefusedForMeshes) {
     Scene scene = mesh_scene(8, 1);
