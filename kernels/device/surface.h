@@ -6,17 +6,15 @@
 #include "device/features.h"
 #include "device/lane_memory.h"
 #include "device/parameters.h"
-#include "shared/geometry.h"
-#include "shared/offset.h"
+#include "shared/hit_point.h"
 #include "shared/prelude.h"
-#include "shared/triangle.h"
 
 typedef struct {
     vec3 point;
     vec3 normal;  /* geometric: outward (sphere), the plane's, normalize(edge1 x edge2) (quad), the front (triangle) */
     vec3 shading; /* on normal's side: the interpolated vertex normal on triangles that have them, else normal */
     lane_uint material;
-    real error; /* bound on the point's distance from the surface (offset.h) */
+    real error; /* bound on the point's distance from the surface (shared/hit_point.h) */
 } Surface;
 
 #ifdef WP_HAS_SHADING_NORMALS
@@ -33,60 +31,59 @@ WP_FN vec3 shading_normal(WP_SCENE_PARAMS, lane_uint shape, vec3 normal, vec3 po
 }
 #endif
 
-/* The surface where the ray (origin, direction) hit `shape` at distance t.
- * Every shape kind in the scene is evaluated and each lane keeps its own;
- * a lane reads the arrays of the other kinds at index 0. */
+/* The surface where the ray (origin, direction) hit `shape` at distance t
+ * (shared/hit_point.h). Every shape kind in the scene is evaluated and each
+ * lane keeps its own; a lane reads the arrays of the other kinds at index 0. */
 WP_FN Surface surface_at(WP_SCENE_PARAMS, lane_uint shape, vec3 origin, vec3 direction, real t) {
     lane_uint index = shape & WP_SHAPE_INDEX_MASK;
     lane_uint type = shape >> WP_SHAPE_TYPE_SHIFT;
-    Surface s;
-    s.point = v3_add_scaled(origin, t, direction);
-    s.normal = make_vec3(REAL(0.0), REAL(0.0), REAL(0.0));
-    s.material = 0u;
-    s.error = REAL(0.0);
+    HitPoint hit;
+    hit.point = hit.normal = make_vec3(REAL(0.0), REAL(0.0), REAL(0.0));
+    hit.error = REAL(0.0);
+    lane_uint material = 0u;
 #ifdef WP_HAS_SPHERES
     {
         lane_int is_sphere = type == WP_SHAPE_SPHERE;
         lane_uint i = is_sphere ? index : (lane_uint)0u;
-        vec3 center = SCENE_FIELD(spheres, i, center);
-        real radius = SCENE_FIELD(spheres, i, radius);
-        vec3 on_sphere = sphere_reproject(center, radius, s.point);
-        s.normal = v3_select(is_sphere, sphere_normal(center, on_sphere), s.normal);
-        s.material = is_sphere ? SCENE_FIELD(spheres, i, material) : s.material;
-        s.error = is_sphere ? shape_point_error(sphere_magnitude(center, radius)) : s.error;
-        s.point = v3_select(is_sphere, on_sphere, s.point);
+        HitPoint h = sphere_hit(SCENE_FIELD(spheres, i, center), SCENE_FIELD(spheres, i, radius), origin, direction, t);
+        hit = select_hit_point(is_sphere, h, hit);
+        material = is_sphere ? SCENE_FIELD(spheres, i, material) : material;
     }
 #endif
 #ifdef WP_HAS_PLANES
     {
         lane_int is_plane = type == WP_SHAPE_PLANE;
         lane_uint i = is_plane ? index : (lane_uint)0u;
-        s.normal = v3_select(is_plane, SCENE_FIELD(planes, i, normal), s.normal);
-        s.material = is_plane ? SCENE_FIELD(planes, i, material) : s.material;
-        s.error = is_plane ? ray_point_error(origin, t, plane_magnitude(SCENE_FIELD(planes, i, point))) : s.error;
+        HitPoint h = plane_hit(SCENE_FIELD(planes, i, point), SCENE_FIELD(planes, i, normal), origin, direction, t);
+        hit = select_hit_point(is_plane, h, hit);
+        material = is_plane ? SCENE_FIELD(planes, i, material) : material;
     }
 #endif
 #ifdef WP_HAS_QUADS
     {
         lane_int is_quad = type == WP_SHAPE_QUAD;
         lane_uint i = is_quad ? index : (lane_uint)0u;
-        vec3 edge1 = SCENE_FIELD(quads, i, edge1), edge2 = SCENE_FIELD(quads, i, edge2);
-        s.normal = v3_select(is_quad, quad_normal(edge1, edge2), s.normal);
-        s.material = is_quad ? SCENE_FIELD(quads, i, material) : s.material;
-        s.error =
-            is_quad ? ray_point_error(origin, t, quad_magnitude(SCENE_FIELD(quads, i, corner), edge1, edge2)) : s.error;
+        HitPoint h = quad_hit(SCENE_FIELD(quads, i, corner), SCENE_FIELD(quads, i, edge1), SCENE_FIELD(quads, i, edge2),
+                              origin, direction, t);
+        hit = select_hit_point(is_quad, h, hit);
+        material = is_quad ? SCENE_FIELD(quads, i, material) : material;
     }
 #endif
 #ifdef WP_HAS_MESHES
     {
         lane_int is_triangle = type == WP_SHAPE_TRIANGLE;
         lane_uint i = is_triangle ? index : (lane_uint)0u;
-        vec3 p0 = SCENE_FIELD(triangles, i, p0), p1 = SCENE_FIELD(triangles, i, p1), p2 = SCENE_FIELD(triangles, i, p2);
-        s.normal = v3_select(is_triangle, triangle_normal(p0, p1, p2), s.normal);
-        s.material = is_triangle ? SCENE_FIELD(triangles, i, material) : s.material;
-        s.error = is_triangle ? ray_point_error(origin, t, triangle_magnitude(p0, p1, p2)) : s.error;
+        HitPoint h = triangle_hit(SCENE_FIELD(triangles, i, p0), SCENE_FIELD(triangles, i, p1),
+                                  SCENE_FIELD(triangles, i, p2), origin, direction);
+        hit = select_hit_point(is_triangle, h, hit);
+        material = is_triangle ? SCENE_FIELD(triangles, i, material) : material;
     }
 #endif
+    Surface s;
+    s.point = hit.point;
+    s.normal = hit.normal;
+    s.material = material;
+    s.error = hit.error;
 #ifdef WP_HAS_SHADING_NORMALS
     s.shading = shading_normal(WP_SCENE_ARGS, shape, s.normal, s.point);
 #else

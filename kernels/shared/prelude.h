@@ -64,6 +64,7 @@ WP_FN vec3 make_vec3(real x, real y, real z) {
 }
 #define REAL(x) (x##f)
 #define WP_REAL_MAX FLT_MAX
+#define WP_UNIT_ROUNDOFF REAL(5.9604644775390625e-08) /* 2^-24, float's */
 
 /* p[index] for each lane's index: a plain load with one lane, one load per
  * lane (a gather) with several. */
@@ -84,7 +85,7 @@ WP_OVERLOAD WP_FN lane_uint gather(__global const uint *p, lane_uint index) {
 #endif
 #else
 /* C++: the including namespace (src/core/shared_math.h) defines `real`,
- * `vec3`, `uint` and `real_max`; one lane. */
+ * `vec3`, `uint`, `real_max` and `unit_roundoff`; one lane. */
 #define WP_FN static inline
 #define WP_GLOBAL
 typedef int lane_int;
@@ -99,6 +100,7 @@ static T gather(const T *p, uint index) {
 #define make_vec3(x, y, z) (vec3((x), (y), (z)))
 #define REAL(x) (static_cast<real>(x))
 #define WP_REAL_MAX real_max
+#define WP_UNIT_ROUNDOFF unit_roundoff
 #endif
 
 #define WP_PI REAL(3.14159265358979323846)

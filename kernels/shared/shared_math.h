@@ -7,6 +7,7 @@
 #include "shared/bvh.h"
 #include "shared/fresnel.h"
 #include "shared/geometry.h"
+#include "shared/hit_point.h"
 #include "shared/offset.h"
 #include "shared/prelude.h"
 #include "shared/rng.h"

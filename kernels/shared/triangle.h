@@ -39,8 +39,15 @@ WP_FN vec3 rotate_axes_to_z(vec3 v, lane_int z_is_x, lane_int z_is_y) {
     return v3_select(z_is_x, z_was_x, v3_select(z_is_y, z_was_y, v));
 }
 
-/* Distance t in (0, t_max) at which the ray meets the triangle, or WP_INFINITY. */
-WP_FN real intersect_triangle(vec3 p0, vec3 p1, vec3 p2, vec3 origin, vec3 direction, real t_max) {
+/* The triangle as the ray sees it: the edge functions e0, e1, e2 (twice
+ * the signed areas of the sub-triangles opposite p0, p1, p2 in the sheared
+ * frame, so e_i / det are the hit's barycentric coordinates), their sum det,
+ * and t_scaled = t * det. */
+typedef struct {
+    real e0, e1, e2, det, t_scaled;
+} TriangleEdges;
+
+WP_FN TriangleEdges triangle_edges(vec3 p0, vec3 p1, vec3 p2, vec3 origin, vec3 direction) {
     real ax = fabs(direction.x), ay = fabs(direction.y), az = fabs(direction.z);
     lane_int z_is_x = ax > ay && ax > az;
     lane_int z_is_y = !z_is_x && ay > az;
@@ -52,20 +59,26 @@ WP_FN real intersect_triangle(vec3 p0, vec3 p1, vec3 p2, vec3 origin, vec3 direc
     real ax2 = a.x + shear_x * a.z, ay2 = a.y + shear_y * a.z;
     real bx2 = b.x + shear_x * b.z, by2 = b.y + shear_y * b.z;
     real cx2 = c.x + shear_x * c.z, cy2 = c.y + shear_y * c.z;
-    /* Edge functions: twice the signed areas seen from the ray. */
-    real e0 = bx2 * cy2 - by2 * cx2;
-    real e1 = cx2 * ay2 - cy2 * ax2;
-    real e2 = ax2 * by2 - ay2 * bx2;
-    lane_int mixed_signs =
-        (e0 < REAL(0.0) || e1 < REAL(0.0) || e2 < REAL(0.0)) && (e0 > REAL(0.0) || e1 > REAL(0.0) || e2 > REAL(0.0));
-    real det = e0 + e1 + e2;
-    real t_scaled = e0 * (scale_z * a.z) + e1 * (scale_z * b.z) + e2 * (scale_z * c.z);
+    TriangleEdges e;
+    e.e0 = bx2 * cy2 - by2 * cx2;
+    e.e1 = cx2 * ay2 - cy2 * ax2;
+    e.e2 = ax2 * by2 - ay2 * bx2;
+    e.det = e.e0 + e.e1 + e.e2;
+    e.t_scaled = e.e0 * (scale_z * a.z) + e.e1 * (scale_z * b.z) + e.e2 * (scale_z * c.z);
+    return e;
+}
+
+/* Distance t in (0, t_max) at which the ray meets the triangle, or WP_INFINITY. */
+WP_FN real intersect_triangle(vec3 p0, vec3 p1, vec3 p2, vec3 origin, vec3 direction, real t_max) {
+    TriangleEdges e = triangle_edges(p0, p1, p2, origin, direction);
+    lane_int mixed_signs = (e.e0 < REAL(0.0) || e.e1 < REAL(0.0) || e.e2 < REAL(0.0)) &&
+                           (e.e0 > REAL(0.0) || e.e1 > REAL(0.0) || e.e2 > REAL(0.0));
     /* 0 < t_scaled / det < t_max, compared without dividing */
-    real t_max_scaled = t_max * fabs(det);
-    real t_signed = det < REAL(0.0) ? -t_scaled : t_scaled;
+    real t_max_scaled = t_max * fabs(e.det);
+    real t_signed = e.det < REAL(0.0) ? -e.t_scaled : e.t_scaled;
     lane_int in_range = t_signed > REAL(0.0) && t_signed < t_max_scaled;
-    real t = t_scaled / det;
-    lane_int hit = !mixed_signs && det != REAL(0.0) && in_range && t > REAL(0.0) && t < t_max;
+    real t = e.t_scaled / e.det;
+    lane_int hit = !mixed_signs && e.det != REAL(0.0) && in_range && t > REAL(0.0) && t < t_max;
     return hit ? t : WP_INFINITY;
 }
 

@@ -36,6 +36,8 @@ struct Precision {
     using uint = std::uint32_t;
     using vec3 = glm::vec<3, real>;
     static constexpr real real_max = std::numeric_limits<real>::max();
+    // Half an ulp of 1: the relative error of one rounding to nearest (2^-24, 2^-53).
+    static constexpr real unit_roundoff = std::numeric_limits<real>::epsilon() / 2;
 #include "shared/shared_math.h"
 };
 

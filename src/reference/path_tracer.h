@@ -6,10 +6,10 @@
 // Choices the wavefront kernels must repeat to retrace these paths exactly:
 //  - shapes are tested spheres, then planes, then quads, each in scene order,
 //    and a later shape replaces the closest hit only when strictly closer;
-//  - a sphere hit point is moved back onto the sphere with sphere_reproject;
-//  - every surface point carries the error bound of offset.h (ray_point_error
-//    for planes and quads, shape_point_error for reprojected sphere hits), and
-//    spawned rays leave from offset_ray_origin(x, side, error);
+//  - a hit's point, geometric normal and error bound are those of
+//    shared/hit_point.h (a sphere hit moved back onto the sphere, a triangle
+//    hit interpolated from its barycentric coordinates), and spawned rays
+//    leave from offset_ray_origin(x, side, error);
 //  - the shadow ray runs from offset_ray_origin(x, nf, error) towards
 //    offset_ray_origin(light point, light normal facing x,
 //    shadow_target_error(x, light point, light magnitude)), with the unit
@@ -82,7 +82,7 @@ struct SurfacePoint {
     Vec3<Real> normal;   // geometric: outward, plane normal, or edge1 x edge2
     Vec3<Real> shading;  // on normal's side: a triangle's interpolated vertex normal, else normal
     int material;
-    Real error;  // bound on the point's distance from the surface (offset.h)
+    Real error;  // bound on the point's distance from the surface (shared/hit_point.h)
 };
 
 template <class Real>
@@ -135,36 +135,34 @@ bool occluded(const ReferenceScene<Real>& scene, const Ray<Real>& ray, Real dist
 template <class Real>
 SurfacePoint<Real> surface_at(const ReferenceScene<Real>& scene, const Ray<Real>& ray, const ShapeHit<Real>& hit) {
     using M = SharedMath<Real>;
-    typename M::vec3 point = ray.origin + hit.t * ray.direction;
+    auto with_material = [](const typename M::HitPoint& h, int material) {
+        return SurfacePoint<Real>{h.point, h.normal, h.normal, material, h.error};
+    };
     switch (hit.shape) {
         case ShapeType::Sphere: {
             const auto& s = scene.spheres[hit.index];
-            point = M::sphere_reproject(s.center, s.radius, point);
-            Vec3<Real> normal = M::sphere_normal(s.center, point);
-            return {point, normal, normal, s.material, M::shape_point_error(M::sphere_magnitude(s.center, s.radius))};
+            return with_material(M::sphere_hit(s.center, s.radius, ray.origin, ray.direction, hit.t), s.material);
         }
         case ShapeType::Plane: {
             const auto& p = scene.planes[hit.index];
-            return {point, p.normal, p.normal, p.material,
-                    M::ray_point_error(ray.origin, hit.t, M::plane_magnitude(p.point))};
+            return with_material(M::plane_hit(p.point, p.normal, ray.origin, ray.direction, hit.t), p.material);
         }
         case ShapeType::Quad: {
             const auto& q = scene.quads[hit.index];
-            return {point, q.normal, q.normal, q.material,
-                    M::ray_point_error(ray.origin, hit.t, M::quad_magnitude(q.corner, q.edge1, q.edge2))};
+            return with_material(M::quad_hit(q.corner, q.edge1, q.edge2, ray.origin, ray.direction, hit.t), q.material);
         }
         case ShapeType::Mesh: {
             const auto& tri = scene.triangles[hit.index];
             Vec3<Real> p0 = M::triangle_vertex(tri.p0), p1 = M::triangle_vertex(tri.p1),
                        p2 = M::triangle_vertex(tri.p2);
-            Vec3<Real> normal = M::triangle_normal(p0, p1, p2), shading = normal;
+            SurfacePoint<Real> x =
+                with_material(M::triangle_hit(p0, p1, p2, ray.origin, ray.direction), static_cast<int>(tri.material));
             if (scene.shading_normals) {
                 const auto& n = scene.triangle_normals[hit.index];
-                shading = M::triangle_shading_normal(p0, p1, p2, M::triangle_vertex(n.n0), M::triangle_vertex(n.n1),
-                                                     M::triangle_vertex(n.n2), normal, point);
+                x.shading = M::triangle_shading_normal(p0, p1, p2, M::triangle_vertex(n.n0), M::triangle_vertex(n.n1),
+                                                       M::triangle_vertex(n.n2), x.normal, x.point);
             }
-            return {point, normal, shading, static_cast<int>(tri.material),
-                    M::ray_point_error(ray.origin, hit.t, M::triangle_magnitude(p0, p1, p2))};
+            return x;
         }
     }
     return {};

@@ -35,7 +35,6 @@ struct ReferenceScene {
     };
     struct QuadShape {
         vec3 corner, edge1, edge2;
-        vec3 normal;  // quad_normal(edge1, edge2), computed in Real as the kernels do
         int material;
     };
     struct SurfaceMaterial {
@@ -90,10 +89,7 @@ struct ReferenceScene {
         }
         for (const Sphere& s : scene.spheres) spheres.push_back({vec3(s.center), Real(s.radius), s.material});
         for (const Plane& p : scene.planes) planes.push_back({vec3(p.point), vec3(p.normal), p.material});
-        for (const Quad& q : scene.quads) {
-            vec3 edge1(q.edge1), edge2(q.edge2);
-            quads.push_back({vec3(q.corner), edge1, edge2, M::quad_normal(edge1, edge2), q.material});
-        }
+        for (const Quad& q : scene.quads) quads.push_back({vec3(q.corner), vec3(q.edge1), vec3(q.edge2), q.material});
         add_meshes(scene);
         add_lights(scene);
         for (double c : scene.light_cdf) light_cdf.push_back(Real(c));

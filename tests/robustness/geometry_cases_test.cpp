@@ -17,48 +17,80 @@ namespace {
 
 class Geometry : public ::testing::TestWithParam<Backend> {};
 
-// A 100 x 80 x 170 box, closed, lit by a small sphere light, the camera
-// inside near the front wall; its six walls either quads or, as in smallpt,
-// spheres of radius 1e5 whose surfaces lie on the same planes (they bulge by
-// at most 85^2 / 2e5 = 0.04 over a wall, 4e-4 of the box).
-std::string box_scene(bool sphere_walls, std::uint32_t seed) {
-    const char* walls_quads = R"(
-    {"type": "quad", "corner": [0, 0, 0], "edge1": [0, 80, 0], "edge2": [0, 0, 170], "material": "red"},
-    {"type": "quad", "corner": [100, 0, 0], "edge1": [0, 0, 170], "edge2": [0, 80, 0], "material": "blue"},
-    {"type": "quad", "corner": [0, 0, 0], "edge1": [0, 0, 170], "edge2": [100, 0, 0], "material": "white"},
-    {"type": "quad", "corner": [0, 80, 0], "edge1": [100, 0, 0], "edge2": [0, 0, 170], "material": "white"},
-    {"type": "quad", "corner": [0, 0, 0], "edge1": [100, 0, 0], "edge2": [0, 80, 0], "material": "white"},
-    {"type": "quad", "corner": [0, 0, 170], "edge1": [0, 80, 0], "edge2": [100, 0, 0], "material": "white"})";
-    const char* walls_spheres = R"(
-    {"type": "sphere", "center": [-100000, 40, 85], "radius": 100000, "material": "red"},
-    {"type": "sphere", "center": [100100, 40, 85], "radius": 100000, "material": "blue"},
-    {"type": "sphere", "center": [50, -100000, 85], "radius": 100000, "material": "white"},
-    {"type": "sphere", "center": [50, 100080, 85], "radius": 100000, "material": "white"},
-    {"type": "sphere", "center": [50, 40, -100000], "radius": 100000, "material": "white"},
-    {"type": "sphere", "center": [50, 40, 100170], "radius": 100000, "material": "white"})";
-    return std::string(R"({
-  "camera": {"position": [50, 42, 165], "look_at": [50, 38, 0], "fov_y": 55, "width": 32, "height": 32},
-  "render": {"spp": 16, "max_depth": 6, "rr_depth": 3, "seed": )") +
-           std::to_string(seed) + R"(},
-  "materials": {
-    "white": {"type": "diffuse", "albedo": [0.75, 0.75, 0.75]},
-    "red": {"type": "diffuse", "albedo": [0.75, 0.25, 0.25]},
-    "blue": {"type": "diffuse", "albedo": [0.25, 0.25, 0.75]},
-    "lamp": {"type": "emitter", "radiance": [400, 400, 400]}
-  },
-  "shapes": [
-    {"type": "sphere", "center": [50, 70, 85], "radius": 5, "material": "lamp"},)" +
-           (sphere_walls ? walls_spheres : walls_quads) + "]}";
+// A closed box of 100 x 80 x 170 times `size`, lit by a small sphere light,
+// the camera inside near the front wall; its six walls either quads or, as
+// in smallpt, spheres of radius 1e5 (whatever the box's size) whose surfaces
+// touch the same planes at the walls' middles (they bulge by at most
+// (85 size)^2 / 2e5 over a wall: 4e-4 of the box at size 1, 1.4e-5 units at
+// size 0.02, the 2-unit room where a radius-1e5 wall's points are known only
+// to ulp(1e5) = 0.008 in float).
+std::string box_scene(bool sphere_walls, std::uint32_t seed, double size) {
+    const double width = 100 * size, height = 80 * size, depth = 170 * size, wall_radius = 1e5;
+    using nlohmann::json;
+    auto vec = [](double x, double y, double z) { return json::array({x, y, z}); };
+    auto quad = [&](json corner, json edge1, json edge2, const char* material) {
+        return json{{"type", "quad"}, {"corner", corner}, {"edge1", edge1}, {"edge2", edge2}, {"material", material}};
+    };
+    auto sphere = [&](json center, double radius, const char* material) {
+        return json{{"type", "sphere"}, {"center", center}, {"radius", radius}, {"material", material}};
+    };
+    json shapes = json::array({sphere(vec(width / 2, 70 * size, depth / 2), 5 * size, "lamp")});
+    if (sphere_walls) {
+        const double r = wall_radius;
+        for (const json& wall : {sphere(vec(-r, height / 2, depth / 2), r, "red"),
+                                 sphere(vec(width + r, height / 2, depth / 2), r, "blue"),
+                                 sphere(vec(width / 2, -r, depth / 2), r, "white"),
+                                 sphere(vec(width / 2, height + r, depth / 2), r, "white"),
+                                 sphere(vec(width / 2, height / 2, -r), r, "white"),
+                                 sphere(vec(width / 2, height / 2, depth + r), r, "white")})
+            shapes.push_back(wall);
+    } else {
+        for (const json& wall : {quad(vec(0, 0, 0), vec(0, height, 0), vec(0, 0, depth), "red"),
+                                 quad(vec(width, 0, 0), vec(0, 0, depth), vec(0, height, 0), "blue"),
+                                 quad(vec(0, 0, 0), vec(0, 0, depth), vec(width, 0, 0), "white"),
+                                 quad(vec(0, height, 0), vec(width, 0, 0), vec(0, 0, depth), "white"),
+                                 quad(vec(0, 0, 0), vec(width, 0, 0), vec(0, height, 0), "white"),
+                                 quad(vec(0, 0, depth), vec(0, height, 0), vec(width, 0, 0), "white")})
+            shapes.push_back(wall);
+    }
+    json scene = {{"camera",
+                   {{"position", vec(width / 2, 42 * size, 165 * size)},
+                    {"look_at", vec(width / 2, 38 * size, 0)},
+                    {"fov_y", 55},
+                    {"width", 32},
+                    {"height", 32}}},
+                  {"render", {{"spp", 64}, {"max_depth", 6}, {"rr_depth", 3}, {"seed", seed}}},
+                  {"materials",
+                   {{"white", {{"type", "diffuse"}, {"albedo", vec(0.75, 0.75, 0.75)}}},
+                    {"red", {{"type", "diffuse"}, {"albedo", vec(0.75, 0.25, 0.25)}}},
+                    {"blue", {{"type", "diffuse"}, {"albedo", vec(0.25, 0.25, 0.75)}}},
+                    {"lamp", {{"type", "emitter"}, {"radiance", vec(400, 400, 400)}}}}},
+                  {"shapes", shapes}};
+    return scene.dump();
+}
+
+// The sphere-walled box against the quad box, from independent seeds: every
+// 4x4 region and the whole image within kSigmaTolerance standard errors (the
+// standard error from the spread of per-pixel differences; a correct pair
+// fails one of the 17 comparisons with probability below 1.2e-4).
+void expect_sphere_walls_match_quad_walls(Backend backend, double size, const std::string& figure) {
+    RenderResult quads = render_on(backend, parse_scene(box_scene(false, 1, size), "quad box"));
+    RenderResult spheres = render_on(backend, parse_scene(box_scene(true, 1, size), "smallpt box"));
+    EXPECT_EQ(spheres.stats.nonfinite, 0u);
+    RegionComparison c = compare_regions(spheres.image, quads.image, 4);
+    report_figure(figure, backend, describe(c));
+    EXPECT_LE(c.worst_z, kSigmaTolerance);
+    EXPECT_LE(std::fabs(c.whole_z), kSigmaTolerance);
 }
 
 TEST_P(Geometry, SmallptSphereWallsMatchQuadWalls) {
-    RenderResult quads = render_on(GetParam(), parse_scene(box_scene(false, 1), "quad box"));
-    RenderResult spheres = render_on(GetParam(), parse_scene(box_scene(true, 2), "smallpt box"));
-    EXPECT_EQ(spheres.stats.nonfinite, 0u);
-    RegionComparison c = compare_regions(spheres.image, quads.image, 4);
-    report_figure("smallpt sphere walls vs quad walls (independent seeds)", GetParam(), describe(c));
-    EXPECT_LE(c.worst_z, kSigmaTolerance);
-    EXPECT_LE(std::fabs(c.whole_z), kSigmaTolerance);
+    expect_sphere_walls_match_quad_walls(GetParam(), 1.0, "smallpt sphere walls vs quad walls (independent seeds)");
+}
+
+// The same box 2 units wide: the walls' radius is now 5e4 times the room.
+TEST_P(Geometry, SmallptSphereWallsMatchQuadWallsInAUnitRoom) {
+    expect_sphere_walls_match_quad_walls(GetParam(), 0.02,
+                                         "smallpt sphere walls vs quad walls, 2-unit room (independent seeds)");
 }
 
 // Pixel position of a camera-relative point.
