@@ -64,11 +64,10 @@ inline bool all_finite(const Image& image) {
     return true;
 }
 
-// Two renders of scenes that should look the same, from independent seeds,
-// compared region by region: in each of regions x regions blocks, the mean
-// of the per-pixel differences (zero in expectation, independent across
-// pixels) over its standard error. |z| <= kSigmaTolerance rejects a correct
-// pair with probability 6.8e-6 per region.
+// Two renders of scenes that should look the same, from independent seeds
+// or from the same one (common random numbers), compared region by region: in each of regions x regions blocks, the
+// mean of the per-pixel differences (zero in expectation, independent across pixels) over its standard error. |z| <=
+// kSigmaTolerance rejects a correct pair with probability 6.8e-6 per region.
 struct RegionComparison {
     double worst_z = 0.0;         // largest |mean difference| / standard error
     double worst_relative = 0.0;  // largest |mean difference| / region mean

@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <limits>
 #include <string>
 #include <vector>
@@ -142,7 +143,27 @@ TYPED_TEST(Offset, HugeSphereWallsOfTheSmallptBox) {
     }
 }
 
-TYPED_TEST(Offset, QuadAndPlaneHitPointsLeaveTheSurfaceOnBothSides) {
+// A hit point p (normal n, bound error) of a flat surface through `anchor`
+// with true unit normal n_l, offset to either side, lies on that side, and
+// rays leaving into it miss every surface in `surfaces` (distance functions
+// of origin and direction).
+template <class Real>
+void expect_offsets_leave_flat_surface(
+    const Vec3<Real>& p, const Vec3<Real>& n, Real error, const Vec3<Real>& anchor, const LongVec& n_l,
+    const std::vector<std::function<Real(const Vec3<Real>&, const Vec3<Real>&)>>& surfaces) {
+    for (Real side : {Real(1), Real(-1)}) {
+        Vec3<Real> q = wp::SharedMath<Real>::offset_ray_origin(p, side * n, error);
+        ASSERT_GT(side * glm::dot(to_long(q) - to_long(anchor), n_l), 0.0L) << "side " << side;
+        for (const Vec3<Real>& w : leaving_directions<Real>(side * n)) {
+            for (std::size_t k = 0; k < surfaces.size(); ++k) {
+                ASSERT_EQ(surfaces[k](q, w), wp::SharedMath<Real>::real_max)
+                    << "surface " << k << " side " << side << " cos " << glm::dot(w, side * n);
+            }
+        }
+    }
+}
+
+TYPED_TEST(Offset, FlatHitPointsLeaveTheSurfaceOnBothSides) {
     using R = TypeParam;
     using M = wp::SharedMath<R>;
     for (const Placement& placement : kPlacements) {
@@ -150,27 +171,38 @@ TYPED_TEST(Offset, QuadAndPlaneHitPointsLeaveTheSurfaceOnBothSides) {
             SCOPED_TRACE(std::string(placement.name) + ", scale " + std::to_string(scale));
             const Vec3<R> corner((glm::dvec3(-0.6, -0.5, -1.5) + placement.shape_position) * scale);
             const Vec3<R> e1(glm::dvec3(1.2, 0.1, 0.2) * scale), e2(glm::dvec3(0.1, 1.0, -0.4) * scale);
+            const Vec3<R> v1 = corner + e1, v2 = corner + e2;  // the triangle of the quad's first half
             const Vec3<R> origin(placement.ray_origin * scale);
-            const LongVec n_l = glm::normalize(glm::cross(to_long(e1), to_long(e2)));
+            const LongVec quad_n = glm::normalize(glm::cross(to_long(e1), to_long(e2)));
+            const LongVec triangle_n =
+                glm::normalize(glm::cross(to_long(v1) - to_long(corner), to_long(v2) - to_long(corner)));
+            const Vec3<R> plane_n = M::quad_normal(e1, e2);
+            auto quad = [&](const Vec3<R>& o, const Vec3<R>& w) {
+                return M::intersect_quad(corner, e1, e2, o, w, M::real_max);
+            };
+            auto plane = [&](const Vec3<R>& o, const Vec3<R>& w) {
+                return M::intersect_plane(corner, plane_n, o, w, M::real_max);
+            };
+            auto triangle = [&](const Vec3<R>& o, const Vec3<R>& w) {
+                return M::intersect_triangle(corner, v1, v2, o, w, M::real_max);
+            };
             for (int i = 0; i < kHitPoints; ++i) {
+                SCOPED_TRACE("point " + std::to_string(i));
                 double u = 0.02 + 0.96 * ((i * 0.618034) - std::floor(i * 0.618034));
                 double v = 0.02 + 0.96 * (i + 0.5) / kHitPoints;
                 glm::dvec3 target = glm::dvec3(corner) + u * glm::dvec3(e1) + v * glm::dvec3(e2);
                 Vec3<R> d(glm::normalize(target - glm::dvec3(origin)));
-                R t = M::intersect_quad(corner, e1, e2, origin, d, M::real_max);
-                ASSERT_NE(t, M::real_max) << "point " << i;
-                const auto [p, n, error] = M::quad_hit(corner, e1, e2, origin, d, t);
-                for (R side : {R(1), R(-1)}) {
-                    Vec3<R> q = M::offset_ray_origin(p, side * n, error);
-                    long double signed_distance = glm::dot(to_long(q) - to_long(corner), n_l);
-                    ASSERT_GT(side * signed_distance, 0.0L) << "point " << i << " side " << side;
-                    for (const Vec3<R>& w : leaving_directions<R>(side * n)) {
-                        ASSERT_EQ(M::intersect_quad(corner, e1, e2, q, w, M::real_max), M::real_max)
-                            << "point " << i << " side " << side << " cos " << glm::dot(w, side * n);
-                        ASSERT_EQ(M::intersect_plane(corner, n, q, w, M::real_max), M::real_max)
-                            << "point " << i << " side " << side << " cos " << glm::dot(w, side * n);
-                    }
-                }
+                R t = quad(origin, d);
+                ASSERT_NE(t, M::real_max);
+                const auto quad_hit = M::quad_hit(corner, e1, e2, origin, d, t);
+                expect_offsets_leave_flat_surface<R>(quad_hit.point, quad_hit.normal, quad_hit.error, corner, quad_n,
+                                                     {quad, plane});
+                if (u + v > 0.98) continue;  // outside the triangle
+                ASSERT_NE(triangle(origin, d), M::real_max);
+                const auto triangle_hit = M::triangle_hit(corner, v1, v2, origin, d);
+                expect_offsets_leave_flat_surface<R>(triangle_hit.point, triangle_hit.normal, triangle_hit.error,
+                                                     corner, triangle_n, {triangle});
+                if (::testing::Test::HasFatalFailure()) return;
             }
         }
     }
