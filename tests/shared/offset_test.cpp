@@ -117,27 +117,38 @@ TYPED_TEST(Offset, SphereHitPointsLeaveTheSurface) {
     }
 }
 
-// The smallpt construction: a wall that is a sphere of radius 1e5 whose
-// centre lies 1e5 + 50 away, seen from the origin. In float its points are
-// only known to ulp(1e5) ~ 0.008; the offset must follow that, not |p| ~ 50.
+// The smallpt construction: walls that are spheres of radius 1e5 whose
+// centres lie 1e5 + h away, seen from the origin, for boxes of half-size
+// h = 50 and h = 1 (a 2-unit room). In float their points are only known to
+// ulp(1e5) ~ 0.008; the offset must follow that, not |p| ~ h. Rays leaving
+// into the box (along the outward normal n) miss the wall; rays into the
+// wall reach its far side.
 TYPED_TEST(Offset, HugeSphereWallsOfTheSmallptBox) {
     using R = TypeParam;
     using M = wp::SharedMath<R>;
     const R radius = R(1e5);
-    for (const glm::dvec3 axis : {glm::dvec3(1, 0, 0), glm::dvec3(0, -1, 0), glm::dvec3(0, 0, -1)}) {
-        const Vec3<R> center(axis * (1e5 + 50.0));
-        for (int i = 0; i < kHitPoints; ++i) {
-            // Points of the wall within the box (a 100-unit square around the axis).
-            glm::dvec3 lateral = wp::test::spread_direction(i, kHitPoints) * 45.0;
-            lateral -= glm::dot(lateral, axis) * axis;
-            Vec3<R> d(glm::normalize(axis * 50.0 + lateral));
-            R t = M::intersect_sphere(center, radius, Vec3<R>(0), d, M::real_max);
-            ASSERT_NE(t, M::real_max) << "point " << i;
-            const auto [p, n, error] = M::sphere_hit(center, radius, Vec3<R>(0), d, t);
-            Vec3<R> inside = M::offset_ray_origin(p, -n, error);  // the box side
-            for (const Vec3<R>& w : leaving_directions<R>(-n)) {
-                R exit = M::intersect_sphere(center, radius, inside, w, M::real_max);
-                ASSERT_GT(exit, R(1.5) * radius * glm::dot(w, -n)) << "point " << i << " cos " << glm::dot(w, -n);
+    for (double half_size : {50.0, 1.0}) {
+        for (const glm::dvec3 axis : {glm::dvec3(1, 0, 0), glm::dvec3(0, -1, 0), glm::dvec3(0, 0, -1)}) {
+            SCOPED_TRACE("half size " + std::to_string(half_size));
+            const Vec3<R> center(axis * (1e5 + half_size));
+            for (int i = 0; i < kHitPoints; ++i) {
+                // Points of the wall within the box (a square of 0.9 the box around the axis).
+                glm::dvec3 lateral = wp::test::spread_direction(i, kHitPoints) * 0.9 * half_size;
+                lateral -= glm::dot(lateral, axis) * axis;
+                Vec3<R> d(glm::normalize(axis * half_size + lateral));
+                R t = M::intersect_sphere(center, radius, Vec3<R>(0), d, M::real_max);
+                ASSERT_NE(t, M::real_max) << "point " << i;
+                const auto [p, n, error] = M::sphere_hit(center, radius, Vec3<R>(0), d, t);
+                Vec3<R> box_side = M::offset_ray_origin(p, n, error);
+                for (const Vec3<R>& w : leaving_directions<R>(n)) {
+                    ASSERT_EQ(M::intersect_sphere(center, radius, box_side, w, M::real_max), M::real_max)
+                        << "point " << i << " cos " << glm::dot(w, n);
+                }
+                Vec3<R> wall_side = M::offset_ray_origin(p, -n, error);
+                for (const Vec3<R>& w : leaving_directions<R>(-n)) {
+                    R exit = M::intersect_sphere(center, radius, wall_side, w, M::real_max);
+                    ASSERT_GT(exit, R(1.5) * radius * glm::dot(w, -n)) << "point " << i << " cos " << glm::dot(w, -n);
+                }
             }
         }
     }
