@@ -18,8 +18,10 @@ RENDER_PACKAGES=(
 )
 # What the tests and the benchmark add: GoogleTest (whose CMake config also
 # loads GoogleMock's), clang-format for the format check, python3-pip for the
-# benchmark's plots.
-TEST_PACKAGES=(libgtest-dev libgmock-dev clang-format python3 python3-pip)
+# benchmark's plots and for Mitsuba, libllvm19 for Mitsuba's llvm_ad_rgb
+# variant (the oracle test and the benchmark's peer row; Dr.Jit finds it
+# through DRJIT_LIBLLVM_PATH, and crashes with Debian's default LLVM 15).
+TEST_PACKAGES=(libgtest-dev libgmock-dev clang-format python3 python3-pip libllvm19)
 
 mode=${1:-test}
 case "$mode" in
@@ -55,11 +57,22 @@ if [[ $mode == render ]]; then
   exit 0
 fi
 
+# pip3 install, also where Debian marks the system Python as externally managed.
+pip_install() {
+  pip3 install --quiet "$@" 2>/dev/null || pip3 install --quiet --break-system-packages "$@"
+}
+
 # matplotlib for bench/run.py's plots (the benchmark runs without it, plots left out).
 if ! python3 -c "import matplotlib" 2>/dev/null; then
-  pip3 install --quiet -r bench/requirements.txt 2>/dev/null ||
-    pip3 install --quiet --break-system-packages -r bench/requirements.txt ||
-    echo "setup: could not install matplotlib; bench/run.py will skip its plots" >&2
+  pip_install -r bench/requirements.txt || echo "setup: could not install matplotlib; bench/run.py will skip its plots" >&2
+fi
+
+# Mitsuba 3, the independent renderer of tests/oracle and the benchmark's peer
+# (rendering never needs it). Pinned: the converter (scripts/mitsuba_scene.py)
+# and the measured figures are for this version.
+MITSUBA_VERSION=3.9.1
+if [[ $(python3 -c "import mitsuba; print(mitsuba.__version__)" 2>/dev/null) != "$MITSUBA_VERSION" ]]; then
+  pip_install "mitsuba==$MITSUBA_VERSION"
 fi
 
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DWAVEPATH_BUILD_TESTS=ON -DWAVEPATH_BUILD_BENCH=ON

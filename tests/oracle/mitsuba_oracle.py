@@ -1,0 +1,205 @@
+#!/usr/bin/env python3
+"""Oracle test: every shipped scene rendered by wavepath and by Mitsuba 3 agrees.
+
+This is the one test that shares no code with the estimator it checks: the
+scene goes to Mitsuba through scripts/mitsuba_scene.py, and Mitsuba's `path`
+integrator (its own sampling, intersection, BSDFs and emitters) renders it.
+A bias in wavepath's estimator -- a light a few percent too bright, a wrong
+Fresnel term, a pdf off by a factor -- shows as disagreement; noise does not.
+
+For each scene, at most SIZE pixels on its longer side, both renderers render
+SEEDS independent images (fixed seeds) of SPP samples each. Per pixel, the
+variance of one image comes from the spread over the seeds; pixels are
+independent (each sample lands in its own pixel in both renderers), so the
+variance of a block's mean is the sum of its pixels' variances over the
+block's pixel count squared, with (SEEDS - 1) x pixels degrees of freedom:
+the standard error is estimated from the renders themselves, and the normal
+quantile is then exact enough. For every block (BLOCK x BLOCK pixels) and the
+whole image, and every channel,
+
+    z = (mean_wavepath - mean_mitsuba) / sqrt(se_wavepath^2 + se_mitsuba^2)
+
+must satisfy |z| <= z_crit, where z_crit makes the false-failure rate of the
+whole run at most ALPHA (Bonferroni over every block, channel and scene:
+z_crit = Phi^-1(1 - ALPHA / (2 tests))). With the defaults ALPHA = 1e-3:
+one run in a thousand fails by chance, at most.
+
+Prints, per scene, the whole-image mean ratio per channel, the largest |z|,
+and the smallest uniform bias the whole-image test detects (z_crit standard
+errors, relative to the mean); exit 1 when any test fails, 2 when Mitsuba is
+missing.
+
+Usage: mitsuba_oracle.py --binary build/wavepath [--scenes a.json,b.json] [--size 64] [--block 16]
+       [--spp 32] [--seeds 8] [--alpha 1e-3] [--json FILE]
+"""
+import argparse
+import glob
+import json
+import os
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+
+import numpy as np
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+sys.path.insert(0, os.path.join(ROOT, "scripts"))
+import mitsuba_scene  # noqa: E402
+
+# Debian's default LLVM (15) crashes Dr.Jit's LLVM backend; scripts/setup.sh installs libllvm19.
+LIBLLVM = "/usr/lib/x86_64-linux-gnu/libLLVM-19.so"
+FIRST_SEED = 1000  # the seeds used are FIRST_SEED .. FIRST_SEED + seeds - 1, in both renderers
+
+
+def shipped_scenes():
+    return sorted(glob.glob(os.path.join(ROOT, "scenes", "*.json")) + glob.glob(os.path.join(ROOT, "scenes", "test", "*.json")))
+
+
+def image_size(scene_path, size):
+    """(width, height): the scene's own, shrunk to `size` pixels on the longer side when larger."""
+    with open(scene_path) as f:
+        camera = json.load(f)["camera"]
+    w, h = camera["width"], camera["height"]
+    scale = min(1.0, size / max(w, h))
+    return max(1, round(w * scale)), max(1, round(h * scale))
+
+
+def read_pfm(path):
+    """A colour PFM as a (height, width, 3) float array, top row first."""
+    with open(path, "rb") as f:
+        assert f.readline().strip() == b"PF"
+        width, height = map(int, f.readline().split())
+        scale = float(f.readline())
+        data = np.frombuffer(f.read(width * height * 12), dtype="<f4" if scale < 0 else ">f4")
+    return data.reshape(height, width, 3)[::-1].astype(np.float64)
+
+
+def render_wavepath(binary, scene_path, width, height, spp, seeds, scratch):
+    """The images of `seeds` renders, shape (seeds, height, width, 3)."""
+    out = os.path.join(scratch, "wavepath.pfm")
+    images = []
+    for seed in seeds:
+        subprocess.run([binary, "render", scene_path, "-o", out, "-q", "--width", str(width), "--height", str(height),
+                        "--spp", str(spp), "--seed", str(seed)], check=True)
+        images.append(read_pfm(out))
+    return np.stack(images)
+
+
+def render_mitsuba(mi, scene_path, width, height, spp, seeds, scratch):
+    """The images of `seeds` Mitsuba renders of the converted scene, shape (seeds, height, width, 3)."""
+    scene_dict = mitsuba_scene.convert(scene_path, os.path.join(scratch, "meshes"), width=width, height=height,
+                                       spp=spp)
+    scene = mitsuba_scene.load(mi, scene_dict)
+    return np.stack([np.array(mi.render(scene, seed=seed), dtype=np.float64) for seed in seeds])
+
+
+def block_statistics(images, block):
+    """Per block (and the whole image, last) and channel: the mean and the variance of that mean.
+
+    images: (seeds, h, w, 3). Pixels are independent, so a block's variance is
+    the sum of its pixels' variances (each over the seeds, of the seeds' mean)
+    over its pixel count squared."""
+    seeds = images.shape[0]
+    mean = images.mean(axis=0)
+    variance = images.var(axis=0, ddof=1) / seeds  # of each pixel's mean over the seeds
+    h, w = mean.shape[:2]
+    means, variances = [], []
+    for y in range(0, h, block):
+        for x in range(0, w, block):
+            m, v = mean[y:y + block, x:x + block], variance[y:y + block, x:x + block]
+            n = m.shape[0] * m.shape[1]
+            means.append(m.mean(axis=(0, 1)))
+            variances.append(v.sum(axis=(0, 1)) / (n * n))
+    n = h * w
+    means.append(mean.mean(axis=(0, 1)))
+    variances.append(variance.sum(axis=(0, 1)) / (n * n))
+    return np.array(means), np.array(variances)
+
+
+def z_scores(a, b, block):
+    """|z| per block (whole image last) and channel; 0 where both are exactly equal with no variance."""
+    mean_a, var_a = block_statistics(a, block)
+    mean_b, var_b = block_statistics(b, block)
+    difference, se = mean_a - mean_b, np.sqrt(var_a + var_b)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        z = np.where(se > 0, np.abs(difference) / np.where(se > 0, se, 1), np.where(difference == 0, 0.0, np.inf))
+    return z, mean_a, mean_b, se
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--binary", default=os.path.join(ROOT, "build", "wavepath"))
+    parser.add_argument("--scenes", help="comma-separated scene files (default: scenes/*.json, scenes/test/*.json)")
+    parser.add_argument("--size", type=int, default=64, help="most pixels on the image's longer side")
+    parser.add_argument("--block", type=int, default=16, help="block side in pixels")
+    parser.add_argument("--spp", type=int, default=32)
+    parser.add_argument("--seeds", type=int, default=8, help="independent renders per renderer and scene")
+    parser.add_argument("--alpha", type=float, default=1e-3, help="false-failure rate of the whole run")
+    parser.add_argument("--variant", default="llvm_ad_rgb", help="Mitsuba variant (scalar_rgb needs no LLVM)")
+    parser.add_argument("--json", help="also write every scene's figures here")
+    args = parser.parse_args()
+
+    if args.variant.startswith("llvm"):
+        os.environ.setdefault("DRJIT_LIBLLVM_PATH", LIBLLVM)
+    try:
+        import mitsuba as mi
+        mi.set_variant(args.variant)
+    except (ImportError, AttributeError) as e:
+        print(f"mitsuba_oracle: error: Mitsuba 3 ({args.variant}) not available: {e} (bash scripts/setup.sh test)")
+        return 2
+
+    scenes = args.scenes.split(",") if args.scenes else shipped_scenes()
+    seeds = list(range(FIRST_SEED, FIRST_SEED + args.seeds))
+    blocks_per_scene = {}
+    for path in scenes:
+        width, height = image_size(path, args.size)
+        blocks_per_scene[path] = (-(-width // args.block)) * (-(-height // args.block)) + 1
+    tests = 3 * sum(blocks_per_scene.values())
+    z_crit = statistics.NormalDist().inv_cdf(1.0 - args.alpha / (2 * tests))
+    print(f"mitsuba_oracle: {len(scenes)} scenes, {tests} tests (blocks of {args.block}^2 and whole images, 3 "
+          f"channels), {args.seeds} seeds x {args.spp} spp per renderer; |z| <= {z_crit:.2f} (false-failure rate "
+          f"<= {args.alpha:g}, Bonferroni), Mitsuba {mi.__version__} {args.variant}")
+    failures, report = [], []
+    with tempfile.TemporaryDirectory(prefix="wavepath-oracle-") as scratch:
+        for path in scenes:
+            name = os.path.relpath(path, ROOT)
+            width, height = image_size(path, args.size)
+            start = time.time()
+            ours = render_wavepath(args.binary, path, width, height, args.spp, seeds, scratch)
+            middle = time.time()
+            theirs = render_mitsuba(mi, path, width, height, args.spp, seeds, scratch)
+            end = time.time()
+            z, mean_ours, mean_theirs, se = z_scores(ours, theirs, args.block)
+            whole_ratio = mean_ours[-1] / mean_theirs[-1]
+            detectable = z_crit * se[-1] / mean_theirs[-1]  # smallest uniform relative bias the whole image shows
+            worst = np.unravel_index(np.argmax(z), z.shape)
+            row = {"scene": name, "width": width, "height": height, "spp": args.spp, "seeds": args.seeds,
+                   "mean_wavepath": mean_ours[-1].tolist(), "mean_mitsuba": mean_theirs[-1].tolist(),
+                   "ratio": whole_ratio.tolist(), "max_abs_z": float(z.max()), "z_whole": z[-1].tolist(),
+                   "detectable_bias": detectable.tolist(), "wavepath_s": middle - start, "mitsuba_s": end - middle}
+            report.append(row)
+            print(f"{name}: {width}x{height}, whole-image ratio wavepath/Mitsuba "
+                  f"{' '.join(f'{r:.4f}' for r in whole_ratio)} (RGB), |z| whole "
+                  f"{' '.join(f'{v:.2f}' for v in z[-1])}, largest |z| {z.max():.2f} "
+                  f"({'whole image' if worst[0] == len(z) - 1 else f'block {worst[0]}'}, channel {'RGB'[worst[1]]}); "
+                  f"detects a uniform bias of {100 * max(detectable):.2f}%; "
+                  f"wavepath {middle - start:.1f} s, Mitsuba {end - middle:.1f} s")
+            if z.max() > z_crit:
+                bad = [(int(b), "RGB"[c]) for b, c in zip(*np.nonzero(z > z_crit))]
+                failures.append(f"{name}: {len(bad)} of {z.size} tests beyond |z| {z_crit:.2f} "
+                                f"(block, channel: {bad[:8]}{' ...' if len(bad) > 8 else ''}; block "
+                                f"{len(z) - 1} is the whole image)")
+    if args.json:
+        with open(args.json, "w") as f:
+            json.dump({"z_crit": z_crit, "alpha": args.alpha, "tests": tests, "mitsuba": mi.__version__,
+                       "variant": args.variant, "scenes": report}, f, indent=1)
+    for failure in failures:
+        print(f"mitsuba_oracle: FAIL {failure}")
+    print(f"mitsuba_oracle: {'FAILED' if failures else 'passed'}")
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
