@@ -51,7 +51,9 @@ import struct
 import sys
 
 PLANE_EXTENT = 1000.0  # a plane's half-size as a multiple of the scene's extent
-TWO_SIDED_GAP = 1e-6  # distance of a two-sided emitter's back copy, relative to the shape's size
+# Distance of a two-sided emitter's back copy behind the front, relative to the scene's extent: well above
+# Mitsuba's float ray offsets (about 5e-6 of the coordinates), else rays from outside hit the hidden copy.
+TWO_SIDED_GAP = 1e-4
 MESH_FORMATS = (".obj", ".ply")  # what Mitsuba's mesh plugins read
 
 
@@ -227,12 +229,13 @@ class Converter:
             return [front]
         # Mitsuba's area emitter emits from the front only: the back side is a
         # flipped copy a hair behind the front (which hides it from the front side).
+        gap = TWO_SIDED_GAP * extent
         if kind == "sphere":
-            back = {**front, "radius": shape["radius"] * (1.0 - TWO_SIDED_GAP), "flip_normals": True}
+            back = {**front, "radius": shape["radius"] - min(gap, shape["radius"] / 2), "flip_normals": True}
         elif kind == "quad":
             e1, e2 = shape["edge1"], shape["edge2"]
-            gap = scaled(normalized(cross(e1, e2)), -TWO_SIDED_GAP * max(norm(e1), norm(e2)))
-            back = {**self.quad_mesh(add(sub(shape["corner"], self.origin), gap), e2, e1),
+            behind = scaled(normalized(cross(e1, e2)), -gap)
+            back = {**self.quad_mesh(add(sub(shape["corner"], self.origin), behind), e2, e1),
                     "bsdf": front["bsdf"], "emitter": front["emitter"]}
         else:
             self.fail(f"{where}.material", "a two-sided emitting mesh has no Mitsuba counterpart here "
