@@ -168,11 +168,11 @@ class ConverterTest(unittest.TestCase):
     def test_mesh_transform_scales_then_rotates_then_translates(self):
         self.write("tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n")
         mesh = {"type": "mesh", "file": "tri.obj", "material": "white",
-                "transform": {"translate": [1, 0, 0], "rotate": [0, 1, 0, 90], "scale": 2}}
+                "transform": {"translate": [1, 0, 0], "rotate": [0, 1, 0, 90], "scale": [2, 3, 4]}}
         (out,) = self.shapes(self.convert([mesh]))
         self.assertEqual(out["type"], "obj")
         self.assertEqual(out["filename"], os.path.join(self.dir.name, "tri.obj"))
-        # (1, 0, 0): scaled to (2, 0, 0), turned counter-clockwise about +y to (0, 0, -2), moved to (1, 0, -2),
+        # (1, 0, 0): scaled to (2, 0, 0) (a rotation first would give (0, 0, -4)), turned counter-clockwise about +y to (0, 0, -2), moved to (1, 0, -2),
         # rebased by the camera (1, 2, 3)
         for got, want in zip(apply(out["to_world"], [1.0, 0.0, 0.0]), [0, -2, -5]):
             self.assertAlmostEqual(got, want, places=12)
