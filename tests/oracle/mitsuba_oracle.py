@@ -51,6 +51,7 @@ import mitsuba_scene  # noqa: E402
 # Debian's default LLVM (15) crashes Dr.Jit's LLVM backend; scripts/setup.sh installs libllvm19.
 LIBLLVM = "/usr/lib/x86_64-linux-gnu/libLLVM-19.so"
 FIRST_SEED = 1000  # the seeds used are FIRST_SEED .. FIRST_SEED + seeds - 1, in both renderers
+DOC_BEGIN, DOC_END = "<!-- oracle:begin -->", "<!-- oracle:end -->"
 
 
 def shipped_scenes():
@@ -128,6 +129,31 @@ def z_scores(a, b, block):
     return z, mean_a, mean_b, se
 
 
+def write_doc_table(doc, report, z_crit, tests, args, version, failed):
+    """The run's figures as a markdown table between DOC_BEGIN and DOC_END in `doc`, with what ran them."""
+    commit = subprocess.run(["git", "describe", "--always", "--dirty"], cwd=ROOT, capture_output=True,
+                            text=True).stdout.strip()
+    with open("/proc/cpuinfo") as f:
+        cpu = next((line.split(":", 1)[1].strip() for line in f if line.startswith("model name")), "unknown CPU")
+    lines = [DOC_BEGIN,
+             f"Written by `tests/oracle/mitsuba_oracle.py --doc docs/mitsuba.md` at commit `{commit}`, "
+             f"{time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())}, on {cpu} ({os.cpu_count()} cores); Mitsuba "
+             f"{version} `{args.variant}`; {args.seeds} seeds x {args.spp} spp per renderer, blocks of "
+             f"{args.block}^2; {tests} tests, |z| <= {z_crit:.2f}; {'FAILED' if failed else 'passed'}.", "",
+             "| scene | size | mean ratio wavepath/Mitsuba (R, G, B) | whole-image abs(z) | largest abs(z) | "
+             "smallest uniform bias detected | wavepath s | Mitsuba s |", "|---|---|---|---|---|---|---|---|"]
+    for r in report:
+        lines.append(f"| {r['scene']} | {r['width']}x{r['height']} | {', '.join(f'{v:.4f}' for v in r['ratio'])} | "
+                     f"{', '.join(f'{v:.2f}' for v in r['z_whole'])} | {r['max_abs_z']:.2f} | "
+                     f"{100 * max(r['detectable_bias']):.2f}% | {r['wavepath_s']:.1f} | {r['mitsuba_s']:.1f} |")
+    lines.append(DOC_END)
+    with open(doc) as f:
+        text = f.read()
+    begin, end = text.index(DOC_BEGIN), text.index(DOC_END) + len(DOC_END)
+    with open(doc, "w") as f:
+        f.write(text[:begin] + "\n".join(lines) + text[end:])
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--binary", default=os.path.join(ROOT, "build", "wavepath"))
@@ -139,6 +165,8 @@ def main():
     parser.add_argument("--alpha", type=float, default=1e-3, help="false-failure rate of the whole run")
     parser.add_argument("--variant", default="llvm_ad_rgb", help="Mitsuba variant (scalar_rgb needs no LLVM)")
     parser.add_argument("--json", help="also write every scene's figures here")
+    parser.add_argument("--doc", help="also write the figures as the table between the oracle markers of this "
+                        "markdown file (docs/mitsuba.md)")
     args = parser.parse_args()
 
     if args.variant.startswith("llvm"):
@@ -195,6 +223,8 @@ def main():
         with open(args.json, "w") as f:
             json.dump({"z_crit": z_crit, "alpha": args.alpha, "tests": tests, "mitsuba": mi.__version__,
                        "variant": args.variant, "scenes": report}, f, indent=1)
+    if args.doc:
+        write_doc_table(args.doc, report, z_crit, tests, args, mi.__version__, bool(failures))
     for failure in failures:
         print(f"mitsuba_oracle: FAIL {failure}")
     print(f"mitsuba_oracle: {'FAILED' if failures else 'passed'}")
