@@ -1,15 +1,21 @@
 #!/usr/bin/env python3
-"""wavepath benchmark: throughput, scaling and speed versus accuracy.
+"""wavepath benchmark: throughput, scaling and speed versus accuracy, beside Mitsuba 3.
 
-Usage: python3 bench/run.py [--quick] [--out bench/out] [--binary build/wavepath]
+Usage: python3 bench/run.py [--quick] [--check] [--out bench/out] [--binary build/wavepath]
                             [--mesh-bench build/bench/mesh_bench] [--series throughput,scaling,accuracy,meshes]
 
-Runs the wavepath executable (build it first: bash scripts/setup.sh) and writes
-into --out: results.json, one CSV per study, PNG plots (when matplotlib is
-installed; pip install -r bench/requirements.txt) and summary.md. --quick
-shrinks every study to finish in under two minutes (CI runs it). The meshes
-series runs bench/mesh_bench (cmake --build build --target mesh_bench) and
-writes meshes.json, meshes.csv and meshes.md besides.
+Runs the wavepath executable (build it first: bash scripts/setup.sh, which also
+installs Mitsuba 3) and writes into --out: results.json, one CSV per study, PNG
+plots (when matplotlib is installed; pip install -r bench/requirements.txt) and
+summary.md, each headed by the commit, date, machine, OpenCL platform and build.
+Mitsuba (llvm_ad_rgb, bench/mitsuba_peer.py) is a row of the throughput and
+accuracy studies, and renders the converged images that relMSE and bias are
+measured against (cached in --out/converged-cache under a key of the scene's
+content, the settings and the renderer's version). --quick shrinks every study
+to a few minutes (CI runs it, with --check: exit 1 when relMSE does not fall
+as about 1/spp, an image's mean strays from the truth's, or a ratio is not
+finite). The meshes series runs bench/mesh_bench (cmake --build build --target
+mesh_bench) and writes meshes.json, meshes.csv and meshes.md besides.
 """
 import argparse
 import array
@@ -25,7 +31,11 @@ import sys
 import tempfile
 import time
 
+import numpy as np
+
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from mitsuba_peer import MitsubaPeer  # noqa: E402
 
 
 class Runner:
@@ -79,29 +89,54 @@ def read_pfm(path):
 
 def rel_mse(image, reference):
     """Mean over pixels and channels of (x - r)^2 / (r^2 + 1e-2)."""
-    total = 0.0
-    for x, r in zip(image, reference):
-        total += (x - r) ** 2 / (r * r + 1e-2)
-    return total / len(reference)
+    x, r = np.asarray(image, dtype=np.float64), np.asarray(reference, dtype=np.float64)
+    return float(np.mean((x - r) ** 2 / (r * r + 1e-2)))
 
 
-def machine():
+def rel_noise(variance, reference):
+    """The relMSE that noise of this per-value variance adds against `reference` (same weights as rel_mse)."""
+    r = np.asarray(reference, dtype=np.float64)
+    return float(np.mean(np.asarray(variance) / (r * r + 1e-2)))
+
+
+def machine(binary):
     cpu = platform.processor()
     try:
         with open("/proc/cpuinfo") as f:
             cpu = next(line.split(":", 1)[1].strip() for line in f if line.startswith("model name"))
     except (OSError, StopIteration):
         pass
-    pocl = ""
-    try:
-        out = subprocess.run(["clinfo"], capture_output=True, text=True).stdout
-        pocl = next((l.split(None, 2)[-1].strip() for l in out.splitlines() if "Platform Version" in l), "")
-    except OSError:
-        pass
-    return {"cpu": cpu, "cores": os.cpu_count(), "opencl_platform": pocl, "python": platform.python_version()}
+    # The OpenCL platform and device the wavefront runs on, as the binary itself lists them.
+    devices = subprocess.run([binary, "devices"], capture_output=True, text=True).stdout.splitlines()
+    device = next((line.split("] ", 1)[1].strip() for line in devices if line.startswith("[0]")), "")
+    platform_line = next((line.split(":", 1)[1].strip() for line in devices if "platform:" in line), "")
+    return {"cpu": cpu, "cores": os.cpu_count(), "opencl_platform": platform_line, "opencl_device": device,
+            "python": platform.python_version()}
 
 
-def throughput(runner, cfg):
+def run_meta(binary, peer):
+    """What the figures were measured with: commit, date, machine, OpenCL platform, build, Mitsuba."""
+    def output(args):
+        try:
+            return subprocess.run(args, capture_output=True, text=True, cwd=ROOT).stdout.strip()
+        except OSError:
+            return ""
+    build_type = ""
+    cache = os.path.join(os.path.dirname(binary), "CMakeCache.txt")
+    if os.path.exists(cache):
+        with open(cache) as f:
+            build_type = next((line.split("=", 1)[1].strip() for line in f if line.startswith("CMAKE_BUILD_TYPE:")), "")
+    return {"commit": output(["git", "describe", "--always", "--dirty", "--abbrev=12"]),
+            "date": time.strftime("%Y-%m-%d %H:%M:%S UTC", time.gmtime()),
+            "wavepath": output([binary, "version"]), "build_type": build_type, "binary": binary,
+            "mitsuba": peer.describe(), **machine(binary)}
+
+
+def spread(values):
+    return {"min": min(values), "median": statistics.median(values), "max": max(values)}
+
+
+def throughput(runner, peer, cfg):
     """Samples/s per scene and backend, interleaved, min and median over runs; per scene one profiled
     wavefront run, with its tracing stages' rays/s as fractions of the intersect bound (the roofline)."""
     rows = []
@@ -109,19 +144,29 @@ def throughput(runner, cfg):
         path = os.path.join(ROOT, "scenes", scene)
         # (label, backend, flags); the wavefront also with one path per work item, to show what its lanes give
         configurations = [("wavefront", "wavefront", []), ("wavefront-1-lane", "wavefront", ["--lanes", "1"]),
-                          ("megakernel", "megakernel", []), ("reference", "reference", [])]
+                          ("megakernel", "megakernel", []), ("reference", "reference", []), ("mitsuba", None, [])]
         runs = {label: [] for label, _, _ in configurations}
-        for _ in range(cfg["repeats"]):
+        for _ in range(cfg["repeats"]):  # interleaved: each repetition runs every configuration once
             for label, backend, flags in configurations:
-                runs[label].append(runner.render(path, backend, cfg["size"], cfg["size"], cfg["spp"], extra=flags))
+                if backend is None:
+                    runs[label].append(peer.render(path, cfg["size"], cfg["spp"]))
+                else:
+                    runs[label].append(runner.render(path, backend, cfg["size"], cfg["size"], cfg["spp"], extra=flags))
         profile = runner.render(path, "wavefront", cfg["size"], cfg["size"], cfg["spp"], profile=True)["profile"]
         for backend, stats in runs.items():
             sps = [s["samples_per_s"] for s in stats]
-            rays = [(s["extension_rays"] + s["shadow_rays"]) / s["time_s"] for s in stats]
-            rows.append({"scene": scene, "backend": backend, "size": cfg["size"], "spp": cfg["spp"],
-                         "runs": len(sps), "msamples_s_min": min(sps) / 1e6,
-                         "msamples_s_median": statistics.median(sps) / 1e6,
-                         "msamples_s_max": max(sps) / 1e6, "mrays_s_median": statistics.median(rays) / 1e6})
+            row = {"scene": scene, "backend": backend, "size": cfg["size"], "spp": cfg["spp"], "runs": len(sps),
+                   "msamples_s_min": min(sps) / 1e6, "msamples_s_median": statistics.median(sps) / 1e6,
+                   "msamples_s_max": max(sps) / 1e6}
+            if "extension_rays" in stats[0]:
+                rays = [(s["extension_rays"] + s["shadow_rays"]) / s["time_s"] for s in stats]
+                row["mrays_s_median"] = statistics.median(rays) / 1e6
+            rows.append(row)
+        # The wavefront against each other configuration, repetition by repetition (same machine state).
+        for other in ("megakernel", "reference", "mitsuba"):
+            ratios = [w["samples_per_s"] / o["samples_per_s"] for w, o in zip(runs["wavefront"], runs[other])]
+            rows.append({"scene": scene, "backend": f"wavefront/{other}", "runs": len(ratios),
+                         **{f"ratio_{k}": v for k, v in spread(ratios).items()}})
         of_bound = profile["of_intersect_bound"]
         rows.append({"scene": scene, "backend": "wavefront-profile", "profile": profile,
                      "intersect_bound_mrays_s": profile["intersect_bound_rays_per_s"] / 1e6,
@@ -149,54 +194,109 @@ def scaling(runner, cfg):
     return rows
 
 
-def accuracy(runner, cfg, out):
-    """relMSE against a converged reference versus time: spp, max_depth, rr_depth, nee and hemisphere series."""
-    path = os.path.join(ROOT, "scenes", "room.json")
+def scene_max_depth(path):
+    with open(path) as f:
+        return json.load(f).get("render", {}).get("max_depth", 8)
+
+
+def accuracy(runner, peer, cfg, out):
+    """relMSE against converged images from Mitsuba, versus time: per scene the spp series of every renderer;
+    on the room also the wavefront's max_depth, rr_depth, nee and hemisphere series.
+
+    The truth of a series has the series' max_depth (the scene's), so that its bias^2 is the estimator's;
+    the max_depth series is measured against a truth at depth 64, so that truncation shows as bias."""
     size = cfg["accuracy_size"]
-    # The converged image: far more samples, its own seed, and paths up to
-    # depth 64, so that the max_depth series shows its truncation bias.
-    converged_settings = ["--seed", "12345", "--max-depth", "64"]
-    converged_file = os.path.join(out, f"converged-room-{size}-{cfg['converged_spp']}spp-depth64.pfm.json")
-    if os.path.exists(converged_file):
-        with open(converged_file) as f:
-            converged = array.array("f", json.load(f))
-    else:
-        converged = runner.render(path, "wavefront", size, size, cfg["converged_spp"], extra=converged_settings,
-                                  image=True)["image"]
-        with open(converged_file, "w") as f:
-            json.dump(list(converged), f)
-    rows = []
+    cache = os.path.join(out, "converged-cache")
+    rows, truths = [], []
 
-    def measure(study, backend, spp, extra, **setting):
-        """relMSE over the seeds for one setting, split into bias and variance:
-        E[relMSE of one image] = bias^2 + var, E[relMSE of the mean of n] = bias^2 + var/n."""
-        errors, times, images = [], [], []
-        for seed in range(cfg["seeds"]):
-            s = runner.render(path, backend, size, size, spp, extra=["--seed", str(seed), *extra], image=True)
-            errors.append(rel_mse(s["image"], converged))
-            times.append(s["time_s"])
-            images.append(s["image"])
-        n = len(images)
-        mean_image = [sum(values) / n for values in zip(*images)]
-        e, t, e_mean = statistics.mean(errors), statistics.mean(times), rel_mse(mean_image, converged)
-        variance = max(0.0, (e - e_mean) * n / (n - 1))
-        rows.append({"study": study, "backend": backend, "spp": spp, **setting, "relmse": e,
-                     "relmse_sd": statistics.stdev(errors), "bias2": max(0.0, e_mean - variance / n),
-                     "variance": variance, "time_s": t, "efficiency": 1.0 / (e * t) if e > 0 and t > 0 else 0.0})
+    def truth(path, spp, depth):
+        image, variance, file = peer.converged(path, size, spp, depth, cache)
+        noise = rel_noise(variance, image)
+        truths.append({"scene": os.path.basename(path), "renderer": peer.describe(), "size": size, "spp": spp,
+                       "max_depth": depth, "cache_file": os.path.basename(file), "noise_relmse": noise})
+        return image, variance, noise
 
-    for spp in cfg["spp_series"]:
-        for backend in ("wavefront", "reference"):
-            measure("spp", backend, spp, [])
-        measure("spp", "reference", spp, ["--precision", "double"], precision="double")
-    for depth in cfg["depth_series"]:
-        measure("max_depth", "wavefront", cfg["depth_spp"], ["--max-depth", str(depth)], max_depth=depth)
-    for rr in cfg["rr_series"]:  # Russian roulette start depth; beyond max_depth it is off
-        measure("rr_depth", "wavefront", cfg["depth_spp"], ["--rr-depth", str(rr)], rr_depth=rr)
-    for nee in cfg["nee_series"]:  # off: pure BSDF sampling, the same image with more variance
-        measure("nee", "wavefront", cfg["depth_spp"], ["--nee", nee], nee=nee)
-    for hemisphere in cfg["hemisphere_series"]:  # diffuse sampling: cosine (the default) or uniform
-        measure("hemisphere", "wavefront", cfg["depth_spp"], ["--hemisphere", hemisphere], hemisphere=hemisphere)
-    return rows
+    for scene in cfg["accuracy_scenes"]:
+        path = os.path.join(ROOT, "scenes", scene)
+        depth = scene_max_depth(path)
+
+        def measure(study, backend, spp, extra=(), against=None, **setting):
+            """relMSE over the seeds for one setting, split into bias and variance:
+            E[relMSE of one image] = bias^2 + var + c, E[relMSE of the mean of n] = bias^2 + var/n + c,
+            with c the truth's own noise (from its passes). bias^2 is reported as measured, signed:
+            noise can make a zero bias negative."""
+            reference, reference_variance, noise = against
+            errors, times, images = [], [], []
+            for seed in range(cfg["seeds"]):
+                if backend == "mitsuba":
+                    s = peer.render(path, size, spp, seed=seed, max_depth=setting.get("max_depth"))
+                else:
+                    s = runner.render(path, backend, size, size, spp, extra=["--seed", str(seed), *extra], image=True)
+                errors.append(rel_mse(s["image"], reference))
+                times.append(s["time_s"])
+                images.append(np.asarray(s["image"], dtype=np.float64))
+            n, stack = len(images), np.stack(images)
+            mean_image = stack.mean(axis=0)
+            e, t, e_mean = statistics.mean(errors), statistics.mean(times), rel_mse(mean_image, reference)
+            # The image's mean against the truth's, in standard errors from the per-value variances.
+            se = math.sqrt((stack.var(axis=0, ddof=1).sum() / n + reference_variance.sum())) / mean_image.size
+            rows.append({"scene": scene, "study": study, "backend": backend, "spp": spp, **setting, "relmse": e,
+                         "relmse_sd": statistics.stdev(errors), "bias2": (n * e_mean - e) / (n - 1) - noise,
+                         "variance": (e - e_mean) * n / (n - 1), "truth_noise": noise, "time_s": t,
+                         "efficiency": 1.0 / (e * t) if e > 0 and t > 0 else 0.0,
+                         "mean_ratio": float(mean_image.mean() / reference.mean()),
+                         "mean_z": float((mean_image.mean() - reference.mean()) / se) if se > 0 else 0.0})
+
+        same_depth = truth(path, cfg["converged_spp"], depth)
+        for spp in cfg["spp_series"]:
+            for backend in cfg["spp_backends"]:
+                measure("spp", backend, spp, against=same_depth)
+            if "reference" in cfg["spp_backends"]:
+                measure("spp", "reference", spp, ["--precision", "double"], against=same_depth, precision="double")
+        if scene != "room.json":
+            continue
+        deep = truth(path, cfg["deep_converged_spp"], 64)
+        for d in cfg["depth_series"]:
+            measure("max_depth", "wavefront", cfg["depth_spp"], ["--max-depth", str(d)], against=deep, max_depth=d)
+        for rr in cfg["rr_series"]:  # Russian roulette start depth; beyond max_depth it is off
+            measure("rr_depth", "wavefront", cfg["depth_spp"], ["--rr-depth", str(rr)], against=same_depth, rr_depth=rr)
+        for nee in cfg["nee_series"]:  # off: pure BSDF sampling, the same image with more variance
+            measure("nee", "wavefront", cfg["depth_spp"], ["--nee", nee], against=same_depth, nee=nee)
+        for hemisphere in cfg["hemisphere_series"]:  # diffuse sampling: cosine (the default) or uniform
+            measure("hemisphere", "wavefront", cfg["depth_spp"], ["--hemisphere", hemisphere], against=same_depth,
+                    hemisphere=hemisphere)
+    return {"rows": rows, "truths": truths, "peer": peer_comparison(rows)}
+
+
+def loglog_at(points, x):
+    """y at x on the log-log polyline through (x, y) points sorted by x; None outside their range."""
+    for (x0, y0), (x1, y1) in zip(points, points[1:]):
+        if x0 <= x <= x1 and x0 > 0 and x1 > x0 and y0 > 0 and y1 > 0:
+            f = math.log(x / x0) / math.log(x1 / x0)
+            return math.exp(math.log(y0) + f * (math.log(y1) - math.log(y0)))
+    return None
+
+
+def peer_comparison(rows):
+    """Each renderer's efficiency 1/(relMSE x time) against Mitsuba's, at equal spp and at equal time
+    (Mitsuba's relMSE at the renderer's time, on the log-log line through its spp series)."""
+    out = []
+    spp_rows = [r for r in rows if r["study"] == "spp" and "precision" not in r]
+    for scene in sorted({r["scene"] for r in spp_rows}):
+        mitsuba = sorted(((r["time_s"], r["relmse"]) for r in spp_rows
+                          if r["scene"] == scene and r["backend"] == "mitsuba"))
+        by_spp = {r["spp"]: r for r in spp_rows if r["scene"] == scene and r["backend"] == "mitsuba"}
+        for r in spp_rows:
+            if r["scene"] != scene or r["backend"] == "mitsuba":
+                continue
+            equal_time = loglog_at(mitsuba, r["time_s"])
+            out.append({"scene": scene, "backend": r["backend"], "spp": r["spp"], "time_s": r["time_s"],
+                        "relmse": r["relmse"], "efficiency": r["efficiency"],
+                        "mitsuba_efficiency_equal_spp": by_spp[r["spp"]]["efficiency"],
+                        "vs_mitsuba_equal_spp": r["efficiency"] / by_spp[r["spp"]]["efficiency"],
+                        "mitsuba_relmse_equal_time": equal_time,
+                        "vs_mitsuba_equal_time": equal_time / r["relmse"] if equal_time else None})
+    return out
 
 
 def meshes(mesh_bench, quick, out):
@@ -343,11 +443,11 @@ def plot(out, results):
     rows = [r for r in results["throughput"] if "msamples_s_median" in r]
     scenes = sorted({r["scene"] for r in rows})
     fig, ax = plt.subplots(figsize=(6, 3.5))
-    for i, backend in enumerate(("wavefront", "megakernel", "reference")):
+    for i, backend in enumerate(("wavefront", "megakernel", "reference", "mitsuba")):
         vals = [next(r["msamples_s_median"] for r in rows if r["scene"] == s and r["backend"] == backend)
                 for s in scenes]
-        ax.bar([j + 0.27 * i for j in range(len(scenes))], vals, width=0.27, label=backend)
-    ax.set_xticks([j + 0.27 for j in range(len(scenes))], scenes)
+        ax.bar([j + 0.2 * i for j in range(len(scenes))], vals, width=0.2, label=backend)
+    ax.set_xticks([j + 0.3 for j in range(len(scenes))], scenes)
     ax.set_ylabel("Msamples/s (median)")
     ax.legend()
     fig.tight_layout()
@@ -363,16 +463,16 @@ def plot(out, results):
     made.append("scaling_wavefront.png")
     fig, ax = plt.subplots(figsize=(6, 3.5))
     series = [("spp", "wavefront", None, "o-"), ("spp", "reference", None, "o-"),
-              ("spp", "reference", "double", "o:"), ("max_depth", "wavefront", None, "s--"),
+              ("spp", "reference", "double", "o:"), ("spp", "mitsuba", None, "x-"), ("max_depth", "wavefront", None, "s--"),
               ("rr_depth", "wavefront", None, "^--"), ("nee", "wavefront", None, "v"),
               ("hemisphere", "wavefront", None, "D")]
     for study, backend, precision, style in series:
-        pts = [r for r in results["accuracy"]
-               if r["study"] == study and r["backend"] == backend and r.get("precision") == precision]
+        pts = [r for r in results["accuracy"]["rows"] if r["scene"] == "room.json" and r["study"] == study
+               and r["backend"] == backend and r.get("precision") == precision]
         label = f"{backend}{' ' + precision if precision else ''}, {study} series"
         ax.loglog([r["time_s"] for r in pts], [r["relmse"] for r in pts], style, label=label)
     ax.set_xlabel("time (s)")
-    ax.set_ylabel("relMSE")
+    ax.set_ylabel("relMSE (room)")
     ax.legend(fontsize=8)
     fig.tight_layout()
     fig.savefig(os.path.join(out, "relmse_vs_time.png"), dpi=80)
@@ -380,19 +480,110 @@ def plot(out, results):
     return made
 
 
+def precision_sentence(rows):
+    """What the data say of float against double and of the wavefront against the float reference."""
+    out = []
+    for scene in sorted({r["scene"] for r in rows}):
+        def relmse(backend, spp, precision=None):
+            return next((r["relmse"] for r in rows if r["scene"] == scene and r["study"] == "spp" and
+                         r["backend"] == backend and r["spp"] == spp and r.get("precision") == precision), None)
+        spps = sorted({r["spp"] for r in rows if r["scene"] == scene and r.get("precision") == "double"})
+        if not spps:
+            continue
+        ratios = [relmse("reference", s, "double") / relmse("reference", s) for s in spps]
+        same = all(relmse("wavefront", s) == relmse("reference", s) for s in spps)
+        out.append(f"{scene}: relMSE of the reference in double over float {min(ratios):.4f}-{max(ratios):.4f} "
+                   f"across the spp series; the wavefront's relMSE {'equals' if same else 'differs from'} the float "
+                   f"reference's at {'every' if same else 'some'} spp.")
+    return " ".join(out)
+
+
+def accuracy_markdown(acc):
+    rows, lines = acc["rows"], ["", "## Speed versus accuracy (relMSE against Mitsuba's converged images)", ""]
+    lines += ["The truth of each series is a converged image from Mitsuba, a renderer that shares no code with "
+              "wavepath, rendered in passes whose spread gives its own noise c (the relMSE it adds to every "
+              "measurement), cached under a key of the converted scene, the settings and the renderer's version:", "",
+              "| scene | truth | spp | max_depth | noise c (relMSE) | cache file |", "|---|---|---|---|---|---|"]
+    for t in acc["truths"]:
+        lines.append(f"| {t['scene']} | {t['renderer']} | {t['spp']} | {t['max_depth']} | {t['noise_relmse']:.3g} | "
+                     f"{t['cache_file']} |")
+    lines += ["", "relMSE per image, mean over seeds (+- standard deviation), with (x - r)^2 / (r^2 + 0.01) per pixel "
+              "and channel. bias^2 = (n relMSE(mean of the n images) - mean relMSE) / (n - 1) - c, signed (noise can "
+              "make a zero bias negative); variance = n (mean relMSE - relMSE(mean image)) / (n - 1). mean ratio: "
+              "the image's mean over the truth's, with z in standard errors from per-value variances. The "
+              "max_depth series is measured against a truth at depth 64, the others against one at the scene's "
+              "max_depth. " + precision_sentence(rows), "",
+              "| scene | study | backend | setting | relMSE | bias^2 | variance | time s | 1/(relMSE x time) | "
+              "mean ratio (z) |", "|---|---|---|---|---|---|---|---|---|---|"]
+    for r in rows:
+        setting = ", ".join(f"{k} {r[k]}" for k in ("spp", "precision", "max_depth", "rr_depth", "nee", "hemisphere")
+                            if k in r)
+        lines.append(f"| {r['scene']} | {r['study']} | {r['backend']} | {setting} | {r['relmse']:.4g} +- "
+                     f"{r['relmse_sd']:.2g} | {r['bias2']:.3g} | {r['variance']:.3g} | {r['time_s']:.3f} | "
+                     f"{r['efficiency']:.4g} | {r['mean_ratio']:.4f} ({r['mean_z']:+.1f}) |")
+    lines += ["", "### Against Mitsuba (llvm_ad_rgb): efficiency 1/(relMSE x time)", "",
+              "Equal spp: both at the same spp. Equal time: Mitsuba's relMSE at the renderer's time, on the "
+              "log-log line through Mitsuba's spp series (blank outside it); the ratio is then Mitsuba's relMSE "
+              "over the renderer's, which is the efficiency ratio at that time.", "",
+              "| scene | backend | spp | time s | relMSE | efficiency | x Mitsuba at equal spp | "
+              "x Mitsuba at equal time |", "|---|---|---|---|---|---|---|---|"]
+    for r in acc["peer"]:
+        equal_time = f"{r['vs_mitsuba_equal_time']:.2f}" if r["vs_mitsuba_equal_time"] else ""
+        lines.append(f"| {r['scene']} | {r['backend']} | {r['spp']} | {r['time_s']:.3f} | {r['relmse']:.4g} | "
+                     f"{r['efficiency']:.4g} | {r['vs_mitsuba_equal_spp']:.2f} | {equal_time} |")
+    return lines
+
+
+def check(results):
+    """What a broken renderer would fail (bench_quick --check): relMSE falling with spp at about 1/spp,
+    every image's mean agreeing with the independent truth, and finite ratios. Returns the failures."""
+    failures = []
+    rows = results.get("accuracy", {}).get("rows", [])
+    for scene in sorted({r["scene"] for r in rows}):
+        for backend in sorted({r["backend"] for r in rows if r["study"] == "spp"}):
+            pts = [(r["spp"], r["relmse"]) for r in rows if r["scene"] == scene and r["study"] == "spp"
+                   and r["backend"] == backend and "precision" not in r]
+            xs, ys = [math.log(p[0]) for p in pts], [math.log(p[1]) for p in pts]
+            mx, my = statistics.mean(xs), statistics.mean(ys)
+            slope = sum((x - mx) * (y - my) for x, y in zip(xs, ys)) / sum((x - mx) ** 2 for x in xs)
+            if not -1.3 <= slope <= -0.7:
+                failures.append(f"{scene} {backend}: relMSE falls as spp^{slope:.2f}, not about spp^-1")
+    for r in rows:  # |z| <= 5: each image's mean within five standard errors of the truth's (truncation apart)
+        if r["study"] != "max_depth" and abs(r["mean_z"]) > 5:
+            failures.append(f"{r['scene']} {r['study']} {r['backend']} spp {r['spp']}: image mean {r['mean_ratio']:.4f}"
+                            f" of the truth's, z = {r['mean_z']:.1f}")
+    values = [r[k] for r in results.get("throughput", []) for k in r if k.startswith("ratio_")]
+    values += [r["efficiency"] for r in rows] + [r["vs_mitsuba_equal_spp"] for r in results.get("accuracy", {}).get("peer", [])]
+    failures += [f"ratio or efficiency {v} is not finite and positive" for v in values
+                 if not (isinstance(v, float) and math.isfinite(v) and v > 0)]
+    return failures
+
+
 def summary(results, plots):
-    m = results["machine"]
-    results = {"throughput": [], "scaling": [], "accuracy": [], **results}
+    m = results["meta"]
+    results = {"throughput": [], "scaling": [], **results}
     lines = ["# wavepath benchmark", "",
+             f"Commit `{m['commit']}`, {m['date']}; {m['wavepath']} ({m['build_type']} build, `{m['binary']}`); "
+             f"{m['mitsuba']}.", "",
              f"Machine: {m['cpu']}, {m['cores']} cores; OpenCL: {m['opencl_platform']}. Mode: {results['mode']}; "
              f"{results['elapsed_s']:.0f} s.", "", "## Throughput (interleaved runs)", "",
+             "Each repetition runs every configuration once, in turn. Mitsuba renders in this process "
+             "(`mi.render` and reading the image back, scene loading left out); wavepath's time is the render's "
+             "from `--stats-json` (device setup and kernel build left out).", "",
              "| scene | backend | size | spp | runs | Msamples/s min | median | max | Mrays/s median |",
              "|---|---|---|---|---|---|---|---|---|"]
     for r in results["throughput"]:
         if "msamples_s_median" in r:
+            rays = f"{r['mrays_s_median']:.2f}" if "mrays_s_median" in r else "-"
             lines.append(f"| {r['scene']} | {r['backend']} | {r['size']}^2 | {r['spp']} | {r['runs']} | "
                          f"{r['msamples_s_min']:.3f} | {r['msamples_s_median']:.3f} | {r['msamples_s_max']:.3f} | "
-                         f"{r['mrays_s_median']:.2f} |")
+                         f"{rays} |")
+    lines += ["", "The wavefront's samples/s over each other configuration's, per repetition:", "",
+              "| scene | ratio | runs | min | median | max |", "|---|---|---|---|---|---|"]
+    for r in results["throughput"]:
+        if "ratio_median" in r:
+            lines.append(f"| {r['scene']} | {r['backend']} | {r['runs']} | {r['ratio_min']:.3f} | "
+                         f"{r['ratio_median']:.3f} | {r['ratio_max']:.3f} |")
     for r in results["throughput"]:
         if "profile" in r:
             p = r["profile"]
@@ -418,17 +609,8 @@ def summary(results, plots):
     for r in results["scaling"]:
         lines.append(f"| {r['study']} | {r.get('paths', r.get('size'))} | {r.get('backend', 'wavefront')} | "
                      f"{r['msamples_s']:.3f} |")
-    lines += ["", "## Speed versus accuracy (room, relMSE against a converged wavefront image)", "",
-              "relMSE per image, mean over seeds (+- standard deviation), with (x - r)^2 / (r^2 + 0.01) per pixel "
-              "and channel against a converged image (max_depth 64); bias^2 and variance are split with the "
-              "relMSE of the seeds' mean image. The relMSE of the reference in float and in double agree, and "
-              "the wavefront's equal the float reference's (same paths).", "",
-              "| study | backend | setting | relMSE | bias^2 | variance | time s | 1/(relMSE x time) |",
-              "|---|---|---|---|---|---|---|---|"]
-    for r in results["accuracy"]:
-        setting = ", ".join(f"{k} {r[k]}" for k in ("spp", "precision", "max_depth", "rr_depth", "nee", "hemisphere") if k in r)
-        lines.append(f"| {r['study']} | {r['backend']} | {setting} | {r['relmse']:.4g} +- {r['relmse_sd']:.2g} | "
-                     f"{r['bias2']:.3g} | {r['variance']:.3g} | {r['time_s']:.3f} | {r['efficiency']:.4g} |")
+    if "accuracy" in results:
+        lines += accuracy_markdown(results["accuracy"])
     if "meshes" in results:
         mm = results["meshes"]
         lines += ["", "## Meshes (bench/mesh_bench; every table in meshes.md)", ""]
@@ -447,20 +629,26 @@ def main():
     parser.add_argument("--mesh-bench", default=os.path.join(ROOT, "build", "bench", "mesh_bench"))
     parser.add_argument("--series", default="throughput,scaling,accuracy,meshes",
                         help="comma-separated: throughput, scaling, accuracy, meshes")
+    parser.add_argument("--check", action="store_true",
+                        help="exit 1 when the results show what a broken renderer would (bench_quick)")
     args = parser.parse_args()
     series = args.series.split(",")
     unknown = set(series) - {"throughput", "scaling", "accuracy", "meshes"}
     if unknown:
         parser.error(f"unknown series: {', '.join(sorted(unknown))}")
     if args.quick:
-        cfg = {"scenes": ["room.json", "cornell.json"], "size": 128, "spp": 2, "repeats": 3,
-               "wavefront_log2": [12, 14, 16], "resolutions": [64, 128], "accuracy_size": 32, "converged_spp": 256,
-               "spp_series": [1, 4, 16], "seeds": 2, "depth_series": [1, 2, 4, 8], "depth_spp": 8,
-               "rr_series": [1, 3, 1000], "nee_series": ["off"], "hemisphere_series": ["uniform"]}
+        cfg = {"scenes": ["cornell.json"], "size": 128, "spp": 2, "repeats": 5,
+               "wavefront_log2": [12, 14, 16], "resolutions": [64, 128], "accuracy_size": 32,
+               "accuracy_scenes": ["room.json", "cornell.json"], "converged_spp": 1024, "deep_converged_spp": 512,
+               "spp_series": [1, 4, 16], "spp_backends": ["wavefront", "mitsuba"], "seeds": 3,
+               "depth_series": [1, 8], "depth_spp": 8, "rr_series": [1000], "nee_series": ["off"],
+               "hemisphere_series": ["uniform"]}
     else:
-        cfg = {"scenes": ["room.json", "cornell.json"], "size": 512, "spp": 4, "repeats": 3,
+        cfg = {"scenes": ["room.json", "cornell.json"], "size": 512, "spp": 4, "repeats": 5,
                "wavefront_log2": [12, 14, 16, 18, 20, 22], "resolutions": [128, 256, 512, 1024, 2048],
-               "accuracy_size": 128, "converged_spp": 4096, "spp_series": [1, 4, 16, 64, 256], "seeds": 3,
+               "accuracy_size": 128, "accuracy_scenes": ["room.json", "cornell.json"], "converged_spp": 4096,
+               "deep_converged_spp": 1024, "spp_series": [1, 4, 16, 64, 256],
+               "spp_backends": ["wavefront", "megakernel", "reference", "mitsuba"], "seeds": 3,
                "depth_series": [1, 2, 4, 8, 16, 32], "depth_spp": 16, "rr_series": [1, 2, 3, 5, 8, 1000],
                "nee_series": ["on", "off"], "hemisphere_series": ["cosine", "uniform"]}
     os.makedirs(args.out, exist_ok=True)
@@ -468,18 +656,24 @@ def main():
     with tempfile.TemporaryDirectory(prefix="wavepath-bench-") as scratch:
         os.environ.setdefault("WAVEPATH_CACHE_DIR", os.path.join(args.out, "program-cache"))
         runner = Runner(os.path.abspath(args.binary), scratch)
-        results = {"mode": "quick" if args.quick else "full", "config": cfg, "machine": machine()}
-        for study, run in (("throughput", lambda: throughput(runner, cfg)), ("scaling", lambda: scaling(runner, cfg)),
-                           ("accuracy", lambda: accuracy(runner, cfg, args.out)),
+        peer = MitsubaPeer()
+        results = {"mode": "quick" if args.quick else "full", "config": cfg,
+                   "meta": run_meta(os.path.abspath(args.binary), peer)}
+        for study, run in (("throughput", lambda: throughput(runner, peer, cfg)),
+                           ("scaling", lambda: scaling(runner, cfg)),
+                           ("accuracy", lambda: accuracy(runner, peer, cfg, args.out)),
                            ("meshes", lambda: meshes(os.path.abspath(args.mesh_bench), args.quick, args.out))):
             if study in series:
                 results[study] = run()
     results["elapsed_s"] = time.time() - start
     with open(os.path.join(args.out, "results.json"), "w") as f:
         json.dump(results, f, indent=1)
-    for study in ("throughput", "scaling", "accuracy"):
+    for study in ("throughput", "scaling"):
         if study in results:
             write_csv(os.path.join(args.out, f"{study}.csv"), results[study])
+    if "accuracy" in results:
+        write_csv(os.path.join(args.out, "accuracy.csv"), results["accuracy"]["rows"])
+        write_csv(os.path.join(args.out, "accuracy_vs_mitsuba.csv"), results["accuracy"]["peer"])
     if "meshes" in results:
         write_csv(os.path.join(args.out, "meshes.csv"), mesh_rows(results["meshes"]))
         with open(os.path.join(args.out, "meshes.md"), "w") as f:
@@ -488,6 +682,11 @@ def main():
     with open(os.path.join(args.out, "summary.md"), "w") as f:
         f.write(summary(results, plots))
     print(f"bench: wrote {args.out}/summary.md in {results['elapsed_s']:.0f} s")
+    if args.check:
+        failures = check(results)
+        for failure in failures:
+            print(f"bench: check failed: {failure}")
+        sys.exit(1 if failures else 0)
 
 
 if __name__ == "__main__":
