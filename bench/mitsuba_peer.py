@@ -20,17 +20,12 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(ROOT, "scripts"))
 import mitsuba_scene  # noqa: E402
 
-# Debian's default LLVM (15) crashes Dr.Jit's LLVM backend; scripts/setup.sh installs libllvm19.
-LIBLLVM = "/usr/lib/x86_64-linux-gnu/libLLVM-19.so"
 CONVERGED_PASS_SPP = 256  # converged images are rendered in passes of this many spp (memory), seeds apart
 
 
 class MitsubaPeer:
     def __init__(self, variant="llvm_ad_rgb"):
-        if variant.startswith("llvm"):
-            os.environ.setdefault("DRJIT_LIBLLVM_PATH", LIBLLVM)
-        import mitsuba as mi
-        mi.set_variant(variant)
+        mi = mitsuba_scene.open_mitsuba(variant)
         self.mi = mi
         self.variant = variant
         self.version = mi.__version__

@@ -55,6 +55,7 @@ PLANE_EXTENT = 1000.0  # a plane's half-size as a multiple of the scene's extent
 # Mitsuba's float ray offsets (about 5e-6 of the coordinates), else rays from outside hit the hidden copy.
 TWO_SIDED_GAP = 1e-4
 MESH_FORMATS = (".obj", ".ply")  # what Mitsuba's mesh plugins read
+LIBLLVM = "/usr/lib/x86_64-linux-gnu/libLLVM-19.so"
 
 
 class MitsubaSceneError(Exception):
@@ -376,6 +377,16 @@ def convert(scene_path, workdir, width=None, height=None, spp=None, max_depth=No
     """The Mitsuba scene dictionary of a wavepath scene file; meshes it writes go to `workdir`."""
     overrides = {"width": width, "height": height, "spp": spp, "max_depth": max_depth, "seed": seed}
     return Converter(scene_path, workdir).convert(overrides)
+
+
+def open_mitsuba(variant):
+    """The mitsuba module with `variant` set. Its LLVM variants get Debian's libLLVM 19 (scripts/setup.sh
+    installs libllvm19): Dr.Jit crashes with Debian's default LLVM 15."""
+    if variant.startswith("llvm"):
+        os.environ.setdefault("DRJIT_LIBLLVM_PATH", LIBLLVM)
+    import mitsuba as mi
+    mi.set_variant(variant)
+    return mi
 
 
 def load(mi, scene_dict):

@@ -48,8 +48,6 @@ ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)
 sys.path.insert(0, os.path.join(ROOT, "scripts"))
 import mitsuba_scene  # noqa: E402
 
-# Debian's default LLVM (15) crashes Dr.Jit's LLVM backend; scripts/setup.sh installs libllvm19.
-LIBLLVM = "/usr/lib/x86_64-linux-gnu/libLLVM-19.so"
 FIRST_SEED = 1000  # the seeds used are FIRST_SEED .. FIRST_SEED + seeds - 1, in both renderers
 DOC_BEGIN, DOC_END = "<!-- oracle:begin -->", "<!-- oracle:end -->"
 
@@ -169,11 +167,8 @@ def main():
                         "markdown file (docs/mitsuba.md)")
     args = parser.parse_args()
 
-    if args.variant.startswith("llvm"):
-        os.environ.setdefault("DRJIT_LIBLLVM_PATH", LIBLLVM)
     try:
-        import mitsuba as mi
-        mi.set_variant(args.variant)
+        mi = mitsuba_scene.open_mitsuba(args.variant)
     except (ImportError, AttributeError) as e:
         print(f"mitsuba_oracle: error: Mitsuba 3 ({args.variant}) not available: {e} (bash scripts/setup.sh test)")
         return 2
