@@ -1,0 +1,145 @@
+#include "scene/mesh_headers.h"
+
+#include <algorithm>
+#include <cctype>
+#include <charconv>
+#include <cstdint>
+#include <fstream>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "scene/mesh_file.h"
+
+namespace wp {
+namespace {
+
+// Headers are read from this prefix of the file; a PLY header must end in it.
+constexpr std::size_t kHeaderLimit = 1 << 16;
+
+std::string read_prefix(const std::filesystem::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::string prefix(kHeaderLimit, '\0');
+    in.read(prefix.data(), static_cast<std::streamsize>(prefix.size()));
+    prefix.resize(static_cast<std::size_t>(in.gcount()));
+    return prefix;
+}
+
+bool is_space(char c) { return std::isspace(static_cast<unsigned char>(c)) != 0; }
+
+// The next word of `text` from `i` on (empty at the end), `i` moved past it;
+// with `comments`, '#' to the end of the line is skipped (OFF).
+std::string_view next_word(std::string_view text, std::size_t& i, bool comments) {
+    while (i < text.size() && (is_space(text[i]) || (comments && text[i] == '#'))) {
+        i = comments && text[i] == '#' ? std::min(text.find('\n', i), text.size()) : i + 1;
+    }
+    const std::size_t start = i;
+    while (i < text.size() && !is_space(text[i])) ++i;
+    return text.substr(start, i - start);
+}
+
+std::vector<std::string_view> split_words(std::string_view line) {
+    std::vector<std::string_view> words;
+    std::size_t i = 0;
+    for (std::string_view word = next_word(line, i, false); !word.empty(); word = next_word(line, i, false))
+        words.push_back(word);
+    return words;
+}
+
+// A count as the header writes it; false for anything but decimal digits.
+bool parse_count(std::string_view word, std::uint64_t& count) {
+    auto [end, error] = std::from_chars(word.data(), word.data() + word.size(), count);
+    return error == std::errc() && end == word.data() + word.size();
+}
+
+// Fails if `count` elements of at least `min_bytes` each do not fit in the
+// `available` bytes; otherwise takes their smallest size from `available`.
+void take_elements(std::string_view format, std::uint64_t count, std::string_view what, std::uint64_t min_bytes,
+                   std::uint64_t& available) {
+    const std::uint64_t fit = min_bytes == 0 ? count : available / min_bytes;
+    if (count > fit) {
+        throw MeshFileError(std::string(format) + " header declares " + std::to_string(count) + " " +
+                            std::string(what) + ", more than the remaining " + std::to_string(available) +
+                            " bytes of the file can hold");
+    }
+    available -= count * min_bytes;
+}
+
+// ---- PLY ----
+
+std::uint64_t ply_scalar_bytes(std::string_view type) {
+    if (type == "char" || type == "uchar" || type == "int8" || type == "uint8") return 1;
+    if (type == "short" || type == "ushort" || type == "int16" || type == "uint16") return 2;
+    if (type == "double" || type == "float64") return 8;
+    return 4;  // int, uint, float and their sized names
+}
+
+struct PlyElement {
+    std::string name;
+    std::uint64_t count = 0;
+    std::uint64_t min_bytes = 0;  // of one element: ASCII 2 per property ("0 "), binary its fixed sizes
+};
+
+void check_ply(const std::string& head, std::uintmax_t file_size) {
+    bool binary = false;
+    std::vector<PlyElement> elements;
+    for (std::size_t start = 0; start < head.size();) {
+        const std::size_t newline = head.find('\n', start);
+        if (newline == std::string::npos) break;
+        const std::vector<std::string_view> words = split_words(std::string_view(head).substr(start, newline - start));
+        start = newline + 1;
+        if (words.empty()) continue;
+        if (words[0] == "end_header") {
+            std::uint64_t available = file_size - start;
+            for (const PlyElement& e : elements)
+                take_elements("PLY", e.count, "\"" + e.name + "\" elements", e.min_bytes, available);
+            return;
+        }
+        if (words[0] == "format" && words.size() > 1) binary = words[1] != "ascii";
+        if (words[0] == "element" && words.size() > 2) {
+            PlyElement& element = elements.emplace_back();
+            element.name = words[1];
+            if (!parse_count(words[2], element.count)) {
+                throw MeshFileError("PLY header: element \"" + element.name + "\" has count \"" +
+                                    std::string(words[2]) + "\", not a number");
+            }
+        }
+        if (words[0] == "property" && words.size() > 2 && !elements.empty()) {
+            elements.back().min_bytes += !binary ? 2 : ply_scalar_bytes(words[1] == "list" ? words[2] : words[1]);
+        }
+    }
+    throw MeshFileError(head.size() < kHeaderLimit ? "PLY header has no end_header line"
+                                                   : "PLY header has no end_header line in the first " +
+                                                         std::to_string(kHeaderLimit) + " bytes");
+}
+
+// ---- OFF ----
+
+// "OFF", "COFF", "NOFF", "STOFF", ...: the first word of the file.
+bool is_off_keyword(std::string_view word) { return word.size() >= 3 && word.size() <= 6 && word.ends_with("OFF"); }
+
+void check_off(const std::string& head, std::uintmax_t file_size) {
+    std::size_t end = 0;
+    std::string_view words[4];  // OFF, vertices, faces, edges
+    for (std::string_view& word : words) word = next_word(head, end, true);
+    std::uint64_t vertices = 0, faces = 0;
+    if (!parse_count(words[1], vertices) || !parse_count(words[2], faces)) return;  // assimp's to report
+    std::uint64_t available = file_size - end;
+    take_elements("OFF", vertices, "vertices", 6, available);  // "0 0 0\n"
+    take_elements("OFF", faces, "faces", 2, available);        // "0\n"
+}
+
+}  // namespace
+
+void check_mesh_header(const std::filesystem::path& path) {
+    std::error_code error;
+    const std::uintmax_t file_size = std::filesystem::file_size(path, error);
+    if (error) return;  // not a regular file: reading it reports the problem
+    const std::string head = read_prefix(path);
+    std::size_t start = 0;
+    const std::string_view magic = next_word(head, start, false);
+    if (magic == "ply") check_ply(head, file_size);
+    if (is_off_keyword(magic)) check_off(head, file_size);
+}
+
+}  // namespace wp
