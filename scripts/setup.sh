@@ -18,8 +18,9 @@ RENDER_PACKAGES=(
 )
 # What the tests and the benchmark add: GoogleTest (whose CMake config also
 # loads GoogleMock's), clang-format for the format check, python3-pip for the
-# benchmark's plots.
-TEST_PACKAGES=(libgtest-dev libgmock-dev clang-format python3 python3-pip)
+# benchmark's plots, clang-15 and libFuzzer for the sanitizer build and its
+# fuzzers (scripts/test.sh, docs/bad-input.md).
+TEST_PACKAGES=(libgtest-dev libgmock-dev clang-format python3 python3-pip clang-15 libfuzzer-15-dev)
 
 mode=${1:-test}
 case "$mode" in
