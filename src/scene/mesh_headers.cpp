@@ -5,6 +5,7 @@
 #include <charconv>
 #include <cstdint>
 #include <fstream>
+#include <limits>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -118,12 +119,20 @@ void check_ply(const std::string& head, std::uintmax_t file_size) {
 // "OFF", "COFF", "NOFF", "STOFF", ...: the first word of the file.
 bool is_off_keyword(std::string_view word) { return word.size() >= 3 && word.size() <= 6 && word.ends_with("OFF"); }
 
+// The count a word starts with, as assimp's OFF reader reads it (strtoul10:
+// leading digits, 0 if none; "1junk" is 1); too many digits count as the most.
+std::uint64_t leading_count(std::string_view word) {
+    std::uint64_t count = 0;
+    if (std::from_chars(word.data(), word.data() + word.size(), count).ec == std::errc::result_out_of_range)
+        return std::numeric_limits<std::uint64_t>::max();
+    return count;
+}
+
 void check_off(const std::string& head, std::uintmax_t file_size) {
     std::size_t end = 0;
-    std::string_view words[4];  // OFF, vertices, faces, edges
-    for (std::string_view& word : words) word = next_word(head, end, true);
-    std::uint64_t vertices = 0, faces = 0;
-    if (!parse_count(words[1], vertices) || !parse_count(words[2], faces)) return;  // assimp's to report
+    next_word(head, end, true);  // OFF
+    const std::uint64_t vertices = leading_count(next_word(head, end, true));
+    const std::uint64_t faces = leading_count(next_word(head, end, true));
     std::uint64_t available = file_size - end;
     take_elements("OFF", vertices, "vertices", 6, available);  // "0 0 0\n"
     take_elements("OFF", faces, "faces", 2, available);        // "0\n"

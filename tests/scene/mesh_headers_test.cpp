@@ -38,8 +38,8 @@ class MeshHeaders : public ::testing::Test {
          std::to_string(::getpid()));
 };
 
-// Counts end at the edge count: what follows it (here only spaces) is the body.
-constexpr const char* kOffHeader = "OFF\n# three vertices, one face\n3 1 0";
+// The body starts after the face count (here only spaces follow it).
+constexpr const char* kOffHeader = "OFF\n# three vertices, one face\n3 1";
 
 TEST_F(MeshHeaders, OffCountsMustFitTheirSmallestText) {
     // Three vertices of at least 6 bytes ("0 0 0\n") and a face of 2 ("0\n"): 20 bytes.
@@ -48,6 +48,14 @@ TEST_F(MeshHeaders, OffCountsMustFitTheirSmallestText) {
               "OFF header declares 1 faces, more than the remaining 1 bytes of the file can hold");
     EXPECT_EQ(problem("a.off", kOffHeader + std::string(17, ' ')),
               "OFF header declares 3 vertices, more than the remaining 17 bytes of the file can hold");
+}
+
+TEST_F(MeshHeaders, OffCountsAreReadAsAssimpReadsThem) {
+    // assimp reads "1junk" as 1 and allocates the vertices first (found by fuzz_mesh).
+    EXPECT_EQ(problem("a.off", "OFF\n1000000000 1\xa5X\n"),
+              "OFF header declares 1000000000 vertices, more than the remaining 1 bytes of the file can hold");
+    EXPECT_EQ(problem("a.off", "OFF 0 99999999999999999999 0\n"),
+              "OFF header declares 18446744073709551615 faces, more than the remaining 3 bytes of the file can hold");
 }
 
 TEST_F(MeshHeaders, BinaryPlyCountsMustFitTheirSizes) {
