@@ -68,11 +68,14 @@ void take_elements(std::string_view format, std::uint64_t count, std::string_vie
 
 // ---- PLY ----
 
+// Bytes of a PLY scalar type, 0 for a word that is not one.
 std::uint64_t ply_scalar_bytes(std::string_view type) {
     if (type == "char" || type == "uchar" || type == "int8" || type == "uint8") return 1;
     if (type == "short" || type == "ushort" || type == "int16" || type == "uint16") return 2;
+    if (type == "int" || type == "uint" || type == "float" || type == "int32" || type == "uint32" || type == "float32")
+        return 4;
     if (type == "double" || type == "float64") return 8;
-    return 4;  // int, uint, float and their sized names
+    return 0;
 }
 
 struct PlyElement {
@@ -81,33 +84,70 @@ struct PlyElement {
     std::uint64_t min_bytes = 0;  // of one element: ASCII 2 per property ("0 "), binary its fixed sizes
 };
 
+// The header's lines, strictly as the PLY format defines them: assimp's
+// reader loops forever on some it does not expect (found by fuzz_mesh).
+class PlyHeader {
+ public:
+    // Reads the next line's words; true at end_header.
+    bool read_line(const std::vector<std::string_view>& words) {
+        ++line_;
+        if (line_ == 1 && (words.size() != 1 || words[0] != "ply")) fail("expected \"ply\"");
+        if (line_ == 1) return false;
+        if (line_ == 2) return read_format(words), false;
+        const std::string_view keyword = words.empty() ? std::string_view() : words[0];
+        if (keyword == "comment" || keyword == "obj_info") return false;
+        if (keyword == "element") return read_element(words), false;
+        if (keyword == "property") return read_property(words), false;
+        if (keyword == "end_header" && words.size() == 1) return true;
+        fail("not a format, element, property, comment, obj_info or end_header line");
+    }
+
+    // Fails if the elements do not fit in the `available` bytes after the header.
+    void check_sizes(std::uint64_t available) const {
+        for (const PlyElement& e : elements_)
+            take_elements("PLY", e.count, "\"" + e.name + "\" elements", e.min_bytes, available);
+    }
+
+ private:
+    [[noreturn]] void fail(const std::string& problem) const {
+        throw MeshFileError("PLY header line " + std::to_string(line_) + ": " + problem);
+    }
+
+    void read_format(const std::vector<std::string_view>& words) {
+        if (words.size() != 3 || words[0] != "format" ||
+            (words[1] != "ascii" && words[1] != "binary_little_endian" && words[1] != "binary_big_endian"))
+            fail("expected \"format ascii|binary_little_endian|binary_big_endian VERSION\"");
+        binary_ = words[1] != "ascii";
+    }
+
+    void read_element(const std::vector<std::string_view>& words) {
+        PlyElement element;
+        if (words.size() != 3 || !parse_count(words[2], element.count)) fail("expected \"element NAME COUNT\"");
+        element.name = words[1];
+        elements_.push_back(element);
+    }
+
+    void read_property(const std::vector<std::string_view>& words) {
+        const bool list = words.size() == 5 && words[1] == "list";
+        if (elements_.empty()) fail("a property before any element");
+        if (!(words.size() == 3 || list) || ply_scalar_bytes(words[1]) + list == 0 ||
+            (list && (ply_scalar_bytes(words[2]) == 0 || ply_scalar_bytes(words[3]) == 0)))
+            fail("expected \"property TYPE NAME\" or \"property list COUNT_TYPE TYPE NAME\"");
+        elements_.back().min_bytes += !binary_ ? 2 : ply_scalar_bytes(words[list ? 2 : 1]);
+    }
+
+    int line_ = 0;
+    bool binary_ = false;
+    std::vector<PlyElement> elements_;
+};
+
 void check_ply(const std::string& head, std::uintmax_t file_size) {
-    bool binary = false;
-    std::vector<PlyElement> elements;
-    for (std::size_t start = 0; start < head.size();) {
-        const std::size_t newline = head.find('\n', start);
-        if (newline == std::string::npos) break;
+    PlyHeader header;
+    std::size_t start = 0;
+    for (std::size_t newline; (newline = head.find('\n', start)) != std::string::npos;) {
         const std::vector<std::string_view> words = split_words(std::string_view(head).substr(start, newline - start));
         start = newline + 1;
-        if (words.empty()) continue;
-        if (words[0] == "end_header") {
-            std::uint64_t available = file_size - start;
-            for (const PlyElement& e : elements)
-                take_elements("PLY", e.count, "\"" + e.name + "\" elements", e.min_bytes, available);
-            return;
-        }
-        if (words[0] == "format" && words.size() > 1) binary = words[1] != "ascii";
-        if (words[0] == "element" && words.size() > 2) {
-            PlyElement& element = elements.emplace_back();
-            element.name = words[1];
-            if (!parse_count(words[2], element.count)) {
-                throw MeshFileError("PLY header: element \"" + element.name + "\" has count \"" +
-                                    std::string(words[2]) + "\", not a number");
-            }
-        }
-        if (words[0] == "property" && words.size() > 2 && !elements.empty()) {
-            elements.back().min_bytes += !binary ? 2 : ply_scalar_bytes(words[1] == "list" ? words[2] : words[1]);
-        }
+        if (header.read_line(words)) return header.check_sizes(file_size - start);
     }
     throw MeshFileError(head.size() < kHeaderLimit ? "PLY header has no end_header line"
                                                    : "PLY header has no end_header line in the first " +

@@ -7,6 +7,10 @@
 // -fno-sanitize-recover=all).
 extern "C" const char* __ubsan_default_options() { return "print_stacktrace=1"; }
 
+// LeakSanitizer's table of the suppressions it used would follow a
+// successful render's summary on stderr, which the tests read.
+extern "C" const char* __lsan_default_options() { return "print_suppressions=0"; }
+
 // Leaks whose allocation stacks run through these libraries, none of them
 // ours. The OpenCL ICD loader, PoCL and the LLVM that PoCL loads to compile
 // kernels keep allocations for the life of the process (platform and device

@@ -78,12 +78,31 @@ TEST_F(MeshHeaders, AsciiPlyCountsMustFitTwoBytesAProperty) {
               "PLY header declares 2 \"vertex\" elements, more than the remaining 7 bytes of the file can hold");
 }
 
-TEST_F(MeshHeaders, PlyHeaderMustEndAndCountsMustBeNumbers) {
+TEST_F(MeshHeaders, PlyHeaderMustEndAndCountsMustBeCounts) {
     EXPECT_EQ(problem("a.ply", "ply\nformat ascii 1.0\nelement vertex 0\n"), "PLY header has no end_header line");
     EXPECT_EQ(problem("a.ply", "ply\nformat ascii 1.0\n" + std::string(1 << 16, 'x') + "\nend_header\n"),
               "PLY header has no end_header line in the first 65536 bytes");
     EXPECT_EQ(problem("a.ply", "ply\nformat ascii 1.0\nelement vertex -1\nend_header\n"),
-              "PLY header: element \"vertex\" has count \"-1\", not a number");
+              "PLY header line 3: expected \"element NAME COUNT\"");
+}
+
+TEST_F(MeshHeaders, PlyHeaderLinesAreWhatTheFormatDefines) {
+    // assimp's reader looped forever on the first (found by fuzz_mesh).
+    EXPECT_EQ(problem("a.ply", "ply\nply\xff\xff\nformat ascii 1.0\nend_header\n"),
+              "PLY header line 2: expected \"format ascii|binary_little_endian|binary_big_endian VERSION\"");
+    EXPECT_EQ(problem("a.ply", "ply extra\nformat ascii 1.0\nend_header\n"), "PLY header line 1: expected \"ply\"");
+    EXPECT_EQ(problem("a.ply", "ply\nformat ascii 1.0\nproperty float x\nend_header\n"),
+              "PLY header line 3: a property before any element");
+    EXPECT_EQ(problem("a.ply", "ply\nformat ascii 1.0\nelement v 1\nproperty float3 x\nend_header\n"),
+              "PLY header line 4: expected \"property TYPE NAME\" or \"property list COUNT_TYPE TYPE NAME\"");
+    EXPECT_EQ(problem("a.ply", "ply\nformat ascii 1.0\nelement v 1\nproperty list uchar x\nend_header\n"),
+              "PLY header line 4: expected \"property TYPE NAME\" or \"property list COUNT_TYPE TYPE NAME\"");
+    EXPECT_EQ(problem("a.ply", "ply\nformat ascii 1.0\nvertex 3\nend_header\n"),
+              "PLY header line 3: not a format, element, property, comment, obj_info or end_header line");
+    EXPECT_EQ(problem("a.ply",
+                      "ply\r\nformat ascii 1.0\r\ncomment made by hand\r\nelement v 1\r\n"
+                      "property float x\r\nend_header\r\n0\r\n"),
+              "(none)");
 }
 
 TEST_F(MeshHeaders, OtherFilesPassUnchecked) {
