@@ -187,7 +187,7 @@ void check_mesh_header(const std::filesystem::path& path) {
     const std::string head = read_prefix(path);
     std::size_t start = 0;
     const std::string_view magic = next_word(head, start, false);
-    if (magic == "ply") check_ply(head, file_size);
+    if (magic.starts_with("ply")) check_ply(head, file_size);  // assimp reads "ply\xff..." as PLY too
     if (is_off_keyword(magic)) check_off(head, file_size);
 }
 

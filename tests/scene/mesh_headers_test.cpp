@@ -91,6 +91,7 @@ TEST_F(MeshHeaders, PlyHeaderLinesAreWhatTheFormatDefines) {
     EXPECT_EQ(problem("a.ply", "ply\nply\xff\xff\nformat ascii 1.0\nend_header\n"),
               "PLY header line 2: expected \"format ascii|binary_little_endian|binary_big_endian VERSION\"");
     EXPECT_EQ(problem("a.ply", "ply extra\nformat ascii 1.0\nend_header\n"), "PLY header line 1: expected \"ply\"");
+    EXPECT_EQ(problem("a.ply", "ply\xff\nformat ascii 1.0\nend_header\n"), "PLY header line 1: expected \"ply\"");
     EXPECT_EQ(problem("a.ply", "ply\nformat ascii 1.0\nproperty float x\nend_header\n"),
               "PLY header line 3: a property before any element");
     EXPECT_EQ(problem("a.ply", "ply\nformat ascii 1.0\nelement v 1\nproperty float3 x\nend_header\n"),
@@ -107,7 +108,7 @@ TEST_F(MeshHeaders, PlyHeaderLinesAreWhatTheFormatDefines) {
 
 TEST_F(MeshHeaders, OtherFilesPassUnchecked) {
     EXPECT_EQ(problem("a.obj", kSquareObj), "(none)");
-    EXPECT_EQ(problem("a.ply", "plywood\n"), "(none)");
+    EXPECT_EQ(problem("b.obj", "# ply\nOFF\n"), "(none)");
     EXPECT_EQ(problem("a.stl", square_stl_binary()), "(none)");
     EXPECT_EQ(problem("b.ply", square_ply_binary()), "(none)");
     EXPECT_EQ(problem("b.off", kSquareOff), "(none)");
