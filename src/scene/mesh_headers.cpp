@@ -156,8 +156,8 @@ void check_ply(const std::string& head, std::uintmax_t file_size) {
 
 // ---- OFF ----
 
-// "OFF", "COFF", "NOFF", "STOFF", ...: the first word of the file.
-bool is_off_keyword(std::string_view word) { return word.size() >= 3 && word.size() <= 6 && word.ends_with("OFF"); }
+// "OFF", "COFF", "NOFF", "STOFF", ...: the first word of the file, lower case.
+bool is_off_keyword(const std::string& word) { return word.size() >= 3 && word.size() <= 6 && word.ends_with("off"); }
 
 // The count a word starts with, as assimp's OFF reader reads it (strtoul10:
 // leading digits, 0 if none; "1junk" is 1); too many digits count as the most.
@@ -186,8 +186,10 @@ void check_mesh_header(const std::filesystem::path& path) {
     if (error) return;  // not a regular file: reading it reports the problem
     const std::string head = read_prefix(path);
     std::size_t start = 0;
-    const std::string_view magic = next_word(head, start, false);
-    if (magic.starts_with("ply")) check_ply(head, file_size);  // assimp reads "ply\xff..." as PLY too
+    // In lower case: assimp takes "plY\xff..." for PLY and "off" for OFF too.
+    std::string magic(next_word(head, start, false));
+    std::transform(magic.begin(), magic.end(), magic.begin(), [](unsigned char c) { return std::tolower(c); });
+    if (magic.starts_with("ply")) check_ply(head, file_size);
     if (is_off_keyword(magic)) check_off(head, file_size);
 }
 

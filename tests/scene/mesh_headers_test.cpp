@@ -54,6 +54,8 @@ TEST_F(MeshHeaders, OffCountsAreReadAsAssimpReadsThem) {
     // assimp reads "1junk" as 1 and allocates the vertices first (found by fuzz_mesh).
     EXPECT_EQ(problem("a.off", "OFF\n1000000000 1\xa5X\n"),
               "OFF header declares 1000000000 vertices, more than the remaining 1 bytes of the file can hold");
+    EXPECT_EQ(problem("a.off", "off\n1000000000 1\n"),
+              "OFF header declares 1000000000 vertices, more than the remaining 1 bytes of the file can hold");
     EXPECT_EQ(problem("a.off", "OFF 0 99999999999999999999 0\n"),
               "OFF header declares 18446744073709551615 faces, more than the remaining 3 bytes of the file can hold");
 }
@@ -92,6 +94,8 @@ TEST_F(MeshHeaders, PlyHeaderLinesAreWhatTheFormatDefines) {
               "PLY header line 2: expected \"format ascii|binary_little_endian|binary_big_endian VERSION\"");
     EXPECT_EQ(problem("a.ply", "ply extra\nformat ascii 1.0\nend_header\n"), "PLY header line 1: expected \"ply\"");
     EXPECT_EQ(problem("a.ply", "ply\xff\nformat ascii 1.0\nend_header\n"), "PLY header line 1: expected \"ply\"");
+    // assimp reads the magic word in any case (fuzz_mesh: "plY" with 2e9 vertices took 2 GB).
+    EXPECT_EQ(problem("a.ply", "plY\nformat ascii 1.0\nend_header\n"), "PLY header line 1: expected \"ply\"");
     EXPECT_EQ(problem("a.ply", "ply\nformat ascii 1.0\nproperty float x\nend_header\n"),
               "PLY header line 3: a property before any element");
     EXPECT_EQ(problem("a.ply", "ply\nformat ascii 1.0\nelement v 1\nproperty float3 x\nend_header\n"),
