@@ -4,11 +4,14 @@
 # excess memory (-rss_limit_mb). Inputs that fail are written to the current
 # directory (crash-*, timeout-*, oom-*, leak-*); rerun one with
 # `FUZZER FILE`. New inputs grow a scratch corpus, removed at the end.
-# Usage: bash tests/fuzz/run_fuzzer.sh FUZZER scene|mesh SECONDS [libFuzzer flags...]
+# Usage: bash tests/fuzz/run_fuzzer.sh FUZZER scene|mesh SECONDS|runs=N [libFuzzer flags...]
 #   e.g. bash tests/fuzz/run_fuzzer.sh build-asan/tests/fuzz/fuzz_scene scene 600
+# runs=N fuzzes N inputs instead of for a time: the same inputs on any
+# machine (CTest's short runs), where a time limit reaches further on a faster one.
 set -euo pipefail
-fuzzer=$(realpath "$1") name=$2 seconds=$3
+fuzzer=$(realpath "$1") name=$2 limit=$3
 shift 3
+case "$limit" in runs=*) budget=-$limit ;; *) budget=-max_total_time=$limit ;; esac
 root=$(cd "$(dirname "$0")/../.." && pwd)
 corpus=$(mktemp -d "${TMPDIR:-/tmp}/wavepath-fuzz-$name-XXXXXX")
 trap 'rm -rf "$corpus"' EXIT
@@ -27,6 +30,6 @@ case "$name" in
   *) echo "run_fuzzer: unknown fuzzer '$name' (scene or mesh)" >&2; exit 2 ;;
 esac
 
-echo "run_fuzzer: $(basename "$fuzzer") for $seconds s on $(ls "$corpus" | wc -l) seeds" >&2
-"$fuzzer" -seed=1 -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 \
+echo "run_fuzzer: $(basename "$fuzzer") for $limit on $(ls "$corpus" | wc -l) seeds" >&2
+"$fuzzer" -seed=1 "$budget" -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 \
   "$@" "$corpus"
