@@ -20,8 +20,10 @@ RENDER_PACKAGES=(
 # loads GoogleMock's), clang-format for the format check, python3-pip for the
 # benchmark's plots and for Mitsuba, libllvm19 for Mitsuba's llvm_ad_rgb
 # variant (the oracle test and the benchmark's peer row; Dr.Jit finds it
-# through DRJIT_LIBLLVM_PATH, and crashes with Debian's default LLVM 15).
-TEST_PACKAGES=(libgtest-dev libgmock-dev clang-format python3 python3-pip libllvm19)
+# through DRJIT_LIBLLVM_PATH, and crashes with Debian's default LLVM 15),
+# clang-15 and libFuzzer for the sanitizer build and its fuzzers
+# (scripts/test.sh, docs/bad-input.md).
+TEST_PACKAGES=(libgtest-dev libgmock-dev clang-format python3 python3-pip libllvm19 clang-15 libfuzzer-15-dev)
 
 mode=${1:-test}
 case "$mode" in

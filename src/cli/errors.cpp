@@ -1,7 +1,9 @@
 #include "cli/errors.h"
 
+#include <algorithm>
 #include <iostream>
 #include <new>
+#include <string_view>
 
 #include "core/atomic_file.h"
 #include "scene/scene.h"
@@ -10,10 +12,47 @@ namespace wp::cli {
 
 namespace {
 
-std::string one_line(std::string message) {
-    while (!message.empty() && (message.back() == '\n' || message.back() == ' ')) message.pop_back();
+// Bytes of a valid UTF-8 sequence starting at text[i] (1 to 4), or 0.
+std::size_t utf8_sequence_length(std::string_view text, std::size_t i) {
+    const auto byte = [&](std::size_t k) { return static_cast<unsigned char>(text[k]); };
+    const unsigned char lead = byte(i);
+    std::size_t length = lead < 0x80                   ? 1
+                         : lead >= 0xC2 && lead < 0xE0 ? 2
+                         : lead >= 0xE0 && lead < 0xF0 ? 3
+                         : lead >= 0xF0 && lead < 0xF5 ? 4
+                                                       : 0;
+    if (length == 0 || i + length > text.size()) return 0;
+    for (std::size_t k = 1; k < length; ++k) {
+        if ((byte(i + k) & 0xC0) != 0x80) return 0;
+    }
+    // Overlong forms, UTF-16 surrogates and code points beyond U+10FFFF.
+    const unsigned char second = length > 1 ? byte(i + 1) : 0;
+    if ((lead == 0xE0 && second < 0xA0) || (lead == 0xED && second >= 0xA0) || (lead == 0xF0 && second < 0x90) ||
+        (lead == 0xF4 && second >= 0x90))
+        return 0;
+    return length;
+}
+
+// One printable line: messages quote file names, file contents and parser
+// tokens, which may hold newlines, terminal escapes or bytes that are not
+// UTF-8. Newlines fold into "; "; other control characters and invalid UTF-8
+// bytes become \xNN; valid UTF-8 (non-ASCII file names) stays as it is.
+std::string printable_line(std::string_view message) {
+    while (!message.empty() && (message.back() == '\n' || message.back() == ' ')) message.remove_suffix(1);
     std::string line;
-    for (char c : message) line += c == '\n' ? std::string("; ") : std::string(1, c);
+    for (std::size_t i = 0; i < message.size();) {
+        const unsigned char c = static_cast<unsigned char>(message[i]);
+        const std::size_t length = utf8_sequence_length(message, i);
+        if (c == '\n') {
+            line += "; ";
+        } else if (length == 0 || c < 0x20 || c == 0x7F) {
+            static constexpr char kHex[] = "0123456789abcdef";
+            line += {'\\', 'x', kHex[c >> 4], kHex[c & 15]};
+        } else {
+            line += message.substr(i, length);
+        }
+        i += std::max<std::size_t>(length, 1);
+    }
     return line;
 }
 
@@ -41,7 +80,7 @@ Failure classify(const std::exception_ptr& error) {
 }
 
 void print_error_line(const std::string& message) {
-    std::cerr << "wavepath: error: " << one_line(message) << std::endl;
+    std::cerr << "wavepath: error: " << printable_line(message) << std::endl;
 }
 
 }  // namespace

@@ -25,7 +25,8 @@ class UsageError : public std::runtime_error {
 };
 
 // Prints "wavepath: error: <message>" (newlines in the message folded so it
-// stays one line) and returns the exit code for the exception's kind.
+// stays one line; other control characters and bytes that are not UTF-8 as
+// \xNN) and returns the exit code for the exception's kind.
 int report_error(const std::exception_ptr& error);
 
 // --help prints the help and returns 0; any other parse error is reported as

@@ -19,6 +19,7 @@
 #include <memory>
 
 #include "scene/json_field.h"
+#include "scene/mesh_headers.h"
 
 namespace wp {
 namespace {
@@ -265,6 +266,7 @@ class MeshMerger {
 
 Mesh read_mesh_file(const std::filesystem::path& path, const MeshFileOptions& options) {
     check_readable(path);
+    check_mesh_header(path);
     Assimp::Importer importer;
     const aiScene* scene = import_triangles(importer, path);
     return MeshMerger(*scene, options).merge();

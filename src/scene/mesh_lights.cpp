@@ -11,14 +11,14 @@ MeshLightTriangles mesh_light_triangles(const Scene& scene) {
         range.first = static_cast<std::uint32_t>(table.triangles.size());
         range.count = static_cast<std::uint32_t>(mesh.triangles.size());
         range.area = mesh_area(mesh);
-        double running = 0.0;
+        std::vector<double> areas;
         for (const glm::uvec3& t : mesh.triangles) {
             table.triangles.push_back({mesh.positions[t.x], mesh.positions[t.y], mesh.positions[t.z]});
             table.materials.push_back(mesh.material);
-            running += triangle_area(mesh, t);
-            table.cdf.push_back(running / range.area);
+            areas.push_back(triangle_area(mesh, t));
         }
-        table.cdf.back() = 1.0;
+        const std::vector<double> cdf = cumulative_distribution(areas);
+        table.cdf.insert(table.cdf.end(), cdf.begin(), cdf.end());
     }
     return table;
 }

@@ -73,14 +73,23 @@ void build_light_table(Scene& scene) {
         const Material& m = scene.materials[mesh.material];
         if (m.emits()) scene.lights.push_back({ShapeType::Mesh, i, emitted_power(m, mesh_area(mesh))});
     }
+    std::vector<double> powers;
+    for (const Light& light : scene.lights) powers.push_back(light.power);
+    scene.light_cdf = cumulative_distribution(powers);
+}
+
+std::vector<double> cumulative_distribution(const std::vector<double>& weights) {
     double total = 0.0;
-    for (const Light& light : scene.lights) total += light.power;
+    for (double weight : weights) total += weight;
+    std::vector<double> cdf;
     double running = 0.0;
-    for (const Light& light : scene.lights) {
-        running += light.power;
-        scene.light_cdf.push_back(running / total);
+    for (std::size_t i = 0; i < weights.size(); ++i) {
+        running += weights[i];
+        // Weights that all underflowed to 0 (a radiance of 1e-320) would give 0 / 0.
+        cdf.push_back(total > 0.0 ? running / total : static_cast<double>(i + 1) / static_cast<double>(weights.size()));
     }
-    if (!scene.light_cdf.empty()) scene.light_cdf.back() = 1.0;
+    if (!cdf.empty()) cdf.back() = 1.0;
+    return cdf;
 }
 
 }  // namespace wp

@@ -125,6 +125,10 @@ class SceneError : public std::runtime_error {
 double triangle_area(const Mesh& mesh, const glm::uvec3& triangle);
 double mesh_area(const Mesh& mesh);
 
+// Running sums of `weights` divided by their total, the last exactly 1: what
+// select_light searches. Uniform when the weights are all 0.
+std::vector<double> cumulative_distribution(const std::vector<double>& weights);
+
 // Fills Scene::lights and Scene::light_cdf from the emitting spheres, quads
 // and meshes (in that order). The loader calls it; tests that build scenes in code call it too.
 void build_light_table(Scene& scene);

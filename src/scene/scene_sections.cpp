@@ -318,7 +318,7 @@ Hemisphere read_hemisphere(const JsonField& field) {
     std::string name = field.string();
     if (name == "cosine") return Hemisphere::Cosine;
     if (name == "uniform") return Hemisphere::Uniform;
-    field.fail("unknown hemisphere sampling \"" + name + "\" (expected \"cosine\" or \"uniform\")");
+    field.fail("unknown hemisphere sampling " + nlohmann::json(name).dump() + " (expected \"cosine\" or \"uniform\")");
 }
 
 RenderSettings read_render(const JsonField& field) {

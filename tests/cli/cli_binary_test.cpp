@@ -76,50 +76,8 @@ class CliTest : public ::testing::Test {
     TempDirectory scenes_{"scenes"}, outputs_{"outputs"};
 };
 
-// ---- scene errors: exit 3, "<file>: <json path>: <problem>" ----
-
-struct SceneErrorCase {
-    const char* name;
-    const char* merge_patch;         // applied to base_scene(), unless raw_text is set
-    const char* message;             // start of the text after "wavepath: error: <scene path>: "
-    const char* raw_text = nullptr;  // the whole scene file, for text that is not valid JSON
-};
-
-const SceneErrorCase kSceneErrors[] = {
-    {"MalformedJson", nullptr, "line 3, column 16: ", "{\n  \"camera\": {\n    \"width\": 8,,\n  }\n}"},
-    {"NonFiniteNumber", nullptr, "line 1, column 71: malformed JSON: number overflow parsing '1e999'",
-     R"({"camera": {"position": [0, 1, 4], "look_at": [0, 0, 0], "fov_y": 1e999, "width": 8, "height": 8}})"},
-    {"UnknownKey", R"({"camra": {}})", "camra: unknown key"},
-    {"WrongType", R"({"camera": {"fov_y": "wide"}})", "camera.fov_y: must be a number, got string"},
-    {"NegativeRadius", R"({"shapes": [{"type": "sphere", "center": [0, 0, 0], "radius": -1, "material": "white"}]})",
-     "shapes[0].radius: must be > 0, got -1"},
-    {"ZeroLengthNormal",
-     R"({"shapes": [{"type": "plane", "point": [0, 0, 0], "normal": [0, 0, 0], "material": "white"}]})",
-     "shapes[0].normal: must not be zero-length"},
-    {"ZeroLengthEdge",
-     R"({"shapes": [{"type": "quad", "corner": [0, 2, 0], "edge1": [1, 0, 0], "edge2": [0, 0, 0], "material": "lamp"}]})",
-     "shapes[0].edge2: must not be zero-length"},
-    {"UndefinedMaterial", R"({"shapes": [{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "gold"}]})",
-     "shapes[0].material: undefined material \"gold\""},
-    {"MissingCamera", R"({"camera": null})", "camera: missing required key"},
-    {"ResolutionTooLarge", R"({"camera": {"width": 16385}})", "camera.width: must be in [1, 16384], got 16385"},
-    {"TooManyPixels", R"({"camera": {"width": 16384, "height": 16384}})", "camera: width * height must be <= "},
-    {"SppBeyondLimit", R"({"render": {"spp": 1048577}})", "render.spp: must be in [1, 1048576], got 1048577"},
-};
-
-void PrintTo(const SceneErrorCase& c, std::ostream* out) { *out << c.name; }
-
-class SceneErrorTest : public CliTest, public ::testing::WithParamInterface<SceneErrorCase> {};
-
-TEST_P(SceneErrorTest, OneLineWithLocationExitCode3AndNoOutput) {
-    const SceneErrorCase& c = GetParam();
-    const std::string text = c.raw_text ? std::string(c.raw_text) : patched_scene(c.merge_patch).dump(2);
-    const CommandResult result = render(text);
-    expect_failure(result, 3, scenes_ / "scene.json" + ": " + c.message);
-}
-
-INSTANTIATE_TEST_SUITE_P(Cli, SceneErrorTest, ::testing::ValuesIn(kSceneErrors),
-                         [](const auto& info) { return std::string(info.param.name); });
+// ---- scene errors: exit 3; malformed scenes and mesh files are the corpus's
+// (tests/corpus/bad, bad_input_corpus_test.cpp) ----
 
 TEST_F(CliTest, MissingSceneFileIsASceneError) {
     const CommandResult result = run({"render", scenes_ / "absent.json", "-o", output_path()});

@@ -251,5 +251,22 @@ TEST(Errors, MultiLineMessagesAreFoldedIntoOneLine) {
     EXPECT_EQ(::testing::internal::GetCapturedStderr(), "wavepath: error: build failed; kernel.cl:3: error\n");
 }
 
+std::string printed_line(const std::string& message) {
+    ::testing::internal::CaptureStderr();
+    report_error(std::make_exception_ptr(SceneError(message)));
+    return ::testing::internal::GetCapturedStderr();
+}
+
+TEST(Errors, ControlCharactersAndInvalidUtf8AreEscaped) {
+    // A terminal escape, a carriage return and a tab from a file name or a file's contents.
+    EXPECT_EQ(printed_line("a\x1b[31mb\rc\td"), "wavepath: error: a\\x1b[31mb\\x0dc\\x09d\n");
+    // A stray continuation byte, a truncated sequence, an overlong '/', a UTF-16 surrogate, DEL.
+    EXPECT_EQ(printed_line("\x80 \xc3 \xc0\xaf \xed\xa0\x80 \x7f"),
+              "wavepath: error: \\x80 \\xc3 \\xc0\\xaf \\xed\\xa0\\x80 \\x7f\n");
+    // Valid UTF-8 of 2, 3 and 4 bytes stays as it is.
+    EXPECT_EQ(printed_line("sc\xc3\xa8ne \xe2\x82\xac \xf0\x9f\x90\x87"),
+              "wavepath: error: sc\xc3\xa8ne \xe2\x82\xac \xf0\x9f\x90\x87\n");
+}
+
 }  // namespace
 }  // namespace wp::cli

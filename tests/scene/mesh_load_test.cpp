@@ -335,25 +335,7 @@ TEST_F(MeshLoad, DiffuseMeshIsNoLight) {
     EXPECT_FALSE(load_scene(std::string(WAVEPATH_SOURCE_DIR) + "/scenes/cornell.json").features().meshes);
 }
 
-// ---- bad meshes: one line each ----
-
-class BadMesh : public MeshLoad, public ::testing::WithParamInterface<BadMeshCase> {};
-
-TEST_P(BadMesh, FailsWithItsMessage) {
-    const BadMeshCase& c = GetParam();
-    if (c.file) write(c.file, c.contents);
-    try {
-        load({c.shape});
-        FAIL() << "no error";
-    } catch (const SceneError& error) {
-        const std::string message = error.what();
-        EXPECT_EQ(message.find('\n'), std::string::npos) << message;
-        EXPECT_EQ(message.rfind(scene_path() + ": " + c.message, 0), 0u) << message;
-    }
-}
-
-INSTANTIATE_TEST_SUITE_P(MeshFiles, BadMesh, ::testing::ValuesIn(kBadMeshCases),
-                         [](const auto& info) { return std::string(info.param.name); });
+// ---- bad meshes (the rest are the corpus's: tests/corpus/bad/scenes) ----
 
 TEST_F(MeshLoad, DirectoryIsNotAMeshFile) {
     fs::create_directory(dir_ / "meshes");

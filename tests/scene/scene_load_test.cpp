@@ -248,6 +248,22 @@ TEST(SceneLoad, LightsAreSelectedInProportionToPower) {
     EXPECT_EQ(scene.light_cdf[1], 1.0);
 }
 
+TEST(SceneLoad, LightsWhosePowerUnderflowsAreSelectedUniformly) {
+    // 0.2126 * 5e-324 rounds to 0: both powers are 0, and power / total would be 0 / 0.
+    wp::Scene scene = wp::parse_scene(R"({
+        "camera": {"position": [0, 0, 0], "look_at": [0, 0, -1], "fov_y": 45, "width": 8, "height": 8},
+        "materials": {"faint": {"type": "emitter", "radiance": [5e-324, 0, 0]}},
+        "shapes": [
+            {"type": "sphere", "center": [0, 0, -5], "radius": 1, "material": "faint"},
+            {"type": "sphere", "center": [3, 0, -5], "radius": 1, "material": "faint"},
+            {"type": "sphere", "center": [6, 0, -5], "radius": 1, "material": "faint"}
+        ]})",
+                                      "faint.json");
+    ASSERT_EQ(scene.lights.size(), 3u);
+    EXPECT_EQ(scene.lights[0].power, 0.0);
+    EXPECT_EQ(scene.light_cdf, (std::vector<double>{1.0 / 3.0, 2.0 / 3.0, 1.0}));
+}
+
 TEST(SceneLoad, DocumentationExampleLoads) {
     std::ifstream file(std::string(WAVEPATH_SOURCE_DIR) + "/docs/scene-format.md");
     std::stringstream text;

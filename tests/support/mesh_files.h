@@ -1,6 +1,6 @@
 // Small mesh files for the tests, written into temporary directories: the
-// unit square [0, 1]^2 in z = 0, facing +z, in every format wavepath reads,
-// and one bad file per way a mesh can be rejected.
+// unit square [0, 1]^2 in z = 0, facing +z, in every format wavepath reads
+// (bad mesh files are the corpus's: tests/corpus/bad/scenes).
 #pragma once
 
 #include <algorithm>
@@ -100,70 +100,6 @@ inline std::string two_squares_gltf() {
   "buffers": [{"byteLength": 60, "uri": "data:application/octet-stream;base64,)" +
            base64(buffer) + R"("}]})";
 }
-
-// ---- bad meshes ----
-
-struct BadMeshCase {
-    const char* name;
-    const char* file;      // written next to the scene unless null
-    const char* contents;  // of `file`
-    const char* shape;     // the mesh shape's JSON
-    const char* message;   // after "<scene file>: "
-};
-
-// A six-sided polygon that crosses itself: assimp finds no ear to clip.
-#define WP_CROSSED_HEXAGON                                                                         \
-    "v 0.569204 0.802265 0\nv 0.063107 0.117919 0\nv 0.760962 0.472245 0\nv 0.379615 0.209955 0\n" \
-    "v 0.487857 0.893317 0\nv 0.389809 0.607438 0\nf 1 2 3 4 5 6\n"
-
-inline const BadMeshCase kBadMeshCases[] = {
-    {"MissingFile", nullptr, nullptr, R"({"type": "mesh", "file": "absent.obj", "material": "white"})",
-     "shapes[0].file: absent.obj: cannot open: No such file or directory"},
-    {"UnknownFormat", "mesh.xyz", "0 0 0\n", R"({"type": "mesh", "file": "mesh.xyz", "material": "white"})",
-     "shapes[0].file: mesh.xyz: assimp cannot read it: No suitable reader found for the file format of file "},
-    {"UnreadableObj", "mesh.obj", "hi\n", R"({"type": "mesh", "file": "mesh.obj", "material": "white"})",
-     "shapes[0].file: mesh.obj: assimp cannot read it: OBJ-file is too small."},
-    {"PolygonWithoutEar", "mesh.obj", WP_CROSSED_HEXAGON,
-     R"({"type": "mesh", "file": "mesh.obj", "material": "white"})",
-     "shapes[0].file: mesh.obj: a polygon cannot be triangulated: Failed to triangulate polygon (no ear found). "
-     "Probably not a simple polygon?"},
-    {"LineFace", "mesh.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n1 1 0\n2 0 1\n",
-     R"({"type": "mesh", "file": "mesh.off", "material": "white"})",
-     "shapes[0].file: mesh.off: a face of 2 vertices (a point or a line) cannot be triangulated"},
-    {"NanVertex", "mesh.obj", "v nan 0 0\nv 1 0 0\nv 1 1 0\nf 1 2 3\n",
-     R"({"type": "mesh", "file": "mesh.obj", "material": "white"})",
-     "shapes[0].file: mesh.obj: vertex (nan, 0, 0) is not finite"},
-    {"InfVertex", "mesh.obj", "v 0 0 0\nv 1 -inf 0\nv 1 1 0\nf 1 2 3\n",
-     R"({"type": "mesh", "file": "mesh.obj", "material": "white"})",
-     "shapes[0].file: mesh.obj: vertex (1, -inf, 0) is not finite"},
-    {"VertexBeyondLimitAfterTransform", "mesh.obj", "v 0 0 0\nv 1000000 0 0\nv 0 1 0\nf 1 2 3\n",
-     R"({"type": "mesh", "file": "mesh.obj", "material": "white", "transform": {"scale": 1e7}})",
-     "shapes[0].file: mesh.obj: vertex (1e+13, 0, 0) after the transform: magnitude must be <= 1e+12"},
-    {"IndexOutOfRangeObj", "mesh.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nf 1 2 9\n",
-     R"({"type": "mesh", "file": "mesh.obj", "material": "white"})",
-     "shapes[0].file: mesh.obj: assimp cannot read it: OBJ: vertex index out of range"},
-    {"IndexOutOfRangePly", "mesh.ply",
-     "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
-     "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n1 1 0\n3 0 1 5\n",
-     R"({"type": "mesh", "file": "mesh.ply", "material": "white"})",
-     "shapes[0].file: mesh.ply: vertex index 5 out of range (3 vertices)"},
-    {"IndexOutOfRangeOff", "mesh.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n1 1 0\n3 0 1 7\n",
-     R"({"type": "mesh", "file": "mesh.off", "material": "white"})",
-     "shapes[0].file: mesh.off: index out of range: OFF: Vertex index is out of range"},
-    {"NoFaces", "mesh.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\n",
-     R"({"type": "mesh", "file": "mesh.obj", "material": "white"})",
-     "shapes[0].file: mesh.obj: empty mesh: no triangles"},
-    {"OnlyDegenerateTriangles", "mesh.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\nf 1 1 2\n",
-     R"({"type": "mesh", "file": "mesh.obj", "material": "white"})",
-     "shapes[0].file: mesh.obj: empty mesh: all 2 triangles have zero area"},
-    {"ZeroNormal", "mesh.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nvn 0 0 0\nf 1//1 2//1 3//1\n",
-     R"({"type": "mesh", "file": "mesh.obj", "material": "white"})",
-     "shapes[0].file: mesh.obj: vertex normal (0, 0, 0) after the transform is zero or not finite "
-     "(\"face_normals\": true ignores the file's normals)"},
-    {"UnknownObject", "mesh.obj", "o a\nv 0 0 0\nv 1 0 0\nv 1 1 0\nf 1 2 3\n",
-     R"({"type": "mesh", "file": "mesh.obj", "material": "white", "objects": ["b"]})",
-     R"(shapes[0].file: mesh.obj: no object named "b" (objects: a))"},
-};
 
 inline void write_file(const std::filesystem::path& path, const std::string& bytes) {
     std::ofstream(path, std::ios::binary) << bytes;

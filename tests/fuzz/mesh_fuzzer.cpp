@@ -1,0 +1,46 @@
+// libFuzzer target: a mesh file -> a Mesh, or the one MeshFileError. The
+// input is the file's extension, a newline, then its bytes; extensions are
+// the formats docs/scene-format.md lists (others are skipped: assimp reads
+// many more, which scenes may name but the project does not vouch for).
+#include <unistd.h>
+
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <string>
+
+#include "scene/mesh_file.h"
+
+namespace {
+
+// Where each input becomes a file (assimp reads paths), removed at exit.
+struct ScratchDirectory {
+    std::filesystem::path path =
+        std::filesystem::temp_directory_path() / ("wavepath-fuzz-mesh-" + std::to_string(::getpid()));
+    ScratchDirectory() { std::filesystem::create_directories(path); }
+    ~ScratchDirectory() {
+        std::error_code ignored;
+        std::filesystem::remove_all(path, ignored);
+    }
+};
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+    static const std::set<std::string> kFormats = {"obj", "ply", "off", "stl", "gltf", "glb"};
+    const std::string input(reinterpret_cast<const char*>(data), size);
+    const std::size_t newline = input.find('\n');
+    if (newline == std::string::npos || !kFormats.contains(input.substr(0, newline))) return 0;
+
+    static const ScratchDirectory scratch;
+    const std::filesystem::path file = scratch.path / ("mesh." + input.substr(0, newline));
+    std::ofstream(file, std::ios::binary).write(input.data() + newline + 1, input.size() - newline - 1);
+    try {
+        wp::read_mesh_file(file, wp::MeshFileOptions{});
+    } catch (const wp::MeshFileError&) {
+    }
+    std::filesystem::remove(file);
+    return 0;
+}

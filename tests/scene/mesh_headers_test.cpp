@@ -1,0 +1,122 @@
+// check_mesh_header: element counts against the file's size at the boundary
+// (the corpus, tests/corpus/bad/scenes, has the files that made assimp
+// allocate tens of GB or loop).
+#include "scene/mesh_headers.h"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <string>
+
+#include "scene/mesh_file.h"
+#include "support/mesh_files.h"
+
+namespace wp::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+class MeshHeaders : public ::testing::Test {
+ protected:
+    // The message check_mesh_header throws for a file of `bytes`, or "(none)".
+    std::string problem(const std::string& name, const std::string& bytes) {
+        write_file(dir_ / name, bytes);
+        try {
+            check_mesh_header(dir_ / name);
+        } catch (const MeshFileError& error) {
+            return error.what();
+        }
+        return "(none)";
+    }
+    MeshHeaders() { fs::create_directories(dir_); }
+    ~MeshHeaders() override { fs::remove_all(dir_); }
+
+    const fs::path dir_ =
+        fs::temp_directory_path() /
+        ("wavepath-mesh-headers-" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) + "-" +
+         std::to_string(::getpid()));
+};
+
+// The body starts after the face count (here only spaces follow it).
+constexpr const char* kOffHeader = "OFF\n# three vertices, one face\n3 1";
+
+TEST_F(MeshHeaders, OffCountsMustFitTheirSmallestText) {
+    // Three vertices of at least 6 bytes ("0 0 0\n") and a face of 2 ("0\n"): 20 bytes.
+    EXPECT_EQ(problem("a.off", kOffHeader + std::string(20, ' ')), "(none)");
+    EXPECT_EQ(problem("a.off", kOffHeader + std::string(19, ' ')),
+              "OFF header declares 1 faces, more than the remaining 1 bytes of the file can hold");
+    EXPECT_EQ(problem("a.off", kOffHeader + std::string(17, ' ')),
+              "OFF header declares 3 vertices, more than the remaining 17 bytes of the file can hold");
+}
+
+TEST_F(MeshHeaders, OffCountsAreReadAsAssimpReadsThem) {
+    // assimp reads "1junk" as 1 and allocates the vertices first (found by fuzz_mesh).
+    EXPECT_EQ(problem("a.off", "OFF\n1000000000 1\xa5X\n"),
+              "OFF header declares 1000000000 vertices, more than the remaining 1 bytes of the file can hold");
+    EXPECT_EQ(problem("a.off", "off\n1000000000 1\n"),
+              "OFF header declares 1000000000 vertices, more than the remaining 1 bytes of the file can hold");
+    EXPECT_EQ(problem("a.off", "OFF 0 99999999999999999999 0\n"),
+              "OFF header declares 18446744073709551615 faces, more than the remaining 3 bytes of the file can hold");
+}
+
+TEST_F(MeshHeaders, BinaryPlyCountsMustFitTheirSizes) {
+    // Two vertices of three floats (24 bytes) and a face of at least its uchar count (1 byte).
+    const std::string header =
+        "ply\nformat binary_little_endian 1.0\nelement vertex 2\nproperty float x\nproperty float y\n"
+        "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n";
+    EXPECT_EQ(problem("a.ply", header + std::string(25, '\0')), "(none)");
+    EXPECT_EQ(problem("a.ply", header + std::string(24, '\0')),
+              "PLY header declares 1 \"face\" elements, more than the remaining 0 bytes of the file can hold");
+    EXPECT_EQ(problem("a.ply", header + std::string(23, '\0')),
+              "PLY header declares 2 \"vertex\" elements, more than the remaining 23 bytes of the file can hold");
+}
+
+TEST_F(MeshHeaders, AsciiPlyCountsMustFitTwoBytesAProperty) {
+    const std::string header =
+        "ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nproperty float y\nend_header\n";
+    EXPECT_EQ(problem("a.ply", header + "0 0\n1 1\n"), "(none)");
+    EXPECT_EQ(problem("a.ply", header + "0 0\n1 1"),
+              "PLY header declares 2 \"vertex\" elements, more than the remaining 7 bytes of the file can hold");
+}
+
+TEST_F(MeshHeaders, PlyHeaderMustEndAndCountsMustBeCounts) {
+    EXPECT_EQ(problem("a.ply", "ply\nformat ascii 1.0\nelement vertex 0\n"), "PLY header has no end_header line");
+    EXPECT_EQ(problem("a.ply", "ply\nformat ascii 1.0\n" + std::string(1 << 16, 'x') + "\nend_header\n"),
+              "PLY header has no end_header line in the first 65536 bytes");
+    EXPECT_EQ(problem("a.ply", "ply\nformat ascii 1.0\nelement vertex -1\nend_header\n"),
+              "PLY header line 3: expected \"element NAME COUNT\"");
+}
+
+TEST_F(MeshHeaders, PlyHeaderLinesAreWhatTheFormatDefines) {
+    // assimp's reader looped forever on the first (found by fuzz_mesh).
+    EXPECT_EQ(problem("a.ply", "ply\nply\xff\xff\nformat ascii 1.0\nend_header\n"),
+              "PLY header line 2: expected \"format ascii|binary_little_endian|binary_big_endian VERSION\"");
+    EXPECT_EQ(problem("a.ply", "ply extra\nformat ascii 1.0\nend_header\n"), "PLY header line 1: expected \"ply\"");
+    EXPECT_EQ(problem("a.ply", "ply\xff\nformat ascii 1.0\nend_header\n"), "PLY header line 1: expected \"ply\"");
+    // assimp reads the magic word in any case (fuzz_mesh: "plY" with 2e9 vertices took 2 GB).
+    EXPECT_EQ(problem("a.ply", "plY\nformat ascii 1.0\nend_header\n"), "PLY header line 1: expected \"ply\"");
+    EXPECT_EQ(problem("a.ply", "ply\nformat ascii 1.0\nproperty float x\nend_header\n"),
+              "PLY header line 3: a property before any element");
+    EXPECT_EQ(problem("a.ply", "ply\nformat ascii 1.0\nelement v 1\nproperty float3 x\nend_header\n"),
+              "PLY header line 4: expected \"property TYPE NAME\" or \"property list COUNT_TYPE TYPE NAME\"");
+    EXPECT_EQ(problem("a.ply", "ply\nformat ascii 1.0\nelement v 1\nproperty list uchar x\nend_header\n"),
+              "PLY header line 4: expected \"property TYPE NAME\" or \"property list COUNT_TYPE TYPE NAME\"");
+    EXPECT_EQ(problem("a.ply", "ply\nformat ascii 1.0\nvertex 3\nend_header\n"),
+              "PLY header line 3: not a format, element, property, comment, obj_info or end_header line");
+    EXPECT_EQ(problem("a.ply",
+                      "ply\r\nformat ascii 1.0\r\ncomment made by hand\r\nelement v 1\r\n"
+                      "property float x\r\nend_header\r\n0\r\n"),
+              "(none)");
+}
+
+TEST_F(MeshHeaders, OtherFilesPassUnchecked) {
+    EXPECT_EQ(problem("a.obj", kSquareObj), "(none)");
+    EXPECT_EQ(problem("b.obj", "# ply\nOFF\n"), "(none)");
+    EXPECT_EQ(problem("a.stl", square_stl_binary()), "(none)");
+    EXPECT_EQ(problem("b.ply", square_ply_binary()), "(none)");
+    EXPECT_EQ(problem("b.off", kSquareOff), "(none)");
+}
+
+}  // namespace
+}  // namespace wp::test
