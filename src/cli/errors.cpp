@@ -4,6 +4,7 @@
 #include <new>
 
 #include "core/atomic_file.h"
+#include "longrun/film_file.h"
 #include "scene/scene.h"
 
 namespace wp::cli {
@@ -28,6 +29,8 @@ Failure classify(const std::exception_ptr& error) {
     } catch (const UsageError& e) {
         return {kExitUsage, e.what()};
     } catch (const SceneError& e) {
+        return {kExitScene, e.what()};
+    } catch (const FilmFileError& e) {
         return {kExitScene, e.what()};
     } catch (const OutputError& e) {
         return {kExitOutput, e.what()};
