@@ -5,6 +5,7 @@
 // items), so there are many passes to stop between.
 #include <gtest/gtest.h>
 #include <signal.h>
+#include <sys/stat.h>
 
 #include <chrono>
 #include <cstring>
@@ -107,26 +108,45 @@ TEST_F(LongRenderCli, RefusedCheckpointsChangeNothing) {
     EXPECT_EQ(out_.entries(), entries);
 }
 
+// The checkpoint file's inode (each atomic write makes a new one), 0 if none.
+ino_t inode_of(const std::string& path) {
+    struct stat info {};
+    return ::stat(path.c_str(), &info) == 0 ? info.st_ino : 0;
+}
+
+// Waits (up to 60 s) until `path` is a file other than `inode`.
+bool wait_for_new_file(const std::string& path, ino_t inode) {
+    for (int i = 0; i < 6000; ++i) {
+        const ino_t now = inode_of(path);
+        if (now != 0 && now != inode) return true;
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    return false;
+}
+
 // Renders killed at random moments (fixed seed), each resuming from the
 // latest checkpoint: that checkpoint always loads, never goes backwards,
 // and the last run completes to the uninterrupted render's bits. With
-// 1024 paths in flight a pass is 16 samples per pixel: 25 passes of about
-// 60 ms after about a second of start-up.
+// 1024 paths in flight a pass is 16 samples per pixel (25 passes of about
+// 60 ms), and a checkpoint is written after every pass; each run is killed
+// 0-300 ms after its first checkpoint (start-up takes seconds on a loaded
+// machine), so the kills land among passes and checkpoint writes.
 TEST_F(LongRenderCli, SigkillAtAnyMomentLeavesALoadableCheckpoint) {
     const int spp = 400, wavefront = 1024;
     const std::string whole = whole_render(spp, wavefront), checkpoint = out_ / "c.wpfilm", output = out_ / "out.pfm";
     std::mt19937 rng(13);
-    std::uniform_int_distribution<int> delay_ms(600, 2000);
+    std::uniform_int_distribution<int> delay_ms(0, 300);
     std::uint64_t last_end = 0;
     for (int kill = 0; kill < 4; ++kill) {
         std::vector<std::string> extra{"-q", "--checkpoint", checkpoint, "--checkpoint-every", "0"};
         if (std::filesystem::exists(checkpoint)) extra.insert(extra.end(), {"--resume", checkpoint});
+        const ino_t before = inode_of(checkpoint);
         RunningWavepath process(render_args(output, spp, extra, wavefront), scratch_.path());
+        ASSERT_TRUE(wait_for_new_file(checkpoint, before));
         std::this_thread::sleep_for(std::chrono::milliseconds(delay_ms(rng)));
         process.send(SIGKILL);
         process.wait();
-        if (!std::filesystem::exists(checkpoint)) continue;  // killed before its first pass
-        const FilmFile file = read_film_file(checkpoint);    // throws if corrupt
+        const FilmFile file = read_film_file(checkpoint);  // throws if corrupt
         EXPECT_GE(file.film.items.end, last_end);
         last_end = file.film.items.end;
         for (const std::string& name : out_.entries())  // a finished output is whole
@@ -134,7 +154,6 @@ TEST_F(LongRenderCli, SigkillAtAnyMomentLeavesALoadableCheckpoint) {
                 EXPECT_EQ(read_image(output).width, 32);
             }
     }
-    EXPECT_GT(last_end, 0u) << "no run lasted a pass: the delays are too short for this machine";
     CommandResult last = run(render_args(output, spp, {"-q", "--resume", checkpoint}, wavefront));
     ASSERT_EQ(last.exit_code, 0) << last.err;
     EXPECT_TRUE(same_bytes(output, whole));
@@ -182,6 +201,22 @@ TEST_F(LongRenderCli, TimeBudgetStopsAtAWholePass) {
     EXPECT_EQ(json["stopped"], "time budget");
     EXPECT_EQ(json["spp_done_min"], 1u);
     EXPECT_EQ(json["samples"], 1024u);
+}
+
+// The estimate is checked at whole samples per pixel (4, 5, 6, 7, 8, 10, ...).
+TEST_F(LongRenderCli, TargetErrorStopsAtAWholeSampleAndSaysTheEstimate) {
+    const std::string stats = out_ / "stats.json";
+    CommandResult r = run(render_args(out_ / "out.pfm", 100000, {"--target-error", "0.3", "--stats-json", stats}));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.err.find("stopped: target error"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("estimated relative error 0."), std::string::npos) << r.err;
+    const nlohmann::json json = nlohmann::json::parse(read_text(stats));
+    EXPECT_EQ(json["stopped"], "target error");
+    EXPECT_EQ(json["spp_done_min"], json["spp_done_max"]);
+    EXPECT_LE(json["error_estimate"].get<double>(), 0.3);
+    CommandResult partial = run(render_args(out_ / "p.wpfilm", 8, {"--target-error", "0.1", "--samples", "0:4"}));
+    EXPECT_EQ(partial.exit_code, 2);
+    EXPECT_NE(partial.err.find("--target-error: needs the whole render"), std::string::npos) << partial.err;
 }
 
 // Partial films from both OpenCL backends, given in any order, merge into
