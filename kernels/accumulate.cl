@@ -1,47 +1,45 @@
-/* Adds a drained pass into the film: one work item per pixel sums that
- * pixel's pass entries in sample order, in double (or compensated float
- * where the device lacks fp64), exactly as the reference sums its samples.
- * No atomics: the image does not depend on scheduling or wavefront size.
+/* Adds a drained pass into the film: one work item per pixel adds that
+ * pixel's pass entries to its exact fixed-point sums (shared/film_sum.h), in
+ * sample order as the reference does, although with exact sums the order no
+ * longer matters. No atomics, no fp64: the film's bits depend neither on
+ * scheduling, wavefront size or pass boundaries nor on the device.
  *
- * The compensated float film (Kahan summation) holds each sum times
- * film_scale, a power of two at most 1/spp set by the host: the scaling is
- * exact, and a sum of spp finite floats then stays finite (each entry is at
- * most FLT_MAX), where an unscaled sum could overflow to Inf and Kahan's
- * correction then turn it into NaN. */
+ * The film holds WP_FILM_LIMBS limbs per channel and pixel: 3 sums per pixel,
+ * then (built with -DWP_FILM_SQUARES, for per-pixel variance) 3 sums of
+ * squares per pixel. */
 #include "device/parameters.h"
 #include "interface/kernel_parameters.h"
+#include "shared/film_sum.h"
 
-#ifdef WP_FILM_DOUBLE
-#pragma OPENCL EXTENSION cl_khr_fp64 : enable
-typedef double film_real;
-#else
-typedef float film_real;
-#endif
+WP_FILM_FN film_sum load_film_sum(__global const ulong *film, uint index) {
+    film_sum s;
+    for (int i = 0; i < WP_FILM_LIMBS; ++i) s.limb[i] = film[WP_FILM_LIMBS * index + i];
+    return s;
+}
 
-/* film holds 3 sums per pixel, then (compensated float only) 3 compensations. */
+WP_FILM_FN void store_film_sum(__global ulong *film, uint index, film_sum s) {
+    for (int i = 0; i < WP_FILM_LIMBS; ++i) film[WP_FILM_LIMBS * index + i] = s.limb[i];
+}
+
 __kernel void accumulate(WP_PARAMETERS(WP_ACCUMULATE_PARAMETERS)) {
     uint px = get_global_id(0);
     if (px >= pixel_count) return;
     uint first = (uint)((px + pixel_count - pass_start % pixel_count) % pixel_count);
     for (uint c = 0; c < 3u; ++c) {
-        film_real sum = film[3u * px + c];
-#ifndef WP_FILM_DOUBLE
-        /* Kahan summation */
-        film_real compensation = film[3u * (pixel_count + px) + c];
+        film_sum sum = load_film_sum(film, 3u * px + c);
+#ifdef WP_FILM_SQUARES
+        film_sum squares = load_film_sum(film, 3u * (pixel_count + px) + c);
 #endif
         for (uint item = first; item < pass_size; item += pixel_count) {
-#ifdef WP_FILM_DOUBLE
-            sum += (film_real)pass_radiance[3u * item + c];
-#else
-            film_real y = pass_radiance[3u * item + c] * film_scale - compensation;
-            film_real t = sum + y;
-            compensation = (t - sum) - y;
-            sum = t;
+            float value = pass_radiance[3u * item + c];
+            sum = film_sum_add(sum, film_sum_from_float(value));
+#ifdef WP_FILM_SQUARES
+            squares = film_sum_add(squares, film_sum_from_float_squared(value));
 #endif
         }
-        film[3u * px + c] = sum;
-#ifndef WP_FILM_DOUBLE
-        film[3u * (pixel_count + px) + c] = compensation;
+        store_film_sum(film, 3u * px + c, sum);
+#ifdef WP_FILM_SQUARES
+        store_film_sum(film, 3u * (pixel_count + px) + c, squares);
 #endif
     }
 }

@@ -52,15 +52,14 @@
     NEXT(uint, ray_count)                          \
     NEXT(__global float *, hit_t)
 
-/* film_real: double, or float for the compensated film (accumulate.cl),
- * which holds its sums times film_scale. */
+/* film: the exact sums of kernels/shared/film_sum.h, WP_FILM_LIMBS limbs per
+ * channel and pixel (accumulate.cl). */
 #define WP_ACCUMULATE_PARAMETERS(FIRST, NEXT)   \
     FIRST(ulong, pass_start)                    \
     NEXT(uint, pass_size)                       \
     NEXT(uint, pixel_count)                     \
-    NEXT(float, film_scale)                     \
     NEXT(__global const float *, pass_radiance) \
-    NEXT(__global film_real *, film)
+    NEXT(__global ulong *, film)
 
 #define WP_COMPACT_COUNT_PARAMETERS(FIRST, NEXT) \
     FIRST(__global const uint *, queues)         \

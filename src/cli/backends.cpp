@@ -19,64 +19,72 @@ namespace {
 constexpr int kMaxThreads = 4096;
 constexpr std::int64_t kMaxWavefront = std::int64_t(1) << 26;
 
-using RenderFn = RenderResult (*)(const Scene&, const BackendOptions&, const Progress&);
+using RunFn = void (*)(const Scene&, const BackendOptions&, const Progress&, std::uint64_t, const FilmRun&);
 
 struct Backend {
     const char* name;
     const char* description;
-    RenderFn render;
+    RunFn run;
 };
 
 bool wants_profile(const BackendOptions& options) { return options.profile || !options.profile_json.empty(); }
 
-RenderResult render_on_reference(const Scene& scene, const BackendOptions& options, const Progress& progress) {
+void run_on_reference(const Scene& scene, const BackendOptions& options, const Progress&, std::uint64_t,
+                      const FilmRun& run) {
     if (wants_profile(options))
         throw UsageError("--profile/--profile-json: the reference backend has no kernels to profile");
-    return render_reference(scene, ReferenceOptions{options.threads, options.precision == "double"}, progress);
+    std::unique_ptr<FilmRenderer> renderer = make_reference_renderer(
+        scene, ReferenceOptions{options.threads, options.precision == "double", options.film_squares});
+    run(*renderer);
 }
 
 // Runs an OpenCL backend: a kernel that fails to build shows the compiler's
 // log before the one-line error; the profile is printed and written as asked.
-template <class Report, class Render>
-RenderResult render_on_opencl(const BackendOptions& options, Render render) {
+template <class Report, class Make>
+void run_on_opencl(const BackendOptions& options, const FilmRun& run, Make make) {
     Report report;
     try {
-        RenderResult result = render(report);
+        std::unique_ptr<FilmRenderer> renderer = make(report);
+        run(*renderer);
         if (options.profile) std::cerr << format_profile_table(report.profile) << std::flush;
         if (!options.profile_json.empty()) write_profile_json(report.profile, options.profile_json);
-        return result;
     } catch (const KernelBuildError& error) {
         std::cerr << error.log() << std::endl;
         throw;
     }
 }
 
-RenderResult render_on_wavefront(const Scene& scene, const BackendOptions& options, const Progress& progress) {
-    return render_on_opencl<WavefrontReport>(options, [&](WavefrontReport& report) {
-        if (options.lanes != 0)
-            if (std::string problem = lanes_problem(options.lanes, options.compaction, scene.features().meshes);
-                !problem.empty())
-                throw UsageError(problem);
-        WavefrontOptions wavefront{options.device, options.wavefront};
-        wavefront.profile = wants_profile(options);
-        wavefront.compaction = options.compaction;
-        wavefront.lanes = options.lanes;
-        RenderResult result = render_wavefront(scene, wavefront, progress, &report);
+void run_on_wavefront(const Scene& scene, const BackendOptions& options, const Progress& progress,
+                      std::uint64_t max_items, const FilmRun& run) {
+    if (options.lanes != 0)
+        if (std::string problem = lanes_problem(options.lanes, options.compaction, scene.features().meshes);
+            !problem.empty())
+            throw UsageError(problem);
+    WavefrontOptions wavefront{options.device, options.wavefront};
+    wavefront.profile = wants_profile(options);
+    wavefront.compaction = options.compaction;
+    wavefront.lanes = options.lanes;
+    wavefront.film_squares = options.film_squares;
+    run_on_opencl<WavefrontReport>(options, run, [&](WavefrontReport& report) {
+        std::unique_ptr<FilmRenderer> renderer =
+            make_wavefront_renderer(scene, wavefront, progress, &report, max_items);
         if (options.explain) std::cout << report.explain() << std::flush;
-        return result;
+        return renderer;
     });
 }
 
-RenderResult render_on_megakernel(const Scene& scene, const BackendOptions& options, const Progress& progress) {
-    return render_on_opencl<MegakernelReport>(options, [&](MegakernelReport& report) {
-        return render_megakernel(scene, {options.device, wants_profile(options)}, progress, &report);
+void run_on_megakernel(const Scene& scene, const BackendOptions& options, const Progress& progress, std::uint64_t,
+                       const FilmRun& run) {
+    run_on_opencl<MegakernelReport>(options, run, [&](MegakernelReport& report) {
+        return make_megakernel_renderer(scene, {options.device, wants_profile(options), options.film_squares}, progress,
+                                        &report);
     });
 }
 
 constexpr std::array<Backend, 3> kBackends{{
-    {"wavefront", "OpenCL wavefront path tracer, the default", render_on_wavefront},
-    {"megakernel", "OpenCL megakernel baseline: one work item traces a whole path", render_on_megakernel},
-    {"reference", "scalar C++ path tracer on the CPU threads", render_on_reference},
+    {"wavefront", "OpenCL wavefront path tracer, the default", run_on_wavefront},
+    {"megakernel", "OpenCL megakernel baseline: one work item traces a whole path", run_on_megakernel},
+    {"reference", "scalar C++ path tracer on the CPU threads", run_on_reference},
 }};
 
 std::string backend_help() {
@@ -128,11 +136,16 @@ void add_backend_options(CLI::App& render, BackendOptions& options) {
     render.add_option("--profile-json", options.profile_json, "Also write the wavefront's profile to this JSON file");
 }
 
-RenderResult render_with_backend(const Scene& scene, const BackendOptions& options, const Progress& progress) {
+std::string estimator_name(const BackendOptions& options) {
+    return options.name == "reference" ? "reference-" + options.precision : "opencl";
+}
+
+void run_with_backend(const Scene& scene, const BackendOptions& options, const Progress& progress,
+                      std::uint64_t max_items, const FilmRun& run) {
     const auto backend = std::find_if(kBackends.begin(), kBackends.end(),
                                       [&](const Backend& candidate) { return options.name == candidate.name; });
     if (backend == kBackends.end()) throw UsageError("--backend: unknown backend '" + options.name + "'");
-    return backend->render(scene, options, progress);
+    backend->run(scene, options, progress, max_items, run);
 }
 
 }  // namespace wp::cli

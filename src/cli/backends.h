@@ -5,9 +5,11 @@
 
 #include <CLI/CLI.hpp>
 #include <cstddef>
+#include <functional>
 #include <string>
 #include <vector>
 
+#include "core/film_renderer.h"
 #include "core/render.h"
 #include "scene/scene.h"
 #include "wavefront/compaction.h"
@@ -25,6 +27,7 @@ struct BackendOptions {
     unsigned lanes = 0;                          // paths per work item in the wavefront's stage kernels; 0 = automatic
     bool profile = false;                        // print the wavefront's per-kernel profile on stderr
     std::string profile_json;                    // also write the profile to this JSON file; "" = none
+    bool film_squares = false;                   // the film keeps sums of squares (set by the render command)
 };
 
 // --backend and the flags of every backend.
@@ -32,8 +35,19 @@ void add_backend_options(CLI::App& render, BackendOptions& options);
 
 std::vector<std::string> backend_names();
 
-// Renders with the backend named in `options` (already validated by the
-// parser). Throws UsageError for an option the backend does not support.
-RenderResult render_with_backend(const Scene& scene, const BackendOptions& options, const Progress& progress);
+// What a film from this backend's estimator is, for checkpoints and partial
+// films: "opencl" (wavefront and megakernel agree bit for bit),
+// "reference-float" or "reference-double".
+std::string estimator_name(const BackendOptions& options);
+
+// What the command does with the backend's FilmRenderer once it is set up.
+using FilmRun = std::function<void(FilmRenderer& renderer)>;
+
+// Sets up the backend named in `options` (already validated by the parser),
+// calls `run` with it, then prints or writes its profile and --explain as
+// asked. `max_items` (0: pixels x spp) sizes the automatic wavefront. Throws
+// UsageError for an option the backend does not support.
+void run_with_backend(const Scene& scene, const BackendOptions& options, const Progress& progress,
+                      std::uint64_t max_items, const FilmRun& run);
 
 }  // namespace wp::cli

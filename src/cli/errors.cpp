@@ -6,6 +6,7 @@
 #include <string_view>
 
 #include "core/atomic_file.h"
+#include "longrun/film_file.h"
 #include "scene/scene.h"
 
 namespace wp::cli {
@@ -67,6 +68,8 @@ Failure classify(const std::exception_ptr& error) {
     } catch (const UsageError& e) {
         return {kExitUsage, e.what()};
     } catch (const SceneError& e) {
+        return {kExitScene, e.what()};
+    } catch (const FilmFileError& e) {
         return {kExitScene, e.what()};
     } catch (const OutputError& e) {
         return {kExitOutput, e.what()};

@@ -15,6 +15,9 @@ enum ExitCode : int {
     kExitUsage = 2,    // bad command-line flags
     kExitScene = 3,    // the scene file is missing or invalid
     kExitOutput = 4,   // the image or stats file cannot be written
+    // SIGINT or SIGTERM stopped the render: the image of the samples so far
+    // (and the checkpoint, if asked for) was written (cli/signals.h).
+    kExitInterrupted = 5,
 };
 
 // A flag value that is well-formed but not acceptable, found after parsing
@@ -26,7 +29,8 @@ class UsageError : public std::runtime_error {
 
 // Prints "wavepath: error: <message>" (newlines in the message folded so it
 // stays one line; other control characters and bytes that are not UTF-8 as
-// \xNN) and returns the exit code for the exception's kind.
+// \xNN) and returns the exit code for the exception's kind (film files that
+// cannot be used: kExitScene).
 int report_error(const std::exception_ptr& error);
 
 // --help prints the help and returns 0; any other parse error is reported as

@@ -1,10 +1,11 @@
-// wavepath command line: subcommands `render`, `devices` and `version`. Exit codes are
+// wavepath command line: subcommands `render`, `merge`, `devices` and `version`. Exit codes are
 // listed in cli/errors.h (and the README).
 #include <CLI/CLI.hpp>
 #include <exception>
 #include <iostream>
 
 #include "cli/errors.h"
+#include "cli/merge_command.h"
 #include "cli/render_command.h"
 #include "opencl/device.h"
 
@@ -18,6 +19,9 @@ int main(int argc, char** argv) {
     RenderCommand render_command;
     CLI::App* render = app.add_subcommand("render", "Render a scene file to an image");
     add_render_options(*render, render_command);
+    MergeCommand merge_command;
+    CLI::App* merge = app.add_subcommand("merge", "Merge partial films (render --samples A:B) into one image");
+    add_merge_options(*merge, merge_command);
     CLI::App* version = app.add_subcommand("version", "Print the version");
     CLI::App* devices = app.add_subcommand("devices", "List the OpenCL platforms and devices");
 
@@ -32,9 +36,11 @@ int main(int argc, char** argv) {
         } else if (devices->parsed()) {
             std::cout << wp::describe_devices(wp::list_devices()) << std::flush;
         } else if (render->parsed()) {
-            run_render(render_command);
+            return run_render(render_command);
+        } else if (merge->parsed()) {
+            run_merge(merge_command);
         } else {
-            throw UsageError("a subcommand is required: render, devices or version (see wavepath --help)");
+            throw UsageError("a subcommand is required: render, merge, devices or version (see wavepath --help)");
         }
         return kExitOk;
     } catch (...) {

@@ -43,6 +43,27 @@ void add_render_options(CLI::App& render, RenderCommand& command) {
 
     add_backend_options(render, command.backend);
 
+    LongRunFlags& l = command.long_run;
+    render.add_option("--checkpoint", l.checkpoint,
+                      "Write a checkpoint (a film file, .wpfilm) to this file every --checkpoint-every seconds "
+                      "and at the end");
+    render.add_option("--checkpoint-every", l.checkpoint_every_s, "Seconds between checkpoints (0: after every pass)")
+        ->check(CLI::Range(0.0, 1e9))
+        ->capture_default_str();
+    render.add_option("--resume", l.resume,
+                      "Continue the render whose checkpoint this is (same scene and settings; "
+                      "the image is bit-identical to an uninterrupted render's)");
+    render.add_option("--time", l.time_s, "Time budget in seconds: stop before a pass that would end past it")
+        ->check(CLI::Range(1e-3, 1e9));
+    render
+        .add_option("--target-error", l.target_error,
+                    "Stop once the image's estimated relative standard error is at most this (checked at 4, 5, 6, "
+                    "8, 10, ... samples per pixel; docs/long-renders.md)")
+        ->check(CLI::Range(1e-9, 1.0));
+    render.add_option("--samples", l.samples,
+                      "A:B renders samples A to B-1 of every pixel into a partial film (-o FILE.wpfilm), "
+                      "for `wavepath merge`");
+
     render.add_flag("-q,--quiet", command.quiet, "No progress and no summary on stderr (errors still appear)");
     render.add_option("--stats-json", command.stats_json_path, "Also write the run's figures to this JSON file");
 }

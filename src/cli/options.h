@@ -18,12 +18,23 @@ struct RenderOverrides {
     std::optional<std::string> nee, hemisphere;  // "on"/"off", "cosine"/"uniform"
 };
 
+// Flags of long renders (docs/long-renders.md).
+struct LongRunFlags {
+    std::string checkpoint;  // "": no checkpoints
+    double checkpoint_every_s = 300.0;
+    std::string resume;            // "": start afresh
+    std::optional<double> time_s;  // --time budget
+    std::optional<double> target_error;
+    std::string samples;  // "A:B": samples A to B-1 of every pixel, into a partial film
+};
+
 struct RenderCommand {
     std::string scene_path;
     std::string output_path;
     std::string stats_json_path;  // empty: none
     bool quiet = false;
     RenderOverrides overrides;
+    LongRunFlags long_run;
     BackendOptions backend;
 };
 

@@ -42,18 +42,29 @@ double estimate_eta(double fraction, double first_fraction, double since_first_s
     return since_first_s * (1.0 - fraction) / (fraction - first_fraction);
 }
 
-std::string format_progress_bar(double fraction, double elapsed_s, double eta_s) {
+std::string format_spp_done(const ProgressPlan& plan, double fraction) {
+    if (plan.spp_at_end <= 0.0) return "";
+    char text[64];
+    std::snprintf(text, sizeof text, "%.1f/%.0f spp",
+                  plan.spp_at_start + fraction * (plan.spp_at_end - plan.spp_at_start), plan.spp_at_end);
+    return text;
+}
+
+std::string format_progress_bar(double fraction, double elapsed_s, double eta_s, const std::string& spp_done) {
     const int filled = static_cast<int>(fraction * kBarWidth);
     std::string bar(1, '[');
     bar.append(filled, '#').append(kBarWidth - filled, '-');
     char percent[32];
-    std::snprintf(percent, sizeof percent, "] %5.1f%%  elapsed ", 100.0 * fraction);
-    return bar.append(percent).append(format_duration(elapsed_s)).append("  ").append(eta_text(eta_s));
+    std::snprintf(percent, sizeof percent, "] %5.1f%%  ", 100.0 * fraction);
+    bar.append(percent);
+    if (!spp_done.empty()) bar.append(spp_done).append("  ");
+    return bar.append("elapsed ").append(format_duration(elapsed_s)).append("  ").append(eta_text(eta_s));
 }
 
-std::string format_progress_line(double fraction, double elapsed_s, double eta_s) {
-    return "wavepath: " + std::to_string(static_cast<int>(100.0 * fraction)) + "% done, " + format_duration(elapsed_s) +
-           " elapsed, " + eta_text(eta_s);
+std::string format_progress_line(double fraction, double elapsed_s, double eta_s, const std::string& spp_done) {
+    std::string line = "wavepath: " + std::to_string(static_cast<int>(100.0 * fraction)) + "% done, ";
+    if (!spp_done.empty()) line.append(spp_done).append(", ");
+    return line + format_duration(elapsed_s) + " elapsed, " + eta_text(eta_s);
 }
 
 ProgressReporter::ProgressReporter(ProgressStyle style, std::ostream& out)
@@ -117,13 +128,19 @@ void ProgressReporter::draw(double fraction, Clock::time_point now) {
     const double elapsed_s = seconds(now - start_);
     // Before the first update() nothing has been sampled (finish() without one).
     // Nothing measured yet when finish() comes before any samples.
-    const double eta_s =
-        fraction >= 1.0 ? 0.0 : estimate_eta(fraction, first_fraction_, seconds(now - first_samples_time_));
+    const double since_first_s = seconds(now - first_samples_time_);
+    double eta_s = fraction >= 1.0 ? 0.0 : estimate_eta(fraction, first_fraction_, since_first_s);
+    if (plan_.time_budget_s > 0.0 && fraction > 0.0) {  // the budget ends the render first
+        const double budget_left_s = std::max(0.0, plan_.time_budget_s - since_first_s);
+        eta_s = eta_s < 0.0 ? budget_left_s : std::min(eta_s, budget_left_s);
+    }
+    const std::string spp_done = format_spp_done(plan_, fraction);
     if (style_ == ProgressStyle::Bar) {
-        out_ << "\r" << format_progress_bar(fraction, elapsed_s, eta_s) << "\033[K" << std::flush;  // clear leftovers
+        out_ << "\r" << format_progress_bar(fraction, elapsed_s, eta_s, spp_done) << "\033[K"
+             << std::flush;  // clear leftovers
         bar_open_ = true;
     } else {
-        out_ << format_progress_line(fraction, elapsed_s, eta_s) << std::endl;
+        out_ << format_progress_line(fraction, elapsed_s, eta_s, spp_done) << std::endl;
     }
 }
 

@@ -27,11 +27,21 @@ std::string format_duration(double seconds);
 // make the ETA absurd. -1: not measured yet.
 double estimate_eta(double fraction, double first_fraction, double since_first_s);
 
-// eta_s < 0 shows "ETA --".
-// "[#########-----------]  45.0%  elapsed 7s  ETA 9s" (no line ending).
-std::string format_progress_bar(double fraction, double elapsed_s, double eta_s);
-// "wavepath: 45% done, 7s elapsed, ETA 9s".
-std::string format_progress_line(double fraction, double elapsed_s, double eta_s);
+// What a fraction done means to the user: the samples per pixel at fraction
+// 0 and 1 (both 0: not shown), and a time budget (0: none) that caps the ETA.
+struct ProgressPlan {
+    double spp_at_start = 0.0, spp_at_end = 0.0;
+    double time_budget_s = 0.0;
+};
+
+// "12.5/64 spp" at `fraction` of `plan`, "" when the plan shows no spp.
+std::string format_spp_done(const ProgressPlan& plan, double fraction);
+
+// eta_s < 0 shows "ETA --"; spp_done (format_spp_done) is left out when "".
+// "[#########-----------]  45.0%  12.5/64 spp  elapsed 7s  ETA 9s" (no line ending).
+std::string format_progress_bar(double fraction, double elapsed_s, double eta_s, const std::string& spp_done = "");
+// "wavepath: 45% done, 12.5/64 spp, 7s elapsed, ETA 9s".
+std::string format_progress_line(double fraction, double elapsed_s, double eta_s, const std::string& spp_done = "");
 
 class ProgressReporter {
  public:
@@ -54,6 +64,8 @@ class ProgressReporter {
     void step(std::string_view what);
     // step() and update() for a renderer.
     Progress callback();
+    // Shows samples per pixel and caps the ETA by the time budget (call before the first update()).
+    void set_plan(const ProgressPlan& plan) { plan_ = plan; }
     // Draws the complete bar and ends its line (no-op for other styles).
     void finish();
 
@@ -73,6 +85,7 @@ class ProgressReporter {
     std::mutex draw_mutex_;
     Clock::time_point last_output_ = start_;
     bool bar_open_ = false;  // a bar is on screen without its line ending
+    ProgressPlan plan_;
 };
 
 }  // namespace wp::cli

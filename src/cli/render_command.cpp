@@ -2,30 +2,130 @@
 
 #include <iostream>
 
+#include "cli/errors.h"
 #include "cli/progress.h"
+#include "cli/signals.h"
 #include "cli/summary.h"
 #include "core/atomic_file.h"
 #include "image/image_io.h"
+#include "longrun/film_file.h"
+#include "longrun/render_loop.h"
+#include "scene/limits.h"
 
 namespace wp::cli {
 
-void run_render(const RenderCommand& command) {
-    validate_output_path(command.output_path);
+namespace {
+
+// --samples "A:B": work items [A * pixels, B * pixels). Without it, every
+// sample the scene asks for.
+ItemRange planned_items(const std::string& samples, const Scene& scene) {
+    const std::uint64_t pixels = std::uint64_t(scene.camera.width) * scene.camera.height;
+    if (samples.empty()) return {0, pixels * std::uint64_t(scene.render.spp)};
+    std::size_t colon = samples.find(':');
+    std::uint64_t a = 0, b = 0;
+    try {
+        std::size_t used_a = 0, used_b = 0;
+        if (colon == std::string::npos) throw std::invalid_argument("no colon");
+        a = std::stoull(samples.substr(0, colon), &used_a);
+        b = std::stoull(samples.substr(colon + 1), &used_b);
+        if (used_a != colon || used_b != samples.size() - colon - 1 || samples[0] == '-' || samples[colon + 1] == '-')
+            throw std::invalid_argument("trailing text");
+    } catch (const std::exception&) {
+        throw UsageError("--samples: expected A:B (samples A to B-1 of every pixel), got '" + samples + "'");
+    }
+    if (a >= b || b > std::uint64_t(kMaxSpp))
+        throw UsageError("--samples: need 0 <= A < B <= " + std::to_string(kMaxSpp) + ", got " + samples);
+    return {a * pixels, b * pixels};
+}
+
+// Output paths are checked before the render: a film (.wpfilm) or an image.
+void check_outputs(const RenderCommand& command) {
+    if (is_film_path(command.output_path))
+        check_writable_destination(command.output_path);
+    else if (!command.long_run.samples.empty())
+        throw UsageError("--samples: a partial render writes a film: -o must name a " +
+                         std::string(kFilmFileExtension) + " file, got " + command.output_path);
+    else
+        validate_output_path(command.output_path);
+    if (!command.long_run.checkpoint.empty()) check_writable_destination(command.long_run.checkpoint);
     if (!command.stats_json_path.empty()) check_writable_destination(command.stats_json_path);
     if (!command.backend.profile_json.empty()) check_writable_destination(command.backend.profile_json);
+}
 
+// The checkpoint to continue, checked against this render before anything is rendered or written.
+Film film_to_resume(const std::string& path, const RenderIdentity& identity, const Scene& scene, const ItemRange& items,
+                    bool squares) {
+    FilmFile file = read_film_file(path);
+    check_film_matches(path, file, identity, scene.camera.width, scene.camera.height);
+    Film& film = file.film;
+    if (film.items.begin != items.begin)
+        throw FilmFileError(path + ": starts at work item " + std::to_string(film.items.begin) + ", this render at " +
+                            std::to_string(items.begin));
+    if (film.items.end > items.end)
+        throw FilmFileError(path + ": holds " + std::to_string(film.max_samples()) +
+                            " samples per pixel, more than the " + std::to_string(items.end / film.pixel_count()) +
+                            " this render asks for (--spp, --samples)");
+    if (squares && film.squares.empty())
+        throw FilmFileError(path + ": has no sums of squares, which this render needs");
+    if (!squares) film.squares.clear();
+    return film;
+}
+
+void write_output(const RenderCommand& command, const RenderIdentity& identity, const Film& film) {
+    if (is_film_path(command.output_path))
+        write_film_file(command.output_path, {identity, film});
+    else
+        write_image(film.image(), command.output_path);
+}
+
+}  // namespace
+
+int run_render(const RenderCommand& command) {
+    check_outputs(command);
     Scene scene = load_scene(command.scene_path);
     apply_overrides(command.overrides, scene);
 
+    const LongRunFlags& flags = command.long_run;
+    BackendOptions backend = command.backend;
+    backend.film_squares = flags.target_error.has_value();
+    if (flags.target_error && !flags.samples.empty())
+        throw UsageError("--target-error: needs the whole render, not a --samples range");
+    LongRunPlan plan;
+    plan.items = planned_items(flags.samples, scene);
+    plan.pixels = std::uint64_t(scene.camera.width) * scene.camera.height;
+    plan.target_error = flags.target_error.value_or(0.0);
+    plan.identity = render_identity(scene, estimator_name(backend));
+    if (!flags.resume.empty())
+        plan.start = film_to_resume(flags.resume, plan.identity, scene, plan.items, backend.film_squares);
+    plan.time_budget_s = flags.time_s.value_or(0.0);
+    plan.checkpoint_path = flags.checkpoint;
+    plan.checkpoint_every_s = flags.checkpoint_every_s;
+    StopSignals signals;
+    plan.stop_requested = &signals.requested();
+
     ProgressReporter progress(choose_progress_style(command.quiet), std::cerr);
-    const RenderResult result = render_with_backend(scene, command.backend, progress.callback());
+    progress.set_plan({double(plan.items.begin) / double(plan.pixels), double(plan.items.end) / double(plan.pixels),
+                       plan.time_budget_s});
+    LongRunResult result;
+    run_with_backend(scene, backend, progress.callback(), plan.items.size(),
+                     [&](FilmRenderer& renderer) { result = run_long_render(renderer, plan, progress.callback()); });
     progress.finish();
 
-    write_image(result.image, command.output_path);
-    const RunSummary summary{command.backend.name, command.output_path, scene.camera.width,
-                             scene.camera.height,  scene.render.spp,    result.stats};
+    write_output(command, plan.identity, result.film);
+    RunSummary summary;
+    summary.backend = command.backend.name;
+    summary.output_path = command.output_path;
+    summary.width = scene.camera.width;
+    summary.height = scene.camera.height;
+    summary.spp = scene.render.spp;
+    summary.spp_min = result.film.min_samples();
+    summary.spp_max = result.film.max_samples();
+    summary.stopped = stop_reason_name(result.reason);
+    summary.stats = result.stats;
+    summary.error = result.error;
     if (!command.stats_json_path.empty()) write_stats_json(summary, command.stats_json_path);
     if (!command.quiet) std::cerr << format_summary_line(summary) << std::endl;
+    return result.reason == StopReason::Interrupted ? kExitInterrupted : kExitOk;
 }
 
 }  // namespace wp::cli

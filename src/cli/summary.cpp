@@ -31,6 +31,25 @@ nlohmann::json nonfinite_by_stage_json(const RenderStats& s) {
     return by_stage;
 }
 
+// "64 spp", or what the pixels have when that is not the asked spp.
+std::string samples_text(const RunSummary& summary) {
+    if (summary.spp_min == summary.spp_max && summary.spp_max == std::uint64_t(summary.spp) &&
+        summary.stopped == "done")
+        return std::to_string(summary.spp) + " spp";
+    std::string done = std::to_string(summary.spp_min);
+    if (summary.spp_max != summary.spp_min) done.append(1, '-').append(std::to_string(summary.spp_max));
+    std::string text = done + " of " + std::to_string(summary.spp) + " spp";
+    if (summary.stopped != "done") text += ", stopped: " + summary.stopped;
+    return text;
+}
+
+std::string error_text(const RunSummary& summary) {
+    if (summary.error < 0.0) return "";
+    char text[64];
+    std::snprintf(text, sizeof text, ", estimated relative error %.3g", summary.error);
+    return text;
+}
+
 }  // namespace
 
 std::string format_summary_line(const RunSummary& summary) {
@@ -41,8 +60,8 @@ std::string format_summary_line(const RunSummary& summary) {
                   s.time_s, per_second(s.samples, s.time_s) * 1e-6, per_second(s.extension_rays, s.time_s) * 1e-6,
                   per_second(s.shadow_rays, s.time_s) * 1e-6, static_cast<unsigned long long>(s.nonfinite));
     return "wavepath: wrote " + summary.output_path + " (" + std::to_string(summary.width) + "x" +
-           std::to_string(summary.height) + ", " + std::to_string(summary.spp) + " spp, " + summary.backend + ") " +
-           figures + nonfinite_breakdown(s);
+           std::to_string(summary.height) + ", " + samples_text(summary) + ", " + summary.backend + ") " + figures +
+           nonfinite_breakdown(s) + error_text(summary);
 }
 
 nlohmann::json stats_json(const RunSummary& summary) {
@@ -52,6 +71,12 @@ nlohmann::json stats_json(const RunSummary& summary) {
         {"width", summary.width},
         {"height", summary.height},
         {"spp", summary.spp},
+        {"spp_done_min", summary.spp_min},
+        {"spp_done_max", summary.spp_max},
+        {"stopped", summary.stopped},
+        {"error_estimate", summary.error < 0.0 ? nlohmann::json(nullptr) : nlohmann::json(summary.error)},
+        {"ranks", 1},
+        {"samples_per_rank", {s.samples}},
         {"time_s", s.time_s},
         {"samples", s.samples},
         {"samples_per_s", per_second(s.samples, s.time_s)},

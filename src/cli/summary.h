@@ -12,16 +12,23 @@ namespace wp::cli {
 struct RunSummary {
     std::string backend;
     std::string output_path;
-    int width = 0, height = 0, spp = 0;
+    int width = 0, height = 0, spp = 0;      // spp: asked for
+    std::uint64_t spp_min = 0, spp_max = 0;  // samples the pixels have (fewest, most)
+    std::string stopped = "done";            // why the render ended (stop_reason_name)
+    double error = -1.0;                     // last estimated relative error (--target-error); -1: none
     RenderStats stats;
 };
 
 // "wavepath: wrote out.png (512x512, 64 spp, reference) in 12.3 s: 1.36 Msamples/s,
 //  extension 5.12 Mrays/s, shadow 3.40 Mrays/s, 0 non-finite values", then, when
-//  any value was dropped, the count per stage: " (emission 1, direct 0, scatter 2)"
+//  any value was dropped, the count per stage: " (emission 1, direct 0, scatter 2)".
+// A render that stopped early or holds a partial range says what the pixels
+// have: "(512x512, 12-13 of 64 spp, stopped: time budget, wavefront)"; with
+// --target-error the last estimate follows: ", estimated relative error 0.0098".
 std::string format_summary_line(const RunSummary& summary);
 
-// {"backend","width","height","spp","time_s","samples","samples_per_s",
+// {"backend","width","height","spp","spp_done_min","spp_done_max","stopped","error_estimate" (or null),
+//  "ranks","samples_per_rank","time_s","samples","samples_per_s",
 //  "extension_rays","extension_rays_per_s","shadow_rays","shadow_rays_per_s","nonfinite",
 //  "nonfinite_by_stage": {"emission","direct","scatter"}}
 nlohmann::json stats_json(const RunSummary& summary);

@@ -1,7 +1,6 @@
 #include "megakernel/megakernel_renderer.h"
 
 #include <algorithm>
-#include <chrono>
 
 #include "interface/queues.h"
 #include "opencl/device.h"
@@ -25,71 +24,100 @@ NonfiniteCounts nonfinite_counts(const std::vector<std::uint32_t>& counts) {
     return by_stage;
 }
 
+class MegakernelFilmRenderer : public FilmRenderer {
+ public:
+    MegakernelFilmRenderer(const Scene& scene, const MegakernelOptions& options, const Progress& progress,
+                           MegakernelReport* report)
+        : device_(choose_device(options.device)),
+          context_(device_.device),
+          queue_(context_, device_.device,
+                 options.profile ? cl_command_queue_properties(CL_QUEUE_PROFILING_ENABLE) : 0),
+          launcher_(queue_, options.profile),
+          program_(build_program(context_, device_, {"megakernel.cl", "accumulate.cl"},
+                                 kernel_build_options(scene.features(), scene.render.hemisphere) +
+                                     film_build_options(options.film_squares) + shape_count_options(scene),
+                                 progress)),
+          scene_(context_, flatten_scene(scene)),
+          pass_radiance_(context_, CL_MEM_READ_WRITE, sizeof(float) * 3 * kPassSize),
+          counts_(context_, CL_MEM_READ_WRITE, sizeof(std::uint32_t) * WP_COUNTS_SIZE),
+          film_(context_, queue_, program_.program, scene.camera.width, scene.camera.height, options.film_squares),
+          megakernel_(program_.program, "megakernel"),
+          profile_(options.profile),
+          report_(report ? *report : local_report_) {
+        queue_.enqueueFillBuffer(counts_, std::uint32_t(0), 0, sizeof(std::uint32_t) * WP_COUNTS_SIZE);
+        scene_.bind(megakernel_);
+        megakernel_.setArg(arg::Megakernel::pass_radiance, pass_radiance_);
+        megakernel_.setArg(arg::Megakernel::counts, counts_);
+        report_.device = device_.name + " (" + device_.platform + ")";
+        report_.build_options = program_.options;
+        report_.cache_hit = program_.cache_hit;
+        report_.build_seconds = program_.build_seconds;
+    }
+
+    std::uint64_t pass_items() const override { return kPassSize; }
+    RenderStats stats() const override { return stats_; }
+
+    void finish(double render_seconds) override {
+        if (!profile_) return;
+        MegakernelReport& r = report_;
+        launcher_.time_finished(r.profile);
+        r.profile.kernel("megakernel").items = samples_;
+        r.profile.kernel("accumulate").items = samples_;
+        r.profile.render_s = render_seconds;
+        r.profile.build_s = r.build_seconds;
+    }
+
+ protected:
+    void render_items(const ItemRange& items, const Progress& progress) override {
+        for (std::uint64_t start = items.begin; start < items.end; start += kPassSize) {
+            auto size = static_cast<std::uint32_t>(std::min(kPassSize, items.end - start));
+            megakernel_.setArg(arg::Megakernel::pass_start, cl_ulong(start));
+            megakernel_.setArg(arg::Megakernel::pass_size, cl_uint(size));
+            launcher_.launch(megakernel_, "megakernel", size);
+            film_.accumulate(launcher_, start, size, pass_radiance_);
+            // 32-bit device counters: read and cleared every pass.
+            std::vector<std::uint32_t> figures(WP_COUNTS_SIZE);
+            queue_.enqueueReadBuffer(counts_, CL_TRUE, 0, sizeof(std::uint32_t) * figures.size(), figures.data());
+            queue_.enqueueFillBuffer(counts_, std::uint32_t(0), 0, sizeof(std::uint32_t) * WP_COUNTS_SIZE);
+            launcher_.time_finished(report_.profile);
+            stats_.extension_rays += figures[WP_COUNTER_EXTENSION_RAYS];
+            stats_.shadow_rays += figures[WP_COUNTER_SHADOW_RAYS];
+            stats_.add_nonfinite(nonfinite_counts(figures));
+            samples_ += size;
+            progress.report(double(start + size - items.begin) / double(items.size()));
+        }
+    }
+    Film read_film(const ItemRange& items) override { return film_.read(queue_, items); }
+    void load_film(const Film& film) override { film_.load(queue_, film); }
+
+ private:
+    DeviceInfo device_;
+    cl::Context context_;
+    cl::CommandQueue queue_;
+    KernelLauncher launcher_;
+    BuiltProgram program_;
+    DeviceScene scene_;
+    cl::Buffer pass_radiance_, counts_;
+    DeviceFilm film_;
+    cl::Kernel megakernel_;
+    bool profile_;
+    MegakernelReport local_report_;
+    MegakernelReport& report_;
+    RenderStats stats_;
+    std::uint64_t samples_ = 0;
+};
+
 }  // namespace
+
+std::unique_ptr<FilmRenderer> make_megakernel_renderer(const Scene& scene, const MegakernelOptions& options,
+                                                       const Progress& progress, MegakernelReport* report) {
+    return std::make_unique<MegakernelFilmRenderer>(scene, options, progress, report);
+}
 
 RenderResult render_megakernel(const Scene& scene, const MegakernelOptions& options, const Progress& progress,
                                MegakernelReport* report) {
-    DeviceInfo device = choose_device(options.device);
-    cl::Context context(device.device);
-    cl::CommandQueue queue(context, device.device,
-                           options.profile ? cl_command_queue_properties(CL_QUEUE_PROFILING_ENABLE) : 0);
-    KernelLauncher launcher(queue, options.profile);
-    BuiltProgram program = build_program(
-        context, device, {"megakernel.cl", "accumulate.cl"},
-        kernel_build_options(scene.features(), device.fp64, scene.render.hemisphere) + shape_count_options(scene),
-        progress);
-    DeviceScene device_scene(context, flatten_scene(scene));
-    const Camera& camera = scene.camera;
-    std::size_t pixel_count = std::size_t(camera.width) * camera.height;
-    std::uint64_t total = std::uint64_t(pixel_count) * scene.render.spp;
-    std::uint64_t pass_capacity = std::min(total, kPassSize);
-    cl::Buffer pass_radiance(context, CL_MEM_READ_WRITE, sizeof(float) * 3 * pass_capacity);
-    cl::Buffer counts(context, CL_MEM_READ_WRITE, sizeof(std::uint32_t) * WP_COUNTS_SIZE);
-    queue.enqueueFillBuffer(counts, std::uint32_t(0), 0, sizeof(std::uint32_t) * WP_COUNTS_SIZE);
-    Film film(context, queue, program.program, pixel_count, scene.render.spp, device.fp64);
-
-    cl::Kernel megakernel(program.program, "megakernel");
-    device_scene.bind(megakernel);
-    megakernel.setArg(arg::Megakernel::pass_radiance, pass_radiance);
-    megakernel.setArg(arg::Megakernel::counts, counts);
-
-    MegakernelReport local_report;
-    MegakernelReport& r = report ? *report : local_report;
-    r.device = device.name + " (" + device.platform + ")";
-    r.build_options = program.options;
-    r.cache_hit = program.cache_hit;
-    r.build_seconds = program.build_seconds;
-
-    RenderResult result;
-    auto render_start = std::chrono::steady_clock::now();
-    progress.report(0.0);
-    for (std::uint64_t start = 0; start < total; start += pass_capacity) {
-        auto size = static_cast<std::uint32_t>(std::min(pass_capacity, total - start));
-        megakernel.setArg(arg::Megakernel::pass_start, cl_ulong(start));
-        megakernel.setArg(arg::Megakernel::pass_size, cl_uint(size));
-        launcher.launch(megakernel, "megakernel", size);
-        film.accumulate(launcher, start, size, pass_radiance);
-        // 32-bit device counters: read and cleared every pass.
-        std::vector<std::uint32_t> figures(WP_COUNTS_SIZE);
-        queue.enqueueReadBuffer(counts, CL_TRUE, 0, sizeof(std::uint32_t) * figures.size(), figures.data());
-        queue.enqueueFillBuffer(counts, std::uint32_t(0), 0, sizeof(std::uint32_t) * WP_COUNTS_SIZE);
-        launcher.time_finished(r.profile);
-        result.stats.extension_rays += figures[WP_COUNTER_EXTENSION_RAYS];
-        result.stats.shadow_rays += figures[WP_COUNTER_SHADOW_RAYS];
-        result.stats.add_nonfinite(nonfinite_counts(figures));
-        progress.report(double(start + size) / double(total));
-    }
-    result.image = film_to_image(film.read_sums(queue), camera.width, camera.height, scene.render.spp);
-    result.stats.samples = total;
-    result.stats.time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - render_start).count();
-    if (options.profile) {
-        launcher.time_finished(r.profile);
-        r.profile.kernel("megakernel").items = total;
-        r.profile.kernel("accumulate").items = total;
-        r.profile.render_s = result.stats.time_s;
-        r.profile.build_s = r.build_seconds;
-    }
-    return result;
+    std::unique_ptr<FilmRenderer> renderer = make_megakernel_renderer(scene, options, progress, report);
+    return render_every_item(*renderer, scene.camera.width, scene.camera.height, scene.render.spp, progress);
 }
 
 }  // namespace wp

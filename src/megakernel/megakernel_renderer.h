@@ -4,8 +4,10 @@
 // wavefront, so the two designs are compared like for like.
 #pragma once
 
+#include <memory>
 #include <string>
 
+#include "core/film_renderer.h"
 #include "core/render.h"
 #include "opencl/profile.h"
 #include "scene/scene.h"
@@ -13,8 +15,9 @@
 namespace wp {
 
 struct MegakernelOptions {
-    std::string device;    // as WavefrontOptions::device
-    bool profile = false;  // time the launches with OpenCL events
+    std::string device;         // as WavefrontOptions::device
+    bool profile = false;       // time the launches with OpenCL events
+    bool film_squares = false;  // the film keeps sums of squares (per-pixel variance)
 };
 
 struct MegakernelReport {
@@ -28,5 +31,9 @@ struct MegakernelReport {
 // Renders on OpenCL; throws DeviceError (no device, kernel build failure).
 RenderResult render_megakernel(const Scene& scene, const MegakernelOptions& options, const Progress& progress,
                                MegakernelReport* report = nullptr);
+
+// The megakernel as a FilmRenderer (as make_wavefront_renderer).
+std::unique_ptr<FilmRenderer> make_megakernel_renderer(const Scene& scene, const MegakernelOptions& options,
+                                                       const Progress& progress, MegakernelReport* report = nullptr);
 
 }  // namespace wp

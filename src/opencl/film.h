@@ -1,40 +1,40 @@
-// The film both OpenCL backends accumulate into: per-pixel RGB sums over the
-// passes, in double, or in compensated float where the device has no fp64,
-// added by kernels/accumulate.cl from a drained pass's entries in sample order.
+// The film both OpenCL backends accumulate into: per-pixel exact sums
+// (kernels/shared/film_sum.h) on the device, added by kernels/accumulate.cl
+// from a drained pass's entries, read back into and loaded from a host Film.
 #pragma once
 
 #include <CL/opencl.hpp>
 #include <cstddef>
 #include <cstdint>
-#include <vector>
 
-#include "core/render.h"
+#include "core/film.h"
 #include "opencl/launcher.h"
 
 namespace wp {
 
-class Film {
+class DeviceFilm {
  public:
-    // `program` holds accumulate.cl, built with -DWP_FILM_DOUBLE exactly when
-    // `film_double`; each pixel will get `spp` samples.
-    Film(const cl::Context& context, cl::CommandQueue& queue, const cl::Program& program, std::size_t pixel_count,
-         int spp, bool film_double);
+    // `program` holds accumulate.cl, built with -DWP_FILM_SQUARES exactly
+    // when `squares` (film_build_options). The sums start at zero.
+    DeviceFilm(const cl::Context& context, cl::CommandQueue& queue, const cl::Program& program, int width, int height,
+               bool squares);
 
     // Adds the pass [pass_start, pass_start + pass_size) from its entries (3 floats each).
     void accumulate(KernelLauncher& launcher, std::uint64_t pass_start, std::uint32_t pass_size,
                     const cl::Buffer& pass_radiance);
-    // Per-pixel RGB sums so far.
-    std::vector<double> read_sums(cl::CommandQueue& queue) const;
+    // The sums so far, as the film of `items`.
+    Film read(cl::CommandQueue& queue, const ItemRange& items) const;
+    // Replaces the sums with `film`'s (same size and squares, else std::invalid_argument).
+    void load(cl::CommandQueue& queue, const Film& film);
 
  private:
-    std::size_t pixel_count_;
-    bool double_;
-    double scale_;     // what the film's sums are multiplied by (compensated float: a power of two <= 1/spp)
-    cl::Buffer sums_;  // 3 per pixel, then (compensated float only) 3 compensations per pixel
+    int width_, height_;
+    bool squares_;
+    cl::Buffer sums_;  // WP_FILM_LIMBS limbs per channel and pixel: the sums, then (squares_) the squares
     cl::Kernel accumulate_;
 };
 
-// The image of a film's per-pixel sums over `spp` samples.
-Image film_to_image(const std::vector<double>& sums, int width, int height, int spp);
+// " -DWP_FILM_SQUARES" when the film keeps squares, else "".
+const char* film_build_options(bool squares);
 
 }  // namespace wp

@@ -32,12 +32,11 @@ std::vector<std::pair<const char*, const char*>> features_in_use(const FeatureSe
 
 }  // namespace
 
-std::string kernel_build_options(const FeatureSet& features, bool film_double, Hemisphere hemisphere) {
+std::string kernel_build_options(const FeatureSet& features, Hemisphere hemisphere) {
     std::string options;
     for (const auto& [name, macro] : features_in_use(features))
         if (macro) options += std::string(" -D") + macro;
     if (hemisphere == Hemisphere::Uniform) options += " -DWP_UNIFORM_HEMISPHERE";
-    if (film_double) options += " -DWP_FILM_DOUBLE";
     return options.empty() ? options : options.substr(1);
 }
 

@@ -10,10 +10,10 @@ namespace wp {
 
 // "-DWP_HAS_SPHERES -DWP_HAS_DIFFUSE ...", one option per shape, material
 // and light kind in use, -DWP_NEE when next-event estimation runs (without
-// it emission counts at every hit), -DWP_UNIFORM_HEMISPHERE for uniform
-// diffuse sampling and -DWP_FILM_DOUBLE for a double film (devices with
-// fp64). Never fast-math options: the kernels must agree with the reference.
-std::string kernel_build_options(const FeatureSet& features, bool film_double, Hemisphere hemisphere);
+// it emission counts at every hit) and -DWP_UNIFORM_HEMISPHERE for uniform
+// diffuse sampling. Never fast-math options: the kernels must agree with the
+// reference.
+std::string kernel_build_options(const FeatureSet& features, Hemisphere hemisphere);
 
 // Shapes and lights of each kind per type a kernel unrolls its loops over.
 inline constexpr std::size_t kMaxUnrolledCount = 32;

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <atomic>
-#include <chrono>
 #include <stdexcept>
 #include <thread>
 #include <vector>
@@ -13,6 +12,10 @@ namespace wp {
 namespace {
 
 constexpr int kTileSize = 16;
+
+// Work items per render() call: a pass over a quarter of a million samples
+// keeps the threads busy and the checks between passes frequent.
+constexpr std::uint64_t kPassItems = std::uint64_t(1) << 18;
 
 struct Tile {
     int x0, y0, x1, y1;  // pixel range [x0, x1) x [y0, y1)
@@ -27,26 +30,12 @@ struct TileGrid {
     }
 };
 
-// Each pixel's samples are summed in double, in sample order, so the value
-// depends neither on threads nor on how small the contributions are.
-template <class Real>
-void render_tile(const reference::ReferenceScene<Real>& scene, const Tile& tile, Image& image,
-                 reference::RayCounts& counts) {
-    int spp = scene.render.spp;
-    for (int py = tile.y0; py < tile.y1; ++py) {
-        for (int px = tile.x0; px < tile.x1; ++px) {
-            glm::dvec3 sum(0.0);
-            for (int s = 0; s < spp; ++s) {
-                sum += glm::dvec3(reference::trace_camera_sample(scene, px, py, s, counts));
-            }
-            glm::dvec3 mean = sum / static_cast<double>(spp);
-            float* rgb = &image.rgb[3 * (static_cast<std::size_t>(py) * image.width + px)];
-            rgb[0] = static_cast<float>(mean.x);
-            rgb[1] = static_cast<float>(mean.y);
-            rgb[2] = static_cast<float>(mean.z);
-        }
-    }
-}
+// A sample as the film sums it: a float sample exactly as the kernels' film
+// does, a double one with its own 53 bits.
+film_sum film_value(float x) { return film_sum_from_float(x); }
+film_sum film_value(double x) { return film_sum_from_double(x); }
+film_sum film_square(float x) { return film_sum_from_float_squared(x); }
+film_sum film_square(double x) { return film_sum_from_double(x * x); }
 
 int worker_count(const ReferenceOptions& options, int tiles) {
     int threads = options.threads > 0 ? options.threads : static_cast<int>(std::thread::hardware_concurrency());
@@ -62,49 +51,100 @@ void check_settings(const Scene& scene) {
 }
 
 template <class Real>
-RenderResult render_with(const Scene& source, const ReferenceOptions& options, const Progress& progress) {
-    auto start = std::chrono::steady_clock::now();
-    reference::ReferenceScene<Real> scene(source);
-    int width = scene.camera.width;
-    int height = scene.camera.height;
-    RenderResult result;
-    result.image = {width, height, std::vector<float>(3 * static_cast<std::size_t>(width) * height)};
+class ReferenceFilmRenderer : public FilmRenderer {
+ public:
+    ReferenceFilmRenderer(const Scene& source, const ReferenceOptions& options)
+        : scene_(source),
+          width_(source.camera.width),
+          height_(source.camera.height),
+          grid_{(width_ + kTileSize - 1) / kTileSize, (height_ + kTileSize - 1) / kTileSize},
+          counts_(worker_count(options, grid_.columns * grid_.rows)),
+          film_(Film::empty(width_, height_, 0, options.film_squares)) {}
 
-    TileGrid grid{(width + kTileSize - 1) / kTileSize, (height + kTileSize - 1) / kTileSize};
-    int tile_count = grid.columns * grid.rows;
-    std::atomic<int> next_tile{0};
-    std::atomic<int> tiles_done{0};
-    std::vector<reference::RayCounts> counts(worker_count(options, tile_count));
-    progress.report(0.0);
-    auto work = [&](reference::RayCounts& mine) {
-        for (int t = next_tile++; t < tile_count; t = next_tile++) {
-            render_tile(scene, grid.tile(t, width, height), result.image, mine);
-            int done = ++tiles_done;
-            progress.report(static_cast<double>(done) / tile_count);
+    std::uint64_t pass_items() const override { return kPassItems; }
+
+    RenderStats stats() const override {
+        RenderStats stats;
+        for (const reference::RayCounts& c : counts_) {
+            stats.extension_rays += c.extension;
+            stats.shadow_rays += c.shadow;
+            stats.add_nonfinite(c.nonfinite);
         }
-    };
-    std::vector<std::thread> workers;
-    for (std::size_t i = 1; i < counts.size(); ++i) workers.emplace_back(work, std::ref(counts[i]));
-    work(counts[0]);
-    for (std::thread& w : workers) w.join();
-
-    RenderStats& stats = result.stats;
-    stats.samples = static_cast<std::uint64_t>(width) * height * scene.render.spp;
-    for (const reference::RayCounts& c : counts) {
-        stats.extension_rays += c.extension;
-        stats.shadow_rays += c.shadow;
-        stats.add_nonfinite(c.nonfinite);
+        return stats;
     }
-    stats.time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    return result;
-}
+
+ protected:
+    // Tiles go to the threads; each pixel adds its samples among `items` in
+    // sample order.
+    void render_items(const ItemRange& items, const Progress& progress) override {
+        const int tile_count = grid_.columns * grid_.rows;
+        std::atomic<int> next_tile{0}, tiles_done{0};
+        auto work = [&](reference::RayCounts& mine) {
+            for (int t = next_tile++; t < tile_count; t = next_tile++) {
+                render_tile(grid_.tile(t, width_, height_), items, mine);
+                progress.report(static_cast<double>(++tiles_done) / tile_count);
+            }
+        };
+        std::vector<std::thread> workers;
+        for (std::size_t i = 1; i < counts_.size(); ++i) workers.emplace_back(work, std::ref(counts_[i]));
+        work(counts_[0]);
+        for (std::thread& w : workers) w.join();
+        film_.items.end = items.end;
+    }
+    Film read_film(const ItemRange& items) override {
+        Film film = film_;
+        film.items = items;
+        return film;
+    }
+    void load_film(const Film& film) override {
+        if (film.width != width_ || film.height != height_ || film.squares.empty() != film_.squares.empty())
+            throw std::invalid_argument("reference: a film of another size or other squares");
+        film_ = film;
+    }
+
+ private:
+    void render_tile(const Tile& tile, const ItemRange& items, reference::RayCounts& counts) {
+        const std::uint64_t pixels = film_.pixel_count();
+        for (int py = tile.y0; py < tile.y1; ++py) {
+            for (int px = tile.x0; px < tile.x1; ++px) {
+                const std::uint64_t pixel = std::uint64_t(py) * width_ + px;
+                const std::uint64_t first = samples_of_pixel({0, items.begin}, pixels, pixel);
+                const std::uint64_t end = samples_of_pixel({0, items.end}, pixels, pixel);
+                for (std::uint64_t s = first; s < end; ++s) add_sample(pixel, trace(px, py, s, counts));
+            }
+        }
+    }
+
+    reference::Vec3<Real> trace(int px, int py, std::uint64_t sample, reference::RayCounts& counts) const {
+        return reference::trace_camera_sample(scene_, px, py, static_cast<int>(sample), counts);
+    }
+
+    void add_sample(std::uint64_t pixel, const reference::Vec3<Real>& radiance) {
+        for (int c = 0; c < kFilmChannels; ++c) {
+            const std::size_t i = kFilmChannels * pixel + c;
+            film_.sums[i] = film_sum_add(film_.sums[i], film_value(radiance[c]));
+            if (!film_.squares.empty()) film_.squares[i] = film_sum_add(film_.squares[i], film_square(radiance[c]));
+        }
+    }
+
+    reference::ReferenceScene<Real> scene_;
+    int width_, height_;
+    TileGrid grid_;
+    std::vector<reference::RayCounts> counts_;  // one per thread
+    Film film_;
+};
 
 }  // namespace
 
-RenderResult render_reference(const Scene& scene, const ReferenceOptions& options, const Progress& progress) {
+std::unique_ptr<FilmRenderer> make_reference_renderer(const Scene& scene, const ReferenceOptions& options) {
     check_settings(scene);
-    return options.double_precision ? render_with<double>(scene, options, progress)
-                                    : render_with<float>(scene, options, progress);
+    if (options.double_precision) return std::make_unique<ReferenceFilmRenderer<double>>(scene, options);
+    return std::make_unique<ReferenceFilmRenderer<float>>(scene, options);
+}
+
+RenderResult render_reference(const Scene& scene, const ReferenceOptions& options, const Progress& progress) {
+    std::unique_ptr<FilmRenderer> renderer = make_reference_renderer(scene, options);
+    return render_every_item(*renderer, scene.camera.width, scene.camera.height, scene.render.spp, progress);
 }
 
 template <class Real>

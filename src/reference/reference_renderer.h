@@ -5,7 +5,9 @@
 #pragma once
 
 #include <glm/vec3.hpp>
+#include <memory>
 
+#include "core/film_renderer.h"
 #include "core/render.h"
 #include "scene/scene.h"
 
@@ -14,12 +16,17 @@ namespace wp {
 struct ReferenceOptions {
     int threads = 0;  // 0 = hardware concurrency
     bool double_precision = false;
+    bool film_squares = false;  // the film keeps sums of squares (per-pixel variance)
 };
 
 // Renders the scene with its own render settings and camera resolution. The
 // image is bit-identical for any thread count. Throws std::invalid_argument
 // for a resolution or spp below 1 or a negative max_depth.
 RenderResult render_reference(const Scene& scene, const ReferenceOptions& options, const Progress& progress = {});
+
+// The reference as a FilmRenderer: its film sums each sample as the float
+// (or double) it computed. Throws as render_reference does.
+std::unique_ptr<FilmRenderer> make_reference_renderer(const Scene& scene, const ReferenceOptions& options);
 
 // Radiance of one camera sample, exactly as render_reference computes it
 // (its non-finite values dropped); Real is float or double.

@@ -9,14 +9,11 @@
 namespace wp {
 namespace {
 
-bool film_double(const DeviceInfo& device, const PipelineOptions& options) {
-    return device.fp64 && !options.float_film;
-}
-
-std::string program_options(const Scene& scene, bool film_double, const FeatureSet& kernel_features,
+std::string program_options(const Scene& scene, bool film_squares, const FeatureSet& kernel_features,
                             Compaction compaction, unsigned lanes) {
-    return kernel_build_options(kernel_features, film_double, scene.render.hemisphere) + shape_count_options(scene) +
-           " " + compaction_build_option(compaction) + " -DWP_LANES=" + std::to_string(lanes);
+    return kernel_build_options(kernel_features, scene.render.hemisphere) + film_build_options(film_squares) +
+           shape_count_options(scene) + " " + compaction_build_option(compaction) +
+           " -DWP_LANES=" + std::to_string(lanes);
 }
 
 }  // namespace
@@ -36,15 +33,13 @@ Pipeline::Pipeline(const Scene& scene, const DeviceInfo& device, std::size_t cap
       context_(device.device),
       queue_(context_, device.device, options.profile ? cl_command_queue_properties(CL_QUEUE_PROFILING_ENABLE) : 0),
       launcher_(queue_, options.profile),
-      program_(build_program(
-          context_, device, wavefront_kernel_files(),
-          program_options(scene, film_double(device, options), kernel_features, options.compaction, lanes_),
-          options.progress)),
+      program_(build_program(context_, device, wavefront_kernel_files(),
+                             program_options(scene, options.film_squares, kernel_features, options.compaction, lanes_),
+                             options.progress)),
       scene_(context_, flatten_scene(scene)),
       state_(context_, capacity, kernel_features),
       queues_(context_, queue_, program_.program, capacity, options.compaction),
-      film_(context_, queue_, program_.program, std::size_t(scene.camera.width) * scene.camera.height, scene.render.spp,
-            film_double(device, options)),
+      film_(context_, queue_, program_.program, scene.camera.width, scene.camera.height, options.film_squares),
       pass_radiance_(context_, CL_MEM_READ_WRITE, sizeof(float) * 3 * pass_capacity),
       slot_nonfinite_(context_, CL_MEM_READ_WRITE, sizeof(std::uint32_t) * WP_NONFINITE_STAGE_COUNT * capacity) {
     for (const char* name : stage_kernel_names) {
@@ -129,11 +124,13 @@ NonfiniteCounts Pipeline::take_nonfinite() {
 
 void Pipeline::accumulate() { film_.accumulate(launcher_, pass_start_, pass_size_, pass_radiance_); }
 
-std::vector<double> Pipeline::read_film() {
-    std::vector<double> sums = film_.read_sums(queue_);
+Film Pipeline::read_film(const ItemRange& items) {
+    Film film = film_.read(queue_, items);
     launcher_.time_finished(profile_);
-    return sums;
+    return film;
 }
+
+void Pipeline::load_film(const Film& film) { film_.load(queue_, film); }
 
 void Pipeline::read_rays_by_depth(RenderProfile& profile) {
     if (ray_depths_) ray_depths_->read(queue_, profile);

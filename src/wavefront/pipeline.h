@@ -33,9 +33,9 @@ namespace wp {
 struct PipelineOptions {
     bool profile = false;  // time every kernel with OpenCL events and count rays per depth (count_depths.cl)
     Compaction compaction = kDefaultCompaction;
-    unsigned lanes = 0;       // paths per work item in the stage kernels (1 or 8); 0: resolve_lanes' choice
-    Progress progress;        // told when the kernels are compiled (a program cache miss)
-    bool float_film = false;  // the compensated float film even where the device has fp64 (to test it)
+    unsigned lanes = 0;         // paths per work item in the stage kernels (1 or 8); 0: resolve_lanes' choice
+    Progress progress;          // told when the kernels are compiled (a program cache miss)
+    bool film_squares = false;  // the film keeps sums of squares (per-pixel variance)
 };
 
 static_assert(WP_NONFINITE_STAGE_COUNT == nonfinite_stage_names.size());
@@ -73,8 +73,9 @@ class Pipeline {
     NonfiniteCounts take_nonfinite();
     // Adds the drained pass's entries to the film, per pixel in sample order.
     void accumulate();
-    // Per-pixel RGB sums over all passes so far.
-    std::vector<double> read_film();
+    // The film so far, as the film of `items`; and replacing it.
+    Film read_film(const ItemRange& items);
+    void load_film(const Film& film);
 
     // Kernel launches and device times so far (profiling only; items are the scheduler's to fill in).
     RenderProfile& profile() { return profile_; }
@@ -119,7 +120,7 @@ class Pipeline {
     DeviceScene scene_;
     PathState state_;
     QueueSet queues_;
-    Film film_;
+    DeviceFilm film_;
     cl::Buffer pass_radiance_, slot_nonfinite_;
     std::vector<cl::Kernel> stages_;
     std::optional<RayDepthCounter> ray_depths_;  // profiling only

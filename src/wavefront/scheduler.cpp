@@ -22,12 +22,11 @@ DeviceCounts run_iteration(Pipeline& p, bool nee) {
 
 }  // namespace
 
-ScheduleTotals run_schedule(Pipeline& pipeline, std::uint64_t total, bool nee, const Progress& progress,
-                            std::vector<IterationRecord>& iterations) {
-    ScheduleTotals totals;
+void run_schedule(Pipeline& pipeline, const ItemRange& items, bool nee, const Progress& progress,
+                  ScheduleTotals& totals, std::vector<IterationRecord>& iterations) {
     std::uint64_t finished = 0;
-    for (std::uint64_t start = 0; start < total; start += pipeline.pass_capacity()) {
-        auto size = static_cast<std::uint32_t>(std::min<std::uint64_t>(pipeline.pass_capacity(), total - start));
+    for (std::uint64_t start = items.begin; start < items.end; start += pipeline.pass_capacity()) {
+        auto size = static_cast<std::uint32_t>(std::min<std::uint64_t>(pipeline.pass_capacity(), items.end - start));
         pipeline.begin_pass(start, size);
         std::uint32_t continuing = 0, issued = 0, free_slots = static_cast<std::uint32_t>(pipeline.capacity());
         for (;;) {
@@ -50,7 +49,7 @@ ScheduleTotals run_schedule(Pipeline& pipeline, std::uint64_t total, bool nee, c
             issued = now_issued;
             free_slots = r.finished;
             continuing = r.continuing;
-            progress.report(double(finished) / double(total));
+            progress.report(double(finished) / double(items.size()));
             if (issued == size && continuing == 0) {
                 NonfiniteCounts pass_nonfinite = pipeline.take_nonfinite();
                 for (std::size_t i = 0; i < pass_nonfinite.size(); ++i) totals.nonfinite[i] += pass_nonfinite[i];
@@ -59,7 +58,6 @@ ScheduleTotals run_schedule(Pipeline& pipeline, std::uint64_t total, bool nee, c
         }
         pipeline.accumulate();
     }
-    return totals;
 }
 
 }  // namespace wp

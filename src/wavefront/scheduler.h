@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/film.h"
 #include "core/render.h"
 #include "wavefront/pipeline.h"
 #include "wavefront/wavefront_renderer.h"
@@ -16,12 +17,12 @@ struct ScheduleTotals {
     NonfiniteCounts nonfinite{};  // per NonfiniteStage
 };
 
-// Renders work items [0, total) (w: pixel w % pixels, sample w / pixels) in
-// passes of at most pipeline.pass_capacity(): per pass, iterations of
-// generate, intersect, shade_direct, intersect_shadow, scatter until every
-// item is issued and every path has ended, then accumulate. Appends one
-// record per iteration.
-ScheduleTotals run_schedule(Pipeline& pipeline, std::uint64_t total, bool nee, const Progress& progress,
-                            std::vector<IterationRecord>& iterations);
+// Renders `items` (w: pixel w % pixels, sample w / pixels) in passes of at
+// most pipeline.pass_capacity(): per pass, iterations of generate,
+// intersect, shade_direct, intersect_shadow, scatter until every item is
+// issued and every path has ended, then accumulate. Adds to `totals` and
+// appends one record per iteration.
+void run_schedule(Pipeline& pipeline, const ItemRange& items, bool nee, const Progress& progress,
+                  ScheduleTotals& totals, std::vector<IterationRecord>& iterations);
 
 }  // namespace wp

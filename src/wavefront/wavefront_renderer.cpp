@@ -94,51 +94,90 @@ std::string WavefrontReport::explain() const {
     return out.str();
 }
 
+namespace {
+
+class WavefrontFilmRenderer : public FilmRenderer {
+ public:
+    WavefrontFilmRenderer(const Scene& scene, const WavefrontOptions& options, const Progress& progress,
+                          WavefrontReport* report, std::uint64_t max_items)
+        : device_(choose_device(options.device)),
+          features_(options.specialise ? scene.features() : every_shape_and_material(scene.features())),
+          wavefront_(options.wavefront
+                         ? options.wavefront
+                         : default_wavefront_size(max_items, PathState::bytes_per_path(scene.features()), device_)),
+          pipeline_(scene, device_, wavefront_, std::min<std::uint64_t>(max_items, kPassesPerWavefront * wavefront_),
+                    features_, {options.profile, options.compaction, options.lanes, progress, options.film_squares}),
+          profile_(options.profile),
+          report_(report ? *report : local_report_) {
+        WavefrontReport& r = report_;
+        r.device = device_.name + " (" + device_.platform + ")";
+        r.features = describe_features(features_);
+        r.build_options = pipeline_.program().options;
+        r.cache_hit = pipeline_.program().cache_hit;
+        r.build_seconds = pipeline_.program().build_seconds;
+        r.cache_file = pipeline_.program().cache_file;
+        r.lanes = pipeline_.lanes();
+        r.wavefront = wavefront_;
+        r.pass_capacity = pipeline_.pass_capacity();
+        r.state_bytes_per_path = pipeline_.state().bytes_per_path();
+        r.meshes = pipeline_.device_scene().meshes().describe();
+    }
+
+    std::uint64_t pass_items() const override { return pipeline_.pass_capacity(); }
+
+    RenderStats stats() const override {
+        RenderStats stats;
+        stats.extension_rays = totals_.extension_rays;
+        stats.shadow_rays = totals_.shadow_rays;
+        stats.add_nonfinite(totals_.nonfinite);
+        return stats;
+    }
+
+    void finish(double render_seconds) override {
+        if (!profile_) return;
+        WavefrontReport& r = report_;
+        r.profile = pipeline_.profile();
+        fill_profile(r.profile, r.iterations, samples_, wavefront_);
+        r.profile.render_s = render_seconds;
+        r.profile.build_s = r.build_seconds;
+        pipeline_.read_rays_by_depth(r.profile);
+        r.profile.intersect_bound_rays_per_s = pipeline_.measure_intersect_bound(kIntersectBoundRays).rays_per_s;
+    }
+
+ protected:
+    void render_items(const ItemRange& items, const Progress& progress) override {
+        run_schedule(pipeline_, items, features_.nee, progress, totals_, report_.iterations);
+        samples_ += items.size();
+    }
+    Film read_film(const ItemRange& items) override { return pipeline_.read_film(items); }
+    void load_film(const Film& film) override { pipeline_.load_film(film); }
+
+ private:
+    DeviceInfo device_;
+    FeatureSet features_;
+    std::size_t wavefront_;
+    Pipeline pipeline_;
+    bool profile_;
+    WavefrontReport local_report_;
+    WavefrontReport& report_;
+    ScheduleTotals totals_;
+    std::uint64_t samples_ = 0;
+};
+
+}  // namespace
+
+std::unique_ptr<FilmRenderer> make_wavefront_renderer(const Scene& scene, const WavefrontOptions& options,
+                                                      const Progress& progress, WavefrontReport* report,
+                                                      std::uint64_t max_items) {
+    const std::uint64_t every_item = std::uint64_t(scene.camera.width) * scene.camera.height * scene.render.spp;
+    return std::make_unique<WavefrontFilmRenderer>(scene, options, progress, report,
+                                                   max_items ? max_items : every_item);
+}
+
 RenderResult render_wavefront(const Scene& scene, const WavefrontOptions& options, const Progress& progress,
                               WavefrontReport* report) {
-    DeviceInfo device = choose_device(options.device);
-    const Camera& camera = scene.camera;
-    std::uint64_t total = std::uint64_t(camera.width) * camera.height * scene.render.spp;
-    std::size_t wavefront = options.wavefront
-                                ? options.wavefront
-                                : default_wavefront_size(total, PathState::bytes_per_path(scene.features()), device);
-    FeatureSet features = options.specialise ? scene.features() : every_shape_and_material(scene.features());
-    Pipeline pipeline(scene, device, wavefront, std::min<std::uint64_t>(total, kPassesPerWavefront * wavefront),
-                      features, {options.profile, options.compaction, options.lanes, progress, options.float_film});
-
-    WavefrontReport local_report;
-    WavefrontReport& r = report ? *report : local_report;
-    r.device = device.name + " (" + device.platform + ")";
-    r.features = describe_features(features);
-    r.build_options = pipeline.program().options;
-    r.cache_hit = pipeline.program().cache_hit;
-    r.build_seconds = pipeline.program().build_seconds;
-    r.cache_file = pipeline.program().cache_file;
-    r.lanes = pipeline.lanes();
-    r.wavefront = wavefront;
-    r.pass_capacity = pipeline.pass_capacity();
-    r.state_bytes_per_path = pipeline.state().bytes_per_path();
-    r.meshes = pipeline.device_scene().meshes().describe();
-
-    auto render_start = std::chrono::steady_clock::now();  // time_s leaves out device setup and the build
-    progress.report(0.0);
-    ScheduleTotals totals = run_schedule(pipeline, total, features.nee, progress, r.iterations);
-    RenderResult result;
-    result.image = film_to_image(pipeline.read_film(), camera.width, camera.height, scene.render.spp);
-    result.stats.samples = total;
-    result.stats.extension_rays = totals.extension_rays;
-    result.stats.shadow_rays = totals.shadow_rays;
-    result.stats.add_nonfinite(totals.nonfinite);
-    result.stats.time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - render_start).count();
-    if (options.profile) {
-        r.profile = pipeline.profile();
-        fill_profile(r.profile, r.iterations, total, wavefront);
-        r.profile.render_s = result.stats.time_s;
-        r.profile.build_s = r.build_seconds;
-        pipeline.read_rays_by_depth(r.profile);
-        r.profile.intersect_bound_rays_per_s = pipeline.measure_intersect_bound(kIntersectBoundRays).rays_per_s;
-    }
-    return result;
+    std::unique_ptr<FilmRenderer> renderer = make_wavefront_renderer(scene, options, progress, report);
+    return render_every_item(*renderer, scene.camera.width, scene.camera.height, scene.render.spp, progress);
 }
 
 }  // namespace wp

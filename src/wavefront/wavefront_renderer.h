@@ -3,9 +3,11 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
+#include "core/film_renderer.h"
 #include "core/render.h"
 #include "opencl/device.h"
 #include "opencl/profile.h"
@@ -20,8 +22,8 @@ struct WavefrontOptions {
     bool specialise = true;     // compile only the scene's features (false: every shape and material, for comparison)
     bool profile = false;       // time every kernel (WavefrontReport::profile)
     Compaction compaction = kDefaultCompaction;
-    unsigned lanes = 0;       // paths per work item in the stage kernels (1 or 8); 0 = resolve_lanes' choice
-    bool float_film = false;  // the compensated float film even where the device has fp64 (to test it)
+    unsigned lanes = 0;         // paths per work item in the stage kernels (1 or 8); 0 = resolve_lanes' choice
+    bool film_squares = false;  // the film keeps sums of squares (per-pixel variance, --target-error)
 };
 
 // Queue lengths of one iteration of the stage loop, for the profiler.
@@ -58,6 +60,14 @@ struct WavefrontReport {
 // Renders on OpenCL; throws DeviceError (no device, kernel build failure).
 RenderResult render_wavefront(const Scene& scene, const WavefrontOptions& options, const Progress& progress,
                               WavefrontReport* report = nullptr);
+
+// The wavefront as a FilmRenderer: the device is chosen and the kernels built
+// here; `report` (if any) is filled now and, for the profile, by finish().
+// `max_items` (the most work items it will render, 0: pixels x spp) sizes
+// the automatic wavefront. Throws DeviceError.
+std::unique_ptr<FilmRenderer> make_wavefront_renderer(const Scene& scene, const WavefrontOptions& options,
+                                                      const Progress& progress, WavefrontReport* report = nullptr,
+                                                      std::uint64_t max_items = 0);
 
 // The automatic --wavefront size: up to 2^16 paths on a CPU and 2^20 on
 // other devices, no more than the work (pixels x spp), and the state within

@@ -32,6 +32,10 @@ TEST(Progress, BarShowsFillPercentAndEta) {
 TEST(Progress, LineShowsPercentAndEta) {
     EXPECT_EQ(format_progress_line(0.4, 20.0, 30.0), "wavepath: 40% done, 20s elapsed, ETA 30s");
     EXPECT_EQ(format_progress_line(0.0, 20.0, -1.0), "wavepath: 0% done, 20s elapsed, ETA --");
+    EXPECT_EQ(format_progress_line(0.4, 20.0, 30.0, "25.6/64 spp"),
+              "wavepath: 40% done, 25.6/64 spp, 20s elapsed, ETA 30s");
+    EXPECT_EQ(format_progress_bar(0.25, 10.0, 30.0, "16.0/64 spp"),
+              "[#######-----------------------]  25.0%  16.0/64 spp  elapsed 10s  ETA 30s");
 }
 
 TEST(Progress, EtaExtrapolatesTheRateSinceTheFirstSamples) {
@@ -140,13 +144,19 @@ TEST(Progress, ConcurrentUpdatesAreSafe) {
 }
 
 RunSummary example_summary() {
-    RunSummary summary{"reference", "out/room.png", 640, 480, 16, {}};
+    RunSummary summary{"reference", "out/room.png", 640, 480, 16, 16, 16, "done", -1.0, {}};
     summary.stats.time_s = 2.0;
     summary.stats.samples = 640ull * 480 * 16;  // 4915200
     summary.stats.extension_rays = 12'000'000;
     summary.stats.shadow_rays = 5'000'000;
     summary.stats.add_nonfinite({1, 0, 2});
     return summary;
+}
+
+TEST(Progress, SppDoneFollowsThePlan) {
+    EXPECT_EQ(format_spp_done({0.0, 64.0, 0.0}, 0.25), "16.0/64 spp");
+    EXPECT_EQ(format_spp_done({8.0, 16.0, 0.0}, 0.5), "12.0/16 spp");  // resumed at 8 spp
+    EXPECT_EQ(format_spp_done({}, 0.5), "");
 }
 
 TEST(Summary, LineHasTimeRatesNonfiniteAndPath) {
@@ -162,12 +172,33 @@ TEST(Summary, LineLeavesOutTheStagesWhenNothingWasDropped) {
     EXPECT_TRUE(format_summary_line(summary).ends_with(", 0 non-finite values")) << format_summary_line(summary);
 }
 
+TEST(Summary, LineSaysWhatAnEarlyStopLeftThePixels) {
+    RunSummary summary = example_summary();
+    summary.spp_min = 12;
+    summary.spp_max = 13;
+    summary.stopped = "time budget";
+    EXPECT_NE(format_summary_line(summary).find("(640x480, 12-13 of 16 spp, stopped: time budget, reference)"),
+              std::string::npos)
+        << format_summary_line(summary);
+    summary.spp_max = 12;
+    summary.stopped = "interrupted";
+    EXPECT_NE(format_summary_line(summary).find("(640x480, 12 of 16 spp, stopped: interrupted, reference)"),
+              std::string::npos)
+        << format_summary_line(summary);
+}
+
 TEST(Summary, StatsJsonHasTheFiguresAndRates) {
     const nlohmann::json stats = stats_json(example_summary());
     EXPECT_EQ(stats["backend"], "reference");
     EXPECT_EQ(stats["width"], 640);
     EXPECT_EQ(stats["height"], 480);
     EXPECT_EQ(stats["spp"], 16);
+    EXPECT_EQ(stats["spp_done_min"], 16u);
+    EXPECT_EQ(stats["spp_done_max"], 16u);
+    EXPECT_EQ(stats["stopped"], "done");
+    EXPECT_TRUE(stats["error_estimate"].is_null());
+    EXPECT_EQ(stats["ranks"], 1);
+    EXPECT_EQ(stats["samples_per_rank"], (nlohmann::json{4915200u}));
     EXPECT_EQ(stats["time_s"], 2.0);
     EXPECT_EQ(stats["samples"], 4915200u);
     EXPECT_EQ(stats["samples_per_s"], 2457600.0);

@@ -2,13 +2,11 @@
 
 #include <fcntl.h>
 #include <gtest/gtest.h>
+#include <signal.h>
 #include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include <algorithm>
-#include <fstream>
-#include <sstream>
 #include <stdexcept>
 
 extern char** environ;
@@ -17,7 +15,7 @@ namespace wp::test {
 
 namespace fs = std::filesystem;
 
-CommandResult run_wavepath(const std::vector<std::string>& args, const fs::path& scratch) {
+RunningWavepath::RunningWavepath(const std::vector<std::string>& args, const fs::path& scratch) : scratch_(scratch) {
     const fs::path out_file = scratch / "stdout.txt", err_file = scratch / "stderr.txt";
     posix_spawn_file_actions_t actions;
     posix_spawn_file_actions_init(&actions);
@@ -30,13 +28,24 @@ CommandResult run_wavepath(const std::vector<std::string>& args, const fs::path&
     for (std::string& arg : argv_strings) argv.push_back(arg.data());
     argv.push_back(nullptr);
 
-    pid_t pid = 0;
-    const int spawn_error = posix_spawn(&pid, WAVEPATH_BINARY, &actions, nullptr, argv.data(), environ);
+    const int spawn_error = posix_spawn(&pid_, WAVEPATH_BINARY, &actions, nullptr, argv.data(), environ);
     posix_spawn_file_actions_destroy(&actions);
     if (spawn_error != 0) throw std::runtime_error("cannot start " WAVEPATH_BINARY);
-    int status = 0;
-    waitpid(pid, &status, 0);
+}
 
+RunningWavepath::~RunningWavepath() {
+    if (pid_ <= 0) return;
+    ::kill(pid_, SIGKILL);
+    waitpid(pid_, nullptr, 0);
+}
+
+void RunningWavepath::send(int signal) { ::kill(pid_, signal); }
+
+CommandResult RunningWavepath::wait() {
+    int status = 0;
+    waitpid(pid_, &status, 0);
+    pid_ = -1;
+    const fs::path out_file = scratch_ / "stdout.txt", err_file = scratch_ / "stderr.txt";
     CommandResult result;
     result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
     result.out = read_text(out_file);
@@ -46,34 +55,8 @@ CommandResult run_wavepath(const std::vector<std::string>& args, const fs::path&
     return result;
 }
 
-TempDirectory::TempDirectory(const std::string& label) {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    std::string test_name = info ? std::string(info->test_suite_name()) + "-" + info->name() : "none";
-    std::replace(test_name.begin(), test_name.end(), '/', '_');  // parameterised names contain '/'
-    path_ = fs::temp_directory_path() / ("wavepath-cli-" + std::to_string(::getpid()) + "-" + test_name + "-" + label);
-    fs::remove_all(path_);
-    fs::create_directories(path_);
+CommandResult run_wavepath(const std::vector<std::string>& args, const fs::path& scratch) {
+    return RunningWavepath(args, scratch).wait();
 }
-
-TempDirectory::~TempDirectory() {
-    std::error_code ignored;
-    fs::remove_all(path_, ignored);
-}
-
-std::vector<std::string> TempDirectory::entries() const {
-    std::vector<std::string> names;
-    for (const auto& entry : fs::directory_iterator(path_)) names.push_back(entry.path().filename());
-    std::sort(names.begin(), names.end());
-    return names;
-}
-
-std::string read_text(const fs::path& file) {
-    std::ifstream in(file);
-    std::stringstream text;
-    text << in.rdbuf();
-    return text.str();
-}
-
-void write_text(const fs::path& file, const std::string& text) { std::ofstream(file) << text; }
 
 }  // namespace wp::test

@@ -1,9 +1,13 @@
 // Runs the real wavepath binary and captures what it says and returns.
 #pragma once
 
+#include <sys/types.h>
+
 #include <filesystem>
 #include <string>
 #include <vector>
+
+#include "support/temp_directory.h"
 
 namespace wp::test {
 
@@ -16,24 +20,20 @@ struct CommandResult {
 // in `scratch` (which must exist and is left as it was).
 CommandResult run_wavepath(const std::vector<std::string>& args, const std::filesystem::path& scratch);
 
-// A fresh, empty directory for the running test, named after it and
-// `label`, removed by the destructor.
-class TempDirectory {
+// A wavepath process started with `args` (output captured as run_wavepath
+// does) and not yet waited for: for signals.
+class RunningWavepath {
  public:
-    explicit TempDirectory(const std::string& label);
-    ~TempDirectory();
-    TempDirectory(const TempDirectory&) = delete;
-    TempDirectory& operator=(const TempDirectory&) = delete;
-    const std::filesystem::path& path() const { return path_; }
-    std::string operator/(const std::string& name) const { return (path_ / name).string(); }
-    // File names in the directory, sorted (hidden temporaries included).
-    std::vector<std::string> entries() const;
+    RunningWavepath(const std::vector<std::string>& args, const std::filesystem::path& scratch);
+    ~RunningWavepath();  // kills and reaps the process if wait() was not called
+    RunningWavepath(const RunningWavepath&) = delete;
+    RunningWavepath& operator=(const RunningWavepath&) = delete;
+    void send(int signal);
+    CommandResult wait();
 
  private:
-    std::filesystem::path path_;
+    std::filesystem::path scratch_;
+    pid_t pid_ = -1;
 };
-
-std::string read_text(const std::filesystem::path& file);
-void write_text(const std::filesystem::path& file, const std::string& text);
 
 }  // namespace wp::test

@@ -54,8 +54,7 @@ FeatureSet diffuse_spheres() {
 
 BuiltProgram build_wavefront(const DeviceInfo& device, const FeatureSet& features) {
     cl::Context context(device.device);
-    return build_program(context, device, wavefront_kernel_files(),
-                         kernel_build_options(features, device.fp64, Hemisphere::Cosine));
+    return build_program(context, device, wavefront_kernel_files(), kernel_build_options(features, Hemisphere::Cosine));
 }
 
 TEST(Devices, ListedWithTheirProperties) {
@@ -155,7 +154,7 @@ TEST(ProgramBuild, SceneWithoutGlassBuildsWithoutDielectricCode) {
     ScopedEnv cache_env("WAVEPATH_CACHE_DIR", cache.path.string());
     FeatureSet no_glass = diffuse_spheres();
     no_glass.mirror = true;
-    std::string options = kernel_build_options(no_glass, false, Hemisphere::Cosine);
+    std::string options = kernel_build_options(no_glass, Hemisphere::Cosine);
     EXPECT_EQ(options.find("GLASS"), std::string::npos) << options;
     DeviceInfo device = choose_device("");
     EXPECT_NO_THROW(build_wavefront(device, no_glass));

@@ -1,0 +1,113 @@
+#include "core/film.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace wp {
+
+namespace {
+
+// Items w < x with w % pixels == pixel.
+std::uint64_t items_below(std::uint64_t x, std::uint64_t pixels, std::uint64_t pixel) {
+    return x / pixels + (x % pixels > pixel ? 1 : 0);
+}
+
+std::vector<film_sum> zero_sums(std::uint64_t pixels) {
+    return std::vector<film_sum>(kFilmChannels * pixels, film_sum_zero());
+}
+
+}  // namespace
+
+std::uint64_t samples_of_pixel(const ItemRange& items, std::uint64_t pixels, std::uint64_t pixel) {
+    return items_below(items.end, pixels, pixel) - items_below(items.begin, pixels, pixel);
+}
+
+Film Film::empty(int width, int height, std::uint64_t at, bool with_squares) {
+    Film film;
+    film.width = width;
+    film.height = height;
+    film.items = {at, at};
+    film.sums = zero_sums(film.pixel_count());
+    if (with_squares) film.squares = zero_sums(film.pixel_count());
+    return film;
+}
+
+std::uint64_t Film::samples_of(std::uint64_t pixel) const { return samples_of_pixel(items, pixel_count(), pixel); }
+
+// samples_of is constant on the pixels below, between and above begin % P
+// and end % P, so the extremes are among those two pixels, 0 and P - 1.
+std::uint64_t Film::min_samples() const {
+    std::uint64_t least = items.size() / pixel_count() + 1;
+    for (std::uint64_t p :
+         {std::uint64_t(0), pixel_count() - 1, items.begin % pixel_count(), items.end % pixel_count()})
+        least = std::min(least, samples_of(p));
+    return least;
+}
+
+std::uint64_t Film::max_samples() const {
+    std::uint64_t most = 0;
+    for (std::uint64_t p :
+         {std::uint64_t(0), pixel_count() - 1, items.begin % pixel_count(), items.end % pixel_count()})
+        most = std::max(most, samples_of(p));
+    return most;
+}
+
+void Film::append(const Film& next) {
+    if (next.width != width || next.height != height)
+        throw std::invalid_argument("films of different sizes: " + std::to_string(width) + "x" +
+                                    std::to_string(height) + " and " + std::to_string(next.width) + "x" +
+                                    std::to_string(next.height));
+    if (next.items.begin != items.end)
+        throw std::invalid_argument("films not adjacent: one ends at work item " + std::to_string(items.end) +
+                                    ", the next starts at " + std::to_string(next.items.begin));
+    if (next.squares.empty() != squares.empty())
+        throw std::invalid_argument("one film has second moments and the other has not");
+    for (std::size_t i = 0; i < sums.size(); ++i) sums[i] = film_sum_add(sums[i], next.sums[i]);
+    for (std::size_t i = 0; i < squares.size(); ++i) squares[i] = film_sum_add(squares[i], next.squares[i]);
+    items.end = next.items.end;
+}
+
+Image Film::image() const {
+    Image image{width, height, std::vector<float>(sums.size())};
+    for (std::uint64_t p = 0; p < pixel_count(); ++p) {
+        std::uint64_t count = samples_of(p);
+        for (int c = 0; c < kFilmChannels; ++c) {
+            std::size_t i = kFilmChannels * p + c;
+            image.rgb[i] = count == 0 ? 0.0f : static_cast<float>(film_sum_to_double(sums[i]) / double(count));
+        }
+    }
+    return image;
+}
+
+// The top 64 bits of the magnitude from its highest set bit, with every bit
+// below them ORed into the lowest (a sticky bit), round once to a double.
+double film_sum_to_double(const film_sum& sum) {
+    const bool negative = (sum.limb[WP_FILM_LIMBS - 1] >> 63) != 0;
+    const film_sum magnitude = negative ? film_sum_negate(sum) : sum;
+    int top = WP_FILM_LIMBS - 1;
+    while (top >= 0 && magnitude.limb[top] == 0) --top;
+    if (top < 0) return 0.0;
+    const int lead = 64 - film_bit_length(magnitude.limb[top]);  // leading zeros of the top limb
+    std::uint64_t window = magnitude.limb[top] << lead;
+    bool sticky = false;
+    if (top > 0) {
+        if (lead != 0) window |= magnitude.limb[top - 1] >> (64 - lead);
+        sticky = (magnitude.limb[top - 1] << lead) != 0;
+        for (int i = top - 2; i >= 0; --i) sticky = sticky || magnitude.limb[i] != 0;
+    }
+    const double value =
+        std::ldexp(static_cast<double>(window | (sticky ? 1 : 0)), 64 * top - lead - WP_FILM_FRACTION_BITS);
+    return negative ? -value : value;
+}
+
+film_sum film_sum_from_double(double value) {
+    if (!std::isfinite(value)) return film_sum_from_scaled(1, WP_FILM_CLAMP_BITS, value < 0);
+    int exponent = 0;
+    const double fraction = std::frexp(std::fabs(value), &exponent);  // in [0.5, 1)
+    const auto m = static_cast<film_limb>(std::ldexp(fraction, 53));
+    return film_sum_from_scaled(m, exponent - 53, value < 0);
+}
+
+}  // namespace wp

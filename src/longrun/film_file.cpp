@@ -1,0 +1,194 @@
+#include "longrun/film_file.h"
+
+#include <algorithm>
+#include <array>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+#include <vector>
+
+#include "core/atomic_file.h"
+#include "scene/limits.h"
+
+namespace wp {
+
+namespace {
+
+constexpr std::array<char, 8> kMagic{'W', 'P', 'F', 'I', 'L', 'M', '\r', '\n'};
+constexpr std::size_t kEstimatorBytes = 16;
+constexpr std::uint32_t kFlagSquares = 1;
+constexpr std::size_t kHeaderBytes = 8 + 4 + 4 + 8 + 8 + kEstimatorBytes + 4 + 4 + 8 + 8 + 4 + 4;
+constexpr std::size_t kChecksumBytes = 8;
+
+class Writer {
+ public:
+    template <class T>
+    void put(const T& value) {
+        const auto* bytes = reinterpret_cast<const char*>(&value);
+        bytes_.insert(bytes_.end(), bytes, bytes + sizeof value);
+    }
+    void put_bytes(const void* data, std::size_t size) {
+        const auto* bytes = static_cast<const char*>(data);
+        bytes_.insert(bytes_.end(), bytes, bytes + size);
+    }
+    std::vector<char>& bytes() { return bytes_; }
+
+ private:
+    std::vector<char> bytes_;
+};
+
+class Reader {
+ public:
+    explicit Reader(const std::vector<char>& bytes) : bytes_(bytes) {}
+    template <class T>
+    T get() {
+        T value;
+        std::memcpy(&value, bytes_.data() + at_, sizeof value);
+        at_ += sizeof value;
+        return value;
+    }
+    void get_bytes(void* data, std::size_t size) {
+        std::memcpy(data, bytes_.data() + at_, size);
+        at_ += size;
+    }
+
+ private:
+    const std::vector<char>& bytes_;
+    std::size_t at_ = 0;
+};
+
+std::vector<char> encode(const FilmFile& file) {
+    const Film& film = file.film;
+    Writer w;
+    w.put_bytes(kMagic.data(), kMagic.size());
+    w.put(kFilmFileVersion);
+    w.put(std::uint32_t(film.squares.empty() ? 0 : kFlagSquares));
+    w.put(file.identity.scene);
+    w.put(file.identity.settings);
+    std::array<char, kEstimatorBytes> estimator{};
+    std::copy_n(file.identity.estimator.begin(), std::min(file.identity.estimator.size(), kEstimatorBytes - 1),
+                estimator.begin());
+    w.put_bytes(estimator.data(), estimator.size());
+    w.put(std::uint32_t(film.width));
+    w.put(std::uint32_t(film.height));
+    w.put(film.items.begin);
+    w.put(film.items.end);
+    w.put(std::uint32_t(WP_FILM_LIMBS));
+    w.put(std::uint32_t(WP_FILM_FRACTION_BITS));
+    w.put_bytes(film.sums.data(), sizeof(film_sum) * film.sums.size());
+    w.put_bytes(film.squares.data(), sizeof(film_sum) * film.squares.size());
+    w.put(fnv1a64(w.bytes().data(), w.bytes().size()));
+    return std::move(w.bytes());
+}
+
+[[noreturn]] void refuse(const std::string& path, const std::string& problem) {
+    throw FilmFileError(path + ": " + problem);
+}
+
+std::vector<char> read_bytes(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) refuse(path, "cannot read the film file");
+    std::vector<char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (in.bad()) refuse(path, "cannot read the film file");
+    return bytes;
+}
+
+// Magic and version first: a newer version may lay out the rest otherwise.
+void check_magic_and_version(const std::string& path, const std::vector<char>& bytes) {
+    if (bytes.size() < kMagic.size() || !std::equal(kMagic.begin(), kMagic.end(), bytes.begin()))
+        refuse(path, "not a wavepath film file (no WPFILM signature)");
+    if (bytes.size() < kMagic.size() + 4) refuse(path, "truncated (" + std::to_string(bytes.size()) + " bytes)");
+    std::uint32_t version;
+    std::memcpy(&version, bytes.data() + kMagic.size(), sizeof version);
+    if (version > kFilmFileVersion)
+        refuse(path, "film format version " + std::to_string(version) + " is newer than this wavepath reads (" +
+                         std::to_string(kFilmFileVersion) + ")");
+    if (version == 0) refuse(path, "film format version 0 does not exist");
+}
+
+}  // namespace
+
+bool is_film_path(const std::string& path) {
+    const std::string ext = kFilmFileExtension;
+    return path.size() >= ext.size() && path.compare(path.size() - ext.size(), ext.size(), ext) == 0;
+}
+
+void write_film_file(const std::string& path, const FilmFile& file) {
+    const std::vector<char> bytes = encode(file);
+    write_atomically(path, [&](const std::filesystem::path& temporary) {
+        std::ofstream out(temporary, std::ios::binary);
+        out.write(bytes.data(), std::streamsize(bytes.size()));
+        out.close();
+        if (!out) throw OutputError("cannot write " + path + ": write failed (disk full?)");
+    });
+}
+
+FilmFile read_film_file(const std::string& path) {
+    const std::vector<char> bytes = read_bytes(path);
+    check_magic_and_version(path, bytes);
+    if (bytes.size() < kHeaderBytes + kChecksumBytes)
+        refuse(path, "truncated (" + std::to_string(bytes.size()) + " bytes, shorter than the header)");
+    Reader r(bytes);
+    FilmFile file;
+    Film& film = file.film;
+    r.get<std::array<char, 8>>();
+    r.get<std::uint32_t>();
+    const auto flags = r.get<std::uint32_t>();
+    file.identity.scene = r.get<std::uint64_t>();
+    file.identity.settings = r.get<std::uint64_t>();
+    const auto estimator = r.get<std::array<char, kEstimatorBytes>>();
+    file.identity.estimator.assign(estimator.data(), strnlen(estimator.data(), kEstimatorBytes));
+    const auto width = r.get<std::uint32_t>(), height = r.get<std::uint32_t>();
+    film.items.begin = r.get<std::uint64_t>();
+    film.items.end = r.get<std::uint64_t>();
+    const auto limbs = r.get<std::uint32_t>(), fraction_bits = r.get<std::uint32_t>();
+
+    // Sizes from the header are only trusted once bounded.
+    if (width < 1 || height < 1 || width > std::uint32_t(kMaxResolution) || height > std::uint32_t(kMaxResolution) ||
+        std::uint64_t(width) * height > std::uint64_t(kMaxPixels))
+        refuse(path, "corrupted header (size " + std::to_string(width) + "x" + std::to_string(height) + ")");
+    const bool squares = (flags & kFlagSquares) != 0;
+    const std::uint64_t sums = std::uint64_t(kFilmChannels) * width * height * (squares ? 2 : 1);
+    const std::uint64_t expected = kHeaderBytes + sizeof(film_sum) * sums + kChecksumBytes;
+    if (bytes.size() < expected)
+        refuse(path, "truncated (" + std::to_string(bytes.size()) + " bytes of " + std::to_string(expected) + ")");
+    if (bytes.size() > expected)
+        refuse(path, "corrupted (" + std::to_string(bytes.size() - expected) + " bytes after the checksum)");
+    std::uint64_t stored;
+    std::memcpy(&stored, bytes.data() + expected - kChecksumBytes, sizeof stored);
+    if (stored != fnv1a64(bytes.data(), expected - kChecksumBytes)) refuse(path, "corrupted (checksum mismatch)");
+    if (flags & ~kFlagSquares) refuse(path, "unknown flags " + std::to_string(flags));
+    if (limbs != WP_FILM_LIMBS || fraction_bits != WP_FILM_FRACTION_BITS)
+        refuse(path, "film sums of " + std::to_string(limbs) + " limbs and " + std::to_string(fraction_bits) +
+                         " fraction bits, this wavepath keeps " + std::to_string(WP_FILM_LIMBS) + " and " +
+                         std::to_string(WP_FILM_FRACTION_BITS));
+    if (film.items.begin > film.items.end || film.items.end > std::uint64_t(kMaxSpp) * width * height)
+        refuse(path, "corrupted header (work items " + std::to_string(film.items.begin) + " to " +
+                         std::to_string(film.items.end) + ")");
+
+    film.width = int(width);
+    film.height = int(height);
+    film.sums.resize(std::uint64_t(kFilmChannels) * width * height);
+    r.get_bytes(film.sums.data(), sizeof(film_sum) * film.sums.size());
+    if (squares) {
+        film.squares.resize(film.sums.size());
+        r.get_bytes(film.squares.data(), sizeof(film_sum) * film.squares.size());
+    }
+    return file;
+}
+
+void check_film_matches(const std::string& path, const FilmFile& file, const RenderIdentity& identity, int width,
+                        int height) {
+    const Film& film = file.film;
+    if (film.width != width || film.height != height)
+        refuse(path, "a film of " + std::to_string(film.width) + "x" + std::to_string(film.height) +
+                         " pixels, this render is " + std::to_string(width) + "x" + std::to_string(height));
+    if (file.identity.estimator != identity.estimator)
+        refuse(path,
+               "rendered by the " + file.identity.estimator + " estimator, this render uses " + identity.estimator);
+    if (file.identity.scene != identity.scene) refuse(path, "rendered from another scene (its content differs)");
+    if (file.identity.settings != identity.settings)
+        refuse(path, "rendered with other settings (max_depth, rr_depth, seed, nee or hemisphere differ)");
+}
+
+}  // namespace wp

@@ -1,0 +1,52 @@
+// Film files (.wpfilm): checkpoints and partial films, one format.
+//
+// Little-endian, in this order (docs/long-renders.md, "Film files"):
+//   magic "WPFILM\r\n" (8 bytes), format version (u32), flags (u32; bit 0:
+//   sums of squares follow the sums), scene hash (u64), settings hash (u64),
+//   estimator (16 bytes, ASCII, zero-padded), width (u32), height (u32),
+//   first work item (u64), end work item (u64), limbs per sum (u32), fraction
+//   bits (u32), then the sums (3 per pixel, each WP_FILM_LIMBS u64 limbs,
+//   least significant first), the squares if flagged, and last the FNV-1a 64
+//   checksum (u64) of every byte before it.
+// The film's range says everything else: pixel p holds the samples s with
+// first <= s * pixels + p < end, so the next work item of a checkpoint is its
+// end, and each pixel's sample count follows from the range.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "core/film.h"
+#include "longrun/render_identity.h"
+
+namespace wp {
+
+inline constexpr std::uint32_t kFilmFileVersion = 1;
+inline constexpr const char* kFilmFileExtension = ".wpfilm";
+
+// A film file that cannot be used: unreadable, not a film file, truncated,
+// corrupted, of a newer version, or made by another render. One line naming
+// the file; the CLI exits 3 for it.
+class FilmFileError : public std::runtime_error {
+ public:
+    using std::runtime_error::runtime_error;
+};
+
+struct FilmFile {
+    RenderIdentity identity;
+    Film film;
+};
+
+// Writes atomically (throws OutputError).
+void write_film_file(const std::string& path, const FilmFile& file);
+// Throws FilmFileError.
+FilmFile read_film_file(const std::string& path);
+
+// Throws FilmFileError unless `file` was made by a render of `identity` at
+// `width` x `height`: "<path>: made from another scene ..." and the like.
+void check_film_matches(const std::string& path, const FilmFile& file, const RenderIdentity& identity, int width,
+                        int height);
+
+bool is_film_path(const std::string& path);
+
+}  // namespace wp

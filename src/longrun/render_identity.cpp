@@ -1,0 +1,74 @@
+#include "longrun/render_identity.h"
+
+#include <type_traits>
+
+namespace wp {
+
+std::uint64_t fnv1a64(const void* data, std::size_t size, std::uint64_t hash) {
+    const auto* bytes = static_cast<const unsigned char*>(data);
+    for (std::size_t i = 0; i < size; ++i) {
+        hash ^= bytes[i];
+        hash *= 0x100000001b3ull;
+    }
+    return hash;
+}
+
+namespace {
+
+// Feeds values to FNV-1a 64 by their bytes (the host's, little-endian here;
+// film files are read back on the same kind of host).
+class Hasher {
+ public:
+    template <class T>
+    Hasher& add(const T& value) {
+        static_assert(std::is_arithmetic_v<T> || std::is_enum_v<T>);
+        hash_ = fnv1a64(&value, sizeof value, hash_);
+        return *this;
+    }
+    Hasher& add(const glm::dvec3& v) { return add(v.x).add(v.y).add(v.z); }
+    Hasher& add(const glm::uvec3& v) { return add(v.x).add(v.y).add(v.z); }
+    template <class T>
+    Hasher& add_all(const std::vector<T>& values) {
+        add(values.size());
+        for (const T& v : values) add(v);
+        return *this;
+    }
+    std::uint64_t value() const { return hash_; }
+
+ private:
+    std::uint64_t hash_ = kFnvOffset;
+};
+
+void add_material(Hasher& h, const Material& m) {
+    h.add(m.type).add(m.albedo).add(m.reflectance).add(m.ior).add(m.emission).add(m.two_sided);
+}
+
+std::uint64_t scene_hash(const Scene& scene) {
+    Hasher h;
+    const Camera& c = scene.camera;
+    h.add(c.position).add(c.look_at).add(c.up).add(c.fov_y_degrees).add(c.width).add(c.height);
+    h.add(scene.background);
+    h.add(scene.materials.size());
+    for (const Material& m : scene.materials) add_material(h, m);
+    h.add(scene.spheres.size());
+    for (const Sphere& s : scene.spheres) h.add(s.center).add(s.radius).add(s.material);
+    h.add(scene.planes.size());
+    for (const Plane& p : scene.planes) h.add(p.point).add(p.normal).add(p.material);
+    h.add(scene.quads.size());
+    for (const Quad& q : scene.quads) h.add(q.corner).add(q.edge1).add(q.edge2).add(q.material);
+    h.add(scene.meshes.size());
+    for (const Mesh& m : scene.meshes) h.add_all(m.positions).add_all(m.normals).add_all(m.triangles).add(m.material);
+    return h.value();
+}
+
+std::uint64_t settings_hash(const RenderSettings& r) {
+    return Hasher().add(r.max_depth).add(r.rr_depth).add(r.seed).add(r.nee).add(r.hemisphere).value();
+}
+
+}  // namespace
+
+RenderIdentity render_identity(const Scene& scene, const std::string& estimator) {
+    return {scene_hash(scene), settings_hash(scene.render), estimator};
+}
+
+}  // namespace wp

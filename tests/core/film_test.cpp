@@ -1,0 +1,165 @@
+// The exact film sums (kernels/shared/film_sum.h) and the host film: sums
+// against 128-bit integer arithmetic, rounding of the smallest values, the
+// same bits in any order and any split, conversions to double, and each
+// pixel's sample count from a range of work items.
+#include "core/film.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <random>
+
+namespace wp {
+namespace {
+
+__extension__ typedef __int128 int128;
+
+bool same(const film_sum& a, const film_sum& b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+
+// `value` times 2^shift as a film sum (sign-extended to every limb).
+film_sum shifted(int128 value, int shift) {
+    film_sum s = film_sum_zero();
+    const film_limb sign = value < 0 ? ~film_limb(0) : 0;
+    film_limb words[5] = {film_limb(value), film_limb(static_cast<unsigned __int128>(value) >> 64), sign, sign, sign};
+    for (int i = WP_FILM_LIMBS - 1; i >= 0; --i) {
+        int from = i - shift / 64, bit = shift % 64;
+        film_limb high = from >= 0 ? words[from] << bit : 0;
+        film_limb low = from >= 1 && bit != 0 ? words[from - 1] >> (64 - bit) : 0;
+        s.limb[i] = high | low;
+    }
+    return s;
+}
+
+// A film sum that fits 128 bits, as one.
+int128 low_128(const film_sum& s) {
+    const film_limb sign = (s.limb[1] >> 63) != 0 ? ~film_limb(0) : 0;
+    EXPECT_EQ(s.limb[2], sign);
+    EXPECT_EQ(s.limb[3], sign);
+    return int128((static_cast<unsigned __int128>(s.limb[1]) << 64) | s.limb[0]);
+}
+
+// Floats of both signs from 2^-26 to 2^40: with 24-bit significands every
+// one is a whole multiple of 2^-49, so 2^49 times their sum is an integer
+// that 128 bits hold exactly.
+std::vector<float> moderate_floats(std::size_t count, std::uint32_t seed) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<double> exponent(-26.0, 40.0);
+    std::vector<float> values(count);
+    for (std::size_t i = 0; i < count; ++i)
+        values[i] = static_cast<float>((i % 3 == 0 ? -1.0 : 1.0) * std::exp2(exponent(rng)));
+    return values;
+}
+
+TEST(FilmSum, SumsEqual128BitIntegerArithmetic) {
+    const std::vector<float> values = moderate_floats(5000, 1);
+    film_sum sum = film_sum_zero();
+    int128 exact = 0;  // times 2^49
+    for (float v : values) {
+        sum = film_sum_add(sum, film_sum_from_float(v));
+        exact += int128(std::ldexp(double(v), 49));  // exact: v * 2^49 is an integer below 2^89
+    }
+    // The film holds 2^100 times the sum: 2^51 times `exact`.
+    EXPECT_TRUE(same(sum, shifted(exact, 51)));
+    EXPECT_TRUE(same(film_sum_from_float(-3.0f), shifted(-3, 100)));
+}
+
+TEST(FilmSum, AnyOrderAndAnySplitGiveTheSameBits) {
+    std::mt19937 rng(2);
+    std::uniform_int_distribution<std::uint32_t> bits;
+    std::vector<float> values;
+    while (values.size() < 4000) {  // every finite float, subnormals included
+        std::uint32_t b = bits(rng);
+        float v;
+        std::memcpy(&v, &b, sizeof v);
+        if (std::isfinite(v)) values.push_back(v);
+    }
+    auto sum_of = [](auto first, auto last) {
+        film_sum s = film_sum_zero();
+        for (auto it = first; it != last; ++it) s = film_sum_add(s, film_sum_from_float(*it));
+        return s;
+    };
+    const film_sum in_order = sum_of(values.begin(), values.end());
+    for (std::size_t split : {std::size_t(1), std::size_t(1234), std::size_t(3999)}) {
+        film_sum merged =
+            film_sum_add(sum_of(values.begin(), values.begin() + split), sum_of(values.begin() + split, values.end()));
+        EXPECT_TRUE(same(merged, in_order)) << split;
+    }
+    std::shuffle(values.begin(), values.end(), rng);
+    EXPECT_TRUE(same(sum_of(values.begin(), values.end()), in_order));
+}
+
+TEST(FilmSum, ValueMinusItselfIsZero) {
+    for (float v : {1.0f, 3.5e-30f, 1e-45f, 3.4e38f, 0.1f}) {
+        film_sum s = film_sum_add(film_sum_from_float(v), film_sum_from_float(-v));
+        EXPECT_TRUE(same(s, film_sum_zero())) << v;
+    }
+}
+
+// The quantum is 2^-100; smaller values round to the nearest multiple, ties to even.
+TEST(FilmSum, ValuesBelowTheQuantumRoundToNearestEven) {
+    auto quanta = [](float v) { return low_128(film_sum_from_float(v)); };
+    EXPECT_TRUE(quanta(std::ldexp(1.0f, -100)) == 1);
+    EXPECT_TRUE(quanta(std::ldexp(1.0f, -101)) == 0);    // half: to even 0
+    EXPECT_TRUE(quanta(std::ldexp(3.0f, -101)) == 2);    // one and a half: to even 2
+    EXPECT_TRUE(quanta(std::ldexp(5.0f, -102)) == 1);    // 1.25
+    EXPECT_TRUE(quanta(std::ldexp(7.0f, -102)) == 2);    // 1.75
+    EXPECT_TRUE(quanta(-std::ldexp(3.0f, -101)) == -2);  // sign after rounding
+    EXPECT_TRUE(quanta(std::numeric_limits<float>::denorm_min()) == 0);
+}
+
+TEST(FilmSum, ConvertsBackToTheFloatItHolds) {
+    for (float v : {1.0f, -2.5f, 3.4e38f, 6.7e-24f, 123456.789f, -0.1f})
+        EXPECT_EQ(film_sum_to_double(film_sum_from_float(v)), double(v)) << v;
+    EXPECT_EQ(film_sum_to_double(film_sum_zero()), 0.0);
+}
+
+TEST(FilmSum, SquaresAreExact) {
+    for (float v : {3.0f, -1.5f, 1e10f, std::ldexp(0.75f, -20)})
+        EXPECT_EQ(film_sum_to_double(film_sum_from_float_squared(v)), double(v) * double(v)) << v;
+}
+
+TEST(FilmSum, DoublesKeepTheirBitsAndHugeOnesClamp) {
+    EXPECT_EQ(film_sum_to_double(film_sum_from_double(0.1)), 0.1);
+    EXPECT_EQ(film_sum_to_double(film_sum_from_double(-1e40)), -1e40);
+    EXPECT_EQ(film_sum_to_double(film_sum_from_double(1e300)), std::ldexp(1.0, WP_FILM_CLAMP_BITS));
+}
+
+// Double rounding through a 64-bit window would turn 2^64 + 2^11 + 1 (a
+// half-way case decided by the last bit) into 2^64; the sticky bit keeps it.
+TEST(FilmSum, ToDoubleRoundsOnceToNearest) {
+    film_sum s = film_sum_zero();
+    s.limb[1] = 1;                                                // 2^64 quanta ...
+    s.limb[0] = 1u << 11;                                         // ... plus half an ulp of 2^64 in double (2^12)
+    EXPECT_EQ(film_sum_to_double(s), std::ldexp(1.0, 64 - 100));  // tie: to even
+    s.limb[0] += 1;                                               // just above half
+    EXPECT_EQ(film_sum_to_double(s), std::ldexp(1.0 + std::ldexp(1.0, -52), 64 - 100));
+}
+
+TEST(Film, SampleCountsFollowTheRange) {
+    // 5 pixels, items 7..18: pixel p gets items p, p + 5, p + 10, p + 15 in range.
+    Film film = Film::empty(5, 1, 7, false);
+    film.items.end = 18;
+    std::vector<std::uint64_t> counts;
+    for (std::uint64_t p = 0; p < 5; ++p) counts.push_back(film.samples_of(p));
+    EXPECT_EQ(counts, (std::vector<std::uint64_t>{2, 2, 3, 2, 2}));  // 10 15 | 11 16 | 7 12 17 | 8 13 | 9 14
+    EXPECT_EQ(film.min_samples(), 2u);
+    EXPECT_EQ(film.max_samples(), 3u);
+}
+
+TEST(Film, AppendAddsAdjacentRangesOnly) {
+    Film a = Film::empty(2, 1, 0, false), b = Film::empty(2, 1, 4, false), c = Film::empty(2, 1, 5, false);
+    a.items.end = 4;
+    b.items.end = 6;
+    a.sums[0] = film_sum_from_float(1.0f);
+    b.sums[0] = film_sum_from_float(2.0f);
+    EXPECT_THROW(a.append(c), std::invalid_argument);
+    a.append(b);
+    EXPECT_EQ(a.items, (ItemRange{0, 6}));
+    EXPECT_EQ(film_sum_to_double(a.sums[0]), 3.0);
+    EXPECT_EQ(a.image().rgb[0], 1.0f);  // 3 over pixel 0's 3 samples
+}
+
+}  // namespace
+}  // namespace wp

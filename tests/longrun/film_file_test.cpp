@@ -1,0 +1,161 @@
+// Film files: written and read back bit for bit; truncated, corrupted, newer
+// or foreign files refused with their messages; and the identity hash that
+// decides which render may continue or merge a film.
+#include "longrun/film_file.h"
+
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+
+#include "support/analytic_scenes.h"
+#include "support/temp_directory.h"
+
+namespace wp {
+namespace {
+
+Film example_film(bool squares) {
+    Film film = Film::empty(5, 3, 4, squares);
+    film.items.end = 41;
+    for (std::size_t i = 0; i < film.sums.size(); ++i) film.sums[i] = film_sum_from_float(float(i) * -0.37f + 2.0f);
+    for (std::size_t i = 0; i < film.squares.size(); ++i) film.squares[i] = film_sum_from_float(float(i) * 1e20f);
+    return film;
+}
+
+const RenderIdentity kIdentity{0x1234, 0x5678, "opencl"};
+
+std::vector<char> file_bytes(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+void write_bytes(const std::string& path, const std::vector<char>& bytes) {
+    std::ofstream(path, std::ios::binary).write(bytes.data(), std::streamsize(bytes.size()));
+}
+
+// The FilmFileError message of reading `path`, "" if it reads.
+std::string read_error(const std::string& path) {
+    try {
+        read_film_file(path);
+    } catch (const FilmFileError& e) {
+        return e.what();
+    }
+    return "";
+}
+
+class FilmFileTest : public ::testing::Test {
+ protected:
+    test::TempDirectory dir_{"film_file"};
+    std::string path_ = dir_ / "film.wpfilm";
+};
+
+TEST_F(FilmFileTest, ReadsBackWhatWasWritten) {
+    for (bool squares : {false, true}) {
+        const Film film = example_film(squares);
+        write_film_file(path_, {kIdentity, film});
+        const FilmFile read = read_film_file(path_);
+        EXPECT_EQ(read.identity, kIdentity);
+        EXPECT_EQ(read.film.width, 5);
+        EXPECT_EQ(read.film.height, 3);
+        EXPECT_EQ(read.film.items, film.items);
+        ASSERT_EQ(read.film.sums.size(), film.sums.size());
+        EXPECT_EQ(std::memcmp(read.film.sums.data(), film.sums.data(), sizeof(film_sum) * film.sums.size()), 0);
+        ASSERT_EQ(read.film.squares.size(), film.squares.size());
+        EXPECT_EQ(std::memcmp(read.film.squares.data(), film.squares.data(), sizeof(film_sum) * film.squares.size()),
+                  0);
+    }
+    EXPECT_EQ(dir_.entries(), std::vector<std::string>{"film.wpfilm"});  // no temporary left
+}
+
+TEST_F(FilmFileTest, TruncatedFilesAreRefused) {
+    write_film_file(path_, {kIdentity, example_film(true)});
+    const std::vector<char> whole = file_bytes(path_);
+    for (std::size_t size : {std::size_t(0), std::size_t(5), std::size_t(11), std::size_t(60), std::size_t(100),
+                             whole.size() / 2, whole.size() - 1}) {
+        write_bytes(path_, std::vector<char>(whole.begin(), whole.begin() + std::ptrdiff_t(size)));
+        const std::string error = read_error(path_);
+        EXPECT_TRUE(error.find("truncated") != std::string::npos ||
+                    (size < 8 && error.find("not a wavepath film file") != std::string::npos))
+            << size << ": " << error;
+        EXPECT_EQ(error.rfind(path_ + ": ", 0), 0u) << error;
+    }
+}
+
+TEST_F(FilmFileTest, CorruptedBytesFailTheChecksum) {
+    write_film_file(path_, {kIdentity, example_film(false)});
+    const std::vector<char> whole = file_bytes(path_);
+    // The scene hash, a limb of the first sum, the last sum's top byte and the checksum itself.
+    for (std::size_t at : {std::size_t(17), std::size_t(90), whole.size() - 9, whole.size() - 1}) {
+        std::vector<char> bytes = whole;
+        bytes[at] ^= 0x10;
+        write_bytes(path_, bytes);
+        EXPECT_EQ(read_error(path_), path_ + ": corrupted (checksum mismatch)") << at;
+    }
+    std::vector<char> longer = whole;
+    longer.push_back('x');
+    write_bytes(path_, longer);
+    EXPECT_EQ(read_error(path_), path_ + ": corrupted (1 bytes after the checksum)");
+}
+
+TEST_F(FilmFileTest, NewerVersionsAndOtherFilesAreRefused) {
+    write_film_file(path_, {kIdentity, example_film(false)});
+    std::vector<char> bytes = file_bytes(path_);
+    bytes[8] = 2;  // the version's low byte
+    write_bytes(path_, bytes);
+    EXPECT_EQ(read_error(path_), path_ + ": film format version 2 is newer than this wavepath reads (1)");
+    test::write_text(path_, "P3\n1 1\n255\n0 0 0\n");
+    EXPECT_EQ(read_error(path_), path_ + ": not a wavepath film file (no WPFILM signature)");
+    EXPECT_EQ(read_error(dir_ / "missing.wpfilm"), dir_ / "missing.wpfilm" + ": cannot read the film file");
+}
+
+TEST_F(FilmFileTest, FilmsOfAnotherRenderAreRefused) {
+    const FilmFile file{kIdentity, example_film(false)};
+    auto mismatch = [&](const RenderIdentity& identity, int width, int height) {
+        try {
+            check_film_matches("f.wpfilm", file, identity, width, height);
+        } catch (const FilmFileError& e) {
+            return std::string(e.what());
+        }
+        return std::string();
+    };
+    EXPECT_EQ(mismatch(kIdentity, 5, 3), "");
+    EXPECT_EQ(mismatch(kIdentity, 6, 3), "f.wpfilm: a film of 5x3 pixels, this render is 6x3");
+    EXPECT_EQ(mismatch({0x1234, 0x5678, "reference-float"}, 5, 3),
+              "f.wpfilm: rendered by the opencl estimator, this render uses reference-float");
+    EXPECT_EQ(mismatch({0x1235, 0x5678, "opencl"}, 5, 3),
+              "f.wpfilm: rendered from another scene (its content differs)");
+    EXPECT_EQ(mismatch({0x1234, 0x5679, "opencl"}, 5, 3),
+              "f.wpfilm: rendered with other settings (max_depth, rr_depth, seed, nee or hemisphere differ)");
+}
+
+TEST(RenderIdentity, EverySettingThatChangesTheImageChangesIt) {
+    const Scene base = test::plane_under_square_light({}, {0.5, 0.5, 0.5}, {4, 4, 4}, 0.5, 1.0);
+    const RenderIdentity identity = render_identity(base, "opencl");
+    auto settings_changed = [&](auto change) {
+        Scene scene = base;
+        change(scene);
+        return render_identity(scene, "opencl").settings != identity.settings;
+    };
+    EXPECT_TRUE(settings_changed([](Scene& s) { s.render.max_depth += 1; }));
+    EXPECT_TRUE(settings_changed([](Scene& s) { s.render.rr_depth += 1; }));
+    EXPECT_TRUE(settings_changed([](Scene& s) { s.render.seed += 1; }));
+    EXPECT_TRUE(settings_changed([](Scene& s) { s.render.nee = !s.render.nee; }));
+    EXPECT_TRUE(settings_changed([](Scene& s) { s.render.hemisphere = Hemisphere::Uniform; }));
+    EXPECT_FALSE(settings_changed([](Scene& s) { s.render.spp += 1; }));  // a film can be continued to more samples
+
+    auto scene_changed = [&](auto change) {
+        Scene scene = base;
+        change(scene);
+        return render_identity(scene, "opencl").scene != identity.scene;
+    };
+    EXPECT_TRUE(scene_changed([](Scene& s) { s.camera.width += 1; }));
+    EXPECT_TRUE(scene_changed([](Scene& s) { s.camera.fov_y_degrees += 1e-9; }));
+    EXPECT_TRUE(scene_changed([](Scene& s) { s.materials[0].albedo.x += 1e-9; }));
+    EXPECT_TRUE(scene_changed([](Scene& s) { s.quads.at(0).edge1.z += 1e-9; }));
+    EXPECT_TRUE(scene_changed([](Scene& s) { s.background.y += 1e-9; }));
+    EXPECT_FALSE(scene_changed([](Scene& s) { s.source = "elsewhere.json"; }));
+}
+
+}  // namespace
+}  // namespace wp
