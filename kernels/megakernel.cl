@@ -22,6 +22,7 @@ WP_FN vec3 trace_path(WP_SCENE_PARAMS, uint px, uint s, uint *extension_rays, ui
     vec3 throughput = make_vec3(REAL(1.0), REAL(1.0), REAL(1.0));
     vec3 radiance = make_vec3(REAL(0.0), REAL(0.0), REAL(0.0));
     int after_specular = 1;
+    real bsdf_pdf = REAL(0.0); /* of the last diffuse bounce's direction */
     for (uint depth = 0u;; ++depth) {
         ++*extension_rays;
         Hit hit = closest_hit(WP_SCENE_ARGS, origin, d);
@@ -33,7 +34,8 @@ WP_FN vec3 trace_path(WP_SCENE_PARAMS, uint px, uint s, uint *extension_rays, ui
         }
         Vertex v = vertex_at(WP_SCENE_ARGS, hit.shape, origin, d, hit.t);
         Material m = v.material;
-        radiance = add_finite(radiance, emission_seen(m, v.front, after_specular, throughput), &dropped[0]);
+        real weight = emission_weight(WP_SCENE_ARGS, hit.shape, origin, v, after_specular, bsdf_pdf);
+        radiance = add_finite(radiance, emission_seen(m, v.front, weight, throughput), &dropped[0]);
         if (depth >= scene->max_depth || m.type == WP_MATERIAL_EMITTER) return radiance;
 #if defined(WP_NEE) && defined(WP_HAS_DIFFUSE)
         vec3 shadow_origin, shadow_direction, contribution;
@@ -55,6 +57,7 @@ WP_FN vec3 trace_path(WP_SCENE_PARAMS, uint px, uint s, uint *extension_rays, ui
         origin = offset_ray_origin(v.surface.point, scattered.leave_side, v.surface.error);
         d = scattered.direction;
         after_specular = scattered.specular;
+        bsdf_pdf = scattered.pdf;
     }
 }
 
