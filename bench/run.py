@@ -145,8 +145,10 @@ def throughput(runner, peer, cfg):
     for scene in cfg["scenes"]:
         path = os.path.join(ROOT, "scenes", scene)
         # (label, backend, flags); the wavefront also with one path per work item, to show what its lanes give
+        # the megakernel too: 8 lanes is the single-kernel design at its best on a CPU (like for like), 1 the scalar one
         configurations = [("wavefront", "wavefront", []), ("wavefront-1-lane", "wavefront", ["--lanes", "1"]),
-                          ("megakernel", "megakernel", []), ("reference", "reference", []), ("mitsuba", None, [])]
+                          ("megakernel", "megakernel", []), ("megakernel-1-lane", "megakernel", ["--lanes", "1"]),
+                          ("reference", "reference", []), ("mitsuba", None, [])]
         runs = {label: [] for label, _, _ in configurations}
         for _ in range(cfg["repeats"]):  # interleaved: each repetition runs every configuration once
             for label, backend, flags in configurations:
@@ -165,7 +167,7 @@ def throughput(runner, peer, cfg):
                 row["mrays_s_median"] = statistics.median(rays) / 1e6
             rows.append(row)
         # The wavefront against each other configuration, repetition by repetition (same machine state).
-        for other in ("megakernel", "reference", "mitsuba"):
+        for other in ("megakernel", "megakernel-1-lane", "reference", "mitsuba"):
             ratios = [w["samples_per_s"] / o["samples_per_s"] for w, o in zip(runs["wavefront"], runs[other])]
             rows.append({"scene": scene, "backend": f"wavefront/{other}", "runs": len(ratios),
                          **{f"ratio_{k}": v for k, v in spread(ratios).items()}})
