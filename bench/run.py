@@ -2,7 +2,7 @@
 """wavepath benchmark: throughput, scaling and speed versus accuracy, beside Mitsuba 3.
 
 Usage: python3 bench/run.py [--quick] [--check] [--out bench/out] [--binary build/wavepath]
-                            [--mesh-bench build/bench/mesh_bench] [--series throughput,scaling,accuracy,meshes]
+                            [--mesh-bench build/bench/mesh_bench] [--series throughput,scaling,accuracy,meshes,estimators]
 
 Runs the wavepath executable (build it first: bash scripts/setup.sh, which also
 installs Mitsuba 3) and writes into --out: results.json, one CSV per study, PNG
@@ -15,7 +15,9 @@ content, the settings and the renderer's version). --quick shrinks every study
 to a few minutes (CI runs it, with --check: exit 1 when relMSE does not fall
 as about 1/spp, an image's mean strays from the truth's, or a ratio is not
 finite). The meshes series runs bench/mesh_bench (cmake --build build --target
-mesh_bench) and writes meshes.json, meshes.csv and meshes.md besides.
+mesh_bench) and writes meshes.json, meshes.csv and meshes.md besides; the
+estimators series (not run by default) compares MIS, NEE and roulette settings
+per scene at equal spp and writes estimators.csv and estimators.md.
 """
 import argparse
 import array
@@ -143,8 +145,10 @@ def throughput(runner, peer, cfg):
     for scene in cfg["scenes"]:
         path = os.path.join(ROOT, "scenes", scene)
         # (label, backend, flags); the wavefront also with one path per work item, to show what its lanes give
+        # the megakernel too: 8 lanes is the single-kernel design at its best on a CPU (like for like), 1 the scalar one
         configurations = [("wavefront", "wavefront", []), ("wavefront-1-lane", "wavefront", ["--lanes", "1"]),
-                          ("megakernel", "megakernel", []), ("reference", "reference", []), ("mitsuba", None, [])]
+                          ("megakernel", "megakernel", []), ("megakernel-1-lane", "megakernel", ["--lanes", "1"]),
+                          ("reference", "reference", []), ("mitsuba", None, [])]
         runs = {label: [] for label, _, _ in configurations}
         for _ in range(cfg["repeats"]):  # interleaved: each repetition runs every configuration once
             for label, backend, flags in configurations:
@@ -163,7 +167,7 @@ def throughput(runner, peer, cfg):
                 row["mrays_s_median"] = statistics.median(rays) / 1e6
             rows.append(row)
         # The wavefront against each other configuration, repetition by repetition (same machine state).
-        for other in ("megakernel", "reference", "mitsuba"):
+        for other in ("megakernel", "megakernel-1-lane", "reference", "mitsuba"):
             ratios = [w["samples_per_s"] / o["samples_per_s"] for w, o in zip(runs["wavefront"], runs[other])]
             rows.append({"scene": scene, "backend": f"wavefront/{other}", "runs": len(ratios),
                          **{f"ratio_{k}": v for k, v in spread(ratios).items()}})
@@ -266,6 +270,64 @@ def accuracy(runner, peer, cfg, out):
             measure("hemisphere", "wavefront", cfg["depth_spp"], ["--hemisphere", hemisphere], against=same_depth,
                     hemisphere=hemisphere)
     return {"rows": rows, "truths": truths, "peer": peer_comparison(rows)}
+
+
+# The wavefront's estimator choices the estimators series compares: (label, flags). The first is the default.
+ESTIMATOR_SETTINGS = [("default: nee, mis, rr_depth 3", []), ("mis off", ["--mis", "off"]),
+                      ("nee off", ["--nee", "off"]), ("rr_depth 5", ["--rr-depth", "5"]),
+                      ("roulette off", ["--rr-depth", "1000000"])]
+
+
+def estimators(runner, peer, cfg, out):
+    """Per scene, the wavefront's estimator choices at equal spp against the Mitsuba truth: relMSE over seeds
+    (each seed renders every setting in turn, so times are interleaved), time min and median, efficiency
+    1 / (relMSE x median time), and per seed the ratio of the efficiency to the default's (min, median)."""
+    size, spp = cfg["estimator_size"], cfg["estimator_spp"]
+    cache = os.path.join(out, "converged-cache")
+    rows = []
+    for scene in cfg["estimator_scenes"]:
+        path = os.path.join(ROOT, "scenes", scene)
+        truth, _, _ = peer.converged(path, size, cfg["converged_spp"], scene_max_depth(path), cache)
+        errors = {label: [] for label, _ in ESTIMATOR_SETTINGS}
+        times = {label: [] for label, _ in ESTIMATOR_SETTINGS}
+        for seed in range(cfg["estimator_seeds"]):
+            for label, flags in ESTIMATOR_SETTINGS:
+                s = runner.render(path, "wavefront", size, size, spp, extra=["--seed", str(seed), *flags], image=True)
+                errors[label].append(rel_mse(s["image"], truth))
+                times[label].append(s["time_s"])
+        default = ESTIMATOR_SETTINGS[0][0]
+        for label, _ in ESTIMATOR_SETTINGS:
+            e, t = statistics.mean(errors[label]), statistics.median(times[label])
+            per_seed = [(ed * td) / (ex * tx) for ed, td, ex, tx in
+                        zip(errors[default], times[default], errors[label], times[label])]
+            rows.append({"scene": scene, "setting": label, "size": size, "spp": spp, "seeds": len(errors[label]),
+                         "relmse": e, "relmse_sd": statistics.stdev(errors[label]), "time_s_min": min(times[label]),
+                         "time_s_median": t, "efficiency": 1.0 / (e * t),
+                         "relmse_of_default": e / statistics.mean(errors[default]),
+                         "efficiency_of_default_min": min(per_seed),
+                         "efficiency_of_default_median": statistics.median(per_seed)})
+    return rows
+
+
+def estimators_markdown(rows, meta, truth_spp):
+    lines = ["# Estimator choices: speed against accuracy per scene", "",
+             "Generated by `python3 bench/run.py --series estimators`; do not edit by hand.", "",
+             f"- commit `{meta['commit']}`, {meta['date']}, build {meta['build_type']}",
+             f"- machine: {meta['cpu']}, {meta['cores']} cores (shared: read the ratios, measured side by side)",
+             f"- OpenCL: {meta['opencl_platform']}; device {meta['opencl_device']}",
+             f"- truth: {meta['mitsuba']} at {truth_spp} spp, the scene's max_depth", "",
+             "The wavefront, each setting at the same spp and seeds 0..n-1; every seed renders every setting in "
+             "turn. relMSE: mean over the seeds of the image's relative MSE against the truth (its own noise "
+             "included); time: the render's, kernel build left out; efficiency 1 / (relMSE x median time); "
+             "of default: efficiency relative to the default's, per seed (min / median).", "",
+             "| scene | setting | size, spp | relMSE (sd) | relMSE of default | time s (min / median) | "
+             "efficiency | of default (min / median) |", "|---|---|---|---|---|---|---|---|"]
+    for r in rows:
+        lines.append(f"| {r['scene']} | {r['setting']} | {r['size']}², {r['spp']} | {r['relmse']:.4g} "
+                     f"({r['relmse_sd']:.2g}) | {r['relmse_of_default']:.3f} | {r['time_s_min']:.3f} / "
+                     f"{r['time_s_median']:.3f} | {r['efficiency']:.3g} | {r['efficiency_of_default_min']:.2f} / "
+                     f"{r['efficiency_of_default_median']:.2f} |")
+    return "\n".join(lines) + "\n"
 
 
 def loglog_at(points, x):
@@ -628,12 +690,12 @@ def main():
     parser.add_argument("--binary", default=os.path.join(ROOT, "build", "wavepath"))
     parser.add_argument("--mesh-bench", default=os.path.join(ROOT, "build", "bench", "mesh_bench"))
     parser.add_argument("--series", default="throughput,scaling,accuracy,meshes",
-                        help="comma-separated: throughput, scaling, accuracy, meshes")
+                        help="comma-separated: throughput, scaling, accuracy, meshes, estimators")
     parser.add_argument("--check", action="store_true",
                         help="exit 1 when the results show what a broken renderer would (bench_quick)")
     args = parser.parse_args()
     series = args.series.split(",")
-    unknown = set(series) - {"throughput", "scaling", "accuracy", "meshes"}
+    unknown = set(series) - {"throughput", "scaling", "accuracy", "meshes", "estimators"}
     if unknown:
         parser.error(f"unknown series: {', '.join(sorted(unknown))}")
     if args.quick:
@@ -642,7 +704,8 @@ def main():
                "accuracy_scenes": ["room.json", "cornell.json"], "converged_spp": 1024, "deep_converged_spp": 512,
                "spp_series": [1, 4, 16], "spp_backends": ["wavefront", "mitsuba"], "seeds": 3,
                "depth_series": [1, 8], "depth_spp": 8, "rr_series": [1000], "nee_series": ["off"],
-               "hemisphere_series": ["uniform"]}
+               "hemisphere_series": ["uniform"], "estimator_scenes": ["cornell.json"], "estimator_size": 32,
+               "estimator_spp": 4, "estimator_seeds": 3}
     else:
         cfg = {"scenes": ["room.json", "cornell.json"], "size": 512, "spp": 4, "repeats": 5,
                "wavefront_log2": [12, 14, 16, 18, 20, 22], "resolutions": [128, 256, 512, 1024, 2048],
@@ -650,7 +713,9 @@ def main():
                "deep_converged_spp": 1024, "spp_series": [1, 4, 16, 64, 256],
                "spp_backends": ["wavefront", "megakernel", "reference", "mitsuba"], "seeds": 3,
                "depth_series": [1, 2, 4, 8, 16, 32], "depth_spp": 16, "rr_series": [1, 2, 3, 5, 8, 1000],
-               "nee_series": ["on", "off"], "hemisphere_series": ["cosine", "uniform"]}
+               "nee_series": ["on", "off"], "hemisphere_series": ["cosine", "uniform"],
+               "estimator_scenes": ["room.json", "cornell.json", "cornell_mesh.json", "bunny.json"],
+               "estimator_size": 128, "estimator_spp": 16, "estimator_seeds": 5}
     os.makedirs(args.out, exist_ok=True)
     start = time.time()
     with tempfile.TemporaryDirectory(prefix="wavepath-bench-") as scratch:
@@ -662,7 +727,8 @@ def main():
         for study, run in (("throughput", lambda: throughput(runner, peer, cfg)),
                            ("scaling", lambda: scaling(runner, cfg)),
                            ("accuracy", lambda: accuracy(runner, peer, cfg, args.out)),
-                           ("meshes", lambda: meshes(os.path.abspath(args.mesh_bench), args.quick, args.out))):
+                           ("meshes", lambda: meshes(os.path.abspath(args.mesh_bench), args.quick, args.out)),
+                           ("estimators", lambda: estimators(runner, peer, cfg, args.out))):
             if study in series:
                 results[study] = run()
     results["elapsed_s"] = time.time() - start
@@ -678,6 +744,10 @@ def main():
         write_csv(os.path.join(args.out, "meshes.csv"), mesh_rows(results["meshes"]))
         with open(os.path.join(args.out, "meshes.md"), "w") as f:
             f.write(meshes_markdown(results["meshes"]))
+    if "estimators" in results:
+        write_csv(os.path.join(args.out, "estimators.csv"), results["estimators"])
+        with open(os.path.join(args.out, "estimators.md"), "w") as f:
+            f.write(estimators_markdown(results["estimators"], results["meta"], cfg["converged_spp"]))
     plots = plot(args.out, results) if all(k in results for k in ("throughput", "scaling", "accuracy")) else []
     with open(os.path.join(args.out, "summary.md"), "w") as f:
         f.write(summary(results, plots))

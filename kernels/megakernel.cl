@@ -1,61 +1,93 @@
-/* The megakernel baseline (--backend megakernel): one work item traces one
- * work item of the pass (pixel w % pixels, sample w / pixels) from the camera
- * to its end, with the same per-vertex functions (device/path_vertex.h) and random
- * numbers as the wavefront's stages, and writes its radiance to its pass
- * entry for accumulate.cl. It keeps the whole path in registers: no path
- * state, no queues, but divergent loops. */
+/* The megakernel baseline (--backend megakernel): one work item traces
+ * WP_LANES work items of the pass (work item w: pixel w % pixels, sample
+ * w / pixels) from the camera to their ends, with the same per-vertex
+ * functions (device/path_vertex.h) and random numbers as the wavefront's
+ * stages, and writes their radiance to their pass entries for accumulate.cl.
+ * It keeps the whole path in registers: no path state, no queues, but
+ * divergent loops. With several lanes (-DWP_LANES=8 on CPUs, as the
+ * wavefront's stages) the lanes run as vector code until the last of their
+ * paths ends: the single-kernel design at its best on a CPU, the like-for-like
+ * baseline for the wavefront. */
 #include "device/guards.h"
+#include "device/lanes.h"
 #include "device/parameters.h"
-#include "device/path_queues.h"
+#include "device/pass_radiance.h"
 #include "device/path_vertex.h"
 #include "device/scene_hits.h"
 #include "device/surface.h"
 #include "interface/queues.h"
 
-/* Traces one path; returns its radiance, adds its rays to extension_rays and
- * shadow_rays and the non-finite values it drops to dropped[stage]. */
-WP_FN vec3 trace_path(WP_SCENE_PARAMS, uint px, uint s, uint *extension_rays, uint *shadow_rays,
-                      uint dropped[WP_NONFINITE_STAGE_COUNT]) {
+#if WP_LANES == 1
+WP_FN int lanes_any(lane_int x) { return x != 0; }
+WP_FN uint lanes_sum(lane_uint x) { return x; }
+#else
+WP_FN int lanes_any(lane_int x) { return any(x); }
+WP_FN uint lanes_sum(lane_uint x) {
+    uint4 half_sum = x.lo + x.hi;
+    uint2 quarter_sum = half_sum.lo + half_sum.hi;
+    return quarter_sum.x + quarter_sum.y;
+}
+#endif
+
+/* t where `where` holds, else nothing: a term added only in some lanes. */
+WP_FN vec3 only_where(lane_int where, vec3 term) {
+    return v3_select(where, term, make_vec3(REAL(0.0), REAL(0.0), REAL(0.0)));
+}
+
+/* Traces the lanes' paths (where `alive`); returns their radiance, adds their
+ * rays to extension_rays and shadow_rays and the non-finite values they drop
+ * to dropped[stage]. */
+WP_FN vec3 trace_paths(WP_SCENE_PARAMS, lane_int alive, lane_uint px, lane_uint s, lane_uint *extension_rays,
+                       lane_uint *shadow_rays, lane_uint dropped[WP_NONFINITE_STAGE_COUNT]) {
     uint seed = scene->seed;
     vec3 origin = make_vec3(REAL(0.0), REAL(0.0), REAL(0.0)); /* the camera, after loading */
     vec3 d = camera_ray_direction(scene, px, s);
     vec3 throughput = make_vec3(REAL(1.0), REAL(1.0), REAL(1.0));
     vec3 radiance = make_vec3(REAL(0.0), REAL(0.0), REAL(0.0));
-    int after_specular = 1;
-    for (uint depth = 0u;; ++depth) {
-        ++*extension_rays;
+    lane_int after_specular = alive;
+    real bsdf_pdf = REAL(0.0); /* of the last diffuse bounce's direction */
+    for (uint depth = 0u; lanes_any(alive); ++depth) {
+        *extension_rays += alive ? (lane_uint)1u : (lane_uint)0u;
         Hit hit = closest_hit(WP_SCENE_ARGS, origin, d);
-        if (hit.shape == WP_NO_HIT) {
+        lane_int missed = alive && hit.shape == WP_NO_HIT;
 #ifdef WP_HAS_BACKGROUND
-            radiance = add_finite(radiance, v3_mul(throughput, uniform_vec3(scene->background)), &dropped[0]);
+        radiance =
+            add_finite(radiance, only_where(missed, v3_mul(throughput, uniform_vec3(scene->background))), &dropped[0]);
 #endif
-            return radiance;
-        }
+        alive = alive && !missed;
         Vertex v = vertex_at(WP_SCENE_ARGS, hit.shape, origin, d, hit.t);
         Material m = v.material;
-        radiance = add_finite(radiance, emission_seen(m, v.front, after_specular, throughput), &dropped[0]);
-        if (depth >= scene->max_depth || m.type == WP_MATERIAL_EMITTER) return radiance;
+        real weight = emission_weight(WP_SCENE_ARGS, hit.shape, origin, v, after_specular, bsdf_pdf);
+        radiance = add_finite(radiance, only_where(alive, emission_seen(m, v.front, weight, throughput)), &dropped[0]);
+        alive = alive && !(depth >= scene->max_depth || m.type == WP_MATERIAL_EMITTER);
 #if defined(WP_NEE) && defined(WP_HAS_DIFFUSE)
         vec3 shadow_origin, shadow_direction, contribution;
         real distance;
-        if (m.type == WP_MATERIAL_DIFFUSE &&
-            sample_direct_light(WP_SCENE_ARGS, px, s, depth, v.surface.point, v.surface.error, v.nf, v.ns,
-                                v3_mul(throughput, m.albedo), &shadow_origin, &shadow_direction, &distance,
-                                &contribution)) {
-            ++*shadow_rays;
-            if (!any_hit(WP_SCENE_ARGS, shadow_origin, shadow_direction, distance))
-                radiance = add_finite(radiance, contribution, &dropped[1]);
-        }
+        lane_int casts_shadow = alive && m.type == WP_MATERIAL_DIFFUSE &&
+                                sample_direct_light(WP_SCENE_ARGS, px, s, depth, v.surface.point, v.surface.error, v.nf,
+                                                    v.ns, v3_mul(throughput, m.albedo), &shadow_origin,
+                                                    &shadow_direction, &distance, &contribution);
+        *shadow_rays += casts_shadow ? (lane_uint)1u : (lane_uint)0u;
+        lane_int lit = casts_shadow;
+        if (lanes_any(casts_shadow))
+            lit = casts_shadow && !any_hit(WP_SCENE_ARGS, shadow_origin, shadow_direction, distance);
+        radiance = add_finite(radiance, only_where(lit, contribution), &dropped[1]);
 #endif
         Scattered scattered = scatter_vertex(v, d, seed, px, s, depth);
-        throughput = v3_mul(throughput, scattered.weight);
-        if (!scattered.valid || !survives_roulette(&throughput, seed, px, s, depth, depth + 1u, scene->rr_depth) ||
-            !throughput_is_finite(throughput, &dropped[2]))
-            return radiance;
-        origin = offset_ray_origin(v.surface.point, scattered.leave_side, v.surface.error);
-        d = scattered.direction;
-        after_specular = scattered.specular;
+        vec3 next_throughput = v3_mul(throughput, scattered.weight);
+        lane_int survives =
+            survives_roulette(&next_throughput, seed, px, s, depth, depth + 1u, scene->rr_depth) && scattered.valid;
+        lane_uint nonfinite = 0u;
+        lane_int finite = throughput_is_finite(next_throughput, &nonfinite);
+        dropped[2] += alive && survives ? nonfinite : (lane_uint)0u;
+        alive = alive && survives && finite;
+        throughput = v3_select(alive, next_throughput, throughput);
+        origin = v3_select(alive, offset_ray_origin(v.surface.point, scattered.leave_side, v.surface.error), origin);
+        d = v3_select(alive, scattered.direction, d);
+        after_specular = scattered.specular != 0u;
+        bsdf_pdf = scattered.pdf;
     }
+    return radiance;
 }
 
 __kernel __attribute__((reqd_work_group_size(WP_GROUP_SIZE, 1, 1))) void megakernel(
@@ -66,18 +98,23 @@ __kernel __attribute__((reqd_work_group_size(WP_GROUP_SIZE, 1, 1))) void megaker
         for (uint i = 0u; i < WP_NONFINITE_STAGE_COUNT; ++i) group_dropped[i] = 0u;
     }
     barrier(CLK_LOCAL_MEM_FENCE);
-    uint item = get_global_id(0);
-    if (item < pass_size) {
-        ulong work = pass_start + item;
+    lane_uint item = lane_positions();
+    lane_int active = item < pass_size;
+    if (lanes_any(active)) {
+        /* work = pass_start + item, split into pixel and sample without 64-bit lanes (as generate.cl) */
         uint pixel_count = scene->width * scene->height;
-        uint extension_rays = 0u, shadow_rays = 0u, dropped[WP_NONFINITE_STAGE_COUNT] = {0u, 0u, 0u};
-        vec3 radiance = trace_path(WP_SCENE_ARGS, (uint)(work % pixel_count), (uint)(work / pixel_count),
-                                   &extension_rays, &shadow_rays, dropped);
-        finish_paths(pass_radiance, item, 1, radiance);
-        atomic_add(&group_extension_rays, extension_rays);
-        atomic_add(&group_shadow_rays, shadow_rays);
-        for (uint i = 0u; i < WP_NONFINITE_STAGE_COUNT; ++i)
-            if (dropped[i] != 0u) atomic_add(&group_dropped[i], dropped[i]);
+        uint pass_pixel = (uint)(pass_start % pixel_count), pass_sample = (uint)(pass_start / pixel_count);
+        lane_uint px = (pass_pixel + item) % pixel_count;
+        lane_uint s = pass_sample + (pass_pixel + item) / pixel_count;
+        lane_uint extension_rays = 0u, shadow_rays = 0u, dropped[WP_NONFINITE_STAGE_COUNT] = {0u, 0u, 0u};
+        vec3 radiance = trace_paths(WP_SCENE_ARGS, active, px, s, &extension_rays, &shadow_rays, dropped);
+        finish_paths(pass_radiance, item, active, radiance);
+        atomic_add(&group_extension_rays, lanes_sum(extension_rays));
+        atomic_add(&group_shadow_rays, lanes_sum(shadow_rays));
+        for (uint i = 0u; i < WP_NONFINITE_STAGE_COUNT; ++i) {
+            uint stage_dropped = lanes_sum(dropped[i]);
+            if (stage_dropped != 0u) atomic_add(&group_dropped[i], stage_dropped);
+        }
     }
     /* One global atomic per counter and work group. */
     barrier(CLK_LOCAL_MEM_FENCE);

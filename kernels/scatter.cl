@@ -33,6 +33,9 @@ __kernel __attribute__((reqd_work_group_size(WP_GROUP_SIZE, 1, 1))) void scatter
 #ifdef WP_HAS_SPECULAR
     PATH_WRITE(specular, lanes, continues, scattered.specular);
 #endif
+#ifdef WP_MIS
+    PATH_WRITE(bsdf_pdf, lanes, continues, scattered.pdf);
+#endif
     finish_paths(pass_radiance, PATH_READ(pass_item, lanes), ends, PATH_READ(radiance, lanes));
     push_lanes(queues, counts, WP_QUEUE_RAY, lanes, continues, &group_count, &group_base);
     push_lanes(queues, counts, WP_QUEUE_FREE, lanes, ends, &group_count, &group_base);

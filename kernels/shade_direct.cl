@@ -1,6 +1,7 @@
 /* Stage 3: what the path sees at its hit, WP_LANES paths per work item
  * (device/lanes.h). Emission (at depth 0 or after a specular bounce; at every hit
- * without next-event estimation), the max_depth cap and emitter materials (which end
+ * without next-event estimation; after a diffuse bounce, weighted by multiple
+ * importance sampling against the light sample), the max_depth cap and emitter materials (which end
  * the path), and next-event estimation at diffuse vertices: one light sample
  * whose shadow ray goes to intersect_shadow with its would-be contribution. */
 #include "device/guards.h"
@@ -13,8 +14,9 @@
 __kernel __attribute__((reqd_work_group_size(WP_GROUP_SIZE, 1, 1))) void shade_direct(WP_STAGE_PARAMS) {
     __local uint group_count, group_base; /* queue_push's scratch (atomic compaction) */
     Lanes lanes = queue_lanes(queues, counts, capacity, WP_QUEUE_HIT);
-    Vertex v = vertex_at(WP_SCENE_ARGS, PATH_READ(hit_shape, lanes), PATH_READ(origin, lanes),
-                         PATH_READ(direction, lanes), PATH_READ(hit_t, lanes));
+    lane_uint shape = PATH_READ(hit_shape, lanes);
+    vec3 origin = PATH_READ(origin, lanes);
+    Vertex v = vertex_at(WP_SCENE_ARGS, shape, origin, PATH_READ(direction, lanes), PATH_READ(hit_t, lanes));
     Material m = v.material;
     lane_uint bounce = PATH_READ(depth, lanes);
     vec3 throughput = PATH_READ(throughput, lanes);
@@ -23,9 +25,14 @@ __kernel __attribute__((reqd_work_group_size(WP_GROUP_SIZE, 1, 1))) void shade_d
 #else
     lane_int after_specular = bounce == 0u;
 #endif
+#ifdef WP_MIS
+    real bsdf_pdf = PATH_READ(bsdf_pdf, lanes);
+#else
+    real bsdf_pdf = REAL(0.0);
+#endif
+    real weight = emission_weight(WP_SCENE_ARGS, shape, origin, v, after_specular, bsdf_pdf);
     lane_uint dropped = 0u;
-    vec3 radiance =
-        add_finite(PATH_READ(radiance, lanes), emission_seen(m, v.front, after_specular, throughput), &dropped);
+    vec3 radiance = add_finite(PATH_READ(radiance, lanes), emission_seen(m, v.front, weight, throughput), &dropped);
     count_nonfinite(slot_nonfinite, WP_COUNTER_NONFINITE_EMISSION, lanes, dropped);
     lane_int ends = lanes.active && (bounce >= scene->max_depth || m.type == WP_MATERIAL_EMITTER);
     lane_int scatters = lanes.active && !ends;

@@ -23,6 +23,11 @@
 #else
 #define WP_IF_NEE(...)
 #endif
+#ifdef WP_MIS
+#define WP_IF_MIS(...) __VA_ARGS__
+#else
+#define WP_IF_MIS(...)
+#endif
 
 /* Shape and light counts: compile-time constants where the host passes them
  * (small scenes), so the loops over them unroll into straight-line code that

@@ -1,10 +1,12 @@
 /* Where a stage sends its paths: into the queues of the stages that take
- * them next, or, when a path ends, its radiance into its pass entry. */
+ * them next, or, when a path ends, its radiance into its pass entry
+ * (device/pass_radiance.h). */
 #ifndef WP_DEVICE_PATH_QUEUES_H
 #define WP_DEVICE_PATH_QUEUES_H
 
 #include "device/lane_memory.h"
 #include "device/lanes.h"
+#include "device/pass_radiance.h"
 #include "interface/queues.h"
 #include "shared/prelude.h"
 
@@ -41,15 +43,6 @@ WP_FN void push_lanes(__global uint *queues, __global uint *counts, uint queue, 
 #else
     queue_push(queues, counts, lanes.capacity, queue, push, lanes.slot, group_count, group_base);
 #endif
-}
-
-/* Ends the paths of the lanes where `where` holds: their radiance (finite:
- * every addition was checked) becomes their pass entry (index `item`), and
- * their slots are freed for generate (the caller pushes them). */
-WP_FN void finish_paths(__global float *pass_radiance, lane_uint item, lane_int where, vec3 radiance) {
-    store_where(pass_radiance, 3u * item + 0u, where, radiance.x);
-    store_where(pass_radiance, 3u * item + 1u, where, radiance.y);
-    store_where(pass_radiance, 3u * item + 2u, where, radiance.z);
 }
 
 #endif

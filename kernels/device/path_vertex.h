@@ -50,17 +50,94 @@ WP_FN vec3 camera_ray_direction(__global const SceneHeader *scene, lane_uint px,
                             (TO_REAL(x) + u0) / (real)scene->width, (TO_REAL(y) + u1) / (real)scene->height);
 }
 
-/* Emission the path adds at a hit: when the material emits towards the ray
- * (or is two-sided) and the previous vertex was the camera or specular, or
- * at every hit without next-event estimation (pure BSDF sampling: no light
- * sample accounts for it). */
-WP_FN vec3 emission_seen(Material m, lane_int front, lane_int after_specular, vec3 throughput) {
+/* Emission the path adds at a hit where the material emits towards the ray
+ * (or is two-sided): throughput x emission x `weight`, the share of the
+ * emission_weight below. */
+WP_FN vec3 emission_seen(Material m, lane_int front, real weight, vec3 throughput) {
     lane_int emits = m.emission.x > REAL(0.0) || m.emission.y > REAL(0.0) || m.emission.z > REAL(0.0);
-    lane_int seen = emits && (m.two_sided || front);
-#ifdef WP_NEE
-    seen = seen && after_specular;
+    lane_int seen = emits && (m.two_sided || front) && weight > REAL(0.0);
+    return v3_select(seen, v3_scale(v3_mul(throughput, m.emission), weight),
+                     make_vec3(REAL(0.0), REAL(0.0), REAL(0.0)));
+}
+
+#ifdef WP_MIS
+/* The solid-angle density with which next-event estimation from `reference`
+ * samples `point` (geometric normal `normal`) of the emitting shape `shape`:
+ * the light's selection probability times the density of its point
+ * sampling (sample_light_shape). The light is found by a scan of the light
+ * table, whose length is a compile-time constant in small scenes; a
+ * triangle's light is its mesh's. */
+WP_FN real light_pdf_at_hit(WP_SCENE_PARAMS, lane_uint shape, vec3 reference, vec3 point, vec3 normal) {
+    lane_uint index = shape & WP_SHAPE_INDEX_MASK, type = shape >> WP_SHAPE_TYPE_SHIFT;
+#ifdef WP_HAS_MESH_LIGHTS
+    lane_int is_mesh = type == WP_SHAPE_TRIANGLE;
+    lane_uint mesh = SCENE_FIELD(triangles, is_mesh ? index : (lane_uint)0u, mesh);
 #endif
-    return v3_select(seen, v3_mul(throughput, m.emission), make_vec3(REAL(0.0), REAL(0.0), REAL(0.0)));
+    lane_uint light = 0u;
+    for (uint i = 0u; i < LIGHT_COUNT; ++i) {
+        lane_int is_this = lights[i].shape == shape;
+#ifdef WP_HAS_MESH_LIGHTS
+        is_this = is_this ||
+                  (is_mesh && lights[i].shape >> WP_SHAPE_TYPE_SHIFT == WP_SHAPE_TRIANGLE && lights[i].mesh == mesh);
+#endif
+        light = is_this ? (lane_uint)i : light;
+    }
+    real pdf = REAL(0.0);
+#ifdef WP_HAS_SPHERE_LIGHTS
+    {
+        lane_int is_sphere = type == WP_SHAPE_SPHERE;
+        lane_uint i = is_sphere ? index : (lane_uint)0u;
+        real sphere_pdf = sphere_light_pdf(SCENE_FIELD(spheres, i, center), SCENE_FIELD(spheres, i, radius), reference,
+                                           point, normal);
+        pdf = is_sphere ? sphere_pdf : pdf;
+    }
+#endif
+#ifdef WP_HAS_QUAD_LIGHTS
+    {
+        lane_int is_quad = type == WP_SHAPE_QUAD;
+        lane_uint i = is_quad ? index : (lane_uint)0u;
+        real area = v3_length(v3_cross(SCENE_FIELD(quads, i, edge1), SCENE_FIELD(quads, i, edge2)));
+        real quad_pdf = area_to_solid_angle_pdf(REAL(1.0) / area, reference, point, normal);
+        pdf = is_quad ? quad_pdf : pdf;
+    }
+#endif
+#ifdef WP_HAS_MESH_LIGHTS
+    {
+        real mesh_pdf = area_to_solid_angle_pdf(REAL(1.0) / SCENE_FIELD(lights, light, area), reference, point, normal);
+        pdf = is_mesh ? mesh_pdf : pdf;
+    }
+#endif
+    return light_selection_pmf(light_cdf, light) * pdf;
+}
+#endif
+
+/* The share of the emission at vertex v (reached along the ray from
+ * `origin`) that the path counts: all of it after the camera or a specular
+ * vertex, whose direction no light sample could have chosen, and at every
+ * hit without next-event estimation (pure BSDF sampling); after a diffuse
+ * vertex with next-event estimation, none (the light sample counts it) or,
+ * with multiple importance sampling, the power heuristic's share of BSDF
+ * sampling, whose density `bsdf_pdf` the bounce recorded. */
+WP_FN real emission_weight(WP_SCENE_PARAMS, lane_uint shape, vec3 origin, Vertex v, lane_int after_specular,
+                           real bsdf_pdf) {
+#if defined(WP_MIS)
+    real light_pdf = light_pdf_at_hit(WP_SCENE_ARGS, shape, origin, v.surface.point, v.surface.normal);
+    return after_specular ? REAL(1.0) : power_heuristic(bsdf_pdf, light_pdf);
+#elif defined(WP_NEE)
+    return after_specular ? REAL(1.0) : REAL(0.0);
+#else
+    return REAL(1.0);
+#endif
+}
+
+/* The solid-angle density of scatter_diffuse's direction at cosine
+ * `cos_theta` from the shading normal. */
+WP_FN real diffuse_pdf(real cos_theta) {
+#ifdef WP_UNIFORM_HEMISPHERE
+    return uniform_hemisphere_pdf();
+#else
+    return cosine_hemisphere_pdf(cos_theta);
+#endif
 }
 
 #ifdef WP_NEE
@@ -162,9 +239,12 @@ WP_FN lane_int sample_direct_light(WP_SCENE_PARAMS, lane_uint pixel, lane_uint s
     *shadow_distance = v3_length(along);
     *shadow_direction = v3_div(along, *shadow_distance);
     *shadow_origin = from;
+    real light_pdf = ls.pdf_solid_angle * pmf;
     /* in the reference's order of operations */
-    *contribution =
-        v3_div(v3_scale(v3_mul(v3_scale(weight, WP_INV_PI), emitter.emission), cos_surface), ls.pdf_solid_angle * pmf);
+    *contribution = v3_div(v3_scale(v3_mul(v3_scale(weight, WP_INV_PI), emitter.emission), cos_surface), light_pdf);
+#ifdef WP_MIS
+    *contribution = v3_scale(*contribution, power_heuristic(light_pdf, diffuse_pdf(cos_surface)));
+#endif
     return carries;
 }
 #endif
@@ -173,6 +253,7 @@ typedef struct {
     vec3 direction;
     vec3 weight;     /* throughput factor */
     vec3 leave_side; /* geometric normal on the side the new ray leaves into */
+    real pdf;        /* solid-angle density of a diffuse direction (0 for specular ones, whose density is a delta) */
     lane_uint specular;
     lane_int valid; /* the direction leaves on leave_side (same_side): else the path ends */
 } Scattered;
@@ -182,6 +263,7 @@ WP_FN Scattered select_scattered(lane_int choose_a, Scattered a, Scattered b) {
     s.direction = v3_select(choose_a, a.direction, b.direction);
     s.weight = v3_select(choose_a, a.weight, b.weight);
     s.leave_side = v3_select(choose_a, a.leave_side, b.leave_side);
+    s.pdf = choose_a ? a.pdf : b.pdf;
     s.specular = choose_a ? a.specular : b.specular;
     s.valid = choose_a ? a.valid : b.valid;
     return s;
@@ -199,6 +281,7 @@ WP_FN Scattered scatter_diffuse(Material m, vec3 nf, vec3 ns, real u, real v) {
 #endif
     s.direction = frame_to_world(frame_from_normal(ns), in_frame);
     s.leave_side = nf;
+    s.pdf = diffuse_pdf(in_frame.z);
     s.specular = 0u;
     s.valid = same_side(s.direction, nf);
     return s;
@@ -211,6 +294,7 @@ WP_FN Scattered scatter_mirror(Material m, vec3 d, vec3 nf, vec3 ns) {
     s.direction = reflect_direction(d, ns);
     s.weight = m.reflectance;
     s.leave_side = nf;
+    s.pdf = REAL(0.0);
     s.specular = 1u;
     s.valid = same_side(v3_neg(d), ns) && same_side(s.direction, nf);
     return s;
@@ -226,6 +310,7 @@ WP_FN Scattered scatter_glass(Material m, vec3 d, vec3 nf, vec3 ns, lane_int ent
     lane_int refracts = u_lobe >= reflectance && refract_direction(d, ns, eta, &refracted);
     Scattered s;
     s.specular = 1u;
+    s.pdf = REAL(0.0);
     s.direction = v3_select(refracts, refracted, reflect_direction(d, ns));
     s.weight = v3_div(make_vec3(REAL(1.0), REAL(1.0), REAL(1.0)), refracts ? eta * eta : REAL(1.0));
     s.leave_side = v3_select(refracts, v3_neg(nf), nf);
@@ -241,6 +326,7 @@ WP_FN Scattered scatter_vertex(Vertex v, vec3 d, uint seed, lane_uint px, lane_u
     Material m = v.material;
     Scattered scattered;
     scattered.direction = scattered.weight = scattered.leave_side = make_vec3(REAL(0.0), REAL(0.0), REAL(0.0));
+    scattered.pdf = REAL(0.0);
     scattered.specular = 0u;
     scattered.valid = 0;
 #ifdef WP_HAS_DIFFUSE

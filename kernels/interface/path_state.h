@@ -13,7 +13,9 @@
  *   ALWAYS   every scene;
  *   SPECULAR the scene has a mirror or glass material (otherwise every
  *            bounce is diffuse and "previous vertex specular" is depth == 0);
- *   NEE      next-event estimation runs (render.nee on and a light in the scene). */
+ *   NEE      next-event estimation runs (render.nee on and a light in the scene);
+ *   MIS      NEE runs at diffuse vertices with multiple importance sampling
+ *            (render.mis on). */
 #ifndef WP_INTERFACE_PATH_STATE_H
 #define WP_INTERFACE_PATH_STATE_H
 
@@ -33,6 +35,7 @@
     X(vec3, shadow_origin, NEE, "shade_direct", "intersect_shadow")                   \
     X(vec3, shadow_direction, NEE, "shade_direct", "intersect_shadow")                \
     X(float, shadow_distance, NEE, "shade_direct", "intersect_shadow")                \
-    X(vec3, shadow_radiance, NEE, "shade_direct", "intersect_shadow")
+    X(vec3, shadow_radiance, NEE, "shade_direct", "intersect_shadow")                 \
+    X(float, bsdf_pdf, MIS, "scatter", "shade_direct")
 
 #endif

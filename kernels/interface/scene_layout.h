@@ -62,6 +62,7 @@ typedef struct {
                           * WP_SHAPE_TRIANGLE with its first triangle in light_triangles as the index */
     uint triangle_count; /* a mesh: its triangles in light_triangles (and light_triangle_cdf) */
     float area;          /* a mesh: its area */
+    uint mesh;           /* a mesh: its index in the scene's meshes (MeshTriangle.mesh of its triangles) */
 } DeviceLight;
 
 #endif

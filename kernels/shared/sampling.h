@@ -81,6 +81,20 @@ WP_FN vec3 sample_uniform_hemisphere(real u1, real u2) {
     return polar_vec3(safe_sqrt(REAL(1.0) - z * z), u2, z);
 }
 
+WP_FN real uniform_hemisphere_pdf(void) { return REAL(0.5) * WP_INV_PI; }
+
+/* Veach's power heuristic (beta = 2) for one sample of the strategy of
+ * density `f` against one of density `g`: f^2 / (f^2 + g^2), written as
+ * 1 / (1 + (g/f)^2) so that no density is squared: a small light far away
+ * has a solid-angle density above 1e19, whose square overflows float.
+ * (g/f)^2 overflowing gives 0, as it should; f = 0 (the strategy cannot make
+ * the sample) gives 0; the weights of the two strategies for one sample
+ * still sum to 1 within a few ulps. */
+WP_FN real power_heuristic(real f, real g) {
+    real ratio = g / f;
+    return f > REAL(0.0) ? REAL(1.0) / (REAL(1.0) + ratio * ratio) : REAL(0.0);
+}
+
 /* A point sampled on a light, with everything next-event estimation needs. */
 typedef struct {
     vec3 point;           /* on the light's surface */
@@ -107,14 +121,15 @@ WP_FN LightSample sample_quad(vec3 corner, vec3 edge1, vec3 edge2, vec3 referenc
     return s;
 }
 
+WP_FN real sphere_area_pdf(real radius) { return REAL(1.0) / (REAL(4.0) * WP_PI * radius * radius); }
+
 /* Uniform by area over the whole sphere (used from inside or on the sphere). */
 WP_FN LightSample sample_sphere_area(vec3 center, real radius, vec3 reference, real u1, real u2) {
     real z = REAL(1.0) - REAL(2.0) * u1;
     LightSample s;
     s.normal = polar_vec3(safe_sqrt(REAL(1.0) - z * z), u2, z);
     s.point = v3_add_scaled(center, radius, s.normal);
-    s.pdf_solid_angle =
-        area_to_solid_angle_pdf(REAL(1.0) / (REAL(4.0) * WP_PI * radius * radius), reference, s.point, s.normal);
+    s.pdf_solid_angle = area_to_solid_angle_pdf(sphere_area_pdf(radius), reference, s.point, s.normal);
     return s;
 }
 
@@ -126,24 +141,38 @@ WP_FN LightSample sample_sphere_area(vec3 center, real radius, vec3 reference, r
  * sin^2(theta) = (1 - cos)(1 + cos). Exact at every cone size (pbrt's
  * small-angle branch instead approximates 1 - cos by sin^2 / 2, a bias of up
  * to 1.7e-4 near its 1.5 degree switch). */
+typedef struct {
+    vec3 to_center;
+    real distance, sin_theta_max, sin2_theta_max, one_minus_cos_theta_max;
+} SphereCone;
+
+WP_FN SphereCone sphere_cone(vec3 center, real radius, vec3 reference) {
+    SphereCone cone;
+    cone.to_center = v3_sub(center, reference);
+    cone.distance = v3_length(cone.to_center);
+    cone.sin_theta_max = radius / cone.distance;
+    cone.sin2_theta_max = cone.sin_theta_max * cone.sin_theta_max;
+    real cos_theta_max = safe_sqrt(REAL(1.0) - cone.sin2_theta_max);
+    cone.one_minus_cos_theta_max = cone.sin2_theta_max / (REAL(1.0) + cos_theta_max);
+    return cone;
+}
+
+WP_FN real sphere_cone_pdf(SphereCone cone) { return REAL(1.0) / (REAL(2.0) * WP_PI * cone.one_minus_cos_theta_max); }
+
 WP_FN LightSample sample_sphere_cone(vec3 center, real radius, vec3 reference, real u1, real u2) {
-    vec3 to_center = v3_sub(center, reference);
-    real distance = v3_length(to_center);
-    real sin_theta_max = radius / distance;
-    real sin2_theta_max = sin_theta_max * sin_theta_max;
-    real cos_theta_max = safe_sqrt(REAL(1.0) - sin2_theta_max);
-    real one_minus_cos_theta_max = sin2_theta_max / (REAL(1.0) + cos_theta_max);
-    real one_minus_cos_theta = u1 * one_minus_cos_theta_max;
+    SphereCone cone = sphere_cone(center, radius, reference);
+    real one_minus_cos_theta = u1 * cone.one_minus_cos_theta_max;
     real cos_theta = REAL(1.0) - one_minus_cos_theta;
     real sin2_theta = one_minus_cos_theta * (REAL(2.0) - one_minus_cos_theta);
     /* Angle alpha at the centre between the axis and the sampled point. */
-    real cos_alpha = sin2_theta / sin_theta_max + cos_theta * safe_sqrt(REAL(1.0) - sin2_theta / sin2_theta_max);
+    real cos_alpha =
+        sin2_theta / cone.sin_theta_max + cos_theta * safe_sqrt(REAL(1.0) - sin2_theta / cone.sin2_theta_max);
     real sin_alpha = safe_sqrt(REAL(1.0) - cos_alpha * cos_alpha);
-    Frame frame = frame_from_normal(v3_div(to_center, distance));
+    Frame frame = frame_from_normal(v3_div(cone.to_center, cone.distance));
     LightSample s;
     s.normal = v3_neg(frame_to_world(frame, polar_vec3(sin_alpha, u2, cos_alpha)));
     s.point = v3_add_scaled(center, radius, s.normal);
-    s.pdf_solid_angle = REAL(1.0) / (REAL(2.0) * WP_PI * one_minus_cos_theta_max);
+    s.pdf_solid_angle = sphere_cone_pdf(cone);
     return s;
 }
 
@@ -159,12 +188,23 @@ WP_FN LightSample select_light_sample(lane_int choose_a, LightSample a, LightSam
  * where the cone degenerates. Both are unbiased; the switch is a choice of
  * strategy, not a tolerance. Both are computed and one chosen, so that lanes
  * on either side run the same code. */
-WP_FN LightSample sample_sphere(vec3 center, real radius, vec3 reference, real u1, real u2) {
+WP_FN lane_int sphere_cone_applies(vec3 center, real radius, vec3 reference) {
     vec3 to_center = v3_sub(center, reference);
-    real distance_squared = v3_dot(to_center, to_center);
-    return select_light_sample(distance_squared > REAL(1.0001) * radius * radius,
+    return v3_dot(to_center, to_center) > REAL(1.0001) * radius * radius;
+}
+
+WP_FN LightSample sample_sphere(vec3 center, real radius, vec3 reference, real u1, real u2) {
+    return select_light_sample(sphere_cone_applies(center, radius, reference),
                                sample_sphere_cone(center, radius, reference, u1, u2),
                                sample_sphere_area(center, radius, reference, u1, u2));
+}
+
+/* The solid-angle density with which sample_sphere, from `reference`, picks
+ * the direction towards `point` (outward normal `normal`) on the sphere. */
+WP_FN real sphere_light_pdf(vec3 center, real radius, vec3 reference, vec3 point, vec3 normal) {
+    return sphere_cone_applies(center, radius, reference)
+               ? sphere_cone_pdf(sphere_cone(center, radius, reference))
+               : area_to_solid_angle_pdf(sphere_area_pdf(radius), reference, point, normal);
 }
 
 /* Index of the light whose cumulative-probability interval holds u (the

@@ -75,9 +75,12 @@ void run_on_wavefront(const Scene& scene, const BackendOptions& options, const P
 
 void run_on_megakernel(const Scene& scene, const BackendOptions& options, const Progress& progress, std::uint64_t,
                        const FilmRun& run) {
+    if (options.lanes != 0)
+        if (std::string problem = megakernel_lanes_problem(options.lanes, scene.features().meshes); !problem.empty())
+            throw UsageError(problem);
     run_on_opencl<MegakernelReport>(options, run, [&](MegakernelReport& report) {
-        return make_megakernel_renderer(scene, {options.device, wants_profile(options), options.film_squares}, progress,
-                                        &report);
+        return make_megakernel_renderer(
+            scene, {options.device, wants_profile(options), options.film_squares, options.lanes}, progress, &report);
     });
 }
 
@@ -127,8 +130,9 @@ void add_backend_options(CLI::App& render, BackendOptions& options) {
         ->default_str(kDefaultCompaction == Compaction::Scan ? "scan" : "atomic");
     render
         .add_option("--lanes", options.lanes,
-                    "Paths per work item in the wavefront's stage kernels, as vector code: 1 or 8 (8 needs "
-                    "--compaction scan; 0: 8 on CPU devices, 1 on others)")
+                    "Paths per work item in the wavefront's stage kernels and in the megakernel, as vector code: 1 "
+                    "or 8 (8 needs --compaction scan on the wavefront; 0: 8 on CPU devices, 1 on others and for "
+                    "meshes)")
         ->check(CLI::IsMember({0u, 1u, 8u}))
         ->capture_default_str();
     render.add_flag("--profile", options.profile,

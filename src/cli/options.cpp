@@ -37,6 +37,12 @@ void add_render_options(CLI::App& render, RenderCommand& command) {
         .add_option("--nee", o.nee, "Next-event estimation: on, or off for pure BSDF sampling (overrides render.nee)")
         ->check(CLI::IsMember({"on", "off"}));
     render
+        .add_option("--mis", o.mis,
+                    "Multiple importance sampling of light samples and BSDF-sampled emitter hits (power "
+                    "heuristic): on, or off to count emission after diffuse bounces by the light sample alone "
+                    "(overrides render.mis)")
+        ->check(CLI::IsMember({"on", "off"}));
+    render
         .add_option("--hemisphere", o.hemisphere,
                     "Diffuse sampling: cosine or uniform hemisphere (overrides render.hemisphere)")
         ->check(CLI::IsMember({"cosine", "uniform"}));
@@ -74,6 +80,7 @@ void apply_overrides(const RenderOverrides& overrides, Scene& scene) {
     if (overrides.rr_depth) scene.render.rr_depth = *overrides.rr_depth;
     if (overrides.seed) scene.render.seed = static_cast<std::uint32_t>(*overrides.seed);
     if (overrides.nee) scene.render.nee = *overrides.nee == "on";
+    if (overrides.mis) scene.render.mis = *overrides.mis == "on";
     if (overrides.hemisphere)
         scene.render.hemisphere = *overrides.hemisphere == "uniform" ? Hemisphere::Uniform : Hemisphere::Cosine;
     if (overrides.width) scene.camera.width = *overrides.width;

@@ -14,8 +14,8 @@ namespace wp::cli {
 // Flags that override the scene's render block and camera resolution.
 struct RenderOverrides {
     std::optional<int> spp, width, height, max_depth, rr_depth;
-    std::optional<std::int64_t> seed;            // wide enough to reject out-of-range values with a clear message
-    std::optional<std::string> nee, hemisphere;  // "on"/"off", "cosine"/"uniform"
+    std::optional<std::int64_t> seed;                 // wide enough to reject out-of-range values with a clear message
+    std::optional<std::string> nee, mis, hemisphere;  // "on"/"off", "on"/"off", "cosine"/"uniform"
 };
 
 // Flags of long renders (docs/long-renders.md).

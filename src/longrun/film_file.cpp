@@ -188,7 +188,7 @@ void check_film_matches(const std::string& path, const FilmFile& file, const Ren
                "rendered by the " + file.identity.estimator + " estimator, this render uses " + identity.estimator);
     if (file.identity.scene != identity.scene) refuse(path, "rendered from another scene (its content differs)");
     if (file.identity.settings != identity.settings)
-        refuse(path, "rendered with other settings (max_depth, rr_depth, seed, nee or hemisphere differ)");
+        refuse(path, "rendered with other settings (max_depth, rr_depth, seed, nee, mis or hemisphere differ)");
 }
 
 }  // namespace wp

@@ -62,7 +62,7 @@ std::uint64_t scene_hash(const Scene& scene) {
 }
 
 std::uint64_t settings_hash(const RenderSettings& r) {
-    return Hasher().add(r.max_depth).add(r.rr_depth).add(r.seed).add(r.nee).add(r.hemisphere).value();
+    return Hasher().add(r.max_depth).add(r.rr_depth).add(r.seed).add(r.nee).add(r.mis).add(r.hemisphere).value();
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 #include "megakernel/megakernel_renderer.h"
 
 #include <algorithm>
+#include <stdexcept>
 
 #include "interface/queues.h"
 #include "opencl/device.h"
@@ -24,6 +25,13 @@ NonfiniteCounts nonfinite_counts(const std::vector<std::uint32_t>& counts) {
     return by_stage;
 }
 
+unsigned resolve_lanes(unsigned requested, const DeviceInfo& device, bool meshes) {
+    unsigned lanes = requested != 0 ? requested : device.type == "CPU" && !meshes ? 8u : 1u;
+    if (std::string problem = megakernel_lanes_problem(lanes, meshes); !problem.empty())
+        throw std::invalid_argument(problem);
+    return lanes;
+}
+
 class MegakernelFilmRenderer : public FilmRenderer {
  public:
     MegakernelFilmRenderer(const Scene& scene, const MegakernelOptions& options, const Progress& progress,
@@ -33,9 +41,11 @@ class MegakernelFilmRenderer : public FilmRenderer {
           queue_(context_, device_.device,
                  options.profile ? cl_command_queue_properties(CL_QUEUE_PROFILING_ENABLE) : 0),
           launcher_(queue_, options.profile),
+          lanes_(resolve_lanes(options.lanes, device_, scene.features().meshes)),
           program_(build_program(context_, device_, {"megakernel.cl", "accumulate.cl"},
                                  kernel_build_options(scene.features(), scene.render.hemisphere) +
-                                     film_build_options(options.film_squares) + shape_count_options(scene),
+                                     film_build_options(options.film_squares) + shape_count_options(scene) +
+                                     " -DWP_LANES=" + std::to_string(lanes_),
                                  progress)),
           scene_(context_, flatten_scene(scene)),
           pass_radiance_(context_, CL_MEM_READ_WRITE, sizeof(float) * 3 * kPassSize),
@@ -52,6 +62,7 @@ class MegakernelFilmRenderer : public FilmRenderer {
         report_.build_options = program_.options;
         report_.cache_hit = program_.cache_hit;
         report_.build_seconds = program_.build_seconds;
+        report_.lanes = lanes_;
     }
 
     std::uint64_t pass_items() const override { return kPassSize; }
@@ -73,7 +84,7 @@ class MegakernelFilmRenderer : public FilmRenderer {
             auto size = static_cast<std::uint32_t>(std::min(kPassSize, items.end - start));
             megakernel_.setArg(arg::Megakernel::pass_start, cl_ulong(start));
             megakernel_.setArg(arg::Megakernel::pass_size, cl_uint(size));
-            launcher_.launch(megakernel_, "megakernel", size);
+            launcher_.launch(megakernel_, "megakernel", divide_rounding_up(size, lanes_));
             film_.accumulate(launcher_, start, size, pass_radiance_);
             // 32-bit device counters: read and cleared every pass.
             std::vector<std::uint32_t> figures(WP_COUNTS_SIZE);
@@ -95,6 +106,7 @@ class MegakernelFilmRenderer : public FilmRenderer {
     cl::Context context_;
     cl::CommandQueue queue_;
     KernelLauncher launcher_;
+    unsigned lanes_;
     BuiltProgram program_;
     DeviceScene scene_;
     cl::Buffer pass_radiance_, counts_;
@@ -108,6 +120,13 @@ class MegakernelFilmRenderer : public FilmRenderer {
 };
 
 }  // namespace
+
+std::string megakernel_lanes_problem(unsigned lanes, bool meshes) {
+    if (lanes != 1 && lanes != 8) return "megakernel lanes must be 1 or 8, not " + std::to_string(lanes);
+    if (lanes != 1 && meshes)
+        return "--lanes " + std::to_string(lanes) + " cannot render meshes (their BVH traversal runs one lane)";
+    return "";
+}
 
 std::unique_ptr<FilmRenderer> make_megakernel_renderer(const Scene& scene, const MegakernelOptions& options,
                                                        const Progress& progress, MegakernelReport* report) {

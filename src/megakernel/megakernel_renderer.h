@@ -1,5 +1,6 @@
 // The megakernel baseline (--backend megakernel): kernels/megakernel.cl traces
-// whole paths, one work item per sample, on the same device, with the same
+// whole paths, one work item per sample (or, as vector code, eight: lanes, as
+// the wavefront's stages on CPUs), on the same device, with the same
 // per-vertex code, random numbers and deterministic accumulation as the
 // wavefront, so the two designs are compared like for like.
 #pragma once
@@ -18,13 +19,19 @@ struct MegakernelOptions {
     std::string device;         // as WavefrontOptions::device
     bool profile = false;       // time the launches with OpenCL events
     bool film_squares = false;  // the film keeps sums of squares (per-pixel variance)
+    unsigned lanes = 0;         // paths per work item: 1 or 8; 0: 8 on CPU devices without meshes, else 1
 };
+
+// Why the megakernel cannot run `lanes` paths per work item for this scene
+// ("" when it can): 1 or 8, and meshes need 1 (their BVH traversal is scalar).
+std::string megakernel_lanes_problem(unsigned lanes, bool meshes);
 
 struct MegakernelReport {
     std::string device;
     std::string build_options;
     bool cache_hit = false;
     double build_seconds = 0.0;
+    unsigned lanes = 1;     // paths per work item
     RenderProfile profile;  // kernels "megakernel" and "accumulate", when profiling
 };
 

@@ -27,6 +27,7 @@ std::vector<std::pair<const char*, const char*>> features_in_use(const FeatureSe
     add(f.mesh_lights, "mesh-lights", "WP_HAS_MESH_LIGHTS");
     add(f.background, "background", "WP_HAS_BACKGROUND");
     add(f.nee, "nee", "WP_NEE");
+    add(f.mis, "mis", "WP_MIS");
     return in_use;
 }
 

@@ -20,7 +20,7 @@ static_assert(sizeof(DeviceSphere) == 5 * 4, "DeviceSphere must match its OpenCL
 static_assert(sizeof(DevicePlane) == 7 * 4, "DevicePlane must match its OpenCL C layout");
 static_assert(sizeof(DeviceQuad) == 16 * 4, "DeviceQuad must match its OpenCL C layout");
 static_assert(sizeof(DeviceMaterial) == 12 * 4, "DeviceMaterial must match its OpenCL C layout");
-static_assert(sizeof(DeviceLight) == 3 * 4, "DeviceLight must match its OpenCL C layout");
+static_assert(sizeof(DeviceLight) == 4 * 4, "DeviceLight must match its OpenCL C layout");
 static_assert(sizeof(SharedMath<float>::MeshTriangle) == 11 * 4, "MeshTriangle must match its OpenCL C layout");
 static_assert(sizeof(SharedMath<float>::BvhNode) == 64, "BvhNode must match its OpenCL C layout");
 
@@ -150,6 +150,7 @@ SceneLayout flatten_scene(const Scene& scene) {
                 d.shape = shape_ref(WP_SHAPE_TRIANGLE, int(range.first));
                 d.triangle_count = range.count;
                 d.area = static_cast<float>(range.area);
+                d.mesh = static_cast<std::uint32_t>(light.index);
                 break;
             default:
                 d.shape = shape_ref(WP_SHAPE_QUAD, light.index);

@@ -211,6 +211,45 @@ bool same_side(const ReferenceScene<Real>& scene, const Vec3<Real>& direction, c
     return !scene.shading_normals || glm::dot(direction, normal) > Real(0);
 }
 
+// The solid-angle density of a diffuse bounce's direction at cosine
+// cos_theta from the shading normal (scatter's diffuse case).
+template <class Real>
+Real diffuse_pdf(const ReferenceScene<Real>& scene, Real cos_theta) {
+    using M = SharedMath<Real>;
+    return scene.render.hemisphere == Hemisphere::Uniform ? M::uniform_hemisphere_pdf()
+                                                          : M::cosine_hemisphere_pdf(cos_theta);
+}
+
+// The solid-angle density with which next-event estimation from `reference`
+// samples `point` (geometric normal `normal`) of the emitting shape `hit`:
+// its light's selection probability times the density of sample_light's
+// point; a triangle's light is its mesh's.
+template <class Real>
+Real light_pdf_at_hit(const ReferenceScene<Real>& scene, const ShapeHit<Real>& hit, const Vec3<Real>& reference,
+                      const Vec3<Real>& point, const Vec3<Real>& normal) {
+    using M = SharedMath<Real>;
+    int index = hit.shape == ShapeType::Mesh ? static_cast<int>(scene.triangles[hit.index].mesh) : hit.index;
+    for (std::uint32_t i = 0; i < scene.lights.size(); ++i) {
+        const auto& light = scene.lights[i];
+        if (light.shape != hit.shape || light.index != index) continue;
+        Real pmf = M::light_selection_pmf(scene.light_cdf.data(), i);
+        switch (light.shape) {
+            case ShapeType::Sphere: {
+                const auto& s = scene.spheres[light.index];
+                return pmf * M::sphere_light_pdf(s.center, s.radius, reference, point, normal);
+            }
+            case ShapeType::Mesh:
+                return pmf * M::area_to_solid_angle_pdf(Real(1) / light.area, reference, point, normal);
+            default: {
+                const auto& q = scene.quads[light.index];
+                Real area = glm::length(glm::cross(q.edge1, q.edge2));
+                return pmf * M::area_to_solid_angle_pdf(Real(1) / area, reference, point, normal);
+            }
+        }
+    }
+    return Real(0);  // not a light
+}
+
 // Next-event estimation at a diffuse point x (with error bound x_error) with
 // front-facing geometric and shading normals nf and ns:
 // one light chosen by the power CDF, one point on it, one shadow ray.
@@ -246,13 +285,16 @@ Vec3<Real> sample_direct_light(const ReferenceScene<Real>& scene, const Vec3<Rea
     Real distance = glm::length(to_target);
     ++counts.shadow;
     if (occluded(scene, Ray<Real>{origin, to_target / distance}, distance)) return none;
-    return weight * std::numbers::inv_pi_v<Real> * emitter.emission * cos_surface / (s.pdf_solid_angle * pmf);
+    Real light_pdf = s.pdf_solid_angle * pmf;
+    vec3 contribution = weight * std::numbers::inv_pi_v<Real> * emitter.emission * cos_surface / light_pdf;
+    return scene.mis ? contribution * M::power_heuristic(light_pdf, diffuse_pdf(scene, cos_surface)) : contribution;
 }
 
 template <class Real>
 struct Scattered {
     Ray<Real> ray;
     Vec3<Real> weight;  // throughput factor
+    Real pdf;           // solid-angle density of a diffuse direction (0 for specular ones)
     bool specular;
     bool valid;  // the ray leaves on the side it was spawned for (same_side): else the path ends
 };
@@ -267,33 +309,34 @@ Scattered<Real> scatter(const ReferenceScene<Real>& scene,
                         std::uint32_t bounce) {
     using M = SharedMath<Real>;
     using vec3 = typename M::vec3;
-    auto leave = [&](const vec3& direction, const vec3& side, const vec3& weight, bool specular) {
+    auto leave = [&](const vec3& direction, const vec3& side, const vec3& weight, Real pdf, bool specular) {
         bool arrives_validly = !specular || same_side(scene, -d, ns);
-        return Scattered<Real>{Ray<Real>{M::offset_ray_origin(x.point, side, x.error), direction}, weight, specular,
-                               arrives_validly && same_side(scene, direction, side)};
+        return Scattered<Real>{Ray<Real>{M::offset_ray_origin(x.point, side, x.error), direction}, weight, pdf,
+                               specular, arrives_validly && same_side(scene, direction, side)};
     };
     switch (material.type) {
         case MaterialType::Mirror:
-            return leave(M::reflect_direction(d, ns), nf, material.reflectance, true);
+            return leave(M::reflect_direction(d, ns), nf, material.reflectance, Real(0), true);
         case MaterialType::Glass: {
             bool entering = glm::dot(d, x.normal) < Real(0);
             Real eta = entering ? material.ior : Real(1) / material.ior;
             Real reflectance = M::fresnel_dielectric(-glm::dot(d, ns), eta);
             vec3 refracted;
             if (rng(bounce, DIM_BSDF_LOBE) < reflectance || !M::refract_direction(d, ns, eta, &refracted)) {
-                return leave(M::reflect_direction(d, ns), nf, vec3(Real(1)), true);
+                return leave(M::reflect_direction(d, ns), nf, vec3(Real(1)), Real(0), true);
             }
-            return leave(refracted, -nf, vec3(Real(1) / (eta * eta)), true);
+            return leave(refracted, -nf, vec3(Real(1) / (eta * eta)), Real(0), true);
         }
         default: {  // diffuse
             Real u = rng(bounce, DIM_BSDF_U), v = rng(bounce, DIM_BSDF_V);
             if (scene.render.hemisphere == Hemisphere::Uniform) {  // weight albedo/pi * cos / (1/(2 pi))
                 vec3 local = M::sample_uniform_hemisphere(u, v);
                 return leave(M::frame_to_world(M::frame_from_normal(ns), local), nf,
-                             material.albedo * (Real(2) * local.z), false);
+                             material.albedo * (Real(2) * local.z), diffuse_pdf(scene, local.z), false);
             }
             vec3 local = M::sample_cosine_hemisphere(u, v);
-            return leave(M::frame_to_world(M::frame_from_normal(ns), local), nf, material.albedo, false);
+            return leave(M::frame_to_world(M::frame_from_normal(ns), local), nf, material.albedo,
+                         diffuse_pdf(scene, local.z), false);
         }
     }
 }
@@ -306,6 +349,7 @@ Vec3<Real> trace_path(const ReferenceScene<Real>& scene, Ray<Real> ray, const Sa
     vec3 throughput(Real(1));
     vec3 radiance(Real(0));
     bool specular = true;  // the previous vertex was specular, or is the camera
+    Real bsdf_pdf = 0;     // of the last diffuse bounce's direction
     for (int depth = 0;;) {
         ++counts.extension;
         ShapeHit<Real> hit = closest_hit(scene, ray);
@@ -318,9 +362,15 @@ Vec3<Real> trace_path(const ReferenceScene<Real>& scene, Ray<Real> ray, const Sa
         bool front = glm::dot(ray.direction, surface.normal) < Real(0);
         vec3 nf = front ? surface.normal : -surface.normal;
         vec3 ns = front ? surface.shading : -surface.shading;
-        // Without NEE no light sample accounts for emission, so every hit counts it.
-        if (material.emits && (material.two_sided || front) && (specular || !scene.nee)) {
-            add_finite<Real>(radiance, throughput * material.emission, NonfiniteStage::emission, counts);
+        // Without NEE no light sample accounts for emission, so every hit counts it; after a diffuse
+        // bounce with NEE the light sample counts it, or with MIS shares it by the power heuristic.
+        if (material.emits && (material.two_sided || front)) {
+            Real weight = specular || !scene.nee ? Real(1)
+                          : scene.mis            ? M::power_heuristic(bsdf_pdf, light_pdf_at_hit(scene, hit, ray.origin,
+                                                                                                 surface.point, surface.normal))
+                                                 : Real(0);
+            if (weight > Real(0))
+                add_finite<Real>(radiance, throughput * material.emission * weight, NonfiniteStage::emission, counts);
         }
         if (depth >= scene.render.max_depth || material.type == MaterialType::Emitter) break;
 
@@ -336,6 +386,7 @@ Vec3<Real> trace_path(const ReferenceScene<Real>& scene, Ray<Real> ray, const Sa
         throughput *= next.weight;
         ray = next.ray;
         specular = next.specular;
+        bsdf_pdf = next.pdf;
 
         ++depth;
         if (depth >= scene.render.rr_depth) {

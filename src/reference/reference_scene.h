@@ -63,6 +63,7 @@ struct ReferenceScene {
     PinholeCamera camera;
     RenderSettings render;
     bool nee;              // next-event estimation runs (FeatureSet::nee)
+    bool mis;              // with multiple importance sampling (FeatureSet::mis)
     bool shading_normals;  // some mesh shades with vertex normals (FeatureSet::shading_normals)
     vec3 background;
     std::vector<SurfaceMaterial> materials;
@@ -80,6 +81,7 @@ struct ReferenceScene {
     explicit ReferenceScene(const Scene& scene)
         : render(scene.render),
           nee(scene.features().nee),
+          mis(scene.features().mis),
           shading_normals(scene.features().shading_normals),
           background(scene.background) {
         camera = convert_camera(scene.camera);

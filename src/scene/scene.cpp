@@ -47,6 +47,7 @@ FeatureSet Scene::features() const {
     }
     f.background = background.x > 0.0 || background.y > 0.0 || background.z > 0.0;
     f.nee = render.nee && !lights.empty();
+    f.mis = f.nee && f.diffuse && render.mis;
     return f;
 }
 

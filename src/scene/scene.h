@@ -31,6 +31,7 @@ struct RenderSettings {
     int rr_depth = 3;   // Russian roulette from this many scattering events on
     std::uint32_t seed = 0;
     bool nee = true;  // next-event estimation; off: emission is counted at every hit (pure BSDF sampling)
+    bool mis = true;  // with nee: light samples and BSDF-sampled emitter hits combined by the power heuristic
     Hemisphere hemisphere = Hemisphere::Cosine;
 };
 
@@ -95,6 +96,7 @@ struct FeatureSet {
     bool sphere_lights = false, quad_lights = false, mesh_lights = false;
     bool background = false;  // a non-black background
     bool nee = false;         // next-event estimation runs: render.nee is on and the scene has a light
+    bool mis = false;         // nee runs at diffuse vertices and render.mis is on
 };
 
 struct Scene {

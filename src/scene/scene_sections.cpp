@@ -322,13 +322,14 @@ Hemisphere read_hemisphere(const JsonField& field) {
 }
 
 RenderSettings read_render(const JsonField& field) {
-    field.allow_only_keys({"spp", "max_depth", "rr_depth", "seed", "nee", "hemisphere"});
+    field.allow_only_keys({"spp", "max_depth", "rr_depth", "seed", "nee", "mis", "hemisphere"});
     RenderSettings render;
     read_optional_integer(field, "spp", 1, kMaxSpp, render.spp);
     read_optional_integer(field, "max_depth", 0, kMaxDepthLimit, render.max_depth);
     read_optional_integer(field, "rr_depth", 0, std::numeric_limits<int>::max(), render.rr_depth);
     read_optional_integer(field, "seed", 0, std::numeric_limits<std::uint32_t>::max(), render.seed);
     if (std::optional<JsonField> nee = field.optional_member("nee")) render.nee = nee->boolean();
+    if (std::optional<JsonField> mis = field.optional_member("mis")) render.mis = mis->boolean();
     if (std::optional<JsonField> hemisphere = field.optional_member("hemisphere"))
         render.hemisphere = read_hemisphere(*hemisphere);
     return render;

@@ -11,7 +11,7 @@
 
 namespace wp {
 
-enum class PathFeature { ALWAYS, SPECULAR, NEE };
+enum class PathFeature { ALWAYS, SPECULAR, NEE, MIS };
 
 struct PathStateField {
     const char* type;

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 #include "megakernel/megakernel_renderer.h"
 #include "reference/reference_renderer.h"
@@ -15,21 +16,45 @@
 namespace wp {
 namespace {
 
-TEST(Megakernel, OneSampleMatchesReferencePathForPath) {
-    Scene scene = test::small_room(48, 1);
-    test::expect_path_for_path_agreement(render_megakernel(scene, {}, {}),
-                                         render_reference(scene, ReferenceOptions{2, false}), "megakernel");
+MegakernelOptions with_lanes(unsigned lanes) {
+    MegakernelOptions options;
+    options.lanes = lanes;
+    return options;
+}
+
+// 45 x 45 pixels: 2025 work items, so the last work item of 8 lanes has one
+// active lane, which must not disturb the others.
+TEST(Megakernel, OneSampleMatchesReferencePathForPathWithOneAndEightLanes) {
+    Scene scene = test::small_room(45, 1);
+    RenderResult reference = render_reference(scene, ReferenceOptions{2, false});
+    for (unsigned lanes : {1u, 8u}) {
+        MegakernelReport report;
+        RenderResult megakernel = render_megakernel(scene, with_lanes(lanes), {}, &report);
+        EXPECT_EQ(report.lanes, lanes);
+        test::expect_path_for_path_agreement(megakernel, reference, "megakernel, lanes " + std::to_string(lanes));
+    }
+}
+
+TEST(Megakernel, UsesEightLanesOnCpusUnlessTheSceneHasMeshes) {
+    MegakernelReport report;
+    render_megakernel(test::small_room(8, 1), {}, {}, &report);
+    EXPECT_EQ(report.lanes, 8u) << "PoCL's devices are CPUs";
+    EXPECT_EQ(megakernel_lanes_problem(8, true), "--lanes 8 cannot render meshes (their BVH traversal runs one lane)");
+    EXPECT_EQ(megakernel_lanes_problem(1, true), "");
 }
 
 // Both OpenCL backends run the same float code per vertex and accumulate each
-// pixel's samples in sample order, so their images are bit-identical.
+// pixel's samples in sample order, so their images are bit-identical, with
+// any number of lanes.
 TEST(Megakernel, BitIdenticalToWavefront) {
     Scene scene = test::small_room(40, 3);
-    RenderResult megakernel = render_megakernel(scene, {}, {});
     RenderResult wavefront = render_wavefront(scene, {}, {});
-    EXPECT_EQ(megakernel.image.rgb, wavefront.image.rgb);
-    EXPECT_EQ(megakernel.stats.extension_rays, wavefront.stats.extension_rays);
-    EXPECT_EQ(megakernel.stats.shadow_rays, wavefront.stats.shadow_rays);
+    for (unsigned lanes : {1u, 8u}) {
+        RenderResult megakernel = render_megakernel(scene, with_lanes(lanes), {});
+        EXPECT_EQ(megakernel.image.rgb, wavefront.image.rgb) << "lanes " << lanes;
+        EXPECT_EQ(megakernel.stats.extension_rays, wavefront.stats.extension_rays) << "lanes " << lanes;
+        EXPECT_EQ(megakernel.stats.shadow_rays, wavefront.stats.shadow_rays) << "lanes " << lanes;
+    }
 }
 
 TEST(Megakernel, ProfileTimesItsLaunches) {

@@ -66,7 +66,9 @@ TYPED_TEST(ReferenceAnalytic, InsideEmissiveSphereSamplingVariantsAgree) {
             wp::RenderResult result =
                 this->render(wp::test::with_sampling(wp::test::inside_emissive_sphere(block, kRho, kLe), variant));
             EXPECT_EQ(result.stats.nonfinite, 0u);
-            if (!variant.nee) EXPECT_EQ(result.stats.shadow_rays, 0u);
+            if (!variant.nee) {
+                EXPECT_EQ(result.stats.shadow_rays, 0u);
+            }
             for (int c = 0; c < 3; ++c) {
                 double expected = wp::test::inside_emissive_sphere_radiance(kRho[c], kLe[c], max_depth);
                 this->expect_channel(wp::test::channel_mean(result.image, c), expected,

@@ -107,6 +107,7 @@ class RunningMean {
         m2_ += delta * (x - mean_);
     }
     double mean() const { return mean_; }
+    double variance() const { return n_ > 1 ? m2_ / static_cast<double>(n_ - 1) : 0.0; }  // of one value
     double standard_error() const {
         return n_ > 1 ? std::sqrt(m2_ / static_cast<double>(n_ - 1) / static_cast<double>(n_)) : 0.0;
     }
