@@ -251,9 +251,10 @@ WP_FN lane_int sample_direct_light(WP_SCENE_PARAMS, lane_uint pixel, lane_uint s
 
 typedef struct {
     vec3 direction;
-    vec3 weight;     /* throughput factor */
-    vec3 leave_side; /* geometric normal on the side the new ray leaves into */
-    real pdf;        /* solid-angle density of a diffuse direction (0 for specular ones, whose density is a delta) */
+    vec3 weight;      /* throughput factor */
+    vec3 leave_side;  /* geometric normal on the side the new ray leaves into */
+    real pdf;         /* solid-angle density of a diffuse direction (0 for specular ones, whose density is a delta) */
+    real eta_squared; /* eta^2 of a refraction, whose weight is 1/eta^2; else 1 (roulette_survival) */
     lane_uint specular;
     lane_int valid; /* the direction leaves on leave_side (same_side): else the path ends */
 } Scattered;
@@ -264,6 +265,7 @@ WP_FN Scattered select_scattered(lane_int choose_a, Scattered a, Scattered b) {
     s.weight = v3_select(choose_a, a.weight, b.weight);
     s.leave_side = v3_select(choose_a, a.leave_side, b.leave_side);
     s.pdf = choose_a ? a.pdf : b.pdf;
+    s.eta_squared = choose_a ? a.eta_squared : b.eta_squared;
     s.specular = choose_a ? a.specular : b.specular;
     s.valid = choose_a ? a.valid : b.valid;
     return s;
@@ -282,6 +284,7 @@ WP_FN Scattered scatter_diffuse(Material m, vec3 nf, vec3 ns, real u, real v) {
     s.direction = frame_to_world(frame_from_normal(ns), in_frame);
     s.leave_side = nf;
     s.pdf = diffuse_pdf(in_frame.z);
+    s.eta_squared = REAL(1.0);
     s.specular = 0u;
     s.valid = same_side(s.direction, nf);
     return s;
@@ -295,6 +298,7 @@ WP_FN Scattered scatter_mirror(Material m, vec3 d, vec3 nf, vec3 ns) {
     s.weight = m.reflectance;
     s.leave_side = nf;
     s.pdf = REAL(0.0);
+    s.eta_squared = REAL(1.0);
     s.specular = 1u;
     s.valid = same_side(v3_neg(d), ns) && same_side(s.direction, nf);
     return s;
@@ -311,6 +315,7 @@ WP_FN Scattered scatter_glass(Material m, vec3 d, vec3 nf, vec3 ns, lane_int ent
     Scattered s;
     s.specular = 1u;
     s.pdf = REAL(0.0);
+    s.eta_squared = refracts ? eta * eta : REAL(1.0);
     s.direction = v3_select(refracts, refracted, reflect_direction(d, ns));
     s.weight = v3_div(make_vec3(REAL(1.0), REAL(1.0), REAL(1.0)), refracts ? eta * eta : REAL(1.0));
     s.leave_side = v3_select(refracts, v3_neg(nf), nf);
@@ -327,6 +332,7 @@ WP_FN Scattered scatter_vertex(Vertex v, vec3 d, uint seed, lane_uint px, lane_u
     Scattered scattered;
     scattered.direction = scattered.weight = scattered.leave_side = make_vec3(REAL(0.0), REAL(0.0), REAL(0.0));
     scattered.pdf = REAL(0.0);
+    scattered.eta_squared = REAL(1.0);
     scattered.specular = 0u;
     scattered.valid = 0;
 #ifdef WP_HAS_DIFFUSE
@@ -347,11 +353,11 @@ WP_FN Scattered scatter_vertex(Vertex v, vec3 d, uint seed, lane_uint px, lane_u
 }
 
 /* Russian roulette once new_depth reaches rr_depth: survival probability
- * clamp(max_component(T), 0.05, 1), and T /= survival when the path survives. */
-WP_FN lane_int survives_roulette(vec3 *throughput, uint seed, lane_uint px, lane_uint s, lane_uint bounce,
-                                 lane_uint new_depth, uint rr_depth) {
+ * roulette_survival(T, eta_scale), and T /= survival when the path survives. */
+WP_FN lane_int survives_roulette(vec3 *throughput, real eta_scale, uint seed, lane_uint px, lane_uint s,
+                                 lane_uint bounce, lane_uint new_depth, uint rr_depth) {
     lane_int plays = new_depth >= rr_depth;
-    real survival = wp_clamp(max_component(*throughput), REAL(0.05), REAL(1.0));
+    real survival = roulette_survival(*throughput, eta_scale);
     lane_int survives = rng_uniform(seed, px, s, bounce, DIM_ROULETTE) < survival;
     *throughput = v3_select(plays, v3_div(*throughput, survival), *throughput);
     return !plays || survives;

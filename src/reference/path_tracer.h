@@ -295,6 +295,7 @@ struct Scattered {
     Ray<Real> ray;
     Vec3<Real> weight;  // throughput factor
     Real pdf;           // solid-angle density of a diffuse direction (0 for specular ones)
+    Real eta_squared;   // eta^2 of a refraction (whose weight is 1 / eta^2), else 1: roulette_survival
     bool specular;
     bool valid;  // the ray leaves on the side it was spawned for (same_side): else the path ends
 };
@@ -311,8 +312,12 @@ Scattered<Real> scatter(const ReferenceScene<Real>& scene,
     using vec3 = typename M::vec3;
     auto leave = [&](const vec3& direction, const vec3& side, const vec3& weight, Real pdf, bool specular) {
         bool arrives_validly = !specular || same_side(scene, -d, ns);
-        return Scattered<Real>{Ray<Real>{M::offset_ray_origin(x.point, side, x.error), direction}, weight, pdf,
-                               specular, arrives_validly && same_side(scene, direction, side)};
+        return Scattered<Real>{Ray<Real>{M::offset_ray_origin(x.point, side, x.error), direction},
+                               weight,
+                               pdf,
+                               Real(1),
+                               specular,
+                               arrives_validly && same_side(scene, direction, side)};
     };
     switch (material.type) {
         case MaterialType::Mirror:
@@ -325,7 +330,9 @@ Scattered<Real> scatter(const ReferenceScene<Real>& scene,
             if (rng(bounce, DIM_BSDF_LOBE) < reflectance || !M::refract_direction(d, ns, eta, &refracted)) {
                 return leave(M::reflect_direction(d, ns), nf, vec3(Real(1)), Real(0), true);
             }
-            return leave(refracted, -nf, vec3(Real(1) / (eta * eta)), Real(0), true);
+            Scattered<Real> refraction = leave(refracted, -nf, vec3(Real(1) / (eta * eta)), Real(0), true);
+            refraction.eta_squared = eta * eta;
+            return refraction;
         }
         default: {  // diffuse
             Real u = rng(bounce, DIM_BSDF_U), v = rng(bounce, DIM_BSDF_V);
@@ -350,6 +357,7 @@ Vec3<Real> trace_path(const ReferenceScene<Real>& scene, Ray<Real> ray, const Sa
     vec3 radiance(Real(0));
     bool specular = true;  // the previous vertex was specular, or is the camera
     Real bsdf_pdf = 0;     // of the last diffuse bounce's direction
+    Real eta_scale = 1;    // eta^2 over the refractions so far (roulette_survival)
     for (int depth = 0;;) {
         ++counts.extension;
         ShapeHit<Real> hit = closest_hit(scene, ray);
@@ -387,10 +395,11 @@ Vec3<Real> trace_path(const ReferenceScene<Real>& scene, Ray<Real> ray, const Sa
         ray = next.ray;
         specular = next.specular;
         bsdf_pdf = next.pdf;
+        eta_scale *= next.eta_squared;
 
         ++depth;
         if (depth >= scene.render.rr_depth) {
-            Real survival = M::wp_clamp(M::max_component(throughput), Real(0.05), Real(1));
+            Real survival = M::roulette_survival(throughput, eta_scale);
             if (rng(bounce, DIM_ROULETTE) >= survival) break;
             throughput /= survival;
         }
