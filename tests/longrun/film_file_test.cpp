@@ -126,7 +126,7 @@ TEST_F(FilmFileTest, FilmsOfAnotherRenderAreRefused) {
     EXPECT_EQ(mismatch({0x1235, 0x5678, "opencl"}, 5, 3),
               "f.wpfilm: rendered from another scene (its content differs)");
     EXPECT_EQ(mismatch({0x1234, 0x5679, "opencl"}, 5, 3),
-              "f.wpfilm: rendered with other settings (max_depth, rr_depth, seed, nee or hemisphere differ)");
+              "f.wpfilm: rendered with other settings (max_depth, rr_depth, seed, nee, mis or hemisphere differ)");
 }
 
 TEST(RenderIdentity, EverySettingThatChangesTheImageChangesIt) {
@@ -141,6 +141,7 @@ TEST(RenderIdentity, EverySettingThatChangesTheImageChangesIt) {
     EXPECT_TRUE(settings_changed([](Scene& s) { s.render.rr_depth += 1; }));
     EXPECT_TRUE(settings_changed([](Scene& s) { s.render.seed += 1; }));
     EXPECT_TRUE(settings_changed([](Scene& s) { s.render.nee = !s.render.nee; }));
+    EXPECT_TRUE(settings_changed([](Scene& s) { s.render.mis = !s.render.mis; }));
     EXPECT_TRUE(settings_changed([](Scene& s) { s.render.hemisphere = Hemisphere::Uniform; }));
     EXPECT_FALSE(settings_changed([](Scene& s) { s.render.spp += 1; }));  // a film can be continued to more samples
 

@@ -31,7 +31,9 @@ TEST(WavefrontSamplingVariants, EmissiveSphereInteriorKeepsItsValue) {
         RenderResult result =
             render_wavefront(test::with_sampling(test::inside_emissive_sphere(block, rho, le), variant), {}, {});
         EXPECT_EQ(result.stats.nonfinite, 0u) << variant.name;
-        if (!variant.nee) EXPECT_EQ(result.stats.shadow_rays, 0u) << variant.name;
+        if (!variant.nee) {
+            EXPECT_EQ(result.stats.shadow_rays, 0u) << variant.name;
+        }
         for (int c = 0; c < 3; ++c) {
             double expected = test::inside_emissive_sphere_radiance(rho[c], le[c], max_depth);
             test::RunningMean mean = test::channel_mean(result.image, c);
@@ -49,7 +51,9 @@ TEST(WavefrontSamplingVariants, OneSampleMatchesReferencePathForPath) {
         RenderResult wavefront = render_wavefront(scene, {}, {});
         test::expect_path_for_path_agreement(wavefront, render_reference(scene, ReferenceOptions{2, false}),
                                              variant.name);
-        if (!variant.nee) EXPECT_EQ(wavefront.stats.shadow_rays, 0u) << variant.name;
+        if (!variant.nee) {
+            EXPECT_EQ(wavefront.stats.shadow_rays, 0u) << variant.name;
+        }
         EXPECT_EQ(render_megakernel(scene, {}, {}).image.rgb, wavefront.image.rgb) << variant.name;
     }
 }
