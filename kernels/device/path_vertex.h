@@ -62,26 +62,12 @@ WP_FN vec3 emission_seen(Material m, lane_int front, real weight, vec3 throughpu
 
 #ifdef WP_MIS
 /* The solid-angle density with which next-event estimation from `reference`
- * samples `point` (geometric normal `normal`) of the emitting shape `shape`:
- * the light's selection probability times the density of its point
- * sampling (sample_light_shape). The light is found by a scan of the light
- * table, whose length is a compile-time constant in small scenes; a
- * triangle's light is its mesh's. */
-WP_FN real light_pdf_at_hit(WP_SCENE_PARAMS, lane_uint shape, vec3 reference, vec3 point, vec3 normal) {
+ * samples `point` (geometric normal `normal`) of light `light`: its
+ * selection probability times the density of its point sampling
+ * (sample_light_shape). */
+WP_FN real light_point_pdf(WP_SCENE_PARAMS, lane_uint light, vec3 reference, vec3 point, vec3 normal) {
+    lane_uint shape = SCENE_FIELD(lights, light, shape);
     lane_uint index = shape & WP_SHAPE_INDEX_MASK, type = shape >> WP_SHAPE_TYPE_SHIFT;
-#ifdef WP_HAS_MESH_LIGHTS
-    lane_int is_mesh = type == WP_SHAPE_TRIANGLE;
-    lane_uint mesh = SCENE_FIELD(triangles, is_mesh ? index : (lane_uint)0u, mesh);
-#endif
-    lane_uint light = 0u;
-    for (uint i = 0u; i < LIGHT_COUNT; ++i) {
-        lane_int is_this = lights[i].shape == shape;
-#ifdef WP_HAS_MESH_LIGHTS
-        is_this = is_this ||
-                  (is_mesh && lights[i].shape >> WP_SHAPE_TYPE_SHIFT == WP_SHAPE_TRIANGLE && lights[i].mesh == mesh);
-#endif
-        light = is_this ? (lane_uint)i : light;
-    }
     real pdf = REAL(0.0);
 #ifdef WP_HAS_SPHERE_LIGHTS
     {
@@ -104,10 +90,30 @@ WP_FN real light_pdf_at_hit(WP_SCENE_PARAMS, lane_uint shape, vec3 reference, ve
 #ifdef WP_HAS_MESH_LIGHTS
     {
         real mesh_pdf = area_to_solid_angle_pdf(REAL(1.0) / SCENE_FIELD(lights, light, area), reference, point, normal);
-        pdf = is_mesh ? mesh_pdf : pdf;
+        pdf = type == WP_SHAPE_TRIANGLE ? mesh_pdf : pdf;
     }
 #endif
     return light_selection_pmf(light_cdf, light) * pdf;
+}
+
+/* The light an emitting hit `shape` belongs to: a scan of the light table,
+ * whose length is a compile-time constant in small scenes; a triangle's light
+ * is its mesh's. */
+WP_FN lane_uint light_of_shape(WP_SCENE_PARAMS, lane_uint shape) {
+#ifdef WP_HAS_MESH_LIGHTS
+    lane_int is_mesh = shape >> WP_SHAPE_TYPE_SHIFT == WP_SHAPE_TRIANGLE;
+    lane_uint mesh = SCENE_FIELD(triangles, is_mesh ? shape & WP_SHAPE_INDEX_MASK : (lane_uint)0u, mesh);
+#endif
+    lane_uint light = 0u;
+    for (uint i = 0u; i < LIGHT_COUNT; ++i) {
+        lane_int is_this = lights[i].shape == shape;
+#ifdef WP_HAS_MESH_LIGHTS
+        is_this = is_this ||
+                  (is_mesh && lights[i].shape >> WP_SHAPE_TYPE_SHIFT == WP_SHAPE_TRIANGLE && lights[i].mesh == mesh);
+#endif
+        light = is_this ? (lane_uint)i : light;
+    }
+    return light;
 }
 #endif
 
@@ -121,7 +127,8 @@ WP_FN real light_pdf_at_hit(WP_SCENE_PARAMS, lane_uint shape, vec3 reference, ve
 WP_FN real emission_weight(WP_SCENE_PARAMS, lane_uint shape, vec3 origin, Vertex v, lane_int after_specular,
                            real bsdf_pdf) {
 #if defined(WP_MIS)
-    real light_pdf = light_pdf_at_hit(WP_SCENE_ARGS, shape, origin, v.surface.point, v.surface.normal);
+    real light_pdf =
+        light_point_pdf(WP_SCENE_ARGS, light_of_shape(WP_SCENE_ARGS, shape), origin, v.surface.point, v.surface.normal);
     return after_specular ? REAL(1.0) : power_heuristic(bsdf_pdf, light_pdf);
 #elif defined(WP_NEE)
     return after_specular ? REAL(1.0) : REAL(0.0);
@@ -243,7 +250,11 @@ WP_FN lane_int sample_direct_light(WP_SCENE_PARAMS, lane_uint pixel, lane_uint s
     /* in the reference's order of operations */
     *contribution = v3_div(v3_scale(v3_mul(v3_scale(weight, WP_INV_PI), emitter.emission), cos_surface), light_pdf);
 #ifdef WP_MIS
-    *contribution = v3_scale(*contribution, power_heuristic(light_pdf, diffuse_pdf(cos_surface)));
+    /* Both weights take the light's density from where the spawned rays start (the shadow ray here, the
+     * bounce ray in emission_weight): evaluated at x instead, they would not sum to one where the offset is
+     * large next to the light (a float radius-1e5 wall offsets rays by 3% of a 2-unit room). */
+    real light_pdf_from_origin = light_point_pdf(WP_SCENE_ARGS, light, from, ls.point, ls.normal);
+    *contribution = v3_scale(*contribution, power_heuristic(light_pdf_from_origin, diffuse_pdf(cos_surface)));
 #endif
     return carries;
 }

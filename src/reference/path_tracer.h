@@ -221,33 +221,39 @@ Real diffuse_pdf(const ReferenceScene<Real>& scene, Real cos_theta) {
 }
 
 // The solid-angle density with which next-event estimation from `reference`
-// samples `point` (geometric normal `normal`) of the emitting shape `hit`:
-// its light's selection probability times the density of sample_light's
-// point; a triangle's light is its mesh's.
+// samples `point` (geometric normal `normal`) of light `index`: its selection
+// probability times the density of sample_light's point.
+template <class Real>
+Real light_point_pdf(const ReferenceScene<Real>& scene, std::uint32_t index, const Vec3<Real>& reference,
+                     const Vec3<Real>& point, const Vec3<Real>& normal) {
+    using M = SharedMath<Real>;
+    const auto& light = scene.lights[index];
+    Real pmf = M::light_selection_pmf(scene.light_cdf.data(), index);
+    switch (light.shape) {
+        case ShapeType::Sphere: {
+            const auto& s = scene.spheres[light.index];
+            return pmf * M::sphere_light_pdf(s.center, s.radius, reference, point, normal);
+        }
+        case ShapeType::Mesh:
+            return pmf * M::area_to_solid_angle_pdf(Real(1) / light.area, reference, point, normal);
+        default: {
+            const auto& q = scene.quads[light.index];
+            Real area = glm::length(glm::cross(q.edge1, q.edge2));
+            return pmf * M::area_to_solid_angle_pdf(Real(1) / area, reference, point, normal);
+        }
+    }
+}
+
+// light_point_pdf for the light the emitting shape `hit` belongs to (a
+// triangle's light is its mesh's); 0 where it is no light.
 template <class Real>
 Real light_pdf_at_hit(const ReferenceScene<Real>& scene, const ShapeHit<Real>& hit, const Vec3<Real>& reference,
                       const Vec3<Real>& point, const Vec3<Real>& normal) {
-    using M = SharedMath<Real>;
     int index = hit.shape == ShapeType::Mesh ? static_cast<int>(scene.triangles[hit.index].mesh) : hit.index;
-    for (std::uint32_t i = 0; i < scene.lights.size(); ++i) {
-        const auto& light = scene.lights[i];
-        if (light.shape != hit.shape || light.index != index) continue;
-        Real pmf = M::light_selection_pmf(scene.light_cdf.data(), i);
-        switch (light.shape) {
-            case ShapeType::Sphere: {
-                const auto& s = scene.spheres[light.index];
-                return pmf * M::sphere_light_pdf(s.center, s.radius, reference, point, normal);
-            }
-            case ShapeType::Mesh:
-                return pmf * M::area_to_solid_angle_pdf(Real(1) / light.area, reference, point, normal);
-            default: {
-                const auto& q = scene.quads[light.index];
-                Real area = glm::length(glm::cross(q.edge1, q.edge2));
-                return pmf * M::area_to_solid_angle_pdf(Real(1) / area, reference, point, normal);
-            }
-        }
-    }
-    return Real(0);  // not a light
+    for (std::uint32_t i = 0; i < scene.lights.size(); ++i)
+        if (scene.lights[i].shape == hit.shape && scene.lights[i].index == index)
+            return light_point_pdf(scene, i, reference, point, normal);
+    return Real(0);
 }
 
 // Next-event estimation at a diffuse point x (with error bound x_error) with
@@ -287,7 +293,10 @@ Vec3<Real> sample_direct_light(const ReferenceScene<Real>& scene, const Vec3<Rea
     if (occluded(scene, Ray<Real>{origin, to_target / distance}, distance)) return none;
     Real light_pdf = s.pdf_solid_angle * pmf;
     vec3 contribution = weight * std::numbers::inv_pi_v<Real> * emitter.emission * cos_surface / light_pdf;
-    return scene.mis ? contribution * M::power_heuristic(light_pdf, diffuse_pdf(scene, cos_surface)) : contribution;
+    if (!scene.mis) return contribution;
+    // Both weights take the light's density from where the spawned rays start (kernels/device/path_vertex.h).
+    Real light_pdf_from_origin = light_point_pdf(scene, index, origin, s.point, s.normal);
+    return contribution * M::power_heuristic(light_pdf_from_origin, diffuse_pdf(scene, cos_surface));
 }
 
 template <class Real>
