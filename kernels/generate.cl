@@ -33,5 +33,8 @@ __kernel __attribute__((reqd_work_group_size(WP_GROUP_SIZE, 1, 1))) void generat
 #ifdef WP_HAS_SPECULAR
     PATH_WRITE(specular, lanes, started, (lane_uint)1u);
 #endif
+#ifdef WP_HAS_GLASS
+    PATH_WRITE(eta_scale, lanes, started, (real)REAL(1.0));
+#endif
     push_lanes(queues, counts, WP_QUEUE_RAY, lanes, started, &group_count, &group_base);
 }

@@ -45,7 +45,8 @@ WP_FN vec3 trace_paths(WP_SCENE_PARAMS, lane_int alive, lane_uint px, lane_uint 
     vec3 throughput = make_vec3(REAL(1.0), REAL(1.0), REAL(1.0));
     vec3 radiance = make_vec3(REAL(0.0), REAL(0.0), REAL(0.0));
     lane_int after_specular = alive;
-    real bsdf_pdf = REAL(0.0); /* of the last diffuse bounce's direction */
+    real bsdf_pdf = REAL(0.0);  /* of the last diffuse bounce's direction */
+    real eta_scale = REAL(1.0); /* eta^2 over the refractions so far (roulette_survival) */
     for (uint depth = 0u; lanes_any(alive); ++depth) {
         *extension_rays += alive ? (lane_uint)1u : (lane_uint)0u;
         Hit hit = closest_hit(WP_SCENE_ARGS, origin, d);
@@ -75,13 +76,16 @@ WP_FN vec3 trace_paths(WP_SCENE_PARAMS, lane_int alive, lane_uint px, lane_uint 
 #endif
         Scattered scattered = scatter_vertex(v, d, seed, px, s, depth);
         vec3 next_throughput = v3_mul(throughput, scattered.weight);
+        real next_eta_scale = eta_scale * scattered.eta_squared;
         lane_int survives =
-            survives_roulette(&next_throughput, seed, px, s, depth, depth + 1u, scene->rr_depth) && scattered.valid;
+            survives_roulette(&next_throughput, next_eta_scale, seed, px, s, depth, depth + 1u, scene->rr_depth) &&
+            scattered.valid;
         lane_uint nonfinite = 0u;
         lane_int finite = throughput_is_finite(next_throughput, &nonfinite);
         dropped[2] += alive && survives ? nonfinite : (lane_uint)0u;
         alive = alive && survives && finite;
         throughput = v3_select(alive, next_throughput, throughput);
+        eta_scale = alive ? next_eta_scale : eta_scale;
         origin = v3_select(alive, offset_ray_origin(v.surface.point, scattered.leave_side, v.surface.error), origin);
         d = v3_select(alive, scattered.direction, d);
         after_specular = scattered.specular != 0u;

@@ -19,7 +19,12 @@ __kernel __attribute__((reqd_work_group_size(WP_GROUP_SIZE, 1, 1))) void scatter
     Scattered scattered = scatter_vertex(v, d, seed, px, s, bounce);
     vec3 throughput = v3_mul(PATH_READ(throughput, lanes), scattered.weight);
     lane_uint new_depth = bounce + 1u, dropped = 0u;
-    lane_int survives = survives_roulette(&throughput, seed, px, s, bounce, new_depth, scene->rr_depth);
+#ifdef WP_HAS_GLASS
+    real eta_scale = PATH_READ(eta_scale, lanes) * scattered.eta_squared;
+#else
+    real eta_scale = REAL(1.0);
+#endif
+    lane_int survives = survives_roulette(&throughput, eta_scale, seed, px, s, bounce, new_depth, scene->rr_depth);
     lane_int continues = lanes.active && scattered.valid && survives && throughput_is_finite(throughput, &dropped);
     /* only paths that left validly and survived roulette count a non-finite throughput (as with one lane, where
      * && stops early) */
@@ -35,6 +40,9 @@ __kernel __attribute__((reqd_work_group_size(WP_GROUP_SIZE, 1, 1))) void scatter
 #endif
 #ifdef WP_MIS
     PATH_WRITE(bsdf_pdf, lanes, continues, scattered.pdf);
+#endif
+#ifdef WP_HAS_GLASS
+    PATH_WRITE(eta_scale, lanes, continues, eta_scale);
 #endif
     finish_paths(pass_radiance, PATH_READ(pass_item, lanes), ends, PATH_READ(radiance, lanes));
     push_lanes(queues, counts, WP_QUEUE_RAY, lanes, continues, &group_count, &group_base);

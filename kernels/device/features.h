@@ -18,6 +18,11 @@
 #else
 #define WP_IF_SPECULAR(...)
 #endif
+#ifdef WP_HAS_GLASS
+#define WP_IF_GLASS(...) __VA_ARGS__
+#else
+#define WP_IF_GLASS(...)
+#endif
 #ifdef WP_NEE
 #define WP_IF_NEE(...) __VA_ARGS__
 #else

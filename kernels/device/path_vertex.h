@@ -62,26 +62,12 @@ WP_FN vec3 emission_seen(Material m, lane_int front, real weight, vec3 throughpu
 
 #ifdef WP_MIS
 /* The solid-angle density with which next-event estimation from `reference`
- * samples `point` (geometric normal `normal`) of the emitting shape `shape`:
- * the light's selection probability times the density of its point
- * sampling (sample_light_shape). The light is found by a scan of the light
- * table, whose length is a compile-time constant in small scenes; a
- * triangle's light is its mesh's. */
-WP_FN real light_pdf_at_hit(WP_SCENE_PARAMS, lane_uint shape, vec3 reference, vec3 point, vec3 normal) {
+ * samples `point` (geometric normal `normal`) of light `light`: its
+ * selection probability times the density of its point sampling
+ * (sample_light_shape). */
+WP_FN real light_point_pdf(WP_SCENE_PARAMS, lane_uint light, vec3 reference, vec3 point, vec3 normal) {
+    lane_uint shape = SCENE_FIELD(lights, light, shape);
     lane_uint index = shape & WP_SHAPE_INDEX_MASK, type = shape >> WP_SHAPE_TYPE_SHIFT;
-#ifdef WP_HAS_MESH_LIGHTS
-    lane_int is_mesh = type == WP_SHAPE_TRIANGLE;
-    lane_uint mesh = SCENE_FIELD(triangles, is_mesh ? index : (lane_uint)0u, mesh);
-#endif
-    lane_uint light = 0u;
-    for (uint i = 0u; i < LIGHT_COUNT; ++i) {
-        lane_int is_this = lights[i].shape == shape;
-#ifdef WP_HAS_MESH_LIGHTS
-        is_this = is_this ||
-                  (is_mesh && lights[i].shape >> WP_SHAPE_TYPE_SHIFT == WP_SHAPE_TRIANGLE && lights[i].mesh == mesh);
-#endif
-        light = is_this ? (lane_uint)i : light;
-    }
     real pdf = REAL(0.0);
 #ifdef WP_HAS_SPHERE_LIGHTS
     {
@@ -104,10 +90,30 @@ WP_FN real light_pdf_at_hit(WP_SCENE_PARAMS, lane_uint shape, vec3 reference, ve
 #ifdef WP_HAS_MESH_LIGHTS
     {
         real mesh_pdf = area_to_solid_angle_pdf(REAL(1.0) / SCENE_FIELD(lights, light, area), reference, point, normal);
-        pdf = is_mesh ? mesh_pdf : pdf;
+        pdf = type == WP_SHAPE_TRIANGLE ? mesh_pdf : pdf;
     }
 #endif
     return light_selection_pmf(light_cdf, light) * pdf;
+}
+
+/* The light an emitting hit `shape` belongs to: a scan of the light table,
+ * whose length is a compile-time constant in small scenes; a triangle's light
+ * is its mesh's. */
+WP_FN lane_uint light_of_shape(WP_SCENE_PARAMS, lane_uint shape) {
+#ifdef WP_HAS_MESH_LIGHTS
+    lane_int is_mesh = shape >> WP_SHAPE_TYPE_SHIFT == WP_SHAPE_TRIANGLE;
+    lane_uint mesh = SCENE_FIELD(triangles, is_mesh ? shape & WP_SHAPE_INDEX_MASK : (lane_uint)0u, mesh);
+#endif
+    lane_uint light = 0u;
+    for (uint i = 0u; i < LIGHT_COUNT; ++i) {
+        lane_int is_this = lights[i].shape == shape;
+#ifdef WP_HAS_MESH_LIGHTS
+        is_this = is_this ||
+                  (is_mesh && lights[i].shape >> WP_SHAPE_TYPE_SHIFT == WP_SHAPE_TRIANGLE && lights[i].mesh == mesh);
+#endif
+        light = is_this ? (lane_uint)i : light;
+    }
+    return light;
 }
 #endif
 
@@ -121,7 +127,8 @@ WP_FN real light_pdf_at_hit(WP_SCENE_PARAMS, lane_uint shape, vec3 reference, ve
 WP_FN real emission_weight(WP_SCENE_PARAMS, lane_uint shape, vec3 origin, Vertex v, lane_int after_specular,
                            real bsdf_pdf) {
 #if defined(WP_MIS)
-    real light_pdf = light_pdf_at_hit(WP_SCENE_ARGS, shape, origin, v.surface.point, v.surface.normal);
+    real light_pdf =
+        light_point_pdf(WP_SCENE_ARGS, light_of_shape(WP_SCENE_ARGS, shape), origin, v.surface.point, v.surface.normal);
     return after_specular ? REAL(1.0) : power_heuristic(bsdf_pdf, light_pdf);
 #elif defined(WP_NEE)
     return after_specular ? REAL(1.0) : REAL(0.0);
@@ -243,7 +250,11 @@ WP_FN lane_int sample_direct_light(WP_SCENE_PARAMS, lane_uint pixel, lane_uint s
     /* in the reference's order of operations */
     *contribution = v3_div(v3_scale(v3_mul(v3_scale(weight, WP_INV_PI), emitter.emission), cos_surface), light_pdf);
 #ifdef WP_MIS
-    *contribution = v3_scale(*contribution, power_heuristic(light_pdf, diffuse_pdf(cos_surface)));
+    /* Both weights take the light's density from where the spawned rays start (the shadow ray here, the
+     * bounce ray in emission_weight): evaluated at x instead, they would not sum to one where the offset is
+     * large next to the light (a float radius-1e5 wall offsets rays by 3% of a 2-unit room). */
+    real light_pdf_from_origin = light_point_pdf(WP_SCENE_ARGS, light, from, ls.point, ls.normal);
+    *contribution = v3_scale(*contribution, power_heuristic(light_pdf_from_origin, diffuse_pdf(cos_surface)));
 #endif
     return carries;
 }
@@ -251,9 +262,10 @@ WP_FN lane_int sample_direct_light(WP_SCENE_PARAMS, lane_uint pixel, lane_uint s
 
 typedef struct {
     vec3 direction;
-    vec3 weight;     /* throughput factor */
-    vec3 leave_side; /* geometric normal on the side the new ray leaves into */
-    real pdf;        /* solid-angle density of a diffuse direction (0 for specular ones, whose density is a delta) */
+    vec3 weight;      /* throughput factor */
+    vec3 leave_side;  /* geometric normal on the side the new ray leaves into */
+    real pdf;         /* solid-angle density of a diffuse direction (0 for specular ones, whose density is a delta) */
+    real eta_squared; /* eta^2 of a refraction, whose weight is 1/eta^2; else 1 (roulette_survival) */
     lane_uint specular;
     lane_int valid; /* the direction leaves on leave_side (same_side): else the path ends */
 } Scattered;
@@ -264,6 +276,7 @@ WP_FN Scattered select_scattered(lane_int choose_a, Scattered a, Scattered b) {
     s.weight = v3_select(choose_a, a.weight, b.weight);
     s.leave_side = v3_select(choose_a, a.leave_side, b.leave_side);
     s.pdf = choose_a ? a.pdf : b.pdf;
+    s.eta_squared = choose_a ? a.eta_squared : b.eta_squared;
     s.specular = choose_a ? a.specular : b.specular;
     s.valid = choose_a ? a.valid : b.valid;
     return s;
@@ -282,6 +295,7 @@ WP_FN Scattered scatter_diffuse(Material m, vec3 nf, vec3 ns, real u, real v) {
     s.direction = frame_to_world(frame_from_normal(ns), in_frame);
     s.leave_side = nf;
     s.pdf = diffuse_pdf(in_frame.z);
+    s.eta_squared = REAL(1.0);
     s.specular = 0u;
     s.valid = same_side(s.direction, nf);
     return s;
@@ -295,6 +309,7 @@ WP_FN Scattered scatter_mirror(Material m, vec3 d, vec3 nf, vec3 ns) {
     s.weight = m.reflectance;
     s.leave_side = nf;
     s.pdf = REAL(0.0);
+    s.eta_squared = REAL(1.0);
     s.specular = 1u;
     s.valid = same_side(v3_neg(d), ns) && same_side(s.direction, nf);
     return s;
@@ -311,6 +326,7 @@ WP_FN Scattered scatter_glass(Material m, vec3 d, vec3 nf, vec3 ns, lane_int ent
     Scattered s;
     s.specular = 1u;
     s.pdf = REAL(0.0);
+    s.eta_squared = refracts ? eta * eta : REAL(1.0);
     s.direction = v3_select(refracts, refracted, reflect_direction(d, ns));
     s.weight = v3_div(make_vec3(REAL(1.0), REAL(1.0), REAL(1.0)), refracts ? eta * eta : REAL(1.0));
     s.leave_side = v3_select(refracts, v3_neg(nf), nf);
@@ -327,6 +343,7 @@ WP_FN Scattered scatter_vertex(Vertex v, vec3 d, uint seed, lane_uint px, lane_u
     Scattered scattered;
     scattered.direction = scattered.weight = scattered.leave_side = make_vec3(REAL(0.0), REAL(0.0), REAL(0.0));
     scattered.pdf = REAL(0.0);
+    scattered.eta_squared = REAL(1.0);
     scattered.specular = 0u;
     scattered.valid = 0;
 #ifdef WP_HAS_DIFFUSE
@@ -347,11 +364,11 @@ WP_FN Scattered scatter_vertex(Vertex v, vec3 d, uint seed, lane_uint px, lane_u
 }
 
 /* Russian roulette once new_depth reaches rr_depth: survival probability
- * clamp(max_component(T), 0.05, 1), and T /= survival when the path survives. */
-WP_FN lane_int survives_roulette(vec3 *throughput, uint seed, lane_uint px, lane_uint s, lane_uint bounce,
-                                 lane_uint new_depth, uint rr_depth) {
+ * roulette_survival(T, eta_scale), and T /= survival when the path survives. */
+WP_FN lane_int survives_roulette(vec3 *throughput, real eta_scale, uint seed, lane_uint px, lane_uint s,
+                                 lane_uint bounce, lane_uint new_depth, uint rr_depth) {
     lane_int plays = new_depth >= rr_depth;
-    real survival = wp_clamp(max_component(*throughput), REAL(0.05), REAL(1.0));
+    real survival = roulette_survival(*throughput, eta_scale);
     lane_int survives = rng_uniform(seed, px, s, bounce, DIM_ROULETTE) < survival;
     *throughput = v3_select(plays, v3_div(*throughput, survival), *throughput);
     return !plays || survives;

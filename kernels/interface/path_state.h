@@ -13,6 +13,7 @@
  *   ALWAYS   every scene;
  *   SPECULAR the scene has a mirror or glass material (otherwise every
  *            bounce is diffuse and "previous vertex specular" is depth == 0);
+ *   GLASS    the scene has a glass material (refractions scale radiance);
  *   NEE      next-event estimation runs (render.nee on and a light in the scene);
  *   MIS      NEE runs at diffuse vertices with multiple importance sampling
  *            (render.mis on). */
@@ -36,6 +37,7 @@
     X(vec3, shadow_direction, NEE, "shade_direct", "intersect_shadow")                \
     X(float, shadow_distance, NEE, "shade_direct", "intersect_shadow")                \
     X(vec3, shadow_radiance, NEE, "shade_direct", "intersect_shadow")                 \
-    X(float, bsdf_pdf, MIS, "scatter", "shade_direct")
+    X(float, bsdf_pdf, MIS, "scatter", "shade_direct")                                \
+    X(float, eta_scale, GLASS, "generate scatter", "scatter")
 
 #endif

@@ -81,6 +81,16 @@ WP_FN vec3 sample_uniform_hemisphere(real u1, real u2) {
     return polar_vec3(safe_sqrt(REAL(1.0) - z * z), u2, z);
 }
 
+/* Russian roulette's survival probability for a path of throughput
+ * `throughput`, with the radiance scaling of its refractions factored out
+ * (`eta_scale`, the product of eta^2 over them, as pbrt-v4's etaScale): a
+ * path inside glass carries 1/eta^2 of its radiance until it leaves, and
+ * should not be killed for it. Clamped to [0.05, 1], so a survivor's weight
+ * grows at most 20-fold. */
+WP_FN real roulette_survival(vec3 throughput, real eta_scale) {
+    return wp_clamp(max_component(throughput) * eta_scale, REAL(0.05), REAL(1.0));
+}
+
 WP_FN real uniform_hemisphere_pdf(void) { return REAL(0.5) * WP_INV_PI; }
 
 /* Veach's power heuristic (beta = 2) for one sample of the strategy of

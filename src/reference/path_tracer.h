@@ -221,33 +221,39 @@ Real diffuse_pdf(const ReferenceScene<Real>& scene, Real cos_theta) {
 }
 
 // The solid-angle density with which next-event estimation from `reference`
-// samples `point` (geometric normal `normal`) of the emitting shape `hit`:
-// its light's selection probability times the density of sample_light's
-// point; a triangle's light is its mesh's.
+// samples `point` (geometric normal `normal`) of light `index`: its selection
+// probability times the density of sample_light's point.
+template <class Real>
+Real light_point_pdf(const ReferenceScene<Real>& scene, std::uint32_t index, const Vec3<Real>& reference,
+                     const Vec3<Real>& point, const Vec3<Real>& normal) {
+    using M = SharedMath<Real>;
+    const auto& light = scene.lights[index];
+    Real pmf = M::light_selection_pmf(scene.light_cdf.data(), index);
+    switch (light.shape) {
+        case ShapeType::Sphere: {
+            const auto& s = scene.spheres[light.index];
+            return pmf * M::sphere_light_pdf(s.center, s.radius, reference, point, normal);
+        }
+        case ShapeType::Mesh:
+            return pmf * M::area_to_solid_angle_pdf(Real(1) / light.area, reference, point, normal);
+        default: {
+            const auto& q = scene.quads[light.index];
+            Real area = glm::length(glm::cross(q.edge1, q.edge2));
+            return pmf * M::area_to_solid_angle_pdf(Real(1) / area, reference, point, normal);
+        }
+    }
+}
+
+// light_point_pdf for the light the emitting shape `hit` belongs to (a
+// triangle's light is its mesh's); 0 where it is no light.
 template <class Real>
 Real light_pdf_at_hit(const ReferenceScene<Real>& scene, const ShapeHit<Real>& hit, const Vec3<Real>& reference,
                       const Vec3<Real>& point, const Vec3<Real>& normal) {
-    using M = SharedMath<Real>;
     int index = hit.shape == ShapeType::Mesh ? static_cast<int>(scene.triangles[hit.index].mesh) : hit.index;
-    for (std::uint32_t i = 0; i < scene.lights.size(); ++i) {
-        const auto& light = scene.lights[i];
-        if (light.shape != hit.shape || light.index != index) continue;
-        Real pmf = M::light_selection_pmf(scene.light_cdf.data(), i);
-        switch (light.shape) {
-            case ShapeType::Sphere: {
-                const auto& s = scene.spheres[light.index];
-                return pmf * M::sphere_light_pdf(s.center, s.radius, reference, point, normal);
-            }
-            case ShapeType::Mesh:
-                return pmf * M::area_to_solid_angle_pdf(Real(1) / light.area, reference, point, normal);
-            default: {
-                const auto& q = scene.quads[light.index];
-                Real area = glm::length(glm::cross(q.edge1, q.edge2));
-                return pmf * M::area_to_solid_angle_pdf(Real(1) / area, reference, point, normal);
-            }
-        }
-    }
-    return Real(0);  // not a light
+    for (std::uint32_t i = 0; i < scene.lights.size(); ++i)
+        if (scene.lights[i].shape == hit.shape && scene.lights[i].index == index)
+            return light_point_pdf(scene, i, reference, point, normal);
+    return Real(0);
 }
 
 // Next-event estimation at a diffuse point x (with error bound x_error) with
@@ -287,7 +293,10 @@ Vec3<Real> sample_direct_light(const ReferenceScene<Real>& scene, const Vec3<Rea
     if (occluded(scene, Ray<Real>{origin, to_target / distance}, distance)) return none;
     Real light_pdf = s.pdf_solid_angle * pmf;
     vec3 contribution = weight * std::numbers::inv_pi_v<Real> * emitter.emission * cos_surface / light_pdf;
-    return scene.mis ? contribution * M::power_heuristic(light_pdf, diffuse_pdf(scene, cos_surface)) : contribution;
+    if (!scene.mis) return contribution;
+    // Both weights take the light's density from where the spawned rays start (kernels/device/path_vertex.h).
+    Real light_pdf_from_origin = light_point_pdf(scene, index, origin, s.point, s.normal);
+    return contribution * M::power_heuristic(light_pdf_from_origin, diffuse_pdf(scene, cos_surface));
 }
 
 template <class Real>
@@ -295,6 +304,7 @@ struct Scattered {
     Ray<Real> ray;
     Vec3<Real> weight;  // throughput factor
     Real pdf;           // solid-angle density of a diffuse direction (0 for specular ones)
+    Real eta_squared;   // eta^2 of a refraction (whose weight is 1 / eta^2), else 1: roulette_survival
     bool specular;
     bool valid;  // the ray leaves on the side it was spawned for (same_side): else the path ends
 };
@@ -311,8 +321,12 @@ Scattered<Real> scatter(const ReferenceScene<Real>& scene,
     using vec3 = typename M::vec3;
     auto leave = [&](const vec3& direction, const vec3& side, const vec3& weight, Real pdf, bool specular) {
         bool arrives_validly = !specular || same_side(scene, -d, ns);
-        return Scattered<Real>{Ray<Real>{M::offset_ray_origin(x.point, side, x.error), direction}, weight, pdf,
-                               specular, arrives_validly && same_side(scene, direction, side)};
+        return Scattered<Real>{Ray<Real>{M::offset_ray_origin(x.point, side, x.error), direction},
+                               weight,
+                               pdf,
+                               Real(1),
+                               specular,
+                               arrives_validly && same_side(scene, direction, side)};
     };
     switch (material.type) {
         case MaterialType::Mirror:
@@ -325,7 +339,9 @@ Scattered<Real> scatter(const ReferenceScene<Real>& scene,
             if (rng(bounce, DIM_BSDF_LOBE) < reflectance || !M::refract_direction(d, ns, eta, &refracted)) {
                 return leave(M::reflect_direction(d, ns), nf, vec3(Real(1)), Real(0), true);
             }
-            return leave(refracted, -nf, vec3(Real(1) / (eta * eta)), Real(0), true);
+            Scattered<Real> refraction = leave(refracted, -nf, vec3(Real(1) / (eta * eta)), Real(0), true);
+            refraction.eta_squared = eta * eta;
+            return refraction;
         }
         default: {  // diffuse
             Real u = rng(bounce, DIM_BSDF_U), v = rng(bounce, DIM_BSDF_V);
@@ -350,6 +366,7 @@ Vec3<Real> trace_path(const ReferenceScene<Real>& scene, Ray<Real> ray, const Sa
     vec3 radiance(Real(0));
     bool specular = true;  // the previous vertex was specular, or is the camera
     Real bsdf_pdf = 0;     // of the last diffuse bounce's direction
+    Real eta_scale = 1;    // eta^2 over the refractions so far (roulette_survival)
     for (int depth = 0;;) {
         ++counts.extension;
         ShapeHit<Real> hit = closest_hit(scene, ray);
@@ -387,10 +404,11 @@ Vec3<Real> trace_path(const ReferenceScene<Real>& scene, Ray<Real> ray, const Sa
         ray = next.ray;
         specular = next.specular;
         bsdf_pdf = next.pdf;
+        eta_scale *= next.eta_squared;
 
         ++depth;
         if (depth >= scene.render.rr_depth) {
-            Real survival = M::wp_clamp(M::max_component(throughput), Real(0.05), Real(1));
+            Real survival = M::roulette_survival(throughput, eta_scale);
             if (rng(bounce, DIM_ROULETTE) >= survival) break;
             throughput /= survival;
         }

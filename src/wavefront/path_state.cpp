@@ -32,6 +32,8 @@ bool path_feature_compiled(PathFeature feature, const FeatureSet& features) {
             return true;
         case PathFeature::SPECULAR:
             return features.mirror || features.glass;
+        case PathFeature::GLASS:
+            return features.glass;
         case PathFeature::NEE:
             return features.nee;
         case PathFeature::MIS:
@@ -41,7 +43,8 @@ bool path_feature_compiled(PathFeature feature, const FeatureSet& features) {
 }
 
 std::string path_state_table_markdown() {
-    static const char* feature_names[] = {"always", "specular (mirror or glass)", "nee (next-event estimation runs)",
+    static const char* feature_names[] = {"always", "specular (mirror or glass)", "glass",
+                                          "nee (next-event estimation runs)",
                                           "mis (next-event estimation with multiple importance sampling)"};
     std::ostringstream table;
     table << "| field | type | bytes/path | exists when | written by | read by |\n"

@@ -11,7 +11,7 @@
 
 namespace wp {
 
-enum class PathFeature { ALWAYS, SPECULAR, NEE, MIS };
+enum class PathFeature { ALWAYS, SPECULAR, GLASS, NEE, MIS };
 
 struct PathStateField {
     const char* type;

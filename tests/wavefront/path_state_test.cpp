@@ -27,7 +27,7 @@ TEST(PathState, FieldsExistOnlyForFeaturesInUse) {
     FeatureSet diffuse_mis = diffuse_nee;
     diffuse_mis.mis = true;
     std::size_t base = PathState::bytes_per_path(diffuse_only);
-    EXPECT_EQ(PathState::bytes_per_path(with_glass), base + 4);            // specular flag
+    EXPECT_EQ(PathState::bytes_per_path(with_glass), base + 4 + 4);        // specular flag, eta_scale
     EXPECT_EQ(PathState::bytes_per_path(diffuse_nee), base + 10 * 4);      // shadow ray and contribution
     EXPECT_EQ(PathState::bytes_per_path(diffuse_mis), base + 10 * 4 + 4);  // and the bounce's density
     std::size_t total = 0;
