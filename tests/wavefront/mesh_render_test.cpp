@@ -77,11 +77,11 @@ TEST(MeshRender, ShadingNormalsRetraceTheReferencePathForPath) {
 }
 
 // Meshes with 8 lanes, the BVH traversed in each lane (device/bvh_lanes.h):
-// the same image as one lane. Three lights of 20, 80 and 2 triangles (two
-// meshes and the quad), so that the lanes of one work item search triangle
-// CDFs of different lengths.
-TEST(MeshRender, EightLanesRenderAsOneLane) {
-    Scene scene = mesh_scene(24, 2);
+// the reference's paths and the same image as one lane. Three lights of 20,
+// 80 and 2 triangles (two meshes and the quad), so that the lanes of one
+// work item search triangle CDFs of different lengths.
+TEST(MeshRender, EightLanesRetraceTheReferenceAsOneLaneDoes) {
+    Scene scene = mesh_scene(32, 1);
     int lamp = scene.quads.back().material;
     scene.materials[lamp].two_sided = true;
     scene.meshes.push_back(test::transformed(test::icosphere(0, lamp), 0.2, {-0.8, 0.9, -4.2}));
@@ -94,6 +94,8 @@ TEST(MeshRender, EightLanesRenderAsOneLane) {
     RenderResult one = render_wavefront(scene, options, {});
     options.lanes = 8;
     RenderResult eight = render_wavefront(scene, options, {});
+    test::expect_path_for_path_agreement(eight, render_reference(scene, ReferenceOptions{2, false}),
+                                         "wavefront, 8 lanes, three mesh and quad lights");
     EXPECT_EQ(one.image.rgb, eight.image.rgb);
     EXPECT_EQ(one.stats.extension_rays, eight.stats.extension_rays);
     EXPECT_EQ(one.stats.shadow_rays, eight.stats.shadow_rays);
