@@ -377,7 +377,7 @@ def mesh_rows(m):
     meta = {f"meta_{k}": v for k, v in m["meta"].items()}
     rows = []
     for section in ("build", "traversal", "agreement", "render", "short_list"):
-        rows += [{"section": section, **r, **meta} for r in m[section]]
+        rows += [{"section": section, **r, **meta} for r in m.get(section, [])]
     for r in m["lanes"]:
         stages = {f"{k}_device_ms_{q}": v[f"device_ms_{q}"] for k, v in r["stages"].items() for q in ("min", "median")}
         rows.append({"section": "lanes", **{k: v for k, v in r.items() if k != "stages"}, **stages, **meta})
@@ -499,7 +499,9 @@ def meshes_markdown(m):
                      + " | ".join(f"{r['stages'][k]['device_ms_median']:.1f}" for k in stages) + " |")
     same = all(r["image_identical_to_one_lane"] for r in ll)
     lines += ["", f"Images of the two identical to the bit: {'yes' if same else 'NO'}."]
-    sl = m["short_list"]
+    sl = m.get("short_list")
+    if not sl:
+        return "\n".join(lines) + "\n"
     lines += ["", "## e. Short list or BVH", "",
               f"The shipped room, cornell and bunny scenes at {sl[0]['width']}x{sl[0]['height']}, {sl[0]['spp']} spp, "
               f"{sl[0]['repeats']} interleaved repetitions after one warm-up render each, default options (8 "
