@@ -707,6 +707,16 @@ json traversal_figures(const Scene& traced, const DeviceInfo& device, int repeat
 
 // ---- c. whole frames ----
 
+// The fields of every whole-frame row: image size, samples, repetitions and samples/s.
+json frame_fields(int size, int spp, int repeats, const std::vector<double>& samples_per_s) {
+    return {{"width", size},
+            {"height", size},
+            {"spp", spp},
+            {"repeats", repeats},
+            {"msamples_s_min", minimum(samples_per_s) / 1e6},
+            {"msamples_s_median", median(samples_per_s) / 1e6}};
+}
+
 json render_figures(const Scene& traced, const std::vector<Mesh>& meshes, int size, int spp, int repeats) {
     std::printf(
         "\n## c. Whole frames: wavefront, %dx%d, %d spp, %d interleaved repetitions (after one warm-up "
@@ -735,15 +745,11 @@ json render_figures(const Scene& traced, const std::vector<Mesh>& meshes, int si
         for (const Mesh& m : scenes[k].meshes) total += m.triangles.size();
         std::printf("%12zu %16zu %11.4f %11.4f %9.3f\n", meshes[k].triangles.size(), total, minimum(sps[k]) / 1e6,
                     median(sps[k]) / 1e6, median(rps[k]) / 1e6);
-        rows.push_back({{"triangles", meshes[k].triangles.size()},
-                        {"scene_triangles", total},
-                        {"width", size},
-                        {"height", size},
-                        {"spp", spp},
-                        {"repeats", repeats},
-                        {"msamples_s_min", minimum(sps[k]) / 1e6},
-                        {"msamples_s_median", median(sps[k]) / 1e6},
-                        {"mrays_s_median", median(rps[k]) / 1e6}});
+        json row = frame_fields(size, spp, repeats, sps[k]);
+        row.update({{"triangles", meshes[k].triangles.size()},
+                    {"scene_triangles", total},
+                    {"mrays_s_median", median(rps[k]) / 1e6}});
+        rows.push_back(row);
     }
     return rows;
 }
@@ -796,16 +802,12 @@ json lanes_figures(const Scene& shipped, int size, int spp, int repeats) {
                             {"device_ms_median", 1e3 * median(stage_s[k][name])}};
         }
         std::printf("\n");
-        rows.push_back({{"scene", shipped.source},
-                        {"lanes", lanes[k]},
-                        {"width", size},
-                        {"height", size},
-                        {"spp", spp},
-                        {"repeats", repeats},
-                        {"msamples_s_min", minimum(sps[k]) / 1e6},
-                        {"msamples_s_median", median(sps[k]) / 1e6},
-                        {"stages", stages},
-                        {"image_identical_to_one_lane", identical}});
+        json row = frame_fields(size, spp, repeats, sps[k]);
+        row.update({{"scene", shipped.source},
+                    {"lanes", lanes[k]},
+                    {"stages", stages},
+                    {"image_identical_to_one_lane", identical}});
+        rows.push_back(row);
     }
     std::printf("images identical to the bit: %s\n", identical ? "yes" : "NO");
     if (!identical) throw std::runtime_error("another number of lanes rendered another image");
@@ -852,16 +854,12 @@ json short_list_figures(int size, int spp, int repeats) {
     for (std::size_t k = 0; k < variants.size(); ++k) {
         std::printf("%-8s %-32s %16.4f %10.4f %22.1f %22.1f\n", variants[k].scene.c_str(), variants[k].shapes.c_str(),
                     minimum(sps[k]) / 1e6, median(sps[k]) / 1e6, median(closest_ns[k]), median(any_ns[k]));
-        rows.push_back({{"scene", variants[k].scene},
-                        {"shapes", variants[k].shapes},
-                        {"width", size},
-                        {"height", size},
-                        {"spp", spp},
-                        {"repeats", repeats},
-                        {"msamples_s_min", minimum(sps[k]) / 1e6},
-                        {"msamples_s_median", median(sps[k]) / 1e6},
-                        {"intersect_ns_per_ray_median", median(closest_ns[k])},
-                        {"intersect_shadow_ns_per_ray_median", median(any_ns[k])}});
+        json row = frame_fields(size, spp, repeats, sps[k]);
+        row.update({{"scene", variants[k].scene},
+                    {"shapes", variants[k].shapes},
+                    {"intersect_ns_per_ray_median", median(closest_ns[k])},
+                    {"intersect_shadow_ns_per_ray_median", median(any_ns[k])}});
+        rows.push_back(row);
     }
     return rows;
 }

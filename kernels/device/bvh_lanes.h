@@ -5,6 +5,7 @@
  * its ray, so the results are bit-identical to it. */
 #ifndef WP_DEVICE_BVH_LANES_H
 #define WP_DEVICE_BVH_LANES_H
+#if WP_LANES != 1 /* one lane: shared/bvh.h's bvh_trace */
 
 #include "device/lane_memory.h"
 #include "shared/bvh.h"
@@ -103,5 +104,7 @@ WP_FN real bvh_trace(__global const BvhNode *nodes, __global const MeshTriangle 
 
 #undef WP_PUSH_LANE
 #undef WP_POP_LANE
+
+#endif
 
 #endif
