@@ -11,18 +11,32 @@
 //     threads, and Embree's rtcIntersect1 / rtcOccluded1 on 2 threads, on
 //     the same rays and the same float triangles; repetitions interleaved.
 //  c. Whole-frame samples/s of the wavefront against triangle count.
+//  d. Lanes with meshes: the shipped scene (spheres, quads, a mesh light and
+//     the bunny) rendered with one lane and with 8 (the BVH traversed in
+//     each lane, device/bvh_lanes.h), interleaved: samples/s, each stage's
+//     device time, and whether the images are the same to the bit.
+//  e. Short list or BVH: the shipped room, cornell and bunny scenes as they
+//     are (spheres and quads tested one by one),
+//     with their quads as triangles in the BVH instead, and with their
+//     spheres left out (an upper bound on what moving them into the BVH
+//     could save): samples/s, and the intersect stages' device time per ray.
 //
 // The traced scene is scenes/bunny.json with its two spheres left out and
 // each wall quad as two triangles, so that both tracers see exactly the same
 // geometry (Embree has no quad of ours and no sphere of ours).
 //
-// Usage: mesh_bench [--quick] [--json FILE] [--scene FILE] [--device CHOICE] [--repeats N]
+// Usage: mesh_bench [--quick] [--json FILE] [--scene FILE] [--device CHOICE] [--repeats N] [--sections abcde]
+//                   [--baseline-kernels DIR]
+// --sections: which of a-e to run; --baseline-kernels: b also times the
+// stages built from DIR (another commit's kernels/), interleaved, as
+// opencl_baseline, and counts the rays where its hits differ from ours.
 #include <embree3/rtcore.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <ctime>
 #include <fstream>
 #include <functional>
@@ -30,6 +44,7 @@
 #include <iostream>
 #include <limits>
 #include <map>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 #include <string>
@@ -199,11 +214,9 @@ std::size_t largest_mesh(const Scene& scene) {
     return best;
 }
 
-// The scene with triangles alone: spheres left out, each quad two triangles (a mesh of its own).
-Scene triangles_only(const Scene& scene) {
-    if (!scene.planes.empty()) throw std::runtime_error(scene.source + ": infinite planes cannot be triangulated");
+// The scene with each quad as two triangles (a mesh of its own), after its meshes.
+Scene quads_as_triangles(const Scene& scene) {
     Scene out = scene;
-    out.spheres.clear();
     out.quads.clear();
     for (const Quad& q : scene.quads) {
         Mesh m;
@@ -215,6 +228,19 @@ Scene triangles_only(const Scene& scene) {
     }
     build_light_table(out);
     return out;
+}
+
+Scene without_spheres(const Scene& scene) {
+    Scene out = scene;
+    out.spheres.clear();
+    build_light_table(out);
+    return out;
+}
+
+// The scene with triangles alone: spheres left out, each quad two triangles.
+Scene triangles_only(const Scene& scene) {
+    if (!scene.planes.empty()) throw std::runtime_error(scene.source + ": infinite planes cannot be triangulated");
+    return quads_as_triangles(without_spheres(scene));
 }
 
 // The scene with its largest mesh replaced.
@@ -544,38 +570,63 @@ Agreement compare(const ClosestResult& a, const ClosestResult& b) {
     return g;
 }
 
-json traversal_figures(const Scene& traced, const DeviceInfo& device, int repeats, json& agreement_rows) {
+// A StageTracer whose kernels are read from `kernel_dir` (another commit's
+// kernels/): WAVEPATH_KERNEL_DIR while its program is built.
+std::unique_ptr<StageTracer> tracer_from(const std::string& kernel_dir, const Scene& scene, const DeviceInfo& device,
+                                         std::size_t n) {
+    const char* before = std::getenv("WAVEPATH_KERNEL_DIR");
+    std::string saved = before ? before : "";
+    ::setenv("WAVEPATH_KERNEL_DIR", kernel_dir.c_str(), 1);
+    auto tracer = std::make_unique<StageTracer>(scene, device, n);
+    if (before)
+        ::setenv("WAVEPATH_KERNEL_DIR", saved.c_str(), 1);
+    else
+        ::unsetenv("WAVEPATH_KERNEL_DIR");
+    return tracer;
+}
+
+json traversal_figures(const Scene& traced, const DeviceInfo& device, int repeats, const std::string& baseline_kernels,
+                       json& agreement_rows) {
     reference::ReferenceScene<float> reference_scene(traced);
     std::vector<RaySet> sets = make_rays(reference_scene);
     std::size_t capacity = 0;
     for (const RaySet& s : sets) capacity = std::max(capacity, s.rays.size());
     StageTracer stages(traced, device, capacity);
     EmbreeTracer embree(reference_scene.triangles);
+    std::unique_ptr<StageTracer> baseline;
+    if (!baseline_kernels.empty()) baseline = tracer_from(baseline_kernels, traced, device, capacity);
     std::printf(
         "\n## b. Traversal: %zu triangles, %zu primary and %zu incoherent rays, %d interleaved repetitions, %u threads "
         "for the "
         "scalar C++ and Embree, OpenCL stage lanes %u\n",
         reference_scene.triangles.size(), sets[0].rays.size(), sets[1].rays.size(), repeats, kThreads, stages.lanes());
 
-    const char* impls[] = {"opencl_stage", "scalar_cpp", "embree"};
+    std::vector<const char*> impls = {"opencl_stage", "scalar_cpp", "embree"};
+    if (baseline) impls.push_back("opencl_baseline");
+    const std::size_t n_impls = impls.size();
     const char* queries[] = {"closest", "any"};
     // times[set][query][impl]
     std::vector<std::vector<std::vector<std::vector<double>>>> times(
-        sets.size(), std::vector<std::vector<std::vector<double>>>(2, std::vector<std::vector<double>>(3)));
-    std::vector<std::vector<ClosestResult>> closest(sets.size(), std::vector<ClosestResult>(3));
-    std::vector<std::vector<std::vector<std::uint8_t>>> any(sets.size(), std::vector<std::vector<std::uint8_t>>(3));
+        sets.size(), std::vector<std::vector<std::vector<double>>>(2, std::vector<std::vector<double>>(n_impls)));
+    std::vector<std::vector<ClosestResult>> closest(sets.size(), std::vector<ClosestResult>(n_impls));
+    std::vector<std::vector<std::vector<std::uint8_t>>> any(sets.size(),
+                                                            std::vector<std::vector<std::uint8_t>>(n_impls));
     for (int r = -1; r < repeats; ++r) {  // r = -1: warm-up, not recorded (PoCL compiles at the first launch)
         for (std::size_t s = 0; s < sets.size(); ++s) {
             const RaySet& set = sets[s];
-            double t[2][3] = {
+            std::vector<double> t[2] = {
                 {stages.closest(set.rays, closest[s][0]), scalar_closest(reference_scene, set.rays, closest[s][1]),
                  embree.closest(set.rays, closest[s][2])},
                 {stages.any(set.rays, set.segment, any[s][0]),
                  scalar_any(reference_scene, set.rays, set.segment, any[s][1]),
                  embree.any(set.rays, set.segment, any[s][2])}};
+            if (baseline) {
+                t[0].push_back(baseline->closest(set.rays, closest[s][3]));
+                t[1].push_back(baseline->any(set.rays, set.segment, any[s][3]));
+            }
             if (r < 0) continue;
             for (int q = 0; q < 2; ++q)
-                for (int i = 0; i < 3; ++i) times[s][q][i].push_back(t[q][i]);
+                for (std::size_t i = 0; i < n_impls; ++i) times[s][q][i].push_back(t[q][i]);
         }
     }
 
@@ -586,7 +637,7 @@ json traversal_figures(const Scene& traced, const DeviceInfo& device, int repeat
         const std::size_t count = sets[s].rays.size();
         for (int q = 0; q < 2; ++q) {
             double embree_median = double(count) / median(times[s][q][2]);
-            for (int i = 0; i < 3; ++i) {
+            for (std::size_t i = 0; i < n_impls; ++i) {
                 double best = double(count) / minimum(times[s][q][i]) / 1e6;
                 double med = double(count) / median(times[s][q][i]) / 1e6;
                 std::size_t hits = 0;
@@ -618,7 +669,9 @@ json traversal_figures(const Scene& traced, const DeviceInfo& device, int repeat
                 "other tri same t", "bit-identical");
     for (std::size_t s = 0; s < sets.size(); ++s) {
         const std::size_t count = sets[s].rays.size();
-        for (auto [a, b] : {std::pair{0, 2}, std::pair{0, 1}}) {
+        std::vector<std::pair<std::size_t, std::size_t>> pairs{{0, 2}, {0, 1}};
+        if (baseline) pairs.emplace_back(0, 3);
+        for (auto [a, b] : pairs) {
             std::string pair = std::string(impls[a]) + " vs " + impls[b];
             Agreement g = compare(closest[s][a], closest[s][b]);
             std::printf("%-11s %-8s %-28s %10zu %10zu %11.5f%% %18zu %13.2f%%\n", sets[s].name.c_str(), "closest",
@@ -654,6 +707,16 @@ json traversal_figures(const Scene& traced, const DeviceInfo& device, int repeat
 
 // ---- c. whole frames ----
 
+// The fields of every whole-frame row: image size, samples, repetitions and samples/s.
+json frame_fields(int size, int spp, int repeats, const std::vector<double>& samples_per_s) {
+    return {{"width", size},
+            {"height", size},
+            {"spp", spp},
+            {"repeats", repeats},
+            {"msamples_s_min", minimum(samples_per_s) / 1e6},
+            {"msamples_s_median", median(samples_per_s) / 1e6}};
+}
+
 json render_figures(const Scene& traced, const std::vector<Mesh>& meshes, int size, int spp, int repeats) {
     std::printf(
         "\n## c. Whole frames: wavefront, %dx%d, %d spp, %d interleaved repetitions (after one warm-up "
@@ -682,22 +745,129 @@ json render_figures(const Scene& traced, const std::vector<Mesh>& meshes, int si
         for (const Mesh& m : scenes[k].meshes) total += m.triangles.size();
         std::printf("%12zu %16zu %11.4f %11.4f %9.3f\n", meshes[k].triangles.size(), total, minimum(sps[k]) / 1e6,
                     median(sps[k]) / 1e6, median(rps[k]) / 1e6);
-        rows.push_back({{"triangles", meshes[k].triangles.size()},
-                        {"scene_triangles", total},
-                        {"width", size},
-                        {"height", size},
-                        {"spp", spp},
-                        {"repeats", repeats},
-                        {"msamples_s_min", minimum(sps[k]) / 1e6},
-                        {"msamples_s_median", median(sps[k]) / 1e6},
-                        {"mrays_s_median", median(rps[k]) / 1e6}});
+        json row = frame_fields(size, spp, repeats, sps[k]);
+        row.update({{"triangles", meshes[k].triangles.size()},
+                    {"scene_triangles", total},
+                    {"mrays_s_median", median(rps[k]) / 1e6}});
+        rows.push_back(row);
+    }
+    return rows;
+}
+
+// ---- d. lanes with meshes ----
+
+json lanes_figures(const Scene& shipped, int size, int spp, int repeats) {
+    Scene scene = shipped;
+    scene.camera.width = scene.camera.height = size;
+    scene.render.spp = spp;
+    const unsigned lanes[] = {1u, 8u};
+    constexpr int kConfigs = 2;
+    const std::vector<std::string> kernels{"generate", "intersect",     "shade_direct",  "intersect_shadow",
+                                           "scatter",  "compact_count", "compact_write", "accumulate"};
+    std::printf(
+        "\n## d. Lanes with meshes: %s, %dx%d, %d spp, %d interleaved repetitions (after one warm-up render each), "
+        "one lane against 8\n\n",
+        shipped.source.c_str(), size, size, spp, repeats);
+    std::vector<double> sps[kConfigs];
+    std::map<std::string, std::vector<double>> stage_s[kConfigs];
+    std::vector<float> image[kConfigs];
+    for (int r = -1; r < repeats; ++r) {  // r = -1: warm-up (kernel compilation)
+        for (int k = 0; k < kConfigs; ++k) {
+            WavefrontOptions options;
+            options.lanes = lanes[k];
+            RenderResult plain = render_wavefront(scene, options, Progress{});
+            options.profile = true;  // a render of its own: profiling adds count_depths and waits on events
+            WavefrontReport report;
+            render_wavefront(scene, options, Progress{}, &report);
+            image[k] = plain.image.rgb;
+            if (report.lanes != lanes[k]) throw std::logic_error("the pipeline ran other lanes than asked");
+            if (r < 0) continue;
+            sps[k].push_back(double(plain.stats.samples) / plain.stats.time_s);
+            for (const std::string& name : kernels)
+                stage_s[k][name].push_back(report.profile.has_kernel(name) ? report.profile.kernel(name).device_s
+                                                                           : 0.0);
+        }
+    }
+    bool identical = image[0] == image[1];
+    std::printf("%-7s %16s %10s", "lanes", "Msamples/s min", "median");
+    for (const std::string& name : kernels) std::printf(" %16s", (name + " ms").c_str());
+    std::printf("\n");
+    json rows = json::array();
+    for (int k = 0; k < kConfigs; ++k) {
+        std::printf("%-7u %16.4f %10.4f", lanes[k], minimum(sps[k]) / 1e6, median(sps[k]) / 1e6);
+        json stages = json::object();
+        for (const std::string& name : kernels) {
+            std::printf(" %16.1f", 1e3 * median(stage_s[k][name]));
+            stages[name] = {{"device_ms_min", 1e3 * minimum(stage_s[k][name])},
+                            {"device_ms_median", 1e3 * median(stage_s[k][name])}};
+        }
+        std::printf("\n");
+        json row = frame_fields(size, spp, repeats, sps[k]);
+        row.update({{"scene", shipped.source},
+                    {"lanes", lanes[k]},
+                    {"stages", stages},
+                    {"image_identical_to_one_lane", identical}});
+        rows.push_back(row);
+    }
+    std::printf("images identical to the bit: %s\n", identical ? "yes" : "NO");
+    if (!identical) throw std::runtime_error("another number of lanes rendered another image");
+    return rows;
+}
+
+// ---- e. short list or BVH ----
+
+json short_list_figures(int size, int spp, int repeats) {
+    struct Variant {
+        std::string scene, shapes;
+        Scene loaded;
+    };
+    std::vector<Variant> variants;
+    for (const char* name : {"room", "cornell", "bunny"}) {
+        Scene scene = load_scene(std::string(WAVEPATH_SOURCE_DIR "/scenes/") + name + ".json");
+        scene.camera.width = scene.camera.height = size;
+        scene.render.spp = spp;
+        variants.push_back({name, "as shipped", scene});
+        variants.push_back({name, "quads as triangles in the BVH", quads_as_triangles(scene)});
+        if (!scene.spheres.empty()) variants.push_back({name, "spheres left out", without_spheres(scene)});
+    }
+    std::printf(
+        "\n## e. Short list or BVH: %dx%d, %d spp, %d interleaved repetitions (after one warm-up render each); "
+        "intersect stages' device time per ray from a profiled render of its own\n\n",
+        size, size, spp, repeats);
+    std::vector<std::vector<double>> sps(variants.size()), closest_ns(variants.size()), any_ns(variants.size());
+    for (int r = -1; r < repeats; ++r) {
+        for (std::size_t k = 0; k < variants.size(); ++k) {
+            RenderStats plain = render_wavefront(variants[k].loaded, WavefrontOptions{}, Progress{}).stats;
+            WavefrontOptions profiled;
+            profiled.profile = true;
+            WavefrontReport report;
+            RenderStats stats = render_wavefront(variants[k].loaded, profiled, Progress{}, &report).stats;
+            if (r < 0) continue;
+            sps[k].push_back(double(plain.samples) / plain.time_s);
+            closest_ns[k].push_back(1e9 * report.profile.kernel("intersect").device_s / double(stats.extension_rays));
+            any_ns[k].push_back(1e9 * report.profile.kernel("intersect_shadow").device_s / double(stats.shadow_rays));
+        }
+    }
+    std::printf("%-8s %-32s %16s %10s %22s %22s\n", "scene", "shapes", "Msamples/s min", "median",
+                "intersect ns/ray (med)", "shadow ns/ray (med)");
+    json rows = json::array();
+    for (std::size_t k = 0; k < variants.size(); ++k) {
+        std::printf("%-8s %-32s %16.4f %10.4f %22.1f %22.1f\n", variants[k].scene.c_str(), variants[k].shapes.c_str(),
+                    minimum(sps[k]) / 1e6, median(sps[k]) / 1e6, median(closest_ns[k]), median(any_ns[k]));
+        json row = frame_fields(size, spp, repeats, sps[k]);
+        row.update({{"scene", variants[k].scene},
+                    {"shapes", variants[k].shapes},
+                    {"intersect_ns_per_ray_median", median(closest_ns[k])},
+                    {"intersect_shadow_ns_per_ray_median", median(any_ns[k])}});
+        rows.push_back(row);
     }
     return rows;
 }
 
 int run(int argc, char** argv) {
     bool quick = false;
-    std::string json_path, scene_path = WAVEPATH_SOURCE_DIR "/scenes/bunny.json", device_choice;
+    std::string json_path, scene_path = WAVEPATH_SOURCE_DIR "/scenes/bunny.json", device_choice, sections = "abcde",
+                           baseline_kernels;
     int repeats = 0;
     for (int i = 1; i < argc; ++i) {
         std::string a = argv[i];
@@ -715,8 +885,13 @@ int run(int argc, char** argv) {
             device_choice = value();
         } else if (a == "--repeats") {
             repeats = std::stoi(value());
+        } else if (a == "--sections") {
+            sections = value();
+        } else if (a == "--baseline-kernels") {
+            baseline_kernels = value();
         } else {
-            std::cerr << "usage: mesh_bench [--quick] [--json FILE] [--scene FILE] [--device CHOICE] [--repeats N]\n";
+            std::cerr << "usage: mesh_bench [--quick] [--json FILE] [--scene FILE] [--device CHOICE] [--repeats N] "
+                         "[--sections abcde] [--baseline-kernels DIR]\n";
             return 2;
         }
     }
@@ -735,11 +910,19 @@ int run(int argc, char** argv) {
     traced.camera.width = traced.camera.height = quick ? 128 : 512;
     std::vector<Mesh> meshes = mesh_sizes(traced.meshes[largest_mesh(traced)], quick);
 
-    results["build"] = build_figures(traced, meshes, 3);
-    json agreement = json::array();
-    results["traversal"] = traversal_figures(traced, device, repeats, agreement);
-    results["agreement"] = agreement;
-    results["render"] = quick ? render_figures(traced, meshes, 64, 1, 2) : render_figures(traced, meshes, 256, 4, 3);
+    auto wanted = [&](char section) { return sections.find(section) != std::string::npos; };
+    if (wanted('a')) results["build"] = build_figures(traced, meshes, 3);
+    if (wanted('b')) {
+        json agreement = json::array();
+        results["traversal"] = traversal_figures(traced, device, repeats, baseline_kernels, agreement);
+        results["agreement"] = agreement;
+    }
+    if (wanted('c'))
+        results["render"] =
+            quick ? render_figures(traced, meshes, 64, 1, 2) : render_figures(traced, meshes, 256, 4, 3);
+    if (wanted('d')) results["lanes"] = quick ? lanes_figures(scene, 64, 1, 2) : lanes_figures(scene, 256, 4, 3);
+    // e decides a design question and checks nothing: not in the quick run (its six builds would cost CI a minute)
+    if (wanted('e') && !quick) results["short_list"] = short_list_figures(128, 4, 3);
     if (!json_path.empty()) {
         std::ofstream out(json_path);
         out << results.dump(1) << "\n";

@@ -376,8 +376,11 @@ def mesh_rows(m):
     """One flat row per figure, each with the run's commit, date, machine and platform."""
     meta = {f"meta_{k}": v for k, v in m["meta"].items()}
     rows = []
-    for section in ("build", "traversal", "agreement", "render"):
-        rows += [{"section": section, **r, **meta} for r in m[section]]
+    for section in ("build", "traversal", "agreement", "render", "short_list"):
+        rows += [{"section": section, **r, **meta} for r in m.get(section, [])]
+    for r in m["lanes"]:
+        stages = {f"{k}_device_ms_{q}": v[f"device_ms_{q}"] for k, v in r["stages"].items() for q in ("min", "median")}
+        rows.append({"section": "lanes", **{k: v for k, v in r.items() if k != "stages"}, **stages, **meta})
     return rows
 
 
@@ -480,6 +483,38 @@ def meshes_markdown(m):
         a, b, r2 = fit
         lines += ["", f"Least-squares fit of the median time per sample on log2(scene triangles): "
                   f"{a:.2f} + {b:.3f} x log2(n) us, r^2 = {r2:.3f}."]
+    ll = m["lanes"]
+    stages = list(ll[0]["stages"])
+    lines += ["", "## d. Lanes with meshes", "",
+              f"`{os.path.relpath(ll[0]['scene'], ROOT)}` as shipped (quads, spheres, the mesh light, the bunny), "
+              f"{ll[0]['width']}x{ll[0]['height']}, {ll[0]['spp']} spp, {ll[0]['repeats']} interleaved repetitions "
+              "after one warm-up render each: one lane in every stage against 8 (the default on CPUs), where "
+              "intersect and intersect_shadow traverse the BVH in each lane (kernels/device/bvh_lanes.h). "
+              "Samples/s from unprofiled renders; each kernel's device time (median, ms per frame) from a "
+              "profiled render of its own.", "",
+              "| lanes | Msamples/s min | median | " + " | ".join(stages) + " |",
+              "|---|---|---|" + "---|" * len(stages)]
+    for r in ll:
+        lines.append(f"| {r['lanes']} | {r['msamples_s_min']:.4f} | {r['msamples_s_median']:.4f} | "
+                     + " | ".join(f"{r['stages'][k]['device_ms_median']:.1f}" for k in stages) + " |")
+    same = all(r["image_identical_to_one_lane"] for r in ll)
+    lines += ["", f"Images of the two identical to the bit: {'yes' if same else 'NO'}."]
+    sl = m.get("short_list")
+    if not sl:
+        return "\n".join(lines) + "\n"
+    lines += ["", "## e. Short list or BVH", "",
+              f"The shipped room, cornell and bunny scenes at {sl[0]['width']}x{sl[0]['height']}, {sl[0]['spp']} spp, "
+              f"{sl[0]['repeats']} interleaved repetitions after one warm-up render each, default options (8 "
+              "lanes): as shipped (spheres and quads tested one by one by every ray), with every quad as two "
+              "triangles in the BVH, and with the spheres left out (what moving them into the BVH could save at "
+              "most). Samples/s from unprofiled renders; the intersect stages' device time per ray from a profiled "
+              "render of its own.", "",
+              "| scene | shapes | Msamples/s min | median | intersect ns/ray | intersect_shadow ns/ray |",
+              "|---|---|---|---|---|---|"]
+    for r in sl:
+        lines.append(f"| {r['scene']} | {r['shapes']} | {r['msamples_s_min']:.4f} | "
+                     f"{r['msamples_s_median']:.4f} | {r['intersect_ns_per_ray_median']:.1f} | "
+                     f"{r['intersect_shadow_ns_per_ray_median']:.1f} |")
     return "\n".join(lines) + "\n"
 
 

@@ -22,6 +22,7 @@
 #endif
 #include "device/features.h"
 #include "device/lane_memory.h"
+#include "device/light_ranges.h"
 #include "device/parameters.h"
 #include "device/surface.h"
 
@@ -201,10 +202,10 @@ WP_FN LightPoint sample_light_shape(WP_SCENE_PARAMS, lane_uint light, vec3 x, re
 #endif
 #ifdef WP_HAS_MESH_LIGHTS
     {
-        /* meshes run one lane (device/scene_hits.h), so the triangle search is scalar */
         lane_int is_mesh = type == WP_SHAPE_TRIANGLE;
-        uint first = is_mesh ? index : 0u, count = is_mesh ? SCENE_FIELD(lights, light, triangle_count) : 0u;
-        uint k = first + select_light(light_triangle_cdf + first, count, u_triangle);
+        lane_uint first = is_mesh ? index : (lane_uint)0u;
+        lane_uint count = is_mesh ? SCENE_FIELD(lights, light, triangle_count) : (lane_uint)0u;
+        lane_uint k = select_light_in_range(light_triangle_cdf, first, count, u_triangle);
         vec3 p0 = SCENE_FIELD(light_triangles, k, p0), p1 = SCENE_FIELD(light_triangles, k, p1);
         vec3 p2 = SCENE_FIELD(light_triangles, k, p2);
         kind.sample = sample_triangle(p0, p1, p2, SCENE_FIELD(lights, light, area), x, u, v);

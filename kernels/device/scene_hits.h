@@ -16,7 +16,7 @@ typedef struct {
     lane_uint shape; /* WP_NO_HIT or (WP_SHAPE_* << WP_SHAPE_TYPE_SHIFT) | index */
 } Hit;
 
-WP_FN uint shape_id(uint type, uint index) { return (type << WP_SHAPE_TYPE_SHIFT) | index; }
+WP_FN lane_uint shape_id(uint type, lane_uint index) { return (type << WP_SHAPE_TYPE_SHIFT) | index; }
 
 /* Each shape's test, t in (0, t_max) or WP_INFINITY. */
 WP_FN real sphere_t(__global const DeviceSphere *sphere, vec3 origin, vec3 direction, real t_max) {
@@ -34,14 +34,15 @@ WP_FN real quad_t(__global const DeviceQuad *quad, vec3 origin, vec3 direction, 
 }
 
 /* `hit` moved to `shape` at t in the lanes where t is closer. */
-WP_FN Hit keep_closer(Hit hit, real t, uint shape) {
-    hit.shape = t < hit.t ? (lane_uint)shape : hit.shape;
+WP_FN Hit keep_closer(Hit hit, real t, lane_uint shape) {
+    hit.shape = t < hit.t ? shape : hit.shape;
     hit.t = fmin(t, hit.t);
     return hit;
 }
 
+/* The BVH traversal: shared/bvh.h's with one lane, device/bvh_lanes.h's with 8. */
 #if defined(WP_HAS_MESHES) && WP_LANES != 1
-#error "meshes are traced with one lane per work item (the BVH traversal is scalar code)"
+#include "device/bvh_lanes.h"
 #endif
 
 /* Closest hit over spheres, then planes, then quads, then the meshes'
@@ -66,7 +67,7 @@ WP_FN Hit closest_hit(WP_SCENE_PARAMS, vec3 origin, vec3 direction) {
         hit = keep_closer(hit, quad_t(&quads[i], origin, direction, hit.t), shape_id(WP_SHAPE_QUAD, i));
 #endif
 #ifdef WP_HAS_MESHES
-    uint triangle = 0u;
+    lane_uint triangle = 0u;
     real t = bvh_trace(bvh_nodes, triangles, origin, direction, hit.t, 0, &triangle);
     hit = keep_closer(hit, t, shape_id(WP_SHAPE_TRIANGLE, triangle));
 #endif
@@ -90,7 +91,7 @@ WP_FN lane_int any_hit(WP_SCENE_PARAMS, vec3 origin, vec3 direction, real t_max)
     for (uint i = 0; i < QUAD_COUNT; ++i) occluded |= quad_t(&quads[i], origin, direction, t_max) < t_max;
 #endif
 #ifdef WP_HAS_MESHES
-    uint triangle = 0u;
+    lane_uint triangle = 0u;
     occluded |= bvh_trace(bvh_nodes, triangles, origin, direction, t_max, 1, &triangle) < t_max;
 #endif
     return occluded;

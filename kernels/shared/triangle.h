@@ -39,6 +39,25 @@ WP_FN vec3 rotate_axes_to_z(vec3 v, lane_int z_is_x, lane_int z_is_y) {
     return v3_select(z_is_x, z_was_x, v3_select(z_is_y, z_was_y, v));
 }
 
+/* What the test needs of the ray's direction alone, the same for every
+ * triangle it meets (a traversal computes it once): which axis becomes z
+ * (the direction's largest component), and the shear that makes the ray the
+ * +z axis. */
+typedef struct {
+    lane_int z_is_x, z_is_y;
+    real shear_x, shear_y, scale_z;
+} TriangleRay;
+
+WP_FN TriangleRay triangle_ray(vec3 direction) {
+    real ax = fabs(direction.x), ay = fabs(direction.y), az = fabs(direction.z);
+    TriangleRay r;
+    r.z_is_x = ax > ay && ax > az;
+    r.z_is_y = !r.z_is_x && ay > az;
+    vec3 d = rotate_axes_to_z(direction, r.z_is_x, r.z_is_y);
+    r.shear_x = -d.x / d.z, r.shear_y = -d.y / d.z, r.scale_z = REAL(1.0) / d.z;
+    return r;
+}
+
 /* The triangle as the ray sees it: the edge functions e0, e1, e2 (twice
  * the signed areas of the sub-triangles opposite p0, p1, p2 in the sheared
  * frame, so e_i / det are the hit's barycentric coordinates), their sum det,
@@ -47,30 +66,29 @@ typedef struct {
     real e0, e1, e2, det, t_scaled;
 } TriangleEdges;
 
-WP_FN TriangleEdges triangle_edges(vec3 p0, vec3 p1, vec3 p2, vec3 origin, vec3 direction) {
-    real ax = fabs(direction.x), ay = fabs(direction.y), az = fabs(direction.z);
-    lane_int z_is_x = ax > ay && ax > az;
-    lane_int z_is_y = !z_is_x && ay > az;
-    vec3 d = rotate_axes_to_z(direction, z_is_x, z_is_y);
-    vec3 a = rotate_axes_to_z(v3_sub(p0, origin), z_is_x, z_is_y);
-    vec3 b = rotate_axes_to_z(v3_sub(p1, origin), z_is_x, z_is_y);
-    vec3 c = rotate_axes_to_z(v3_sub(p2, origin), z_is_x, z_is_y);
-    real shear_x = -d.x / d.z, shear_y = -d.y / d.z, scale_z = REAL(1.0) / d.z;
-    real ax2 = a.x + shear_x * a.z, ay2 = a.y + shear_y * a.z;
-    real bx2 = b.x + shear_x * b.z, by2 = b.y + shear_y * b.z;
-    real cx2 = c.x + shear_x * c.z, cy2 = c.y + shear_y * c.z;
+WP_FN TriangleEdges ray_triangle_edges(TriangleRay ray, vec3 p0, vec3 p1, vec3 p2, vec3 origin) {
+    vec3 a = rotate_axes_to_z(v3_sub(p0, origin), ray.z_is_x, ray.z_is_y);
+    vec3 b = rotate_axes_to_z(v3_sub(p1, origin), ray.z_is_x, ray.z_is_y);
+    vec3 c = rotate_axes_to_z(v3_sub(p2, origin), ray.z_is_x, ray.z_is_y);
+    real ax2 = a.x + ray.shear_x * a.z, ay2 = a.y + ray.shear_y * a.z;
+    real bx2 = b.x + ray.shear_x * b.z, by2 = b.y + ray.shear_y * b.z;
+    real cx2 = c.x + ray.shear_x * c.z, cy2 = c.y + ray.shear_y * c.z;
     TriangleEdges e;
     e.e0 = bx2 * cy2 - by2 * cx2;
     e.e1 = cx2 * ay2 - cy2 * ax2;
     e.e2 = ax2 * by2 - ay2 * bx2;
     e.det = e.e0 + e.e1 + e.e2;
-    e.t_scaled = e.e0 * (scale_z * a.z) + e.e1 * (scale_z * b.z) + e.e2 * (scale_z * c.z);
+    e.t_scaled = e.e0 * (ray.scale_z * a.z) + e.e1 * (ray.scale_z * b.z) + e.e2 * (ray.scale_z * c.z);
     return e;
 }
 
-/* Distance t in (0, t_max) at which the ray meets the triangle, or WP_INFINITY. */
-WP_FN real intersect_triangle(vec3 p0, vec3 p1, vec3 p2, vec3 origin, vec3 direction, real t_max) {
-    TriangleEdges e = triangle_edges(p0, p1, p2, origin, direction);
+WP_FN TriangleEdges triangle_edges(vec3 p0, vec3 p1, vec3 p2, vec3 origin, vec3 direction) {
+    return ray_triangle_edges(triangle_ray(direction), p0, p1, p2, origin);
+}
+
+/* The distance t in (0, t_max) at which the ray meets the triangle whose
+ * edges it sees as e, or WP_INFINITY. */
+WP_FN real triangle_distance(TriangleEdges e, real t_max) {
     lane_int mixed_signs = (e.e0 < REAL(0.0) || e.e1 < REAL(0.0) || e.e2 < REAL(0.0)) &&
                            (e.e0 > REAL(0.0) || e.e1 > REAL(0.0) || e.e2 > REAL(0.0));
     /* 0 < t_scaled / det < t_max, compared without dividing */
@@ -80,6 +98,11 @@ WP_FN real intersect_triangle(vec3 p0, vec3 p1, vec3 p2, vec3 origin, vec3 direc
     real t = e.t_scaled / e.det;
     lane_int hit = !mixed_signs && e.det != REAL(0.0) && in_range && t > REAL(0.0) && t < t_max;
     return hit ? t : WP_INFINITY;
+}
+
+/* Distance t in (0, t_max) at which the ray meets the triangle, or WP_INFINITY. */
+WP_FN real intersect_triangle(vec3 p0, vec3 p1, vec3 p2, vec3 origin, vec3 direction, real t_max) {
+    return triangle_distance(triangle_edges(p0, p1, p2, origin, direction), t_max);
 }
 
 WP_FN vec3 triangle_normal(vec3 p0, vec3 p1, vec3 p2) { return v3_normalize(v3_cross(v3_sub(p1, p0), v3_sub(p2, p0))); }

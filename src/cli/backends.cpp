@@ -57,8 +57,7 @@ void run_on_opencl(const BackendOptions& options, const FilmRun& run, Make make)
 void run_on_wavefront(const Scene& scene, const BackendOptions& options, const Progress& progress,
                       std::uint64_t max_items, const FilmRun& run) {
     if (options.lanes != 0)
-        if (std::string problem = lanes_problem(options.lanes, options.compaction, scene.features().meshes);
-            !problem.empty())
+        if (std::string problem = lanes_problem(options.lanes, options.compaction); !problem.empty())
             throw UsageError(problem);
     WavefrontOptions wavefront{options.device, options.wavefront};
     wavefront.profile = wants_profile(options);

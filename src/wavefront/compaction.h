@@ -24,16 +24,14 @@ inline constexpr Compaction kDefaultCompaction = Compaction::Scan;
 std::string compaction_build_option(Compaction compaction);
 
 // Why `lanes` paths per work item cannot run with `compaction` (atomic pushes
-// are per work item) or with meshes (their BVH traversal is scalar code), or
-// "" when they can.
-std::string lanes_problem(unsigned lanes, Compaction compaction, bool meshes);
+// are per work item), or "" when they can.
+std::string lanes_problem(unsigned lanes, Compaction compaction);
 
 // The lanes the stage kernels use: `requested` (1 or 8), or when 0, 8 on CPU
-// devices with scan compaction and no meshes (a work item's vector code is
-// the only SIMD PoCL gives, kernels/shared/prelude.h) and 1 elsewhere (GPUs
-// run work items in SIMD already). Throws std::invalid_argument with
-// lanes_problem's words.
-unsigned resolve_lanes(unsigned requested, Compaction compaction, const DeviceInfo& device, bool meshes);
+// devices with scan compaction (a work item's vector code is the only SIMD
+// PoCL gives, kernels/shared/prelude.h) and 1 elsewhere (GPUs run work items
+// in SIMD already). Throws std::invalid_argument with lanes_problem's words.
+unsigned resolve_lanes(unsigned requested, Compaction compaction, const DeviceInfo& device);
 
 // The three kernels of kernels/compact.cl over one queues buffer: each queue
 // selected by a mask is rebuilt from its marks, in ascending slot order.

@@ -29,7 +29,7 @@ Pipeline::Pipeline(const Scene& scene, const DeviceInfo& device, std::size_t cap
                    const FeatureSet& kernel_features, const PipelineOptions& options)
     : capacity_(capacity),
       pass_capacity_(pass_capacity),
-      lanes_(resolve_lanes(options.lanes, options.compaction, device, kernel_features.meshes)),
+      lanes_(resolve_lanes(options.lanes, options.compaction, device)),
       context_(device.device),
       queue_(context_, device.device, options.profile ? cl_command_queue_properties(CL_QUEUE_PROFILING_ENABLE) : 0),
       launcher_(queue_, options.profile),

@@ -30,7 +30,7 @@ FlatMeshes flatten(const std::vector<Mesh>& meshes) {
 // Every triangle tested in turn, keeping the first of equal distances.
 float brute_force(const FlatMeshes& flat, vec3 origin, vec3 direction, float t_max, std::uint32_t& index) {
     for (std::uint32_t k = 0; k < flat.triangles.size(); ++k) {
-        float t = M::mesh_triangle_t(&flat.triangles[k], origin, direction, t_max);
+        float t = M::mesh_triangle_t(&flat.triangles[k], M::triangle_ray(direction), origin, t_max);
         if (t < t_max) t_max = t, index = k;
     }
     return t_max;
@@ -63,7 +63,8 @@ TEST(Bvh, FindsWhatTestingEveryTriangleFinds) {
         ASSERT_EQ(t_found, t_expected) << "ray " << r;  // bit-identical distance
         if (found != expected) {                        // only a tie: another triangle at the very same distance
             ASSERT_NE(found, ~0u) << "ray " << r;
-            EXPECT_EQ(M::mesh_triangle_t(&flat.triangles[found], origin, direction, M::real_max), t_expected);
+            EXPECT_EQ(M::mesh_triangle_t(&flat.triangles[found], M::triangle_ray(direction), origin, M::real_max),
+                      t_expected);
         }
         hits += expected != ~0u;
         // Any hit: occluded exactly when something lies closer than the distance asked about.
