@@ -58,6 +58,7 @@ class MegakernelFilmRenderer : public FilmRenderer {
         scene_.bind(megakernel_);
         megakernel_.setArg(arg::Megakernel::pass_radiance, pass_radiance_);
         megakernel_.setArg(arg::Megakernel::counts, counts_);
+        bind_round();
         report_.device = device_.name + " (" + device_.platform + ")";
         report_.build_options = program_.options;
         report_.cache_hit = program_.cache_hit;
@@ -100,8 +101,16 @@ class MegakernelFilmRenderer : public FilmRenderer {
     }
     Film read_film(const ItemRange& items) override { return film_.read(queue_, items); }
     void load_film(const Film& film) override { film_.load(queue_, film); }
+    void use_round_pixels(const std::vector<std::uint32_t>& pixels) override {
+        film_.set_round_pixels(queue_, pixels);
+        bind_round();
+    }
 
  private:
+    void bind_round() {
+        film_.bind_round(megakernel_, arg::Megakernel::round_pixels, arg::Megakernel::round_pixel_count);
+    }
+
     DeviceInfo device_;
     cl::Context context_;
     cl::CommandQueue queue_;
