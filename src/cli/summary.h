@@ -16,10 +16,10 @@ struct RunSummary {
     std::uint64_t spp_min = 0, spp_max = 0;  // samples the pixels have (fewest, most)
     std::string stopped = "done";            // why the render ended (stop_reason_name)
     double error = -1.0;                     // last estimated relative error (--target-error); -1: none
-    bool adaptive = false;                   // --adaptive: the two figures below are reported
-    double spp_mean = 0.0;                   // samples per pixel, mean over the pixels
-    double stopped_early = 0.0;              // fraction of pixels with fewer samples than asked for
     RenderStats stats;
+    bool adaptive = false;       // --adaptive: the two figures below are reported
+    double spp_mean = 0.0;       // samples per pixel, mean over the pixels
+    double stopped_early = 0.0;  // fraction of pixels with fewer samples than asked for
 };
 
 // "wavepath: wrote out.png (512x512, 64 spp, reference) in 12.3 s: 1.36 Msamples/s,
