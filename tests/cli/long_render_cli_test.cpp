@@ -225,7 +225,7 @@ TEST_F(LongRenderCli, TargetErrorStopsAtAWholeSampleAndSaysTheEstimate) {
 // refuse adaptive films by name.
 TEST_F(LongRenderCli, AdaptiveReportsItsSamplesResumesAndRefusesPartials) {
     const std::string whole = out_ / "whole.pfm", stats = out_ / "stats.json", checkpoint = out_ / "c.wpfilm";
-    CommandResult r = run(render_args(whole, 32, {"--adaptive", "0.05", "--stats-json", stats}));
+    CommandResult r = run(render_args(whole, 32, {"--adaptive", "0.1", "--stats-json", stats}));
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_NE(r.err.find(", adaptive: mean "), std::string::npos) << r.err;
     EXPECT_NE(r.err.find("% of pixels stopped early"), std::string::npos) << r.err;
@@ -238,13 +238,13 @@ TEST_F(LongRenderCli, AdaptiveReportsItsSamplesResumesAndRefusesPartials) {
     EXPECT_EQ(json["samples"].get<double>(), mean * 32 * 32);
 
     ASSERT_EQ(
-        run(render_args(out_ / "part.pfm", 20, {"-q", "--adaptive", "0.05", "--checkpoint", checkpoint})).exit_code, 0);
+        run(render_args(out_ / "part.pfm", 20, {"-q", "--adaptive", "0.1", "--checkpoint", checkpoint})).exit_code, 0);
     CommandResult rest =
-        run(render_args(out_ / "resumed.pfm", 32, {"-q", "--adaptive", "0.05", "--resume", checkpoint}));
+        run(render_args(out_ / "resumed.pfm", 32, {"-q", "--adaptive", "0.1", "--resume", checkpoint}));
     ASSERT_EQ(rest.exit_code, 0) << rest.err;
     EXPECT_TRUE(same_bytes(out_ / "resumed.pfm", whole));
     EXPECT_FALSE(same_bytes(out_ / "part.pfm", whole));
-    CommandResult other = run(render_args(out_ / "other.pfm", 32, {"-q", "--adaptive", "0.1", "--resume", checkpoint}));
+    CommandResult other = run(render_args(out_ / "other.pfm", 32, {"-q", "--adaptive", "0.2", "--resume", checkpoint}));
     EXPECT_EQ(other.exit_code, 3);
     EXPECT_NE(other.err.find("rendered with other settings"), std::string::npos) << other.err;
 
