@@ -52,7 +52,9 @@ void DeviceFilm::accumulate(KernelLauncher& launcher, std::uint64_t pass_start, 
     accumulate_.setArg(arg::Accumulate::pass_start, cl_ulong(pass_start));
     accumulate_.setArg(arg::Accumulate::pass_size, cl_uint(pass_size));
     accumulate_.setArg(arg::Accumulate::pass_radiance, pass_radiance);
-    launcher.launch(accumulate_, "accumulate", round_pixel_count_);
+    // Over every pixel whatever the round (work items past it return): PoCL
+    // compiles a kernel for each new launch size, which rounds would otherwise pay.
+    launcher.launch(accumulate_, "accumulate", std::size_t(width_) * height_);
 }
 
 Film DeviceFilm::read(cl::CommandQueue& queue, const ItemRange& items) const {
