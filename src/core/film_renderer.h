@@ -29,6 +29,8 @@ class FilmRenderer {
     // the same samples) receive samples (Film::begin_round); the range
     // becomes the round's.
     void begin_round(std::vector<std::uint32_t> pixels);
+    // The round's pixels (empty: every pixel).
+    const std::vector<std::uint32_t>& round_pixels() const { return round_pixels_; }
 
     // Work items per render() call that keep the backend efficient (its pass).
     virtual std::uint64_t pass_items() const = 0;

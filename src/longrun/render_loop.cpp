@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <optional>
 
 #include "longrun/error_estimate.h"
 #include "longrun/film_file.h"
@@ -23,6 +24,25 @@ Progress pass_progress(const Progress& progress, const ItemRange& plan, const It
             progress.report((double(pass.begin - plan.begin) + fraction * double(pass.size())) / double(plan.size()));
         };
     return mapped;
+}
+
+// At a check (a whole sample count of the round's pixels): the image's
+// error estimate against the target, then, if it `decide`s there, adaptive
+// sampling's decision, which may begin a round over fewer pixels. Returns
+// why the render stops there, if it does (`last`: it ends there anyway).
+std::optional<StopReason> check(FilmRenderer& renderer, const LongRunPlan& plan, bool decide, bool last,
+                                LongRunResult& result) {
+    const Film film = renderer.film();
+    if (plan.target_error > 0.0) {
+        result.error = relative_standard_error(film);
+        if (result.error <= plan.target_error) return last ? StopReason::Done : StopReason::TargetError;
+    }
+    if (decide) {
+        std::vector<std::uint32_t> active = pixels_still_active(film, plan.adaptive.threshold);
+        if (active.empty()) return last ? StopReason::Done : StopReason::Converged;
+        if (active.size() < film.round_pixel_count()) renderer.begin_round(std::move(active));
+    }
+    return std::nullopt;
 }
 
 }  // namespace
@@ -56,7 +76,10 @@ LongRunResult run_long_render(FilmRenderer& renderer, const LongRunPlan& plan, c
     // Work items count in the round's pixels (all of them unless adaptive
     // sampling has stopped some): the planned range in those items, and
     // where the render is in it.
-    std::uint64_t pixels = plan.start && plan.start->in_round() ? plan.start->round_pixels.size() : plan.pixels;
+    auto round_pixel_count = [&] {
+        return renderer.round_pixels().empty() ? plan.pixels : std::uint64_t(renderer.round_pixels().size());
+    };
+    std::uint64_t pixels = round_pixel_count();
     auto planned_in_round = [&] {
         if (pixels == plan.pixels) return plan.items;
         return ItemRange{plan.items.begin / plan.pixels * pixels, plan.items.end / plan.pixels * pixels};
@@ -64,12 +87,21 @@ LongRunResult run_long_render(FilmRenderer& renderer, const LongRunPlan& plan, c
     ItemRange planned = planned_in_round();
     std::uint64_t at = plan.start ? plan.start->items.end : plan.items.begin;
     std::uint64_t samples = 0;
+    // The samples per pixel at which the round began (a checkpoint's film
+    // starts there). Adaptive sampling decides at the checks from its minimum
+    // on that lie at least a whole image's worth of work items after that, so
+    // that a round over few pixels is not cut into passes too small to fill
+    // the device (a wavefront pass costs some iterations over all its slots).
+    std::uint64_t round_start = renderer.round_pixels().empty() ? 0 : renderer.items().begin / pixels;
+    auto decides_at = [&](std::uint64_t spp) {
+        return plan.adaptive.on() && spp >= plan.adaptive.min_spp && (spp - round_start) * pixels >= plan.pixels;
+    };
     // Work items at which the error is next estimated (none without a target
-    // or adaptive sampling); adaptive sampling alone starts at its minimum.
+    // or adaptive sampling); adaptive sampling alone at its decisions only.
     const bool checks = plan.target_error > 0.0 || plan.adaptive.on();
     auto next_check_spp = [&](std::uint64_t spp) {
         std::uint64_t next = next_error_check(spp);
-        while (plan.target_error <= 0.0 && next < plan.adaptive.min_spp) next = next_error_check(next);
+        while (plan.target_error <= 0.0 && !decides_at(next)) next = next_error_check(next);
         return next;
     };
     std::uint64_t next_check = checks ? next_check_spp(at / pixels) * pixels : UINT64_MAX;
@@ -88,26 +120,15 @@ LongRunResult run_long_render(FilmRenderer& renderer, const LongRunPlan& plan, c
         at = pass.end;
         if (at == next_check) {
             const std::uint64_t spp = at / pixels;
-            const Film film = renderer.film();
-            if (plan.target_error > 0.0) {
-                result.error = relative_standard_error(film);
-                if (result.error <= plan.target_error) {
-                    result.reason = at < planned.end ? StopReason::TargetError : StopReason::Done;
-                    break;
-                }
+            if (const auto stop = check(renderer, plan, decides_at(spp), at == planned.end, result)) {
+                result.reason = *stop;
+                break;
             }
-            if (plan.adaptive.on() && spp >= plan.adaptive.min_spp) {
-                std::vector<std::uint32_t> active = pixels_still_active(film, plan.adaptive.threshold);
-                if (active.empty()) {
-                    result.reason = at < planned.end ? StopReason::Converged : StopReason::Done;
-                    break;
-                }
-                if (active.size() < pixels) {
-                    pixels = active.size();
-                    renderer.begin_round(std::move(active));
-                    planned = planned_in_round();
-                    at = spp * pixels;
-                }
+            if (round_pixel_count() != pixels) {  // a round over fewer pixels began
+                pixels = round_pixel_count();
+                planned = planned_in_round();
+                at = renderer.items().end;
+                round_start = spp;
             }
             next_check = next_check_spp(spp) * pixels;
         }

@@ -259,8 +259,8 @@ TEST_F(AdaptiveRender, SameBitsOnEveryBackendAndWavefrontSize) {
     }
 }
 
-// Stopped mid-round (at 20 spp: the round from 18 to 22 over the pixels
-// still active) and continued from its checkpoint file to 64 spp on another
+// Stopped mid-round (at 20 spp, inside a round over the pixels still
+// active) and continued from its checkpoint file to 64 spp on another
 // backend and wavefront size: the same bits.
 TEST_F(AdaptiveRender, ResumedMidRoundGivesTheSameBits) {
     test::TempDirectory dir("adaptive_resume");
@@ -274,7 +274,8 @@ TEST_F(AdaptiveRender, ResumedMidRoundGivesTheSameBits) {
     const FilmFile file = read_film_file(first.checkpoint_path);
     ASSERT_TRUE(file.film.in_round());
     EXPECT_LT(file.film.round_pixels.size(), kPixels);
-    EXPECT_EQ(file.film.items, (ItemRange{18 * file.film.round_pixels.size(), 20 * file.film.round_pixels.size()}));
+    EXPECT_EQ(file.film.items.end, 20 * file.film.round_pixels.size());
+    EXPECT_LT(file.film.items.begin, file.film.items.end);  // the round began before 20 spp
 
     LongRunPlan rest = adaptive_plan();
     rest.start = file.film;
