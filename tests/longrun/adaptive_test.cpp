@@ -213,7 +213,7 @@ TEST(AdaptiveFlatAndNoisy, FlatPixelsStopAtTheMinimumNoisyOnesGoOn) {
 // variance does not (docs/long-renders.md, "Bias"): a pixel whose first
 // samples happen to agree (no firefly yet) stops sooner and is darker on
 // average. Measured here: z about -3 (seeds 1-3 at 64 and 256 spp: -2.0 to
-// -3.9, 0.3-3.2% of the image mean). The test bounds it at -6 <= z <= 4: a
+// -3.9, 0.3-3.3% of the image mean). The test bounds it at -6 <= z <= 4: a
 // pixel divided by one sample too many (-2.5%) or samples of the wrong
 // pixels would leave it. With the bias at -3 +- 1 over code changes that
 // move the samples, a false failure is about 1e-3.
