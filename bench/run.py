@@ -46,21 +46,24 @@ class Runner:
         self.scratch = scratch
         self.warm = set()
 
-    def render(self, scene, backend, width, height, spp, extra=(), profile=False, image=False):
+    def render(self, scene, backend, width, height, spp, extra=(), profile=False, image=False, seed=None):
         """One render; returns the stats JSON (plus 'profile' and 'image' when asked).
 
         The first render of each OpenCL configuration is run twice and the
         first discarded: PoCL compiles each kernel for its launch geometry
-        when it is first enqueued, which is not the renderer's speed."""
+        when it is first enqueued, which is not the renderer's speed (`seed`
+        does not change the geometry, so it is not part of the configuration)."""
         key = (scene, backend, width, height, spp, tuple(extra), profile)
         if backend != "reference" and key not in self.warm:
             self.warm.add(key)
-            self.render(scene, backend, width, height, spp, extra, profile)
+            self.render(scene, backend, width, height, spp, extra, profile, seed=seed)
         out = os.path.join(self.scratch, "image.pfm")
         stats_path = os.path.join(self.scratch, "stats.json")
         profile_path = os.path.join(self.scratch, "profile.json")
         args = [self.binary, "render", scene, "-o", out, "-q", "--backend", backend, "--width", str(width),
                 "--height", str(height), "--spp", str(spp), "--stats-json", stats_path, *extra]
+        if seed is not None:
+            args += ["--seed", str(seed)]
         if backend == "reference":
             args += ["--threads", str(os.cpu_count())]
         if profile:

@@ -1,8 +1,7 @@
-/* Adds a drained pass into the film: one work item per pixel adds that
- * pixel's pass entries to its exact fixed-point sums (shared/film_sum.h), in
- * sample order as the reference does, although with exact sums the order no
- * longer matters. No atomics, no fp64: the film's bits depend neither on
- * scheduling, wavefront size or pass boundaries nor on the device.
+/* Adds a drained pass into the film: one work item per pixel of the round
+ * (round_pixels, interface/kernel_parameters.h) adds that pixel's pass entries to its exact fixed-point sums
+ * (shared/film_sum.h), in sample order as the reference does, although with exact sums the order no longer matters. No
+ * atomics, no fp64: the film's bits depend neither on scheduling, wavefront size or pass boundaries nor on the device.
  *
  * The film holds WP_FILM_LIMBS limbs per channel and pixel: 3 sums per pixel,
  * then (built with -DWP_FILM_SQUARES, for per-pixel variance) 3 sums of
@@ -22,15 +21,16 @@ WP_FILM_FN void store_film_sum(__global ulong *film, uint index, film_sum s) {
 }
 
 __kernel void accumulate(WP_PARAMETERS(WP_ACCUMULATE_PARAMETERS)) {
-    uint px = get_global_id(0);
-    if (px >= pixel_count) return;
-    uint first = (uint)((px + pixel_count - pass_start % pixel_count) % pixel_count);
+    uint index = get_global_id(0);
+    if (index >= round_pixel_count) return;
+    uint px = round_pixels[index];
+    uint first = (uint)((index + round_pixel_count - pass_start % round_pixel_count) % round_pixel_count);
     for (uint c = 0; c < 3u; ++c) {
         film_sum sum = load_film_sum(film, 3u * px + c);
 #ifdef WP_FILM_SQUARES
         film_sum squares = load_film_sum(film, 3u * (pixel_count + px) + c);
 #endif
-        for (uint item = first; item < pass_size; item += pixel_count) {
+        for (uint item = first; item < pass_size; item += round_pixel_count) {
             float value = pass_radiance[3u * item + c];
             sum = film_sum_add(sum, film_sum_from_float(value));
 #ifdef WP_FILM_SQUARES

@@ -1,6 +1,6 @@
 /* Stage 1: camera rays, WP_LANES per work item (device/lanes.h). The k-th free
  * slot takes work item issued + k of the pass (work item w: pixel
- * w % pixels, sample w / pixels), where `issued` (counts[WP_COUNTER_WORK],
+ * round_pixels[w % round_pixel_count], sample w / round_pixel_count), where `issued` (counts[WP_COUNTER_WORK],
  * written by the host before the launch) is how many the pass has handed out
  * so far; no atomics. This is also path regeneration, since slots freed by
  * finished paths come back through the free queue every iteration. */
@@ -18,10 +18,9 @@ __kernel __attribute__((reqd_work_group_size(WP_GROUP_SIZE, 1, 1))) void generat
     lane_uint item = issued + k;
     /* work = pass_start + item, split into pixel and sample without 64-bit lanes:
      * pass_pixel + item stays below 2^32 (limits.h: pixels <= 2^27, passes <= 2^30). */
-    uint pixel_count = scene->width * scene->height;
-    uint pass_pixel = (uint)(pass_start % pixel_count), pass_sample = (uint)(pass_start / pixel_count);
-    lane_uint px = (pass_pixel + item) % pixel_count;
-    lane_uint s = pass_sample + (pass_pixel + item) / pixel_count;
+    uint pass_pixel = (uint)(pass_start % round_pixel_count), pass_sample = (uint)(pass_start / round_pixel_count);
+    lane_uint px = gather(round_pixels, started ? (pass_pixel + item) % round_pixel_count : (lane_uint)0u);
+    lane_uint s = pass_sample + (pass_pixel + item) / round_pixel_count;
     PATH_WRITE(pixel, lanes, started, px);
     PATH_WRITE(sample, lanes, started, s);
     PATH_WRITE(pass_item, lanes, started, item);

@@ -1,9 +1,8 @@
 /* The megakernel baseline (--backend megakernel): one work item traces
- * WP_LANES work items of the pass (work item w: pixel w % pixels, sample
- * w / pixels) from the camera to their ends, with the same per-vertex
- * functions (device/path_vertex.h) and random numbers as the wavefront's
- * stages, and writes their radiance to their pass entries for accumulate.cl.
- * It keeps the whole path in registers: no path state, no queues, but
+ * WP_LANES work items of the pass (work item w: pixel
+ * round_pixels[w % round_pixel_count], sample w / round_pixel_count) from the camera to their ends, with the same
+ * per-vertex functions (device/path_vertex.h) and random numbers as the wavefront's stages, and writes their radiance
+ * to their pass entries for accumulate.cl. It keeps the whole path in registers: no path state, no queues, but
  * divergent loops. With several lanes (-DWP_LANES=8 on CPUs, as the
  * wavefront's stages) the lanes run as vector code until the last of their
  * paths ends: the single-kernel design at its best on a CPU, the like-for-like
@@ -106,10 +105,9 @@ __kernel __attribute__((reqd_work_group_size(WP_GROUP_SIZE, 1, 1))) void megaker
     lane_int active = item < pass_size;
     if (lanes_any(active)) {
         /* work = pass_start + item, split into pixel and sample without 64-bit lanes (as generate.cl) */
-        uint pixel_count = scene->width * scene->height;
-        uint pass_pixel = (uint)(pass_start % pixel_count), pass_sample = (uint)(pass_start / pixel_count);
-        lane_uint px = (pass_pixel + item) % pixel_count;
-        lane_uint s = pass_sample + (pass_pixel + item) / pixel_count;
+        uint pass_pixel = (uint)(pass_start % round_pixel_count), pass_sample = (uint)(pass_start / round_pixel_count);
+        lane_uint px = gather(round_pixels, active ? (pass_pixel + item) % round_pixel_count : (lane_uint)0u);
+        lane_uint s = pass_sample + (pass_pixel + item) / round_pixel_count;
         lane_uint extension_rays = 0u, shadow_rays = 0u, dropped[WP_NONFINITE_STAGE_COUNT] = {0u, 0u, 0u};
         vec3 radiance = trace_paths(WP_SCENE_ARGS, active, px, s, &extension_rays, &shadow_rays, dropped);
         finish_paths(pass_radiance, item, active, radiance);

@@ -28,22 +28,30 @@
     NEXT(__global const MeshTriangle *, light_triangles)     \
     NEXT(__global const float *, light_triangle_cdf)
 
+/* round_pixels: the pixels the work items sample, ascending (every pixel
+ * unless adaptive sampling has stopped some): work item w is pixel
+ * round_pixels[w % round_pixel_count], sample w / round_pixel_count. */
+
 /* generate, intersect, shade_direct, intersect_shadow and scatter; the path
  * state's fields (interface/path_state.h) follow these. */
-#define WP_STAGE_PARAMETERS(FIRST, NEXT)  \
-    WP_SCENE_PARAMETERS(FIRST, NEXT)      \
-    NEXT(__global uint *, queues)         \
-    NEXT(__global uint *, counts)         \
-    NEXT(uint, capacity)                  \
-    NEXT(ulong, pass_start)               \
-    NEXT(uint, pass_size)                 \
-    NEXT(__global float *, pass_radiance) \
+#define WP_STAGE_PARAMETERS(FIRST, NEXT)      \
+    WP_SCENE_PARAMETERS(FIRST, NEXT)          \
+    NEXT(__global uint *, queues)             \
+    NEXT(__global uint *, counts)             \
+    NEXT(uint, capacity)                      \
+    NEXT(ulong, pass_start)                   \
+    NEXT(uint, pass_size)                     \
+    NEXT(__global const uint *, round_pixels) \
+    NEXT(uint, round_pixel_count)             \
+    NEXT(__global float *, pass_radiance)     \
     NEXT(__global uint *, slot_nonfinite)
 
 #define WP_MEGAKERNEL_PARAMETERS(FIRST, NEXT) \
     WP_SCENE_PARAMETERS(FIRST, NEXT)          \
     NEXT(ulong, pass_start)                   \
     NEXT(uint, pass_size)                     \
+    NEXT(__global const uint *, round_pixels) \
+    NEXT(uint, round_pixel_count)             \
     NEXT(__global float *, pass_radiance)     \
     NEXT(__global uint *, counts)
 
@@ -58,6 +66,8 @@
     FIRST(ulong, pass_start)                    \
     NEXT(uint, pass_size)                       \
     NEXT(uint, pixel_count)                     \
+    NEXT(__global const uint *, round_pixels)   \
+    NEXT(uint, round_pixel_count)               \
     NEXT(__global const float *, pass_radiance) \
     NEXT(__global ulong *, film)
 

@@ -21,6 +21,10 @@ std::vector<NamedFilm> read_partials(const std::vector<std::string>& paths) {
     std::vector<NamedFilm> films;
     for (const std::string& path : paths) {
         films.push_back({path, read_film_file(path)});
+        if (films.back().file.film.in_round())
+            throw FilmFileError(path +
+                                ": rendered with --adaptive, whose pixels have their own sample counts: "
+                                "it cannot be merged");
         const FilmFile& first = films.front().file;
         check_film_matches(path, films.back().file, first.identity, first.film.width, first.film.height);
     }

@@ -66,6 +66,12 @@ void add_render_options(CLI::App& render, RenderCommand& command) {
                     "Stop once the image's estimated relative standard error is at most this (checked at 4, 5, 6, "
                     "8, 10, ... samples per pixel; docs/long-renders.md)")
         ->check(CLI::Range(1e-9, 1.0));
+    render
+        .add_option("--adaptive", l.adaptive,
+                    "Adaptive sampling: after max(8, spp/16) samples, a pixel stops once its estimated error "
+                    "(standard error over the square root of its value) and its neighbours' is at most this, "
+                    "e.g. 0.01 (docs/long-renders.md)")
+        ->check(CLI::Range(1e-9, 1e9));
     render.add_option("--samples", l.samples,
                       "A:B renders samples A to B-1 of every pixel into a partial film (-o FILE.wpfilm), "
                       "for `wavepath merge`");

@@ -25,7 +25,8 @@ struct LongRunFlags {
     std::string resume;            // "": start afresh
     std::optional<double> time_s;  // --time budget
     std::optional<double> target_error;
-    std::string samples;  // "A:B": samples A to B-1 of every pixel, into a partial film
+    std::optional<double> adaptive;  // --adaptive threshold
+    std::string samples;             // "A:B": samples A to B-1 of every pixel, into a partial film
 };
 
 struct RenderCommand {

@@ -58,10 +58,14 @@ Film film_to_resume(const std::string& path, const RenderIdentity& identity, con
     FilmFile file = read_film_file(path);
     check_film_matches(path, file, identity, scene.camera.width, scene.camera.height);
     Film& film = file.film;
-    if (film.items.begin != items.begin)
+    if (film.in_round() && film.max_samples() * film.pixel_count() > items.end)
+        throw FilmFileError(path + ": holds " + std::to_string(film.max_samples()) +
+                            " samples per pixel, more than the " + std::to_string(items.end / film.pixel_count()) +
+                            " this render asks for (--spp)");
+    if (!film.in_round() && film.items.begin != items.begin)
         throw FilmFileError(path + ": starts at work item " + std::to_string(film.items.begin) + ", this render at " +
                             std::to_string(items.begin));
-    if (film.items.end > items.end)
+    if (!film.in_round() && film.items.end > items.end)
         throw FilmFileError(path + ": holds " + std::to_string(film.max_samples()) +
                             " samples per pixel, more than the " + std::to_string(items.end / film.pixel_count()) +
                             " this render asks for (--spp, --samples)");
@@ -69,6 +73,28 @@ Film film_to_resume(const std::string& path, const RenderIdentity& identity, con
         throw FilmFileError(path + ": has no sums of squares, which this render needs");
     if (!squares) film.squares.clear();
     return film;
+}
+
+// --adaptive's settings; squares kept for it and for --target-error.
+AdaptiveSampling adaptive_sampling(const LongRunFlags& flags, const Scene& scene) {
+    if (!flags.adaptive) return {};
+    if (!flags.samples.empty())
+        throw UsageError(
+            "--adaptive: needs the whole render, not a --samples range (each pixel's samples depend on "
+            "the others' decisions, so partial films could not be merged)");
+    return {*flags.adaptive, adaptive_min_spp(std::uint64_t(scene.render.spp))};
+}
+
+// The mean samples per pixel and the fraction of pixels with fewer than `spp`.
+void summarise_samples(const Film& film, int spp, RunSummary& summary) {
+    const std::vector<std::uint64_t> counts = film.sample_counts();
+    std::uint64_t total = 0, early = 0;
+    for (std::uint64_t n : counts) {
+        total += n;
+        early += n < std::uint64_t(spp) ? 1 : 0;
+    }
+    summary.spp_mean = double(total) / double(counts.size());
+    summary.stopped_early = double(early) / double(counts.size());
 }
 
 void write_output(const RenderCommand& command, const RenderIdentity& identity, const Film& film) {
@@ -87,14 +113,15 @@ int run_render(const RenderCommand& command) {
 
     const LongRunFlags& flags = command.long_run;
     BackendOptions backend = command.backend;
-    backend.film_squares = flags.target_error.has_value();
     if (flags.target_error && !flags.samples.empty())
         throw UsageError("--target-error: needs the whole render, not a --samples range");
     LongRunPlan plan;
+    plan.adaptive = adaptive_sampling(flags, scene);
+    backend.film_squares = flags.target_error.has_value() || plan.adaptive.on();
     plan.items = planned_items(flags.samples, scene);
     plan.pixels = std::uint64_t(scene.camera.width) * scene.camera.height;
     plan.target_error = flags.target_error.value_or(0.0);
-    plan.identity = render_identity(scene, estimator_name(backend));
+    plan.identity = render_identity(scene, estimator_name(backend), plan.adaptive);
     if (!flags.resume.empty())
         plan.start = film_to_resume(flags.resume, plan.identity, scene, plan.items, backend.film_squares);
     plan.time_budget_s = flags.time_s.value_or(0.0);
@@ -123,6 +150,8 @@ int run_render(const RenderCommand& command) {
     summary.stopped = stop_reason_name(result.reason);
     summary.stats = result.stats;
     summary.error = result.error;
+    summary.adaptive = plan.adaptive.on();
+    if (summary.adaptive) summarise_samples(result.film, scene.render.spp, summary);
     if (!command.stats_json_path.empty()) write_stats_json(summary, command.stats_json_path);
     if (!command.quiet) std::cerr << format_summary_line(summary) << std::endl;
     return result.reason == StopReason::Interrupted ? kExitInterrupted : kExitOk;

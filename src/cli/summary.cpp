@@ -50,6 +50,14 @@ std::string error_text(const RunSummary& summary) {
     return text;
 }
 
+std::string adaptive_text(const RunSummary& summary) {
+    if (!summary.adaptive) return "";
+    char text[96];
+    std::snprintf(text, sizeof text, ", adaptive: mean %.1f spp, %.1f%% of pixels stopped early", summary.spp_mean,
+                  100.0 * summary.stopped_early);
+    return text;
+}
+
 }  // namespace
 
 std::string format_summary_line(const RunSummary& summary) {
@@ -61,7 +69,7 @@ std::string format_summary_line(const RunSummary& summary) {
                   per_second(s.shadow_rays, s.time_s) * 1e-6, static_cast<unsigned long long>(s.nonfinite));
     return "wavepath: wrote " + summary.output_path + " (" + std::to_string(summary.width) + "x" +
            std::to_string(summary.height) + ", " + samples_text(summary) + ", " + summary.backend + ") " + figures +
-           nonfinite_breakdown(s) + error_text(summary);
+           nonfinite_breakdown(s) + error_text(summary) + adaptive_text(summary);
 }
 
 nlohmann::json stats_json(const RunSummary& summary) {
@@ -75,6 +83,9 @@ nlohmann::json stats_json(const RunSummary& summary) {
         {"spp_done_max", summary.spp_max},
         {"stopped", summary.stopped},
         {"error_estimate", summary.error < 0.0 ? nlohmann::json(nullptr) : nlohmann::json(summary.error)},
+        {"adaptive", summary.adaptive
+                         ? nlohmann::json{{"spp_mean", summary.spp_mean}, {"stopped_early", summary.stopped_early}}
+                         : nlohmann::json(nullptr)},
         {"ranks", 1},
         {"samples_per_rank", {s.samples}},
         {"time_s", s.time_s},

@@ -17,6 +17,9 @@ struct RunSummary {
     std::string stopped = "done";            // why the render ended (stop_reason_name)
     double error = -1.0;                     // last estimated relative error (--target-error); -1: none
     RenderStats stats;
+    bool adaptive = false;       // --adaptive: the two figures below are reported
+    double spp_mean = 0.0;       // samples per pixel, mean over the pixels
+    double stopped_early = 0.0;  // fraction of pixels with fewer samples than asked for
 };
 
 // "wavepath: wrote out.png (512x512, 64 spp, reference) in 12.3 s: 1.36 Msamples/s,
@@ -24,11 +27,12 @@ struct RunSummary {
 //  any value was dropped, the count per stage: " (emission 1, direct 0, scatter 2)".
 // A render that stopped early or holds a partial range says what the pixels
 // have: "(512x512, 12-13 of 64 spp, stopped: time budget, wavefront)"; with
-// --target-error the last estimate follows: ", estimated relative error 0.0098".
+// --target-error the last estimate follows: ", estimated relative error 0.0098";
+// with --adaptive: ", adaptive: mean 23.4 spp, 71.2% of pixels stopped early".
 std::string format_summary_line(const RunSummary& summary);
 
 // {"backend","width","height","spp","spp_done_min","spp_done_max","stopped","error_estimate" (or null),
-//  "ranks","samples_per_rank","time_s","samples","samples_per_s",
+//  "adaptive" (null, or {"spp_mean","stopped_early"}), "ranks","samples_per_rank","time_s","samples","samples_per_s",
 //  "extension_rays","extension_rays_per_s","shadow_rays","shadow_rays_per_s","nonfinite",
 //  "nonfinite_by_stage": {"emission","direct","scatter"}}
 nlohmann::json stats_json(const RunSummary& summary);

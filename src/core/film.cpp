@@ -34,11 +34,34 @@ Film Film::empty(int width, int height, std::uint64_t at, bool with_squares) {
     return film;
 }
 
-std::uint64_t Film::samples_of(std::uint64_t pixel) const { return samples_of_pixel(items, pixel_count(), pixel); }
+std::uint64_t Film::samples_of(std::uint64_t pixel) const {
+    if (!in_round()) return samples_of_pixel(items, pixel_count(), pixel);
+    const auto at = std::lower_bound(round_pixels.begin(), round_pixels.end(), std::uint32_t(pixel));
+    const bool sampled = at != round_pixels.end() && *at == pixel;
+    return samples_before[pixel] +
+           (sampled ? samples_of_pixel(items, round_pixels.size(), std::uint64_t(at - round_pixels.begin())) : 0);
+}
 
-// samples_of is constant on the pixels below, between and above begin % P
-// and end % P, so the extremes are among those two pixels, 0 and P - 1.
+std::vector<std::uint64_t> Film::sample_counts() const {
+    std::vector<std::uint64_t> counts(pixel_count());
+    if (!in_round()) {
+        for (std::uint64_t p = 0; p < counts.size(); ++p) counts[p] = samples_of_pixel(items, pixel_count(), p);
+        return counts;
+    }
+    std::copy(samples_before.begin(), samples_before.end(), counts.begin());
+    for (std::uint64_t i = 0; i < round_pixels.size(); ++i)
+        counts[round_pixels[i]] += samples_of_pixel(items, round_pixels.size(), i);
+    return counts;
+}
+
+// Without a round, samples_of is constant on the pixels below, between and
+// above begin % P and end % P, so the extremes are among those two pixels, 0
+// and P - 1.
 std::uint64_t Film::min_samples() const {
+    if (in_round()) {
+        const std::vector<std::uint64_t> counts = sample_counts();
+        return *std::min_element(counts.begin(), counts.end());
+    }
     std::uint64_t least = items.size() / pixel_count() + 1;
     for (std::uint64_t p :
          {std::uint64_t(0), pixel_count() - 1, items.begin % pixel_count(), items.end % pixel_count()})
@@ -47,6 +70,10 @@ std::uint64_t Film::min_samples() const {
 }
 
 std::uint64_t Film::max_samples() const {
+    if (in_round()) {
+        const std::vector<std::uint64_t> counts = sample_counts();
+        return *std::max_element(counts.begin(), counts.end());
+    }
     std::uint64_t most = 0;
     for (std::uint64_t p :
          {std::uint64_t(0), pixel_count() - 1, items.begin % pixel_count(), items.end % pixel_count()})
@@ -64,15 +91,31 @@ void Film::append(const Film& next) {
                                     ", the next starts at " + std::to_string(next.items.begin));
     if (next.squares.empty() != squares.empty())
         throw std::invalid_argument("one film has second moments and the other has not");
+    if (in_round() || next.in_round())
+        throw std::invalid_argument("an adaptive film's pixels have their own sample counts: it cannot be added to");
     for (std::size_t i = 0; i < sums.size(); ++i) sums[i] = film_sum_add(sums[i], next.sums[i]);
     for (std::size_t i = 0; i < squares.size(); ++i) squares[i] = film_sum_add(squares[i], next.squares[i]);
     items.end = next.items.end;
 }
 
+void Film::begin_round(std::vector<std::uint32_t> pixels) {
+    if (pixels.empty()) throw std::invalid_argument("begin_round: a round needs pixels");
+    const std::vector<std::uint64_t> counts = sample_counts();
+    const std::uint64_t c = counts[pixels.front()];
+    for (std::uint32_t p : pixels)
+        if (p >= pixel_count() || counts[p] != c)
+            throw std::invalid_argument("begin_round: pixel " + std::to_string(p) +
+                                        " is outside the film or holds another sample count");
+    samples_before.assign(counts.begin(), counts.end());
+    round_pixels = std::move(pixels);
+    items = {c * round_pixels.size(), c * round_pixels.size()};
+}
+
 Image Film::image() const {
     Image image{width, height, std::vector<float>(sums.size())};
+    const std::vector<std::uint64_t> counts = sample_counts();
     for (std::uint64_t p = 0; p < pixel_count(); ++p) {
-        std::uint64_t count = samples_of(p);
+        std::uint64_t count = counts[p];
         for (int c = 0; c < kFilmChannels; ++c) {
             std::size_t i = kFilmChannels * p + c;
             image.rgb[i] = count == 0 ? 0.0f : static_cast<float>(film_sum_to_double(sums[i]) / double(count));

@@ -2,6 +2,12 @@
 // exactly (kernels/shared/film_sum.h), so that films of adjacent ranges add
 // up to the bits of the film of their union. Work item w is pixel w % pixels,
 // sample w / pixels (docs/architecture.md, "Work, passes and determinism").
+//
+// Adaptive sampling (docs/long-renders.md) renders in rounds over the pixels
+// still active: in a round over n pixels, work item w is pixel
+// round_pixels[w % n], sample w / n, so that a pixel's samples are the same
+// samples (same random numbers) as without adaptive sampling. Such a film's
+// range is the round's, and each pixel's samples before the round are kept.
 #pragma once
 
 #include <cstddef>
@@ -29,20 +35,31 @@ struct Film {
     // Sums of the samples' squares, kFilmChannels per pixel; empty unless a
     // feature needs per-pixel variance (--target-error).
     std::vector<film_sum> squares;
+    // Adaptive sampling's round, both empty otherwise: the pixels the range's
+    // work items sample (ascending), and every pixel's samples before the round.
+    std::vector<std::uint32_t> round_pixels;
+    std::vector<std::uint32_t> samples_before;
 
     // An empty film of items [at, at): every sum zero.
     static Film empty(int width, int height, std::uint64_t at, bool with_squares);
 
     std::uint64_t pixel_count() const { return std::uint64_t(width) * std::uint64_t(height); }
-    // How many samples of `pixel` the range holds.
+    bool in_round() const { return !samples_before.empty(); }
+    // The pixels work items sample: round_pixels' size, or every pixel.
+    std::uint64_t round_pixel_count() const { return in_round() ? round_pixels.size() : pixel_count(); }
+    // How many samples `pixel` holds, and each pixel.
     std::uint64_t samples_of(std::uint64_t pixel) const;
+    std::vector<std::uint64_t> sample_counts() const;
     // The fewest and most samples any pixel holds.
     std::uint64_t min_samples() const;
     std::uint64_t max_samples() const;
 
     // Adds `next`, which must start where this film ends and match its size
-    // and squares (throws std::invalid_argument otherwise).
+    // and squares, neither in a round (throws std::invalid_argument otherwise).
     void append(const Film& next);
+    // Starts a round over `pixels` (ascending), which must all hold the same
+    // number of samples c: the range becomes [c n, c n) for n pixels.
+    void begin_round(std::vector<std::uint32_t> pixels);
 
     // Each pixel's sums divided by its sample count (0 where it has none).
     Image image() const;

@@ -15,11 +15,28 @@ void FilmRenderer::render(const ItemRange& items, const Progress& progress) {
     items_.end = items.end;
 }
 
-Film FilmRenderer::film() { return read_film(items_); }
+Film FilmRenderer::film() {
+    Film film = read_film(items_);
+    film.round_pixels = round_pixels_;
+    film.samples_before = samples_before_;
+    return film;
+}
 
 void FilmRenderer::load(const Film& film) {
     load_film(film);
     items_ = film.items;
+    round_pixels_ = film.round_pixels;
+    samples_before_ = film.samples_before;
+    use_round_pixels(round_pixels_);
+}
+
+void FilmRenderer::begin_round(std::vector<std::uint32_t> pixels) {
+    Film round = film();
+    round.begin_round(std::move(pixels));
+    items_ = round.items;
+    round_pixels_ = std::move(round.round_pixels);
+    samples_before_ = std::move(round.samples_before);
+    use_round_pixels(round_pixels_);
 }
 
 RenderResult render_every_item(FilmRenderer& renderer, int width, int height, int spp, const Progress& progress) {

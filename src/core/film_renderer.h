@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <vector>
 
 #include "core/film.h"
 #include "core/render.h"
@@ -21,9 +22,15 @@ class FilmRenderer {
     void render(const ItemRange& items, const Progress& progress);
     // The film so far.
     Film film();
-    // Replaces the film (same size and squares) and its range.
+    // Replaces the film (same size and squares) and its range (and round).
     void load(const Film& film);
     const ItemRange& items() const { return items_; }
+    // Adaptive sampling: from now on only `pixels` (ascending, each holding
+    // the same samples) receive samples (Film::begin_round); the range
+    // becomes the round's.
+    void begin_round(std::vector<std::uint32_t> pixels);
+    // The round's pixels (empty: every pixel).
+    const std::vector<std::uint32_t>& round_pixels() const { return round_pixels_; }
 
     // Work items per render() call that keep the backend efficient (its pass).
     virtual std::uint64_t pass_items() const = 0;
@@ -37,9 +44,13 @@ class FilmRenderer {
     virtual void render_items(const ItemRange& items, const Progress& progress) = 0;
     virtual Film read_film(const ItemRange& items) = 0;
     virtual void load_film(const Film& film) = 0;
+    // Work item w of the ranges rendered from now on is pixel
+    // pixels[w % pixels.size()], sample w / pixels.size() (empty: every pixel).
+    virtual void use_round_pixels(const std::vector<std::uint32_t>& pixels) = 0;
 
  private:
     ItemRange items_;
+    std::vector<std::uint32_t> round_pixels_, samples_before_;  // Film's, when in a round
 };
 
 // Renders every work item of the scene (pixels x spp) into `renderer`'s

@@ -6,17 +6,21 @@
 
 namespace wp {
 
+// Walked from the first check, so that a render resumed between two checks
+// (at 20 spp: the next is 22, not 25) keeps the uninterrupted render's.
 std::uint64_t next_error_check(std::uint64_t spp) {
-    if (spp < kFirstErrorCheckSpp) return kFirstErrorCheckSpp;
-    return spp + std::max<std::uint64_t>(1, spp / 4);
+    std::uint64_t check = kFirstErrorCheckSpp;
+    while (check <= spp) check += std::max<std::uint64_t>(1, check / 4);
+    return check;
 }
 
 double relative_standard_error(const Film& film) {
-    const std::uint64_t n = film.min_samples();
-    if (film.squares.empty() || n < 2 || film.max_samples() != n)
-        throw std::invalid_argument("relative_standard_error: needs squares and the same n >= 2 samples per pixel");
+    const std::vector<std::uint64_t> counts = film.sample_counts();
+    if (film.squares.empty() || *std::min_element(counts.begin(), counts.end()) < 2)
+        throw std::invalid_argument("relative_standard_error: needs squares and n >= 2 samples per pixel");
     double variance_of_means = 0.0, means = 0.0;
     for (std::size_t i = 0; i < film.sums.size(); ++i) {
+        const std::uint64_t n = counts[i / kFilmChannels];
         const double sum = film_sum_to_double(film.sums[i]), squares = film_sum_to_double(film.squares[i]);
         const double sample_variance = std::max(0.0, (squares - sum * sum / double(n)) / double(n - 1));
         variance_of_means += sample_variance / double(n);

@@ -17,6 +17,7 @@ namespace {
 constexpr std::array<char, 8> kMagic{'W', 'P', 'F', 'I', 'L', 'M', '\r', '\n'};
 constexpr std::size_t kEstimatorBytes = 16;
 constexpr std::uint32_t kFlagSquares = 1;
+constexpr std::uint32_t kFlagRound = 2;  // version 2 on
 constexpr std::size_t kHeaderBytes = 8 + 4 + 4 + 8 + 8 + kEstimatorBytes + 4 + 4 + 8 + 8 + 4 + 4;
 constexpr std::size_t kChecksumBytes = 8;
 
@@ -62,7 +63,7 @@ std::vector<char> encode(const FilmFile& file) {
     Writer w;
     w.put_bytes(kMagic.data(), kMagic.size());
     w.put(kFilmFileVersion);
-    w.put(std::uint32_t(film.squares.empty() ? 0 : kFlagSquares));
+    w.put(std::uint32_t((film.squares.empty() ? 0 : kFlagSquares) | (film.in_round() ? kFlagRound : 0)));
     w.put(file.identity.scene);
     w.put(file.identity.settings);
     std::array<char, kEstimatorBytes> estimator{};
@@ -77,6 +78,11 @@ std::vector<char> encode(const FilmFile& file) {
     w.put(std::uint32_t(WP_FILM_FRACTION_BITS));
     w.put_bytes(film.sums.data(), sizeof(film_sum) * film.sums.size());
     w.put_bytes(film.squares.data(), sizeof(film_sum) * film.squares.size());
+    if (film.in_round()) {
+        w.put(std::uint32_t(film.round_pixels.size()));
+        w.put_bytes(film.round_pixels.data(), sizeof(std::uint32_t) * film.round_pixels.size());
+        w.put_bytes(film.samples_before.data(), sizeof(std::uint32_t) * film.samples_before.size());
+    }
     w.put(fnv1a64(w.bytes().data(), w.bytes().size()));
     return std::move(w.bytes());
 }
@@ -94,7 +100,7 @@ std::vector<char> read_bytes(const std::string& path) {
 }
 
 // Magic and version first: a newer version may lay out the rest otherwise.
-void check_magic_and_version(const std::string& path, const std::vector<char>& bytes) {
+std::uint32_t check_magic_and_version(const std::string& path, const std::vector<char>& bytes) {
     if (bytes.size() < kMagic.size() || !std::equal(kMagic.begin(), kMagic.end(), bytes.begin()))
         refuse(path, "not a wavepath film file (no WPFILM signature)");
     if (bytes.size() < kMagic.size() + 4) refuse(path, "truncated (" + std::to_string(bytes.size()) + " bytes)");
@@ -104,6 +110,33 @@ void check_magic_and_version(const std::string& path, const std::vector<char>& b
         refuse(path, "film format version " + std::to_string(version) + " is newer than this wavepath reads (" +
                          std::to_string(kFilmFileVersion) + ")");
     if (version == 0) refuse(path, "film format version 0 does not exist");
+    return version;
+}
+
+// The adaptive round's table size, from the bytes after the sums (0 if they
+// are too few to hold its pixel count: the size check then says truncated).
+std::uint64_t round_table_bytes(const std::vector<char>& bytes, std::uint64_t at, std::uint64_t pixels) {
+    std::uint32_t n = 0;
+    if (bytes.size() >= at + sizeof n) std::memcpy(&n, bytes.data() + at, sizeof n);
+    return sizeof n + sizeof(std::uint32_t) * (std::uint64_t(n) + pixels);
+}
+
+// An adaptive round as read (after the checksum): its pixels ascending and
+// in the film, all holding the same samples before it, and a range of whole
+// work items of that round.
+void check_round(const std::string& path, const Film& film) {
+    const std::vector<std::uint32_t>& round = film.round_pixels;
+    if (round.empty() || round.size() > film.pixel_count())
+        refuse(path, "corrupted adaptive round (" + std::to_string(round.size()) + " pixels)");
+    for (std::size_t i = 0; i < round.size(); ++i)
+        if (round[i] >= film.pixel_count() || (i > 0 && round[i] <= round[i - 1]) ||
+            film.samples_before[round[i]] != film.samples_before[round[0]])
+            refuse(path, "corrupted adaptive round (pixel " + std::to_string(round[i]) + ")");
+    for (std::uint32_t before : film.samples_before)
+        if (before > std::uint32_t(kMaxSpp))
+            refuse(path, "corrupted adaptive round (" + std::to_string(before) + " samples)");
+    if (film.items.end > std::uint64_t(kMaxSpp) * round.size())
+        refuse(path, "corrupted adaptive round (work items to " + std::to_string(film.items.end) + ")");
 }
 
 }  // namespace
@@ -125,7 +158,7 @@ void write_film_file(const std::string& path, const FilmFile& file) {
 
 FilmFile read_film_file(const std::string& path) {
     const std::vector<char> bytes = read_bytes(path);
-    check_magic_and_version(path, bytes);
+    const std::uint32_t version = check_magic_and_version(path, bytes);
     if (bytes.size() < kHeaderBytes + kChecksumBytes)
         refuse(path, "truncated (" + std::to_string(bytes.size()) + " bytes, shorter than the header)");
     Reader r(bytes);
@@ -147,9 +180,12 @@ FilmFile read_film_file(const std::string& path) {
     if (width < 1 || height < 1 || width > std::uint32_t(kMaxResolution) || height > std::uint32_t(kMaxResolution) ||
         std::uint64_t(width) * height > std::uint64_t(kMaxPixels))
         refuse(path, "corrupted header (size " + std::to_string(width) + "x" + std::to_string(height) + ")");
-    const bool squares = (flags & kFlagSquares) != 0;
-    const std::uint64_t sums = std::uint64_t(kFilmChannels) * width * height * (squares ? 2 : 1);
-    const std::uint64_t expected = kHeaderBytes + sizeof(film_sum) * sums + kChecksumBytes;
+    const bool squares = (flags & kFlagSquares) != 0, in_round = (flags & kFlagRound) != 0;
+    const std::uint64_t pixels = std::uint64_t(width) * height;
+    const std::uint64_t sums = std::uint64_t(kFilmChannels) * pixels * (squares ? 2 : 1);
+    const std::uint64_t sums_end = kHeaderBytes + sizeof(film_sum) * sums;
+    const std::uint64_t expected =
+        sums_end + (in_round ? round_table_bytes(bytes, sums_end, pixels) : 0) + kChecksumBytes;
     if (bytes.size() < expected)
         refuse(path, "truncated (" + std::to_string(bytes.size()) + " bytes of " + std::to_string(expected) + ")");
     if (bytes.size() > expected)
@@ -157,12 +193,13 @@ FilmFile read_film_file(const std::string& path) {
     std::uint64_t stored;
     std::memcpy(&stored, bytes.data() + expected - kChecksumBytes, sizeof stored);
     if (stored != fnv1a64(bytes.data(), expected - kChecksumBytes)) refuse(path, "corrupted (checksum mismatch)");
-    if (flags & ~kFlagSquares) refuse(path, "unknown flags " + std::to_string(flags));
+    const std::uint32_t known = version >= 2 ? kFlagSquares | kFlagRound : kFlagSquares;
+    if (flags & ~known) refuse(path, "unknown flags " + std::to_string(flags));
     if (limbs != WP_FILM_LIMBS || fraction_bits != WP_FILM_FRACTION_BITS)
         refuse(path, "film sums of " + std::to_string(limbs) + " limbs and " + std::to_string(fraction_bits) +
                          " fraction bits, this wavepath keeps " + std::to_string(WP_FILM_LIMBS) + " and " +
                          std::to_string(WP_FILM_FRACTION_BITS));
-    if (film.items.begin > film.items.end || film.items.end > std::uint64_t(kMaxSpp) * width * height)
+    if (film.items.begin > film.items.end || film.items.end > std::uint64_t(kMaxSpp) * pixels)
         refuse(path, "corrupted header (work items " + std::to_string(film.items.begin) + " to " +
                          std::to_string(film.items.end) + ")");
 
@@ -173,6 +210,13 @@ FilmFile read_film_file(const std::string& path) {
     if (squares) {
         film.squares.resize(film.sums.size());
         r.get_bytes(film.squares.data(), sizeof(film_sum) * film.squares.size());
+    }
+    if (in_round) {
+        film.round_pixels.resize(r.get<std::uint32_t>());
+        r.get_bytes(film.round_pixels.data(), sizeof(std::uint32_t) * film.round_pixels.size());
+        film.samples_before.resize(pixels);
+        r.get_bytes(film.samples_before.data(), sizeof(std::uint32_t) * pixels);
+        check_round(path, film);
     }
     return file;
 }
@@ -188,7 +232,9 @@ void check_film_matches(const std::string& path, const FilmFile& file, const Ren
                "rendered by the " + file.identity.estimator + " estimator, this render uses " + identity.estimator);
     if (file.identity.scene != identity.scene) refuse(path, "rendered from another scene (its content differs)");
     if (file.identity.settings != identity.settings)
-        refuse(path, "rendered with other settings (max_depth, rr_depth, seed, nee, mis or hemisphere differ)");
+        refuse(path,
+               "rendered with other settings (max_depth, rr_depth, seed, nee, mis, hemisphere or adaptive "
+               "sampling differ)");
 }
 
 }  // namespace wp

@@ -6,11 +6,14 @@
 //   estimator (16 bytes, ASCII, zero-padded), width (u32), height (u32),
 //   first work item (u64), end work item (u64), limbs per sum (u32), fraction
 //   bits (u32), then the sums (3 per pixel, each WP_FILM_LIMBS u64 limbs,
-//   least significant first), the squares if flagged, and last the FNV-1a 64
-//   checksum (u64) of every byte before it.
-// The film's range says everything else: pixel p holds the samples s with
-// first <= s * pixels + p < end, so the next work item of a checkpoint is its
-// end, and each pixel's sample count follows from the range.
+//   least significant first), the squares if flagged (bit 0), the adaptive
+//   round if flagged (bit 1: its pixel count n (u32), its n pixels (u32,
+//   ascending) and every pixel's samples before it (u32)), and last the
+//   FNV-1a 64 checksum (u64) of every byte before it.
+// The film's range (and round) says everything else: pixel p holds the
+// samples s with first <= s * pixels + p < end, so the next work item of a
+// checkpoint is its end, and each pixel's sample count follows from the
+// range (in a round: from its samples before it and the round's range).
 #pragma once
 
 #include <cstdint>
@@ -21,7 +24,8 @@
 
 namespace wp {
 
-inline constexpr std::uint32_t kFilmFileVersion = 1;
+// Version 2 added the adaptive round (flag bit 1); version 1 files are read too.
+inline constexpr std::uint32_t kFilmFileVersion = 2;
 inline constexpr const char* kFilmFileExtension = ".wpfilm";
 
 // A film file that cannot be used: unreadable, not a film file, truncated,

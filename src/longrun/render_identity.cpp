@@ -61,14 +61,19 @@ std::uint64_t scene_hash(const Scene& scene) {
     return h.value();
 }
 
-std::uint64_t settings_hash(const RenderSettings& r) {
-    return Hasher().add(r.max_depth).add(r.rr_depth).add(r.seed).add(r.nee).add(r.mis).add(r.hemisphere).value();
+// Adaptive sampling is hashed only when on, so that films without it keep
+// the hash they had before it existed.
+std::uint64_t settings_hash(const RenderSettings& r, const AdaptiveSampling& adaptive) {
+    Hasher h;
+    h.add(r.max_depth).add(r.rr_depth).add(r.seed).add(r.nee).add(r.mis).add(r.hemisphere);
+    if (adaptive.on()) h.add(adaptive.threshold).add(adaptive.min_spp);
+    return h.value();
 }
 
 }  // namespace
 
-RenderIdentity render_identity(const Scene& scene, const std::string& estimator) {
-    return {scene_hash(scene), settings_hash(scene.render), estimator};
+RenderIdentity render_identity(const Scene& scene, const std::string& estimator, const AdaptiveSampling& adaptive) {
+    return {scene_hash(scene), settings_hash(scene.render, adaptive), estimator};
 }
 
 }  // namespace wp

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <string>
 
+#include "longrun/adaptive.h"
 #include "scene/scene.h"
 
 namespace wp {
@@ -16,7 +17,8 @@ struct RenderIdentity {
     // shapes and mesh triangles as loaded (not of the file's text: formatting
     // and key order do not matter, but any number that changes the image does).
     std::uint64_t scene = 0;
-    // FNV-1a 64 of max_depth, rr_depth, seed, nee, mis and hemisphere. Not spp: a
+    // FNV-1a 64 of max_depth, rr_depth, seed, nee, mis and hemisphere, and
+    // with adaptive sampling its threshold and minimum samples. Not spp: a
     // film's sums over its first N work items are the same for any spp, so a
     // render can be continued to more samples than first asked for.
     std::uint64_t settings = 0;
@@ -28,7 +30,7 @@ struct RenderIdentity {
 };
 
 // `estimator` as above.
-RenderIdentity render_identity(const Scene& scene, const std::string& estimator);
+RenderIdentity render_identity(const Scene& scene, const std::string& estimator, const AdaptiveSampling& adaptive = {});
 
 // FNV-1a 64 of `size` bytes, continuing from `hash` (start: kFnvOffset).
 inline constexpr std::uint64_t kFnvOffset = 0xcbf29ce484222325ull;

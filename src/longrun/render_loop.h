@@ -10,12 +10,14 @@
 #include <string>
 
 #include "core/film_renderer.h"
+#include "longrun/adaptive.h"
 #include "longrun/render_identity.h"
 
 namespace wp {
 
-enum class StopReason { Done, TimeBudget, TargetError, Interrupted };
-// "done", "time budget", "target error", "interrupted".
+enum class StopReason { Done, TimeBudget, TargetError, Converged, Interrupted };
+// "done", "time budget", "target error", "converged" (adaptive sampling
+// stopped every pixel), "interrupted".
 const char* stop_reason_name(StopReason reason);
 
 struct LongRunPlan {
@@ -26,6 +28,11 @@ struct LongRunPlan {
     // error is estimated at the sample counts of next_error_check, and the
     // render stops at the first where it is at most target_error.
     double target_error = 0.0;
+    // Off, or: the film must keep squares and start at work item 0, items must
+    // be whole samples per pixel; pixels stop at the checks of next_error_check
+    // from adaptive.min_spp on (longrun/adaptive.h), and the render ends when
+    // none is left.
+    AdaptiveSampling adaptive;
     std::uint64_t pixels = 1;     // width x height: a sample per pixel is this many work items
     std::string checkpoint_path;  // "": none
     double checkpoint_every_s = 0.0;
@@ -35,7 +42,7 @@ struct LongRunPlan {
 
 struct LongRunResult {
     Film film;
-    RenderStats stats;  // samples: those rendered by this run; time_s: its wall time
+    RenderStats stats;  // samples: those rendered by this run; time_s: its wall time (a film in an adaptive round)
     StopReason reason = StopReason::Done;
     int checkpoints = 0;  // checkpoint files written
     double error = -1.0;  // the last error estimate (target_error), -1: none made

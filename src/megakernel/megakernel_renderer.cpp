@@ -19,6 +19,15 @@ namespace {
 // the progress moves and the pass entries (12 bytes each) stay small.
 constexpr std::uint64_t kPassSize = std::uint64_t(1) << 18;
 
+// Work items to launch for `size` (a pass's, over the lanes): the next power
+// of two (items past the pass return), so that adaptive sampling's rounds of every size
+// reuse a few launch sizes, each of which PoCL compiles the kernel for.
+std::size_t launch_size(std::uint64_t size) {
+    std::size_t items = 1;
+    while (items < size) items *= 2;
+    return items;
+}
+
 NonfiniteCounts nonfinite_counts(const std::vector<std::uint32_t>& counts) {
     NonfiniteCounts by_stage{};
     for (std::size_t i = 0; i < by_stage.size(); ++i) by_stage[i] = counts[WP_COUNTER_NONFINITE_EMISSION + i];
@@ -58,6 +67,7 @@ class MegakernelFilmRenderer : public FilmRenderer {
         scene_.bind(megakernel_);
         megakernel_.setArg(arg::Megakernel::pass_radiance, pass_radiance_);
         megakernel_.setArg(arg::Megakernel::counts, counts_);
+        bind_round();
         report_.device = device_.name + " (" + device_.platform + ")";
         report_.build_options = program_.options;
         report_.cache_hit = program_.cache_hit;
@@ -84,7 +94,7 @@ class MegakernelFilmRenderer : public FilmRenderer {
             auto size = static_cast<std::uint32_t>(std::min(kPassSize, items.end - start));
             megakernel_.setArg(arg::Megakernel::pass_start, cl_ulong(start));
             megakernel_.setArg(arg::Megakernel::pass_size, cl_uint(size));
-            launcher_.launch(megakernel_, "megakernel", divide_rounding_up(size, lanes_));
+            launcher_.launch(megakernel_, "megakernel", launch_size(divide_rounding_up(size, lanes_)));
             film_.accumulate(launcher_, start, size, pass_radiance_);
             // 32-bit device counters: read and cleared every pass.
             std::vector<std::uint32_t> figures(WP_COUNTS_SIZE);
@@ -100,8 +110,16 @@ class MegakernelFilmRenderer : public FilmRenderer {
     }
     Film read_film(const ItemRange& items) override { return film_.read(queue_, items); }
     void load_film(const Film& film) override { film_.load(queue_, film); }
+    void use_round_pixels(const std::vector<std::uint32_t>& pixels) override {
+        film_.set_round_pixels(queue_, pixels);
+        bind_round();
+    }
 
  private:
+    void bind_round() {
+        film_.bind_round(megakernel_, arg::Megakernel::round_pixels, arg::Megakernel::round_pixel_count);
+    }
+
     DeviceInfo device_;
     cl::Context context_;
     cl::CommandQueue queue_;

@@ -6,6 +6,7 @@
 #include <CL/opencl.hpp>
 #include <cstddef>
 #include <cstdint>
+#include <vector>
 
 #include "core/film.h"
 #include "opencl/launcher.h"
@@ -19,6 +20,13 @@ class DeviceFilm {
     DeviceFilm(const cl::Context& context, cl::CommandQueue& queue, const cl::Program& program, int width, int height,
                bool squares);
 
+    // The pixels the work items sample from now on (Film::round_pixels; empty:
+    // every pixel), for accumulate and for the kernels that map work items to
+    // pixels (bind_round).
+    void set_round_pixels(cl::CommandQueue& queue, const std::vector<std::uint32_t>& pixels);
+    // Sets `kernel`'s round_pixels and round_pixel_count arguments.
+    void bind_round(cl::Kernel& kernel, cl_uint pixels_index, cl_uint count_index) const;
+
     // Adds the pass [pass_start, pass_start + pass_size) from its entries (3 floats each).
     void accumulate(KernelLauncher& launcher, std::uint64_t pass_start, std::uint32_t pass_size,
                     const cl::Buffer& pass_radiance);
@@ -31,6 +39,8 @@ class DeviceFilm {
     int width_, height_;
     bool squares_;
     cl::Buffer sums_;  // WP_FILM_LIMBS limbs per channel and pixel: the sums, then (squares_) the squares
+    cl::Buffer round_pixels_;
+    std::uint32_t round_pixel_count_;
     cl::Kernel accumulate_;
 };
 

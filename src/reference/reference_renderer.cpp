@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <numeric>
 #include <stdexcept>
 #include <thread>
 #include <vector>
@@ -59,7 +60,9 @@ class ReferenceFilmRenderer : public FilmRenderer {
           height_(source.camera.height),
           grid_{(width_ + kTileSize - 1) / kTileSize, (height_ + kTileSize - 1) / kTileSize},
           counts_(worker_count(options, grid_.columns * grid_.rows)),
-          film_(Film::empty(width_, height_, 0, options.film_squares)) {}
+          film_(Film::empty(width_, height_, 0, options.film_squares)) {
+        use_round_pixels({});
+    }
 
     std::uint64_t pass_items() const override { return kPassItems; }
 
@@ -101,15 +104,23 @@ class ReferenceFilmRenderer : public FilmRenderer {
             throw std::invalid_argument("reference: a film of another size or other squares");
         film_ = film;
     }
+    void use_round_pixels(const std::vector<std::uint32_t>& pixels) override {
+        round_index_.assign(film_.pixel_count(), kNotInRound);
+        if (pixels.empty()) std::iota(round_index_.begin(), round_index_.end(), 0u);
+        for (std::uint32_t i = 0; i < pixels.size(); ++i) round_index_[pixels[i]] = i;
+        round_pixel_count_ = pixels.empty() ? film_.pixel_count() : pixels.size();
+    }
 
  private:
+    // Work item w is the pixel at round index w % round_pixel_count_, sample w / round_pixel_count_.
     void render_tile(const Tile& tile, const ItemRange& items, reference::RayCounts& counts) {
-        const std::uint64_t pixels = film_.pixel_count();
         for (int py = tile.y0; py < tile.y1; ++py) {
             for (int px = tile.x0; px < tile.x1; ++px) {
                 const std::uint64_t pixel = std::uint64_t(py) * width_ + px;
-                const std::uint64_t first = samples_of_pixel({0, items.begin}, pixels, pixel);
-                const std::uint64_t end = samples_of_pixel({0, items.end}, pixels, pixel);
+                const std::uint32_t index = round_index_[pixel];
+                if (index == kNotInRound) continue;
+                const std::uint64_t first = samples_of_pixel({0, items.begin}, round_pixel_count_, index);
+                const std::uint64_t end = samples_of_pixel({0, items.end}, round_pixel_count_, index);
                 for (std::uint64_t s = first; s < end; ++s) add_sample(pixel, trace(px, py, s, counts));
             }
         }
@@ -132,6 +143,9 @@ class ReferenceFilmRenderer : public FilmRenderer {
     TileGrid grid_;
     std::vector<reference::RayCounts> counts_;  // one per thread
     Film film_;
+    static constexpr std::uint32_t kNotInRound = UINT32_MAX;
+    std::vector<std::uint32_t> round_index_;  // per pixel: its index among the round's pixels
+    std::uint64_t round_pixel_count_ = 0;
 };
 
 }  // namespace

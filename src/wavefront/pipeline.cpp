@@ -52,6 +52,7 @@ Pipeline::Pipeline(const Scene& scene, const DeviceInfo& device, std::size_t cap
         kernel.setArg(arg::Stage::slot_nonfinite, slot_nonfinite_);
         state_.bind(kernel);
     }
+    bind_round();
     if (options.profile)
         ray_depths_.emplace(program_.program, queues_.queues(), queues_.counts(), capacity, state_.field("depth"));
     queue_.enqueueFillBuffer(slot_nonfinite_, std::uint32_t(0), 0, slot_nonfinite_.getInfo<CL_MEM_SIZE>());
@@ -131,6 +132,15 @@ Film Pipeline::read_film(const ItemRange& items) {
 }
 
 void Pipeline::load_film(const Film& film) { film_.load(queue_, film); }
+
+void Pipeline::set_round_pixels(const std::vector<std::uint32_t>& pixels) {
+    film_.set_round_pixels(queue_, pixels);
+    bind_round();
+}
+
+void Pipeline::bind_round() {
+    for (cl::Kernel& k : stages_) film_.bind_round(k, arg::Stage::round_pixels, arg::Stage::round_pixel_count);
+}
 
 void Pipeline::read_rays_by_depth(RenderProfile& profile) {
     if (ray_depths_) ray_depths_->read(queue_, profile);

@@ -76,6 +76,8 @@ class Pipeline {
     // The film so far, as the film of `items`; and replacing it.
     Film read_film(const ItemRange& items);
     void load_film(const Film& film);
+    // The pixels work items sample from now on (Film::round_pixels; empty: every pixel).
+    void set_round_pixels(const std::vector<std::uint32_t>& pixels);
 
     // Kernel launches and device times so far (profiling only; items are the scheduler's to fill in).
     RenderProfile& profile() { return profile_; }
@@ -111,6 +113,8 @@ class Pipeline {
     std::vector<float> read_pass_radiance();
 
  private:
+    void bind_round();
+
     std::size_t capacity_, pass_capacity_;
     unsigned lanes_;
     cl::Context context_;

@@ -151,6 +151,7 @@ class WavefrontFilmRenderer : public FilmRenderer {
     }
     Film read_film(const ItemRange& items) override { return pipeline_.read_film(items); }
     void load_film(const Film& film) override { pipeline_.load_film(film); }
+    void use_round_pixels(const std::vector<std::uint32_t>& pixels) override { pipeline_.set_round_pixels(pixels); }
 
  private:
     DeviceInfo device_;

@@ -210,6 +210,19 @@ TEST(Summary, StatsJsonHasTheFiguresAndRates) {
     EXPECT_EQ(stats["nonfinite_by_stage"], (nlohmann::json{{"emission", 1u}, {"direct", 0u}, {"scatter", 2u}}));
 }
 
+// --adaptive: the line and the JSON add the mean spp and the pixels that stopped early.
+TEST(Summary, AdaptiveAddsTheMeanSamplesAndThePixelsThatStoppedEarly) {
+    RunSummary summary = example_summary();
+    EXPECT_TRUE(stats_json(summary)["adaptive"].is_null());
+    EXPECT_EQ(format_summary_line(summary).find("adaptive"), std::string::npos);
+    summary.adaptive = true;
+    summary.spp_mean = 9.25;
+    summary.stopped_early = 0.6875;
+    EXPECT_TRUE(format_summary_line(summary).ends_with(", adaptive: mean 9.2 spp, 68.8% of pixels stopped early"))
+        << format_summary_line(summary);
+    EXPECT_EQ(stats_json(summary)["adaptive"], (nlohmann::json{{"spp_mean", 9.25}, {"stopped_early", 0.6875}}));
+}
+
 TEST(Summary, ZeroTimeGivesZeroRatesNotInfinity) {
     RunSummary summary = example_summary();
     summary.stats.time_s = 0.0;

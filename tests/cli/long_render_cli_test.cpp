@@ -1,6 +1,6 @@
 // Long renders through the binary: checkpoint and resume, refused
 // checkpoints, SIGKILL at random moments, SIGINT (once and twice), --time,
-// and partial films merged. The scene is scenes/test/room_small.json at
+// --adaptive, and partial films merged. The scene is scenes/test/room_small.json at
 // 32x32; with --wavefront 64 a pass is one sample per pixel (1024 work
 // items), so there are many passes to stop between.
 #include <gtest/gtest.h>
@@ -217,6 +217,43 @@ TEST_F(LongRenderCli, TargetErrorStopsAtAWholeSampleAndSaysTheEstimate) {
     CommandResult partial = run(render_args(out_ / "p.wpfilm", 8, {"--target-error", "0.1", "--samples", "0:4"}));
     EXPECT_EQ(partial.exit_code, 2);
     EXPECT_NE(partial.err.find("--target-error: needs the whole render"), std::string::npos) << partial.err;
+}
+
+// --adaptive through the binary: the summary and JSON report the mean spp
+// and the pixels that stopped early; an adaptive checkpoint resumes to the
+// uninterrupted bits, but not with another threshold; --samples and merge
+// refuse adaptive films by name.
+TEST_F(LongRenderCli, AdaptiveReportsItsSamplesResumesAndRefusesPartials) {
+    const std::string whole = out_ / "whole.pfm", stats = out_ / "stats.json", checkpoint = out_ / "c.wpfilm";
+    CommandResult r = run(render_args(whole, 32, {"--adaptive", "0.1", "--stats-json", stats}));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.err.find(", adaptive: mean "), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("% of pixels stopped early"), std::string::npos) << r.err;
+    const nlohmann::json json = nlohmann::json::parse(read_text(stats));
+    const double mean = json["adaptive"]["spp_mean"], early = json["adaptive"]["stopped_early"];
+    EXPECT_LT(mean, 32.0);
+    EXPECT_GE(mean, 8.0);
+    EXPECT_GT(early, 0.0);
+    EXPECT_EQ(json["spp_done_max"], 32u);
+    EXPECT_EQ(json["samples"].get<double>(), mean * 32 * 32);
+
+    ASSERT_EQ(
+        run(render_args(out_ / "part.pfm", 20, {"-q", "--adaptive", "0.1", "--checkpoint", checkpoint})).exit_code, 0);
+    CommandResult rest =
+        run(render_args(out_ / "resumed.pfm", 32, {"-q", "--adaptive", "0.1", "--resume", checkpoint}));
+    ASSERT_EQ(rest.exit_code, 0) << rest.err;
+    EXPECT_TRUE(same_bytes(out_ / "resumed.pfm", whole));
+    EXPECT_FALSE(same_bytes(out_ / "part.pfm", whole));
+    CommandResult other = run(render_args(out_ / "other.pfm", 32, {"-q", "--adaptive", "0.2", "--resume", checkpoint}));
+    EXPECT_EQ(other.exit_code, 3);
+    EXPECT_NE(other.err.find("rendered with other settings"), std::string::npos) << other.err;
+
+    CommandResult partial = run(render_args(out_ / "p.wpfilm", 8, {"--adaptive", "0.05", "--samples", "0:4"}));
+    EXPECT_EQ(partial.exit_code, 2);
+    EXPECT_NE(partial.err.find("--adaptive: needs the whole render"), std::string::npos) << partial.err;
+    CommandResult merged = run({"merge", checkpoint, "-o", out_ / "merged.pfm"});
+    EXPECT_EQ(merged.exit_code, 3);
+    EXPECT_NE(merged.err.find("rendered with --adaptive"), std::string::npos) << merged.err;
 }
 
 // Partial films from both OpenCL backends, given in any order, merge into

@@ -161,5 +161,29 @@ TEST(Film, AppendAddsAdjacentRangesOnly) {
     EXPECT_EQ(a.image().rgb[0], 1.0f);  // 3 over pixel 0's 3 samples
 }
 
+// Adaptive sampling: 5 pixels with 4 samples each (items 0..20), then a
+// round over pixels 1 and 3: item w of the round is pixel {1, 3}[w % 2],
+// sample w / 2, from 8 (sample 4 of each) on.
+TEST(Film, RoundsCountEachPixelsOwnSamples) {
+    Film film = Film::empty(5, 1, 0, false);
+    film.items.end = 20;
+    for (int p = 0; p < 5; ++p) film.sums[3 * p] = film_sum_from_float(float(4 * (p + 1)));
+    EXPECT_THROW(film.begin_round({}), std::invalid_argument);
+    film.begin_round({1, 3});
+    EXPECT_EQ(film.items, (ItemRange{8, 8}));
+    EXPECT_EQ(film.round_pixel_count(), 2u);
+    film.items.end = 13;  // samples 4, 5 of pixels 1 and 3, and sample 6 of pixel 1
+    EXPECT_EQ(film.sample_counts(), (std::vector<std::uint64_t>{4, 7, 4, 6, 4}));
+    EXPECT_EQ(film.samples_of(1), 7u);
+    EXPECT_EQ(film.samples_of(2), 4u);
+    EXPECT_EQ(film.min_samples(), 4u);
+    EXPECT_EQ(film.max_samples(), 7u);
+    EXPECT_EQ(film.image().rgb[3 * 1], 8.0f / 7.0f);  // pixel 1's sum over its own 7 samples
+    EXPECT_EQ(film.image().rgb[3 * 2], 3.0f);
+    EXPECT_THROW(film.begin_round({0, 1}), std::invalid_argument);  // 4 and 7 samples: not one round
+    Film next = Film::empty(5, 1, 13, false);
+    EXPECT_THROW(film.append(next), std::invalid_argument);
+}
+
 }  // namespace
 }  // namespace wp

@@ -20,6 +20,9 @@ TEST(ErrorEstimate, ChecksGrowByAQuarter) {
     std::vector<std::uint64_t> checks{next_error_check(0)};
     while (checks.size() < 10) checks.push_back(next_error_check(checks.back()));
     EXPECT_EQ(checks, (std::vector<std::uint64_t>{4, 5, 6, 7, 8, 10, 12, 15, 18, 22}));
+    // Between two checks (a resumed render), the schedule's next one.
+    EXPECT_EQ(next_error_check(20), 22u);
+    EXPECT_EQ(next_error_check(9), 10u);
 }
 
 // One pixel: samples 1 and 3 in every channel (mean 2, s^2 = 2, standard

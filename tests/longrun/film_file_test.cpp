@@ -101,12 +101,79 @@ TEST_F(FilmFileTest, CorruptedBytesFailTheChecksum) {
 TEST_F(FilmFileTest, NewerVersionsAndOtherFilesAreRefused) {
     write_film_file(path_, {kIdentity, example_film(false)});
     std::vector<char> bytes = file_bytes(path_);
-    bytes[8] = 2;  // the version's low byte
+    bytes[8] = 3;  // the version's low byte
     write_bytes(path_, bytes);
-    EXPECT_EQ(read_error(path_), path_ + ": film format version 2 is newer than this wavepath reads (1)");
+    EXPECT_EQ(read_error(path_), path_ + ": film format version 3 is newer than this wavepath reads (2)");
     test::write_text(path_, "P3\n1 1\n255\n0 0 0\n");
     EXPECT_EQ(read_error(path_), path_ + ": not a wavepath film file (no WPFILM signature)");
     EXPECT_EQ(read_error(dir_ / "missing.wpfilm"), dir_ / "missing.wpfilm" + ": cannot read the film file");
+}
+
+// An adaptive film: pixels 1, 2 and 4 of 15 in a round from 6 samples on,
+// the others stopped earlier.
+Film film_in_round() {
+    Film film = example_film(true);
+    film.items = {0, 0};
+    film.samples_before = {4, 6, 6, 5, 6, 4, 4, 4, 5, 5, 4, 4, 4, 4, 4};
+    film.round_pixels = {1, 2, 4};
+    film.items = {18, 23};
+    return film;
+}
+
+// The same bytes as version 1 would have written them (no round flag).
+void rewrite_as_version_1(const std::string& path) {
+    std::vector<char> bytes = file_bytes(path);
+    bytes[8] = 1;
+    bytes.resize(bytes.size() - 8);
+    const std::uint64_t checksum = fnv1a64(bytes.data(), bytes.size());
+    bytes.insert(bytes.end(), reinterpret_cast<const char*>(&checksum), reinterpret_cast<const char*>(&checksum) + 8);
+    write_bytes(path, bytes);
+}
+
+TEST_F(FilmFileTest, AdaptiveRoundsReadBackAndVersion1FilesStillRead) {
+    const Film film = film_in_round();
+    write_film_file(path_, {kIdentity, film});
+    const FilmFile read = read_film_file(path_);
+    EXPECT_EQ(read.film.round_pixels, film.round_pixels);
+    EXPECT_EQ(read.film.samples_before, film.samples_before);
+    EXPECT_EQ(read.film.items, film.items);
+    EXPECT_EQ(read.film.sample_counts(), film.sample_counts());
+    EXPECT_EQ(std::memcmp(read.film.squares.data(), film.squares.data(), sizeof(film_sum) * film.squares.size()), 0);
+
+    const Film plain = example_film(true);
+    write_film_file(path_, {kIdentity, plain});
+    rewrite_as_version_1(path_);
+    const FilmFile old = read_film_file(path_);
+    EXPECT_EQ(old.film.items, plain.items);
+    EXPECT_FALSE(old.film.in_round());
+    EXPECT_EQ(std::memcmp(old.film.sums.data(), plain.sums.data(), sizeof(film_sum) * plain.sums.size()), 0);
+    // Version 1 had no rounds: its flag is unknown there.
+    write_film_file(path_, {kIdentity, film});
+    rewrite_as_version_1(path_);
+    EXPECT_EQ(read_error(path_), path_ + ": unknown flags 3");
+}
+
+// A round's table is checked after the checksum: pixels ascending, inside
+// the film, holding the same samples before the round.
+TEST_F(FilmFileTest, CorruptedRoundsAreRefused) {
+    auto refused = [&](const Film& film) {
+        write_film_file(path_, {kIdentity, film});
+        return read_error(path_);
+    };
+    Film unsorted = film_in_round();
+    unsorted.round_pixels = {2, 1, 4};
+    EXPECT_EQ(refused(unsorted), path_ + ": corrupted adaptive round (pixel 1)");
+    Film outside = film_in_round();
+    outside.round_pixels = {1, 2, 15};
+    EXPECT_EQ(refused(outside), path_ + ": corrupted adaptive round (pixel 15)");
+    Film uneven = film_in_round();
+    uneven.round_pixels = {1, 3};
+    EXPECT_EQ(refused(uneven), path_ + ": corrupted adaptive round (pixel 3)");
+    write_film_file(path_, {kIdentity, film_in_round()});
+    std::vector<char> bytes = file_bytes(path_);
+    bytes.resize(bytes.size() - 20);
+    write_bytes(path_, bytes);
+    EXPECT_NE(read_error(path_).find("truncated"), std::string::npos) << read_error(path_);
 }
 
 TEST_F(FilmFileTest, FilmsOfAnotherRenderAreRefused) {
@@ -126,7 +193,8 @@ TEST_F(FilmFileTest, FilmsOfAnotherRenderAreRefused) {
     EXPECT_EQ(mismatch({0x1235, 0x5678, "opencl"}, 5, 3),
               "f.wpfilm: rendered from another scene (its content differs)");
     EXPECT_EQ(mismatch({0x1234, 0x5679, "opencl"}, 5, 3),
-              "f.wpfilm: rendered with other settings (max_depth, rr_depth, seed, nee, mis or hemisphere differ)");
+              "f.wpfilm: rendered with other settings (max_depth, rr_depth, seed, nee, mis, hemisphere or adaptive "
+              "sampling differ)");
 }
 
 TEST(RenderIdentity, EverySettingThatChangesTheImageChangesIt) {
