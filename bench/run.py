@@ -752,8 +752,8 @@ def main():
                "spp_backends": ["wavefront", "megakernel", "reference", "mitsuba"], "seeds": 3,
                "depth_series": [1, 2, 4, 8, 16, 32], "depth_spp": 16, "rr_series": [1, 2, 3, 5, 8, 1000],
                "nee_series": ["on", "off"], "hemisphere_series": ["cosine", "uniform"],
-               "estimator_scenes": ["room.json", "cornell.json", "cornell_mesh.json", "bunny.json"],
-               "estimator_size": 128, "estimator_spp": 16, "estimator_seeds": 5}
+               "estimator_scenes": ["room.json", "cornell.json"], "estimator_size": 64, "estimator_spp": 16,
+               "estimator_seeds": 5}
     os.makedirs(args.out, exist_ok=True)
     start = time.time()
     with tempfile.TemporaryDirectory(prefix="wavepath-bench-") as scratch:
