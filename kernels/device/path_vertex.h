@@ -251,11 +251,7 @@ WP_FN lane_int sample_direct_light(WP_SCENE_PARAMS, lane_uint pixel, lane_uint s
     /* in the reference's order of operations */
     *contribution = v3_div(v3_scale(v3_mul(v3_scale(weight, WP_INV_PI), emitter.emission), cos_surface), light_pdf);
 #ifdef WP_MIS
-    /* Both weights take the light's density from where the spawned rays start (the shadow ray here, the
-     * bounce ray in emission_weight): evaluated at x instead, they would not sum to one where the offset is
-     * large next to the light (a float radius-1e5 wall offsets rays by 3% of a 2-unit room). */
-    real light_pdf_from_origin = light_point_pdf(WP_SCENE_ARGS, light, from, ls.point, ls.normal);
-    *contribution = v3_scale(*contribution, power_heuristic(light_pdf_from_origin, diffuse_pdf(cos_surface)));
+    *contribution = v3_scale(*contribution, power_heuristic(light_pdf, diffuse_pdf(cos_surface)));
 #endif
     return carries;
 }

@@ -293,10 +293,7 @@ Vec3<Real> sample_direct_light(const ReferenceScene<Real>& scene, const Vec3<Rea
     if (occluded(scene, Ray<Real>{origin, to_target / distance}, distance)) return none;
     Real light_pdf = s.pdf_solid_angle * pmf;
     vec3 contribution = weight * std::numbers::inv_pi_v<Real> * emitter.emission * cos_surface / light_pdf;
-    if (!scene.mis) return contribution;
-    // Both weights take the light's density from where the spawned rays start (kernels/device/path_vertex.h).
-    Real light_pdf_from_origin = light_point_pdf(scene, index, origin, s.point, s.normal);
-    return contribution * M::power_heuristic(light_pdf_from_origin, diffuse_pdf(scene, cos_surface));
+    return scene.mis ? contribution * M::power_heuristic(light_pdf, diffuse_pdf(scene, cos_surface)) : contribution;
 }
 
 template <class Real>
