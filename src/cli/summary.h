@@ -4,6 +4,7 @@
 
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "core/render.h"
 
@@ -17,6 +18,8 @@ struct RunSummary {
     std::string stopped = "done";            // why the render ended (stop_reason_name)
     double error = -1.0;                     // last estimated relative error (--target-error); -1: none
     RenderStats stats;
+    // Work items each rank rendered, in rank order (one entry in one process).
+    std::vector<std::uint64_t> samples_per_rank;
 };
 
 // "wavepath: wrote out.png (512x512, 64 spp, reference) in 12.3 s: 1.36 Msamples/s,
@@ -25,6 +28,7 @@ struct RunSummary {
 // A render that stopped early or holds a partial range says what the pixels
 // have: "(512x512, 12-13 of 64 spp, stopped: time budget, wavefront)"; with
 // --target-error the last estimate follows: ", estimated relative error 0.0098".
+// On several MPI ranks the backend reads "wavefront, 3 ranks".
 std::string format_summary_line(const RunSummary& summary);
 
 // {"backend","width","height","spp","spp_done_min","spp_done_max","stopped","error_estimate" (or null),

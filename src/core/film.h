@@ -43,6 +43,10 @@ struct Film {
     // Adds `next`, which must start where this film ends and match its size
     // and squares (throws std::invalid_argument otherwise).
     void append(const Film& next);
+    // Adds `other`'s sums and squares, whatever its range (this film's is
+    // kept): the films of the interleaved slices that MPI ranks render. Same
+    // size and squares, as append.
+    void add_sums(const Film& other);
 
     // Each pixel's sums divided by its sample count (0 where it has none).
     Image image() const;
