@@ -150,6 +150,7 @@ void report_run(const RenderCommand& command, const Scene& scene, const LongRunR
     summary.stats = result.stats;
     summary.error = result.error;
     summary.samples_per_rank = result.samples_per_rank;
+    summary.busy_s_per_rank = result.busy_s_per_rank;
     if (!command.stats_json_path.empty()) write_stats_json(summary, command.stats_json_path);
     if (!command.quiet) std::cerr << format_summary_line(summary) << std::endl;
 }

@@ -20,6 +20,7 @@ struct RunSummary {
     RenderStats stats;
     // Work items each rank rendered, in rank order (one entry in one process).
     std::vector<std::uint64_t> samples_per_rank;
+    std::vector<double> busy_s_per_rank;  // seconds each rank spent rendering (not waiting)
 };
 
 // "wavepath: wrote out.png (512x512, 64 spp, reference) in 12.3 s: 1.36 Msamples/s,
@@ -32,7 +33,7 @@ struct RunSummary {
 std::string format_summary_line(const RunSummary& summary);
 
 // {"backend","width","height","spp","spp_done_min","spp_done_max","stopped","error_estimate" (or null),
-//  "ranks","samples_per_rank","time_s","samples","samples_per_s",
+//  "ranks","samples_per_rank","render_s_per_rank","time_s","samples","samples_per_s",
 //  "extension_rays","extension_rays_per_s","shadow_rays","shadow_rays_per_s","nonfinite",
 //  "nonfinite_by_stage": {"emission","direct","scatter"}}
 nlohmann::json stats_json(const RunSummary& summary);

@@ -43,7 +43,9 @@ class Shares {
                 earlier_ = film;
             renderer_.load(Film::empty(film.width, film.height, share.begin, !film.squares.empty()));
         }
+        const auto start = Clock::now();
         renderer_.render(share, progress);
+        busy_s_ += seconds_since(start);
         rendered_ += share.size();
     }
 
@@ -55,31 +57,32 @@ class Shares {
     }
 
     std::uint64_t rendered() const { return rendered_; }
+    // Seconds spent rendering shares (not waiting for other ranks).
+    double busy_s() const { return busy_s_; }
 
  private:
     FilmRenderer& renderer_;
     std::optional<Film> earlier_;
     std::uint64_t rendered_ = 0;
+    double busy_s_ = 0.0;
 };
 
-// Work items rendered, rays and non-finite values, summed over the ranks
-// (on the root); time_s is left to the caller.
-RenderStats stats_of_every_rank(const RenderStats& mine, std::uint64_t rendered, Ranks& ranks,
-                                std::vector<std::uint64_t>& rendered_per_rank) {
-    std::vector<std::uint64_t> figures{rendered, mine.extension_rays, mine.shadow_rays};
+// Rays and non-finite values summed over the ranks, and each rank's work
+// items and busy time, into `result` on the root (time_s is the caller's).
+void gather_stats(const RenderStats& mine, const Shares& shares, Ranks& ranks, LongRunResult& result) {
+    std::vector<std::uint64_t> figures{shares.rendered(), std::uint64_t(shares.busy_s() * 1e9), mine.extension_rays,
+                                       mine.shadow_rays};
     figures.insert(figures.end(), mine.nonfinite_by_stage.begin(), mine.nonfinite_by_stage.end());
     const std::vector<std::uint64_t> all = ranks.gather(figures);
-    RenderStats sum;
-    rendered_per_rank.clear();
     for (std::size_t at = 0; at < all.size(); at += figures.size()) {
-        rendered_per_rank.push_back(all[at]);
-        sum.extension_rays += all[at + 1];
-        sum.shadow_rays += all[at + 2];
+        result.samples_per_rank.push_back(all[at]);
+        result.busy_s_per_rank.push_back(double(all[at + 1]) * 1e-9);
+        result.stats.extension_rays += all[at + 2];
+        result.stats.shadow_rays += all[at + 3];
         NonfiniteCounts counts{};
-        std::copy_n(all.begin() + std::ptrdiff_t(at + 3), counts.size(), counts.begin());
-        sum.add_nonfinite(counts);
+        std::copy_n(all.begin() + std::ptrdiff_t(at + 4), counts.size(), counts.begin());
+        result.stats.add_nonfinite(counts);
     }
-    return sum;
 }
 
 }  // namespace
@@ -169,7 +172,7 @@ LongRunResult run_long_render(FilmRenderer& renderer, const LongRunPlan& plan, c
     }
     result.film = film_so_far();
     if (!plan.checkpoint_path.empty()) checkpoint(result.film);
-    result.stats = stats_of_every_rank(renderer.stats(), shares.rendered(), ranks, result.samples_per_rank);
+    gather_stats(renderer.stats(), shares, ranks, result);
     result.stats.samples = at - first;
     result.stats.time_s = seconds_since(start);
     renderer.finish(result.stats.time_s);

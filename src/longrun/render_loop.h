@@ -49,6 +49,7 @@ struct LongRunResult {
     Film film;          // on several ranks, on the root only
     RenderStats stats;  // samples: those rendered by this run (on all ranks); time_s: its wall time
     std::vector<std::uint64_t> samples_per_rank;  // rendered by this run, in rank order (on the root)
+    std::vector<double> busy_s_per_rank;          // seconds each spent rendering, not waiting (on the root)
     StopReason reason = StopReason::Done;
     int checkpoints = 0;  // checkpoint files written
     double error = -1.0;  // the last error estimate (target_error), -1: none made

@@ -85,6 +85,7 @@ TEST_F(MpiCli, OneTwoAndThreeRanksGiveTheOneProcessBits) {
             sum += samples.get<std::uint64_t>();
         }
         EXPECT_EQ(sum, 7u * 1024);
+        EXPECT_EQ(json["render_s_per_rank"].size(), std::size_t(ranks));
         EXPECT_EQ(json["samples"], 7u * 1024);
     }
 }
