@@ -14,8 +14,11 @@ one-process image (the script fails otherwise). Prints and writes a Markdown
 table with the commit, date, machine, OpenCL platform and load average: the
 wall time of the whole command (start-up, kernel build from the cache,
 render, film reduction, writing) and the render time rank 0 reports, min and
-median, and the one-process wall time over each configuration's, as the
-median of the per-repetition ratios.
+median; the one-process wall time over each configuration's, as the median
+of the per-repetition ratios; and the balance of the ranks' shares: the
+render time of the busiest rank (time spent rendering, not waiting, from
+--stats-json's render_s_per_rank) over the ranks' mean, median over the
+repetitions (1 is a perfect balance).
 """
 import argparse
 import json
@@ -73,6 +76,7 @@ def main():
     walls = {r: [] for r in configs}
     renders = {r: [] for r in configs}
     per_rank = {}
+    imbalance = {r: [] for r in configs}  # the busiest rank's render time over the ranks' mean
     for rep in range(args.reps):
         for ranks in configs:
             image = os.path.join(scratch, f"ranks{ranks}.pfm")
@@ -83,6 +87,8 @@ def main():
             walls[ranks].append(wall)
             renders[ranks].append(stats["time_s"])
             per_rank[ranks] = stats["samples_per_rank"]
+            busy = stats["render_s_per_rank"]
+            imbalance[ranks].append(max(busy) / statistics.mean(busy))
             print(f"rep {rep}: {names[ranks]:14s} wall {wall:7.2f} s, render {stats['time_s']:7.2f} s", flush=True)
     load_after = os.getloadavg()
 
@@ -103,14 +109,16 @@ def main():
         f"- OpenCL: {meta['opencl_platform']}, {meta['opencl_device']}",
         "",
         "| configuration | wall min (s) | wall median (s) | render min (s) | render median (s) "
-        "| one process / this (wall, median of ratios) | work items per rank |",
-        "| --- | --- | --- | --- | --- | --- | --- |",
+        "| one process / this (wall, median of ratios) | busiest rank / mean (render time, median) "
+        "| work items per rank |",
+        "| --- | --- | --- | --- | --- | --- | --- | --- |",
     ]
     for ranks in configs:
         ratio = statistics.median(one / this for one, this in zip(walls[0], walls[ranks]))
         w, r = spread(walls[ranks]), spread(renders[ranks])
         lines.append(f"| {names[ranks]} | {w['min']:.2f} | {w['median']:.2f} | {r['min']:.2f} | {r['median']:.2f} "
-                     f"| {ratio:.2f} | {', '.join(str(n) for n in per_rank[ranks])} |")
+                     f"| {ratio:.2f} | {statistics.median(imbalance[ranks]):.3f} "
+                     f"| {', '.join(str(n) for n in per_rank[ranks])} |")
     text = "\n".join(lines) + "\n"
     print(text)
     with open(args.out, "w") as f:

@@ -84,6 +84,7 @@ nlohmann::json stats_json(const RunSummary& summary) {
         {"ranks", std::max<std::size_t>(summary.samples_per_rank.size(), 1)},
         {"samples_per_rank",
          summary.samples_per_rank.empty() ? std::vector<std::uint64_t>{s.samples} : summary.samples_per_rank},
+        {"render_s_per_rank", summary.busy_s_per_rank},
         {"time_s", s.time_s},
         {"samples", s.samples},
         {"samples_per_s", per_second(s.samples, s.time_s)},

@@ -73,9 +73,10 @@ TEST_F(MpiCli, OneTwoAndThreeRanksGiveTheOneProcessBits) {
         CommandResult r = run_on(ranks, render_args(out, 7, {"--stats-json", stats}));
         ASSERT_EQ(r.exit_code, 0) << r.err;
         EXPECT_TRUE(same_bytes(out, one));
-        if (ranks > 1)
+        if (ranks > 1) {
             EXPECT_NE(r.err.find("(32x32, 7 spp, wavefront, " + std::to_string(ranks) + " ranks)"), std::string::npos)
                 << r.err;
+        }
         const nlohmann::json json = nlohmann::json::parse(read_text(stats));
         EXPECT_EQ(json["ranks"], ranks);
         ASSERT_EQ(json["samples_per_rank"].size(), std::size_t(ranks));
