@@ -145,6 +145,21 @@ TEST_F(MpiCli, ARankThatCannotStartFailsTheJobWithOneLine) {
     EXPECT_NE(r.err.find("missing.json"), std::string::npos) << r.err;
     EXPECT_FALSE(std::filesystem::exists(out));
 
+    const std::string brighter = out_ / "brighter.json";
+    std::string scene = read_text(kScene);
+    scene.replace(scene.find("[14, 14, 14]"), 12, "[15, 14, 14]");
+    write_text(brighter, scene);
+    std::vector<std::string> other_scene = args;
+    other_scene.insert(other_scene.end(), {":", "-n", "1", WAVEPATH_BINARY, "render", brighter, "-o", out, "--spp", "4",
+                                           "--wavefront", "64"});
+    r = run_on(1, other_scene);
+    EXPECT_EQ(r.exit_code, 3) << r.err;
+    EXPECT_NE(r.err.find("wavepath: error: rank 1 loaded another scene than rank 0 (their content differs): every "
+                         "machine needs the same scene and mesh files"),
+              std::string::npos)
+        << r.err;
+    EXPECT_FALSE(std::filesystem::exists(out));
+
     std::vector<std::string> other_seed = args;
     other_seed.insert(other_seed.end(), {":", "-n", "1", WAVEPATH_BINARY});
     other_seed.insert(other_seed.end(), args.begin(), args.end());
@@ -152,6 +167,22 @@ TEST_F(MpiCli, ARankThatCannotStartFailsTheJobWithOneLine) {
     r = run_on(1, other_seed);
     EXPECT_EQ(r.exit_code, 2) << r.err;
     EXPECT_NE(r.err.find("wavepath: error: rank 1 was given other settings than rank 0"), std::string::npos) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(out));
+}
+
+// A rank that fails once the others are rendering (here: no such OpenCL
+// device, which is not part of the render's identity) reports its error and
+// ends the job at once with its exit code (MPI_Abort).
+TEST_F(MpiCli, ARankThatFailsWhileOthersRenderEndsTheJob) {
+    const std::string out = out_ / "out.pfm";
+    std::vector<std::string> args = render_args(out, 100000);
+    std::vector<std::string> failing = args;
+    failing.insert(failing.end(), {":", "-n", "1", WAVEPATH_BINARY});
+    failing.insert(failing.end(), args.begin(), args.end());
+    failing.insert(failing.end(), {"--device", "no such device"});
+    CommandResult r = run_on(1, failing);
+    EXPECT_NE(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.err.find("wavepath: error: rank 1: "), std::string::npos) << r.err;
     EXPECT_FALSE(std::filesystem::exists(out));
 }
 
