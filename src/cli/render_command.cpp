@@ -1,5 +1,7 @@
 #include "cli/render_command.h"
 
+#include <algorithm>
+#include <bit>
 #include <iostream>
 
 #include "cli/errors.h"
@@ -82,18 +84,29 @@ void write_output(const RenderCommand& command, const RenderIdentity& identity, 
 
 // Every rank must render the same scene with the same settings: each loads
 // its own copy of the scene and mesh files (one per machine, unless they
-// share a filesystem).
-void check_every_rank_renders(Ranks& ranks, const RenderIdentity& identity) {
-    const std::vector<std::uint64_t> all = ranks.gather(
-        {identity.scene, identity.settings, fnv1a64(identity.estimator.data(), identity.estimator.size())});
+// share a filesystem), and takes the same decisions after each round (its
+// flags were the same, unless mpirun was given one command line per rank).
+void check_every_rank_renders(Ranks& ranks, const LongRunPlan& plan) {
+    const RenderIdentity& identity = plan.identity;
+    const std::vector<std::uint64_t> mine{identity.scene,
+                                          identity.settings,
+                                          fnv1a64(identity.estimator.data(), identity.estimator.size()),
+                                          plan.items.begin,
+                                          plan.items.end,
+                                          std::bit_cast<std::uint64_t>(plan.target_error),
+                                          std::bit_cast<std::uint64_t>(plan.time_budget_s),
+                                          std::bit_cast<std::uint64_t>(plan.checkpoint_every_s),
+                                          plan.checkpoint_path.empty() ? 0u : 1u};
+    const std::vector<std::uint64_t> all = ranks.gather(mine);
     on_every_rank(ranks, [&] {
-        for (std::size_t at = 3; at < all.size(); at += 3) {
-            const std::string rank = "rank " + std::to_string(at / 3);
+        for (std::size_t at = mine.size(); at < all.size(); at += mine.size()) {
+            const std::string rank = "rank " + std::to_string(at / mine.size());
             if (all[at] != all[0])
                 throw SceneError(rank +
                                  " loaded another scene than rank 0 (their content differs): every machine "
                                  "needs the same scene and mesh files");
-            if (all[at + 1] != all[1] || all[at + 2] != all[2])
+            if (!std::equal(all.begin() + std::ptrdiff_t(at + 1), all.begin() + std::ptrdiff_t(at + mine.size()),
+                            all.begin() + 1))
                 throw UsageError(rank + " was given other settings than rank 0");
         }
     });
@@ -123,13 +136,13 @@ PreparedRender prepare_render(const RenderCommand& command, Ranks& ranks) {
         plan.items = planned_items(command.long_run.samples, scene);
         plan.identity = render_identity(scene, estimator_name(prepared.backend));
     });
-    check_every_rank_renders(ranks, plan.identity);
     const LongRunFlags& flags = command.long_run;
     plan.pixels = std::uint64_t(scene.camera.width) * scene.camera.height;
     plan.target_error = flags.target_error.value_or(0.0);
     plan.time_budget_s = flags.time_s.value_or(0.0);
     plan.checkpoint_path = flags.checkpoint;
     plan.checkpoint_every_s = flags.checkpoint_every_s;
+    check_every_rank_renders(ranks, plan);
     on_every_rank(ranks, [&] {
         if (ranks.is_root() && !flags.resume.empty())
             plan.start = film_to_resume(flags.resume, plan.identity, scene, plan.items, prepared.backend.film_squares);
