@@ -97,7 +97,7 @@ def main():
                                                   "keeps 4 and 100"),
         "backwards_range": (resign(backwards), "corrupted header (work items 10 to 5)"),
         "other_scene": (films["other_scene"], "rendered from another scene (its content differs)"),
-        "other_settings": (films["other_settings"], "rendered with other settings (max_depth, rr_depth, seed, nee "
+        "other_settings": (films["other_settings"], "rendered with other settings (max_depth, rr_depth, seed, nee, mis "
                                                     "or hemisphere differ)"),
         "other_size": (films["other_size"], "a film of 4x8 pixels, this render is 4x4"),
         "other_estimator": (films["other_estimator"], "rendered by the reference-float estimator, this render uses "
