@@ -1,8 +1,8 @@
 // `mpirun -n N wavepath render` on this machine (localhost, oversubscribed):
 // the image of 1, 2 and 3 ranks is the one-process image, bit for bit; a
 // checkpoint of one rank count resumes on another; the budgets and adaptive
-// sampling's decisions are the same on every rank; a rank that fails or dies fails the job with no
-// output. The scene is scenes/test/room_small.json at 32x32; with
+// sampling's decisions are the same on every rank; a rank that fails or dies
+// fails the job with no output. The scene is scenes/test/room_small.json at 32x32; with
 // --wavefront 64 a rank's pass is one sample per pixel (1024 work items), so
 // a round of N ranks is N samples per pixel and 7 spp take several rounds,
 // the last one partial.
