@@ -60,11 +60,14 @@ std::string printable_line(std::string_view message) {
 struct Failure {
     int exit_code;
     std::string message;
+    bool reported = false;  // AlreadyReported
 };
 
 Failure classify(const std::exception_ptr& error) {
     try {
         std::rethrow_exception(error);
+    } catch (const AlreadyReported& e) {
+        return {e.exit_code(), "", true};
     } catch (const UsageError& e) {
         return {kExitUsage, e.what()};
     } catch (const SceneError& e) {
@@ -88,11 +91,13 @@ void print_error_line(const std::string& message) {
 
 }  // namespace
 
-int report_error(const std::exception_ptr& error) {
+int report_error(const std::exception_ptr& error, const std::string& where) {
     const Failure failure = classify(error);
-    print_error_line(failure.message);
+    if (!failure.reported) print_error_line(where + failure.message);
     return failure.exit_code;
 }
+
+int exit_code_of(const std::exception_ptr& error) { return classify(error).exit_code; }
 
 int report_parse_error(const CLI::App& app, const CLI::ParseError& error) {
     if (error.get_exit_code() == static_cast<int>(CLI::ExitCodes::Success)) return app.exit(error);  // --help

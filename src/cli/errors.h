@@ -27,11 +27,26 @@ class UsageError : public std::runtime_error {
     using std::runtime_error::runtime_error;
 };
 
-// Prints "wavepath: error: <message>" (newlines in the message folded so it
+// A failure that was already reported (on another MPI rank, or on this one
+// with its rank): report_error prints nothing and returns its exit code.
+class AlreadyReported : public std::exception {
+ public:
+    explicit AlreadyReported(int exit_code) : exit_code_(exit_code) {}
+    int exit_code() const { return exit_code_; }
+    const char* what() const noexcept override { return "already reported"; }
+
+ private:
+    int exit_code_;
+};
+
+// Prints "wavepath: error: <where><message>" (newlines in the message folded so it
 // stays one line; other control characters and bytes that are not UTF-8 as
 // \xNN) and returns the exit code for the exception's kind (film files that
 // cannot be used: kExitScene).
-int report_error(const std::exception_ptr& error);
+int report_error(const std::exception_ptr& error, const std::string& where = "");
+
+// The exit code report_error would return, without printing.
+int exit_code_of(const std::exception_ptr& error);
 
 // --help prints the help and returns 0; any other parse error is reported as
 // one line and returns kExitUsage.

@@ -1,12 +1,16 @@
 #include "cli/render_command.h"
 
+#include <algorithm>
+#include <bit>
 #include <iostream>
 
 #include "cli/errors.h"
 #include "cli/progress.h"
+#include "cli/rank_failures.h"
 #include "cli/signals.h"
 #include "cli/summary.h"
 #include "core/atomic_file.h"
+#include "distributed/ranks.h"
 #include "image/image_io.h"
 #include "longrun/film_file.h"
 #include "longrun/render_loop.h"
@@ -104,41 +108,77 @@ void write_output(const RenderCommand& command, const RenderIdentity& identity, 
         write_image(film.image(), command.output_path);
 }
 
-}  // namespace
+// Every rank must render the same scene with the same settings: each loads
+// its own copy of the scene and mesh files (one per machine, unless they
+// share a filesystem), and takes the same decisions after each round (its
+// flags were the same, unless mpirun was given one command line per rank).
+void check_every_rank_renders(Ranks& ranks, const LongRunPlan& plan) {
+    const RenderIdentity& identity = plan.identity;
+    const std::vector<std::uint64_t> mine{identity.scene,
+                                          identity.settings,
+                                          fnv1a64(identity.estimator.data(), identity.estimator.size()),
+                                          plan.items.begin,
+                                          plan.items.end,
+                                          std::bit_cast<std::uint64_t>(plan.target_error),
+                                          std::bit_cast<std::uint64_t>(plan.time_budget_s),
+                                          std::bit_cast<std::uint64_t>(plan.checkpoint_every_s),
+                                          plan.checkpoint_path.empty() ? 0u : 1u};
+    const std::vector<std::uint64_t> all = ranks.gather(mine);
+    on_every_rank(ranks, [&] {
+        for (std::size_t at = mine.size(); at < all.size(); at += mine.size()) {
+            const std::string rank = "rank " + std::to_string(at / mine.size());
+            if (all[at] != all[0])
+                throw SceneError(rank +
+                                 " loaded another scene than rank 0 (their content differs): every machine "
+                                 "needs the same scene and mesh files");
+            if (!std::equal(all.begin() + std::ptrdiff_t(at + 1), all.begin() + std::ptrdiff_t(at + mine.size()),
+                            all.begin() + 1))
+                throw UsageError(rank + " was given other settings than rank 0");
+        }
+    });
+}
 
-int run_render(const RenderCommand& command) {
-    check_outputs(command);
-    Scene scene = load_scene(command.scene_path);
-    apply_overrides(command.overrides, scene);
-
-    const LongRunFlags& flags = command.long_run;
-    BackendOptions backend = command.backend;
-    if (flags.target_error && !flags.samples.empty())
-        throw UsageError("--target-error: needs the whole render, not a --samples range");
+struct PreparedRender {
+    Scene scene;
+    BackendOptions backend;
     LongRunPlan plan;
-    plan.adaptive = adaptive_sampling(flags, scene);
-    backend.film_squares = flags.target_error.has_value() || plan.adaptive.on();
-    plan.items = planned_items(flags.samples, scene);
+};
+
+// The scene, the backend and the plan, checked on every rank before anything
+// is rendered or written; the root checks the outputs and reads the
+// checkpoint to resume.
+PreparedRender prepare_render(const RenderCommand& command, Ranks& ranks) {
+    PreparedRender prepared;
+    Scene& scene = prepared.scene;
+    LongRunPlan& plan = prepared.plan;
+    on_every_rank(ranks, [&] {
+        if (ranks.is_root()) check_outputs(command);
+        scene = load_scene(command.scene_path);
+        apply_overrides(command.overrides, scene);
+        if (command.long_run.target_error && !command.long_run.samples.empty())
+            throw UsageError("--target-error: needs the whole render, not a --samples range");
+        plan.adaptive = adaptive_sampling(command.long_run, scene);
+        prepared.backend = command.backend;
+        prepared.backend.film_squares = command.long_run.target_error.has_value() || plan.adaptive.on();
+        plan.items = planned_items(command.long_run.samples, scene);
+        plan.identity = render_identity(scene, estimator_name(prepared.backend), plan.adaptive);
+    });
+    const LongRunFlags& flags = command.long_run;
     plan.pixels = std::uint64_t(scene.camera.width) * scene.camera.height;
     plan.target_error = flags.target_error.value_or(0.0);
-    plan.identity = render_identity(scene, estimator_name(backend), plan.adaptive);
-    if (!flags.resume.empty())
-        plan.start = film_to_resume(flags.resume, plan.identity, scene, plan.items, backend.film_squares);
     plan.time_budget_s = flags.time_s.value_or(0.0);
     plan.checkpoint_path = flags.checkpoint;
     plan.checkpoint_every_s = flags.checkpoint_every_s;
-    StopSignals signals;
-    plan.stop_requested = &signals.requested();
+    check_every_rank_renders(ranks, plan);
+    on_every_rank(ranks, [&] {
+        if (ranks.is_root() && !flags.resume.empty())
+            plan.start = film_to_resume(flags.resume, plan.identity, scene, plan.items, prepared.backend.film_squares);
+    });
+    return prepared;
+}
 
-    ProgressReporter progress(choose_progress_style(command.quiet), std::cerr);
-    progress.set_plan({double(plan.items.begin) / double(plan.pixels), double(plan.items.end) / double(plan.pixels),
-                       plan.time_budget_s});
-    LongRunResult result;
-    run_with_backend(scene, backend, progress.callback(), plan.items.size(),
-                     [&](FilmRenderer& renderer) { result = run_long_render(renderer, plan, progress.callback()); });
-    progress.finish();
-
-    write_output(command, plan.identity, result.film);
+void report_run(const RenderCommand& command, const Scene& scene, const LongRunPlan& plan,
+                const LongRunResult& result) {
     RunSummary summary;
     summary.backend = command.backend.name;
     summary.output_path = command.output_path;
@@ -152,8 +192,36 @@ int run_render(const RenderCommand& command) {
     summary.error = result.error;
     summary.adaptive = plan.adaptive.on();
     if (summary.adaptive) summarise_samples(result.film, scene.render.spp, summary);
+    summary.samples_per_rank = result.samples_per_rank;
+    summary.busy_s_per_rank = result.busy_s_per_rank;
     if (!command.stats_json_path.empty()) write_stats_json(summary, command.stats_json_path);
     if (!command.quiet) std::cerr << format_summary_line(summary) << std::endl;
+}
+
+}  // namespace
+
+int run_render(const RenderCommand& command) {
+    const std::unique_ptr<Ranks> ranks = join_ranks();
+    PreparedRender prepared = prepare_render(command, *ranks);
+    const LongRunPlan& plan = prepared.plan;
+    StopSignals signals;
+    prepared.plan.stop_requested = &signals.requested();
+
+    // Only the root shows progress.
+    ProgressReporter progress(choose_progress_style(command.quiet || !ranks->is_root()), std::cerr);
+    progress.set_plan({double(plan.items.begin) / double(plan.pixels), double(plan.items.end) / double(plan.pixels),
+                       plan.time_budget_s});
+    LongRunResult result;
+    or_end_the_job(*ranks, [&] {
+        run_with_backend(
+            prepared.scene, prepared.backend, progress.callback(), plan.items.size() / ranks->size(),
+            [&](FilmRenderer& renderer) { result = run_long_render(renderer, plan, progress.callback(), *ranks); });
+    });
+    progress.finish();
+    if (!ranks->is_root()) return kExitOk;
+
+    write_output(command, plan.identity, result.film);
+    report_run(command, prepared.scene, plan, result);
     return result.reason == StopReason::Interrupted ? kExitInterrupted : kExitOk;
 }
 

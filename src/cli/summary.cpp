@@ -1,5 +1,6 @@
 #include "cli/summary.h"
 
+#include <algorithm>
 #include <cstdio>
 
 #include "core/json_file.h"
@@ -58,6 +59,11 @@ std::string adaptive_text(const RunSummary& summary) {
     return text;
 }
 
+std::string ranks_text(const RunSummary& summary) {
+    const std::size_t ranks = summary.samples_per_rank.size();
+    return ranks > 1 ? ", " + std::to_string(ranks) + " ranks" : "";
+}
+
 }  // namespace
 
 std::string format_summary_line(const RunSummary& summary) {
@@ -68,8 +74,8 @@ std::string format_summary_line(const RunSummary& summary) {
                   s.time_s, per_second(s.samples, s.time_s) * 1e-6, per_second(s.extension_rays, s.time_s) * 1e-6,
                   per_second(s.shadow_rays, s.time_s) * 1e-6, static_cast<unsigned long long>(s.nonfinite));
     return "wavepath: wrote " + summary.output_path + " (" + std::to_string(summary.width) + "x" +
-           std::to_string(summary.height) + ", " + samples_text(summary) + ", " + summary.backend + ") " + figures +
-           nonfinite_breakdown(s) + error_text(summary) + adaptive_text(summary);
+           std::to_string(summary.height) + ", " + samples_text(summary) + ", " + summary.backend +
+           ranks_text(summary) + ") " + figures + nonfinite_breakdown(s) + error_text(summary) + adaptive_text(summary);
 }
 
 nlohmann::json stats_json(const RunSummary& summary) {
@@ -86,8 +92,10 @@ nlohmann::json stats_json(const RunSummary& summary) {
         {"adaptive", summary.adaptive
                          ? nlohmann::json{{"spp_mean", summary.spp_mean}, {"stopped_early", summary.stopped_early}}
                          : nlohmann::json(nullptr)},
-        {"ranks", 1},
-        {"samples_per_rank", {s.samples}},
+        {"ranks", std::max<std::size_t>(summary.samples_per_rank.size(), 1)},
+        {"samples_per_rank",
+         summary.samples_per_rank.empty() ? std::vector<std::uint64_t>{s.samples} : summary.samples_per_rank},
+        {"render_s_per_rank", summary.busy_s_per_rank},
         {"time_s", s.time_s},
         {"samples", s.samples},
         {"samples_per_s", per_second(s.samples, s.time_s)},

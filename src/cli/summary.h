@@ -4,6 +4,7 @@
 
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "core/render.h"
 
@@ -20,6 +21,9 @@ struct RunSummary {
     bool adaptive = false;       // --adaptive: the two figures below are reported
     double spp_mean = 0.0;       // samples per pixel, mean over the pixels
     double stopped_early = 0.0;  // fraction of pixels with fewer samples than asked for
+    // Work items each rank rendered, in rank order (one entry in one process).
+    std::vector<std::uint64_t> samples_per_rank;
+    std::vector<double> busy_s_per_rank;  // seconds each rank spent rendering (not waiting)
 };
 
 // "wavepath: wrote out.png (512x512, 64 spp, reference) in 12.3 s: 1.36 Msamples/s,
@@ -29,10 +33,12 @@ struct RunSummary {
 // have: "(512x512, 12-13 of 64 spp, stopped: time budget, wavefront)"; with
 // --target-error the last estimate follows: ", estimated relative error 0.0098";
 // with --adaptive: ", adaptive: mean 23.4 spp, 71.2% of pixels stopped early".
+// On several MPI ranks the backend reads "wavefront, 3 ranks".
 std::string format_summary_line(const RunSummary& summary);
 
 // {"backend","width","height","spp","spp_done_min","spp_done_max","stopped","error_estimate" (or null),
-//  "adaptive" (null, or {"spp_mean","stopped_early"}), "ranks","samples_per_rank","time_s","samples","samples_per_s",
+//  "adaptive" (null, or {"spp_mean","stopped_early"}), "ranks","samples_per_rank","render_s_per_rank","time_s",
+//  "samples","samples_per_s",
 //  "extension_rays","extension_rays_per_s","shadow_rays","shadow_rays_per_s","nonfinite",
 //  "nonfinite_by_stage": {"emission","direct","scatter"}}
 nlohmann::json stats_json(const RunSummary& summary);

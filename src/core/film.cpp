@@ -82,19 +82,12 @@ std::uint64_t Film::max_samples() const {
 }
 
 void Film::append(const Film& next) {
-    if (next.width != width || next.height != height)
-        throw std::invalid_argument("films of different sizes: " + std::to_string(width) + "x" +
-                                    std::to_string(height) + " and " + std::to_string(next.width) + "x" +
-                                    std::to_string(next.height));
     if (next.items.begin != items.end)
         throw std::invalid_argument("films not adjacent: one ends at work item " + std::to_string(items.end) +
                                     ", the next starts at " + std::to_string(next.items.begin));
-    if (next.squares.empty() != squares.empty())
-        throw std::invalid_argument("one film has second moments and the other has not");
     if (in_round() || next.in_round())
         throw std::invalid_argument("an adaptive film's pixels have their own sample counts: it cannot be added to");
-    for (std::size_t i = 0; i < sums.size(); ++i) sums[i] = film_sum_add(sums[i], next.sums[i]);
-    for (std::size_t i = 0; i < squares.size(); ++i) squares[i] = film_sum_add(squares[i], next.squares[i]);
+    add_sums(next);
     items.end = next.items.end;
 }
 
@@ -109,6 +102,17 @@ void Film::begin_round(std::vector<std::uint32_t> pixels) {
     samples_before.assign(counts.begin(), counts.end());
     round_pixels = std::move(pixels);
     items = {c * round_pixels.size(), c * round_pixels.size()};
+}
+
+void Film::add_sums(const Film& other) {
+    if (other.width != width || other.height != height)
+        throw std::invalid_argument("films of different sizes: " + std::to_string(width) + "x" +
+                                    std::to_string(height) + " and " + std::to_string(other.width) + "x" +
+                                    std::to_string(other.height));
+    if (other.squares.empty() != squares.empty())
+        throw std::invalid_argument("one film has second moments and the other has not");
+    for (std::size_t i = 0; i < sums.size(); ++i) sums[i] = film_sum_add(sums[i], other.sums[i]);
+    for (std::size_t i = 0; i < squares.size(); ++i) squares[i] = film_sum_add(squares[i], other.squares[i]);
 }
 
 Image Film::image() const {

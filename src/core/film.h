@@ -60,6 +60,10 @@ struct Film {
     // Starts a round over `pixels` (ascending), which must all hold the same
     // number of samples c: the range becomes [c n, c n) for n pixels.
     void begin_round(std::vector<std::uint32_t> pixels);
+    // Adds `other`'s sums and squares, whatever its range (this film's is
+    // kept): the films of the interleaved slices that MPI ranks render. Same
+    // size and squares, as append.
+    void add_sums(const Film& other);
 
     // Each pixel's sums divided by its sample count (0 where it has none).
     Image image() const;

@@ -156,8 +156,9 @@ void write_film_file(const std::string& path, const FilmFile& file) {
     });
 }
 
-FilmFile read_film_file(const std::string& path) {
-    const std::vector<char> bytes = read_bytes(path);
+FilmFile read_film_file(const std::string& path) { return parse_film_file(read_bytes(path), path); }
+
+FilmFile parse_film_file(const std::vector<char>& bytes, const std::string& path) {
     const std::uint32_t version = check_magic_and_version(path, bytes);
     if (bytes.size() < kHeaderBytes + kChecksumBytes)
         refuse(path, "truncated (" + std::to_string(bytes.size()) + " bytes, shorter than the header)");

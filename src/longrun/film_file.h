@@ -18,6 +18,7 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "core/film.h"
 #include "longrun/render_identity.h"
@@ -45,6 +46,8 @@ struct FilmFile {
 void write_film_file(const std::string& path, const FilmFile& file);
 // Throws FilmFileError.
 FilmFile read_film_file(const std::string& path);
+// A film file's bytes, read from `path` (named in errors). Throws FilmFileError.
+FilmFile parse_film_file(const std::vector<char>& bytes, const std::string& path);
 
 // Throws FilmFileError unless `file` was made by a render of `identity` at
 // `width` x `height`: "<path>: made from another scene ..." and the like.

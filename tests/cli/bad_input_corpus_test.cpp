@@ -33,7 +33,16 @@ const CorpusKind kKinds[] = {
      [](const std::string& scene, const std::string& output) {
          return std::vector<std::string>{"render", scene, "-o", output};
      }},
-    // Checkpoints go here: {"checkpoints", ".ckpt", render a good scene with --resume <input>}.
+    // scripts/make_checkpoint_corpus.py writes these, for this command.
+    {"checkpoints", ".wpfilm",
+     [](const std::string& checkpoint, const std::string& output) {
+         return std::vector<std::string>{"render",   std::string(WAVEPATH_SOURCE_DIR) + "/scenes/test/room_small.json",
+                                         "-o",       output,
+                                         "--width",  "4",
+                                         "--height", "4",
+                                         "--spp",    "2",
+                                         "--resume", checkpoint};
+     }},
 };
 
 // expected_errors.tsv: "<case file>\t<the line after "wavepath: error: ">",

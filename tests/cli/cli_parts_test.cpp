@@ -144,7 +144,7 @@ TEST(Progress, ConcurrentUpdatesAreSafe) {
 }
 
 RunSummary example_summary() {
-    RunSummary summary{"reference", "out/room.png", 640, 480, 16, 16, 16, "done", -1.0, {}};
+    RunSummary summary{"reference", "out/room.png", 640, 480, 16, 16, 16, "done", -1.0, {}, false, 0.0, 0.0, {}, {}};
     summary.stats.time_s = 2.0;
     summary.stats.samples = 640ull * 480 * 16;  // 4915200
     summary.stats.extension_rays = 12'000'000;
@@ -185,6 +185,18 @@ TEST(Summary, LineSaysWhatAnEarlyStopLeftThePixels) {
     EXPECT_NE(format_summary_line(summary).find("(640x480, 12 of 16 spp, stopped: interrupted, reference)"),
               std::string::npos)
         << format_summary_line(summary);
+}
+
+TEST(Summary, SeveralRanksAreNamedWithWhatEachRendered) {
+    RunSummary summary = example_summary();
+    summary.samples_per_rank = {1638400, 1638400, 1638400};
+    summary.busy_s_per_rank = {1.5, 1.25, 1.75};
+    EXPECT_NE(format_summary_line(summary).find("(640x480, 16 spp, reference, 3 ranks)"), std::string::npos)
+        << format_summary_line(summary);
+    const nlohmann::json stats = stats_json(summary);
+    EXPECT_EQ(stats["ranks"], 3);
+    EXPECT_EQ(stats["samples_per_rank"], (nlohmann::json{1638400u, 1638400u, 1638400u}));
+    EXPECT_EQ(stats["render_s_per_rank"], (nlohmann::json{1.5, 1.25, 1.75}));
 }
 
 TEST(Summary, StatsJsonHasTheFiguresAndRates) {

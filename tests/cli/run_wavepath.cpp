@@ -15,22 +15,25 @@ namespace wp::test {
 
 namespace fs = std::filesystem;
 
-RunningWavepath::RunningWavepath(const std::vector<std::string>& args, const fs::path& scratch) : scratch_(scratch) {
+RunningWavepath::RunningWavepath(const std::vector<std::string>& args, const fs::path& scratch,
+                                 const std::vector<std::string>& launcher)
+    : scratch_(scratch) {
     const fs::path out_file = scratch / "stdout.txt", err_file = scratch / "stderr.txt";
     posix_spawn_file_actions_t actions;
     posix_spawn_file_actions_init(&actions);
     posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, out_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
     posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, err_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
 
-    std::vector<std::string> argv_strings{WAVEPATH_BINARY};
+    std::vector<std::string> argv_strings = launcher;
+    argv_strings.push_back(WAVEPATH_BINARY);
     argv_strings.insert(argv_strings.end(), args.begin(), args.end());
     std::vector<char*> argv;
     for (std::string& arg : argv_strings) argv.push_back(arg.data());
     argv.push_back(nullptr);
 
-    const int spawn_error = posix_spawn(&pid_, WAVEPATH_BINARY, &actions, nullptr, argv.data(), environ);
+    const int spawn_error = posix_spawn(&pid_, argv[0], &actions, nullptr, argv.data(), environ);
     posix_spawn_file_actions_destroy(&actions);
-    if (spawn_error != 0) throw std::runtime_error("cannot start " WAVEPATH_BINARY);
+    if (spawn_error != 0) throw std::runtime_error("cannot start " + argv_strings[0]);
 }
 
 RunningWavepath::~RunningWavepath() {
@@ -55,8 +58,9 @@ CommandResult RunningWavepath::wait() {
     return result;
 }
 
-CommandResult run_wavepath(const std::vector<std::string>& args, const fs::path& scratch) {
-    return RunningWavepath(args, scratch).wait();
+CommandResult run_wavepath(const std::vector<std::string>& args, const fs::path& scratch,
+                           const std::vector<std::string>& launcher) {
+    return RunningWavepath(args, scratch, launcher).wait();
 }
 
 }  // namespace wp::test

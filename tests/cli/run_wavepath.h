@@ -17,14 +17,17 @@ struct CommandResult {
 };
 
 // Runs WAVEPATH_BINARY with `args`, stdout and stderr captured through files
-// in `scratch` (which must exist and is left as it was).
-CommandResult run_wavepath(const std::vector<std::string>& args, const std::filesystem::path& scratch);
+// in `scratch` (which must exist and is left as it was). A `launcher` (a
+// program and its flags, such as mpirun -n 2) runs the binary when given.
+CommandResult run_wavepath(const std::vector<std::string>& args, const std::filesystem::path& scratch,
+                           const std::vector<std::string>& launcher = {});
 
 // A wavepath process started with `args` (output captured as run_wavepath
 // does) and not yet waited for: for signals.
 class RunningWavepath {
  public:
-    RunningWavepath(const std::vector<std::string>& args, const std::filesystem::path& scratch);
+    RunningWavepath(const std::vector<std::string>& args, const std::filesystem::path& scratch,
+                    const std::vector<std::string>& launcher = {});
     ~RunningWavepath();  // kills and reaps the process if wait() was not called
     RunningWavepath(const RunningWavepath&) = delete;
     RunningWavepath& operator=(const RunningWavepath&) = delete;

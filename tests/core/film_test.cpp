@@ -185,5 +185,22 @@ TEST(Film, RoundsCountEachPixelsOwnSamples) {
     EXPECT_THROW(film.append(next), std::invalid_argument);
 }
 
+// The ranks' films of interleaved slices: sums added whatever the ranges,
+// this film's range kept; sizes and squares must still match.
+TEST(Film, AddSumsAddsAnyRangesAndKeepsItsOwn) {
+    Film a = Film::empty(2, 1, 0, true), b = Film::empty(2, 1, 9, true);
+    a.items.end = 2;
+    b.items.end = 11;
+    a.sums[3] = film_sum_from_float(1.5f);
+    b.sums[3] = film_sum_from_float(2.0f);
+    b.squares[0] = film_sum_from_float(4.0f);
+    a.add_sums(b);
+    EXPECT_EQ(a.items, (ItemRange{0, 2}));
+    EXPECT_EQ(film_sum_to_double(a.sums[3]), 3.5);
+    EXPECT_EQ(film_sum_to_double(a.squares[0]), 4.0);
+    EXPECT_THROW(a.add_sums(Film::empty(1, 2, 0, true)), std::invalid_argument);
+    EXPECT_THROW(a.add_sums(Film::empty(2, 1, 0, false)), std::invalid_argument);
+}
+
 }  // namespace
 }  // namespace wp
