@@ -275,40 +275,59 @@ def accuracy(runner, peer, cfg, out):
     return {"rows": rows, "truths": truths, "peer": peer_comparison(rows)}
 
 
-# The wavefront's estimator choices the estimators series compares: (label, flags). The first is the default.
-ESTIMATOR_SETTINGS = [("default: nee, mis, rr_depth 3", []), ("mis off", ["--mis", "off"]),
-                      ("nee off", ["--nee", "off"]), ("rr_depth 5", ["--rr-depth", "5"]),
-                      ("roulette off", ["--rr-depth", "1000000"])]
+# What the estimators series compares besides the roulette curve, at the scene's own max_depth: (label, flags).
+ESTIMATOR_VARIANTS = [("mis off", ["--mis", "off"]), ("nee off", ["--nee", "off"])]
+ROULETTE_OFF = 1_000_000  # an rr_depth no path reaches
+
+
+def scene_render_settings(path):
+    with open(path) as f:
+        return json.load(f).get("render", {})
+
+
+def estimator_settings(cfg, depth, scene_depth, scene_rr):
+    """(label, flags) at one max_depth: the roulette curve (start depths, the scene's among them, then off),
+    and at the scene's max_depth also the variants. Every flag list names the max_depth."""
+    curve = [(f"rr_depth {rr}", ["--rr-depth", str(rr)]) for rr in sorted({*cfg["estimator_rr"], scene_rr})]
+    curve.append(("roulette off", ["--rr-depth", str(ROULETTE_OFF)]))
+    variants = ESTIMATOR_VARIANTS if depth == scene_depth else []
+    return [(label, ["--max-depth", str(depth), *flags]) for label, flags in curve + variants]
 
 
 def estimators(runner, peer, cfg, out):
-    """Per scene, the wavefront's estimator choices at equal spp against the Mitsuba truth: relMSE over seeds
-    (each seed renders every setting in turn, so times are interleaved), time min and median, efficiency
-    1 / (relMSE x median time), and per seed the ratio of the efficiency to the default's (min, median)."""
+    """Per scene and max_depth, the wavefront's estimator choices at equal spp against the Mitsuba truth of
+    that depth: relMSE over seeds (each seed renders every setting in turn, so times are interleaved), time
+    min and median, efficiency 1 / (relMSE x median time), and per seed the ratio of the efficiency to the
+    scene's own settings' (its rr_depth, MIS and NEE on), min and median."""
     size, spp = cfg["estimator_size"], cfg["estimator_spp"]
     cache = os.path.join(out, "converged-cache")
     rows = []
     for scene in cfg["estimator_scenes"]:
         path = os.path.join(ROOT, "scenes", scene)
-        truth, _, _ = peer.converged(path, size, cfg["converged_spp"], scene_max_depth(path), cache)
-        errors = {label: [] for label, _ in ESTIMATOR_SETTINGS}
-        times = {label: [] for label, _ in ESTIMATOR_SETTINGS}
-        for seed in range(cfg["estimator_seeds"]):
-            for label, flags in ESTIMATOR_SETTINGS:
-                s = runner.render(path, "wavefront", size, size, spp, extra=["--seed", str(seed), *flags], image=True)
-                errors[label].append(rel_mse(s["image"], truth))
-                times[label].append(s["time_s"])
-        default = ESTIMATOR_SETTINGS[0][0]
-        for label, _ in ESTIMATOR_SETTINGS:
-            e, t = statistics.mean(errors[label]), statistics.median(times[label])
-            per_seed = [(ed * td) / (ex * tx) for ed, td, ex, tx in
-                        zip(errors[default], times[default], errors[label], times[label])]
-            rows.append({"scene": scene, "setting": label, "size": size, "spp": spp, "seeds": len(errors[label]),
-                         "relmse": e, "relmse_sd": statistics.stdev(errors[label]), "time_s_min": min(times[label]),
-                         "time_s_median": t, "efficiency": 1.0 / (e * t),
-                         "relmse_of_default": e / statistics.mean(errors[default]),
-                         "efficiency_of_default_min": min(per_seed),
-                         "efficiency_of_default_median": statistics.median(per_seed)})
+        render = scene_render_settings(path)
+        scene_depth, scene_rr = render.get("max_depth", 8), render.get("rr_depth", 3)
+        for depth in cfg["estimator_depths"]:
+            truth, _, _ = peer.converged(path, size, cfg["converged_spp"], depth, cache)
+            settings = estimator_settings(cfg, depth, scene_depth, scene_rr)
+            default = f"rr_depth {scene_rr}"
+            errors = {label: [] for label, _ in settings}
+            times = {label: [] for label, _ in settings}
+            for seed in range(cfg["estimator_seeds"]):
+                for label, flags in settings:
+                    s = runner.render(path, "wavefront", size, size, spp, extra=flags, image=True, seed=seed)
+                    errors[label].append(rel_mse(s["image"], truth))
+                    times[label].append(s["time_s"])
+            for label, _ in settings:
+                e, t = statistics.mean(errors[label]), statistics.median(times[label])
+                per_seed = [(ed * td) / (ex * tx) for ed, td, ex, tx in
+                            zip(errors[default], times[default], errors[label], times[label])]
+                rows.append({"scene": scene, "max_depth": depth, "setting": label,
+                             "scene_default": label == default, "size": size, "spp": spp,
+                             "seeds": len(errors[label]), "relmse": e, "relmse_sd": statistics.stdev(errors[label]),
+                             "time_s_min": min(times[label]), "time_s_median": t, "efficiency": 1.0 / (e * t),
+                             "relmse_of_default": e / statistics.mean(errors[default]),
+                             "efficiency_of_default_min": min(per_seed),
+                             "efficiency_of_default_median": statistics.median(per_seed)})
     return rows
 
 
@@ -318,18 +337,20 @@ def estimators_markdown(rows, meta, truth_spp):
              f"- commit `{meta['commit']}`, {meta['date']}, build {meta['build_type']}",
              f"- machine: {meta['cpu']}, {meta['cores']} cores (shared: read the ratios, measured side by side)",
              f"- OpenCL: {meta['opencl_platform']}; device {meta['opencl_device']}",
-             f"- truth: {meta['mitsuba']} at {truth_spp} spp, the scene's max_depth", "",
-             "The wavefront, each setting at the same spp and seeds 0..n-1; every seed renders every setting in "
-             "turn. relMSE: mean over the seeds of the image's relative MSE against the truth (its own noise "
-             "included); time: the render's, kernel build left out; efficiency 1 / (relMSE x median time); "
-             "of default: efficiency relative to the default's, per seed (min / median).", "",
-             "| scene | setting | size, spp | relMSE (sd) | relMSE of default | time s (min / median) | "
-             "efficiency | of default (min / median) |", "|---|---|---|---|---|---|---|---|"]
+             f"- truth: {meta['mitsuba']} at {truth_spp} spp and the row's max_depth", "",
+             "The wavefront, each setting at the same spp and seeds 0..n-1; every seed renders every setting of "
+             "its max_depth in turn. relMSE: mean over the seeds of the image's relative MSE against the truth "
+             "(its own noise included); time: the render's, kernel build left out; efficiency 1 / (relMSE x "
+             "median time); of scene's: efficiency relative to the scene's own settings at the same max_depth "
+             "(its rr_depth, marked *), per seed (min / median). MIS and NEE are on unless the setting says.", "",
+             "| scene | max_depth | setting | size, spp | relMSE (sd) | relMSE of scene's | time s (min / median) | "
+             "efficiency | of scene's (min / median) |", "|---|---|---|---|---|---|---|---|---|"]
     for r in rows:
-        lines.append(f"| {r['scene']} | {r['setting']} | {r['size']}², {r['spp']} | {r['relmse']:.4g} "
-                     f"({r['relmse_sd']:.2g}) | {r['relmse_of_default']:.3f} | {r['time_s_min']:.3f} / "
-                     f"{r['time_s_median']:.3f} | {r['efficiency']:.3g} | {r['efficiency_of_default_min']:.2f} / "
-                     f"{r['efficiency_of_default_median']:.2f} |")
+        mark = " *" if r["scene_default"] else ""
+        lines.append(f"| {r['scene']} | {r['max_depth']} | {r['setting']}{mark} | {r['size']}², {r['spp']} | "
+                     f"{r['relmse']:.4g} ({r['relmse_sd']:.2g}) | {r['relmse_of_default']:.3f} | "
+                     f"{r['time_s_min']:.3f} / {r['time_s_median']:.3f} | {r['efficiency']:.3g} | "
+                     f"{r['efficiency_of_default_min']:.2f} / {r['efficiency_of_default_median']:.2f} |")
     return "\n".join(lines) + "\n"
 
 
@@ -743,7 +764,7 @@ def main():
                "spp_series": [1, 4, 16], "spp_backends": ["wavefront", "mitsuba"], "seeds": 3,
                "depth_series": [1, 8], "depth_spp": 8, "rr_series": [1000], "nee_series": ["off"],
                "hemisphere_series": ["uniform"], "estimator_scenes": ["cornell.json"], "estimator_size": 32,
-               "estimator_spp": 4, "estimator_seeds": 3}
+               "estimator_spp": 4, "estimator_seeds": 3, "estimator_depths": [8], "estimator_rr": []}
     else:
         cfg = {"scenes": ["room.json", "cornell.json"], "size": 512, "spp": 4, "repeats": 5,
                "wavefront_log2": [12, 14, 16, 18, 20, 22], "resolutions": [128, 256, 512, 1024, 2048],
@@ -752,8 +773,8 @@ def main():
                "spp_backends": ["wavefront", "megakernel", "reference", "mitsuba"], "seeds": 3,
                "depth_series": [1, 2, 4, 8, 16, 32], "depth_spp": 16, "rr_series": [1, 2, 3, 5, 8, 1000],
                "nee_series": ["on", "off"], "hemisphere_series": ["cosine", "uniform"],
-               "estimator_scenes": ["room.json", "cornell.json"], "estimator_size": 64, "estimator_spp": 16,
-               "estimator_seeds": 5}
+               "estimator_scenes": ["room.json", "cornell.json"], "estimator_size": 128, "estimator_spp": 16,
+               "estimator_seeds": 5, "estimator_depths": [8, 32], "estimator_rr": [1, 2, 3, 5, 8]}
     os.makedirs(args.out, exist_ok=True)
     start = time.time()
     with tempfile.TemporaryDirectory(prefix="wavepath-bench-") as scratch:
