@@ -312,13 +312,16 @@ def estimators(runner, peer, cfg, out):
             default = f"rr_depth {scene_rr}"
             errors = {label: [] for label, _ in settings}
             times = {label: [] for label, _ in settings}
+            rays = {label: [] for label, _ in settings}
             for seed in range(cfg["estimator_seeds"]):
                 for label, flags in settings:
                     s = runner.render(path, "wavefront", size, size, spp, extra=flags, image=True, seed=seed)
                     errors[label].append(rel_mse(s["image"], truth))
                     times[label].append(s["time_s"])
+                    rays[label].append((s["extension_rays"] + s["shadow_rays"]) / s["samples"])
             for label, _ in settings:
-                e, t = statistics.mean(errors[label]), statistics.median(times[label])
+                e, t, r = statistics.mean(errors[label]), statistics.median(times[label]), statistics.mean(rays[label])
+                r_default = statistics.mean(rays[default])
                 per_seed = [(ed * td) / (ex * tx) for ed, td, ex, tx in
                             zip(errors[default], times[default], errors[label], times[label])]
                 rows.append({"scene": scene, "max_depth": depth, "setting": label,
@@ -327,7 +330,9 @@ def estimators(runner, peer, cfg, out):
                              "time_s_min": min(times[label]), "time_s_median": t, "efficiency": 1.0 / (e * t),
                              "relmse_of_default": e / statistics.mean(errors[default]),
                              "efficiency_of_default_min": min(per_seed),
-                             "efficiency_of_default_median": statistics.median(per_seed)})
+                             "efficiency_of_default_median": statistics.median(per_seed),
+                             "rays_per_sample": r,
+                             "efficiency_per_ray_of_default": (statistics.mean(errors[default]) * r_default) / (e * r)})
     return rows
 
 
@@ -342,15 +347,20 @@ def estimators_markdown(rows, meta, truth_spp):
              "its max_depth in turn. relMSE: mean over the seeds of the image's relative MSE against the truth "
              "(its own noise included); time: the render's, kernel build left out; efficiency 1 / (relMSE x "
              "median time); of scene's: efficiency relative to the scene's own settings at the same max_depth "
-             "(its rr_depth, marked *), per seed (min / median). MIS and NEE are on unless the setting says.", "",
+             "(its rr_depth, marked *), per seed (min / median). Rays: extension and shadow rays per sample, "
+             "the work a setting asks for, which no load on the machine changes; per ray, of scene's: "
+             "1 / (relMSE x rays per sample) relative to the scene's own settings'. MIS and NEE are on unless "
+             "the setting says.", "",
              "| scene | max_depth | setting | size, spp | relMSE (sd) | relMSE of scene's | time s (min / median) | "
-             "efficiency | of scene's (min / median) |", "|---|---|---|---|---|---|---|---|---|"]
+             "efficiency | of scene's (min / median) | rays | per ray, of scene's |",
+             "|---|---|---|---|---|---|---|---|---|---|---|"]
     for r in rows:
         mark = " *" if r["scene_default"] else ""
         lines.append(f"| {r['scene']} | {r['max_depth']} | {r['setting']}{mark} | {r['size']}², {r['spp']} | "
                      f"{r['relmse']:.4g} ({r['relmse_sd']:.2g}) | {r['relmse_of_default']:.3f} | "
                      f"{r['time_s_min']:.3f} / {r['time_s_median']:.3f} | {r['efficiency']:.3g} | "
-                     f"{r['efficiency_of_default_min']:.2f} / {r['efficiency_of_default_median']:.2f} |")
+                     f"{r['efficiency_of_default_min']:.2f} / {r['efficiency_of_default_median']:.2f} | "
+                     f"{r['rays_per_sample']:.2f} | {r['efficiency_per_ray_of_default']:.2f} |")
     return "\n".join(lines) + "\n"
 
 
