@@ -75,8 +75,7 @@ void run_on_wavefront(const Scene& scene, const BackendOptions& options, const P
 void run_on_megakernel(const Scene& scene, const BackendOptions& options, const Progress& progress, std::uint64_t,
                        const FilmRun& run) {
     if (options.lanes != 0)
-        if (std::string problem = megakernel_lanes_problem(options.lanes, scene.features().meshes); !problem.empty())
-            throw UsageError(problem);
+        if (std::string problem = megakernel_lanes_problem(options.lanes); !problem.empty()) throw UsageError(problem);
     run_on_opencl<MegakernelReport>(options, run, [&](MegakernelReport& report) {
         return make_megakernel_renderer(
             scene, {options.device, wants_profile(options), options.film_squares, options.lanes}, progress, &report);
@@ -130,8 +129,8 @@ void add_backend_options(CLI::App& render, BackendOptions& options) {
     render
         .add_option("--lanes", options.lanes,
                     "Paths per work item in the wavefront's stage kernels and in the megakernel, as vector code: 1 "
-                    "or 8 (8 needs --compaction scan on the wavefront; 0: 8 on CPU devices, 1 on others and for "
-                    "meshes)")
+                    "or 8 (8 needs --compaction scan on the wavefront; 0: 8 on CPU devices, 1 on others and in the "
+                    "megakernel for meshes)")
         ->check(CLI::IsMember({0u, 1u, 8u}))
         ->capture_default_str();
     render.add_flag("--profile", options.profile,

@@ -34,10 +34,12 @@ NonfiniteCounts nonfinite_counts(const std::vector<std::uint32_t>& counts) {
     return by_stage;
 }
 
+// 8 lanes on CPUs, but 1 for meshes: a lane's BVH traversal diverges from the
+// others' at every node, and whole paths of 8 such lanes ran at half the
+// samples/s of one lane (bunny, PoCL; docs/architecture.md, "Lanes").
 unsigned resolve_lanes(unsigned requested, const DeviceInfo& device, bool meshes) {
     unsigned lanes = requested != 0 ? requested : device.type == "CPU" && !meshes ? 8u : 1u;
-    if (std::string problem = megakernel_lanes_problem(lanes, meshes); !problem.empty())
-        throw std::invalid_argument(problem);
+    if (std::string problem = megakernel_lanes_problem(lanes); !problem.empty()) throw std::invalid_argument(problem);
     return lanes;
 }
 
@@ -139,10 +141,8 @@ class MegakernelFilmRenderer : public FilmRenderer {
 
 }  // namespace
 
-std::string megakernel_lanes_problem(unsigned lanes, bool meshes) {
+std::string megakernel_lanes_problem(unsigned lanes) {
     if (lanes != 1 && lanes != 8) return "megakernel lanes must be 1 or 8, not " + std::to_string(lanes);
-    if (lanes != 1 && meshes)
-        return "--lanes " + std::to_string(lanes) + " cannot render meshes (their BVH traversal runs one lane)";
     return "";
 }
 

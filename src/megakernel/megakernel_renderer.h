@@ -22,9 +22,9 @@ struct MegakernelOptions {
     unsigned lanes = 0;         // paths per work item: 1 or 8; 0: 8 on CPU devices without meshes, else 1
 };
 
-// Why the megakernel cannot run `lanes` paths per work item for this scene
-// ("" when it can): 1 or 8, and meshes need 1 (their BVH traversal is scalar).
-std::string megakernel_lanes_problem(unsigned lanes, bool meshes);
+// Why the megakernel cannot run `lanes` paths per work item ("" when it can):
+// 1 or 8.
+std::string megakernel_lanes_problem(unsigned lanes);
 
 struct MegakernelReport {
     std::string device;

@@ -38,10 +38,21 @@ TEST(MeshRender, WavefrontRetracesTheReferencePathForPath) {
                                          render_reference(scene, ReferenceOptions{2, false}), "wavefront, meshes");
 }
 
+// With its default for meshes, one lane, and with eight (--lanes 8): the
+// megakernel traverses the BVH as the wavefront's stages do
+// (device/bvh_lanes.h with eight).
 TEST(MeshRender, MegakernelRetracesTheReferencePathForPath) {
     Scene scene = mesh_scene(48, 1);
-    test::expect_path_for_path_agreement(render_megakernel(scene, {}, {}),
-                                         render_reference(scene, ReferenceOptions{2, false}), "megakernel, meshes");
+    RenderResult reference = render_reference(scene, ReferenceOptions{2, false});
+    for (unsigned lanes : {0u, 8u}) {
+        MegakernelOptions options;
+        options.lanes = lanes;
+        MegakernelReport report;
+        RenderResult megakernel = render_megakernel(scene, options, {}, &report);
+        EXPECT_EQ(report.lanes, lanes == 0 ? 1u : lanes) << "meshes default to one lane";
+        test::expect_path_for_path_agreement(megakernel, reference,
+                                             "megakernel, meshes, lanes " + std::to_string(lanes));
+    }
 }
 
 // The same scene lit by an emissive mesh (a triangulated, two-sided lamp)
@@ -100,6 +111,9 @@ TEST(MeshRender, EightLanesRetraceTheReferenceAsOneLaneDoes) {
     EXPECT_EQ(one.stats.extension_rays, eight.stats.extension_rays);
     EXPECT_EQ(one.stats.shadow_rays, eight.stats.shadow_rays);
     EXPECT_GT(one.stats.shadow_rays, 0u);
+    MegakernelOptions megakernel_options;
+    megakernel_options.lanes = 8;
+    EXPECT_EQ(render_megakernel(scene, megakernel_options, {}).image.rgb, eight.image.rgb) << "megakernel, 8 lanes";
 }
 
 }  // namespace
