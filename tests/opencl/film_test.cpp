@@ -13,6 +13,7 @@
 #include "opencl/device.h"
 #include "opencl/program_cache.h"
 #include "support/analytic_scenes.h"
+#include "support/film_sums.h"
 #include "wavefront/wavefront_renderer.h"
 
 namespace wp {
@@ -30,11 +31,6 @@ std::vector<float> wide_floats(std::size_t count, std::uint32_t seed) {
         } while (!std::isfinite(v));
     }
     return values;
-}
-
-bool same_sums(const std::vector<film_sum>& a, const std::vector<film_sum>& b) {
-    // memcmp must not see an empty vector's null data, even for zero bytes
-    return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), sizeof(film_sum) * a.size()) == 0);
 }
 
 // 7 pixels, 3 passes of uneven sizes (a pass starting mid-round of the
@@ -67,8 +63,8 @@ TEST(DeviceFilm, AddsEveryFloatExactlyAsTheHostDoes) {
             start += size;
         }
         Film got = film.read(queue, {0, start});
-        EXPECT_TRUE(same_sums(got.sums, expected.sums));
-        EXPECT_TRUE(same_sums(got.squares, expected.squares));
+        EXPECT_TRUE(test::same_sums(got.sums, expected.sums));
+        EXPECT_TRUE(test::same_sums(got.squares, expected.squares));
     }
 }
 
