@@ -114,6 +114,9 @@ class OffChecker {
         const std::size_t first_word = pos_;
         std::uint64_t ignored = 0;
         if (const std::string_view word = next_header_word(); parse_whole_number(word, kMaxCount, ignored)) {
+            // assimp takes a leading 4 for the prefix of 4OFF and reads the count from the next digit on.
+            if (word.starts_with('4'))
+                fail("OFF header: a vertex count that begins with 4 needs the OFF keyword before it");
             pos_ = first_word;  // no keyword (the format allows that): the vertex count
         } else {
             read_keyword(word);

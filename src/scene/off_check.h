@@ -13,10 +13,11 @@
 namespace wp {
 
 // Throws MeshFileError unless `text` is an OFF file laid out as assimp reads
-// it: the header's words ([ST][C][N][4][n]OFF or none, the dimension after
-// nOFF, the vertex, face and edge counts), one vertex a line (its
-// coordinates first), one face a line (1 to 9 vertex indices below the vertex
-// count, after their count), then only blank or comment lines.
+// it: the header's words ([ST][C][N][4][n]OFF, or none and a vertex count
+// that does not begin with 4; the dimension after nOFF; the vertex, face and
+// edge counts), one vertex a line (its coordinates first), one face a line
+// (1 to 9 vertex indices below the vertex count, after their count), then
+// only blank or comment lines.
 void check_off(std::string_view text);
 
 }  // namespace wp

@@ -98,6 +98,9 @@ TEST(OffCheck, HeaderWordsMustBeWhatTheFormatDefines) {
     EXPECT_EQ(problem("NCOFF\n3 1 0\n"), keyword);
     EXPECT_EQ(problem("OFF3 1 0\n"), keyword);
     EXPECT_EQ(problem("\xef\xbb\xbfOFF\n3 1 0\n"), keyword);  // a byte order mark, which assimp converts
+    // assimp read "42 1 0" without a keyword as 2 vertices, taking the 4 for 4OFF's.
+    EXPECT_EQ(problem("42 1 0\n"), "OFF header: a vertex count that begins with 4 needs the OFF keyword before it");
+    EXPECT_EQ(problem("OFF 4 1 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2\n"), "(none)");
     EXPECT_EQ(problem("nOFF 4\n"), "OFF header: expected the dimension after nOFF, 1, 2 or 3");
     EXPECT_EQ(problem("nOFF 0\n"), "OFF header: expected the dimension after nOFF, 1, 2 or 3");
 }
