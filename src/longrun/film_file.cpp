@@ -49,6 +49,7 @@ class Reader {
         return value;
     }
     void get_bytes(void* data, std::size_t size) {
+        if (size == 0) return;  // into an empty vector, whose data() may be null, which memcpy must not get
         std::memcpy(data, bytes_.data() + at_, size);
         at_ += size;
     }

@@ -1,16 +1,17 @@
 #include "scene/mesh_headers.h"
 
 #include <algorithm>
+#include <assimp/Importer.hpp>
 #include <cctype>
 #include <charconv>
 #include <cstdint>
 #include <fstream>
-#include <limits>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "scene/mesh_file.h"
+#include "scene/off_check.h"
 
 namespace wp {
 namespace {
@@ -18,22 +19,25 @@ namespace {
 // Headers are read from this prefix of the file; a PLY header must end in it.
 constexpr std::size_t kHeaderLimit = 1 << 16;
 
-std::string read_prefix(const std::filesystem::path& path) {
+// Its first `size` bytes (fewer if it is shorter).
+std::string read_file(const std::filesystem::path& path, std::uintmax_t size) {
     std::ifstream in(path, std::ios::binary);
-    std::string prefix(kHeaderLimit, '\0');
-    in.read(prefix.data(), static_cast<std::streamsize>(prefix.size()));
-    prefix.resize(static_cast<std::size_t>(in.gcount()));
-    return prefix;
+    std::string text(size, '\0');
+    in.read(text.data(), static_cast<std::streamsize>(text.size()));
+    text.resize(static_cast<std::size_t>(in.gcount()));
+    return text;
+}
+
+std::string to_lower(std::string text) {
+    std::transform(text.begin(), text.end(), text.begin(), [](unsigned char c) { return std::tolower(c); });
+    return text;
 }
 
 bool is_space(char c) { return std::isspace(static_cast<unsigned char>(c)) != 0; }
 
-// The next word of `text` from `i` on (empty at the end), `i` moved past it;
-// with `comments`, '#' to the end of the line is skipped (OFF).
-std::string_view next_word(std::string_view text, std::size_t& i, bool comments) {
-    while (i < text.size() && (is_space(text[i]) || (comments && text[i] == '#'))) {
-        i = comments && text[i] == '#' ? std::min(text.find('\n', i), text.size()) : i + 1;
-    }
+// The next word of `text` from `i` on (empty at the end), `i` moved past it.
+std::string_view next_word(std::string_view text, std::size_t& i) {
+    while (i < text.size() && is_space(text[i])) ++i;
     const std::size_t start = i;
     while (i < text.size() && !is_space(text[i])) ++i;
     return text.substr(start, i - start);
@@ -42,8 +46,7 @@ std::string_view next_word(std::string_view text, std::size_t& i, bool comments)
 std::vector<std::string_view> split_words(std::string_view line) {
     std::vector<std::string_view> words;
     std::size_t i = 0;
-    for (std::string_view word = next_word(line, i, false); !word.empty(); word = next_word(line, i, false))
-        words.push_back(word);
+    for (std::string_view word = next_word(line, i); !word.empty(); word = next_word(line, i)) words.push_back(word);
     return words;
 }
 
@@ -156,26 +159,14 @@ void check_ply(const std::string& head, std::uintmax_t file_size) {
 
 // ---- OFF ----
 
-// "OFF", "COFF", "NOFF", "STOFF", ...: the first word of the file, lower case.
-bool is_off_keyword(const std::string& word) { return word.size() >= 3 && word.size() <= 6 && word.ends_with("off"); }
-
-// The count a word starts with, as assimp's OFF reader reads it (strtoul10:
-// leading digits, 0 if none; "1junk" is 1); too many digits count as the most.
-std::uint64_t leading_count(std::string_view word) {
-    std::uint64_t count = 0;
-    if (std::from_chars(word.data(), word.data() + word.size(), count).ec == std::errc::result_out_of_range)
-        return std::numeric_limits<std::uint64_t>::max();
-    return count;
-}
-
-void check_off(const std::string& head, std::uintmax_t file_size) {
-    std::size_t end = 0;
-    next_word(head, end, true);  // OFF
-    const std::uint64_t vertices = leading_count(next_word(head, end, true));
-    const std::uint64_t faces = leading_count(next_word(head, end, true));
-    std::uint64_t available = file_size - end;
-    take_elements("OFF", vertices, "vertices", 6, available);  // "0 0 0\n"
-    take_elements("OFF", faces, "faces", 2, available);        // "0\n"
+// Whether assimp reads the file with its OFF reader: it picks the reader by
+// the extension, and for one no reader claims, by the first three bytes
+// ("off" in any case), after readers that come earlier in its list have
+// declined it (which this does not try to foresee: it checks such a file as OFF).
+bool read_as_off(const std::filesystem::path& path, const std::string& head) {
+    const std::string extension = to_lower(path.extension().string());
+    if (extension == ".off") return true;
+    return to_lower(head.substr(0, 3)) == "off" && !Assimp::Importer().IsExtensionSupported(extension);
 }
 
 }  // namespace
@@ -184,13 +175,12 @@ void check_mesh_header(const std::filesystem::path& path) {
     std::error_code error;
     const std::uintmax_t file_size = std::filesystem::file_size(path, error);
     if (error) return;  // not a regular file: reading it reports the problem
-    const std::string head = read_prefix(path);
+    const std::string head = read_file(path, std::min<std::uintmax_t>(file_size, kHeaderLimit));
+    if (read_as_off(path, head)) return check_off(read_file(path, file_size));
     std::size_t start = 0;
-    // In lower case: assimp takes "plY\xff..." for PLY and "off" for OFF too.
-    std::string magic(next_word(head, start, false));
-    std::transform(magic.begin(), magic.end(), magic.begin(), [](unsigned char c) { return std::tolower(c); });
+    // In lower case: assimp takes "plY\xff..." for PLY too.
+    const std::string magic = to_lower(std::string(next_word(head, start)));
     if (magic.starts_with("ply")) check_ply(head, file_size);
-    if (is_off_keyword(magic)) check_off(head, file_size);
 }
 
 }  // namespace wp
