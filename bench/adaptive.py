@@ -12,8 +12,10 @@ commit, date, machine and OpenCL platform: per configuration the time (min,
 median), the mean relMSE, the efficiency 1/(relMSE x median time), the image
 mean over the truth's (adaptive sampling's stopping bias shows there), and
 adaptive sampling's gain: its efficiency over the non-adaptive one at 256 spp
-(equal spp cap), and the non-adaptive relMSE at the same time (on the log-log
-line through the non-adaptive renders) over its own (equal time).
+(equal spp cap), the non-adaptive relMSE at the same time (on the log-log
+line through the non-adaptive renders) over its own (equal time), and the
+non-adaptive relMSE at its mean spp over its own (equal samples: what the
+placement of the samples gains, before the cost of rounds and checks).
 """
 import argparse
 import json
@@ -75,12 +77,15 @@ def measure(runner, peer, repeats, cache):
     for scene in SCENES:
         plain = [r for r in rows if r["scene"] == scene and not r["adaptive"]]
         line = sorted((r["time_s"]["median"], r["relmse"]) for r in plain)
+        by_spp = sorted((r["spp"], r["relmse"]) for r in plain)
         cap = next(r for r in plain if r["spp"] == ADAPTIVE_SPP)
         for r in rows:
             if r["scene"] == scene and r["adaptive"]:
                 r["gain_equal_spp_cap"] = r["efficiency"] / cap["efficiency"]
                 equal_time = loglog_at(line, r["time_s"]["median"])
                 r["gain_equal_time"] = equal_time / r["relmse"] if equal_time else None
+                equal_samples = loglog_at(by_spp, r["spp_mean"])
+                r["gain_equal_samples"] = equal_samples / r["relmse"] if equal_samples else None
     return rows
 
 
@@ -94,18 +99,21 @@ def markdown(meta, rows, repeats):
              "repetitions of mean((x - r)^2 / (r^2 + 1e-2)). Efficiency: 1 / (relMSE x median time). Gain at the "
              f"spp cap: efficiency over the non-adaptive render's at {ADAPTIVE_SPP} spp. Gain at equal time: the "
              "non-adaptive relMSE at the same median time (log-log line through the non-adaptive renders; blank "
-             "outside them) over the adaptive one. Mean ratio: the image's mean over the truth's, averaged over "
+             "outside them) over the adaptive one. Gain at equal samples: the non-adaptive relMSE at the adaptive "
+             "render's mean spp (log-log line through the non-adaptive spp) over the adaptive one, what placing the "
+             "samples gains before the cost of rounds and checks. Mean ratio: the image's mean over the truth's, averaged over "
              "the repetitions (adaptive sampling's stopping bias, docs/long-renders.md, shows here).", "",
              "| scene | adaptive | spp | mean spp | stopped early | time min (s) | time median (s) | relMSE | "
-             "efficiency | gain at spp cap | gain at equal time | mean ratio |",
-             "|---|---|---|---|---|---|---|---|---|---|---|---|"]
+             "efficiency | gain at spp cap | gain at equal time | gain at equal samples | mean ratio |",
+             "|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for r in rows:
         def fmt(x, f="{:.3g}"):
             return "" if x is None else f.format(x)
         lines.append(f"| {r['scene']} | {r['adaptive'] or 'off'} | {r['spp']} | {r['spp_mean']:.1f} | "
                      f"{100 * r['stopped_early']:.1f}% | {r['time_s']['min']:.3f} | {r['time_s']['median']:.3f} | "
                      f"{r['relmse']:.4g} | {r['efficiency']:.4g} | {fmt(r.get('gain_equal_spp_cap'), '{:.2f}x')} | "
-                     f"{fmt(r.get('gain_equal_time'), '{:.2f}x')} | {r['mean_ratio']:.4f} |")
+                     f"{fmt(r.get('gain_equal_time'), '{:.2f}x')} | {fmt(r.get('gain_equal_samples'), '{:.2f}x')} | "
+                     f"{r['mean_ratio']:.4f} |")
     return "\n".join(lines) + "\n"
 
 

@@ -68,13 +68,14 @@ void Pipeline::begin_pass(std::uint64_t start, std::uint32_t size) {
     queues_.reset();
 }
 
-void Pipeline::run(Stage stage) {
+void Pipeline::run(Stage stage, std::size_t entries) {
+    if (entries == 0) return;
     if (ray_depths_ && stage == Stage::Intersect)
-        ray_depths_->count(launcher_, WP_QUEUE_RAY, WP_PROFILE_EXTENSION_BY_DEPTH);
+        ray_depths_->count(launcher_, WP_QUEUE_RAY, WP_PROFILE_EXTENSION_BY_DEPTH, entries);
     if (ray_depths_ && stage == Stage::IntersectShadow)
-        ray_depths_->count(launcher_, WP_QUEUE_SHADOW, WP_PROFILE_SHADOW_BY_DEPTH);
+        ray_depths_->count(launcher_, WP_QUEUE_SHADOW, WP_PROFILE_SHADOW_BY_DEPTH, entries);
     auto index = static_cast<std::size_t>(stage);
-    launcher_.launch(stages_[index], stage_kernel_names[index], divide_rounding_up(capacity_, lanes_));
+    launcher_.launch(stages_[index], stage_kernel_names[index], divide_rounding_up(entries, lanes_));
 }
 
 void Pipeline::start_paths(const std::vector<glm::vec3>& origins, const std::vector<glm::vec3>& directions,
@@ -103,7 +104,7 @@ void Pipeline::start_paths(const std::vector<glm::vec3>& origins, const std::vec
 
 void Pipeline::run_alone(Stage stage) {
     queues_.empty_outputs(stage);
-    run(stage);
+    run(stage, capacity_);
     queues_.compact_outputs(launcher_, stage);
 }
 

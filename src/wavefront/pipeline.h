@@ -62,9 +62,13 @@ class Pipeline {
     void begin_pass(std::uint64_t start, std::uint32_t size);
     // Tells the next generate how many work items of the pass earlier ones handed out.
     void set_issued(std::uint32_t issued) { queues_.set_issued(issued); }
-    // Enqueues a stage over the queues' capacity (it reads its queue's length on
-    // the device); with profiling, the count of its rays by depth first.
-    void run(Stage stage);
+    // Enqueues a stage over the first `entries` positions of its input queue,
+    // which must be at least the queue's length (the kernel reads the length
+    // on the device, so the host never waits between stages; positions past
+    // it compute and write nothing, but cost as much as live ones, so a
+    // nearly drained pass launches only what it can hold); with profiling,
+    // the count of its rays by depth first. Nothing when `entries` is 0.
+    void run(Stage stage, std::size_t entries);
     // The queue bookkeeping once `stage` has run (QueueSet::finish_stage).
     void finish_stage(Stage stage) { queues_.finish_stage(launcher_, stage); }
     // Waits for the queue; with profiling, adds the finished kernels' times to profile().
@@ -93,8 +97,8 @@ class Pipeline {
     // queues them all for intersect, with no slot free.
     void start_paths(const std::vector<glm::vec3>& origins, const std::vector<glm::vec3>& directions,
                      std::uint32_t first_sample = 0);
-    // For stage tests: runs `stage` alone, its output queues emptied first
-    // and readable after (QueueSet::read_queue).
+    // For stage tests: runs `stage` alone over the whole capacity, its output
+    // queues emptied first and readable after (QueueSet::read_queue).
     void run_alone(Stage stage);
     // For stage tests: a path state field's elements (a vec3 field's
     // `component`: 0, 1, 2 for x, y, z), and the pass entries.

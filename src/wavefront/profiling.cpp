@@ -12,17 +12,18 @@ namespace wp {
 
 RayDepthCounter::RayDepthCounter(const cl::Program& program, const cl::Buffer& queues, const cl::Buffer& counts,
                                  std::size_t capacity, const cl::Buffer& depth)
-    : kernel_(program, "count_depths"), counts_(counts), capacity_(capacity) {
+    : kernel_(program, "count_depths"), counts_(counts) {
     kernel_.setArg(arg::CountDepths::queues, queues);
     kernel_.setArg(arg::CountDepths::counts, counts);
     kernel_.setArg(arg::CountDepths::capacity, cl_uint(capacity));
     kernel_.setArg(arg::CountDepths::depth, depth);
 }
 
-void RayDepthCounter::count(KernelLauncher& launcher, std::uint32_t queue, std::uint32_t histogram_offset) {
+void RayDepthCounter::count(KernelLauncher& launcher, std::uint32_t queue, std::uint32_t histogram_offset,
+                            std::size_t entries) {
     kernel_.setArg(arg::CountDepths::queue, cl_uint(queue));
     kernel_.setArg(arg::CountDepths::histogram_offset, cl_uint(histogram_offset));
-    launcher.launch(kernel_, "count_depths", capacity_);
+    launcher.launch(kernel_, "count_depths", entries);
 }
 
 void RayDepthCounter::read(cl::CommandQueue& queue, RenderProfile& profile) const {

@@ -17,16 +17,16 @@ class RayDepthCounter {
  public:
     RayDepthCounter(const cl::Program& program, const cl::Buffer& queues, const cl::Buffer& counts,
                     std::size_t capacity, const cl::Buffer& depth);
-    // Counts queue `queue` (RAY before intersect, SHADOW before intersect_shadow)
-    // into the histogram at `histogram_offset` of the counters.
-    void count(KernelLauncher& launcher, std::uint32_t queue, std::uint32_t histogram_offset);
+    // Counts queue `queue` (RAY before intersect, SHADOW before intersect_shadow),
+    // of at most `entries` entries, into the histogram at `histogram_offset`
+    // of the counters.
+    void count(KernelLauncher& launcher, std::uint32_t queue, std::uint32_t histogram_offset, std::size_t entries);
     // Extension and shadow rays per depth, counted so far.
     void read(cl::CommandQueue& queue, RenderProfile& profile) const;
 
  private:
     cl::Kernel kernel_;
     cl::Buffer counts_;
-    std::size_t capacity_;
 };
 
 struct IntersectBound {

@@ -5,16 +5,20 @@
 namespace wp {
 namespace {
 
-// One iteration of the stage loop. Pipeline::finish_stage readies the queues
-// each stage filled, so at the end the lengths are this iteration's: FREE
-// the paths ended, HIT the hits, SHADOW the shadow rays, SCATTER the paths
-// scatter sampled, RAY the paths continuing next iteration.
-DeviceCounts run_iteration(Pipeline& p, bool nee) {
+// One iteration of the stage loop, in which generate starts `generated` new
+// paths and `traced` paths (those and the ones continuing) trace a ray: each
+// stage is launched over what its queue can hold, no more (a pass's last
+// iterations then cost what their few paths do). Pipeline::finish_stage
+// readies the queues each stage filled, so at the end the lengths are this
+// iteration's: FREE the paths ended, HIT the hits, SHADOW the shadow rays,
+// SCATTER the paths scatter sampled, RAY the paths continuing next iteration.
+DeviceCounts run_iteration(Pipeline& p, bool nee, std::uint32_t generated, std::uint32_t traced) {
     std::vector<Stage> stages{Stage::Generate, Stage::Intersect, Stage::ShadeDirect, Stage::IntersectShadow,
                               Stage::Scatter};
     for (Stage stage : stages) {
         if (stage == Stage::IntersectShadow && !nee) continue;
-        p.run(stage);
+        // HIT, SHADOW and SCATTER hold at most one entry per ray traced.
+        p.run(stage, stage == Stage::Generate ? generated : traced);
         p.finish_stage(stage);
     }
     return p.read_counts();
@@ -31,12 +35,10 @@ void run_schedule(Pipeline& pipeline, const ItemRange& items, bool nee, const Pr
         std::uint32_t continuing = 0, issued = 0, free_slots = static_cast<std::uint32_t>(pipeline.capacity());
         for (;;) {
             pipeline.set_issued(issued);
-            DeviceCounts counts = run_iteration(pipeline, nee);
-            std::uint32_t now_issued = std::min(issued + free_slots, size);  // generate's rule
             IterationRecord r;
-            r.free_slots = free_slots;
-            r.generated = now_issued - issued;
+            r.generated = std::min(free_slots, size - issued);  // generate's rule
             r.traced = continuing + r.generated;
+            DeviceCounts counts = run_iteration(pipeline, nee, r.generated, r.traced);
             r.hits = counts[WP_QUEUE_HIT];
             r.shadow = nee ? counts[WP_QUEUE_SHADOW] : 0;
             r.scattered = counts[WP_QUEUE_SCATTER];
@@ -46,7 +48,7 @@ void run_schedule(Pipeline& pipeline, const ItemRange& items, bool nee, const Pr
             totals.extension_rays += r.traced;
             totals.shadow_rays += r.shadow;
             finished += r.finished;
-            issued = now_issued;
+            issued += r.generated;
             free_slots = r.finished;
             continuing = r.continuing;
             progress.report(double(finished) / double(items.size()));

@@ -34,7 +34,7 @@ FeatureSet every_shape_and_material(FeatureSet f) {
 }
 
 // Items each kernel processed: its input queue's length summed over the
-// iterations (accumulate: the pass entries it summed; compaction: the slots
+// iterations (generate: the free slots it filled; accumulate: the pass entries it summed; compaction: the slots
 // its launches went through; compact_scan: the blocks of slots it summed;
 // count_depths: the rays it counted).
 void fill_profile(RenderProfile& profile, const std::vector<IterationRecord>& iterations, std::uint64_t samples,
@@ -50,7 +50,7 @@ void fill_profile(RenderProfile& profile, const std::vector<IterationRecord>& it
         for (const IterationRecord& r : iterations) k.items += r.traced + r.shadow;
     }
     const std::map<std::string, std::uint32_t IterationRecord::*> input_queue{
-        {"generate", &IterationRecord::free_slots},
+        {"generate", &IterationRecord::generated},
         {"intersect", &IterationRecord::traced},
         {"shade_direct", &IterationRecord::hits},
         {"intersect_shadow", &IterationRecord::shadow},

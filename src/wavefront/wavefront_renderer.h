@@ -28,7 +28,6 @@ struct WavefrontOptions {
 
 // Queue lengths of one iteration of the stage loop, for the profiler.
 struct IterationRecord {
-    std::uint32_t free_slots = 0;  // slots generate looked at
     std::uint32_t generated = 0;   // camera rays started
     std::uint32_t traced = 0;      // extension rays intersected
     std::uint32_t hits = 0;        // of those, hits (to shade_direct)
