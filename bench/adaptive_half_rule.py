@@ -1,11 +1,11 @@
 #!/usr/bin/env python3
 """Would deciding from half of the samples remove --adaptive's stopping bias? (docs/long-renders.md, "Bias")
 
-Usage: python3 bench/adaptive_half_rule.py [--binary build/wavepath] [--spp 64] [--threshold 0.1]
+Usage: python3 bench/adaptive_half_rule.py [--binary build/wavepath] [--spp 64] [--threshold 0.1] [--seeds 1,2,3]
 
 Cycles keeps a second film of every other sample for its noise threshold. The
 hope: a pixel stopped on the error of its even samples alone keeps an unbiased
-mean of its odd ones, which never took part in the decision. For seeds 1-3,
+mean of its odd ones, which never took part in the decision. For each seed,
 renders the room at 24x24 on the reference backend one sample at a time
 (--samples s:s+1, each sample's exact value), replays --adaptive's decisions
 on those values (the rule, dilation and check schedule of src/longrun/, in
@@ -104,6 +104,7 @@ def main():
     parser.add_argument("--binary", default=os.path.join(ROOT, "build", "wavepath"))
     parser.add_argument("--spp", type=int, default=64)
     parser.add_argument("--threshold", type=float, default=0.1)
+    parser.add_argument("--seeds", default="1,2,3")
     args = parser.parse_args()
     scene = os.path.join(ROOT, "scenes", "room.json")
     with tempfile.TemporaryDirectory() as scratch:
@@ -113,7 +114,7 @@ def main():
                             str(SIZE), "--spp", str(args.spp), "--seed", str(seed), "--backend", "reference", *extra],
                            check=True)
             return path
-        for seed in (1, 2, 3):
+        for seed in (int(s) for s in args.seeds.split(",")):
             values = [exact_sums(render(seed, ["--samples", f"{s}:{s + 1}"])) for s in range(args.spp)]
             samples = [[[values[s][3 * p + c] for s in range(args.spp)] for c in range(3)] for p in range(PIXELS)]
             squares = [[[exact_square(v) for v in channel] for channel in pixel] for pixel in samples]
