@@ -201,9 +201,13 @@ def scaling(runner, cfg):
     return rows
 
 
-def scene_max_depth(path):
+def scene_render_settings(path):
     with open(path) as f:
-        return json.load(f).get("render", {}).get("max_depth", 8)
+        return json.load(f).get("render", {})
+
+
+def scene_max_depth(path):
+    return scene_render_settings(path).get("max_depth", 8)
 
 
 def accuracy(runner, peer, cfg, out):
@@ -280,11 +284,6 @@ ESTIMATOR_VARIANTS = [("mis off", ["--mis", "off"]), ("nee off", ["--nee", "off"
 ROULETTE_OFF = 1_000_000  # an rr_depth no path reaches
 
 
-def scene_render_settings(path):
-    with open(path) as f:
-        return json.load(f).get("render", {})
-
-
 def estimator_settings(cfg, depth, scene_depth, scene_rr):
     """(label, flags) at one max_depth: the roulette curve (start depths, the scene's among them, then off),
     and at the scene's max_depth also the variants. Every flag list names the max_depth."""
@@ -304,8 +303,7 @@ def estimators(runner, peer, cfg, out):
     rows = []
     for scene in cfg["estimator_scenes"]:
         path = os.path.join(ROOT, "scenes", scene)
-        render = scene_render_settings(path)
-        scene_depth, scene_rr = render.get("max_depth", 8), render.get("rr_depth", 3)
+        scene_depth, scene_rr = scene_max_depth(path), scene_render_settings(path).get("rr_depth", 3)
         for depth in cfg["estimator_depths"]:
             truth, _, _ = peer.converged(path, size, cfg["converged_spp"], depth, cache)
             settings = estimator_settings(cfg, depth, scene_depth, scene_rr)
@@ -321,7 +319,6 @@ def estimators(runner, peer, cfg, out):
                     rays[label].append((s["extension_rays"] + s["shadow_rays"]) / s["samples"])
             for label, _ in settings:
                 e, t, r = statistics.mean(errors[label]), statistics.median(times[label]), statistics.mean(rays[label])
-                r_default = statistics.mean(rays[default])
                 per_seed = [(ed * td) / (ex * tx) for ed, td, ex, tx in
                             zip(errors[default], times[default], errors[label], times[label])]
                 rows.append({"scene": scene, "max_depth": depth, "setting": label,
@@ -332,7 +329,8 @@ def estimators(runner, peer, cfg, out):
                              "efficiency_of_default_min": min(per_seed),
                              "efficiency_of_default_median": statistics.median(per_seed),
                              "rays_per_sample": r,
-                             "efficiency_per_ray_of_default": (statistics.mean(errors[default]) * r_default) / (e * r)})
+                             "efficiency_per_ray_of_default":
+                                 statistics.mean(errors[default]) * statistics.mean(rays[default]) / (e * r)})
     return rows
 
 
