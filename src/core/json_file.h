@@ -1,7 +1,7 @@
 // JSON output files for tools (--stats-json, --profile-json), written atomically.
 #pragma once
 
-#include <nlohmann/json.hpp>
+#include <nlohmann/json_fwd.hpp>
 #include <string>
 
 namespace wp {

@@ -2,6 +2,7 @@
 // stats JSON, overrides, and the mapping from errors to exit codes.
 #include <gtest/gtest.h>
 
+#include <nlohmann/json.hpp>
 #include <sstream>
 #include <thread>
 #include <vector>

@@ -14,26 +14,12 @@
 #include <thread>
 
 #include "cli/run_wavepath.h"
+#include "cli/small_room_render.h"
 #include "image/image_io.h"
 #include "longrun/film_file.h"
 
 namespace wp::test {
 namespace {
-
-const std::string kScene = std::string(WAVEPATH_SOURCE_DIR) + "/scenes/test/room_small.json";
-
-std::vector<std::string> render_args(const std::string& out, int spp, std::vector<std::string> extra = {},
-                                     int wavefront = 64) {
-    std::vector<std::string> args{
-        "render", kScene, "-o", out, "--spp", std::to_string(spp), "--wavefront", std::to_string(wavefront)};
-    args.insert(args.end(), extra.begin(), extra.end());
-    return args;
-}
-
-bool same_bytes(const std::string& a, const std::string& b) {
-    const std::string x = read_text(a), y = read_text(b);
-    return !x.empty() && x == y;
-}
 
 bool same_pixels(const Image& a, const Image& b) {
     return a.width == b.width && a.height == b.height && a.rgb.size() == b.rgb.size() &&
@@ -53,7 +39,7 @@ class LongRenderCli : public ::testing::Test {
     // The uninterrupted render at `spp`, once per test.
     std::string whole_render(int spp, int wavefront = 64) {
         const std::string path = out_ / ("whole" + std::to_string(spp) + ".pfm");
-        CommandResult r = run(render_args(path, spp, {"-q"}, wavefront));
+        CommandResult r = run(small_room_render_args(path, spp, {"-q"}, wavefront));
         EXPECT_EQ(r.exit_code, 0) << r.err;
         return path;
     }
@@ -62,9 +48,9 @@ class LongRenderCli : public ::testing::Test {
 
 TEST_F(LongRenderCli, ResumedRenderIsBitIdenticalToTheUninterruptedOne) {
     const std::string whole = whole_render(12), checkpoint = out_ / "c.wpfilm";
-    CommandResult first = run(render_args(out_ / "part.pfm", 5, {"--checkpoint", checkpoint}));
+    CommandResult first = run(small_room_render_args(out_ / "part.pfm", 5, {"--checkpoint", checkpoint}));
     ASSERT_EQ(first.exit_code, 0) << first.err;
-    CommandResult rest = run(render_args(out_ / "resumed.pfm", 12, {"--resume", checkpoint}));
+    CommandResult rest = run(small_room_render_args(out_ / "resumed.pfm", 12, {"--resume", checkpoint}));
     ASSERT_EQ(rest.exit_code, 0) << rest.err;
     EXPECT_TRUE(same_bytes(out_ / "resumed.pfm", whole));
     EXPECT_FALSE(same_bytes(out_ / "part.pfm", whole));  // the comparison can tell images apart
@@ -74,7 +60,7 @@ TEST_F(LongRenderCli, ResumedRenderIsBitIdenticalToTheUninterruptedOne) {
 // before (the output and the checkpoint) exactly as they were.
 TEST_F(LongRenderCli, RefusedCheckpointsChangeNothing) {
     const std::string checkpoint = out_ / "c.wpfilm", output = out_ / "out.pfm";
-    ASSERT_EQ(run(render_args(out_ / "part.pfm", 3, {"-q", "--checkpoint", checkpoint})).exit_code, 0);
+    ASSERT_EQ(run(small_room_render_args(out_ / "part.pfm", 3, {"-q", "--checkpoint", checkpoint})).exit_code, 0);
     std::string bytes = read_text(checkpoint);
     write_text(out_ / "truncated.wpfilm", bytes.substr(0, bytes.size() - 100));
     bytes[200] ^= 1;
@@ -87,14 +73,16 @@ TEST_F(LongRenderCli, RefusedCheckpointsChangeNothing) {
         std::string message;
     };
     const Case cases[] = {
-        {render_args(output, 8, {"--resume", checkpoint, "--seed", "9", "--checkpoint", checkpoint}),
+        {small_room_render_args(output, 8, {"--resume", checkpoint, "--seed", "9", "--checkpoint", checkpoint}),
          checkpoint + ": rendered with other settings"},
-        {render_args(output, 8, {"--resume", checkpoint, "--width", "16"}), checkpoint + ": a film of 32x32 pixels"},
-        {render_args(output, 8, {"--resume", checkpoint, "--backend", "reference"}),
+        {small_room_render_args(output, 8, {"--resume", checkpoint, "--width", "16"}),
+         checkpoint + ": a film of 32x32 pixels"},
+        {small_room_render_args(output, 8, {"--resume", checkpoint, "--backend", "reference"}),
          checkpoint + ": rendered by the opencl estimator, this render uses reference-float"},
-        {render_args(output, 2, {"--resume", checkpoint}), checkpoint + ": holds 3 samples per pixel, more than the 2"},
-        {render_args(output, 8, {"--resume", out_ / "truncated.wpfilm"}), "truncated"},
-        {render_args(output, 8, {"--resume", out_ / "corrupted.wpfilm"}), "corrupted (checksum mismatch)"},
+        {small_room_render_args(output, 2, {"--resume", checkpoint}),
+         checkpoint + ": holds 3 samples per pixel, more than the 2"},
+        {small_room_render_args(output, 8, {"--resume", out_ / "truncated.wpfilm"}), "truncated"},
+        {small_room_render_args(output, 8, {"--resume", out_ / "corrupted.wpfilm"}), "corrupted (checksum mismatch)"},
     };
     for (const Case& c : cases) {
         CommandResult r = run(c.args);
@@ -141,7 +129,7 @@ TEST_F(LongRenderCli, SigkillAtAnyMomentLeavesALoadableCheckpoint) {
         std::vector<std::string> extra{"-q", "--checkpoint", checkpoint, "--checkpoint-every", "0"};
         if (std::filesystem::exists(checkpoint)) extra.insert(extra.end(), {"--resume", checkpoint});
         const ino_t before = inode_of(checkpoint);
-        RunningWavepath process(render_args(output, spp, extra, wavefront), scratch_.path());
+        RunningWavepath process(small_room_render_args(output, spp, extra, wavefront), scratch_.path());
         ASSERT_TRUE(wait_for_new_file(checkpoint, before));
         std::this_thread::sleep_for(std::chrono::milliseconds(delay_ms(rng)));
         process.send(SIGKILL);
@@ -154,7 +142,7 @@ TEST_F(LongRenderCli, SigkillAtAnyMomentLeavesALoadableCheckpoint) {
                 EXPECT_EQ(read_image(output).width, 32);
             }
     }
-    CommandResult last = run(render_args(output, spp, {"-q", "--resume", checkpoint}, wavefront));
+    CommandResult last = run(small_room_render_args(output, spp, {"-q", "--resume", checkpoint}, wavefront));
     ASSERT_EQ(last.exit_code, 0) << last.err;
     EXPECT_TRUE(same_bytes(output, whole));
 }
@@ -163,8 +151,9 @@ TEST_F(LongRenderCli, SigkillAtAnyMomentLeavesALoadableCheckpoint) {
 // the checkpoint are written (the same film), the summary says so, exit 5.
 TEST_F(LongRenderCli, SigintWritesTheImageSoFarAndExits5) {
     const std::string checkpoint = out_ / "c.wpfilm", output = out_ / "out.pfm";
-    RunningWavepath process(render_args(output, 100000, {"--checkpoint", checkpoint, "--checkpoint-every", "0"}),
-                            scratch_.path());
+    RunningWavepath process(
+        small_room_render_args(output, 100000, {"--checkpoint", checkpoint, "--checkpoint-every", "0"}),
+        scratch_.path());
     ASSERT_TRUE(wait_for_file(checkpoint));
     process.send(SIGINT);
     const CommandResult r = process.wait();
@@ -181,9 +170,9 @@ TEST_F(LongRenderCli, SigintWritesTheImageSoFarAndExits5) {
 // given 100 ms to arrive.)
 TEST_F(LongRenderCli, SecondSigintExitsAtOnce) {
     const std::string checkpoint = out_ / "c.wpfilm";
-    RunningWavepath process(
-        render_args(out_ / "out.pfm", 100000, {"--checkpoint", checkpoint, "--checkpoint-every", "0"}, 1 << 16),
-        scratch_.path());
+    RunningWavepath process(small_room_render_args(out_ / "out.pfm", 100000,
+                                                   {"--checkpoint", checkpoint, "--checkpoint-every", "0"}, 1 << 16),
+                            scratch_.path());
     ASSERT_TRUE(wait_for_file(checkpoint));
     process.send(SIGINT);
     std::this_thread::sleep_for(std::chrono::milliseconds(100));
@@ -194,7 +183,7 @@ TEST_F(LongRenderCli, SecondSigintExitsAtOnce) {
 
 TEST_F(LongRenderCli, TimeBudgetStopsAtAWholePass) {
     const std::string stats = out_ / "stats.json";
-    CommandResult r = run(render_args(out_ / "out.pfm", 100000, {"--time", "0.001", "--stats-json", stats}));
+    CommandResult r = run(small_room_render_args(out_ / "out.pfm", 100000, {"--time", "0.001", "--stats-json", stats}));
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_NE(r.err.find("(32x32, 1 of 100000 spp, stopped: time budget, wavefront)"), std::string::npos) << r.err;
     const nlohmann::json json = nlohmann::json::parse(read_text(stats));
@@ -206,7 +195,8 @@ TEST_F(LongRenderCli, TimeBudgetStopsAtAWholePass) {
 // The estimate is checked at whole samples per pixel (4, 5, 6, 7, 8, 10, ...).
 TEST_F(LongRenderCli, TargetErrorStopsAtAWholeSampleAndSaysTheEstimate) {
     const std::string stats = out_ / "stats.json";
-    CommandResult r = run(render_args(out_ / "out.pfm", 100000, {"--target-error", "0.3", "--stats-json", stats}));
+    CommandResult r =
+        run(small_room_render_args(out_ / "out.pfm", 100000, {"--target-error", "0.3", "--stats-json", stats}));
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_NE(r.err.find("stopped: target error"), std::string::npos) << r.err;
     EXPECT_NE(r.err.find("estimated relative error 0."), std::string::npos) << r.err;
@@ -214,7 +204,8 @@ TEST_F(LongRenderCli, TargetErrorStopsAtAWholeSampleAndSaysTheEstimate) {
     EXPECT_EQ(json["stopped"], "target error");
     EXPECT_EQ(json["spp_done_min"], json["spp_done_max"]);
     EXPECT_LE(json["error_estimate"].get<double>(), 0.3);
-    CommandResult partial = run(render_args(out_ / "p.wpfilm", 8, {"--target-error", "0.1", "--samples", "0:4"}));
+    CommandResult partial =
+        run(small_room_render_args(out_ / "p.wpfilm", 8, {"--target-error", "0.1", "--samples", "0:4"}));
     EXPECT_EQ(partial.exit_code, 2);
     EXPECT_NE(partial.err.find("--target-error: needs the whole render"), std::string::npos) << partial.err;
 }
@@ -225,7 +216,7 @@ TEST_F(LongRenderCli, TargetErrorStopsAtAWholeSampleAndSaysTheEstimate) {
 // refuse adaptive films by name.
 TEST_F(LongRenderCli, AdaptiveReportsItsSamplesResumesAndRefusesPartials) {
     const std::string whole = out_ / "whole.pfm", stats = out_ / "stats.json", checkpoint = out_ / "c.wpfilm";
-    CommandResult r = run(render_args(whole, 32, {"--adaptive", "0.1", "--stats-json", stats}));
+    CommandResult r = run(small_room_render_args(whole, 32, {"--adaptive", "0.1", "--stats-json", stats}));
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_NE(r.err.find(", adaptive: mean "), std::string::npos) << r.err;
     EXPECT_NE(r.err.find("% of pixels stopped early"), std::string::npos) << r.err;
@@ -238,17 +229,21 @@ TEST_F(LongRenderCli, AdaptiveReportsItsSamplesResumesAndRefusesPartials) {
     EXPECT_EQ(json["samples"].get<double>(), mean * 32 * 32);
 
     ASSERT_EQ(
-        run(render_args(out_ / "part.pfm", 20, {"-q", "--adaptive", "0.1", "--checkpoint", checkpoint})).exit_code, 0);
+        run(small_room_render_args(out_ / "part.pfm", 20, {"-q", "--adaptive", "0.1", "--checkpoint", checkpoint}))
+            .exit_code,
+        0);
     CommandResult rest =
-        run(render_args(out_ / "resumed.pfm", 32, {"-q", "--adaptive", "0.1", "--resume", checkpoint}));
+        run(small_room_render_args(out_ / "resumed.pfm", 32, {"-q", "--adaptive", "0.1", "--resume", checkpoint}));
     ASSERT_EQ(rest.exit_code, 0) << rest.err;
     EXPECT_TRUE(same_bytes(out_ / "resumed.pfm", whole));
     EXPECT_FALSE(same_bytes(out_ / "part.pfm", whole));
-    CommandResult other = run(render_args(out_ / "other.pfm", 32, {"-q", "--adaptive", "0.2", "--resume", checkpoint}));
+    CommandResult other =
+        run(small_room_render_args(out_ / "other.pfm", 32, {"-q", "--adaptive", "0.2", "--resume", checkpoint}));
     EXPECT_EQ(other.exit_code, 3);
     EXPECT_NE(other.err.find("rendered with other settings"), std::string::npos) << other.err;
 
-    CommandResult partial = run(render_args(out_ / "p.wpfilm", 8, {"--adaptive", "0.05", "--samples", "0:4"}));
+    CommandResult partial =
+        run(small_room_render_args(out_ / "p.wpfilm", 8, {"--adaptive", "0.05", "--samples", "0:4"}));
     EXPECT_EQ(partial.exit_code, 2);
     EXPECT_NE(partial.err.find("--adaptive: needs the whole render"), std::string::npos) << partial.err;
     CommandResult merged = run({"merge", checkpoint, "-o", out_ / "merged.pfm"});
@@ -260,10 +255,11 @@ TEST_F(LongRenderCli, AdaptiveReportsItsSamplesResumesAndRefusesPartials) {
 // the one-process render's bits.
 TEST_F(LongRenderCli, MergedPartialFilmsGiveTheOneProcessImage) {
     const std::string whole = whole_render(12);
-    ASSERT_EQ(run(render_args(out_ / "a.wpfilm", 12, {"-q", "--samples", "0:3", "--backend", "megakernel"})).exit_code,
+    ASSERT_EQ(run(small_room_render_args(out_ / "a.wpfilm", 12, {"-q", "--samples", "0:3", "--backend", "megakernel"}))
+                  .exit_code,
               0);
-    ASSERT_EQ(run(render_args(out_ / "b.wpfilm", 12, {"-q", "--samples", "3:7"})).exit_code, 0);
-    ASSERT_EQ(run(render_args(out_ / "c.wpfilm", 12, {"-q", "--samples", "7:12"})).exit_code, 0);
+    ASSERT_EQ(run(small_room_render_args(out_ / "b.wpfilm", 12, {"-q", "--samples", "3:7"})).exit_code, 0);
+    ASSERT_EQ(run(small_room_render_args(out_ / "c.wpfilm", 12, {"-q", "--samples", "7:12"})).exit_code, 0);
     CommandResult merged =
         run({"merge", out_ / "c.wpfilm", out_ / "a.wpfilm", out_ / "b.wpfilm", "-o", out_ / "merged.pfm"});
     ASSERT_EQ(merged.exit_code, 0) << merged.err;
@@ -272,10 +268,11 @@ TEST_F(LongRenderCli, MergedPartialFilmsGiveTheOneProcessImage) {
 }
 
 TEST_F(LongRenderCli, MergeRefusesGapsOverlapsAndOtherRenders) {
-    ASSERT_EQ(run(render_args(out_ / "a.wpfilm", 12, {"-q", "--samples", "0:3"})).exit_code, 0);
-    ASSERT_EQ(run(render_args(out_ / "b.wpfilm", 12, {"-q", "--samples", "4:6"})).exit_code, 0);
-    ASSERT_EQ(run(render_args(out_ / "c.wpfilm", 12, {"-q", "--samples", "2:4"})).exit_code, 0);
-    ASSERT_EQ(run(render_args(out_ / "d.wpfilm", 12, {"-q", "--samples", "3:4", "--seed", "5"})).exit_code, 0);
+    ASSERT_EQ(run(small_room_render_args(out_ / "a.wpfilm", 12, {"-q", "--samples", "0:3"})).exit_code, 0);
+    ASSERT_EQ(run(small_room_render_args(out_ / "b.wpfilm", 12, {"-q", "--samples", "4:6"})).exit_code, 0);
+    ASSERT_EQ(run(small_room_render_args(out_ / "c.wpfilm", 12, {"-q", "--samples", "2:4"})).exit_code, 0);
+    ASSERT_EQ(run(small_room_render_args(out_ / "d.wpfilm", 12, {"-q", "--samples", "3:4", "--seed", "5"})).exit_code,
+              0);
     struct Case {
         std::vector<std::string> films;
         std::string message;
@@ -295,7 +292,7 @@ TEST_F(LongRenderCli, MergeRefusesGapsOverlapsAndOtherRenders) {
         EXPECT_NE(r.err.find(c.message), std::string::npos) << r.err;
         EXPECT_FALSE(std::filesystem::exists(out_ / "merged.png"));
     }
-    CommandResult image = run(render_args(out_ / "x.png", 12, {"--samples", "0:3"}));
+    CommandResult image = run(small_room_render_args(out_ / "x.png", 12, {"--samples", "0:3"}));
     EXPECT_EQ(image.exit_code, 2);
     EXPECT_NE(image.err.find("--samples: a partial render writes a film"), std::string::npos) << image.err;
 }

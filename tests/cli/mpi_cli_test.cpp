@@ -15,23 +15,11 @@
 #include <thread>
 
 #include "cli/run_wavepath.h"
+#include "cli/small_room_render.h"
 #include "longrun/film_file.h"
 
 namespace wp::test {
 namespace {
-
-const std::string kScene = std::string(WAVEPATH_SOURCE_DIR) + "/scenes/test/room_small.json";
-
-std::vector<std::string> render_args(const std::string& out, int spp, std::vector<std::string> extra = {}) {
-    std::vector<std::string> args{"render", kScene, "-o", out, "--spp", std::to_string(spp), "--wavefront", "64"};
-    args.insert(args.end(), extra.begin(), extra.end());
-    return args;
-}
-
-bool same_bytes(const std::string& a, const std::string& b) {
-    const std::string x = read_text(a), y = read_text(b);
-    return !x.empty() && x == y;
-}
 
 class MpiCli : public ::testing::Test {
  protected:
@@ -57,7 +45,7 @@ class MpiCli : public ::testing::Test {
     // The one-process render at `spp`.
     std::string one_process(int spp) {
         const std::string path = out_ / ("one" + std::to_string(spp) + ".pfm");
-        CommandResult r = run(render_args(path, spp, {"-q"}));
+        CommandResult r = run(small_room_render_args(path, spp, {"-q"}));
         EXPECT_EQ(r.exit_code, 0) << r.err;
         return path;
     }
@@ -70,7 +58,7 @@ TEST_F(MpiCli, OneTwoAndThreeRanksGiveTheOneProcessBits) {
     for (int ranks : {1, 2, 3}) {
         SCOPED_TRACE(ranks);
         const std::string out = out_ / ("ranks" + std::to_string(ranks) + ".pfm"), stats = out_ / "stats.json";
-        CommandResult r = run_on(ranks, render_args(out, 7, {"--stats-json", stats}));
+        CommandResult r = run_on(ranks, small_room_render_args(out, 7, {"--stats-json", stats}));
         ASSERT_EQ(r.exit_code, 0) << r.err;
         EXPECT_TRUE(same_bytes(out, one));
         if (ranks > 1) {
@@ -93,13 +81,13 @@ TEST_F(MpiCli, OneTwoAndThreeRanksGiveTheOneProcessBits) {
 
 TEST_F(MpiCli, CheckpointOfTwoRanksResumesOnOneAndThree) {
     const std::string one = one_process(12), checkpoint = out_ / "c.wpfilm";
-    CommandResult first = run_on(2, render_args(out_ / "part.pfm", 5, {"-q", "--checkpoint", checkpoint}));
+    CommandResult first = run_on(2, small_room_render_args(out_ / "part.pfm", 5, {"-q", "--checkpoint", checkpoint}));
     ASSERT_EQ(first.exit_code, 0) << first.err;
     EXPECT_EQ(read_film_file(checkpoint).film.items, (ItemRange{0, 5 * 1024}));
-    CommandResult alone = run(render_args(out_ / "alone.pfm", 12, {"-q", "--resume", checkpoint}));
+    CommandResult alone = run(small_room_render_args(out_ / "alone.pfm", 12, {"-q", "--resume", checkpoint}));
     ASSERT_EQ(alone.exit_code, 0) << alone.err;
     EXPECT_TRUE(same_bytes(out_ / "alone.pfm", one));
-    CommandResult three = run_on(3, render_args(out_ / "three.pfm", 12, {"-q", "--resume", checkpoint}));
+    CommandResult three = run_on(3, small_room_render_args(out_ / "three.pfm", 12, {"-q", "--resume", checkpoint}));
     ASSERT_EQ(three.exit_code, 0) << three.err;
     EXPECT_TRUE(same_bytes(out_ / "three.pfm", one));
 }
@@ -109,11 +97,11 @@ TEST_F(MpiCli, CheckpointOfTwoRanksResumesOnOneAndThree) {
 // one-process bits.
 TEST_F(MpiCli, TimeBudgetStopsEveryRankAfterTheSameRound) {
     const std::string one = one_process(7), film = out_ / "t.wpfilm";
-    CommandResult timed = run_on(2, render_args(film, 100000, {"--time", "0.001"}));
+    CommandResult timed = run_on(2, small_room_render_args(film, 100000, {"--time", "0.001"}));
     ASSERT_EQ(timed.exit_code, 0) << timed.err;
     EXPECT_NE(timed.err.find("stopped: time budget"), std::string::npos) << timed.err;
     EXPECT_EQ(read_film_file(film).film.items, (ItemRange{0, 2 * 1024}));
-    CommandResult rest = run(render_args(out_ / "rest.pfm", 7, {"-q", "--resume", film}));
+    CommandResult rest = run(small_room_render_args(out_ / "rest.pfm", 7, {"-q", "--resume", film}));
     ASSERT_EQ(rest.exit_code, 0) << rest.err;
     EXPECT_TRUE(same_bytes(out_ / "rest.pfm", one));
 }
@@ -122,8 +110,8 @@ TEST_F(MpiCli, TimeBudgetStopsEveryRankAfterTheSameRound) {
 // stop at the one-process sample.
 TEST_F(MpiCli, TargetErrorStopsAtTheOneProcessSample) {
     const std::string one = out_ / "one.pfm", two = out_ / "two.pfm";
-    ASSERT_EQ(run(render_args(one, 100000, {"-q", "--target-error", "0.3"})).exit_code, 0);
-    CommandResult r = run_on(2, render_args(two, 100000, {"--target-error", "0.3"}));
+    ASSERT_EQ(run(small_room_render_args(one, 100000, {"-q", "--target-error", "0.3"})).exit_code, 0);
+    CommandResult r = run_on(2, small_room_render_args(two, 100000, {"--target-error", "0.3"}));
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_NE(r.err.find("stopped: target error"), std::string::npos) << r.err;
     EXPECT_TRUE(same_bytes(two, one));
@@ -135,17 +123,18 @@ TEST_F(MpiCli, TargetErrorStopsAtTheOneProcessSample) {
 // resumes on 3 to them too.
 TEST_F(MpiCli, AdaptiveSamplingGivesTheOneProcessBits) {
     const std::string one = out_ / "one.pfm", two = out_ / "two.pfm", checkpoint = out_ / "c.wpfilm";
-    ASSERT_EQ(run(render_args(one, 32, {"-q", "--adaptive", "0.1"})).exit_code, 0);
-    CommandResult r = run_on(2, render_args(two, 32, {"--adaptive", "0.1"}));
+    ASSERT_EQ(run(small_room_render_args(one, 32, {"-q", "--adaptive", "0.1"})).exit_code, 0);
+    CommandResult r = run_on(2, small_room_render_args(two, 32, {"--adaptive", "0.1"}));
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_NE(r.err.find("% of pixels stopped early"), std::string::npos) << r.err;
     EXPECT_TRUE(same_bytes(two, one));
-    ASSERT_EQ(run_on(2, render_args(out_ / "part.pfm", 20, {"-q", "--adaptive", "0.1", "--checkpoint", checkpoint}))
+    ASSERT_EQ(run_on(2, small_room_render_args(out_ / "part.pfm", 20,
+                                               {"-q", "--adaptive", "0.1", "--checkpoint", checkpoint}))
                   .exit_code,
               0);
     EXPECT_TRUE(read_film_file(checkpoint).film.in_round());
     CommandResult three =
-        run_on(3, render_args(out_ / "three.pfm", 32, {"-q", "--adaptive", "0.1", "--resume", checkpoint}));
+        run_on(3, small_room_render_args(out_ / "three.pfm", 32, {"-q", "--adaptive", "0.1", "--resume", checkpoint}));
     ASSERT_EQ(three.exit_code, 0) << three.err;
     EXPECT_TRUE(same_bytes(out_ / "three.pfm", one));
 }
@@ -155,7 +144,7 @@ TEST_F(MpiCli, AdaptiveSamplingGivesTheOneProcessBits) {
 // rendered: one error line naming the rank, its exit code, no output.
 TEST_F(MpiCli, ARankThatCannotStartFailsTheJobWithOneLine) {
     const std::string out = out_ / "out.pfm";
-    std::vector<std::string> args = render_args(out, 4);
+    std::vector<std::string> args = small_room_render_args(out, 4);
     const std::vector<std::string> missing{":", "-n",    "1", WAVEPATH_BINARY, "render", out_ / "missing.json", "-o",
                                            out, "--spp", "4", "--wavefront",   "64"};
     std::vector<std::string> with_missing = args;
@@ -167,7 +156,7 @@ TEST_F(MpiCli, ARankThatCannotStartFailsTheJobWithOneLine) {
     EXPECT_FALSE(std::filesystem::exists(out));
 
     const std::string brighter = out_ / "brighter.json";
-    std::string scene = read_text(kScene);
+    std::string scene = read_text(kSmallRoomScene);
     scene.replace(scene.find("[14, 14, 14]"), 12, "[15, 14, 14]");
     write_text(brighter, scene);
     std::vector<std::string> other_scene = args;
@@ -184,7 +173,7 @@ TEST_F(MpiCli, ARankThatCannotStartFailsTheJobWithOneLine) {
     // Another spp: not part of the render's identity (the seed is), but of the plan.
     std::vector<std::string> other_spp = args;
     other_spp.insert(other_spp.end(), {":", "-n", "1", WAVEPATH_BINARY});
-    const std::vector<std::string> five = render_args(out, 5);
+    const std::vector<std::string> five = small_room_render_args(out, 5);
     other_spp.insert(other_spp.end(), five.begin(), five.end());
     r = run_on(1, other_spp);
     EXPECT_EQ(r.exit_code, 2) << r.err;
@@ -197,7 +186,7 @@ TEST_F(MpiCli, ARankThatCannotStartFailsTheJobWithOneLine) {
 // ends the job at once with its exit code (MPI_Abort).
 TEST_F(MpiCli, ARankThatFailsWhileOthersRenderEndsTheJob) {
     const std::string out = out_ / "out.pfm";
-    std::vector<std::string> args = render_args(out, 100000);
+    std::vector<std::string> args = small_room_render_args(out, 100000);
     std::vector<std::string> failing = args;
     failing.insert(failing.end(), {":", "-n", "1", WAVEPATH_BINARY});
     failing.insert(failing.end(), args.begin(), args.end());
@@ -214,9 +203,10 @@ TEST_F(MpiCli, ARankThatFailsWhileOthersRenderEndsTheJob) {
 // the one-process bits.
 TEST_F(MpiCli, ARankThatDiesFailsTheJobAndTheCheckpointStillResumes) {
     const std::string out = out_ / "out.pfm", checkpoint = out_ / "c.wpfilm";
-    ASSERT_EQ(run_on(2, render_args(out_ / "first.pfm", 3, {"-q", "--checkpoint", checkpoint})).exit_code, 0);
-    std::vector<std::string> args =
-        render_args(out, 100000, {"--resume", checkpoint, "--checkpoint", checkpoint, "--checkpoint-every", "0"});
+    ASSERT_EQ(run_on(2, small_room_render_args(out_ / "first.pfm", 3, {"-q", "--checkpoint", checkpoint})).exit_code,
+              0);
+    std::vector<std::string> args = small_room_render_args(
+        out, 100000, {"--resume", checkpoint, "--checkpoint", checkpoint, "--checkpoint-every", "0"});
     std::vector<std::string> dying = args;
     dying.insert(dying.end(), {":", "-n", "1", "timeout", "-s", "KILL", "2", WAVEPATH_BINARY});
     dying.insert(dying.end(), args.begin(), args.end());
@@ -229,7 +219,7 @@ TEST_F(MpiCli, ARankThatDiesFailsTheJobAndTheCheckpointStillResumes) {
     ASSERT_EQ(film.items.begin, 0u);
     ASSERT_GE(film.items.end, 3u * 1024);
     const int spp = int(film.max_samples()) + 1;
-    CommandResult rest = run(render_args(out_ / "rest.pfm", spp, {"-q", "--resume", checkpoint}));
+    CommandResult rest = run(small_room_render_args(out_ / "rest.pfm", spp, {"-q", "--resume", checkpoint}));
     ASSERT_EQ(rest.exit_code, 0) << rest.err;
     EXPECT_TRUE(same_bytes(out_ / "rest.pfm", one_process(spp)));
 }
@@ -243,7 +233,7 @@ TEST_F(MpiCli, SigintOnMpirunWritesTheImageOfTheCheckpoint) {
     const std::string out = out_ / "out.pfm", checkpoint = out_ / "c.wpfilm", merged = out_ / "merged.pfm";
     std::vector<std::string> launcher = mpirun(2);
     launcher.insert(launcher.begin() + 1, {"--mca", "odls_base_sigkill_timeout", "3"});
-    RunningWavepath job(render_args(out, 100000, {"--checkpoint", checkpoint, "--checkpoint-every", "0"}),
+    RunningWavepath job(small_room_render_args(out, 100000, {"--checkpoint", checkpoint, "--checkpoint-every", "0"}),
                         scratch_.path(), launcher);
     for (int i = 0; i < 6000 && !std::filesystem::exists(checkpoint); ++i)
         std::this_thread::sleep_for(std::chrono::milliseconds(10));

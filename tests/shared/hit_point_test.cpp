@@ -23,6 +23,7 @@
 
 #include "core/shared_math.h"
 #include "support/real_types.h"
+#include "support/shape_placements.h"
 
 namespace {
 
@@ -30,25 +31,15 @@ template <class Real>
 class HitPoint : public ::testing::Test {};
 TYPED_TEST_SUITE(HitPoint, wp::test::RealTypes, wp::test::RealTypeNames);
 
+using wp::test::LongVec;
+using wp::test::Placement;
+using wp::test::to_long;
 using wp::test::Vec3;
-using LongVec = glm::vec<3, long double>;
 
-template <class Vector>
-LongVec to_long(const Vector& v) {
-    return LongVec(v);
-}
-
-const double kScales[] = {1e-6, 1e-3, 1.0, 1e3, 1e6};
 constexpr int kRaysPerScale = 400;
 constexpr double kLeastWorstRatio = 0.25;  // bound <= 4x the worst error measured
 
-// Where the shape sits and where rays come from, in units of its size.
-struct Placement {
-    const char* name;
-    glm::dvec3 shape_position;  // added to the shape's coordinates
-    glm::dvec3 ray_origin;      // rays start within a unit cube around it
-};
-const Placement kPlacements[] = {
+const Placement kHitPointPlacements[] = {
     {"near the origin", {0, 0, 0}, {0, 0, 2}},
     {"translated by 1e5", {1e5, -3e4, 2e4}, {1e5, -3e4, 2e4 + 2.0}},
     {"rays from 1e4 away", {0, 0, 0}, {2e3, 5e3, 8e3}},
@@ -77,9 +68,9 @@ template <class Real>
 void check_bound_tightness(const char* shape, const AddHit<Real>& add_hit) {
     std::mt19937_64 random(12345);
     std::uniform_real_distribution<double> jitter(-0.5, 0.5);
-    for (const Placement& placement : kPlacements) {
+    for (const Placement& placement : kHitPointPlacements) {
         WorstRatio ratio;
-        for (double scale : kScales) {
+        for (double scale : wp::test::kShapeScales) {
             SCOPED_TRACE(std::string(shape) + ", " + placement.name + ", scale " + std::to_string(scale));
             for (int i = 0; i < kRaysPerScale; ++i) {
                 glm::dvec3 origin = placement.ray_origin + glm::dvec3(jitter(random), jitter(random), jitter(random));

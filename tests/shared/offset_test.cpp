@@ -19,6 +19,7 @@
 #include "core/shared_math.h"
 #include "support/directions.h"
 #include "support/real_types.h"
+#include "support/shape_placements.h"
 
 namespace {
 
@@ -26,19 +27,14 @@ template <class Real>
 class Offset : public ::testing::Test {};
 TYPED_TEST_SUITE(Offset, wp::test::RealTypes, wp::test::RealTypeNames);
 
+using wp::test::LongVec;
+using wp::test::Placement;
+using wp::test::to_long;
 using wp::test::Vec3;
-using LongVec = glm::vec<3, long double>;
 
-const double kScales[] = {1e-6, 1e-3, 1.0, 1e3, 1e6};
 constexpr int kHitPoints = 200;
 
-// Where the shape sits and where rays come from, in units of the shape's size.
-struct Placement {
-    const char* name;
-    glm::dvec3 shape_position;  // added to the shape's coordinates
-    glm::dvec3 ray_origin;
-};
-const Placement kPlacements[] = {
+const Placement kOffsetPlacements[] = {
     {"near the origin", {0, 0, 0}, {0, 0, 0}},
     {"translated by 1e5", {1e5, -3e4, 2e4}, {1e5, -3e4, 2e4 + 3.0}},
     {"rays from 1e4 away", {0, 0, 0}, {2e3, 5e3, 8e3}},
@@ -68,16 +64,11 @@ long double exit_distance(const LongVec& center, long double radius, const LongV
     return b + std::sqrt(radius * radius - glm::dot(closest, closest));
 }
 
-template <class Vector>
-LongVec to_long(const Vector& v) {
-    return LongVec(v);
-}
-
 TYPED_TEST(Offset, SphereHitPointsLeaveTheSurface) {
     using R = TypeParam;
     using M = wp::SharedMath<R>;
-    for (const Placement& placement : kPlacements) {
-        for (double scale : kScales) {
+    for (const Placement& placement : kOffsetPlacements) {
+        for (double scale : wp::test::kShapeScales) {
             SCOPED_TRACE(std::string(placement.name) + ", scale " + std::to_string(scale));
             const Vec3<R> center((glm::dvec3(0.3, -0.2, -2.0) + placement.shape_position) * scale);
             const R radius = R(0.7 * scale);
@@ -177,8 +168,8 @@ void expect_offsets_leave_flat_surface(
 TYPED_TEST(Offset, FlatHitPointsLeaveTheSurfaceOnBothSides) {
     using R = TypeParam;
     using M = wp::SharedMath<R>;
-    for (const Placement& placement : kPlacements) {
-        for (double scale : kScales) {
+    for (const Placement& placement : kOffsetPlacements) {
+        for (double scale : wp::test::kShapeScales) {
             SCOPED_TRACE(std::string(placement.name) + ", scale " + std::to_string(scale));
             const Vec3<R> corner((glm::dvec3(-0.6, -0.5, -1.5) + placement.shape_position) * scale);
             const Vec3<R> e1(glm::dvec3(1.2, 0.1, 0.2) * scale), e2(glm::dvec3(0.1, 1.0, -0.4) * scale);

@@ -64,7 +64,9 @@ TEST(Profile, KernelItemsMatchTheRaysTheRenderCounted) {
 
     for (const char* stage : {"generate", "intersect", "shade_direct", "intersect_shadow", "scatter"}) {
         EXPECT_GT(p.kernel(stage).device_s, 0.0) << stage;
-        if (std::string(stage) != "generate") EXPECT_EQ(p.kernel(stage).launches, p.iterations) << stage;
+        if (std::string(stage) != "generate") {
+            EXPECT_EQ(p.kernel(stage).launches, p.iterations) << stage;
+        }
     }
     // Generate is launched only in the iterations that start paths (not in a pass's drain).
     const auto starting = std::count_if(report.iterations.begin(), report.iterations.end(),
