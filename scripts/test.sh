@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
 # Sets up, builds, and runs the whole test suite through CTest; then builds
 # it again with AddressSanitizer and UndefinedBehaviorSanitizer (clang, in
-# build-asan, with the libFuzzer targets) and runs all of it there but four
-# checks that run none of our C++ (docs/bad-input.md, "The sanitizer build").
+# build-asan, a unity build, with the libFuzzer targets) and runs all of it
+# there but four checks that would add nothing: the format check, the
+# Python-only converter test, a second run of test_robustness and the Mitsuba
+# oracle (docs/bad-input.md, "The sanitizer build": why, and what it costs).
 # Usage: bash scripts/test.sh
 set -euo pipefail
 cd "$(dirname "$0")/.."
