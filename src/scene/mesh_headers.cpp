@@ -111,6 +111,8 @@ class PlyHeader {
             take_elements("PLY", e.count, "\"" + e.name + "\" elements", e.min_bytes, available);
     }
 
+    bool binary() const { return binary_; }
+
  private:
     [[noreturn]] void fail(const std::string& problem) const {
         throw MeshFileError("PLY header line " + std::to_string(line_) + ": " + problem);
@@ -144,13 +146,23 @@ class PlyHeader {
     std::vector<PlyElement> elements_;
 };
 
-void check_ply(const std::string& head, std::uintmax_t file_size) {
+// An ASCII PLY's body is text: a NUL byte in a number makes assimp's reader
+// allocate gigabytes (15 GB for a face line, found by fuzz_mesh).
+void check_ply_text(const std::string& text, std::size_t body_start) {
+    if (const std::size_t nul = text.find('\0', body_start); nul != std::string::npos)
+        throw MeshFileError("PLY byte " + std::to_string(nul) + ": a NUL byte in an ASCII PLY's body");
+}
+
+void check_ply(const std::filesystem::path& path, const std::string& head, std::uintmax_t file_size) {
     PlyHeader header;
     std::size_t start = 0;
     for (std::size_t newline; (newline = head.find('\n', start)) != std::string::npos;) {
         const std::vector<std::string_view> words = split_words(std::string_view(head).substr(start, newline - start));
         start = newline + 1;
-        if (header.read_line(words)) return header.check_sizes(file_size - start);
+        if (!header.read_line(words)) continue;
+        header.check_sizes(file_size - start);
+        if (!header.binary()) check_ply_text(read_file(path, file_size), start);
+        return;
     }
     throw MeshFileError(head.size() < kHeaderLimit ? "PLY header has no end_header line"
                                                    : "PLY header has no end_header line in the first " +
@@ -180,7 +192,7 @@ void check_mesh_header(const std::filesystem::path& path) {
     std::size_t start = 0;
     // In lower case: assimp takes "plY\xff..." for PLY too.
     const std::string magic = to_lower(std::string(next_word(head, start)));
-    if (magic.starts_with("ply")) check_ply(head, file_size);
+    if (magic.starts_with("ply")) check_ply(path, head, file_size);
 }
 
 }  // namespace wp

@@ -73,6 +73,18 @@ TEST_F(MeshHeaders, AsciiPlyCountsMustFitTwoBytesAProperty) {
               "PLY header declares 2 \"vertex\" elements, more than the remaining 7 bytes of the file can hold");
 }
 
+// A NUL byte in a face line made assimp allocate 15 GB (fuzz_mesh; the
+// corpus's mesh_ply_nul_in_ascii_body.ply); binary bodies may hold any byte.
+TEST_F(MeshHeaders, AsciiPlyBodyHoldsNoNulByte) {
+    const std::string header =
+        "ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nproperty float y\nend_header\n";
+    EXPECT_EQ(problem("a.ply", header + "0 0\n1 1\n"), "(none)");
+    EXPECT_EQ(problem("a.ply", header + "0 0\n1 1" + std::string(1, '\0') + "\n"),
+              "PLY byte " + std::to_string(header.size() + 7) + ": a NUL byte in an ASCII PLY's body");
+    const std::string binary = "ply\nformat binary_little_endian 1.0\nelement vertex 1\nproperty float x\nend_header\n";
+    EXPECT_EQ(problem("a.ply", binary + std::string(4, '\0')), "(none)");
+}
+
 TEST_F(MeshHeaders, PlyHeaderMustEndAndCountsMustBeCounts) {
     EXPECT_EQ(problem("a.ply", "ply\nformat ascii 1.0\nelement vertex 0\n"), "PLY header has no end_header line");
     EXPECT_EQ(problem("a.ply", "ply\nformat ascii 1.0\n" + std::string(1 << 16, 'x') + "\nend_header\n"),
