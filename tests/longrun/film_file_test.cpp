@@ -11,6 +11,7 @@
 #include "support/analytic_scenes.h"
 #include "support/film_sums.h"
 #include "support/temp_directory.h"
+#include "support/thrown_message.h"
 
 namespace wp {
 namespace {
@@ -36,12 +37,7 @@ void write_bytes(const std::string& path, const std::vector<char>& bytes) {
 
 // The FilmFileError message of reading `path`, "" if it reads.
 std::string read_error(const std::string& path) {
-    try {
-        read_film_file(path);
-    } catch (const FilmFileError& e) {
-        return e.what();
-    }
-    return "";
+    return thrown_message<FilmFileError>([&] { read_film_file(path); }, "");
 }
 
 class FilmFileTest : public ::testing::Test {

@@ -12,6 +12,7 @@
 
 #include "scene/mesh_file.h"
 #include "support/mesh_files.h"
+#include "support/thrown_message.h"
 
 namespace wp::test {
 namespace {
@@ -23,12 +24,7 @@ class MeshHeaders : public ::testing::Test {
     // The message check_mesh_header throws for a file of `bytes`, or "(none)".
     std::string problem(const std::string& name, const std::string& bytes) {
         write_file(dir_ / name, bytes);
-        try {
-            check_mesh_header(dir_ / name);
-        } catch (const MeshFileError& error) {
-            return error.what();
-        }
-        return "(none)";
+        return thrown_message<MeshFileError>([&] { check_mesh_header(dir_ / name); });
     }
     MeshHeaders() { fs::create_directories(dir_); }
     ~MeshHeaders() override { fs::remove_all(dir_); }

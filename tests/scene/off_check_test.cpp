@@ -9,18 +9,14 @@
 
 #include "scene/mesh_file.h"
 #include "support/mesh_files.h"
+#include "support/thrown_message.h"
 
 namespace wp::test {
 namespace {
 
 // The message check_off throws, or "(none)".
 std::string problem(const std::string& text) {
-    try {
-        check_off(text);
-    } catch (const MeshFileError& error) {
-        return error.what();
-    }
-    return "(none)";
+    return thrown_message<MeshFileError>([&] { check_off(text); });
 }
 
 // A triangle's header and vertices (lines 1 to 5): the face lines follow.
