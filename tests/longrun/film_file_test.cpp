@@ -37,7 +37,7 @@ void write_bytes(const std::string& path, const std::vector<char>& bytes) {
 
 // The FilmFileError message of reading `path`, "" if it reads.
 std::string read_error(const std::string& path) {
-    return thrown_message<FilmFileError>([&] { read_film_file(path); }, "");
+    return test::thrown_message<FilmFileError>([&] { read_film_file(path); }, "");
 }
 
 class FilmFileTest : public ::testing::Test {
