@@ -19,7 +19,7 @@
 #include <memory>
 
 #include "scene/json_field.h"
-#include "scene/mesh_headers.h"
+#include "scene/assimp_prechecks.h"
 
 namespace wp {
 namespace {
@@ -266,7 +266,7 @@ class MeshMerger {
 
 Mesh read_mesh_file(const std::filesystem::path& path, const MeshFileOptions& options) {
     check_readable(path);
-    check_mesh_header(path);
+    check_before_assimp(path);
     Assimp::Importer importer;
     const aiScene* scene = import_triangles(importer, path);
     return MeshMerger(*scene, options).merge();

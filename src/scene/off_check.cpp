@@ -1,13 +1,13 @@
 #include "scene/off_check.h"
 
 #include <algorithm>
-#include <charconv>
 #include <cstddef>
 #include <cstdint>
 #include <string>
 #include <vector>
 
 #include "scene/mesh_file.h"
+#include "scene/mesh_words.h"
 
 namespace wp {
 namespace {
@@ -19,40 +19,11 @@ constexpr std::uint64_t kMaxFaceVertices = 9;
 // assimp reads counts and indices into 32 bits, wrapping larger ones.
 constexpr std::uint64_t kMaxCount = 0xffffffffu;
 
-bool is_blank(char c) { return c == ' ' || c == '\t'; }
-
 // Between the header's words, as assimp skips them.
 bool is_header_space(char c) { return is_blank(c) || c == '\r' || c == '\n'; }
 
 // assimp ends a line at any of these and skips the empty lines between.
 bool is_line_end(char c) { return c == '\r' || c == '\n' || c == '\f'; }
-
-// A whole word of decimal digits, at most `max`.
-bool parse_whole_number(std::string_view word, std::uint64_t max, std::uint64_t& value) {
-    auto [end, error] = std::from_chars(word.data(), word.data() + word.size(), value);
-    return error == std::errc() && end == word.data() + word.size() && value <= max;
-}
-
-// A whole word that is a decimal real number (overflow included: assimp reads
-// it as infinity, which the mesh checks report).
-bool is_real(std::string_view word) {
-    if (word.starts_with('+')) word.remove_prefix(1);
-    double value = 0.0;
-    auto [end, error] = std::from_chars(word.data(), word.data() + word.size(), value);
-    return end == word.data() + word.size() && !word.empty() &&
-           (error == std::errc() || error == std::errc::result_out_of_range);
-}
-
-std::vector<std::string_view> blank_separated_words(std::string_view line) {
-    std::vector<std::string_view> words;
-    for (std::size_t i = 0; i < line.size();) {
-        while (i < line.size() && is_blank(line[i])) ++i;
-        const std::size_t start = i;
-        while (i < line.size() && !is_blank(line[i])) ++i;
-        if (i > start) words.push_back(line.substr(start, i - start));
-    }
-    return words;
-}
 
 // The layout the header announces.
 struct OffHeader {
