@@ -9,6 +9,7 @@
 #include <string_view>
 
 #include "scene/mesh_file.h"
+#include "scene/mesh_words.h"
 #include "scene/off_check.h"
 #include "scene/ply_check.h"
 
@@ -31,8 +32,6 @@ std::string to_lower(std::string text) {
     std::transform(text.begin(), text.end(), text.begin(), [](unsigned char c) { return std::tolower(c); });
     return text;
 }
-
-bool is_space(char c) { return std::isspace(static_cast<unsigned char>(c)) != 0; }
 
 // The next word of `text` from `i` on (empty at the end), `i` moved past it.
 std::string_view next_word(std::string_view text, std::size_t& i) {

@@ -18,8 +18,8 @@
 #include <limits>
 #include <memory>
 
-#include "scene/json_field.h"
 #include "scene/assimp_prechecks.h"
+#include "scene/json_field.h"
 
 namespace wp {
 namespace {

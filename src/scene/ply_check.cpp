@@ -78,19 +78,6 @@ std::optional<std::uint64_t> as_list_count(double value) {
 
 // ---- the header ----
 
-bool is_space(char c) { return std::isspace(static_cast<unsigned char>(c)) != 0; }
-
-std::vector<std::string_view> space_separated_words(std::string_view line) {
-    std::vector<std::string_view> words;
-    for (std::size_t i = 0; i < line.size();) {
-        while (i < line.size() && is_space(line[i])) ++i;
-        const std::size_t start = i;
-        while (i < line.size() && !is_space(line[i])) ++i;
-        if (i > start) words.push_back(line.substr(start, i - start));
-    }
-    return words;
-}
-
 // The header's lines, strictly as the PLY format defines them: assimp's
 // reader loops forever on some it does not expect (found by fuzz_mesh).
 class PlyHeader {
@@ -377,7 +364,7 @@ void check_ply(std::string_view file) {
     const std::string_view head = file.substr(0, kHeaderLimit);
     std::size_t start = 0;
     for (std::size_t newline; (newline = head.find('\n', start)) != std::string_view::npos;) {
-        const std::vector<std::string_view> words = space_separated_words(head.substr(start, newline - start));
+        const std::vector<std::string_view> words = split_words(head.substr(start, newline - start), is_space);
         start = newline + 1;
         if (!header.read_line(words)) continue;
         if (header.layout().binary)

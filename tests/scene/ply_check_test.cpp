@@ -17,7 +17,7 @@ namespace wp::test {
 namespace {
 
 // The message check_ply throws, or "(none)".
-std::string problem(const std::string& file) {
+std::string ply_problem(const std::string& file) {
     return thrown_message<MeshFileError>([&] { check_ply(file); });
 }
 
@@ -35,49 +35,50 @@ std::string binary_header(const std::string& format, const std::string& count_ty
 }
 
 TEST(PlyCheck, FilesAsTheFormatDefinesThemPass) {
-    EXPECT_EQ(problem(kSquarePlyAscii), "(none)");
-    EXPECT_EQ(problem(square_ply_binary()), "(none)");
-    EXPECT_EQ(problem(kAsciiHeader + "0.5 -1\n+1e-3 +2\n3 0 1 -7\n"), "(none)");
+    EXPECT_EQ(ply_problem(kSquarePlyAscii), "(none)");
+    EXPECT_EQ(ply_problem(square_ply_binary()), "(none)");
+    EXPECT_EQ(ply_problem(kAsciiHeader + "0.5 -1\n+1e-3 +2\n3 0 1 -7\n"), "(none)");
     // Blanks around words, CRLF, blank lines after the last element, no final line end.
-    EXPECT_EQ(problem(kAsciiHeader + " nan\t0 \r\n-inf 1\r\n0\r\n\r\n \n"), "(none)");
-    EXPECT_EQ(problem(kAsciiHeader + "0 0\n1 1\n2 0 1"), "(none)");
-    EXPECT_EQ(problem("ply\r\nformat ascii 1.0\r\ncomment made by hand\r\nobj_info x\r\nelement v 1\r\n"
-                      "property float x\r\nend_header\r\n0\r\n"),
+    EXPECT_EQ(ply_problem(kAsciiHeader + " nan\t0 \r\n-inf 1\r\n0\r\n\r\n \n"), "(none)");
+    EXPECT_EQ(ply_problem(kAsciiHeader + "0 0\n1 1\n2 0 1"), "(none)");
+    EXPECT_EQ(ply_problem("ply\r\nformat ascii 1.0\r\ncomment made by hand\r\nobj_info x\r\nelement v 1\r\n"
+                          "property float x\r\nend_header\r\n0\r\n"),
               "(none)");
     std::string little = binary_header("binary_little_endian") + std::string(24, '\0');
     append_bytes(little, std::uint32_t{1});
     append_bytes(little, std::int32_t{0});
-    EXPECT_EQ(problem(little), "(none)");
-    EXPECT_EQ(problem(little + "bytes after the last element"), "(none)");  // assimp ignores them
+    EXPECT_EQ(ply_problem(little), "(none)");
+    EXPECT_EQ(ply_problem(little + "bytes after the last element"), "(none)");  // assimp ignores them
     // The same count, 1, big-endian.
-    EXPECT_EQ(problem(binary_header("binary_big_endian") + std::string(24, '\0') + std::string("\0\0\0\1", 4) +
-                      std::string(4, '\0')),
+    EXPECT_EQ(ply_problem(binary_header("binary_big_endian") + std::string(24, '\0') + std::string("\0\0\0\1", 4) +
+                          std::string(4, '\0')),
               "(none)");
 }
 
 TEST(PlyCheck, HeaderMustEnd) {
-    EXPECT_EQ(problem("ply\nformat ascii 1.0\nelement vertex 0\n"), "PLY header has no end_header line");
-    EXPECT_EQ(problem("ply\nformat ascii 1.0\n" + std::string(1 << 16, 'x') + "\nend_header\n"),
+    EXPECT_EQ(ply_problem("ply\nformat ascii 1.0\nelement vertex 0\n"), "PLY header has no end_header line");
+    EXPECT_EQ(ply_problem("ply\nformat ascii 1.0\n" + std::string(1 << 16, 'x') + "\nend_header\n"),
               "PLY header has no end_header line in the first 65536 bytes");
 }
 
 TEST(PlyCheck, HeaderLinesAreWhatTheFormatDefines) {
     // assimp's reader looped forever on the first (found by fuzz_mesh).
-    EXPECT_EQ(problem("ply\nply\xff\xff\nformat ascii 1.0\nend_header\n"),
+    EXPECT_EQ(ply_problem("ply\nply\xff\xff\nformat ascii 1.0\nend_header\n"),
               "PLY header line 2: expected \"format ascii|binary_little_endian|binary_big_endian VERSION\"");
-    EXPECT_EQ(problem("ply extra\nformat ascii 1.0\nend_header\n"), "PLY header line 1: expected \"ply\"");
-    EXPECT_EQ(problem("ply\xff\nformat ascii 1.0\nend_header\n"), "PLY header line 1: expected \"ply\"");
-    EXPECT_EQ(problem("plY\nformat ascii 1.0\nend_header\n"), "PLY header line 1: expected \"ply\"");
-    EXPECT_EQ(problem("ply\nformat ascii 1.0\nelement vertex -1\nend_header\n"),
+    EXPECT_EQ(ply_problem("ply extra\nformat ascii 1.0\nend_header\n"), "PLY header line 1: expected \"ply\"");
+    EXPECT_EQ(ply_problem("ply\xff\nformat ascii 1.0\nend_header\n"), "PLY header line 1: expected \"ply\"");
+    EXPECT_EQ(ply_problem("plY\nformat ascii 1.0\nend_header\n"), "PLY header line 1: expected \"ply\"");
+    EXPECT_EQ(ply_problem("ply\nformat ascii 1.0\nelement vertex -1\nend_header\n"),
               "PLY header line 3: expected \"element NAME COUNT\"");
-    EXPECT_EQ(problem("ply\nformat ascii 1.0\nproperty float x\nend_header\n"),
+    EXPECT_EQ(ply_problem("ply\nformat ascii 1.0\nproperty float x\nend_header\n"),
               "PLY header line 3: a property before any element");
     const std::string not_a_property =
         "PLY header line 4: expected \"property TYPE NAME\" or \"property list COUNT_TYPE TYPE NAME\"";
-    EXPECT_EQ(problem("ply\nformat ascii 1.0\nelement v 1\nproperty float3 x\nend_header\n"), not_a_property);
-    EXPECT_EQ(problem("ply\nformat ascii 1.0\nelement v 1\nproperty list uchar x\nend_header\n"), not_a_property);
-    EXPECT_EQ(problem("ply\nformat ascii 1.0\nelement v 1\nproperty list uchar8 int x\nend_header\n"), not_a_property);
-    EXPECT_EQ(problem("ply\nformat ascii 1.0\nvertex 3\nend_header\n"),
+    EXPECT_EQ(ply_problem("ply\nformat ascii 1.0\nelement v 1\nproperty float3 x\nend_header\n"), not_a_property);
+    EXPECT_EQ(ply_problem("ply\nformat ascii 1.0\nelement v 1\nproperty list uchar x\nend_header\n"), not_a_property);
+    EXPECT_EQ(ply_problem("ply\nformat ascii 1.0\nelement v 1\nproperty list uchar8 int x\nend_header\n"),
+              not_a_property);
+    EXPECT_EQ(ply_problem("ply\nformat ascii 1.0\nvertex 3\nend_header\n"),
               "PLY header line 3: not a format, element, property, comment, obj_info or end_header line");
 }
 
@@ -88,28 +89,29 @@ TEST(PlyCheck, HeaderLinesAreWhatTheFormatDefines) {
 TEST(PlyCheck, AsciiListCountsFitTheirTypeAndTheirLine) {
     const std::string face = "PLY line 11: \"face\" element 1 of 1, property \"vertex_indices\": ";
     const std::string vertices = "0 0\n1 1\n";
-    EXPECT_EQ(problem(kAsciiHeader + vertices + "8888800000000000012425\n"),
+    EXPECT_EQ(ply_problem(kAsciiHeader + vertices + "8888800000000000012425\n"),
               face + "\"8888800000000000012425\" is not a list count of type uchar");
-    EXPECT_EQ(problem(kAsciiHeader + vertices + "256 0\n"), face + "\"256\" is not a list count of type uchar");
-    EXPECT_EQ(problem(kAsciiHeader + vertices + "3 0 1\n"), face + "a list of 3 but 2 words follow its count");
+    EXPECT_EQ(ply_problem(kAsciiHeader + vertices + "256 0\n"), face + "\"256\" is not a list count of type uchar");
+    EXPECT_EQ(ply_problem(kAsciiHeader + vertices + "3 0 1\n"), face + "a list of 3 but 2 words follow its count");
     const std::string header = "ply\nformat ascii 1.0\nelement f 1\nproperty list char int i\nend_header\n";
     const std::string list = "PLY line 6: \"f\" element 1 of 1, property \"i\": ";
-    EXPECT_EQ(problem(header + "-1\n"), list + "\"-1\" is not a list count of type char");
+    EXPECT_EQ(ply_problem(header + "-1\n"), list + "\"-1\" is not a list count of type char");
     const std::string real_header = "ply\nformat ascii 1.0\nelement f 1\nproperty list float int i\nend_header\n";
-    EXPECT_EQ(problem(real_header + "1.5 0\n"), list + "\"1.5\" is not a list count of type float");
-    EXPECT_EQ(problem(real_header + "2.0 0 1\n"), "(none)");
+    EXPECT_EQ(ply_problem(real_header + "1.5 0\n"), list + "\"1.5\" is not a list count of type float");
+    EXPECT_EQ(ply_problem(real_header + "2.0 0 1\n"), "(none)");
 }
 
 TEST(PlyCheck, AsciiValuesAreNumbersOfTheirType) {
     const std::string first = "PLY line 9: \"vertex\" element 1 of 2, property ";
     const std::string face = "0 0 1\n";
-    EXPECT_EQ(problem(kAsciiHeader + "zero 0\n1 1\n" + face), first + "\"x\": \"zero\" is not a value of type float");
-    EXPECT_EQ(problem(kAsciiHeader + "0 1.5\n1 1\n" + face), first + "\"y\": \"1.5\" is not a value of type int");
-    EXPECT_EQ(problem(kAsciiHeader + "0 2147483648\n1 1\n" + face),
+    EXPECT_EQ(ply_problem(kAsciiHeader + "zero 0\n1 1\n" + face),
+              first + "\"x\": \"zero\" is not a value of type float");
+    EXPECT_EQ(ply_problem(kAsciiHeader + "0 1.5\n1 1\n" + face), first + "\"y\": \"1.5\" is not a value of type int");
+    EXPECT_EQ(ply_problem(kAsciiHeader + "0 2147483648\n1 1\n" + face),
               first + "\"y\": \"2147483648\" is not a value of type int");
-    EXPECT_EQ(problem(kAsciiHeader + "0 0\n1 1\n2 0 x\n"),
+    EXPECT_EQ(ply_problem(kAsciiHeader + "0 0\n1 1\n2 0 x\n"),
               "PLY line 11: \"face\" element 1 of 1, property \"vertex_indices\": \"x\" is not a value of type int");
-    EXPECT_EQ(problem(kAsciiHeader + "0 \xff\xfe" + std::string(40, 'x') + "\n1 1\n" + face),
+    EXPECT_EQ(ply_problem(kAsciiHeader + "0 \xff\xfe" + std::string(40, 'x') + "\n1 1\n" + face),
               first + "\"y\": \"\\xff\\xfe" + std::string(30, 'x') + "...\" is not a value of type int");
 }
 
@@ -117,18 +119,18 @@ TEST(PlyCheck, AsciiValuesAreNumbersOfTheirType) {
 // corpus's mesh_ply_nul_in_ascii_body): it ends a line at NUL, \r and \f,
 // which would shift every element after it.
 TEST(PlyCheck, AsciiElementsAreOneALine) {
-    EXPECT_EQ(problem(kAsciiHeader + "0 0\n1 1" + std::string(1, '\0') + "2\n2 0 1\n"),
+    EXPECT_EQ(ply_problem(kAsciiHeader + "0 0\n1 1" + std::string(1, '\0') + "2\n2 0 1\n"),
               "PLY line 10: a control byte \"\\x00\" in the line");
-    EXPECT_EQ(problem(kAsciiHeader + "0 0\r1 1\n2 0 1\n"), "PLY line 9: a control byte \"\\x0d\" in the line");
-    EXPECT_EQ(problem(kAsciiHeader + "0 0\n1 1\f\n2 0 1\n"), "PLY line 10: a control byte \"\\x0c\" in the line");
-    EXPECT_EQ(problem(kAsciiHeader + "0 0\n\n1 1\n2 0 1\n"),
+    EXPECT_EQ(ply_problem(kAsciiHeader + "0 0\r1 1\n2 0 1\n"), "PLY line 9: a control byte \"\\x0d\" in the line");
+    EXPECT_EQ(ply_problem(kAsciiHeader + "0 0\n1 1\f\n2 0 1\n"), "PLY line 10: a control byte \"\\x0c\" in the line");
+    EXPECT_EQ(ply_problem(kAsciiHeader + "0 0\n\n1 1\n2 0 1\n"),
               "PLY line 10: \"vertex\" element 2 of 2, property \"x\": missing");
-    EXPECT_EQ(problem(kAsciiHeader + "0\n1 1\n2 0 1\n"),
+    EXPECT_EQ(ply_problem(kAsciiHeader + "0\n1 1\n2 0 1\n"),
               "PLY line 9: \"vertex\" element 1 of 2, property \"y\": missing");
-    EXPECT_EQ(problem(kAsciiHeader + "0 0 0\n1 1\n2 0 1\n"),
+    EXPECT_EQ(ply_problem(kAsciiHeader + "0 0 0\n1 1\n2 0 1\n"),
               "PLY line 9: \"vertex\" element 1 of 2: 1 words after its last property");
-    EXPECT_EQ(problem(kAsciiHeader + "0 0\n1 1\n"), "PLY file ends after line 10, before \"face\" element 1 of 1");
-    EXPECT_EQ(problem(kAsciiHeader + "0 0\n1 1\n2 0 1\n\n3 0 1 2\n"), "PLY line 13: text after the last element");
+    EXPECT_EQ(ply_problem(kAsciiHeader + "0 0\n1 1\n"), "PLY file ends after line 10, before \"face\" element 1 of 1");
+    EXPECT_EQ(ply_problem(kAsciiHeader + "0 0\n1 1\n2 0 1\n\n3 0 1 2\n"), "PLY line 13: text after the last element");
 }
 
 TEST(PlyCheck, BinaryListCountsFitTheirTypeAndTheFile) {
@@ -141,20 +143,20 @@ TEST(PlyCheck, BinaryListCountsFitTheirTypeAndTheFile) {
     const std::string little = binary_header("binary_little_endian");
     std::string all_ones = little + vertices;
     append_bytes(all_ones, std::uint32_t{0xffffffff});
-    EXPECT_EQ(problem(all_ones + std::string(8, '\0')),
+    EXPECT_EQ(ply_problem(all_ones + std::string(8, '\0')),
               face(little) + "a list of 4294967295 int but 8 bytes follow its count");
     const std::string big = binary_header("binary_big_endian");
     const std::string three = big + vertices + std::string("\0\0\0\3", 4);
-    EXPECT_EQ(problem(three + std::string(8, '\0')), face(big) + "a list of 3 int but 8 bytes follow its count");
-    EXPECT_EQ(problem(three + std::string(12, '\0')), "(none)");
+    EXPECT_EQ(ply_problem(three + std::string(8, '\0')), face(big) + "a list of 3 int but 8 bytes follow its count");
+    EXPECT_EQ(ply_problem(three + std::string(12, '\0')), "(none)");
     const std::string chars = binary_header("binary_little_endian", "char");
     std::string negative = chars + vertices;
     append_bytes(negative, std::int8_t{-1});
-    EXPECT_EQ(problem(negative), face(chars) + "list count -1 is not a whole number below 2^32");
+    EXPECT_EQ(ply_problem(negative), face(chars) + "list count -1 is not a whole number below 2^32");
     const std::string doubles = binary_header("binary_little_endian", "double");
     std::string fraction = doubles + vertices;
     append_bytes(fraction, 2.5);
-    EXPECT_EQ(problem(fraction + std::string(12, '\0')),
+    EXPECT_EQ(ply_problem(fraction + std::string(12, '\0')),
               face(doubles) + "list count 2.5 is not a whole number below 2^32");
 }
 
@@ -162,14 +164,14 @@ TEST(PlyCheck, BinaryListCountsFitTheirTypeAndTheFile) {
 // (fuzz_mesh: 2e9 vertices in a file of a few hundred bytes).
 TEST(PlyCheck, BinaryElementsFitTheFile) {
     const std::string header = binary_header("binary_little_endian");
-    EXPECT_EQ(problem(header + std::string(23, '\0')),
+    EXPECT_EQ(ply_problem(header + std::string(23, '\0')),
               "PLY byte " + std::to_string(header.size() + 12) + ": the file ends within \"vertex\" element 2 of 2");
-    EXPECT_EQ(problem(header + std::string(26, '\0')),
+    EXPECT_EQ(ply_problem(header + std::string(26, '\0')),
               "PLY byte " + std::to_string(header.size() + 24) + ": the file ends within \"face\" element 1 of 1");
     const std::string claims_2e9 =
         "ply\nformat binary_little_endian 1.0\nelement vertex 2000000000\nproperty float x\nend_header\n";
-    EXPECT_EQ(problem(claims_2e9), "PLY byte " + std::to_string(claims_2e9.size()) +
-                                       ": the file ends within \"vertex\" element 1 of 2000000000");
+    EXPECT_EQ(ply_problem(claims_2e9), "PLY byte " + std::to_string(claims_2e9.size()) +
+                                           ": the file ends within \"vertex\" element 1 of 2000000000");
 }
 
 }  // namespace
