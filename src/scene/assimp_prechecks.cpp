@@ -1,25 +1,22 @@
 #include "scene/assimp_prechecks.h"
 
+#include <assimp/BaseImporter.h>
+
 #include <algorithm>
 #include <assimp/Importer.hpp>
 #include <cctype>
 #include <cstdint>
 #include <fstream>
+#include <set>
 #include <string>
-#include <string_view>
+#include <vector>
 
-#include "scene/mesh_file.h"
-#include "scene/mesh_words.h"
 #include "scene/off_check.h"
 #include "scene/ply_check.h"
 
 namespace wp {
 namespace {
 
-// The prefix of the file its kind is told from.
-constexpr std::size_t kHeadBytes = 1 << 16;
-
-// Its first `size` bytes (fewer if it is shorter).
 std::string read_file(const std::filesystem::path& path, std::uintmax_t size) {
     std::ifstream in(path, std::ios::binary);
     std::string text(size, '\0');
@@ -28,27 +25,38 @@ std::string read_file(const std::filesystem::path& path, std::uintmax_t size) {
     return text;
 }
 
-std::string to_lower(std::string text) {
-    std::transform(text.begin(), text.end(), text.begin(), [](unsigned char c) { return std::tolower(c); });
-    return text;
+bool ends_with_ignoring_case(const std::string& text, const std::string& suffix) {
+    return suffix.size() <= text.size() &&
+           std::equal(suffix.begin(), suffix.end(), text.end() - static_cast<std::ptrdiff_t>(suffix.size()),
+                      [](unsigned char a, unsigned char b) { return std::tolower(a) == std::tolower(b); });
 }
 
-// The next word of `text` from `i` on (empty at the end), `i` moved past it.
-std::string_view next_word(std::string_view text, std::size_t& i) {
-    while (i < text.size() && is_space(text[i])) ++i;
-    const std::size_t start = i;
-    while (i < text.size() && !is_space(text[i])) ++i;
-    return text.substr(start, i - start);
+bool claims_name(Assimp::BaseImporter& reader, const std::string& file) {
+    std::set<std::string> extensions;
+    reader.GetExtensionList(extensions);
+    return std::any_of(extensions.begin(), extensions.end(),
+                       [&](const std::string& extension) { return ends_with_ignoring_case(file, "." + extension); });
 }
 
-// Whether assimp reads the file with its OFF reader: it picks the reader by
-// the extension, and for one no reader claims, by the first three bytes
-// ("off" in any case), after readers that come earlier in its list have
-// declined it (which this does not try to foresee: it checks such a file as OFF).
-bool read_as_off(const std::filesystem::path& path, const std::string& head) {
-    const std::string extension = to_lower(path.extension().string());
-    if (extension == ".off") return true;
-    return to_lower(head.substr(0, 3)) == "off" && !Assimp::Importer().IsExtensionSupported(extension);
+// The reader assimp 5.2.5's Importer::ReadFile picks for the file, as it
+// picks it: the one whose extensions end the name (if several do, the first
+// whose signature check accepts the file), else the first whose signature
+// check accepts it (PLY's: "ply" anywhere in the first 200 bytes); null if none.
+const Assimp::BaseImporter* chosen_reader(const Assimp::Importer& importer, const std::string& file) {
+    std::vector<Assimp::BaseImporter*> readers;
+    for (std::size_t i = 0; i < importer.GetImporterCount(); ++i) readers.push_back(importer.GetImporter(i));
+    std::vector<Assimp::BaseImporter*> claimants;
+    std::copy_if(readers.begin(), readers.end(), std::back_inserter(claimants),
+                 [&](Assimp::BaseImporter* reader) { return claims_name(*reader, file); });
+    if (claimants.size() == 1) return claimants[0];
+    const auto accepts = [&](Assimp::BaseImporter* reader) {
+        return reader->CanRead(file, importer.GetIOHandler(), true);
+    };
+    for (const std::vector<Assimp::BaseImporter*>* candidates : {&claimants, &readers}) {
+        const auto reader = std::find_if(candidates->begin(), candidates->end(), accepts);
+        if (reader != candidates->end()) return *reader;
+    }
+    return nullptr;
 }
 
 }  // namespace
@@ -57,12 +65,11 @@ void check_before_assimp(const std::filesystem::path& path) {
     std::error_code error;
     const std::uintmax_t file_size = std::filesystem::file_size(path, error);
     if (error) return;  // not a regular file: reading it reports the problem
-    const std::string head = read_file(path, std::min<std::uintmax_t>(file_size, kHeadBytes));
-    if (read_as_off(path, head)) return check_off(read_file(path, file_size));
-    std::size_t start = 0;
-    // In lower case: assimp takes "plY\xff..." for PLY too.
-    const std::string magic = to_lower(std::string(next_word(head, start)));
-    if (magic.starts_with("ply")) check_ply(read_file(path, file_size));
+    const Assimp::Importer importer;
+    const Assimp::BaseImporter* reader = chosen_reader(importer, path.string());
+    if (reader == nullptr) return;  // assimp says so
+    if (reader == importer.GetImporter("ply")) check_ply(read_file(path, file_size));
+    if (reader == importer.GetImporter("off")) check_off(read_file(path, file_size));
 }
 
 }  // namespace wp

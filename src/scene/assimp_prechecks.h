@@ -6,9 +6,11 @@
 
 namespace wp {
 
-// Throws MeshFileError if the file is a PLY (its first word starts with
-// "ply" in any case) that check_ply rejects, or a file assimp reads as OFF
-// that check_off rejects. Other files pass unchecked.
+// Throws MeshFileError if assimp would read the file with its PLY reader and
+// check_ply rejects it, or with its OFF reader and check_off rejects it.
+// Which reader is assimp's own choice, made as Importer::ReadFile makes it
+// (by the extension, else by each reader's signature check). Other files
+// pass unchecked.
 void check_before_assimp(const std::filesystem::path& path);
 
 }  // namespace wp

@@ -40,7 +40,7 @@ TEST_F(AssimpPrechecks, FilesAssimpReadsAsOffAreCheckedAsOff) {
         "OFF header: the first word must be OFF (after prefixes among ST, C, N, 4, n) or the vertex count";
     EXPECT_EQ(problem("a.off", "ply\nformat ascii 1.0\nend_header\n"), not_off);
     EXPECT_EQ(problem("a.OFF", "junk"), not_off);  // the extension in any case
-    // A file whose extension assimp does not know, by its first bytes in any case.
+    // A file whose extension assimp does not know, by its signature ("off" in any case).
     EXPECT_EQ(problem("mesh", "Off\n3 1 0\n"), not_off);
     EXPECT_EQ(problem("mesh.xyz", "OFF\n3 1\n"),
               "OFF header: expected the vertex, face and edge counts (whole numbers below 2^32)");
@@ -48,13 +48,19 @@ TEST_F(AssimpPrechecks, FilesAssimpReadsAsOffAreCheckedAsOff) {
     EXPECT_EQ(problem("mesh.obj", "OFF\n3 1\n"), "(none)");  // assimp reads it as OBJ
 }
 
-// check_ply (tests/scene/ply_check_test.cpp) reads every file whose first
-// word starts with "ply" in any case: assimp reads "plY\xff..." as PLY too
-// (fuzz_mesh: "plY" with 2e9 vertices took 2 GB).
-TEST_F(AssimpPrechecks, FilesThatStartWithPlyAreCheckedAsPly) {
+// check_ply (tests/scene/ply_check_test.cpp) reads every file assimp reads
+// as PLY: one named .ply whatever it holds (fuzz_mesh: assimp skips a first
+// line that starts with a line end and crashed on the "ply" after it), or,
+// under a name no reader claims, one with "ply" in its first 200 bytes.
+TEST_F(AssimpPrechecks, FilesAssimpReadsAsPlyAreCheckedAsPly) {
     const std::string not_ply = "PLY header line 1: expected \"ply\"";
     EXPECT_EQ(problem("a.ply", "plY\nformat ascii 1.0\nend_header\n"), not_ply);
+    EXPECT_EQ(problem("a.PLY", "\r\r\xd3\xecPy\nply\nformat ascii 1.0\nend_header\n"), not_ply);
+    EXPECT_EQ(problem("a.ply", "junk\n"), not_ply);
     EXPECT_EQ(problem("mesh", "\n PLYX\n"), not_ply);
+    EXPECT_EQ(problem("mesh.xyz", "x" + std::string(150, ' ') + "ply\n"), not_ply);
+    EXPECT_EQ(problem("mesh.xyz", "x" + std::string(199, ' ') + "ply\n"), "(none)");
+    EXPECT_EQ(problem("mesh.obj", "ply\nformat ascii 1.0\nend_header\n"), "(none)");  // assimp reads it as OBJ
     EXPECT_EQ(problem("a.ply", "ply\nformat ascii 1.0\nelement v 1\nproperty float x\nend_header\n"),
               "PLY file ends after line 5, before \"v\" element 1 of 1");
 }
