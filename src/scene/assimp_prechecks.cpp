@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "scene/gltf_check.h"
 #include "scene/off_check.h"
 #include "scene/ply_check.h"
 
@@ -31,9 +32,14 @@ bool ends_with_ignoring_case(const std::string& text, const std::string& suffix)
                       [](unsigned char a, unsigned char b) { return std::tolower(a) == std::tolower(b); });
 }
 
-bool claims_name(Assimp::BaseImporter& reader, const std::string& file) {
+std::set<std::string> extensions_of(Assimp::BaseImporter& reader) {
     std::set<std::string> extensions;
     reader.GetExtensionList(extensions);
+    return extensions;
+}
+
+bool claims_name(Assimp::BaseImporter& reader, const std::string& file) {
+    const std::set<std::string> extensions = extensions_of(reader);
     return std::any_of(extensions.begin(), extensions.end(),
                        [&](const std::string& extension) { return ends_with_ignoring_case(file, "." + extension); });
 }
@@ -42,7 +48,7 @@ bool claims_name(Assimp::BaseImporter& reader, const std::string& file) {
 // picks it: the one whose extensions end the name (if several do, the first
 // whose signature check accepts the file), else the first whose signature
 // check accepts it (PLY's: "ply" anywhere in the first 200 bytes); null if none.
-const Assimp::BaseImporter* chosen_reader(const Assimp::Importer& importer, const std::string& file) {
+Assimp::BaseImporter* chosen_reader(const Assimp::Importer& importer, const std::string& file) {
     std::vector<Assimp::BaseImporter*> readers;
     for (std::size_t i = 0; i < importer.GetImporterCount(); ++i) readers.push_back(importer.GetImporter(i));
     std::vector<Assimp::BaseImporter*> claimants;
@@ -66,10 +72,11 @@ void check_before_assimp(const std::filesystem::path& path) {
     const std::uintmax_t file_size = std::filesystem::file_size(path, error);
     if (error) return;  // not a regular file: reading it reports the problem
     const Assimp::Importer importer;
-    const Assimp::BaseImporter* reader = chosen_reader(importer, path.string());
+    Assimp::BaseImporter* reader = chosen_reader(importer, path.string());
     if (reader == nullptr) return;  // assimp says so
     if (reader == importer.GetImporter("ply")) check_ply(read_file(path, file_size));
     if (reader == importer.GetImporter("off")) check_off(read_file(path, file_size));
+    if (extensions_of(*reader).contains("gltf")) check_gltf(read_file(path, file_size));  // 1.0 or 2.0
 }
 
 }  // namespace wp
