@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "scene/gltf_check.h"
+#include "scene/mesh_file.h"
 #include "scene/off_check.h"
 #include "scene/ply_check.h"
 
@@ -47,7 +48,10 @@ bool claims_name(Assimp::BaseImporter& reader, const std::string& file) {
 // The reader assimp 5.2.5's Importer::ReadFile picks for the file, as it
 // picks it: the one whose extensions end the name (if several do, the first
 // whose signature check accepts the file), else the first whose signature
-// check accepts it (PLY's: "ply" anywhere in the first 200 bytes); null if none.
+// check accepts it (PLY's: "ply" anywhere in the first 200 bytes); null if
+// none. Throws if several readers claim the name and none accepts the file:
+// assimp would then try every reader's signature, and a .gltf could be read
+// as anything (fuzz_mesh: as Quick3D, which asked for 2 TB).
 Assimp::BaseImporter* chosen_reader(const Assimp::Importer& importer, const std::string& file) {
     std::vector<Assimp::BaseImporter*> readers;
     for (std::size_t i = 0; i < importer.GetImporterCount(); ++i) readers.push_back(importer.GetImporter(i));
@@ -58,11 +62,14 @@ Assimp::BaseImporter* chosen_reader(const Assimp::Importer& importer, const std:
     const auto accepts = [&](Assimp::BaseImporter* reader) {
         return reader->CanRead(file, importer.GetIOHandler(), true);
     };
-    for (const std::vector<Assimp::BaseImporter*>* candidates : {&claimants, &readers}) {
-        const auto reader = std::find_if(candidates->begin(), candidates->end(), accepts);
-        if (reader != candidates->end()) return *reader;
-    }
-    return nullptr;
+    const std::vector<Assimp::BaseImporter*>& candidates = claimants.empty() ? readers : claimants;
+    const auto reader = std::find_if(candidates.begin(), candidates.end(), accepts);
+    if (reader != candidates.end()) return *reader;
+    if (claimants.empty()) return nullptr;
+    std::string names;
+    for (const Assimp::BaseImporter* claimant : claimants)
+        names += (names.empty() ? "" : ", ") + std::string(claimant->GetInfo()->mName);
+    throw MeshFileError("none of assimp's readers for its extension (" + names + ") accepts it");
 }
 
 }  // namespace

@@ -65,6 +65,16 @@ TEST_F(AssimpPrechecks, FilesAssimpReadsAsPlyAreCheckedAsPly) {
               "PLY file ends after line 5, before \"v\" element 1 of 1");
 }
 
+// With several readers for an extension (glTF 1.0 and 2.0 for .gltf) and
+// none accepting the file, assimp tries every reader's signature: fuzz_mesh's
+// .gltf went to the Quick3D reader, which asked for 2 TB.
+TEST_F(AssimpPrechecks, FilesNoReaderOfTheirExtensionAcceptsAreRefused) {
+    const std::string refused = "none of assimp's readers for its extension (glTF Importer, glTF2 Importer) accepts it";
+    EXPECT_EQ(problem("a.gltf", "quick3Ds{\"asset\": {}}"), refused);
+    EXPECT_EQ(problem("a.GLB", "{}"), refused);
+    EXPECT_EQ(problem("a.gltf", two_squares_gltf()), "(none)");
+}
+
 TEST_F(AssimpPrechecks, OtherFilesPassUnchecked) {
     EXPECT_EQ(problem("a.obj", kSquareObj), "(none)");
     EXPECT_EQ(problem("b.obj", "# ply\nOFF\n"), "(none)");
