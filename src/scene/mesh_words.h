@@ -1,5 +1,5 @@
-// Words of a mesh file's text lines: split at blanks (space and tab) only,
-// as assimp's OFF and PLY readers split a line, or at any white space.
+// Words of a mesh file's text lines, as assimp's OFF and PLY readers split
+// them: at blanks (space and tab) only.
 #pragma once
 
 #include <charconv>
@@ -12,25 +12,16 @@ namespace wp {
 
 inline bool is_blank(char c) { return c == ' ' || c == '\t'; }
 
-// Any ASCII white space, as std::isspace in the C locale.
-inline bool is_space(char c) { return c == ' ' || (c >= '\t' && c <= '\r'); }
-
-// The words of `text` between runs of separators.
-inline std::vector<std::string_view> split_words(std::string_view text, bool (*is_separator)(char)) {
+inline std::vector<std::string_view> blank_separated_words(std::string_view line) {
     std::vector<std::string_view> words;
-    for (std::size_t i = 0; i < text.size();) {
-        while (i < text.size() && is_separator(text[i])) ++i;
+    for (std::size_t i = 0; i < line.size();) {
+        while (i < line.size() && is_blank(line[i])) ++i;
         const std::size_t start = i;
-        while (i < text.size() && !is_separator(text[i])) ++i;
-        if (i > start) words.push_back(text.substr(start, i - start));
+        while (i < line.size() && !is_blank(line[i])) ++i;
+        if (i > start) words.push_back(line.substr(start, i - start));
     }
     return words;
 }
-
-inline std::vector<std::string_view> blank_separated_words(std::string_view line) {
-    return split_words(line, is_blank);
-}
-
 // A whole word of decimal digits, at most `max`.
 inline bool parse_whole_number(std::string_view word, std::uint64_t max, std::uint64_t& value) {
     auto [end, error] = std::from_chars(word.data(), word.data() + word.size(), value);

@@ -55,7 +55,8 @@ TEST_F(AssimpPrechecks, FilesAssimpReadsAsOffAreCheckedAsOff) {
 TEST_F(AssimpPrechecks, FilesAssimpReadsAsPlyAreCheckedAsPly) {
     const std::string not_ply = "PLY header line 1: expected \"ply\"";
     EXPECT_EQ(problem("a.ply", "plY\nformat ascii 1.0\nend_header\n"), not_ply);
-    EXPECT_EQ(problem("a.PLY", "\r\r\xd3\xecPy\nply\nformat ascii 1.0\nend_header\n"), not_ply);
+    EXPECT_EQ(problem("a.PLY", "\r\r\xd3\xecPy\nply\nformat ascii 1.0\nend_header\n"),
+              "PLY header line 1: a control byte \"\\x0d\" in the line");
     EXPECT_EQ(problem("a.ply", "junk\n"), not_ply);
     EXPECT_EQ(problem("mesh", "\n PLYX\n"), not_ply);
     EXPECT_EQ(problem("mesh.xyz", "x" + std::string(150, ' ') + "ply\n"), not_ply);

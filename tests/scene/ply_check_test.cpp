@@ -78,6 +78,14 @@ TEST(PlyCheck, HeaderLinesAreWhatTheFormatDefines) {
     EXPECT_EQ(ply_problem("ply\nformat ascii 1.0\nelement v 1\nproperty list uchar x\nend_header\n"), not_a_property);
     EXPECT_EQ(ply_problem("ply\nformat ascii 1.0\nelement v 1\nproperty list uchar8 int x\nend_header\n"),
               not_a_property);
+    // assimp ends a line at NUL, \r and \f and splits words at blanks only
+    // (fuzz_mesh: "element \0...\0vertex 3" made it allocate 15 GB).
+    EXPECT_EQ(ply_problem("ply\nformat ascii 1.0\nelement " + std::string(3, '\0') + "vertex 3\nend_header\n"),
+              "PLY header line 3: a control byte \"\\x00\" in the line");
+    EXPECT_EQ(ply_problem("ply\nformat ascii 1.0\nelement\fvertex 3\nend_header\n"),
+              "PLY header line 3: a control byte \"\\x0c\" in the line");
+    EXPECT_EQ(ply_problem("ply\rformat ascii 1.0\nend_header\n"),
+              "PLY header line 1: a control byte \"\\x0d\" in the line");
     EXPECT_EQ(ply_problem("ply\nformat ascii 1.0\nvertex 3\nend_header\n"),
               "PLY header line 3: not a format, element, property, comment, obj_info or end_header line");
 }
