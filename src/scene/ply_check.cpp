@@ -117,7 +117,11 @@ class PlyHeader {
         if (line_ == 1) return false;
         if (line_ == 2) return read_format(words), false;
         const std::string_view keyword = words.empty() ? std::string_view() : words[0];
-        if (keyword == "comment" || keyword == "obj_info") return false;
+        if (keyword == "comment") return false;
+        // assimp ends an element's properties at any line but a comment and drops later ones.
+        if (keyword == "property" && after_obj_info_) fail("a property after an obj_info line (assimp drops it)");
+        after_obj_info_ = keyword == "obj_info";
+        if (keyword == "obj_info") return false;
         if (keyword == "element") return read_element(words), false;
         if (keyword == "property") return read_property(words), false;
         if (keyword == "end_header" && words.size() == 1) return true;
@@ -145,6 +149,10 @@ class PlyHeader {
         if (words.size() != 3 || !parse_whole_number(words[2], UINT64_MAX, element.count))
             fail("expected \"element NAME COUNT\"");
         element.name = words[1];
+        // assimp reads the count of an element of another name from its name (as 0).
+        if (element.name != "vertex" && element.name != "face" && element.name != "tristrips" &&
+            element.name != "edge" && element.name != "material")
+            fail("element \"" + element.name + "\": assimp reads vertex, face, tristrips, edge and material elements");
         layout_.elements.push_back(element);
     }
 
@@ -162,6 +170,7 @@ class PlyHeader {
     }
 
     int line_ = 0;
+    bool after_obj_info_ = false;  // the last line but comments was obj_info
     PlyLayout layout_;
 };
 

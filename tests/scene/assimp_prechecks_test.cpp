@@ -62,8 +62,8 @@ TEST_F(AssimpPrechecks, FilesAssimpReadsAsPlyAreCheckedAsPly) {
     EXPECT_EQ(problem("mesh.xyz", "x" + std::string(150, ' ') + "ply\n"), not_ply);
     EXPECT_EQ(problem("mesh.xyz", "x" + std::string(199, ' ') + "ply\n"), "(none)");
     EXPECT_EQ(problem("mesh.obj", "ply\nformat ascii 1.0\nend_header\n"), "(none)");  // assimp reads it as OBJ
-    EXPECT_EQ(problem("a.ply", "ply\nformat ascii 1.0\nelement v 1\nproperty float x\nend_header\n"),
-              "PLY file ends after line 5, before \"v\" element 1 of 1");
+    EXPECT_EQ(problem("a.ply", "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nend_header\n"),
+              "PLY file ends after line 5, before \"vertex\" element 1 of 1");
 }
 
 // With several readers for an extension (glTF 1.0 and 2.0 for .gltf) and
