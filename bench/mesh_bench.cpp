@@ -340,7 +340,7 @@ class StageTracer {
         std::vector<glm::vec3> origins, directions;
         for (const Ray& r : rays) origins.push_back(r.origin), directions.push_back(r.direction);
         pipeline_.start_paths(origins, directions);
-        double seconds = timed("intersect", [this] { pipeline_.run_alone(Stage::Intersect); });
+        double seconds = timed("intersect", [this] { pipeline_.run_alone(Stage::intersect); });
         std::vector<float> t = pipeline_.read_field<float>("hit_t");
         std::vector<std::uint32_t> shape = pipeline_.read_field<std::uint32_t>("hit_shape");
         out.t.assign(n, std::numeric_limits<float>::infinity());
@@ -372,7 +372,7 @@ class StageTracer {
         pipeline_.begin_pass(0, std::uint32_t(n));
         pipeline_.queues().set_queue(WP_QUEUE_FREE, {});
         pipeline_.queues().set_queue(WP_QUEUE_SHADOW, slots);
-        double seconds = timed("intersect_shadow", [this] { pipeline_.run_alone(Stage::IntersectShadow); });
+        double seconds = timed("intersect_shadow", [this] { pipeline_.run_alone(Stage::intersect_shadow); });
         std::vector<float> radiance = pipeline_.read_field<float>("radiance");
         occluded.assign(n, 0);
         for (std::size_t i = 0; i < n; ++i) occluded[i] = radiance[i] == 1.0f ? 0 : 1;

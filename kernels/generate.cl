@@ -10,8 +10,9 @@
 #include "device/path_vertex.h"
 
 __kernel __attribute__((reqd_work_group_size(WP_GROUP_SIZE, 1, 1))) void generate(WP_STAGE_PARAMS) {
+    STAGE_QUEUES(generate, FREE, WP_PUSHES(RAY));
     __local uint group_count, group_base; /* queue_push's scratch (atomic compaction) */
-    Lanes lanes = queue_lanes(queues, counts, capacity, WP_QUEUE_FREE);
+    Lanes lanes = queue_lanes(queues, counts, capacity, stage_consumes);
     uint issued = counts[WP_COUNTER_WORK];
     lane_uint k = lane_positions();
     lane_int started = lanes.active && k < pass_size - issued;
@@ -35,5 +36,5 @@ __kernel __attribute__((reqd_work_group_size(WP_GROUP_SIZE, 1, 1))) void generat
 #ifdef WP_HAS_GLASS
     PATH_WRITE(eta_scale, lanes, started, (real)REAL(1.0));
 #endif
-    push_lanes(queues, counts, WP_QUEUE_RAY, lanes, started, &group_count, &group_base);
+    STAGE_PUSH(RAY, lanes, started);
 }

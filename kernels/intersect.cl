@@ -7,8 +7,9 @@
 #include "device/scene_hits.h"
 
 __kernel __attribute__((reqd_work_group_size(WP_GROUP_SIZE, 1, 1))) void intersect(WP_STAGE_PARAMS) {
+    STAGE_QUEUES(intersect, RAY, WP_PUSHES(HIT, FREE));
     __local uint group_count, group_base; /* queue_push's scratch (atomic compaction) */
-    Lanes lanes = queue_lanes(queues, counts, capacity, WP_QUEUE_RAY);
+    Lanes lanes = queue_lanes(queues, counts, capacity, stage_consumes);
     Hit hit = closest_hit(WP_SCENE_ARGS, PATH_READ(origin, lanes), PATH_READ(direction, lanes));
     PATH_WRITE(hit_t, lanes, lanes.active, hit.t);
     PATH_WRITE(hit_shape, lanes, lanes.active, hit.shape);
@@ -21,6 +22,6 @@ __kernel __attribute__((reqd_work_group_size(WP_GROUP_SIZE, 1, 1))) void interse
     count_nonfinite(slot_nonfinite, WP_COUNTER_NONFINITE_EMISSION, lanes, missed ? dropped : (lane_uint)0u);
 #endif
     finish_paths(pass_radiance, PATH_READ(pass_item, lanes), missed, radiance);
-    push_lanes(queues, counts, WP_QUEUE_HIT, lanes, hit_something, &group_count, &group_base);
-    push_lanes(queues, counts, WP_QUEUE_FREE, lanes, missed, &group_count, &group_base);
+    STAGE_PUSH(HIT, lanes, hit_something);
+    STAGE_PUSH(FREE, lanes, missed);
 }

@@ -3,11 +3,13 @@
 #include "device/guards.h"
 #include "device/lanes.h"
 #include "device/parameters.h"
+#include "device/path_queues.h"
 #include "device/scene_hits.h"
 
 __kernel __attribute__((reqd_work_group_size(WP_GROUP_SIZE, 1, 1))) void intersect_shadow(WP_STAGE_PARAMS) {
+    STAGE_QUEUES(intersect_shadow, SHADOW, WP_PUSHES_NOTHING);
 #ifdef WP_NEE
-    Lanes lanes = queue_lanes(queues, counts, capacity, WP_QUEUE_SHADOW);
+    Lanes lanes = queue_lanes(queues, counts, capacity, stage_consumes);
     lane_int unoccluded =
         lanes.active && !any_hit(WP_SCENE_ARGS, PATH_READ(shadow_origin, lanes), PATH_READ(shadow_direction, lanes),
                                  PATH_READ(shadow_distance, lanes));

@@ -9,8 +9,9 @@
 #include "device/surface.h"
 
 __kernel __attribute__((reqd_work_group_size(WP_GROUP_SIZE, 1, 1))) void scatter(WP_STAGE_PARAMS) {
+    STAGE_QUEUES(scatter, SCATTER, WP_PUSHES(RAY, FREE));
     __local uint group_count, group_base; /* queue_push's scratch (atomic compaction) */
-    Lanes lanes = queue_lanes(queues, counts, capacity, WP_QUEUE_SCATTER);
+    Lanes lanes = queue_lanes(queues, counts, capacity, stage_consumes);
     vec3 d = PATH_READ(direction, lanes);
     Vertex v =
         vertex_at(WP_SCENE_ARGS, PATH_READ(hit_shape, lanes), PATH_READ(origin, lanes), d, PATH_READ(hit_t, lanes));
@@ -45,6 +46,6 @@ __kernel __attribute__((reqd_work_group_size(WP_GROUP_SIZE, 1, 1))) void scatter
     PATH_WRITE(eta_scale, lanes, continues, eta_scale);
 #endif
     finish_paths(pass_radiance, PATH_READ(pass_item, lanes), ends, PATH_READ(radiance, lanes));
-    push_lanes(queues, counts, WP_QUEUE_RAY, lanes, continues, &group_count, &group_base);
-    push_lanes(queues, counts, WP_QUEUE_FREE, lanes, ends, &group_count, &group_base);
+    STAGE_PUSH(RAY, lanes, continues);
+    STAGE_PUSH(FREE, lanes, ends);
 }

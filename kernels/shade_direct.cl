@@ -12,8 +12,9 @@
 #include "device/surface.h"
 
 __kernel __attribute__((reqd_work_group_size(WP_GROUP_SIZE, 1, 1))) void shade_direct(WP_STAGE_PARAMS) {
+    STAGE_QUEUES(shade_direct, HIT, WP_PUSHES(SHADOW, SCATTER, FREE));
     __local uint group_count, group_base; /* queue_push's scratch (atomic compaction) */
-    Lanes lanes = queue_lanes(queues, counts, capacity, WP_QUEUE_HIT);
+    Lanes lanes = queue_lanes(queues, counts, capacity, stage_consumes);
     lane_uint shape = PATH_READ(hit_shape, lanes);
     vec3 origin = PATH_READ(origin, lanes);
     Vertex v = vertex_at(WP_SCENE_ARGS, shape, origin, PATH_READ(direction, lanes), PATH_READ(hit_t, lanes));
@@ -51,7 +52,7 @@ __kernel __attribute__((reqd_work_group_size(WP_GROUP_SIZE, 1, 1))) void shade_d
     PATH_WRITE(shadow_distance, lanes, casts_shadow, distance);
     PATH_WRITE(shadow_radiance, lanes, casts_shadow, contribution);
 #endif
-    push_lanes(queues, counts, WP_QUEUE_SHADOW, lanes, casts_shadow, &group_count, &group_base);
-    push_lanes(queues, counts, WP_QUEUE_SCATTER, lanes, scatters, &group_count, &group_base);
-    push_lanes(queues, counts, WP_QUEUE_FREE, lanes, ends, &group_count, &group_base);
+    STAGE_PUSH(SHADOW, lanes, casts_shadow);
+    STAGE_PUSH(SCATTER, lanes, scatters);
+    STAGE_PUSH(FREE, lanes, ends);
 }

@@ -28,7 +28,7 @@
     X(vec3, origin, ALWAYS, "generate scatter", "intersect shade_direct scatter")     \
     X(vec3, direction, ALWAYS, "generate scatter", "intersect shade_direct scatter")  \
     X(vec3, throughput, ALWAYS, "generate scatter", "intersect shade_direct scatter") \
-    X(vec3, radiance, ALWAYS, "generate intersect shade_direct intersect_shadow",     \
+    X(vec3, radiance, ALWAYS, "generate shade_direct intersect_shadow",               \
       "intersect shade_direct intersect_shadow scatter")                              \
     X(float, hit_t, ALWAYS, "intersect", "shade_direct scatter")                      \
     X(uint, hit_shape, ALWAYS, "intersect", "shade_direct scatter")                   \

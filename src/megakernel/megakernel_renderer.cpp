@@ -35,8 +35,9 @@ NonfiniteCounts nonfinite_counts(const std::vector<std::uint32_t>& counts) {
 }
 
 // 8 lanes on CPUs, but 1 for meshes: a lane's BVH traversal diverges from the
-// others' at every node, and whole paths of 8 such lanes ran at half the
-// samples/s of one lane (bunny, PoCL; docs/architecture.md, "Lanes").
+// others' at every node, and a work item waits for its longest path, so whole
+// paths of 8 such lanes ran slower than one lane (bench/results/analysis.md,
+// "Lanes with meshes").
 unsigned resolve_lanes(unsigned requested, const DeviceInfo& device, bool meshes) {
     unsigned lanes = requested != 0 ? requested : device.type == "CPU" && !meshes ? 8u : 1u;
     if (std::string problem = megakernel_lanes_problem(lanes); !problem.empty()) throw std::invalid_argument(problem);

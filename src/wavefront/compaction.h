@@ -15,9 +15,9 @@ enum class Compaction {
     Atomic,  // a push through a global atomic counter, aggregated per work group (queue order not stable)
     Scan,    // marks per slot, then a prefix sum over them (kernels/compact.cl): ascending slot order
 };
-// Scan: the stages then read the path state in memory order, and may run 8
-// lanes (room 512x512 4 spp at 2^16 paths: 1.40-1.52 s a frame against
-// 2.17-2.27 s with atomic pushes, bench/results).
+// Scan: the stages then read the path state in memory order, without atomics
+// or barriers, and may run 8 lanes; measured faster than atomic pushes on
+// PoCL (bench/results/defaults.md).
 inline constexpr Compaction kDefaultCompaction = Compaction::Scan;
 
 // "-DWP_COMPACT_SCAN" for scan compaction, "" for atomic.

@@ -16,12 +16,26 @@ std::string program_options(const Scene& scene, bool film_squares, const Feature
            " -DWP_LANES=" + std::to_string(lanes);
 }
 
+// The kernel of a declared stage, or a DeviceError naming the stage whose file defines no such kernel.
+cl::Kernel stage_kernel(const cl::Program& program, const StageDeclaration& stage) {
+    try {
+        return cl::Kernel(program, stage.kernel);
+    } catch (const cl::Error&) {
+        throw DeviceError(std::string("stage ") + stage.kernel + " (kernels/interface/stages.h) has no kernel " +
+                          stage.kernel + " in kernels/" + stage.kernel + ".cl");
+    }
+}
+
 }  // namespace
 
 const std::vector<std::string>& wavefront_kernel_files() {
-    static const std::vector<std::string> files{"generate.cl",         "intersect.cl",    "shade_direct.cl",
-                                                "intersect_shadow.cl", "scatter.cl",      "compact.cl",
-                                                "accumulate.cl",       "count_depths.cl", "intersect_bound.cl"};
+    static const std::vector<std::string> files = [] {
+        std::vector<std::string> names;
+        for (const StageDeclaration& stage : stage_declarations) names.push_back(std::string(stage.kernel) + ".cl");
+        for (const char* other : {"compact.cl", "accumulate.cl", "count_depths.cl", "intersect_bound.cl"})
+            names.push_back(other);
+        return names;
+    }();
     return files;
 }
 
@@ -30,6 +44,7 @@ Pipeline::Pipeline(const Scene& scene, const DeviceInfo& device, std::size_t cap
     : capacity_(capacity),
       pass_capacity_(pass_capacity),
       lanes_(resolve_lanes(options.lanes, options.compaction, device)),
+      iteration_(iteration_stages(kernel_features)),
       context_(device.device),
       queue_(context_, device.device, options.profile ? cl_command_queue_properties(CL_QUEUE_PROFILING_ENABLE) : 0),
       launcher_(queue_, options.profile),
@@ -38,12 +53,12 @@ Pipeline::Pipeline(const Scene& scene, const DeviceInfo& device, std::size_t cap
                              options.progress)),
       scene_(context_, flatten_scene(scene)),
       state_(context_, capacity, kernel_features),
-      queues_(context_, queue_, program_.program, capacity, options.compaction),
+      queues_(context_, queue_, program_.program, capacity, options.compaction, iteration_),
       film_(context_, queue_, program_.program, scene.camera.width, scene.camera.height, options.film_squares),
       pass_radiance_(context_, CL_MEM_READ_WRITE, sizeof(float) * 3 * pass_capacity),
       slot_nonfinite_(context_, CL_MEM_READ_WRITE, sizeof(std::uint32_t) * WP_NONFINITE_STAGE_COUNT * capacity) {
-    for (const char* name : stage_kernel_names) {
-        cl::Kernel& kernel = stages_.emplace_back(program_.program, name);
+    for (const StageDeclaration& stage : stage_declarations) {
+        cl::Kernel& kernel = stages_.emplace_back(stage_kernel(program_.program, stage));
         scene_.bind(kernel);
         kernel.setArg(arg::Stage::queues, queues_.queues());
         kernel.setArg(arg::Stage::counts, queues_.counts());
@@ -70,12 +85,12 @@ void Pipeline::begin_pass(std::uint64_t start, std::uint32_t size) {
 
 void Pipeline::run(Stage stage, std::size_t entries) {
     if (entries == 0) return;
-    if (ray_depths_ && stage == Stage::Intersect)
+    if (ray_depths_ && stage == Stage::intersect)
         ray_depths_->count(launcher_, WP_QUEUE_RAY, WP_PROFILE_EXTENSION_BY_DEPTH, entries);
-    if (ray_depths_ && stage == Stage::IntersectShadow)
+    if (ray_depths_ && stage == Stage::intersect_shadow)
         ray_depths_->count(launcher_, WP_QUEUE_SHADOW, WP_PROFILE_SHADOW_BY_DEPTH, entries);
-    auto index = static_cast<std::size_t>(stage);
-    launcher_.launch(stages_[index], stage_kernel_names[index], divide_rounding_up(entries, lanes_));
+    launcher_.launch(stages_[static_cast<std::size_t>(stage)], declaration(stage).kernel,
+                     divide_rounding_up(entries, lanes_));
 }
 
 void Pipeline::start_paths(const std::vector<glm::vec3>& origins, const std::vector<glm::vec3>& directions,

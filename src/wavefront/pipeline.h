@@ -56,12 +56,17 @@ class Pipeline {
     std::size_t capacity() const { return capacity_; }
     std::size_t pass_capacity() const { return pass_capacity_; }
     QueueSet& queues() { return queues_; }
+    // The stages an iteration runs, in order (iteration_stages of the kernel features).
+    const std::vector<Stage>& iteration() const { return iteration_; }
 
     // Starts the pass of work items [start, start + size): every slot free,
     // every other queue empty, the work counter at 0.
     void begin_pass(std::uint64_t start, std::uint32_t size);
     // Tells the next generate how many work items of the pass earlier ones handed out.
     void set_issued(std::uint32_t issued) { queues_.set_issued(issued); }
+    // An iteration runs each of its stages as start_stage, run, finish_stage.
+    // The queue bookkeeping before `stage` (QueueSet::start_stage).
+    void start_stage(Stage stage) { queues_.start_stage(stage); }
     // Enqueues a stage over the first `entries` positions of its input queue,
     // which must be at least the queue's length (the kernel reads the length
     // on the device, so the host never waits between stages; positions past
@@ -121,6 +126,7 @@ class Pipeline {
 
     std::size_t capacity_, pass_capacity_;
     unsigned lanes_;
+    std::vector<Stage> iteration_;
     cl::Context context_;
     cl::CommandQueue queue_;
     KernelLauncher launcher_;
@@ -130,14 +136,14 @@ class Pipeline {
     QueueSet queues_;
     DeviceFilm film_;
     cl::Buffer pass_radiance_, slot_nonfinite_;
-    std::vector<cl::Kernel> stages_;
+    std::vector<cl::Kernel> stages_;             // by Stage
     std::optional<RayDepthCounter> ray_depths_;  // profiling only
     RenderProfile profile_;
     std::uint64_t pass_start_ = 0;
     std::uint32_t pass_size_ = 0;
 };
 
-// The kernel files of the program, in build order.
+// The kernel files of the program, in build order: the stages' (kernels/<stage>.cl), then the others.
 const std::vector<std::string>& wavefront_kernel_files();
 
 }  // namespace wp

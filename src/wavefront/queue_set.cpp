@@ -5,13 +5,14 @@
 namespace wp {
 
 QueueSet::QueueSet(const cl::Context& context, cl::CommandQueue& queue, const cl::Program& program,
-                   std::size_t capacity, Compaction compaction)
+                   std::size_t capacity, Compaction compaction, const std::vector<Stage>& iteration)
     : queue_(queue),
       capacity_(capacity),
       compaction_(compaction),
       // With scan compaction, the marks of every queue after the queues.
       queues_(context, CL_MEM_READ_WRITE, WP_QUEUE_COUNT * (compaction == Compaction::Scan ? 2 : 1) * queue_bytes()),
-      counts_(context, CL_MEM_READ_WRITE, sizeof(std::uint32_t) * WP_COUNTS_PROFILED_SIZE) {
+      counts_(context, CL_MEM_READ_WRITE, sizeof(std::uint32_t) * WP_COUNTS_PROFILED_SIZE),
+      plan_(plan_queues(iteration)) {
     std::vector<std::uint32_t> identity(capacity);
     std::iota(identity.begin(), identity.end(), 0u);
     identity_slots_ = cl::Buffer(context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, queue_bytes(), identity.data());
@@ -37,54 +38,36 @@ void QueueSet::set_issued(std::uint32_t issued) {
     queue_.enqueueWriteBuffer(counts_, CL_FALSE, WP_COUNTER_WORK * sizeof(std::uint32_t), sizeof issued_, &issued_);
 }
 
+void QueueSet::start_stage(Stage stage) {
+    if (!scan_) clear_counts(plan_[static_cast<std::size_t>(stage)].counts_cleared_before);
+}
+
 void QueueSet::finish_stage(KernelLauncher& launcher, Stage stage) {
-    if (!scan_) {
-        if (stage == Stage::Generate) clear_counts(WP_QUEUE_FREE, 2);  // FREE consumed; HIT filled next
-        if (stage == Stage::Intersect) clear_counts(WP_QUEUE_RAY, 3);  // RAY consumed; SHADOW, SCATTER filled next
-        return;
-    }
-    auto bit = [](std::uint32_t queue) { return 1u << queue; };
-    switch (stage) {
-        case Stage::Generate:
-            clear_marks(WP_QUEUE_FREE);
-            scan_->compact(launcher, bit(WP_QUEUE_RAY));  // continuing paths and new camera rays
-            break;
-        case Stage::Intersect:
-            clear_marks(WP_QUEUE_RAY);
-            scan_->compact(launcher, bit(WP_QUEUE_HIT));
-            break;
-        case Stage::ShadeDirect:
-            clear_marks(WP_QUEUE_HIT);
-            scan_->compact(launcher, bit(WP_QUEUE_SHADOW) | bit(WP_QUEUE_SCATTER));
-            break;
-        case Stage::IntersectShadow:
-            clear_marks(WP_QUEUE_SHADOW);
-            break;
-        case Stage::Scatter:
-            clear_marks(WP_QUEUE_SCATTER);
-            scan_->compact(launcher, bit(WP_QUEUE_FREE) | bit(WP_QUEUE_RAY));
-            break;
-    }
+    if (!scan_) return;
+    clear_marks(declaration(stage).consumes);
+    if (std::uint32_t completed = plan_[static_cast<std::size_t>(stage)].compacted_after)
+        scan_->compact(launcher, completed);
 }
 
 void QueueSet::empty_outputs(Stage stage) {
-    for (std::uint32_t queue = 0; queue < WP_QUEUE_COUNT; ++queue) {
-        if (!(stage_output_queues[static_cast<std::size_t>(stage)] & (1u << queue))) continue;
-        clear_counts(queue, 1);
-        if (scan_) clear_marks(queue);
-    }
+    const std::uint32_t pushes = declaration(stage).pushes;
+    clear_counts(pushes);
+    for (std::uint32_t queue = 0; scan_ && queue < WP_QUEUE_COUNT; ++queue)
+        if (pushes >> queue & 1u) clear_marks(queue);
 }
 
 void QueueSet::compact_outputs(KernelLauncher& launcher, Stage stage) {
-    if (scan_) scan_->compact(launcher, stage_output_queues[static_cast<std::size_t>(stage)]);
+    if (scan_) scan_->compact(launcher, declaration(stage).pushes);
 }
 
 void QueueSet::clear_marks(std::uint32_t queue) {
     queue_.enqueueFillBuffer(queues_, std::uint32_t(0), WP_QUEUE_MARKS(queue) * queue_bytes(), queue_bytes());
 }
 
-void QueueSet::clear_counts(std::uint32_t first, std::uint32_t n) {
-    queue_.enqueueFillBuffer(counts_, std::uint32_t(0), first * sizeof(std::uint32_t), n * sizeof(std::uint32_t));
+void QueueSet::clear_counts(std::uint32_t queue_mask) {
+    for (std::uint32_t queue = 0; queue < WP_QUEUE_COUNT; ++queue)
+        if (queue_mask >> queue & 1u)
+            queue_.enqueueFillBuffer(counts_, std::uint32_t(0), queue * sizeof(std::uint32_t), sizeof(std::uint32_t));
 }
 
 DeviceCounts QueueSet::read_counts() {

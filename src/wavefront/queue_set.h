@@ -12,6 +12,7 @@
 #include "interface/queues.h"
 #include "opencl/launcher.h"
 #include "wavefront/compaction.h"
+#include "wavefront/queue_plan.h"
 #include "wavefront/stage.h"
 
 namespace wp {
@@ -21,9 +22,10 @@ using DeviceCounts = std::array<std::uint32_t, WP_COUNTS_SIZE>;
 
 class QueueSet {
  public:
-    // `program` holds kernels/compact.cl (used with scan compaction).
+    // `program` holds kernels/compact.cl (used with scan compaction);
+    // `iteration` is the stages an iteration runs, in order.
     QueueSet(const cl::Context& context, cl::CommandQueue& queue, const cl::Program& program, std::size_t capacity,
-             Compaction compaction);
+             Compaction compaction, const std::vector<Stage>& iteration);
 
     const cl::Buffer& queues() const { return queues_; }
     const cl::Buffer& counts() const { return counts_; }
@@ -32,11 +34,11 @@ class QueueSet {
     void reset();
     // Tells the next generate how many work items of the pass earlier ones handed out.
     void set_issued(std::uint32_t issued);
-    // Readies the queues `stage` filled for their consumers and lets the ones
-    // it consumed refill. Atomic: clears the lengths of the queues filled
-    // next. Scan: clears the marks of the queue it consumed and compacts the
-    // queues it filled whose consumer runs next (FREE and RAY after scatter,
-    // so that the iteration's lengths can be read).
+    // The bookkeeping around a stage of the iteration (wavefront/queue_plan.h).
+    // Before it, atomic: empties the queues it is the first to refill. After
+    // it, scan: clears the marks of the queue it consumed and builds the
+    // queues it completed.
+    void start_stage(Stage stage);
     void finish_stage(KernelLauncher& launcher, Stage stage);
     // Waits for the queue and reads the lengths and counters.
     DeviceCounts read_counts();
@@ -55,9 +57,10 @@ class QueueSet {
     Compaction compaction_;
     cl::Buffer queues_, counts_, identity_slots_;
     std::optional<ScanCompaction> scan_;
+    QueuePlan plan_;
     std::uint32_t issued_ = 0;  // host copy of the last set_issued value, read by the queue
 
-    void clear_counts(std::uint32_t first, std::uint32_t n);
+    void clear_counts(std::uint32_t queue_mask);
     void clear_marks(std::uint32_t queue);
     std::size_t queue_bytes() const { return capacity_ * sizeof(std::uint32_t); }
 };

@@ -8,17 +8,16 @@ namespace {
 // One iteration of the stage loop, in which generate starts `generated` new
 // paths and `traced` paths (those and the ones continuing) trace a ray: each
 // stage is launched over what its queue can hold, no more (a pass's last
-// iterations then cost what their few paths do). Pipeline::finish_stage
-// readies the queues each stage filled, so at the end the lengths are this
-// iteration's: FREE the paths ended, HIT the hits, SHADOW the shadow rays,
-// SCATTER the paths scatter sampled, RAY the paths continuing next iteration.
-DeviceCounts run_iteration(Pipeline& p, bool nee, std::uint32_t generated, std::uint32_t traced) {
-    std::vector<Stage> stages{Stage::Generate, Stage::Intersect, Stage::ShadeDirect, Stage::IntersectShadow,
-                              Stage::Scatter};
-    for (Stage stage : stages) {
-        if (stage == Stage::IntersectShadow && !nee) continue;
-        // HIT, SHADOW and SCATTER hold at most one entry per ray traced.
-        p.run(stage, stage == Stage::Generate ? generated : traced);
+// iterations then cost what their few paths do): the stage that takes free
+// slots over the paths it starts, every other one over the rays traced, at
+// most one entry each. The queue bookkeeping around each stage leaves the
+// lengths of this iteration at the end: FREE the paths ended, HIT the hits,
+// SHADOW the shadow rays, SCATTER the paths scatter sampled, RAY the paths
+// continuing next iteration.
+DeviceCounts run_iteration(Pipeline& p, std::uint32_t generated, std::uint32_t traced) {
+    for (Stage stage : p.iteration()) {
+        p.start_stage(stage);
+        p.run(stage, declaration(stage).consumes == WP_QUEUE_FREE ? generated : traced);
         p.finish_stage(stage);
     }
     return p.read_counts();
@@ -26,8 +25,8 @@ DeviceCounts run_iteration(Pipeline& p, bool nee, std::uint32_t generated, std::
 
 }  // namespace
 
-void run_schedule(Pipeline& pipeline, const ItemRange& items, bool nee, const Progress& progress,
-                  ScheduleTotals& totals, std::vector<IterationRecord>& iterations) {
+void run_schedule(Pipeline& pipeline, const ItemRange& items, const Progress& progress, ScheduleTotals& totals,
+                  std::vector<IterationRecord>& iterations) {
     std::uint64_t finished = 0;
     for (std::uint64_t start = items.begin; start < items.end; start += pipeline.pass_capacity()) {
         auto size = static_cast<std::uint32_t>(std::min<std::uint64_t>(pipeline.pass_capacity(), items.end - start));
@@ -38,9 +37,9 @@ void run_schedule(Pipeline& pipeline, const ItemRange& items, bool nee, const Pr
             IterationRecord r;
             r.generated = std::min(free_slots, size - issued);  // generate's rule
             r.traced = continuing + r.generated;
-            DeviceCounts counts = run_iteration(pipeline, nee, r.generated, r.traced);
+            DeviceCounts counts = run_iteration(pipeline, r.generated, r.traced);
             r.hits = counts[WP_QUEUE_HIT];
-            r.shadow = nee ? counts[WP_QUEUE_SHADOW] : 0;
+            r.shadow = counts[WP_QUEUE_SHADOW];  // 0 without next-event estimation
             r.scattered = counts[WP_QUEUE_SCATTER];
             r.continuing = counts[WP_QUEUE_RAY];
             r.finished = counts[WP_QUEUE_FREE];

@@ -18,11 +18,11 @@ struct ScheduleTotals {
 };
 
 // Renders `items` (w: pixel w % pixels, sample w / pixels) in passes of at
-// most pipeline.pass_capacity(): per pass, iterations of generate,
-// intersect, shade_direct, intersect_shadow, scatter until every item is
-// issued and every path has ended, then accumulate. Adds to `totals` and
-// appends one record per iteration.
-void run_schedule(Pipeline& pipeline, const ItemRange& items, bool nee, const Progress& progress,
-                  ScheduleTotals& totals, std::vector<IterationRecord>& iterations);
+// most pipeline.pass_capacity(): per pass, iterations of the stages
+// (pipeline.iteration()) until every item is issued and every path has
+// ended, then accumulate. Adds to `totals` and appends one record per
+// iteration.
+void run_schedule(Pipeline& pipeline, const ItemRange& items, const Progress& progress, ScheduleTotals& totals,
+                  std::vector<IterationRecord>& iterations);
 
 }  // namespace wp

@@ -1,24 +1,60 @@
-// The wavefront's stage kernels, in the order an iteration runs them.
+// The wavefront's stages, from their declaration (kernels/interface/stages.h):
+// the Stage enum and each stage's kernel and queues, in the order an
+// iteration runs them.
 #pragma once
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
+#include <vector>
 
 #include "interface/queues.h"
+#include "interface/stages.h"
+#include "scene/scene.h"
+#include "wavefront/path_state.h"
 
 namespace wp {
 
-enum class Stage { Generate, Intersect, ShadeDirect, IntersectShadow, Scatter };
-inline constexpr std::array<const char*, 5> stage_kernel_names{"generate", "intersect", "shade_direct",
-                                                               "intersect_shadow", "scatter"};
+#define WP_STAGE_ENUMERATOR(stage, consumes, pushes, runs_when) stage,
+enum class Stage { WP_STAGES(WP_STAGE_ENUMERATOR) };
+#undef WP_STAGE_ENUMERATOR
 
-// The queues (kernels/interface/queues.h) each stage pushes to, as bits 1 << queue, as its kernel says.
-inline constexpr std::array<std::uint32_t, 5> stage_output_queues{
-    1u << WP_QUEUE_RAY,                                                    // generate: new camera rays
-    1u << WP_QUEUE_HIT | 1u << WP_QUEUE_FREE,                              // intersect: hits; misses end
-    1u << WP_QUEUE_SHADOW | 1u << WP_QUEUE_SCATTER | 1u << WP_QUEUE_FREE,  // shade_direct
-    0u,                                                                    // intersect_shadow: adds radiance only
-    1u << WP_QUEUE_RAY | 1u << WP_QUEUE_FREE,                              // scatter: continuing, ended
+struct StageDeclaration {
+    const char* kernel;      // defined in kernels/<kernel>.cl
+    std::uint32_t consumes;  // the queue it takes its paths from
+    std::uint32_t pushes;    // the queues it may push to, as bits 1 << queue
+    PathFeature runs_when;   // the path state feature it needs (ALWAYS, NEE)
 };
+
+#define WP_STAGE_DECLARATION(stage, consumes, pushes, runs_when) \
+    StageDeclaration{#stage, WP_QUEUE_##consumes, pushes, PathFeature::runs_when},
+inline constexpr std::array stage_declarations{WP_STAGES(WP_STAGE_DECLARATION)};
+#undef WP_STAGE_DECLARATION
+
+inline constexpr std::size_t kStageCount = stage_declarations.size();
+
+// What the host's queue bookkeeping (wavefront/queue_plan.h) relies on: one
+// consumer per queue, and no stage pushing to the queue it is reading.
+constexpr bool every_queue_has_at_most_one_consumer() {
+    for (std::size_t a = 0; a < kStageCount; ++a)
+        for (std::size_t b = a + 1; b < kStageCount; ++b)
+            if (stage_declarations[a].consumes == stage_declarations[b].consumes) return false;
+    return true;
+}
+constexpr bool no_stage_pushes_to_the_queue_it_consumes() {
+    for (const auto& stage : stage_declarations)
+        if (stage.pushes >> stage.consumes & 1u) return false;
+    return true;
+}
+static_assert(every_queue_has_at_most_one_consumer(), "kernels/interface/stages.h: two stages consume one queue");
+static_assert(no_stage_pushes_to_the_queue_it_consumes(),
+              "kernels/interface/stages.h: a stage pushes to the queue it consumes");
+
+inline constexpr const StageDeclaration& declaration(Stage stage) {
+    return stage_declarations[static_cast<std::size_t>(stage)];
+}
+
+// The stages an iteration runs with kernels built for `features`, in order.
+std::vector<Stage> iteration_stages(const FeatureSet& features);
 
 }  // namespace wp

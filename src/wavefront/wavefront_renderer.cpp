@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <chrono>
-#include <map>
 #include <sstream>
 
 #include "opencl/device.h"
@@ -10,6 +9,7 @@
 #include "opencl/kernel_options.h"
 #include "wavefront/pipeline.h"
 #include "wavefront/scheduler.h"
+#include "wavefront/stage.h"
 
 namespace wp {
 namespace {
@@ -33,10 +33,11 @@ FeatureSet every_shape_and_material(FeatureSet f) {
     return f;
 }
 
-// Items each kernel processed: its input queue's length summed over the
-// iterations (generate: the free slots it filled; accumulate: the pass entries it summed; compaction: the slots
-// its launches went through; compact_scan: the blocks of slots it summed;
-// count_depths: the rays it counted).
+// Items each kernel processed: a stage's, the entries it took from its
+// queue summed over the iterations (generate: the free slots it filled);
+// accumulate's, the pass entries it summed; compaction's, the slots its
+// launches went through; compact_scan's, the blocks of slots it summed;
+// count_depths', the rays it counted.
 void fill_profile(RenderProfile& profile, const std::vector<IterationRecord>& iterations, std::uint64_t samples,
                   std::size_t wavefront) {
     for (const char* name : {"compact_count", "compact_write"})
@@ -49,17 +50,11 @@ void fill_profile(RenderProfile& profile, const std::vector<IterationRecord>& it
         k.items = 0;
         for (const IterationRecord& r : iterations) k.items += r.traced + r.shadow;
     }
-    const std::map<std::string, std::uint32_t IterationRecord::*> input_queue{
-        {"generate", &IterationRecord::generated},
-        {"intersect", &IterationRecord::traced},
-        {"shade_direct", &IterationRecord::hits},
-        {"intersect_shadow", &IterationRecord::shadow},
-        {"scatter", &IterationRecord::scattered}};
-    for (KernelProfile& k : profile.kernels) {
-        auto queue = input_queue.find(k.name);
-        if (queue == input_queue.end()) continue;
+    for (const StageDeclaration& stage : stage_declarations) {
+        if (!profile.has_kernel(stage.kernel)) continue;
+        KernelProfile& k = profile.kernel(stage.kernel);
         k.items = 0;
-        for (const IterationRecord& r : iterations) k.items += r.*(queue->second);
+        for (const IterationRecord& r : iterations) k.items += r.taken_from(stage.consumes);
     }
     profile.kernel("accumulate").items = samples;
     profile.iterations = iterations.size();
@@ -67,9 +62,25 @@ void fill_profile(RenderProfile& profile, const std::vector<IterationRecord>& it
 
 }  // namespace
 
+std::uint32_t IterationRecord::taken_from(std::uint32_t queue) const {
+    switch (queue) {
+        case WP_QUEUE_FREE:
+            return generated;
+        case WP_QUEUE_RAY:
+            return traced;
+        case WP_QUEUE_HIT:
+            return hits;
+        case WP_QUEUE_SHADOW:
+            return shadow;
+        case WP_QUEUE_SCATTER:
+            return scattered;
+    }
+    return 0;
+}
+
 std::size_t default_wavefront_size(std::uint64_t work_items, std::size_t bytes_per_path, const DeviceInfo& device) {
-    // On a CPU the state should stay near the caches: 2^16 paths rendered room.json
-    // at 512x512 1.7x faster than 2^20 on PoCL (2 cores); GPUs need many paths in flight.
+    // On a CPU the state should stay near the caches: fewer paths in flight
+    // rendered faster on PoCL (bench/results/defaults.md); GPUs need many.
     std::size_t most = device.type == "CPU" ? std::size_t(1) << 16 : std::size_t(1) << 20;
     constexpr std::size_t kGroup = WP_GROUP_SIZE;
     // State, five queue entries and the pass entries of each path slot.
@@ -146,7 +157,7 @@ class WavefrontFilmRenderer : public FilmRenderer {
 
  protected:
     void render_items(const ItemRange& items, const Progress& progress) override {
-        run_schedule(pipeline_, items, features_.nee, progress, totals_, report_.iterations);
+        run_schedule(pipeline_, items, progress, totals_, report_.iterations);
         samples_ += items.size();
     }
     Film read_film(const ItemRange& items) override { return pipeline_.read_film(items); }

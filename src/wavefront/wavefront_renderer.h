@@ -35,6 +35,9 @@ struct IterationRecord {
     std::uint32_t scattered = 0;   // paths scatter sampled (hits that did not end in shade_direct)
     std::uint32_t continuing = 0;  // paths that scattered on
     std::uint32_t finished = 0;    // paths that ended
+
+    // The entries the iteration's stages took from `queue` (kernels/interface/queues.h).
+    std::uint32_t taken_from(std::uint32_t queue) const;
 };
 
 // What --explain prints, and the profile of the run.

@@ -7,10 +7,12 @@
 #include <filesystem>
 #include <fstream>
 #include <regex>
+#include <set>
 
 #include "opencl/device.h"
 #include "opencl/kernel_options.h"
 #include "opencl/program_cache.h"
+#include "support/temp_directory.h"
 #include "wavefront/pipeline.h"
 
 namespace wp {
@@ -143,6 +145,77 @@ TEST(ProgramBuild, BrokenKernelNamesFileAndLine) {
         EXPECT_NE(std::string(e.what()).find("undeclared_thing"), std::string::npos) << e.what();
         EXPECT_NE(e.log().find("undeclared_thing"), std::string::npos);
     }
+}
+
+// The one-line error of building the wavefront program for `features`, "" when it builds.
+std::string wavefront_build_error(const FeatureSet& features) {
+    try {
+        build_wavefront(choose_device(""), features);
+        return "";
+    } catch (const KernelBuildError& e) {
+        return e.what();
+    }
+}
+
+// A stage kernel is held to its declaration (kernels/interface/stages.h) when
+// it compiles: a push to a queue the declaration does not list fails the
+// build at the push.
+TEST(ProgramBuild, PushToAQueueTheStageDoesNotDeclareFailsToCompile) {
+    TempDir cache, kernels;
+    ScopedEnv cache_env("WAVEPATH_CACHE_DIR", cache.path.string());
+    fs::path dir = copy_kernels(kernels.path / "kernels");
+    ScopedEnv kernel_env("WAVEPATH_KERNEL_DIR", dir.string());
+    replace_in_file(dir / "scatter.cl", "STAGE_PUSH(RAY, lanes, continues)", "STAGE_PUSH(SHADOW, lanes, continues)");
+    std::string error = wavefront_build_error(diffuse_spheres());
+    std::string at =
+        (dir / "scatter.cl").string() + ":" + std::to_string(line_of(dir / "scatter.cl", "STAGE_PUSH(SHADOW")) + ": ";
+    EXPECT_NE(error.find(at), std::string::npos) << error;
+    EXPECT_NE(error.find("a push to SHADOW, which the stage's declaration"), std::string::npos) << error;
+}
+
+// And a declaration changed without its kernel fails the build at the
+// kernel's first line, which states its queues.
+TEST(ProgramBuild, StageOpeningWithOtherQueuesThanItsDeclarationFailsToCompile) {
+    TempDir cache, kernels;
+    ScopedEnv cache_env("WAVEPATH_CACHE_DIR", cache.path.string());
+    fs::path dir = copy_kernels(kernels.path / "kernels");
+    ScopedEnv kernel_env("WAVEPATH_KERNEL_DIR", dir.string());
+    replace_in_file(dir / "interface" / "stages.h", "X(scatter, SCATTER, WP_PUSHES(RAY, FREE), ALWAYS)",
+                    "X(scatter, SCATTER, WP_PUSHES(RAY), ALWAYS)");
+    std::string error = wavefront_build_error(diffuse_spheres());
+    std::string at =
+        (dir / "scatter.cl").string() + ":" + std::to_string(line_of(dir / "scatter.cl", "STAGE_QUEUES")) + ": ";
+    EXPECT_NE(error.find(at), std::string::npos) << error;
+    EXPECT_NE(error.find("the queues of scatter differ from its declaration"), std::string::npos) << error;
+}
+
+// docs/architecture.md ("Specialisation") lists exactly the macros that
+// src/opencl/kernel_options.cpp can emit: the WP_ names in its string
+// literals, which are those its functions put in the options.
+TEST(KernelOptions, ArchitectureDocListsEveryMacroTheyEmit) {
+    const std::string code = test::read_text(WAVEPATH_SOURCE_DIR "/src/opencl/kernel_options.cpp");
+    const std::string doc = test::read_text(WAVEPATH_SOURCE_DIR "/docs/architecture.md");
+    const std::size_t section = doc.find("\n## Specialisation\n");
+    ASSERT_NE(section, std::string::npos);
+    const std::string specialisation = doc.substr(section, doc.find("\n## ", section + 1) - section);
+    auto names = [](const std::string& text, const std::regex& pattern) {
+        std::set<std::string> found;
+        for (std::sregex_iterator m(text.begin(), text.end(), pattern), end; m != end; ++m) found.insert((*m)[1]);
+        return found;
+    };
+    std::set<std::string> emitted;
+    static const std::regex literal(R"(("(?:[^"\\\n]|\\.)*"))"), macro(R"((WP_[A-Z0-9_]+))");
+    for (const std::string& text : names(code, literal))
+        for (const std::string& name : names(text, macro)) emitted.insert(name);
+    EXPECT_EQ(names(specialisation, std::regex(R"(-D(WP_[A-Z0-9_]+))")), emitted);
+
+    // The literals are what the functions emit: every macro of a build with many features is among them.
+    FeatureSet many = diffuse_spheres();
+    many.quads = many.glass = many.quad_lights = many.nee = many.mis = true;
+    const std::string options = kernel_build_options(many, Hemisphere::Uniform);
+    const std::set<std::string> used = names(options, std::regex(R"(-D(WP_[A-Z0-9_]+))"));
+    EXPECT_FALSE(used.empty()) << options;
+    for (const std::string& name : used) EXPECT_EQ(emitted.count(name), 1u) << name;
 }
 
 // Without glass the kernels are built without WP_HAS_GLASS, and

@@ -39,8 +39,8 @@ std::pair<std::vector<std::uint32_t>, std::vector<std::uint32_t>> hits_after_int
         r = test::TestRay{glm::vec3(0.0f), glm::normalize(glm::vec3(coordinate(random), coordinate(random), -1.0f))};
     test::start_paths(pipeline, rays);
     pipeline.queues().set_queue(WP_QUEUE_RAY, queued);
-    pipeline.run(Stage::Intersect, queued.size());
-    pipeline.finish_stage(Stage::Intersect);
+    pipeline.run(Stage::intersect, queued.size());
+    pipeline.finish_stage(Stage::intersect);
     std::vector<std::uint32_t> shape = pipeline.read_field<std::uint32_t>("hit_shape"), expected;
     for (std::uint32_t slot : queued)
         if (shape[slot] != WP_NO_HIT) expected.push_back(slot);

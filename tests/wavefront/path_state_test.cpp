@@ -1,10 +1,16 @@
-// The path state list: its docs table, and buffers only for features in use.
+// The path state list: its docs table, its writers and readers, and buffers
+// only for features in use.
 #include "wavefront/path_state.h"
 
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <map>
+#include <regex>
 #include <sstream>
+
+#include "support/kernel_sources.h"
+#include "wavefront/stage.h"
 
 namespace wp {
 namespace {
@@ -15,6 +21,31 @@ TEST(PathState, ArchitectureDocHasTheCurrentFieldTable) {
     doc << in.rdbuf();
     EXPECT_NE(doc.str().find(path_state_table_markdown()), std::string::npos) << "docs/architecture.md must contain:\n"
                                                                               << path_state_table_markdown();
+}
+
+// The fields' "written by" and "read by" (the docs table's columns) name
+// exactly the stages whose kernels, with the kernel headers they include,
+// PATH_WRITE and PATH_READ the field, in stage order.
+TEST(PathState, WritersAndReadersAreTheStagesThatWriteAndReadTheField) {
+    std::map<std::string, std::string> written_by, read_by;  // field -> stages, space-separated
+    auto add = [](std::string& stages, const char* stage) {
+        if (!stages.empty()) stages += ' ';
+        stages += stage;
+    };
+    static const std::regex use(R"(\bPATH_(READ|WRITE)\(\s*(\w+))");
+    for (const StageDeclaration& stage : stage_declarations) {
+        const std::string code = test::kernel_code_with_includes(std::string(stage.kernel) + ".cl");
+        ASSERT_NE(code.find("STAGE_QUEUES"), std::string::npos) << stage.kernel;
+        std::set<std::string> reads, writes;
+        for (std::sregex_iterator m(code.begin(), code.end(), use), end; m != end; ++m)
+            ((*m)[1] == "READ" ? reads : writes).insert((*m)[2]);
+        for (const std::string& field : writes) add(written_by[field], stage.kernel);
+        for (const std::string& field : reads) add(read_by[field], stage.kernel);
+    }
+    for (const PathStateField& f : path_state_fields()) {
+        EXPECT_EQ(f.writers, written_by[f.name]) << f.name;
+        EXPECT_EQ(f.readers, read_by[f.name]) << f.name;
+    }
 }
 
 TEST(PathState, FieldsExistOnlyForFeaturesInUse) {

@@ -11,6 +11,7 @@
 #include <map>
 #include <nlohmann/json.hpp>
 #include <numeric>
+#include <regex>
 #include <string>
 
 #include "opencl/device.h"
@@ -82,6 +83,37 @@ TEST(Profile, KernelItemsMatchTheRaysTheRenderCounted) {
     EXPECT_LE(p.kernel_s(), p.render_s);
     EXPECT_GT(p.intersect_bound_rays_per_s, 0.0);
     EXPECT_TRUE(std::isfinite(p.intersect_bound_rays_per_s));
+}
+
+// docs/architecture.md's count of the kernels an iteration launches (at most:
+// scan compaction and next-event estimation, as here) is what one iteration
+// launches: every path of this render ends at its first hit (max_depth 0),
+// so it is one pass of one iteration, and its profile counts every launch
+// but the pass's accumulate.
+TEST(Profile, ArchitectureDocCountsTheKernelsOfAnIteration) {
+    Scene scene = test::scene_from_file("scenes/test/room_small.json");
+    scene.camera.width = scene.camera.height = 8;
+    scene.render.spp = 1;
+    scene.render.max_depth = 0;
+    WavefrontOptions options;
+    options.wavefront = 64;
+    options.profile = true;
+    WavefrontReport report;
+    render_wavefront(scene, options, {}, &report);
+    ASSERT_EQ(report.iterations.size(), 1u);
+    std::uint64_t launches = 0;
+    for (const KernelProfile& k : report.profile.kernels)
+        if (k.name != "accumulate") launches += k.launches;
+    const std::uint64_t depth_counts = report.profile.kernel("count_depths").launches;  // with --profile only
+    EXPECT_GT(depth_counts, 0u);
+
+    std::ifstream in(WAVEPATH_SOURCE_DIR "/docs/architecture.md");
+    const std::string doc((std::istreambuf_iterator<char>(in)), {});
+    std::smatch stated;
+    ASSERT_TRUE(std::regex_search(
+        doc, stated, std::regex(R"(up\s+to\s+(\d+)\s+kernels\s+per\s+iteration\s+\((\d+)\s+with\s+`--profile`\))")));
+    EXPECT_EQ(std::stoull(stated[1]), launches - depth_counts);
+    EXPECT_EQ(std::stoull(stated[2]), launches);
 }
 
 // The sum of the reference's closest-hit distances over rays 0..rays-1 of

@@ -49,7 +49,7 @@ TEST(IntersectStage, MatchesReferenceClosestHit) {
     std::vector<test::TestRay> rays = hand_built_rays();
     Pipeline pipeline(scene, choose_device(""), 64, 64, scene.features());
     test::start_paths(pipeline, rays);
-    pipeline.run_alone(Stage::Intersect);
+    pipeline.run_alone(Stage::intersect);
 
     std::vector<float> t = pipeline.read_field<float>("hit_t");
     std::vector<std::uint32_t> shape = pipeline.read_field<std::uint32_t>("hit_shape");

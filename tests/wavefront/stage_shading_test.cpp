@@ -17,7 +17,7 @@ using vec3 = M::vec3;
 
 // Runs intersect on the started paths and hands its hits to `next`.
 std::vector<std::uint32_t> intersect_and_queue_hits(Pipeline& pipeline, std::uint32_t next) {
-    pipeline.run_alone(Stage::Intersect);
+    pipeline.run_alone(Stage::intersect);
     std::vector<std::uint32_t> hits = pipeline.queues().read_queue(WP_QUEUE_HIT);
     pipeline.queues().set_queue(next, hits);
     return hits;
@@ -49,9 +49,9 @@ TEST(ShadeDirectStage, LightSampleMatchesReference) {
     test::start_paths(pipeline, rays, 100);
     std::vector<std::uint32_t> hits = intersect_and_queue_hits(pipeline, WP_QUEUE_HIT);
     ASSERT_EQ(hits.size(), std::size_t(kPaths));
-    pipeline.run_alone(Stage::ShadeDirect);
+    pipeline.run_alone(Stage::shade_direct);
     EXPECT_EQ(pipeline.queues().read_queue(WP_QUEUE_SCATTER).size(), std::size_t(kPaths));
-    pipeline.run_alone(Stage::IntersectShadow);
+    pipeline.run_alone(Stage::intersect_shadow);
     std::vector<float> radiance[3] = {pipeline.read_field<float>("radiance", 0),
                                       pipeline.read_field<float>("radiance", 1),
                                       pipeline.read_field<float>("radiance", 2)};
@@ -99,7 +99,7 @@ TEST(ScatterStage, GlassSplitFollowsFresnelAndMatchesReference) {
         for (int i = 0; i < kPerCase; ++i) rays.push_back({vec3(0, c.height, c.inside ? -5 : 0), vec3(0, 0, -1)});
     test::start_paths(pipeline, rays);
     ASSERT_EQ(intersect_and_queue_hits(pipeline, WP_QUEUE_SCATTER).size(), rays.size());
-    pipeline.run_alone(Stage::Scatter);
+    pipeline.run_alone(Stage::scatter);
     ASSERT_EQ(pipeline.queues().read_queue(WP_QUEUE_RAY).size(), rays.size());  // rr_depth 8: no roulette yet
     std::vector<float> dir[3] = {pipeline.read_field<float>("direction", 0), pipeline.read_field<float>("direction", 1),
                                  pipeline.read_field<float>("direction", 2)};

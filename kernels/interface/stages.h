@@ -1,0 +1,45 @@
+/* The wavefront's stages and the queues between them, declared once. Each
+ * stage is one kernel, defined in kernels/<stage>.cl, run over the queue it
+ * consumes; it pushes each path it keeps to the queues of the stages that
+ * take it next. An iteration runs the stages in this list's order.
+ *
+ * The list expands, on the host (src/wavefront/stage.h), into the Stage enum,
+ * the table of kernels and queues, the program's stage files, the order of an
+ * iteration, the queue bookkeeping between stages (QueueSet, derived in
+ * src/wavefront/queue_plan.cpp) and the profiler's items per stage; in the
+ * kernels (device/path_queues.h), into each stage's queues, which its kernel
+ * restates in its first line (STAGE_QUEUES) and against which every push is
+ * checked when the kernel compiles (STAGE_PUSH). Adding a stage is one line
+ * here and its kernel file.
+ *
+ * X(stage, consumes, pushes to, runs when), where
+ *   consumes   a queue of interface/queues.h, by name (WP_QUEUE_<name>);
+ *   pushes to  WP_PUSHES(queue, ...), the queues it may push to, or
+ *              WP_PUSHES_NOTHING;
+ *   runs when  a path state feature (interface/path_state.h): ALWAYS, or NEE
+ *              for a stage that only next-event estimation needs. */
+#ifndef WP_INTERFACE_STAGES_H
+#define WP_INTERFACE_STAGES_H
+
+#include "interface/queues.h"
+
+#define WP_STAGES(X)                                               \
+    X(generate, FREE, WP_PUSHES(RAY), ALWAYS)                      \
+    X(intersect, RAY, WP_PUSHES(HIT, FREE), ALWAYS)                \
+    X(shade_direct, HIT, WP_PUSHES(SHADOW, SCATTER, FREE), ALWAYS) \
+    X(intersect_shadow, SHADOW, WP_PUSHES_NOTHING, NEE)            \
+    X(scatter, SCATTER, WP_PUSHES(RAY, FREE), ALWAYS)
+
+/* A set of queues as bits 1 << queue, from one to five queue names. */
+#define WP_QUEUE_BIT(queue) (1u << WP_QUEUE_##queue)
+#define WP_PUSHES_1(a) WP_QUEUE_BIT(a)
+#define WP_PUSHES_2(a, b) (WP_QUEUE_BIT(a) | WP_QUEUE_BIT(b))
+#define WP_PUSHES_3(a, b, c) (WP_PUSHES_2(a, b) | WP_QUEUE_BIT(c))
+#define WP_PUSHES_4(a, b, c, d) (WP_PUSHES_3(a, b, c) | WP_QUEUE_BIT(d))
+#define WP_PUSHES_5(a, b, c, d, e) (WP_PUSHES_4(a, b, c, d) | WP_QUEUE_BIT(e))
+#define WP_PUSHES_CHOOSE(a, b, c, d, e, chosen, ...) chosen
+#define WP_PUSHES(...) \
+    WP_PUSHES_CHOOSE(__VA_ARGS__, WP_PUSHES_5, WP_PUSHES_4, WP_PUSHES_3, WP_PUSHES_2, WP_PUSHES_1, )(__VA_ARGS__)
+#define WP_PUSHES_NOTHING 0u
+
+#endif

@@ -1,0 +1,52 @@
+#include "wavefront/queue_plan.h"
+
+#include <algorithm>
+
+namespace wp {
+namespace {
+
+bool pushes_to(Stage stage, std::uint32_t queue) { return declaration(stage).pushes >> queue & 1u; }
+
+StageBookkeeping& of(QueuePlan& plan, Stage stage) { return plan[static_cast<std::size_t>(stage)]; }
+
+// The position in `iteration` after the stage that consumes `queue`, or 0
+// when no stage of the iteration consumes it.
+std::size_t after_consumer(const std::vector<Stage>& iteration, std::uint32_t queue) {
+    auto consumer = std::find_if(iteration.begin(), iteration.end(),
+                                 [&](Stage stage) { return declaration(stage).consumes == queue; });
+    return consumer == iteration.end() ? 0 : std::size_t(consumer - iteration.begin()) + 1;
+}
+
+// Whether no stage after position `at` pushes to `queue` before its consumer runs.
+bool complete_after(const std::vector<Stage>& iteration, std::size_t at, std::uint32_t queue) {
+    for (std::size_t later = at + 1; later < iteration.size(); ++later) {
+        if (declaration(iteration[later]).consumes == queue) return true;
+        if (pushes_to(iteration[later], queue)) return false;
+    }
+    return true;
+}
+
+}  // namespace
+
+QueuePlan plan_queues(const std::vector<Stage>& iteration) {
+    QueuePlan plan{};
+    const std::size_t n = iteration.size();
+    for (std::uint32_t queue = 0; queue < WP_QUEUE_COUNT; ++queue) {
+        // From the consumer on, round the loop of iterations (a stage never
+        // pushes to the queue it consumes, wavefront/stage.h).
+        for (std::size_t step = 0, start = after_consumer(iteration, queue); step < n; ++step) {
+            Stage stage = iteration[(start + step) % n];
+            if (pushes_to(stage, queue)) {
+                of(plan, stage).counts_cleared_before |= 1u << queue;
+                break;
+            }
+        }
+    }
+    for (std::size_t at = 0; at < n; ++at)
+        for (std::uint32_t queue = 0; queue < WP_QUEUE_COUNT; ++queue)
+            if (pushes_to(iteration[at], queue) && complete_after(iteration, at, queue))
+                of(plan, iteration[at]).compacted_after |= 1u << queue;
+    return plan;
+}
+
+}  // namespace wp

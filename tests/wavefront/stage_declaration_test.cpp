@@ -1,0 +1,153 @@
+// The queue graph declared once (kernels/interface/stages.h): the kernels
+// are what it declares, the host's queue bookkeeping follows from it, and
+// docs/architecture.md states it. (That a push the declaration does not list
+// fails to compile is tested with the program builds, tests/opencl.)
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <map>
+#include <regex>
+#include <string>
+#include <vector>
+
+#include "support/kernel_sources.h"
+#include "wavefront/queue_plan.h"
+#include "wavefront/stage.h"
+
+namespace wp {
+namespace {
+
+const std::map<std::string, std::uint32_t> kQueueByName{{"FREE", WP_QUEUE_FREE},
+                                                        {"HIT", WP_QUEUE_HIT},
+                                                        {"RAY", WP_QUEUE_RAY},
+                                                        {"SHADOW", WP_QUEUE_SHADOW},
+                                                        {"SCATTER", WP_QUEUE_SCATTER}};
+
+std::uint32_t bit(const char* queue) { return 1u << kQueueByName.at(queue); }
+
+// The queues of a mask by name, "FREE RAY" (in index order), for messages and comparisons.
+std::string queue_names(std::uint32_t mask) {
+    std::vector<std::pair<std::uint32_t, std::string>> named;
+    for (const auto& [name, queue] : kQueueByName)
+        if (mask >> queue & 1u) named.emplace_back(queue, name);
+    std::sort(named.begin(), named.end());
+    std::string names;
+    for (const auto& [queue, name] : named) {
+        if (!names.empty()) names += ' ';
+        names += name;
+    }
+    return names;
+}
+
+// Queue names in `text` (FREE, HIT ...), as a mask.
+std::uint32_t queues_named_in(const std::string& text) {
+    static const std::regex word(R"(\b[A-Z]+\b)");
+    std::uint32_t mask = 0;
+    for (std::sregex_iterator m(text.begin(), text.end(), word), end; m != end; ++m)
+        if (auto queue = kQueueByName.find(m->str()); queue != kQueueByName.end()) mask |= 1u << queue->second;
+    return mask;
+}
+
+TEST(StageDeclaration, QueueNamesOfTheTestAreEveryQueue) {
+    EXPECT_EQ(kQueueByName.size(), std::size_t(WP_QUEUE_COUNT));
+    std::uint32_t all = 0;
+    for (const auto& entry : kQueueByName) all |= 1u << entry.second;
+    EXPECT_EQ(all, (1u << WP_QUEUE_COUNT) - 1u);
+}
+
+// What is wrong with kernels/<stage>.cl against the stage's declaration
+// ("" when nothing): the file defines the stage's kernel, opens it with the
+// stage's queues, and pushes to every queue the declaration lists (a push it
+// does not list fails to compile, device/path_queues.h).
+std::string kernel_file_problem(const StageDeclaration& stage) {
+    const std::string kernel = stage.kernel, file = kernel + ".cl";
+    if (!std::filesystem::exists(test::kKernelDirectory / file)) return "no kernels/" + file;
+    const std::string code = test::without_comments(test::read_text(test::kKernelDirectory / file));
+    std::smatch opening;
+    if (!std::regex_search(code, opening,
+                           std::regex("void " + kernel + R"(\(WP_STAGE_PARAMS\)\s*\{\s*STAGE_QUEUES\(\s*(\w+)\s*,)")))
+        return "kernels/" + file + " defines no kernel " + kernel + " that opens with STAGE_QUEUES";
+    if (opening[1] != kernel) return "kernel " + kernel + " opens with the queues of " + opening[1].str();
+    std::uint32_t pushed = 0;
+    static const std::regex push(R"(STAGE_PUSH\(\s*(\w+)\s*,)");
+    for (std::sregex_iterator m(code.begin(), code.end(), push), end; m != end; ++m)
+        pushed |= queues_named_in((*m)[1].str());
+    if (pushed != stage.pushes)
+        return "kernel " + kernel + " pushes to " + queue_names(pushed) + ", declared " + queue_names(stage.pushes);
+    return "";
+}
+
+TEST(StageDeclaration, EveryStageHasItsKernelWithTheDeclaredQueues) {
+    for (const StageDeclaration& stage : stage_declarations) EXPECT_EQ(kernel_file_problem(stage), "") << stage.kernel;
+}
+
+// The check above fails on the two mistakes it is there for: a stage added to
+// the declaration without a kernel, and a declared push no kernel makes.
+TEST(StageDeclaration, KernelCheckFindsAStageWithoutKernelAndAPushNeverMade) {
+    StageDeclaration without_kernel{"shade_indirect", WP_QUEUE_SCATTER, bit("RAY"), PathFeature::ALWAYS};
+    EXPECT_EQ(kernel_file_problem(without_kernel), "no kernels/shade_indirect.cl");
+    StageDeclaration scatter = declaration(Stage::scatter);
+    scatter.pushes |= bit("SHADOW");
+    EXPECT_EQ(kernel_file_problem(scatter), "kernel scatter pushes to FREE RAY, declared FREE RAY SHADOW");
+}
+
+TEST(StageDeclaration, IntersectShadowRunsOnlyWithNextEventEstimation) {
+    FeatureSet features;
+    features.spheres = features.diffuse = true;
+    const std::vector<Stage> without_nee{Stage::generate, Stage::intersect, Stage::shade_direct, Stage::scatter};
+    EXPECT_EQ(iteration_stages(features), without_nee);
+    features.nee = true;
+    const std::vector<Stage> with_nee{Stage::generate, Stage::intersect, Stage::shade_direct, Stage::intersect_shadow,
+                                      Stage::scatter};
+    EXPECT_EQ(iteration_stages(features), with_nee);
+}
+
+// The bookkeeping derived from the declaration is the one the host did by
+// hand before it was derived (and docs/architecture.md describes): scan
+// compaction builds RAY after generate, HIT after intersect, SHADOW and
+// SCATTER after shade_direct, FREE and RAY after scatter (nothing after
+// intersect_shadow); atomic pushes empty FREE and HIT before intersect, SHADOW
+// and SCATTER before shade_direct, RAY before scatter.
+TEST(StageDeclaration, QueueBookkeepingFollowsFromTheDeclaration) {
+    for (bool nee : {true, false}) {
+        SCOPED_TRACE(nee ? "with next-event estimation" : "without");
+        FeatureSet features;
+        features.nee = nee;
+        QueuePlan plan = plan_queues(iteration_stages(features));
+        auto of = [&](Stage stage) { return plan[static_cast<std::size_t>(stage)]; };
+        EXPECT_EQ(queue_names(of(Stage::generate).compacted_after), "RAY");
+        EXPECT_EQ(queue_names(of(Stage::intersect).compacted_after), "HIT");
+        EXPECT_EQ(queue_names(of(Stage::shade_direct).compacted_after), "SHADOW SCATTER");
+        EXPECT_EQ(queue_names(of(Stage::intersect_shadow).compacted_after), "");
+        EXPECT_EQ(queue_names(of(Stage::scatter).compacted_after), "FREE RAY");
+        EXPECT_EQ(queue_names(of(Stage::generate).counts_cleared_before), "");
+        EXPECT_EQ(queue_names(of(Stage::intersect).counts_cleared_before), "FREE HIT");
+        EXPECT_EQ(queue_names(of(Stage::shade_direct).counts_cleared_before), "SHADOW SCATTER");
+        EXPECT_EQ(queue_names(of(Stage::intersect_shadow).counts_cleared_before), "");
+        EXPECT_EQ(queue_names(of(Stage::scatter).counts_cleared_before), "RAY");
+    }
+}
+
+// docs/architecture.md's table of stages ("Stages and queues") has a row per
+// stage, in the declaration's order, naming the queue it consumes and exactly
+// the queues it pushes to.
+TEST(StageDeclaration, ArchitectureDocTableStatesTheDeclaration) {
+    const std::string doc = test::read_text(WAVEPATH_SOURCE_DIR "/docs/architecture.md");
+    static const std::regex row(R"(\n\| [^|\n]* \| `(\w+)\.cl` \| ([^|\n]*) \| ([^|\n]*) \|)");
+    std::vector<std::string> rows;
+    for (std::sregex_iterator m(doc.begin(), doc.end(), row), end; m != end; ++m) {
+        const std::string kernel = (*m)[1];
+        auto stage = std::find_if(stage_declarations.begin(), stage_declarations.end(),
+                                  [&](const StageDeclaration& s) { return s.kernel == kernel; });
+        if (stage == stage_declarations.end()) continue;  // compact.cl, accumulate.cl
+        rows.push_back(kernel);
+        EXPECT_EQ(queue_names(queues_named_in((*m)[2])), queue_names(1u << stage->consumes)) << kernel;
+        EXPECT_EQ(queue_names(queues_named_in((*m)[3])), queue_names(stage->pushes)) << kernel;
+    }
+    std::vector<std::string> declared;
+    for (const StageDeclaration& stage : stage_declarations) declared.push_back(stage.kernel);
+    EXPECT_EQ(rows, declared);
+}
+
+}  // namespace
+}  // namespace wp
