@@ -57,10 +57,13 @@ std::string cache_key(const DeviceInfo& device, const fs::path& dir, const std::
 }
 
 // The first error as "file:line: message", from either log format:
-// clang's "file:line:col: error: message" or PoCL's "error: file:line:col: message".
+// clang's "file:line:col: error: message" or PoCL's "error: file:line:col: message"
+// (in a macro expansion, "error: file:line:col <Spelling=header:line:col>: message",
+// the line of the macro's use).
 std::string first_error_line(const std::string& log) {
     static const std::regex clang_format(R"(([^\s:][^:\n]*):(\d+):\d+: (?:fatal )?error: ([^\n]*))");
-    static const std::regex pocl_format(R"((?:fatal )?error: ([^\s:][^:\n]*):(\d+):\d+: ([^\n]*))");
+    static const std::regex pocl_format(
+        R"((?:fatal )?error: ([^\s:][^:\n]*):(\d+):\d+(?: <Spelling=[^>\n]*>)?: ([^\n]*))");
     std::smatch m;
     if (std::regex_search(log, m, pocl_format) || std::regex_search(log, m, clang_format))
         return m[1].str() + ":" + m[2].str() + ": " + m[3].str();
