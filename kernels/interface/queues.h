@@ -1,14 +1,15 @@
 /* Queue and counter indices shared by the host (src/wavefront/queue_set.h)
  * and the kernels. `queues` holds WP_QUEUE_COUNT queues of path slots, each
- * `capacity` long; `counts` holds their lengths, then the counters. */
+ * `capacity` long; `counts` holds their lengths, then the counters. Which
+ * stage consumes each queue and which push to it: interface/stages.h. */
 #ifndef WP_INTERFACE_QUEUES_H
 #define WP_INTERFACE_QUEUES_H
 
-#define WP_QUEUE_FREE 0u    /* slots without a path, refilled by generate */
-#define WP_QUEUE_HIT 1u     /* extension rays that hit a surface, for shade_direct */
-#define WP_QUEUE_RAY 2u     /* paths with an extension ray to trace, for intersect */
-#define WP_QUEUE_SHADOW 3u  /* shadow rays to trace, for intersect_shadow */
-#define WP_QUEUE_SCATTER 4u /* paths that scatter at their hit, for scatter */
+#define WP_QUEUE_FREE 0u    /* slots without a path */
+#define WP_QUEUE_HIT 1u     /* paths whose extension ray hit a surface */
+#define WP_QUEUE_RAY 2u     /* paths with an extension ray to trace */
+#define WP_QUEUE_SHADOW 3u  /* paths with a shadow ray to trace */
+#define WP_QUEUE_SCATTER 4u /* paths that scatter at their hit */
 #define WP_QUEUE_COUNT 5u
 /* With scan compaction (-DWP_COMPACT_SCAN) the queues buffer also holds, after the queues, one
  * array of marks (0 or 1 per slot) per queue, from which kernels/compact.cl

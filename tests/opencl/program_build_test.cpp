@@ -147,46 +147,46 @@ TEST(ProgramBuild, BrokenKernelNamesFileAndLine) {
     }
 }
 
-// The one-line error of building the wavefront program for `features`, "" when it builds.
-std::string wavefront_build_error(const FeatureSet& features) {
+// Builds the wavefront program from a copy of kernels/ in which `file` has
+// `from` replaced by `to`: the one-line build error ("" when it builds), and
+// the "file:line: " that error should start with, of the line of the copy's
+// `located_in` that holds `needle`.
+struct EditedBuild {
+    std::string error, expected_location;
+};
+EditedBuild build_edited_copy(const std::string& file, const std::string& from, const std::string& to,
+                              const std::string& located_in, const std::string& needle) {
+    TempDir cache, kernels;
+    ScopedEnv cache_env("WAVEPATH_CACHE_DIR", cache.path.string());
+    fs::path dir = copy_kernels(kernels.path / "kernels");
+    ScopedEnv kernel_env("WAVEPATH_KERNEL_DIR", dir.string());
+    replace_in_file(dir / file, from, to);
+    EditedBuild built{"", (dir / located_in).string() + ":" + std::to_string(line_of(dir / located_in, needle)) + ": "};
     try {
-        build_wavefront(choose_device(""), features);
-        return "";
+        build_wavefront(choose_device(""), diffuse_spheres());
     } catch (const KernelBuildError& e) {
-        return e.what();
+        built.error = e.what();
     }
+    return built;
 }
 
 // A stage kernel is held to its declaration (kernels/interface/stages.h) when
 // it compiles: a push to a queue the declaration does not list fails the
 // build at the push.
 TEST(ProgramBuild, PushToAQueueTheStageDoesNotDeclareFailsToCompile) {
-    TempDir cache, kernels;
-    ScopedEnv cache_env("WAVEPATH_CACHE_DIR", cache.path.string());
-    fs::path dir = copy_kernels(kernels.path / "kernels");
-    ScopedEnv kernel_env("WAVEPATH_KERNEL_DIR", dir.string());
-    replace_in_file(dir / "scatter.cl", "STAGE_PUSH(RAY, lanes, continues)", "STAGE_PUSH(SHADOW, lanes, continues)");
-    std::string error = wavefront_build_error(diffuse_spheres());
-    std::string at =
-        (dir / "scatter.cl").string() + ":" + std::to_string(line_of(dir / "scatter.cl", "STAGE_PUSH(SHADOW")) + ": ";
-    EXPECT_NE(error.find(at), std::string::npos) << error;
-    EXPECT_NE(error.find("a push to SHADOW, which the stage's declaration"), std::string::npos) << error;
+    EditedBuild built = build_edited_copy("scatter.cl", "STAGE_PUSH(RAY, lanes, continues)",
+                                          "STAGE_PUSH(SHADOW, lanes, continues)", "scatter.cl", "STAGE_PUSH(SHADOW");
+    EXPECT_NE(built.error.find(built.expected_location), std::string::npos) << built.error;
+    EXPECT_NE(built.error.find("a push to SHADOW, which the stage's declaration"), std::string::npos) << built.error;
 }
 
 // And a declaration changed without its kernel fails the build at the
 // kernel's first line, which states its queues.
 TEST(ProgramBuild, StageOpeningWithOtherQueuesThanItsDeclarationFailsToCompile) {
-    TempDir cache, kernels;
-    ScopedEnv cache_env("WAVEPATH_CACHE_DIR", cache.path.string());
-    fs::path dir = copy_kernels(kernels.path / "kernels");
-    ScopedEnv kernel_env("WAVEPATH_KERNEL_DIR", dir.string());
-    replace_in_file(dir / "interface" / "stages.h", "X(scatter, SCATTER, WP_PUSHES(RAY, FREE), ALWAYS)",
-                    "X(scatter, SCATTER, WP_PUSHES(RAY), ALWAYS)");
-    std::string error = wavefront_build_error(diffuse_spheres());
-    std::string at =
-        (dir / "scatter.cl").string() + ":" + std::to_string(line_of(dir / "scatter.cl", "STAGE_QUEUES")) + ": ";
-    EXPECT_NE(error.find(at), std::string::npos) << error;
-    EXPECT_NE(error.find("the queues of scatter differ from its declaration"), std::string::npos) << error;
+    EditedBuild built = build_edited_copy("interface/stages.h", "X(scatter, SCATTER, WP_PUSHES(RAY, FREE), ALWAYS)",
+                                          "X(scatter, SCATTER, WP_PUSHES(RAY), ALWAYS)", "scatter.cl", "STAGE_QUEUES");
+    EXPECT_NE(built.error.find(built.expected_location), std::string::npos) << built.error;
+    EXPECT_NE(built.error.find("the queues of scatter differ from its declaration"), std::string::npos) << built.error;
 }
 
 // docs/architecture.md ("Specialisation") lists exactly the macros that
