@@ -106,6 +106,7 @@ nlohmann::json stats_json(const RunSummary& summary) {
         {"shadow_rays_per_s", per_second(s.shadow_rays, s.time_s)},
         {"nonfinite", s.nonfinite},
         {"nonfinite_by_stage", nonfinite_by_stage_json(s)},
+        {"threads", s.threads},
     };
 }
 

@@ -35,6 +35,7 @@ struct RenderStats {
     std::uint64_t shadow_rays = 0;
     NonfiniteCounts nonfinite_by_stage{};  // non-finite values dropped, per NonfiniteStage
     std::uint64_t nonfinite = 0;           // their sum
+    std::uint64_t threads = 0;             // CPU threads the reference backend rendered on; 0 for OpenCL
 
     void add_nonfinite(const NonfiniteCounts& counts) {
         for (std::size_t i = 0; i < counts.size(); ++i) {

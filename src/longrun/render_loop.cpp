@@ -130,11 +130,11 @@ std::optional<StopReason> check(Shares& shares, const LongRunPlan& plan, const F
     return std::nullopt;
 }
 
-// Rays and non-finite values summed over the ranks, and each rank's work
-// items and busy time, into `result` on the root (time_s is the caller's).
+// Rays, threads and non-finite values summed over the ranks, and each rank's
+// work items and busy time, into `result` on the root (time_s is the caller's).
 void gather_stats(const RenderStats& mine, const Shares& shares, Ranks& ranks, LongRunResult& result) {
     std::vector<std::uint64_t> figures{shares.rendered(), std::uint64_t(shares.busy_s() * 1e9), mine.extension_rays,
-                                       mine.shadow_rays};
+                                       mine.shadow_rays, mine.threads};
     figures.insert(figures.end(), mine.nonfinite_by_stage.begin(), mine.nonfinite_by_stage.end());
     const std::vector<std::uint64_t> all = ranks.gather(figures);
     for (std::size_t at = 0; at < all.size(); at += figures.size()) {
@@ -142,8 +142,9 @@ void gather_stats(const RenderStats& mine, const Shares& shares, Ranks& ranks, L
         result.busy_s_per_rank.push_back(double(all[at + 1]) * 1e-9);
         result.stats.extension_rays += all[at + 2];
         result.stats.shadow_rays += all[at + 3];
+        result.stats.threads += all[at + 4];
         NonfiniteCounts counts{};
-        std::copy_n(all.begin() + std::ptrdiff_t(at + 4), counts.size(), counts.begin());
+        std::copy_n(all.begin() + std::ptrdiff_t(at + 5), counts.size(), counts.begin());
         result.stats.add_nonfinite(counts);
     }
 }

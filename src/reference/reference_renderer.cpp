@@ -68,6 +68,7 @@ class ReferenceFilmRenderer : public FilmRenderer {
 
     RenderStats stats() const override {
         RenderStats stats;
+        stats.threads = counts_.size();
         for (const reference::RayCounts& c : counts_) {
             stats.extension_rays += c.extension;
             stats.shadow_rays += c.shadow;

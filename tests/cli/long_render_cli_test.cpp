@@ -10,6 +10,7 @@
 #include <chrono>
 #include <cstring>
 #include <nlohmann/json.hpp>
+#include <numeric>
 #include <random>
 #include <thread>
 
@@ -46,14 +47,18 @@ class LongRenderCli : public ::testing::Test {
     TempDirectory scratch_{"scratch"}, out_{"out"};
 };
 
+// Rendering is deterministic, so a resume that started over would give the
+// same bits too: the resumed run must render exactly the samples left.
 TEST_F(LongRenderCli, ResumedRenderIsBitIdenticalToTheUninterruptedOne) {
-    const std::string whole = whole_render(12), checkpoint = out_ / "c.wpfilm";
+    const std::string whole = whole_render(12), checkpoint = out_ / "c.wpfilm", stats = out_ / "stats.json";
     CommandResult first = run(small_room_render_args(out_ / "part.pfm", 5, {"--checkpoint", checkpoint}));
     ASSERT_EQ(first.exit_code, 0) << first.err;
-    CommandResult rest = run(small_room_render_args(out_ / "resumed.pfm", 12, {"--resume", checkpoint}));
+    CommandResult rest =
+        run(small_room_render_args(out_ / "resumed.pfm", 12, {"--resume", checkpoint, "--stats-json", stats}));
     ASSERT_EQ(rest.exit_code, 0) << rest.err;
     EXPECT_TRUE(same_bytes(out_ / "resumed.pfm", whole));
     EXPECT_FALSE(same_bytes(out_ / "part.pfm", whole));  // the comparison can tell images apart
+    EXPECT_EQ(rendered_samples(stats), (12u - 5u) * 1024u);
 }
 
 // Each refusal: exit 3, one error line naming the file, and the files there
@@ -94,6 +99,40 @@ TEST_F(LongRenderCli, RefusedCheckpointsChangeNothing) {
     EXPECT_EQ(read_text(output), "an earlier image");
     EXPECT_EQ(read_text(checkpoint), before);
     EXPECT_EQ(out_.entries(), entries);
+}
+
+// The render's identity covers every mesh as loaded: a checkpoint of a scene
+// whose mesh file had one vertex moved since is refused like one of another
+// scene (the reference backend: no kernels to build). The file as it was
+// resumes, so the refusal is the vertex's.
+TEST_F(LongRenderCli, ResumeRefusesAMeshFileWithAVertexMoved) {
+    const std::string mesh = out_ / "square.obj", scene = out_ / "scene.json", checkpoint = out_ / "c.wpfilm",
+                      stats = out_ / "stats.json";
+    write_text(mesh, "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nf 1 2 3 4\n");
+    write_text(scene, R"({"camera": {"position": [0, 0, 3], "look_at": [0, 0, 0], "fov_y": 60, "width": 8, "height": 8},
+        "render": {"spp": 4, "max_depth": 2},
+        "materials": {"white": {"type": "diffuse", "albedo": [0.5, 0.5, 0.5]},
+                      "lamp": {"type": "emitter", "radiance": [4, 4, 4]}},
+        "shapes": [{"type": "mesh", "file": "square.obj", "material": "white"},
+                   {"type": "quad", "corner": [-0.5, -0.5, 2], "edge1": [0, 1, 0], "edge2": [1, 0, 0],
+                    "material": "lamp"}]})");
+    auto render = [&](int spp, std::vector<std::string> extra) {
+        std::vector<std::string> args{"render",    scene,       "-o", out_ / "out.pfm", "--spp", std::to_string(spp),
+                                      "--backend", "reference", "-q"};
+        args.insert(args.end(), extra.begin(), extra.end());
+        return run(args);
+    };
+    CommandResult first = render(2, {"--checkpoint", checkpoint});
+    ASSERT_EQ(first.exit_code, 0) << first.err;
+    CommandResult same = render(4, {"--resume", checkpoint, "--stats-json", stats});
+    ASSERT_EQ(same.exit_code, 0) << same.err;
+    EXPECT_EQ(rendered_samples(stats), 2u * 64);
+
+    write_text(mesh, "v -1 -1 0\nv 1 -1 0\nv 1 1 0.25\nv -1 1 0\nf 1 2 3 4\n");
+    CommandResult moved = render(4, {"--resume", checkpoint});
+    EXPECT_EQ(moved.exit_code, 3) << moved.err;
+    EXPECT_NE(moved.err.find(checkpoint + ": rendered from another scene (its content differs)"), std::string::npos)
+        << moved.err;
 }
 
 // The checkpoint file's inode (each atomic write makes a new one), 0 if none.
@@ -142,9 +181,12 @@ TEST_F(LongRenderCli, SigkillAtAnyMomentLeavesALoadableCheckpoint) {
                 EXPECT_EQ(read_image(output).width, 32);
             }
     }
-    CommandResult last = run(small_room_render_args(output, spp, {"-q", "--resume", checkpoint}, wavefront));
+    const std::string stats = out_ / "stats.json";
+    CommandResult last =
+        run(small_room_render_args(output, spp, {"-q", "--resume", checkpoint, "--stats-json", stats}, wavefront));
     ASSERT_EQ(last.exit_code, 0) << last.err;
     EXPECT_TRUE(same_bytes(output, whole));
+    EXPECT_EQ(rendered_samples(stats), std::uint64_t(spp) * 1024 - last_end);
 }
 
 // SIGINT: the pass in flight finishes, the image of the samples so far and
@@ -232,11 +274,15 @@ TEST_F(LongRenderCli, AdaptiveReportsItsSamplesResumesAndRefusesPartials) {
         run(small_room_render_args(out_ / "part.pfm", 20, {"-q", "--adaptive", "0.1", "--checkpoint", checkpoint}))
             .exit_code,
         0);
-    CommandResult rest =
-        run(small_room_render_args(out_ / "resumed.pfm", 32, {"-q", "--adaptive", "0.1", "--resume", checkpoint}));
+    const std::vector<std::uint64_t> held = read_film_file(checkpoint).film.sample_counts();
+    const std::string rest_stats = out_ / "rest_stats.json";
+    CommandResult rest = run(small_room_render_args(
+        out_ / "resumed.pfm", 32, {"-q", "--adaptive", "0.1", "--resume", checkpoint, "--stats-json", rest_stats}));
     ASSERT_EQ(rest.exit_code, 0) << rest.err;
     EXPECT_TRUE(same_bytes(out_ / "resumed.pfm", whole));
     EXPECT_FALSE(same_bytes(out_ / "part.pfm", whole));
+    EXPECT_EQ(rendered_samples(rest_stats),
+              json["samples"].get<std::uint64_t>() - std::accumulate(held.begin(), held.end(), std::uint64_t(0)));
     CommandResult other =
         run(small_room_render_args(out_ / "other.pfm", 32, {"-q", "--adaptive", "0.2", "--resume", checkpoint}));
     EXPECT_EQ(other.exit_code, 3);

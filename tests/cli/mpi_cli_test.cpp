@@ -12,6 +12,7 @@
 #include <chrono>
 #include <cstdlib>
 #include <nlohmann/json.hpp>
+#include <numeric>
 #include <thread>
 
 #include "cli/run_wavepath.h"
@@ -79,17 +80,23 @@ TEST_F(MpiCli, OneTwoAndThreeRanksGiveTheOneProcessBits) {
     }
 }
 
+// Each resume renders exactly the 7 spp the checkpoint did not hold (its
+// --stats-json): one that started over would give the same bits.
 TEST_F(MpiCli, CheckpointOfTwoRanksResumesOnOneAndThree) {
-    const std::string one = one_process(12), checkpoint = out_ / "c.wpfilm";
+    const std::string one = one_process(12), checkpoint = out_ / "c.wpfilm", stats = out_ / "stats.json";
     CommandResult first = run_on(2, small_room_render_args(out_ / "part.pfm", 5, {"-q", "--checkpoint", checkpoint}));
     ASSERT_EQ(first.exit_code, 0) << first.err;
     EXPECT_EQ(read_film_file(checkpoint).film.items, (ItemRange{0, 5 * 1024}));
-    CommandResult alone = run(small_room_render_args(out_ / "alone.pfm", 12, {"-q", "--resume", checkpoint}));
+    CommandResult alone =
+        run(small_room_render_args(out_ / "alone.pfm", 12, {"-q", "--resume", checkpoint, "--stats-json", stats}));
     ASSERT_EQ(alone.exit_code, 0) << alone.err;
     EXPECT_TRUE(same_bytes(out_ / "alone.pfm", one));
-    CommandResult three = run_on(3, small_room_render_args(out_ / "three.pfm", 12, {"-q", "--resume", checkpoint}));
+    EXPECT_EQ(rendered_samples(stats), 7u * 1024);
+    CommandResult three = run_on(
+        3, small_room_render_args(out_ / "three.pfm", 12, {"-q", "--resume", checkpoint, "--stats-json", stats}));
     ASSERT_EQ(three.exit_code, 0) << three.err;
     EXPECT_TRUE(same_bytes(out_ / "three.pfm", one));
+    EXPECT_EQ(rendered_samples(stats), 7u * 1024);
 }
 
 // --time: the root decides for every rank, after one whole round (the first
@@ -101,9 +108,12 @@ TEST_F(MpiCli, TimeBudgetStopsEveryRankAfterTheSameRound) {
     ASSERT_EQ(timed.exit_code, 0) << timed.err;
     EXPECT_NE(timed.err.find("stopped: time budget"), std::string::npos) << timed.err;
     EXPECT_EQ(read_film_file(film).film.items, (ItemRange{0, 2 * 1024}));
-    CommandResult rest = run(small_room_render_args(out_ / "rest.pfm", 7, {"-q", "--resume", film}));
+    const std::string stats = out_ / "stats.json";
+    CommandResult rest =
+        run(small_room_render_args(out_ / "rest.pfm", 7, {"-q", "--resume", film, "--stats-json", stats}));
     ASSERT_EQ(rest.exit_code, 0) << rest.err;
     EXPECT_TRUE(same_bytes(out_ / "rest.pfm", one));
+    EXPECT_EQ(rendered_samples(stats), 5u * 1024);
 }
 
 // --target-error: the root estimates from every rank's sums, so the ranks
@@ -122,8 +132,10 @@ TEST_F(MpiCli, TargetErrorStopsAtTheOneProcessSample) {
 // one-process bits, and a checkpoint that 2 ranks wrote in an adaptive round
 // resumes on 3 to them too.
 TEST_F(MpiCli, AdaptiveSamplingGivesTheOneProcessBits) {
-    const std::string one = out_ / "one.pfm", two = out_ / "two.pfm", checkpoint = out_ / "c.wpfilm";
-    ASSERT_EQ(run(small_room_render_args(one, 32, {"-q", "--adaptive", "0.1"})).exit_code, 0);
+    const std::string one = out_ / "one.pfm", two = out_ / "two.pfm", checkpoint = out_ / "c.wpfilm",
+                      one_stats = out_ / "one.json", three_stats = out_ / "three.json";
+    ASSERT_EQ(run(small_room_render_args(one, 32, {"-q", "--adaptive", "0.1", "--stats-json", one_stats})).exit_code,
+              0);
     CommandResult r = run_on(2, small_room_render_args(two, 32, {"--adaptive", "0.1"}));
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_NE(r.err.find("% of pixels stopped early"), std::string::npos) << r.err;
@@ -132,11 +144,17 @@ TEST_F(MpiCli, AdaptiveSamplingGivesTheOneProcessBits) {
                                                {"-q", "--adaptive", "0.1", "--checkpoint", checkpoint}))
                   .exit_code,
               0);
-    EXPECT_TRUE(read_film_file(checkpoint).film.in_round());
-    CommandResult three =
-        run_on(3, small_room_render_args(out_ / "three.pfm", 32, {"-q", "--adaptive", "0.1", "--resume", checkpoint}));
+    const Film held = read_film_file(checkpoint).film;
+    EXPECT_TRUE(held.in_round());
+    CommandResult three = run_on(
+        3, small_room_render_args(out_ / "three.pfm", 32,
+                                  {"-q", "--adaptive", "0.1", "--resume", checkpoint, "--stats-json", three_stats}));
     ASSERT_EQ(three.exit_code, 0) << three.err;
     EXPECT_TRUE(same_bytes(out_ / "three.pfm", one));
+    // The resume renders what the one-process render did beyond the checkpoint's samples.
+    const std::vector<std::uint64_t> counts = held.sample_counts();
+    EXPECT_EQ(rendered_samples(three_stats),
+              rendered_samples(one_stats) - std::accumulate(counts.begin(), counts.end(), std::uint64_t(0)));
 }
 
 // Rank 1 runs its own command line (mpirun's MPMD form, `A : B`): a scene
@@ -219,9 +237,12 @@ TEST_F(MpiCli, ARankThatDiesFailsTheJobAndTheCheckpointStillResumes) {
     ASSERT_EQ(film.items.begin, 0u);
     ASSERT_GE(film.items.end, 3u * 1024);
     const int spp = int(film.max_samples()) + 1;
-    CommandResult rest = run(small_room_render_args(out_ / "rest.pfm", spp, {"-q", "--resume", checkpoint}));
+    const std::string stats = out_ / "stats.json";
+    CommandResult rest =
+        run(small_room_render_args(out_ / "rest.pfm", spp, {"-q", "--resume", checkpoint, "--stats-json", stats}));
     ASSERT_EQ(rest.exit_code, 0) << rest.err;
     EXPECT_TRUE(same_bytes(out_ / "rest.pfm", one_process(spp)));
+    EXPECT_EQ(rendered_samples(stats), std::uint64_t(spp) * 1024 - film.items.end);
 }
 
 // SIGINT on mpirun: it sends SIGTERM to every rank, and SIGKILL

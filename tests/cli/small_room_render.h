@@ -1,7 +1,10 @@
 // What the long-render and MPI tests share: `wavepath render` of
-// scenes/test/room_small.json (32x32), and byte comparison of its outputs.
+// scenes/test/room_small.json (32x32), byte comparison of its outputs, and
+// the samples a run rendered.
 #pragma once
 
+#include <cstdint>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -26,6 +29,13 @@ inline std::vector<std::string> small_room_render_args(const std::string& out, i
 inline bool same_bytes(const std::string& a, const std::string& b) {
     const std::string x = read_text(a), y = read_text(b);
     return !x.empty() && x == y;
+}
+
+// The camera samples (work items) a run rendered itself, from its
+// --stats-json: for a resumed run only those its checkpoint did not hold, so
+// that a resume which started over, and gave the same bits, is told apart.
+inline std::uint64_t rendered_samples(const std::string& stats_json) {
+    return nlohmann::json::parse(read_text(stats_json))["samples"].get<std::uint64_t>();
 }
 
 }  // namespace wp::test

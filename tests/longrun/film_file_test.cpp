@@ -10,6 +10,7 @@
 
 #include "support/analytic_scenes.h"
 #include "support/film_sums.h"
+#include "support/meshes.h"
 #include "support/temp_directory.h"
 #include "support/thrown_message.h"
 
@@ -198,7 +199,9 @@ TEST_F(FilmFileTest, FilmsOfAnotherRenderAreRefused) {
 }
 
 TEST(RenderIdentity, EverySettingThatChangesTheImageChangesIt) {
-    const Scene base = test::plane_under_square_light({}, {0.5, 0.5, 0.5}, {4, 4, 4}, 0.5, 1.0);
+    Scene base = test::plane_under_square_light({}, {0.5, 0.5, 0.5}, {4, 4, 4}, 0.5, 1.0);
+    base.meshes.push_back(test::unit_cube(0));
+    base.meshes[0].normals.assign(base.meshes[0].positions.size(), glm::dvec3(0, 0, 1));
     const RenderIdentity identity = render_identity(base, "opencl");
     auto settings_changed = [&](auto change) {
         Scene scene = base;
@@ -223,6 +226,13 @@ TEST(RenderIdentity, EverySettingThatChangesTheImageChangesIt) {
     EXPECT_TRUE(scene_changed([](Scene& s) { s.materials[0].albedo.x += 1e-9; }));
     EXPECT_TRUE(scene_changed([](Scene& s) { s.quads.at(0).edge1.z += 1e-9; }));
     EXPECT_TRUE(scene_changed([](Scene& s) { s.background.y += 1e-9; }));
+    // A mesh as loaded: one vertex, one normal, one triangle's corners, its material, and a mesh more.
+    EXPECT_TRUE(scene_changed([](Scene& s) { s.meshes[0].positions[5].y += 1e-9; }));
+    EXPECT_TRUE(scene_changed([](Scene& s) { s.meshes[0].normals[3].x += 1e-9; }));
+    EXPECT_TRUE(scene_changed([](Scene& s) { std::swap(s.meshes[0].triangles[7].x, s.meshes[0].triangles[7].y); }));
+    EXPECT_TRUE(scene_changed([](Scene& s) { s.meshes[0].material = 1; }));
+    EXPECT_TRUE(scene_changed([](Scene& s) { s.meshes.push_back(s.meshes[0]); }));
+    EXPECT_FALSE(scene_changed([](Scene& s) { s.meshes[0].file = "elsewhere.obj"; }));
     EXPECT_FALSE(scene_changed([](Scene& s) { s.source = "elsewhere.json"; }));
 }
 

@@ -339,6 +339,36 @@ TYPED_TEST(Sampling, LightSelectionFollowsTheCdf) {
     EXPECT_EQ(M::light_selection_pmf(single, 0), R(1));
 }
 
+// Veach's power heuristic with beta = 2, w = f^2 / (f^2 + g^2), written here
+// as that formula in long double (whose range holds the squares of every
+// density a float or double holds), against sampling.h's form that squares
+// no density: from 1e-12 to 1e30 (a small light far away has solid-angle
+// densities above 1e19), within 4 units of roundoff of the weight, or below
+// the type's smallest normal number where the exact weight is. The two
+// weights of one sample sum to 1, and a few exact cases tell the power
+// heuristic from the balance heuristic f / (f + g) (2/3 where power gives 0.8).
+TYPED_TEST(Sampling, PowerHeuristicIsVeachsBetaTwo) {
+    using R = TypeParam;
+    using M = wp::SharedMath<R>;
+    auto veach = [](long double f, long double g) { return f > 0 ? f * f / (f * f + g * g) : 0.0L; };
+    const double eps = std::numeric_limits<R>::epsilon(), smallest = double(std::numeric_limits<R>::min());
+    int compared = 0;
+    for (double f_exponent = -12; f_exponent <= 30; f_exponent += 0.75)
+        for (double g_exponent = -12; g_exponent <= 30; g_exponent += 0.75) {
+            const R f = R(std::pow(10.0, f_exponent)), g = R(std::pow(10.0, g_exponent));
+            const double expected = double(veach(f, g)), found = double(M::power_heuristic(f, g));
+            ASSERT_NEAR(found, expected, 4 * eps * expected + smallest) << "f " << f << ", g " << g;
+            EXPECT_NEAR(found + double(M::power_heuristic(g, f)), 1.0, 4 * eps) << "f " << f << ", g " << g;
+            ++compared;
+        }
+    EXPECT_GT(compared, 1000);
+    EXPECT_EQ(M::power_heuristic(R(1), R(1)), R(0.5));
+    EXPECT_NEAR(double(M::power_heuristic(R(2), R(1))), 0.8, 2 * eps);
+    EXPECT_NEAR(double(M::power_heuristic(R(1), R(3))), 0.1, 2 * eps);
+    EXPECT_EQ(M::power_heuristic(R(0), R(1)), R(0));  // a strategy that cannot make the sample
+    EXPECT_EQ(M::power_heuristic(R(1), R(0)), R(1));
+}
+
 TYPED_TEST(Sampling, CameraDirectionSpansTheFieldOfView) {
     using R = TypeParam;
     using M = wp::SharedMath<R>;
