@@ -29,8 +29,13 @@ and the smallest uniform bias the whole-image test detects (z_crit standard
 errors, relative to the mean); exit 1 when any test fails, 2 when Mitsuba is
 missing.
 
+The oracle's own sensitivity (it fails when wavepath's lights are 3% too
+bright) is tests/oracle/oracle_sensitivity_test.py's; scripts/mitsuba_figures.py
+writes both runs' figures into docs/mitsuba.md (--doc) or compares them with
+it (--check-doc).
+
 Usage: mitsuba_oracle.py --binary build/wavepath [--scenes a.json,b.json] [--size 64] [--block 16]
-       [--spp 32] [--seeds 8] [--alpha 1e-3] [--json FILE]
+       [--spp 32] [--seeds 8] [--alpha 1e-3] [--json FILE] [--doc FILE | --check-doc FILE]
 """
 import argparse
 import glob
@@ -127,35 +132,100 @@ def z_scores(a, b, block):
     return z, mean_a, mean_b, se
 
 
-def write_doc_table(doc, report, z_crit, tests, args, version, failed):
-    """The run's figures as a markdown table between DOC_BEGIN and DOC_END in `doc`, with what ran them."""
+def critical_z(scenes, size, block, alpha):
+    """(|z| threshold, number of tests) of a run over `scenes`: every block and the whole image of each, every
+    channel, Bonferroni so that the run's false-failure rate is at most `alpha`."""
+    tests = 0
+    for path in scenes:
+        width, height = image_size(path, size)
+        tests += 3 * ((-(-width // block)) * (-(-height // block)) + 1)
+    return statistics.NormalDist().inv_cdf(1.0 - alpha / (2 * tests)), tests
+
+
+def compare_scene(mi, path, args, seeds, z_crit, scratch, wavepath_scene=None):
+    """Renders `path` with Mitsuba and (or `wavepath_scene`, a variant of it) with wavepath at the run's settings
+    and compares them: (the scene's figures, a failure line or None)."""
+    name = os.path.relpath(path, ROOT)
+    width, height = image_size(path, args.size)
+    start = time.time()
+    ours = render_wavepath(args.binary, wavepath_scene or path, width, height, args.spp, seeds, scratch)
+    middle = time.time()
+    theirs = render_mitsuba(mi, path, width, height, args.spp, seeds, scratch)
+    end = time.time()
+    z, mean_ours, mean_theirs, se = z_scores(ours, theirs, args.block)
+    whole_ratio = mean_ours[-1] / mean_theirs[-1]
+    detectable = z_crit * se[-1] / mean_theirs[-1]  # smallest uniform relative bias the whole image shows
+    worst = np.unravel_index(np.argmax(z), z.shape)
+    row = {"scene": name, "width": width, "height": height, "spp": args.spp, "seeds": args.seeds,
+           "mean_wavepath": mean_ours[-1].tolist(), "mean_mitsuba": mean_theirs[-1].tolist(),
+           "ratio": whole_ratio.tolist(), "max_abs_z": float(z.max()), "z_whole": z[-1].tolist(),
+           "detectable_bias": detectable.tolist(), "wavepath_s": middle - start, "mitsuba_s": end - middle}
+    print(f"{name}: {width}x{height}, whole-image ratio wavepath/Mitsuba "
+          f"{' '.join(f'{r:.4f}' for r in whole_ratio)} (RGB), |z| whole "
+          f"{' '.join(f'{v:.2f}' for v in z[-1])}, largest |z| {z.max():.2f} "
+          f"({'whole image' if worst[0] == len(z) - 1 else f'block {worst[0]}'}, channel {'RGB'[worst[1]]}); "
+          f"detects a uniform bias of {100 * max(detectable):.2f}%; "
+          f"wavepath {middle - start:.1f} s, Mitsuba {end - middle:.1f} s", flush=True)
+    if z.max() <= z_crit:
+        return row, None
+    bad = [(int(b), "RGB"[c]) for b, c in zip(*np.nonzero(z > z_crit))]
+    return row, (f"{name}: {len(bad)} of {z.size} tests beyond |z| {z_crit:.2f} (block, channel: "
+                 f"{bad[:8]}{' ...' if len(bad) > 8 else ''}; block {len(z) - 1} is the whole image)")
+
+
+def run_description(args, version):
+    """What ran a table's figures: the commit, date, machine, Mitsuba and the settings."""
     commit = subprocess.run(["git", "describe", "--always", "--dirty"], cwd=ROOT, capture_output=True,
                             text=True).stdout.strip()
     with open("/proc/cpuinfo") as f:
         cpu = next((line.split(":", 1)[1].strip() for line in f if line.startswith("model name")), "unknown CPU")
-    lines = [DOC_BEGIN,
-             f"Written by `tests/oracle/mitsuba_oracle.py --doc docs/mitsuba.md` at commit `{commit}`, "
-             f"{time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())}, on {cpu} ({os.cpu_count()} cores); Mitsuba "
-             f"{version} `{args.variant}`; {args.seeds} seeds x {args.spp} spp per renderer, blocks of "
-             f"{args.block}^2; {tests} tests, |z| <= {z_crit:.2f}; {'FAILED' if failed else 'passed'}.", "",
+    return (f"at commit `{commit}`, {time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())}, on {cpu} "
+            f"({os.cpu_count()} cores); Mitsuba {version} `{args.variant}`; {args.seeds} seeds x {args.spp} spp per "
+            f"renderer, blocks of {args.block}^2")
+
+
+def replace_doc_table(doc, begin_marker, end_marker, lines):
+    """Writes `lines` between the markers in the markdown file `doc`."""
+    with open(doc) as f:
+        text = f.read()
+    begin, end = text.index(begin_marker), text.index(end_marker) + len(end_marker)
+    with open(doc, "w") as f:
+        f.write(text[:begin] + "\n".join([begin_marker, *lines, end_marker]) + text[end:])
+
+
+def doc_table_differences(doc, begin_marker, end_marker, rows, figure_columns):
+    """Where the table rows between the markers in `doc` differ from `rows` (markdown lines) in the columns
+    `figure_columns` (a slice; times are left out): a list of lines, empty when they agree."""
+    with open(doc) as f:
+        text = f.read()
+    table = text[text.index(begin_marker):text.index(end_marker)]
+    documented = [line for line in table.splitlines() if line.startswith("| ") and not line.startswith("| scene |")]
+
+    def figures(line):
+        return [cell.strip() for cell in line.strip("|").split("|")][figure_columns]
+
+    found = {figures(line)[0]: figures(line) for line in rows}
+    written = {figures(line)[0]: figures(line) for line in documented}
+    return [f"{scene}: the doc has {written.get(scene)}, this run {found.get(scene)}"
+            for scene in sorted(set(found) | set(written)) if found.get(scene) != written.get(scene)]
+
+
+def oracle_table(report, z_crit, tests, args, version, failed):
+    """The run's figures as the markdown lines of docs/mitsuba.md's oracle table."""
+    lines = [f"Written by `scripts/mitsuba_figures.py` {run_description(args, version)}; {tests} tests, "
+             f"|z| <= {z_crit:.2f}; {'FAILED' if failed else 'passed'}.", "",
              "| scene | size | mean ratio wavepath/Mitsuba (R, G, B) | whole-image abs(z) | largest abs(z) | "
              "smallest uniform bias detected | wavepath s | Mitsuba s |", "|---|---|---|---|---|---|---|---|"]
     for r in report:
         lines.append(f"| {r['scene']} | {r['width']}x{r['height']} | {', '.join(f'{v:.4f}' for v in r['ratio'])} | "
                      f"{', '.join(f'{v:.2f}' for v in r['z_whole'])} | {r['max_abs_z']:.2f} | "
                      f"{100 * max(r['detectable_bias']):.2f}% | {r['wavepath_s']:.1f} | {r['mitsuba_s']:.1f} |")
-    lines.append(DOC_END)
-    with open(doc) as f:
-        text = f.read()
-    begin, end = text.index(DOC_BEGIN), text.index(DOC_END) + len(DOC_END)
-    with open(doc, "w") as f:
-        f.write(text[:begin] + "\n".join(lines) + text[end:])
+    return lines
 
 
-def main():
-    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+def add_common_arguments(parser):
+    """The settings every oracle comparison takes (this script's and the sensitivity test's)."""
     parser.add_argument("--binary", default=os.path.join(ROOT, "build", "wavepath"))
-    parser.add_argument("--scenes", help="comma-separated scene files (default: scenes/*.json, scenes/test/*.json)")
     parser.add_argument("--size", type=int, default=64, help="most pixels on the image's longer side")
     parser.add_argument("--block", type=int, default=16, help="block side in pixels")
     parser.add_argument("--spp", type=int, default=32)
@@ -163,67 +233,68 @@ def main():
     parser.add_argument("--alpha", type=float, default=1e-3, help="false-failure rate of the whole run")
     parser.add_argument("--variant", default="llvm_ad_rgb", help="Mitsuba variant (scalar_rgb needs no LLVM)")
     parser.add_argument("--json", help="also write every scene's figures here")
-    parser.add_argument("--doc", help="also write the figures as the table between the oracle markers of this "
-                        "markdown file (docs/mitsuba.md)")
-    args = parser.parse_args()
+    doc = parser.add_mutually_exclusive_group()
+    doc.add_argument("--doc", help="also write the figures as the table between this script's markers of this "
+                     "markdown file (docs/mitsuba.md)")
+    doc.add_argument("--check-doc", help="exit 1 (after the run) when the figures (not the times) of the table "
+                     "between this script's markers of this markdown file differ from this run's")
 
+
+def open_mitsuba_or_explain(variant):
+    """The mitsuba module under `variant`, or None after a line saying why not."""
     try:
-        mi = mitsuba_scene.open_mitsuba(args.variant)
+        return mitsuba_scene.open_mitsuba(variant)
     except (ImportError, AttributeError) as e:
-        print(f"mitsuba_oracle: error: Mitsuba 3 ({args.variant}) not available: {e} (bash scripts/setup.sh test)")
+        print(f"{os.path.basename(sys.argv[0])}: error: Mitsuba 3 ({variant}) not available: {e} "
+              "(bash scripts/setup.sh test)")
+        return None
+
+
+def finish_doc(args, begin_marker, end_marker, lines, figure_columns):
+    """--doc writes the table lines, --check-doc compares them: False when they differ from the doc's."""
+    if args.doc:
+        replace_doc_table(args.doc, begin_marker, end_marker, lines)
+    if not args.check_doc:
+        return True
+    rows = [line for line in lines if line.startswith("| ") and not line.startswith("| scene |")]
+    differences = doc_table_differences(args.check_doc, begin_marker, end_marker, rows, figure_columns)
+    for difference in differences:
+        print(f"{os.path.basename(sys.argv[0])}: {args.check_doc} differs: {difference}")
+    return not differences
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    add_common_arguments(parser)
+    parser.add_argument("--scenes", help="comma-separated scene files (default: scenes/*.json, scenes/test/*.json)")
+    args = parser.parse_args()
+    mi = open_mitsuba_or_explain(args.variant)
+    if mi is None:
         return 2
 
     scenes = args.scenes.split(",") if args.scenes else shipped_scenes()
     seeds = list(range(FIRST_SEED, FIRST_SEED + args.seeds))
-    blocks_per_scene = {}
-    for path in scenes:
-        width, height = image_size(path, args.size)
-        blocks_per_scene[path] = (-(-width // args.block)) * (-(-height // args.block)) + 1
-    tests = 3 * sum(blocks_per_scene.values())
-    z_crit = statistics.NormalDist().inv_cdf(1.0 - args.alpha / (2 * tests))
+    z_crit, tests = critical_z(scenes, args.size, args.block, args.alpha)
     print(f"mitsuba_oracle: {len(scenes)} scenes, {tests} tests (blocks of {args.block}^2 and whole images, 3 "
           f"channels), {args.seeds} seeds x {args.spp} spp per renderer; |z| <= {z_crit:.2f} (false-failure rate "
-          f"<= {args.alpha:g}, Bonferroni), Mitsuba {mi.__version__} {args.variant}")
+          f"<= {args.alpha:g}, Bonferroni), Mitsuba {mi.__version__} {args.variant}", flush=True)
     failures, report = [], []
     with tempfile.TemporaryDirectory(prefix="wavepath-oracle-") as scratch:
         for path in scenes:
-            name = os.path.relpath(path, ROOT)
-            width, height = image_size(path, args.size)
-            start = time.time()
-            ours = render_wavepath(args.binary, path, width, height, args.spp, seeds, scratch)
-            middle = time.time()
-            theirs = render_mitsuba(mi, path, width, height, args.spp, seeds, scratch)
-            end = time.time()
-            z, mean_ours, mean_theirs, se = z_scores(ours, theirs, args.block)
-            whole_ratio = mean_ours[-1] / mean_theirs[-1]
-            detectable = z_crit * se[-1] / mean_theirs[-1]  # smallest uniform relative bias the whole image shows
-            worst = np.unravel_index(np.argmax(z), z.shape)
-            row = {"scene": name, "width": width, "height": height, "spp": args.spp, "seeds": args.seeds,
-                   "mean_wavepath": mean_ours[-1].tolist(), "mean_mitsuba": mean_theirs[-1].tolist(),
-                   "ratio": whole_ratio.tolist(), "max_abs_z": float(z.max()), "z_whole": z[-1].tolist(),
-                   "detectable_bias": detectable.tolist(), "wavepath_s": middle - start, "mitsuba_s": end - middle}
+            row, failure = compare_scene(mi, path, args, seeds, z_crit, scratch)
             report.append(row)
-            print(f"{name}: {width}x{height}, whole-image ratio wavepath/Mitsuba "
-                  f"{' '.join(f'{r:.4f}' for r in whole_ratio)} (RGB), |z| whole "
-                  f"{' '.join(f'{v:.2f}' for v in z[-1])}, largest |z| {z.max():.2f} "
-                  f"({'whole image' if worst[0] == len(z) - 1 else f'block {worst[0]}'}, channel {'RGB'[worst[1]]}); "
-                  f"detects a uniform bias of {100 * max(detectable):.2f}%; "
-                  f"wavepath {middle - start:.1f} s, Mitsuba {end - middle:.1f} s")
-            if z.max() > z_crit:
-                bad = [(int(b), "RGB"[c]) for b, c in zip(*np.nonzero(z > z_crit))]
-                failures.append(f"{name}: {len(bad)} of {z.size} tests beyond |z| {z_crit:.2f} "
-                                f"(block, channel: {bad[:8]}{' ...' if len(bad) > 8 else ''}; block "
-                                f"{len(z) - 1} is the whole image)")
+            if failure:
+                failures.append(failure)
     if args.json:
         with open(args.json, "w") as f:
             json.dump({"z_crit": z_crit, "alpha": args.alpha, "tests": tests, "mitsuba": mi.__version__,
                        "variant": args.variant, "scenes": report}, f, indent=1)
-    if args.doc:
-        write_doc_table(args.doc, report, z_crit, tests, args, mi.__version__, bool(failures))
+    lines = oracle_table(report, z_crit, tests, args, mi.__version__, bool(failures))
+    doc_agrees = finish_doc(args, DOC_BEGIN, DOC_END, lines, slice(0, 6))
     for failure in failures:
         print(f"mitsuba_oracle: FAIL {failure}")
     print(f"mitsuba_oracle: {'FAILED' if failures else 'passed'}")
-    return 1 if failures else 0
+    return 1 if failures or not doc_agrees else 0
 
 
 if __name__ == "__main__":
