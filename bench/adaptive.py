@@ -49,7 +49,7 @@ def measure(runner, peer, repeats, cache):
     truths = {}
     for scene in SCENES:
         path = os.path.join(ROOT, "scenes", scene)
-        image, _, _ = peer.converged(path, SIZE, TRUTH_SPP, scene_max_depth(path), cache)
+        image = peer.converged(path, SIZE, TRUTH_SPP, scene_max_depth(path), cache).image
         truths[scene] = image
     runs = {i: [] for i, _ in enumerate(configurations())}
     for seed in range(repeats):  # interleaved: every configuration once per repetition

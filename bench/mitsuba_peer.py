@@ -7,6 +7,7 @@ of everything that decides them: the converted scene (with the content, not
 the path, of every mesh file), the settings, and Mitsuba's version and
 variant, plus the converter's own source.
 """
+import collections
 import hashlib
 import json
 import os
@@ -19,6 +20,10 @@ import numpy as np
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(ROOT, "scripts"))
 import mitsuba_scene  # noqa: E402
+
+# A converged image (flat RGB values, as MitsubaPeer.render's), the variance of each of its values, that of
+# each pixel's mean over its channels (one per pixel), and its cache file.
+Converged = collections.namedtuple("Converged", "image variance pixel_variance file")
 
 CONVERGED_PASS_SPP = 256  # converged images are rendered in passes of this many spp (memory), seeds apart
 
@@ -79,22 +84,25 @@ class MitsubaPeer:
         return hashlib.sha256(text.encode()).hexdigest()[:20]
 
     def converged(self, scene, size, spp, max_depth, cache_dir):
-        """(image, variance of each of its values) at `spp`, rendered in passes of CONVERGED_PASS_SPP; cached.
+        """A Converged image at `spp`, rendered in passes of CONVERGED_PASS_SPP; cached.
 
-        The variance (over the passes, of their mean) is the converged image's own noise, which every
-        relMSE against it carries as a floor."""
+        The variances (over the passes, of their mean) are the converged image's own noise, which every
+        relMSE against it carries as a floor: of each value, and of each pixel's mean over its channels (the
+        channels of a pixel come from the same paths, so they are not independent)."""
         key = self.cache_key(scene, size, spp, max_depth)
         path = os.path.join(cache_dir, f"converged-{os.path.basename(scene)}-{size}-{spp}spp-depth{max_depth}-{key}.npz")
         if os.path.exists(path):
             with np.load(path) as cached:
-                return cached["image"], cached["variance"], path
+                if "pixel_variance" in cached.files:  # caches written before it had none
+                    return Converged(cached["image"], cached["variance"], cached["pixel_variance"], path)
         passes = max(2, spp // CONVERGED_PASS_SPP)
         images = np.stack([self.render(scene, size, spp // passes, seed=20_000 + k, max_depth=max_depth)["image"]
                            for k in range(passes)])
         image, variance = images.mean(axis=0), images.var(axis=0, ddof=1) / passes
+        pixel_variance = images.reshape(passes, -1, 3).mean(axis=-1).var(axis=0, ddof=1) / passes
         os.makedirs(cache_dir, exist_ok=True)
-        np.savez(path, image=image, variance=variance)
-        return image, variance, path
+        np.savez(path, image=image, variance=variance, pixel_variance=pixel_variance)
+        return Converged(image, variance, pixel_variance, path)
 
 
 def file_digest(path):

@@ -221,11 +221,11 @@ def accuracy(runner, peer, cfg, out):
     rows, truths = [], []
 
     def truth(path, spp, depth):
-        image, variance, file = peer.converged(path, size, spp, depth, cache)
-        noise = rel_noise(variance, image)
+        converged = peer.converged(path, size, spp, depth, cache)
+        noise = rel_noise(converged.variance, converged.image)
         truths.append({"scene": os.path.basename(path), "renderer": peer.describe(), "size": size, "spp": spp,
-                       "max_depth": depth, "cache_file": os.path.basename(file), "noise_relmse": noise})
-        return image, variance, noise
+                       "max_depth": depth, "cache_file": os.path.basename(converged.file), "noise_relmse": noise})
+        return converged, noise
 
     for scene in cfg["accuracy_scenes"]:
         path = os.path.join(ROOT, "scenes", scene)
@@ -236,7 +236,8 @@ def accuracy(runner, peer, cfg, out):
             E[relMSE of one image] = bias^2 + var + c, E[relMSE of the mean of n] = bias^2 + var/n + c,
             with c the truth's own noise (from its passes). bias^2 is reported as measured, signed:
             noise can make a zero bias negative."""
-            reference, reference_variance, noise = against
+            converged, noise = against
+            reference = converged.image
             errors, times, images = [], [], []
             for seed in range(cfg["seeds"]):
                 if backend == "mitsuba":
@@ -249,8 +250,11 @@ def accuracy(runner, peer, cfg, out):
             n, stack = len(images), np.stack(images)
             mean_image = stack.mean(axis=0)
             e, t, e_mean = statistics.mean(errors), statistics.mean(times), rel_mse(mean_image, reference)
-            # The image's mean against the truth's, in standard errors from the per-value variances.
-            se = math.sqrt((stack.var(axis=0, ddof=1).sum() / n + reference_variance.sum())) / mean_image.size
+            # The image's mean against the truth's, in standard errors. The image mean is the mean over pixels of
+            # each pixel's mean over its channels; pixels are independent, a pixel's channels are not (the same
+            # paths), so the variance is summed per pixel, of its channel mean, over the seeds and the truth's.
+            pixel_variance = stack.reshape(n, -1, 3).mean(axis=-1).var(axis=0, ddof=1) / n + converged.pixel_variance
+            se = math.sqrt(pixel_variance.sum()) / pixel_variance.size
             rows.append({"scene": scene, "study": study, "backend": backend, "spp": spp, **setting, "relmse": e,
                          "relmse_sd": statistics.stdev(errors), "bias2": (n * e_mean - e) / (n - 1) - noise,
                          "variance": (e - e_mean) * n / (n - 1), "truth_noise": noise, "time_s": t,
@@ -305,7 +309,7 @@ def estimators(runner, peer, cfg, out):
         path = os.path.join(ROOT, "scenes", scene)
         scene_depth, scene_rr = scene_max_depth(path), scene_render_settings(path).get("rr_depth", 3)
         for depth in cfg["estimator_depths"]:
-            truth, _, _ = peer.converged(path, size, cfg["converged_spp"], depth, cache)
+            truth = peer.converged(path, size, cfg["converged_spp"], depth, cache).image
             settings = estimator_settings(cfg, depth, scene_depth, scene_rr)
             default = f"rr_depth {scene_rr}"
             errors = {label: [] for label, _ in settings}
@@ -639,7 +643,8 @@ def accuracy_markdown(acc):
     lines += ["", "relMSE per image, mean over seeds (+- standard deviation), with (x - r)^2 / (r^2 + 0.01) per pixel "
               "and channel. bias^2 = (n relMSE(mean of the n images) - mean relMSE) / (n - 1) - c, signed (noise can "
               "make a zero bias negative); variance = n (mean relMSE - relMSE(mean image)) / (n - 1). mean ratio: "
-              "the image's mean over the truth's, with z in standard errors from per-value variances. The "
+              "the image's mean over the truth's, with z in standard errors from each pixel's variance of its "
+              "channels' mean (a pixel's channels share their paths; pixels are independent). The "
               "max_depth series is measured against a truth at depth 64, the others against one at the scene's "
               "max_depth. " + precision_sentence(rows), "",
               "| scene | study | backend | setting | relMSE | bias^2 | variance | time s | 1/(relMSE x time) | "
