@@ -174,9 +174,12 @@ def compare_scene(mi, path, args, seeds, z_crit, scratch, wavepath_scene=None):
 
 
 def run_description(args, version):
-    """What ran a table's figures: the commit, date, machine, Mitsuba and the settings."""
-    commit = subprocess.run(["git", "describe", "--always", "--dirty"], cwd=ROOT, capture_output=True,
-                            text=True).stdout.strip()
+    """What ran a table's figures: the commit (-dirty for changes other than the doc's own tables), date,
+    machine, Mitsuba and the settings."""
+    git = lambda *command: subprocess.run(["git", *command], cwd=ROOT, capture_output=True, text=True)  # noqa: E731
+    commit = git("rev-parse", "--short", "HEAD").stdout.strip()
+    if git("diff", "--quiet", "HEAD", "--", ".", ":(exclude)docs/mitsuba.md").returncode != 0:
+        commit += "-dirty"
     with open("/proc/cpuinfo") as f:
         cpu = next((line.split(":", 1)[1].strip() for line in f if line.startswith("model name")), "unknown CPU")
     return (f"at commit `{commit}`, {time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())}, on {cpu} "
