@@ -29,13 +29,29 @@ struct Backend {
 
 bool wants_profile(const BackendOptions& options) { return options.profile || !options.profile_json.empty(); }
 
+// The reference's intersector: the one asked for, else the fastest in its precision.
+Intersector reference_intersector(const BackendOptions& options) {
+    if (options.intersector.empty()) return fastest_reference_intersector(options.precision == "double");
+    return options.intersector == "embree" ? Intersector::Embree : Intersector::Bvh;
+}
+
 void run_on_reference(const Scene& scene, const BackendOptions& options, const Progress&, std::uint64_t,
                       const FilmRun& run) {
     if (wants_profile(options))
         throw UsageError("--profile/--profile-json: the reference backend has no kernels to profile");
-    std::unique_ptr<FilmRenderer> renderer = make_reference_renderer(
-        scene, ReferenceOptions{options.threads, options.precision == "double", options.film_squares});
+    ReferenceOptions reference{options.threads, options.precision == "double", options.film_squares,
+                               reference_intersector(options)};
+    if (reference.double_precision && reference.intersector == Intersector::Embree)
+        throw UsageError("--intersector embree: Embree traces in float only; use --precision float or --intersector bvh");
+    std::unique_ptr<FilmRenderer> renderer = make_reference_renderer(scene, reference);
     run(*renderer);
+}
+
+// The OpenCL backends trace with their BVH (Embree behind their intersect stages is to come).
+void check_opencl_intersector(const BackendOptions& options) {
+    if (options.intersector == "embree")
+        throw UsageError("--intersector embree: only the reference backend traces with Embree; the " + options.name +
+                         " backend traces with its OpenCL BVH");
 }
 
 // Runs an OpenCL backend: a kernel that fails to build shows the compiler's
@@ -56,6 +72,7 @@ void run_on_opencl(const BackendOptions& options, const FilmRun& run, Make make)
 
 void run_on_wavefront(const Scene& scene, const BackendOptions& options, const Progress& progress,
                       std::uint64_t max_items, const FilmRun& run) {
+    check_opencl_intersector(options);
     if (options.lanes != 0)
         if (std::string problem = lanes_problem(options.lanes, options.compaction); !problem.empty())
             throw UsageError(problem);
@@ -74,6 +91,7 @@ void run_on_wavefront(const Scene& scene, const BackendOptions& options, const P
 
 void run_on_megakernel(const Scene& scene, const BackendOptions& options, const Progress& progress, std::uint64_t,
                        const FilmRun& run) {
+    check_opencl_intersector(options);
     if (options.lanes != 0)
         if (std::string problem = megakernel_lanes_problem(options.lanes); !problem.empty()) throw UsageError(problem);
     run_on_opencl<MegakernelReport>(options, run, [&](MegakernelReport& report) {
@@ -112,6 +130,11 @@ void add_backend_options(CLI::App& render, BackendOptions& options) {
     render.add_option("--precision", options.precision, "Arithmetic of the reference backend")
         ->check(CLI::IsMember({"float", "double"}))
         ->capture_default_str();
+    render
+        .add_option("--intersector", options.intersector,
+                    "What traces the rays: embree (Embree behind our own watertight tests, float only) or bvh (our "
+                    "BVH). Default: the fastest the backend has: embree for the reference in float, bvh otherwise")
+        ->check(CLI::IsMember({"embree", "bvh"}));
     render.add_option("--wavefront", options.wavefront, "Paths in flight for the wavefront backend (0: automatic)")
         ->check(integer_in(0, kMaxWavefront))
         ->capture_default_str();
@@ -139,7 +162,9 @@ void add_backend_options(CLI::App& render, BackendOptions& options) {
 }
 
 std::string estimator_name(const BackendOptions& options) {
-    return options.name == "reference" ? "reference-" + options.precision : "opencl";
+    if (options.name != "reference") return "opencl";
+    // Embree and the BVH differ in which of two shapes at one distance a ray hits, so in a few bits.
+    return "reference-" + options.precision + (reference_intersector(options) == Intersector::Embree ? "-embree" : "");
 }
 
 void run_with_backend(const Scene& scene, const BackendOptions& options, const Progress& progress,

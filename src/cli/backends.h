@@ -20,6 +20,7 @@ struct BackendOptions {
     std::string name = "wavefront";
     int threads = 0;  // CPU threads for the reference; 0 = all hardware threads
     std::string precision = "float";
+    std::string intersector;                     // "embree" or "bvh"; "" = the backend's fastest
     std::size_t wavefront = 0;                   // paths in flight for the wavefront; 0 = automatic
     std::string device;                          // OpenCL device index or name substring; "" = prefer a GPU
     bool explain = false;                        // print the wavefront's features, build and state size

@@ -27,6 +27,7 @@
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 #include <numbers>
+#include <type_traits>
 
 #include "core/render.h"
 #include "reference/reference_scene.h"
@@ -85,9 +86,18 @@ struct SurfacePoint {
     Real error;  // bound on the point's distance from the surface (shared/hit_point.h)
 };
 
+// A hit as the Embree intersector reports it (WP_SHAPE_* is ShapeType's order).
+inline ShapeHit<float> shape_hit(const HostHit& hit) {
+    if (hit.shape == WP_NO_HIT) return {};
+    return {hit.t, static_cast<ShapeType>(hit.shape >> WP_SHAPE_TYPE_SHIFT),
+            static_cast<int>(hit.shape & WP_SHAPE_INDEX_MASK)};
+}
+
 template <class Real>
 ShapeHit<Real> closest_hit(const ReferenceScene<Real>& scene, const Ray<Real>& ray) {
     using M = SharedMath<Real>;
+    if constexpr (std::is_same_v<Real, float>)
+        if (scene.embree) return shape_hit(scene.embree->closest(ray.origin, ray.direction, M::real_max));
     ShapeHit<Real> hit;
     auto keep_if_closer = [&hit](Real t, ShapeType shape, int index) {
         if (t < hit.t) hit = {t, shape, index};
@@ -118,6 +128,8 @@ ShapeHit<Real> closest_hit(const ReferenceScene<Real>& scene, const Ray<Real>& r
 template <class Real>
 bool occluded(const ReferenceScene<Real>& scene, const Ray<Real>& ray, Real distance) {
     using M = SharedMath<Real>;
+    if constexpr (std::is_same_v<Real, float>)
+        if (scene.embree) return scene.embree->occluded(ray.origin, ray.direction, distance);
     for (const auto& s : scene.spheres) {
         if (M::intersect_sphere(s.center, s.radius, ray.origin, ray.direction, distance) < distance) return true;
     }

@@ -55,7 +55,7 @@ template <class Real>
 class ReferenceFilmRenderer : public FilmRenderer {
  public:
     ReferenceFilmRenderer(const Scene& source, const ReferenceOptions& options)
-        : scene_(source),
+        : scene_(source, options.intersector),
           width_(source.camera.width),
           height_(source.camera.height),
           grid_{(width_ + kTileSize - 1) / kTileSize, (height_ + kTileSize - 1) / kTileSize},
@@ -150,6 +150,10 @@ class ReferenceFilmRenderer : public FilmRenderer {
 };
 
 }  // namespace
+
+Intersector fastest_reference_intersector(bool double_precision) {
+    return double_precision ? Intersector::Bvh : Intersector::Embree;
+}
 
 std::unique_ptr<FilmRenderer> make_reference_renderer(const Scene& scene, const ReferenceOptions& options) {
     check_settings(scene);

@@ -7,6 +7,7 @@
 #include <glm/vec3.hpp>
 #include <memory>
 
+#include "accel/embree_intersector.h"
 #include "core/film_renderer.h"
 #include "core/render.h"
 #include "scene/scene.h"
@@ -17,11 +18,19 @@ struct ReferenceOptions {
     int threads = 0;  // 0 = hardware concurrency
     bool double_precision = false;
     bool film_squares = false;  // the film keeps sums of squares (per-pixel variance)
+    // The BVH is the OpenCL backends' (the reference retraces their paths);
+    // Embree is float only.
+    Intersector intersector = Intersector::Bvh;
 };
+
+// The faster intersector the precision allows, which `wavepath render
+// --backend reference` picks by default (bench/results/meshes.md, "Embree
+// intersector"): Embree in float, the BVH in double.
+Intersector fastest_reference_intersector(bool double_precision);
 
 // Renders the scene with its own render settings and camera resolution. The
 // image is bit-identical for any thread count. Throws std::invalid_argument
-// for a resolution or spp below 1 or a negative max_depth.
+// for a resolution or spp below 1, a negative max_depth or Embree in double.
 RenderResult render_reference(const Scene& scene, const ReferenceOptions& options, const Progress& progress = {});
 
 // The reference as a FilmRenderer: its film sums each sample as the float

@@ -6,9 +6,13 @@
 #include <cstdint>
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
+#include <memory>
+#include <stdexcept>
+#include <type_traits>
 #include <vector>
 
 #include "accel/bvh_layout.h"
+#include "accel/embree_intersector.h"
 #include "core/shared_math.h"
 #include "scene/mesh_lights.h"
 #include "scene/scene.h"
@@ -73,12 +77,14 @@ struct ReferenceScene {
     std::vector<typename M::MeshTriangle> triangles;            // in the BVH's leaf order
     std::vector<typename M::TriangleNormals> triangle_normals;  // parallel to triangles, if shading_normals
     std::vector<typename M::BvhNode> bvh_nodes;
+    std::shared_ptr<const EmbreeIntersector> embree;  // Intersector::Embree: closest_hit and occluded ask it
     std::vector<LightRef> lights;
     std::vector<Real> light_cdf;
     std::vector<typename M::MeshTriangle> light_triangles;  // mesh lights' (scene/mesh_lights.h)
     std::vector<Real> light_triangle_cdf;
 
-    explicit ReferenceScene(const Scene& scene)
+    // Throws std::invalid_argument for Intersector::Embree in double.
+    explicit ReferenceScene(const Scene& scene, Intersector intersector = Intersector::Bvh)
         : render(scene.render),
           nee(scene.features().nee),
           mis(scene.features().mis),
@@ -93,11 +99,22 @@ struct ReferenceScene {
         for (const Plane& p : scene.planes) planes.push_back({vec3(p.point), vec3(p.normal), p.material});
         for (const Quad& q : scene.quads) quads.push_back({vec3(q.corner), vec3(q.edge1), vec3(q.edge2), q.material});
         add_meshes(scene);
+        if (intersector == Intersector::Embree) add_embree(scene);
         add_lights(scene);
         for (double c : scene.light_cdf) light_cdf.push_back(Real(c));
     }
 
  private:
+    void add_embree(const Scene& scene) {
+        if constexpr (std::is_same_v<Real, float>) {
+            EmbreeOptions options;
+            options.query = EmbreeQuery::Single;  // the reference traces one ray at a time
+            embree = std::make_shared<const EmbreeIntersector>(scene, triangles, options);
+        } else {
+            throw std::invalid_argument("the Embree intersector traces in float only");
+        }
+    }
+
     void add_lights(const Scene& scene) {
         MeshLightTriangles mesh_lights = mesh_light_triangles(scene);
         for (std::size_t i = 0; i < scene.lights.size(); ++i) {

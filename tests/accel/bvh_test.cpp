@@ -2,7 +2,8 @@
 // watertight triangle test (kernels/shared/triangle.h): the tree finds what
 // a test of every triangle finds, bit for bit; it is the same for any thread
 // count; and a ray through a closed mesh crosses it where it was aimed and
-// once more on the far side, at any scale.
+// once more on the far side, at any scale, through the BVH and through the
+// Embree intersector.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -12,6 +13,7 @@
 #include <vector>
 
 #include "accel/bvh_layout.h"
+#include "accel/embree_intersector.h"
 #include "core/shared_math.h"
 #include "scene/scene.h"
 #include "support/meshes.h"
@@ -159,12 +161,17 @@ TEST(Bvh, BoxesHoldTheirTrianglesExactly) {
     EXPECT_EQ(bvh.triangles.size(), 8u * 1280u);
 }
 
+// One intersector's closest hit: its distance along the ray, real_max where none.
+template <class Real>
+using ClosestDistance = std::function<Real(const typename SharedMath<Real>::vec3& origin,
+                                           const typename SharedMath<Real>::vec3& direction)>;
+
 // The distances along the ray at which it crosses the meshes: the closest
 // hit, then the closest hit again from `step` past it, until none is left. A
 // ray through an edge or vertex hits every triangle there at one distance;
 // the step past them counts that crossing once.
 template <class Real>
-std::vector<double> crossings(const TraversableBvh<Real>& flat, const glm::dvec3& from, const glm::dvec3& to,
+std::vector<double> crossings(const ClosestDistance<Real>& closest, const glm::dvec3& from, const glm::dvec3& to,
                               double step) {
     using R = SharedMath<Real>;
     using rvec3 = typename R::vec3;
@@ -172,9 +179,7 @@ std::vector<double> crossings(const TraversableBvh<Real>& flat, const glm::dvec3
     std::vector<double> found;
     Real travelled = 0;
     for (int i = 0; i < 8; ++i) {  // a convex mesh has 2
-        std::uint32_t index = 0;
-        const rvec3 start = origin + travelled * direction;
-        const Real t = R::bvh_trace(flat.nodes.data(), flat.triangles.data(), start, direction, R::real_max, 0, &index);
+        const Real t = closest(origin + travelled * direction, direction);
         if (!(t < R::real_max)) break;
         travelled += t;
         found.push_back(double(travelled));
@@ -188,15 +193,12 @@ std::vector<double> crossings(const TraversableBvh<Real>& flat, const glm::dvec3
 // out, the ray crosses the surface once, at the target; from outside in (3
 // times as far out), twice, the first time at the target. A ray that leaked
 // where it was aimed would find only the far side. Returns the rays that did
-// not cross as expected (through the BVH, in float or double). The step past
-// a crossing and the tolerance on its distance, 5% and 2% of the mesh's
-// size, lie far above float's spacing (2^-7 at 1e5, for meshes of size 1
-// and up there) and far below the 1x-2x its size between entry and exit.
+// not cross as expected. The step past a crossing and the tolerance on its
+// distance, 5% and 2% of the mesh's size, lie far above float's spacing
+// (2^-7 at 1e5, for meshes of size 1 and up there) and far below the 1x-2x
+// its size between entry and exit.
 template <class Real>
-int rays_not_crossing_as_expected(const Mesh& mesh, double size) {
-    Scene scene;
-    scene.meshes = {mesh};
-    TraversableBvh<Real> flat = traversable_bvh<Real>(build_scene_bvh(scene));
+int rays_not_crossing_as_expected(const Mesh& mesh, double size, const ClosestDistance<Real>& closest) {
     glm::dvec3 centre(0.0);
     for (const glm::dvec3& p : mesh.positions) centre += p / double(mesh.positions.size());
     std::vector<glm::dvec3> targets = mesh.positions;
@@ -206,13 +208,39 @@ int rays_not_crossing_as_expected(const Mesh& mesh, double size) {
     int wrong = 0;
     for (const glm::dvec3& target : targets) {
         const double to_target = glm::length(target - centre);
-        const std::vector<double> outward = crossings(flat, centre, target, step);
-        const std::vector<double> inward = crossings(flat, centre + 3.0 * (target - centre), target, step);
+        const std::vector<double> outward = crossings(closest, centre, target, step);
+        const std::vector<double> inward = crossings(closest, centre + 3.0 * (target - centre), target, step);
         const bool outward_right = outward.size() == 1 && std::fabs(outward[0] - to_target) <= tolerance;
         const bool inward_right = inward.size() == 2 && std::fabs(inward[0] - 2.0 * to_target) <= tolerance;
         wrong += !outward_right + !inward_right;
     }
     return wrong;
+}
+
+// Through the BVH, in float or double.
+template <class Real>
+int bvh_rays_not_crossing(const Mesh& mesh, double size) {
+    using R = SharedMath<Real>;
+    Scene scene;
+    scene.meshes = {mesh};
+    TraversableBvh<Real> flat = traversable_bvh<Real>(build_scene_bvh(scene));
+    return rays_not_crossing_as_expected<Real>(
+        mesh, size, [&](const typename R::vec3& origin, const typename R::vec3& direction) {
+            std::uint32_t index = 0;
+            return R::bvh_trace(flat.nodes.data(), flat.triangles.data(), origin, direction, R::real_max, 0, &index);
+        });
+}
+
+// Through the Embree intersector, in float.
+int embree_rays_not_crossing(const Mesh& mesh, double size, EmbreeTriangles triangles) {
+    Scene scene;
+    scene.meshes = {mesh};
+    EmbreeOptions options;
+    options.triangles = triangles;
+    EmbreeIntersector embree(scene, traversable_bvh<float>(build_scene_bvh(scene)).triangles, options);
+    return rays_not_crossing_as_expected<float>(mesh, size, [&](const vec3& origin, const vec3& direction) {
+        return embree.closest(origin, direction, M::real_max).t;
+    });
 }
 
 TEST(Watertight, RaysCrossAClosedMeshWhereAimedAtAnyScale) {
@@ -225,9 +253,13 @@ TEST(Watertight, RaysCrossAClosedMeshWhereAimedAtAnyScale) {
             for (const Mesh& mesh : {test::icosphere(2, 0), test::unit_cube(0)}) {
                 Mesh placed = test::transformed(mesh, scale, offset);
                 if (float_can_hold_it) {
-                    EXPECT_EQ(rays_not_crossing_as_expected<float>(placed, scale), 0) << mesh.file;
+                    EXPECT_EQ(bvh_rays_not_crossing<float>(placed, scale), 0) << mesh.file;
+                    EXPECT_EQ(embree_rays_not_crossing(placed, scale, EmbreeTriangles::User), 0)
+                        << mesh.file << ", Embree, user";
+                    EXPECT_EQ(embree_rays_not_crossing(placed, scale, EmbreeTriangles::Filter), 0)
+                        << mesh.file << ", Embree, filter";
                 }
-                EXPECT_EQ(rays_not_crossing_as_expected<double>(placed, scale), 0) << mesh.file;
+                EXPECT_EQ(bvh_rays_not_crossing<double>(placed, scale), 0) << mesh.file;
             }
         }
     }

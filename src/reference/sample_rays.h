@@ -1,0 +1,38 @@
+// Rays as the renderer traces them, for the tests and benchmarks of
+// intersectors: camera rays (one per pixel, jittered as sample 0 is) and
+// the incoherent rays of their first diffuse bounce (a cosine-distributed
+// direction about the geometric normal, leaving from the offset origin).
+#pragma once
+
+#include <vector>
+
+#include "reference/path_tracer.h"
+
+namespace wp::reference {
+
+struct SampleRays {
+    std::vector<Ray<float>> camera, bounce;  // bounce: one per camera ray that hits
+};
+
+inline SampleRays sample_rays(const ReferenceScene<float>& scene) {
+    using M = SharedMath<float>;
+    SampleRays rays;
+    const auto& camera = scene.camera;
+    for (int py = 0; py < camera.height; ++py) {
+        for (int px = 0; px < camera.width; ++px) {
+            SampleRng<float> rng{scene.render.seed, std::uint32_t(py * camera.width + px), 0u};
+            Ray<float> ray = camera_ray(scene, px, py, rng);
+            rays.camera.push_back(ray);
+            ShapeHit<float> hit = closest_hit(scene, ray);
+            if (!hit.found()) continue;
+            SurfacePoint<float> x = surface_at(scene, ray, hit);
+            M::vec3 nf = glm::dot(ray.direction, x.normal) < 0.0f ? x.normal : -x.normal;
+            M::vec3 local = M::sample_cosine_hemisphere(rng(0, DIM_BSDF_U), rng(0, DIM_BSDF_V));
+            rays.bounce.push_back(
+                {M::offset_ray_origin(x.point, nf, x.error), M::frame_to_world(M::frame_from_normal(nf), local)});
+        }
+    }
+    return rays;
+}
+
+}  // namespace wp::reference
