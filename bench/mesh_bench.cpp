@@ -8,8 +8,11 @@
 //  b. Rays/s of closest hit and any hit on the bunny scene, side by side in
 //     one run: the wavefront's intersect and intersect_shadow stages
 //     (OpenCL, timed by their kernel events), the scalar C++ traversal on 2
-//     threads, and Embree's rtcIntersect1 / rtcOccluded1 on 2 threads, on
-//     the same rays and the same float triangles; repetitions interleaved.
+//     threads, Embree's rtcIntersect1 / rtcOccluded1 on 2 threads (not
+//     robust, and robust), and our Embree intersector
+//     (accel/embree_intersector.h) on a queue on 2 threads in each triangle
+//     mode and query kind, on the same rays and the same float triangles;
+//     repetitions interleaved.
 //  c. Whole-frame samples/s of the wavefront against triangle count.
 //  d. Lanes with meshes: the shipped scene (spheres, quads, a mesh light and
 //     the bunny) rendered with one lane and with 8 (the BVH traversed in
@@ -20,14 +23,18 @@
 //     with their quads as triangles in the BVH instead, and with their
 //     spheres left out (an upper bound on what moving them into the BVH
 //     could save): samples/s, and the intersect stages' device time per ray.
+//  f. The Embree intersector's remaining choices: the shipped scene's
+//     spheres and quads tested in turn or as Embree user geometry (rays/s),
+//     and the reference renderer with --intersector bvh and embree on the
+//     bunny and cornell_mesh (samples/s, pixels that differ).
 //
 // The traced scene is scenes/bunny.json with its two spheres left out and
 // each wall quad as two triangles, so that both tracers see exactly the same
 // geometry (Embree has no quad of ours and no sphere of ours).
 //
-// Usage: mesh_bench [--quick] [--json FILE] [--scene FILE] [--device CHOICE] [--repeats N] [--sections abcde]
+// Usage: mesh_bench [--quick] [--json FILE] [--scene FILE] [--device CHOICE] [--repeats N] [--sections abcdef]
 //                   [--baseline-kernels DIR]
-// --sections: which of a-e to run; --baseline-kernels: b also times the
+// --sections: which of a-f to run; --baseline-kernels: b also times the
 // stages built from DIR (another commit's kernels/), interleaved, as
 // opencl_baseline, and counts the rays where its hits differ from ours.
 #include <embree3/rtcore.h>
@@ -53,9 +60,12 @@
 #include <vector>
 
 #include "accel/bvh.h"
+#include "accel/embree_intersector.h"
 #include "opencl/device.h"
 #include "opencl/scene_upload.h"
 #include "reference/path_tracer.h"
+#include "reference/reference_renderer.h"
+#include "reference/sample_rays.h"
 #include "scene/scene.h"
 #include "wavefront/pipeline.h"
 #include "wavefront/wavefront_renderer.h"
@@ -114,6 +124,7 @@ json run_metadata(const DeviceInfo& device, bool quick) {
             {"opencl_platform", device.platform_version},
             {"opencl_device", device.name},
             {"embree", RTC_VERSION_STRING},
+            {"embree_device", embree_device_summary()},
             {"mode", quick ? "quick" : "full"}};
 }
 
@@ -308,6 +319,23 @@ struct RaySet {
     std::string name;
     std::vector<Ray> rays;
     std::vector<float> segment;  // any hit: t_max, 0.99 of the closest hit (infinity where none)
+    // The same rays as the wavefront keeps them, for the Embree intersector: one array per component.
+    std::array<std::vector<float>, 3> origin, direction;
+    std::vector<std::uint32_t> queue;  // every slot, in order
+
+    RaySet(std::string set_name, std::vector<Ray> set_rays, std::vector<float> segments)
+        : name(std::move(set_name)), rays(std::move(set_rays)), segment(std::move(segments)) {
+        for (std::uint32_t i = 0; i < rays.size(); ++i) {
+            for (int a = 0; a < 3; ++a)
+                origin[a].push_back(rays[i].origin[a]), direction[a].push_back(rays[i].direction[a]);
+            queue.push_back(i);
+        }
+    }
+    RayArrays arrays(bool bounded) const {
+        return {{origin[0].data(), origin[1].data(), origin[2].data()},
+                {direction[0].data(), direction[1].data(), direction[2].data()},
+                bounded ? segment.data() : nullptr};
+    }
 };
 
 struct ClosestResult {
@@ -412,12 +440,12 @@ class StageTracer {
 // Embree's own scene of the same float triangles (primID = our leaf-order index).
 class EmbreeTracer {
  public:
-    explicit EmbreeTracer(const std::vector<M::MeshTriangle>& triangles) {
+    EmbreeTracer(const std::vector<M::MeshTriangle>& triangles, bool robust) {
         device_ = rtcNewDevice("threads=2");
         if (!device_) throw std::runtime_error("Embree: cannot create a device");
         scene_ = rtcNewScene(device_);
         rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_MEDIUM);
-        rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_NONE);  // not robust
+        rtcSetSceneFlags(scene_, robust ? RTC_SCENE_FLAG_ROBUST : RTC_SCENE_FLAG_NONE);
         RTCGeometry geometry = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
         auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
             geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), 3 * triangles.size()));
@@ -490,6 +518,70 @@ class EmbreeTracer {
     RTCScene scene_;
 };
 
+// The Embree intersector (src/accel/embree_intersector.h) on a queue of
+// every ray, read from and written to arrays by slot as the wavefront's
+// intersect stages will hand them over, on kThreads threads.
+class IntersectorTracer {
+ public:
+    IntersectorTracer(const Scene& scene, const std::vector<M::MeshTriangle>& triangles, EmbreeOptions options)
+        : embree_(scene, triangles, with_threads(options)) {}
+
+    double closest(const RaySet& set, ClosestResult& out) {
+        std::vector<float> t(set.rays.size());
+        std::vector<std::uint32_t> shape(set.rays.size());
+        auto start = Clock::now();
+        embree_.closest(set.arrays(false), set.queue, {t.data(), shape.data()});
+        double seconds = seconds_since(start);
+        out.t.assign(set.rays.size(), std::numeric_limits<float>::infinity());
+        out.tri.assign(set.rays.size(), kNone);
+        for (std::size_t i = 0; i < t.size(); ++i) {
+            if (shape[i] == WP_NO_HIT) continue;
+            if (shape[i] >> WP_SHAPE_TYPE_SHIFT == WP_SHAPE_TRIANGLE) out.tri[i] = shape[i] & WP_SHAPE_INDEX_MASK;
+            out.t[i] = t[i];
+        }
+        return seconds;
+    }
+
+    double any(const RaySet& set, std::vector<std::uint8_t>& occluded) {
+        std::vector<std::uint32_t> flags(set.rays.size());
+        auto start = Clock::now();
+        embree_.occluded(set.arrays(true), set.queue, flags.data());
+        double seconds = seconds_since(start);
+        occluded.assign(flags.begin(), flags.end());
+        return seconds;
+    }
+
+    std::uint64_t retraced_rays() const { return embree_.retraced_rays(); }
+
+ private:
+    static EmbreeOptions with_threads(EmbreeOptions options) {
+        options.threads = kThreads;
+        return options;
+    }
+    EmbreeIntersector embree_;
+};
+
+const char* query_name(EmbreeQuery query) {
+    switch (query) {
+        case EmbreeQuery::Single:
+            return "single";
+        case EmbreeQuery::Packet4:
+            return "packet4";
+        case EmbreeQuery::Packet8:
+            return "packet8";
+        case EmbreeQuery::Packet16:
+            return "packet16";
+        default:
+            return "stream";
+    }
+}
+
+// "ours_user_packet16": the tracer's name in the tables.
+std::string intersector_name(const EmbreeOptions& options) {
+    return std::string("ours_") + (options.triangles == EmbreeTriangles::User ? "user_" : "filter_") +
+           query_name(options.query) + (options.analytic == EmbreeAnalytic::User ? "_analytic_user" : "");
+}
+
 // The scalar C++ traversal (the reference's, kernels/shared/bvh.h) on kThreads threads.
 double scalar_closest(const reference::ReferenceScene<float>& scene, const std::vector<Ray>& rays, ClosestResult& out) {
     out.t.assign(rays.size(), std::numeric_limits<float>::infinity());
@@ -518,32 +610,21 @@ double scalar_any(const reference::ReferenceScene<float>& scene, const std::vect
 
 // Primary rays (one per pixel, jittered as the renderer's first sample) and
 // incoherent rays: a cosine-distributed bounce from each primary hit, its
-// origin offset along the normal as the renderer offsets it.
+// origin offset along the normal as the renderer offsets it
+// (reference/sample_rays.h); segments for any hit end at 0.99 of the closest hit.
 std::vector<RaySet> make_rays(const reference::ReferenceScene<float>& scene) {
-    RaySet primary{"primary", {}, {}}, bounce{"incoherent", {}, {}};
-    const auto& camera = scene.camera;
-    for (int py = 0; py < camera.height; ++py) {
-        for (int px = 0; px < camera.width; ++px) {
-            auto pixel = std::uint32_t(py * camera.width + px);
-            reference::SampleRng<float> rng{scene.render.seed, pixel, 0u};
-            Ray ray = reference::camera_ray(scene, px, py, rng);
-            primary.rays.push_back(ray);
+    reference::SampleRays rays = reference::sample_rays(scene);
+    auto segments = [&](const std::vector<Ray>& set) {
+        std::vector<float> segment;
+        for (const Ray& ray : set) {
             reference::ShapeHit<float> hit = reference::closest_hit(scene, ray);
-            if (!hit.found()) continue;
-            reference::SurfacePoint<float> x = reference::surface_at(scene, ray, hit);
-            M::vec3 nf = glm::dot(ray.direction, x.normal) < 0.0f ? x.normal : -x.normal;
-            M::vec3 local = M::sample_cosine_hemisphere(rng(0, DIM_BSDF_U), rng(0, DIM_BSDF_V));
-            bounce.rays.push_back(
-                {M::offset_ray_origin(x.point, nf, x.error), M::frame_to_world(M::frame_from_normal(nf), local)});
+            segment.push_back(hit.found() ? 0.99f * hit.t : std::numeric_limits<float>::infinity());
         }
-    }
-    for (RaySet* set : {&primary, &bounce}) {
-        for (const Ray& ray : set->rays) {
-            reference::ShapeHit<float> hit = reference::closest_hit(scene, ray);
-            set->segment.push_back(hit.found() ? 0.99f * hit.t : std::numeric_limits<float>::infinity());
-        }
-    }
-    return {primary, bounce};
+        return segment;
+    };
+    std::vector<float> primary = segments(rays.camera), bounce = segments(rays.bounce);
+    return {RaySet("primary", std::move(rays.camera), std::move(primary)),
+            RaySet("incoherent", std::move(rays.bounce), std::move(bounce))};
 }
 
 // Rays whose hit differs beyond float tolerance: one hits and the other not,
@@ -592,17 +673,58 @@ json traversal_figures(const Scene& traced, const DeviceInfo& device, int repeat
     std::size_t capacity = 0;
     for (const RaySet& s : sets) capacity = std::max(capacity, s.rays.size());
     StageTracer stages(traced, device, capacity);
-    EmbreeTracer embree(reference_scene.triangles);
+    EmbreeTracer embree(reference_scene.triangles, false), embree_robust(reference_scene.triangles, true);
     std::unique_ptr<StageTracer> baseline;
     if (!baseline_kernels.empty()) baseline = tracer_from(baseline_kernels, traced, device, capacity);
     std::printf(
         "\n## b. Traversal: %zu triangles, %zu primary and %zu incoherent rays, %d interleaved repetitions, %u threads "
-        "for the "
-        "scalar C++ and Embree, OpenCL stage lanes %u\n",
-        reference_scene.triangles.size(), sets[0].rays.size(), sets[1].rays.size(), repeats, kThreads, stages.lanes());
+        "for the scalar C++ and Embree, OpenCL stage lanes %u; %s\n",
+        reference_scene.triangles.size(), sets[0].rays.size(), sets[1].rays.size(), repeats, kThreads, stages.lanes(),
+        embree_device_summary().c_str());
 
-    std::vector<const char*> impls = {"opencl_stage", "scalar_cpp", "embree"};
-    if (baseline) impls.push_back("opencl_baseline");
+    // Every tracer: its name, closest hit and any hit, each returning seconds.
+    struct Tracer {
+        std::string name;
+        std::function<double(const RaySet&, ClosestResult&)> closest;
+        std::function<double(const RaySet&, std::vector<std::uint8_t>&)> any;
+    };
+    std::vector<Tracer> impls = {
+        {"opencl_stage", [&](const RaySet& set, ClosestResult& out) { return stages.closest(set.rays, out); },
+         [&](const RaySet& set, std::vector<std::uint8_t>& out) { return stages.any(set.rays, set.segment, out); }},
+        {"scalar_cpp",
+         [&](const RaySet& set, ClosestResult& out) { return scalar_closest(reference_scene, set.rays, out); },
+         [&](const RaySet& set, std::vector<std::uint8_t>& out) {
+             return scalar_any(reference_scene, set.rays, set.segment, out);
+         }},
+        {"embree", [&](const RaySet& set, ClosestResult& out) { return embree.closest(set.rays, out); },
+         [&](const RaySet& set, std::vector<std::uint8_t>& out) { return embree.any(set.rays, set.segment, out); }},
+        {"embree_robust", [&](const RaySet& set, ClosestResult& out) { return embree_robust.closest(set.rays, out); },
+         [&](const RaySet& set, std::vector<std::uint8_t>& out) {
+             return embree_robust.any(set.rays, set.segment, out);
+         }},
+    };
+    const std::size_t kEmbree = 2, kScalar = 1, kFirstOurs = impls.size();
+    std::vector<std::unique_ptr<IntersectorTracer>> ours;
+    for (EmbreeTriangles triangles : {EmbreeTriangles::User, EmbreeTriangles::Filter}) {
+        for (EmbreeQuery query : {EmbreeQuery::Single, EmbreeQuery::Packet4, EmbreeQuery::Packet8,
+                                  EmbreeQuery::Packet16, EmbreeQuery::Stream}) {
+            EmbreeOptions options{triangles, query, EmbreeAnalytic::Loop, int(kThreads)};
+            IntersectorTracer* tracer =
+                ours.emplace_back(std::make_unique<IntersectorTracer>(traced, reference_scene.triangles, options))
+                    .get();
+            impls.push_back(
+                {intersector_name(options),
+                 [tracer](const RaySet& set, ClosestResult& out) { return tracer->closest(set, out); },
+                 [tracer](const RaySet& set, std::vector<std::uint8_t>& out) { return tracer->any(set, out); }});
+        }
+    }
+    std::size_t baseline_index = impls.size();
+    if (baseline)
+        impls.push_back({"opencl_baseline",
+                         [&](const RaySet& set, ClosestResult& out) { return baseline->closest(set.rays, out); },
+                         [&](const RaySet& set, std::vector<std::uint8_t>& out) {
+                             return baseline->any(set.rays, set.segment, out);
+                         }});
     const std::size_t n_impls = impls.size();
     const char* queries[] = {"closest", "any"};
     // times[set][query][impl]
@@ -614,15 +736,10 @@ json traversal_figures(const Scene& traced, const DeviceInfo& device, int repeat
     for (int r = -1; r < repeats; ++r) {  // r = -1: warm-up, not recorded (PoCL compiles at the first launch)
         for (std::size_t s = 0; s < sets.size(); ++s) {
             const RaySet& set = sets[s];
-            std::vector<double> t[2] = {
-                {stages.closest(set.rays, closest[s][0]), scalar_closest(reference_scene, set.rays, closest[s][1]),
-                 embree.closest(set.rays, closest[s][2])},
-                {stages.any(set.rays, set.segment, any[s][0]),
-                 scalar_any(reference_scene, set.rays, set.segment, any[s][1]),
-                 embree.any(set.rays, set.segment, any[s][2])}};
-            if (baseline) {
-                t[0].push_back(baseline->closest(set.rays, closest[s][3]));
-                t[1].push_back(baseline->any(set.rays, set.segment, any[s][3]));
+            std::vector<double> t[2];
+            for (std::size_t i = 0; i < n_impls; ++i) {
+                t[0].push_back(impls[i].closest(set, closest[s][i]));
+                t[1].push_back(impls[i].any(set, any[s][i]));
             }
             if (r < 0) continue;
             for (int q = 0; q < 2; ++q)
@@ -631,12 +748,12 @@ json traversal_figures(const Scene& traced, const DeviceInfo& device, int repeat
     }
 
     json rows = json::array();
-    std::printf("\n%-11s %-8s %-13s %12s %14s %16s %8s\n", "rays", "query", "tracer", "Mrays/s best", "Mrays/s median",
+    std::printf("\n%-11s %-8s %-28s %12s %14s %16s %8s\n", "rays", "query", "tracer", "Mrays/s best", "Mrays/s median",
                 "of Embree (med)", "hits");
     for (std::size_t s = 0; s < sets.size(); ++s) {
         const std::size_t count = sets[s].rays.size();
         for (int q = 0; q < 2; ++q) {
-            double embree_median = double(count) / median(times[s][q][2]);
+            double embree_median = double(count) / median(times[s][q][kEmbree]);
             for (std::size_t i = 0; i < n_impls; ++i) {
                 double best = double(count) / minimum(times[s][q][i]) / 1e6;
                 double med = double(count) / median(times[s][q][i]) / 1e6;
@@ -646,11 +763,11 @@ json traversal_figures(const Scene& traced, const DeviceInfo& device, int repeat
                 else
                     for (std::uint8_t o : any[s][i]) hits += o;
                 double ratio = med * 1e6 / embree_median;
-                std::printf("%-11s %-8s %-13s %12.2f %14.2f %15.2fx %8zu\n", sets[s].name.c_str(), queries[q], impls[i],
-                            best, med, ratio, hits);
+                std::printf("%-11s %-8s %-28s %12.2f %14.2f %15.2fx %8zu\n", sets[s].name.c_str(), queries[q],
+                            impls[i].name.c_str(), best, med, ratio, hits);
                 rows.push_back({{"rays", sets[s].name},
                                 {"query", queries[q]},
-                                {"tracer", impls[i]},
+                                {"tracer", impls[i].name},
                                 {"ray_count", count},
                                 {"repeats", repeats},
                                 {"mrays_s_best", best},
@@ -665,16 +782,17 @@ json traversal_figures(const Scene& traced, const DeviceInfo& device, int repeat
         "\nAgreement (last repetition): closest hit, a ray differs where one tracer hits and the other does "
         "not or the distances differ by more than 1e-4 relative; any hit, where the verdicts differ. Any-hit "
         "rays are segments ending at 0.99 of their closest hit.\n\n");
-    std::printf("%-11s %-8s %-28s %10s %10s %12s %18s %14s\n", "rays", "query", "pair", "hits a", "hits b", "differ",
+    std::printf("%-11s %-8s %-44s %10s %10s %12s %18s %14s\n", "rays", "query", "pair", "hits a", "hits b", "differ",
                 "other tri same t", "bit-identical");
     for (std::size_t s = 0; s < sets.size(); ++s) {
         const std::size_t count = sets[s].rays.size();
-        std::vector<std::pair<std::size_t, std::size_t>> pairs{{0, 2}, {0, 1}};
-        if (baseline) pairs.emplace_back(0, 3);
+        std::vector<std::pair<std::size_t, std::size_t>> pairs{{0, kEmbree}, {0, kScalar}};
+        if (baseline) pairs.emplace_back(0, baseline_index);
+        for (std::size_t k = kFirstOurs; k < kFirstOurs + ours.size(); ++k) pairs.emplace_back(kScalar, k);
         for (auto [a, b] : pairs) {
-            std::string pair = std::string(impls[a]) + " vs " + impls[b];
+            std::string pair = impls[a].name + " vs " + impls[b].name;
             Agreement g = compare(closest[s][a], closest[s][b]);
-            std::printf("%-11s %-8s %-28s %10zu %10zu %11.5f%% %18zu %13.2f%%\n", sets[s].name.c_str(), "closest",
+            std::printf("%-11s %-8s %-44s %10zu %10zu %11.5f%% %18zu %13.2f%%\n", sets[s].name.c_str(), "closest",
                         pair.c_str(), g.hits_a, g.hits_b, 100.0 * double(g.differ) / double(count),
                         g.other_triangle_same_t, 100.0 * double(g.bit_identical) / double(count));
             agreement_rows.push_back({{"rays", sets[s].name},
@@ -691,7 +809,7 @@ json traversal_figures(const Scene& traced, const DeviceInfo& device, int repeat
                 occluded_a += any[s][a][i], occluded_b += any[s][b][i];
                 differ += any[s][a][i] != any[s][b][i];
             }
-            std::printf("%-11s %-8s %-28s %10zu %10zu %11.5f%%\n", sets[s].name.c_str(), "any", pair.c_str(),
+            std::printf("%-11s %-8s %-44s %10zu %10zu %11.5f%%\n", sets[s].name.c_str(), "any", pair.c_str(),
                         occluded_a, occluded_b, 100.0 * double(differ) / double(count));
             agreement_rows.push_back({{"rays", sets[s].name},
                                       {"query", "any"},
@@ -864,9 +982,110 @@ json short_list_figures(int size, int spp, int repeats) {
     return rows;
 }
 
+// ---- f. the Embree intersector: spheres and quads, and the reference ----
+
+// The shipped scene (spheres, quads, the mesh light, the bunny): spheres
+// and quads tested in turn before Embree, or as Embree user geometry.
+json analytic_figures(const Scene& shipped, int size, int repeats) {
+    Scene scene = shipped;
+    scene.camera.width = scene.camera.height = size;
+    reference::ReferenceScene<float> reference_scene(scene);
+    std::vector<RaySet> sets = make_rays(reference_scene);
+    std::vector<std::unique_ptr<IntersectorTracer>> tracers;
+    std::vector<std::string> names;
+    for (EmbreeAnalytic analytic : {EmbreeAnalytic::Loop, EmbreeAnalytic::User}) {
+        EmbreeOptions options;
+        options.analytic = analytic;
+        tracers.push_back(std::make_unique<IntersectorTracer>(scene, reference_scene.triangles, options));
+        names.push_back(intersector_name(options));
+    }
+    std::printf(
+        "\n## f. Spheres and quads in turn or as Embree user geometry: %s (%zu spheres, %zu quads), %zu primary "
+        "and %zu incoherent rays, %d interleaved repetitions\n\n",
+        shipped.source.c_str(), scene.spheres.size(), scene.quads.size(), sets[0].rays.size(), sets[1].rays.size(),
+        repeats);
+    // seconds[set][query][tracer]
+    std::vector<std::vector<std::vector<std::vector<double>>>> seconds(
+        sets.size(),
+        std::vector<std::vector<std::vector<double>>>(2, std::vector<std::vector<double>>(tracers.size())));
+    for (int r = -1; r < repeats; ++r) {
+        for (std::size_t s = 0; s < sets.size(); ++s) {
+            for (std::size_t k = 0; k < tracers.size(); ++k) {
+                ClosestResult closest;
+                std::vector<std::uint8_t> occluded;
+                double closest_s = tracers[k]->closest(sets[s], closest), any_s = tracers[k]->any(sets[s], occluded);
+                if (r < 0) continue;
+                seconds[s][0][k].push_back(closest_s);
+                seconds[s][1][k].push_back(any_s);
+            }
+        }
+    }
+    const char* queries[] = {"closest", "any"};
+    json rows = json::array();
+    std::printf("%-11s %-8s %-40s %12s %14s\n", "rays", "query", "tracer", "Mrays/s best", "Mrays/s median");
+    for (std::size_t s = 0; s < sets.size(); ++s) {
+        for (int q = 0; q < 2; ++q) {
+            for (std::size_t k = 0; k < tracers.size(); ++k) {
+                double count = double(sets[s].rays.size());
+                double best = count / minimum(seconds[s][q][k]) / 1e6, med = count / median(seconds[s][q][k]) / 1e6;
+                std::printf("%-11s %-8s %-40s %12.2f %14.2f\n", sets[s].name.c_str(), queries[q], names[k].c_str(),
+                            best, med);
+                rows.push_back({{"scene", shipped.source},
+                                {"rays", sets[s].name},
+                                {"query", queries[q]},
+                                {"tracer", names[k]},
+                                {"ray_count", sets[s].rays.size()},
+                                {"repeats", repeats},
+                                {"mrays_s_best", best},
+                                {"mrays_s_median", med}});
+            }
+        }
+    }
+    return rows;
+}
+
+// The reference renderer with each intersector on 2 threads: samples/s and
+// the pixels whose values differ (ties resolved otherwise).
+json reference_figures(int size, int spp, int repeats) {
+    json rows = json::array();
+    std::printf(
+        "\n## f. The reference with --intersector bvh and embree: %dx%d, %d spp, %u threads, %d interleaved "
+        "repetitions\n\n",
+        size, size, spp, kThreads, repeats);
+    std::printf("%-14s %-12s %16s %10s %18s\n", "scene", "intersector", "Msamples/s min", "median", "pixels differing");
+    for (const char* name : {"bunny", "cornell_mesh"}) {
+        Scene scene = load_scene(std::string(WAVEPATH_SOURCE_DIR "/scenes/") + name + ".json");
+        scene.camera.width = scene.camera.height = size;
+        scene.render.spp = spp;
+        const Intersector kinds[] = {Intersector::Bvh, Intersector::Embree};
+        std::vector<double> samples_per_s[2];
+        std::vector<float> image[2];
+        for (int r = 0; r < repeats; ++r) {
+            for (int k = 0; k < 2; ++k) {
+                ReferenceOptions options{int(kThreads), false, false, kinds[k]};
+                RenderResult result = render_reference(scene, options);
+                samples_per_s[k].push_back(double(result.stats.samples) / result.stats.time_s);
+                image[k] = result.image.rgb;
+            }
+        }
+        std::size_t differing = 0;
+        for (std::size_t i = 0; i < image[0].size(); i += 3)
+            differing += !std::equal(image[0].begin() + i, image[0].begin() + i + 3, image[1].begin() + i);
+        for (int k = 0; k < 2; ++k) {
+            const char* intersector = k == 0 ? "bvh" : "embree";
+            std::printf("%-14s %-12s %16.4f %10.4f %18zu\n", name, intersector, minimum(samples_per_s[k]) / 1e6,
+                        median(samples_per_s[k]) / 1e6, differing);
+            json row = frame_fields(size, spp, repeats, samples_per_s[k]);
+            row.update({{"scene", name}, {"intersector", intersector}, {"pixels_differing", differing}});
+            rows.push_back(row);
+        }
+    }
+    return rows;
+}
+
 int run(int argc, char** argv) {
     bool quick = false;
-    std::string json_path, scene_path = WAVEPATH_SOURCE_DIR "/scenes/bunny.json", device_choice, sections = "abcde",
+    std::string json_path, scene_path = WAVEPATH_SOURCE_DIR "/scenes/bunny.json", device_choice, sections = "abcdef",
                            baseline_kernels;
     int repeats = 0;
     for (int i = 1; i < argc; ++i) {
@@ -891,7 +1110,7 @@ int run(int argc, char** argv) {
             baseline_kernels = value();
         } else {
             std::cerr << "usage: mesh_bench [--quick] [--json FILE] [--scene FILE] [--device CHOICE] [--repeats N] "
-                         "[--sections abcde] [--baseline-kernels DIR]\n";
+                         "[--sections abcdef] [--baseline-kernels DIR]\n";
             return 2;
         }
     }
@@ -923,6 +1142,10 @@ int run(int argc, char** argv) {
     if (wanted('d')) results["lanes"] = quick ? lanes_figures(scene, 64, 1, 2) : lanes_figures(scene, 256, 4, 3);
     // e decides a design question and checks nothing: not in the quick run (its six builds would cost CI a minute)
     if (wanted('e') && !quick) results["short_list"] = short_list_figures(128, 4, 3);
+    if (wanted('f')) {
+        results["analytic"] = analytic_figures(scene, quick ? 128 : 512, repeats);
+        results["reference"] = quick ? reference_figures(64, 1, 3) : reference_figures(128, 4, 5);
+    }
     if (!json_path.empty()) {
         std::ofstream out(json_path);
         out << results.dump(1) << "\n";

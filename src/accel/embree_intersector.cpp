@@ -33,8 +33,8 @@ struct Lane {
     // EmbreeTriangles::Filter: where Embree's watertight test and ours
     // share a point between triangles differently, Embree may not offer the
     // triangle ours hits; such rays are traced again on our test alone.
-    bool best_on_edge;   // ours puts the closest hit exactly on an edge or vertex (another triangle's too)
-    float disputed_t;    // the nearest Embree hit our test misses (infinity: none)
+    bool best_on_edge;  // ours puts the closest hit exactly on an edge or vertex (another triangle's too)
+    float disputed_t;   // the nearest Embree hit our test misses (infinity: none)
 };
 
 Lane make_lane(const RayArrays& rays, std::uint32_t slot) {
@@ -68,7 +68,7 @@ bool offer(Lane& lane, const HostHit& candidate) {
 // that a shape our test puts at t (a tie) or just before it is still
 // tested although Embree's rounding puts its box (or its own distance to a
 // triangle) farther. 2^-10 relative is far above both roundings, also for
-// rays grazing a surface, and costs no measurable traversal.
+// rays grazing a surface, and adds little traversal.
 float search_limit(float t) { return t * (1.0f + 0x1p-10f); }
 
 // ---- the shapes, each with our test ----
@@ -105,7 +105,8 @@ struct QuadShape {
     }
     RTCBounds box() const {
         vec3 far = corner + edge1 + edge2, a = corner + edge1, b = corner + edge2;
-        return widened_box(glm::min(glm::min(corner, far), glm::min(a, b)), glm::max(glm::max(corner, far), glm::max(a, b)));
+        return widened_box(glm::min(glm::min(corner, far), glm::min(a, b)),
+                           glm::max(glm::max(corner, far), glm::max(a, b)));
     }
 };
 
@@ -134,7 +135,8 @@ struct AnalyticShapes {
         for (const Sphere& s : scene.spheres) spheres.push_back({vec3(s.center), float(s.radius)});
         for (const Plane& p : scene.planes) planes.push_back({vec3(p.point), vec3(p.normal)});
         for (const Quad& q : scene.quads)
-            quads.push_back({vec3(q.corner), vec3(q.edge1), vec3(q.edge2), M::quad_plane(vec3(q.edge1), vec3(q.edge2))});
+            quads.push_back(
+                {vec3(q.corner), vec3(q.edge1), vec3(q.edge2), M::quad_plane(vec3(q.edge1), vec3(q.edge2))});
     }
 };
 
@@ -161,37 +163,49 @@ struct QueryContext {
     }
 };
 
-// User geometry: our test of one primitive for each valid ray.
+// User geometry: one primitive of Embree's a shape of ours.
 template <class Shape>
+struct ShapeList {
+    const std::vector<Shape>* shapes;
+    unsigned count() const { return unsigned(shapes->size()); }
+    bool offer_hits(Lane& lane, unsigned primitive) const {
+        return offer(lane, {(*shapes)[primitive].t(lane), shape_id(Shape::kind, primitive)});
+    }
+    bool hits(const Lane& lane, unsigned primitive) const { return (*shapes)[primitive].t(lane) < lane.t_max; }
+    RTCBounds box(unsigned primitive) const { return (*shapes)[primitive].box(); }
+};
+
+// Our tests of one primitive for each valid ray.
+template <class Primitives>
 void user_intersect(const RTCIntersectFunctionNArguments* args) {
-    const Shape& shape = static_cast<const Shape*>(args->geometryUserPtr)[args->primID];
+    const auto& primitives = *static_cast<const Primitives*>(args->geometryUserPtr);
     RTCRayN* ray = RTCRayHitN_RayN(args->rayhit, args->N);
     RTCHitN* hit = RTCRayHitN_HitN(args->rayhit, args->N);
     for (unsigned i = 0; i < args->N; ++i) {
         if (!args->valid[i]) continue;
         Lane& lane = QueryContext::lane(args->context, ray, args->N, i);
-        if (!offer(lane, {shape.t(lane), shape_id(Shape::kind, args->primID)})) continue;
+        if (!primitives.offer_hits(lane, args->primID)) continue;
         RTCRayN_tfar(ray, args->N, i) = search_limit(lane.best.t);
         RTCHitN_geomID(hit, args->N, i) = args->geomID;
         RTCHitN_primID(hit, args->N, i) = args->primID;
     }
 }
 
-template <class Shape>
+template <class Primitives>
 void user_occluded(const RTCOccludedFunctionNArguments* args) {
-    const Shape& shape = static_cast<const Shape*>(args->geometryUserPtr)[args->primID];
+    const auto& primitives = *static_cast<const Primitives*>(args->geometryUserPtr);
     for (unsigned i = 0; i < args->N; ++i) {
         if (!args->valid[i]) continue;
         Lane& lane = QueryContext::lane(args->context, args->ray, args->N, i);
-        if (!(shape.t(lane) < lane.t_max)) continue;
+        if (!primitives.hits(lane, args->primID)) continue;
         lane.occluded = true;
         RTCRayN_tfar(args->ray, args->N, i) = -kInfinity;  // Embree's mark of an occluded ray
     }
 }
 
-template <class Shape>
+template <class Primitives>
 void user_bounds(const RTCBoundsFunctionArguments* args) {
-    *args->bounds_o = static_cast<const Shape*>(args->geometryUserPtr)[args->primID].box();
+    *args->bounds_o = static_cast<const Primitives*>(args->geometryUserPtr)->box(args->primID);
 }
 
 // Embree's own triangles: each hit its test finds is our test's to accept,
@@ -302,9 +316,14 @@ struct EmbreeIntersector::Impl {
     EmbreeOptions options;
     AnalyticShapes shapes;
     std::vector<TriangleShape> triangles;
+    // What the user geometries' callbacks read (their user data).
+    ShapeList<SphereShape> sphere_list{&shapes.spheres};
+    ShapeList<QuadShape> quad_list{&shapes.quads};
+    ShapeList<TriangleShape> triangle_list{&triangles};
     RTCDevice device = nullptr;
     RTCScene scene = nullptr;  // what the queries trace
-    RTCScene exact = nullptr;  // triangles as user geometry: `scene` itself, or with Filter the rays settle() sends back
+    RTCScene exact =
+        nullptr;  // triangles as user geometry: `scene` itself, or with Filter the rays settle() sends back
     bool has_geometry = false;  // anything in Embree's scenes
     mutable std::atomic<std::uint64_t> retraced{0};
 
@@ -342,11 +361,11 @@ struct EmbreeIntersector::Impl {
             if (mode == EmbreeTriangles::Filter)
                 attach_native_triangles(built);
             else
-                attach_user(built, triangles);
+                attach_user(built, triangle_list, WP_SHAPE_TRIANGLE);
         }
         if (options.analytic == EmbreeAnalytic::User) {
-            attach_user(built, shapes.spheres);
-            attach_user(built, shapes.quads);
+            attach_user(built, sphere_list, WP_SHAPE_SPHERE);
+            attach_user(built, quad_list, WP_SHAPE_QUAD);
         }
         rtcCommitScene(built);
         if (rtcGetDeviceError(device) != RTC_ERROR_NONE) {
@@ -381,16 +400,16 @@ struct EmbreeIntersector::Impl {
     }
 
     // One user geometry of every shape of a kind, its geomID the kind.
-    template <class Shape>
-    void attach_user(RTCScene target, const std::vector<Shape>& list) {
-        if (list.empty()) return;
+    template <class Primitives>
+    void attach_user(RTCScene target, const Primitives& primitives, std::uint32_t kind) {
+        if (primitives.count() == 0) return;
         RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
-        rtcSetGeometryUserPrimitiveCount(geometry, unsigned(list.size()));
-        rtcSetGeometryUserData(geometry, const_cast<Shape*>(list.data()));
-        rtcSetGeometryBoundsFunction(geometry, user_bounds<Shape>, nullptr);
-        rtcSetGeometryIntersectFunction(geometry, user_intersect<Shape>);
-        rtcSetGeometryOccludedFunction(geometry, user_occluded<Shape>);
-        attach(target, geometry, Shape::kind);
+        rtcSetGeometryUserPrimitiveCount(geometry, primitives.count());
+        rtcSetGeometryUserData(geometry, const_cast<Primitives*>(&primitives));
+        rtcSetGeometryBoundsFunction(geometry, user_bounds<Primitives>, nullptr);
+        rtcSetGeometryIntersectFunction(geometry, user_intersect<Primitives>);
+        rtcSetGeometryOccludedFunction(geometry, user_occluded<Primitives>);
+        attach(target, geometry, kind);
     }
 
     void attach(RTCScene target, RTCGeometry geometry, std::uint32_t kind) {
@@ -546,7 +565,8 @@ struct EmbreeIntersector::Impl {
         };
         switch (options.query) {
             case EmbreeQuery::Single:
-                for (std::size_t k = 0; k < n; ++k) closest ? closest_one(scene, lanes[k]) : occluded_one(scene, lanes[k]);
+                for (std::size_t k = 0; k < n; ++k)
+                    closest ? closest_one(scene, lanes[k]) : occluded_one(scene, lanes[k]);
                 break;
             case EmbreeQuery::Packet4:
                 closest ? packets([this](Lane* l, std::size_t m) { closest_packet<4>(l, m); }, 4)

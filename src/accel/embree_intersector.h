@@ -112,10 +112,8 @@ class EmbreeIntersector {
 
     // One ray (the reference): the closest hit in (0, t_max), and whether any
     // shape lies in (0, t_max).
-    HostHit closest(const SharedMath<float>::vec3& origin, const SharedMath<float>::vec3& direction,
-                    float t_max) const;
-    bool occluded(const SharedMath<float>::vec3& origin, const SharedMath<float>::vec3& direction,
-                  float t_max) const;
+    HostHit closest(const SharedMath<float>::vec3& origin, const SharedMath<float>::vec3& direction, float t_max) const;
+    bool occluded(const SharedMath<float>::vec3& origin, const SharedMath<float>::vec3& direction, float t_max) const;
 
     // A queue (the slots in `queue`) on the options' threads: each slot's
     // closest hit into `hits`, or into `occluded` 1 where any shape lies in

@@ -42,7 +42,8 @@ void run_on_reference(const Scene& scene, const BackendOptions& options, const P
     ReferenceOptions reference{options.threads, options.precision == "double", options.film_squares,
                                reference_intersector(options)};
     if (reference.double_precision && reference.intersector == Intersector::Embree)
-        throw UsageError("--intersector embree: Embree traces in float only; use --precision float or --intersector bvh");
+        throw UsageError(
+            "--intersector embree: Embree traces in float only; use --precision float or --intersector bvh");
     std::unique_ptr<FilmRenderer> renderer = make_reference_renderer(scene, reference);
     run(*renderer);
 }

@@ -23,7 +23,8 @@ struct RenderIdentity {
     // render can be continued to more samples than first asked for.
     std::uint64_t settings = 0;
     // "opencl" (wavefront and megakernel, whose images are bit-identical),
-    // "reference-float" or "reference-double".
+    // "reference-float" or "reference-double", "-embree" after it for the
+    // reference with the Embree intersector.
     std::string estimator;
 
     bool operator==(const RenderIdentity&) const = default;

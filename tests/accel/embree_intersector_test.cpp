@@ -3,6 +3,8 @@
 // agrees with our BVH on the bunny's camera and bounce rays but for ties,
 // which are counted and listed; its any-hit agrees everywhere; and no query
 // kind, triangle mode or thread count changes a bit of its results.
+#include "accel/embree_intersector.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -10,7 +12,6 @@
 #include <numeric>
 #include <random>
 
-#include "accel/embree_intersector.h"
 #include "reference/sample_rays.h"
 #include "support/meshes.h"
 
@@ -35,9 +36,8 @@ std::vector<EmbreeOptions> every_option(int threads) {
 
 std::string describe(const EmbreeOptions& o) {
     const char* queries[] = {"single", "packet4", "packet8", "packet16", "stream"};
-    return std::string(o.triangles == EmbreeTriangles::Filter ? "filter" : "user") + "/" +
-           queries[int(o.query)] + "/" + (o.analytic == EmbreeAnalytic::Loop ? "loop" : "user") + "/" +
-           std::to_string(o.threads) + " threads";
+    return std::string(o.triangles == EmbreeTriangles::Filter ? "filter" : "user") + "/" + queries[int(o.query)] + "/" +
+           (o.analytic == EmbreeAnalytic::Loop ? "loop" : "user") + "/" + std::to_string(o.threads) + " threads";
 }
 
 // Rays in the wavefront's layout, with a queue that visits the slots out of
@@ -208,9 +208,10 @@ TEST(EmbreeIntersector, FindsWhatTestingEveryShapeFindsUnderTheTieRule) {
             ASSERT_EQ(batch.occluded[i], occluded ? 1u : 0u) << "ray " << i;
         }
     }
-    std::printf("[figure] Embree intersector against every shape: %zu rays (half aimed at vertices), %zu hits, %zu ties, "
-                "20 options (filter: the rays not aimed at vertices), all identical\n",
-                rays.size(), hits, ties);
+    std::printf(
+        "[figure] Embree intersector against every shape: %zu rays (half aimed at vertices), %zu hits, %zu ties, "
+        "20 options (filter: the rays not aimed at vertices), all identical\n",
+        rays.size(), hits, ties);
     EXPECT_GT(ties, rays.size() / 10);  // the duplicated mesh and the vertices make ties to decide
     EXPECT_GT(hits, rays.size() / 3);
 }
@@ -237,9 +238,10 @@ TEST(EmbreeIntersector, EmbreeRobustTrianglesMissSomeVertices) {
         // a leak: Embree's candidates lie beyond our hit, or there are none
         ++(aimed_at_vertex(i) && found.t > ours.t ? leaks : other);
     }
-    std::printf("[figure] Embree's robust triangles (filter mode) pass through %zu of %zu vertices hit, %zu other "
-                "differences, %llu rays traced again\n",
-                leaks, vertex_rays, other, static_cast<unsigned long long>(filter.retraced_rays()));
+    std::printf(
+        "[figure] Embree's robust triangles (filter mode) pass through %zu of %zu vertices hit, %zu other "
+        "differences, %llu rays traced again\n",
+        leaks, vertex_rays, other, static_cast<unsigned long long>(filter.retraced_rays()));
     EXPECT_GT(leaks, 0u);
     EXPECT_EQ(other, 0u);
 }
@@ -304,8 +306,8 @@ TEST(EmbreeIntersector, AgreesWithTheBvhOnTheBunnyButForTies) {
                     ASSERT_EQ(shape_t(bvh, e.shape, ray, M::real_max), f.t) << "ray " << i;
                     ASSERT_TRUE(hit_precedes(f, e)) << "ray " << i;
                     if (ties++ < 10)
-                        std::printf("[figure] tie: %s ray %zu at t = %.9g: Embree shape %#x, BVH shape %#x\n", name,
-                                    i, double(f.t), f.shape, e.shape);
+                        std::printf("[figure] tie: %s ray %zu at t = %.9g: Embree shape %#x, BVH shape %#x\n", name, i,
+                                    double(f.t), f.shape, e.shape);
                 } else {
                     ASSERT_EQ(f.t, e.t) << "ray " << i;  // bit-identical distance
                 }
@@ -315,9 +317,10 @@ TEST(EmbreeIntersector, AgreesWithTheBvhOnTheBunnyButForTies) {
                 ASSERT_EQ(found.occluded[i], occluded_before ? 1u : 0u) << "ray " << i;
                 ASSERT_EQ(found_after.occluded[i], occluded_after ? 1u : 0u) << "ray " << i;
             }
-            std::printf("[figure] Embree (%s) against the BVH, bunny %s rays: %zu rays, %zu hits, %zu ties, "
-                        "%zu any-hit probes occluded, all agreeing\n",
-                        describe(options).c_str(), name, rays->size(), hits, ties, bvh_occluded);
+            std::printf(
+                "[figure] Embree (%s) against the BVH, bunny %s rays: %zu rays, %zu hits, %zu ties, "
+                "%zu any-hit probes occluded, all agreeing\n",
+                describe(options).c_str(), name, rays->size(), hits, ties, bvh_occluded);
             EXPECT_GT(rays->size(), 90000u);
             EXPECT_GT(hits, rays->size() * 9 / 10);
             EXPECT_LT(ties, rays->size() / 1000);

@@ -109,6 +109,11 @@ const UsageCase kUsageErrors[] = {
     {"NegativeThreads", {"--threads", "-1"}, "--threads: must be in [0, 4096], got -1"},
     {"UnknownBackend", {"--backend", "quantum"}, "--backend: "},
     {"UnknownPrecision", {"--precision", "half"}, "--precision: "},
+    {"UnknownIntersector", {"--intersector", "optix"}, "--intersector: "},
+    {"EmbreeInDouble",
+     {"--backend", "reference", "--precision", "double", "--intersector", "embree"},
+     "--intersector embree: Embree traces in float only"},
+    {"EmbreeOnTheWavefront", {"--intersector", "embree"}, "--intersector embree: only the reference backend"},
     {"UnknownNee", {"--nee", "maybe"}, "--nee: "},
     {"UnknownHemisphere", {"--hemisphere", "cos"}, "--hemisphere: "},
     {"UnknownFlag", {"--sp", "4"}, "The following argument"},
@@ -289,6 +294,15 @@ TEST_F(CliTest, ReferencePrecisionAndThreadsTakeEffect) {
     EXPECT_NEAR(sum_float, sum_double, 1e-6 * sum_double);
 }
 
+TEST_F(CliTest, ReferenceRendersWithEitherIntersector) {
+    for (const char* intersector : {"embree", "bvh"}) {
+        const CommandResult result =
+            render(base_scene().dump(), {"--backend", "reference", "--intersector", intersector, "-q"});
+        ASSERT_EQ(result.exit_code, 0) << intersector << ": " << result.err;
+        EXPECT_EQ(read_image(output_path()).width, 8);
+    }
+}
+
 TEST_F(CliTest, ExistingOutputIsReplacedOnlyBySuccess) {
     ASSERT_EQ(render(base_scene().dump(), {"-q"}).exit_code, 0);
     const std::vector<float> first = read_image(output_path()).rgb;
@@ -317,8 +331,9 @@ TEST_F(CliTest, HelpListsSubcommands) {
 TEST_F(CliTest, RenderHelpListsEveryFlag) {
     const CommandResult result = run({"render", "--help"});
     EXPECT_EQ(result.exit_code, 0);
-    for (const char* flag : {"--output", "--spp", "--width", "--height", "--max-depth", "--rr-depth", "--seed", "--nee",
-                             "--hemisphere", "--backend", "--threads", "--precision", "--quiet", "--stats-json"})
+    for (const char* flag :
+         {"--output", "--spp", "--width", "--height", "--max-depth", "--rr-depth", "--seed", "--nee", "--hemisphere",
+          "--backend", "--threads", "--precision", "--intersector", "--quiet", "--stats-json"})
         EXPECT_NE(result.out.find(flag), std::string::npos) << flag;
 }
 
