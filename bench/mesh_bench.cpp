@@ -318,7 +318,7 @@ json build_figures(const Scene& base, const std::vector<Mesh>& meshes, int repea
 struct RaySet {
     std::string name;
     std::vector<Ray> rays;
-    std::vector<float> segment;  // any hit: t_max, 0.99 of the closest hit (infinity where none)
+    std::vector<float> segment;  // any hit: t_max, 0.99 of the closest hit (FLT_MAX where none)
     // The same rays as the wavefront keeps them, for the Embree intersector: one array per component.
     std::array<std::vector<float>, 3> origin, direction;
     std::vector<std::uint32_t> queue;  // every slot, in order
@@ -618,7 +618,7 @@ std::vector<RaySet> make_rays(const reference::ReferenceScene<float>& scene) {
         std::vector<float> segment;
         for (const Ray& ray : set) {
             reference::ShapeHit<float> hit = reference::closest_hit(scene, ray);
-            segment.push_back(hit.found() ? 0.99f * hit.t : std::numeric_limits<float>::infinity());
+            segment.push_back(hit.found() ? 0.99f * hit.t : M::real_max);  // as far as a float reaches
         }
         return segment;
     };
