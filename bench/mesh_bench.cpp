@@ -561,26 +561,8 @@ class IntersectorTracer {
     EmbreeIntersector embree_;
 };
 
-const char* query_name(EmbreeQuery query) {
-    switch (query) {
-        case EmbreeQuery::Single:
-            return "single";
-        case EmbreeQuery::Packet4:
-            return "packet4";
-        case EmbreeQuery::Packet8:
-            return "packet8";
-        case EmbreeQuery::Packet16:
-            return "packet16";
-        default:
-            return "stream";
-    }
-}
-
 // "ours_user_packet16": the tracer's name in the tables.
-std::string intersector_name(const EmbreeOptions& options) {
-    return std::string("ours_") + (options.triangles == EmbreeTriangles::User ? "user_" : "filter_") +
-           query_name(options.query) + (options.analytic == EmbreeAnalytic::User ? "_analytic_user" : "");
-}
+std::string intersector_name(const EmbreeOptions& options) { return "ours_" + options_name(options); }
 
 // The scalar C++ traversal (the reference's, kernels/shared/bvh.h) on kThreads threads.
 double scalar_closest(const reference::ReferenceScene<float>& scene, const std::vector<Ray>& rays, ClosestResult& out) {

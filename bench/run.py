@@ -397,26 +397,25 @@ def peer_comparison(rows):
     return out
 
 
-def meshes(mesh_bench, quick, out):
-    """bench/mesh_bench: BVH build, traversal beside Embree, whole frames against triangle count."""
-    raw = os.path.join(out, "meshes.json")
-    args = [mesh_bench, "--json", raw, "--sections", "abcde"] + (["--quick"] if quick else [])
+def run_mesh_bench(mesh_bench, quick, out, name, sections):
+    """bench/mesh_bench's given sections: its printout to NAME.txt, its figures from NAME.json."""
+    raw = os.path.join(out, f"{name}.json")
+    args = [mesh_bench, "--json", raw, "--sections", sections] + (["--quick"] if quick else [])
     printed = subprocess.run(args, check=True, cwd=ROOT, capture_output=True, text=True).stdout
-    with open(os.path.join(out, "mesh_bench.txt"), "w") as f:
+    with open(os.path.join(out, f"{name}.txt"), "w") as f:
         f.write(printed)
     with open(raw) as f:
         return json.load(f)
+
+
+def meshes(mesh_bench, quick, out):
+    """bench/mesh_bench: BVH build, traversal beside Embree, whole frames against triangle count."""
+    return run_mesh_bench(mesh_bench, quick, out, "meshes", "abcde")
 
 
 def embree_intersector(mesh_bench, quick, out):
     """bench/mesh_bench sections b and f: the Embree intersector beside our BVH and Embree."""
-    raw = os.path.join(out, "embree_intersector.json")
-    args = [mesh_bench, "--json", raw, "--sections", "bf"] + (["--quick"] if quick else [])
-    printed = subprocess.run(args, check=True, cwd=ROOT, capture_output=True, text=True).stdout
-    with open(os.path.join(out, "embree_intersector.txt"), "w") as f:
-        f.write(printed)
-    with open(raw) as f:
-        return json.load(f)
+    return run_mesh_bench(mesh_bench, quick, out, "embree_intersector", "bf")
 
 
 def embree_target(m):

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <glm/geometric.hpp>
 #include <limits>
 #include <stdexcept>
 #include <thread>
@@ -246,6 +247,37 @@ void triangle_occlusion_filter(const RTCFilterFunctionNArguments* args) {
     }
 }
 
+// EmbreeTriangles::Filter hands Embree each triangle enlarged so that every
+// edge lies `margin` farther out (scaled about its incenter by 1 + margin /
+// inradius, at most doubled, then rounded outward): Embree's robust test,
+// which decides the points near an edge or vertex otherwise than ours and
+// can miss all the triangles around a vertex, then offers every triangle
+// ours hits (and some it does not, which the filter rejects). The margin,
+// 2^-16 of the scene's largest coordinate, is over a hundred times the
+// tests' rounding there.
+constexpr double kEnlargement = 0x1p-16;
+
+std::array<vec3, 3> enlarged(const M::MeshTriangle& t, double margin) {
+    std::array<glm::dvec3, 3> p;
+    for (int a = 0; a < 3; ++a) p[0][a] = t.p0[a], p[1][a] = t.p1[a], p[2][a] = t.p2[a];
+    double a = glm::length(p[1] - p[2]), b = glm::length(p[2] - p[0]), c = glm::length(p[0] - p[1]);
+    double perimeter = a + b + c;
+    double inradius = glm::length(glm::cross(p[1] - p[0], p[2] - p[0])) / perimeter;
+    if (!(inradius > 0.0)) return {vec3(p[0]), vec3(p[1]), vec3(p[2])};  // no area: our test never hits it
+    glm::dvec3 incenter = (a * p[0] + b * p[1] + c * p[2]) / perimeter;
+    double scale = std::min(1.0 + margin / inradius, 2.0);
+    std::array<vec3, 3> out;
+    for (int v = 0; v < 3; ++v) {
+        glm::dvec3 q = incenter + (p[v] - incenter) * scale;
+        for (int k = 0; k < 3; ++k) {
+            float f = static_cast<float>(q[k]);
+            bool inward = q[k] > incenter[k] ? double(f) < q[k] : double(f) > q[k];
+            out[v][k] = inward ? std::nextafter(f, q[k] > incenter[k] ? kInfinity : -kInfinity) : f;
+        }
+    }
+    return out;
+}
+
 // ---- queries ----
 
 void set_ray(RTCRay& ray, const Lane& lane, float t_far, unsigned id) {
@@ -263,30 +295,19 @@ void set_ray(RayK& ray, int k, const Lane& lane, float t_far) {
     ray.mask[k] = ~0u, ray.id[k] = unsigned(k), ray.flags[k] = 0;
 }
 
-// Embree's packet functions for packets of K.
-template <int K>
-struct Packet;
-template <>
-struct Packet<4> {
-    using RayHit = RTCRayHit4;
-    using Ray = RTCRay4;
-    static void intersect(const int* v, RTCScene s, RTCIntersectContext* c, RayHit* r) { rtcIntersect4(v, s, c, r); }
-    static void occluded(const int* v, RTCScene s, RTCIntersectContext* c, Ray* r) { rtcOccluded4(v, s, c, r); }
+// Embree's packet types and functions for packets of K.
+template <int K, class RayHitK, class RayK, void (*intersect_k)(const int*, RTCScene, RTCIntersectContext*, RayHitK*),
+          void (*occluded_k)(const int*, RTCScene, RTCIntersectContext*, RayK*)>
+struct Packet {
+    static constexpr int size = K;
+    using RayHit = RayHitK;
+    using Ray = RayK;
+    static constexpr auto intersect = intersect_k;
+    static constexpr auto occluded = occluded_k;
 };
-template <>
-struct Packet<8> {
-    using RayHit = RTCRayHit8;
-    using Ray = RTCRay8;
-    static void intersect(const int* v, RTCScene s, RTCIntersectContext* c, RayHit* r) { rtcIntersect8(v, s, c, r); }
-    static void occluded(const int* v, RTCScene s, RTCIntersectContext* c, Ray* r) { rtcOccluded8(v, s, c, r); }
-};
-template <>
-struct Packet<16> {
-    using RayHit = RTCRayHit16;
-    using Ray = RTCRay16;
-    static void intersect(const int* v, RTCScene s, RTCIntersectContext* c, RayHit* r) { rtcIntersect16(v, s, c, r); }
-    static void occluded(const int* v, RTCScene s, RTCIntersectContext* c, Ray* r) { rtcOccluded16(v, s, c, r); }
-};
+using Packet4 = Packet<4, RTCRayHit4, RTCRay4, rtcIntersect4, rtcOccluded4>;
+using Packet8 = Packet<8, RTCRayHit8, RTCRay8, rtcIntersect8, rtcOccluded8>;
+using Packet16 = Packet<16, RTCRayHit16, RTCRay16, rtcIntersect16, rtcOccluded16>;
 
 // Rays per stream call: the lanes of a stream stay in the first-level cache.
 constexpr std::size_t kStreamSize = 64;
@@ -375,7 +396,18 @@ struct EmbreeIntersector::Impl {
         return built;
     }
 
-    // Embree's triangles of the same floats (primID = leaf-order index), under our filter.
+    // The largest coordinate of any triangle: scenes are rebased to the
+    // camera, so rays travel no farther than a few times this.
+    double coordinate_magnitude() const {
+        double magnitude = 0.0;
+        for (const TriangleShape& t : triangles)
+            for (const float* p : {t.triangle.p0, t.triangle.p1, t.triangle.p2})
+                for (int a = 0; a < 3; ++a) magnitude = std::max(magnitude, std::fabs(double(p[a])));
+        return magnitude;
+    }
+
+    // Embree's triangles (primID = leaf-order index) a little larger than
+    // ours, under our filter.
     void attach_native_triangles(RTCScene target) {
         RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
         auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
@@ -386,12 +418,13 @@ struct EmbreeIntersector::Impl {
             rtcReleaseGeometry(geometry);
             throw std::runtime_error(embree_error(device, "allocating the triangles"));
         }
+        const double margin = kEnlargement * coordinate_magnitude();
         for (std::size_t i = 0; i < triangles.size(); ++i) {
-            const M::MeshTriangle& t = triangles[i].triangle;
-            std::copy(t.p0, t.p0 + 3, vertices + 9 * i);
-            std::copy(t.p1, t.p1 + 3, vertices + 9 * i + 3);
-            std::copy(t.p2, t.p2 + 3, vertices + 9 * i + 6);
-            for (unsigned k = 0; k < 3; ++k) indices[3 * i + k] = unsigned(3 * i + k);
+            std::array<vec3, 3> p = enlarged(triangles[i].triangle, margin);
+            for (unsigned v = 0; v < 3; ++v) {
+                std::copy(&p[v].x, &p[v].x + 3, vertices + 9 * i + 3 * v);
+                indices[3 * i + v] = unsigned(3 * i + v);
+            }
         }
         rtcSetGeometryUserData(geometry, triangles.data());
         rtcSetGeometryIntersectFilterFunction(geometry, triangle_filter);
@@ -481,10 +514,11 @@ struct EmbreeIntersector::Impl {
         if (target != exact) settle_occluded(lane);
     }
 
-    template <int K>
+    template <class P>
     void closest_packet(Lane* lanes, std::size_t n) const {
+        constexpr int K = P::size;
         alignas(64) int valid[K];
-        typename Packet<K>::RayHit rayhit;
+        typename P::RayHit rayhit;
         bool any = false;
         for (int k = 0; k < K; ++k) {
             valid[k] = 0;
@@ -497,13 +531,14 @@ struct EmbreeIntersector::Impl {
         }
         if (!any) return;
         QueryContext context(lanes);
-        Packet<K>::intersect(valid, scene, &context.embree, &rayhit);
+        P::intersect(valid, scene, &context.embree, &rayhit);
         settle_closest(lanes, n);
     }
-    template <int K>
+    template <class P>
     void occluded_packet(Lane* lanes, std::size_t n) const {
+        constexpr int K = P::size;
         alignas(64) int valid[K];
-        typename Packet<K>::Ray ray;
+        typename P::Ray ray;
         bool any = false;
         for (int k = 0; k < K; ++k) {
             valid[k] = 0;
@@ -515,7 +550,7 @@ struct EmbreeIntersector::Impl {
         }
         if (!any) return;
         QueryContext context(lanes);
-        Packet<K>::occluded(valid, scene, &context.embree, &ray);
+        P::occluded(valid, scene, &context.embree, &ray);
         settle_occluded(lanes, n);
     }
 
@@ -560,29 +595,30 @@ struct EmbreeIntersector::Impl {
 
     // Up to kStreamSize lanes, in queries of the options' kind.
     void trace(Lane* lanes, std::size_t n, bool closest) const {
-        auto packets = [&](auto packet, std::size_t size) {
-            for (std::size_t k = 0; k < n; k += size) packet(lanes + k, std::min(size, n - k));
-        };
         switch (options.query) {
             case EmbreeQuery::Single:
                 for (std::size_t k = 0; k < n; ++k)
                     closest ? closest_one(scene, lanes[k]) : occluded_one(scene, lanes[k]);
                 break;
             case EmbreeQuery::Packet4:
-                closest ? packets([this](Lane* l, std::size_t m) { closest_packet<4>(l, m); }, 4)
-                        : packets([this](Lane* l, std::size_t m) { occluded_packet<4>(l, m); }, 4);
+                trace_packets<Packet4>(lanes, n, closest);
                 break;
             case EmbreeQuery::Packet8:
-                closest ? packets([this](Lane* l, std::size_t m) { closest_packet<8>(l, m); }, 8)
-                        : packets([this](Lane* l, std::size_t m) { occluded_packet<8>(l, m); }, 8);
+                trace_packets<Packet8>(lanes, n, closest);
                 break;
             case EmbreeQuery::Packet16:
-                closest ? packets([this](Lane* l, std::size_t m) { closest_packet<16>(l, m); }, 16)
-                        : packets([this](Lane* l, std::size_t m) { occluded_packet<16>(l, m); }, 16);
+                trace_packets<Packet16>(lanes, n, closest);
                 break;
             case EmbreeQuery::Stream:
                 closest ? closest_stream(lanes, n) : occluded_stream(lanes, n);
                 break;
+        }
+    }
+    template <class P>
+    void trace_packets(Lane* lanes, std::size_t n, bool closest) const {
+        for (std::size_t k = 0; k < n; k += P::size) {
+            std::size_t m = std::min<std::size_t>(P::size, n - k);
+            closest ? closest_packet<P>(lanes + k, m) : occluded_packet<P>(lanes + k, m);
         }
     }
 
@@ -636,6 +672,13 @@ void EmbreeIntersector::occluded(const RayArrays& rays, std::span<const std::uin
                                  std::uint32_t* occluded) const {
     impl_->trace_queue(rays, queue, false,
                        [&](std::uint32_t slot, const Lane& lane) { occluded[slot] = lane.occluded ? 1u : 0u; });
+}
+
+std::string options_name(const EmbreeOptions& options) {
+    const char* queries[] = {"single", "packet4", "packet8", "packet16", "stream"};
+    return std::string(options.triangles == EmbreeTriangles::User ? "user_" : "filter_") +
+           queries[static_cast<int>(options.query)] +
+           (options.analytic == EmbreeAnalytic::User ? "_analytic_user" : "");
 }
 
 std::string embree_device_summary() {

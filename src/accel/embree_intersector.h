@@ -55,18 +55,20 @@ constexpr bool hit_precedes(const HostHit& a, const HostHit& b) {
 // They differ only in which of two shapes at the very same distance a ray hits.
 enum class Intersector { Bvh, Embree };
 
-// How Embree meets our triangles (bench/mesh_bench.cpp measures both).
+// How Embree meets our triangles (bench/mesh_bench.cpp measures both; both
+// find exactly the same hits, tests/accel/embree_intersector_test.cpp).
 enum class EmbreeTriangles {
     // User geometry: Embree's BVH over the triangles' boxes, our test in its
-    // callback. Exact: every triangle whose box the ray enters is tested.
+    // callback: every triangle whose box the ray enters is tested.
     User,
-    // Embree's robust triangles find the candidates, a filter retests each
-    // with ours and keeps our verdict and distance; a ray where the two
-    // tests disagree (a point near an edge that each gives to another of
-    // the triangles sharing it) is traced again as with User. Not
-    // watertight: Embree's robust test can miss all the triangles around a
-    // vertex (tests/accel/embree_intersector_test.cpp), and then no filter
-    // hears of them.
+    // Embree's robust triangles, each enlarged a little (2^-16 of the
+    // scene's largest coordinate beyond every edge), find the candidates; a
+    // filter tests each with ours and keeps our verdict and distance. Embree's
+    // test alone is not watertight at vertices (it can miss all the
+    // triangles around one); enlarged, it offers every triangle ours hits. A
+    // ray where the two tests disagree within its closest hit (a candidate
+    // ours misses, or our hit exactly on an edge) is traced again as with
+    // User, so that the answer is ours whatever Embree offered.
     Filter,
 };
 
@@ -81,8 +83,8 @@ enum class EmbreeAnalytic { Loop, User };
 
 struct EmbreeOptions {
     EmbreeTriangles triangles = EmbreeTriangles::User;
-    EmbreeQuery query = EmbreeQuery::Packet16;
-    EmbreeAnalytic analytic = EmbreeAnalytic::Loop;
+    EmbreeQuery query = EmbreeQuery::Single;
+    EmbreeAnalytic analytic = EmbreeAnalytic::User;
     int threads = 0;  // host threads tracing a queue; 0: all hardware threads
 };
 
@@ -124,7 +126,7 @@ class EmbreeIntersector {
     const EmbreeOptions& options() const;
 
     // Rays EmbreeTriangles::Filter traced a second time on our test alone
-    // (where Embree's watertight test and ours split an edge differently), so far.
+    // (where Embree's test and ours split an edge differently), so far.
     std::uint64_t retraced_rays() const;
 
     struct Impl;
@@ -132,6 +134,10 @@ class EmbreeIntersector {
  private:
     std::unique_ptr<Impl> impl_;
 };
+
+// The options' short name, e.g. "user_packet16" or "filter_single_analytic_user"
+// (their threads aside): the bench's and the tests' tracer names.
+std::string options_name(const EmbreeOptions& options);
 
 // What Embree's device reports of itself: version, the ISA its kernels were
 // built for and are chosen among, and whether packets of 4, 8 and 16 and

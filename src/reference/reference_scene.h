@@ -107,9 +107,7 @@ struct ReferenceScene {
  private:
     void add_embree(const Scene& scene) {
         if constexpr (std::is_same_v<Real, float>) {
-            EmbreeOptions options;
-            options.query = EmbreeQuery::Single;  // the reference traces one ray at a time
-            embree = std::make_shared<const EmbreeIntersector>(scene, triangles, options);
+            embree = std::make_shared<const EmbreeIntersector>(scene, triangles);
         } else {
             throw std::invalid_argument("the Embree intersector traces in float only");
         }
