@@ -28,6 +28,7 @@ struct Lane {
     vec3 origin, direction;
     M::TriangleRay triangle_ray;  // the triangle test's shear, once per ray
     float t_max;                  // the ray's own: every test runs on it, so no hit depends on what was found before
+    float search_slack;           // search_limit's absolute part, the scene's
     bool traceable;               // finite, with a positive t_max: handed to Embree
     HostHit best;                 // closest so far
     bool occluded;
@@ -38,8 +39,9 @@ struct Lane {
     float disputed_t;   // the nearest Embree hit our test misses (infinity: none)
 };
 
-Lane make_lane(const RayArrays& rays, std::uint32_t slot) {
+Lane make_lane(const RayArrays& rays, std::uint32_t slot, float search_slack) {
     Lane lane;
+    lane.search_slack = search_slack;
     lane.origin = vec3(rays.origin[0][slot], rays.origin[1][slot], rays.origin[2][slot]);
     lane.direction = vec3(rays.direction[0][slot], rays.direction[1][slot], rays.direction[2][slot]);
     lane.t_max = rays.t_max ? std::min(rays.t_max[slot], M::real_max) : M::real_max;
@@ -52,9 +54,9 @@ Lane make_lane(const RayArrays& rays, std::uint32_t slot) {
     return lane;
 }
 
-Lane make_lane(const vec3& origin, const vec3& direction, float t_max) {
+Lane make_lane(const vec3& origin, const vec3& direction, float t_max, float search_slack) {
     std::array<const float*, 3> o{&origin.x, &origin.y, &origin.z}, d{&direction.x, &direction.y, &direction.z};
-    return make_lane(RayArrays{o, d, &t_max}, 0);
+    return make_lane(RayArrays{o, d, &t_max}, 0, search_slack);
 }
 
 // `candidate` becomes the lane's closest hit if it is a hit and precedes the closest so far.
@@ -68,9 +70,10 @@ bool offer(Lane& lane, const HostHit& candidate) {
 // Embree's t_far for a ray whose search ends at t: a little beyond t, so
 // that a shape our test puts at t (a tie) or just before it is still
 // tested although Embree's rounding puts its box (or its own distance to a
-// triangle) farther. 2^-10 relative is far above both roundings, also for
-// rays grazing a surface, and adds little traversal.
-float search_limit(float t) { return t * (1.0f + 0x1p-10f); }
+// triangle) farther: 2^-10 of t, far above both roundings, also for rays
+// grazing a surface, plus the scene's search_slack for short rays, whose
+// distances both compute with errors of the coordinates' size.
+float search_limit(const Lane& lane, float t) { return t * (1.0f + 0x1p-10f) + lane.search_slack; }
 
 // ---- the shapes, each with our test ----
 
@@ -186,7 +189,7 @@ void user_intersect(const RTCIntersectFunctionNArguments* args) {
         if (!args->valid[i]) continue;
         Lane& lane = QueryContext::lane(args->context, ray, args->N, i);
         if (!primitives.offer_hits(lane, args->primID)) continue;
-        RTCRayN_tfar(ray, args->N, i) = search_limit(lane.best.t);
+        RTCRayN_tfar(ray, args->N, i) = search_limit(lane, lane.best.t);
         RTCHitN_geomID(hit, args->N, i) = args->geomID;
         RTCHitN_primID(hit, args->N, i) = args->primID;
     }
@@ -226,7 +229,7 @@ void triangle_filter(const RTCFilterFunctionNArguments* args) {
         if (!(t < lane.t_max)) lane.disputed_t = std::min(lane.disputed_t, RTCRayN_tfar(args->ray, args->N, i));
         if (offer(lane, {t, shape_id(WP_SHAPE_TRIANGLE, index)})) {
             lane.best_on_edge = e.e0 == 0.0f || e.e1 == 0.0f || e.e2 == 0.0f;
-            RTCRayN_tfar(args->ray, args->N, i) = search_limit(lane.best.t);
+            RTCRayN_tfar(args->ray, args->N, i) = search_limit(lane, lane.best.t);
         } else {
             args->valid[i] = 0;
         }
@@ -252,10 +255,11 @@ void triangle_occlusion_filter(const RTCFilterFunctionNArguments* args) {
 // inradius, at most doubled, then rounded outward): Embree's robust test,
 // which decides the points near an edge or vertex otherwise than ours and
 // can miss all the triangles around a vertex, then offers every triangle
-// ours hits (and some it does not, which the filter rejects). The margin,
-// 2^-16 of the scene's largest coordinate, is over a hundred times the
-// tests' rounding there.
-constexpr double kEnlargement = 0x1p-16;
+// ours hits (and some it does not, which the filter rejects and which send
+// the ray to be traced again). The margin, 2^-18 of the scene's largest
+// coordinate (64 of its float steps), is many times both tests' rounding;
+// it shrinks only as seen by a ray grazing the surface.
+constexpr double kEnlargement = 0x1p-18;
 
 std::array<vec3, 3> enlarged(const M::MeshTriangle& t, double margin) {
     std::array<glm::dvec3, 3> p;
@@ -346,6 +350,7 @@ struct EmbreeIntersector::Impl {
     RTCScene exact =
         nullptr;  // triangles as user geometry: `scene` itself, or with Filter the rays settle() sends back
     bool has_geometry = false;  // anything in Embree's scenes
+    float search_slack = 0.0f;  // 2^-16 of the largest coordinate: Lane::search_slack
     mutable std::atomic<std::uint64_t> retraced{0};
 
     Impl(const Scene& source, std::vector<M::MeshTriangle> mesh_triangles, const EmbreeOptions& o)
@@ -353,6 +358,7 @@ struct EmbreeIntersector::Impl {
         if (options.threads <= 0) options.threads = std::max(1, int(std::thread::hardware_concurrency()));
         triangles.reserve(mesh_triangles.size());
         for (const M::MeshTriangle& t : mesh_triangles) triangles.push_back({t});
+        search_slack = float(0x1p-16 * coordinate_magnitude());
         device = rtcNewDevice(nullptr);
         if (!device) throw std::runtime_error("Embree: cannot create a device");
         try {
@@ -396,13 +402,17 @@ struct EmbreeIntersector::Impl {
         return built;
     }
 
-    // The largest coordinate of any triangle: scenes are rebased to the
-    // camera, so rays travel no farther than a few times this.
+    // The largest coordinate of a triangle, sphere or quad: scenes are
+    // rebased to the camera, so rays travel no farther than a few times this.
     double coordinate_magnitude() const {
         double magnitude = 0.0;
-        for (const TriangleShape& t : triangles)
-            for (const float* p : {t.triangle.p0, t.triangle.p1, t.triangle.p2})
-                for (int a = 0; a < 3; ++a) magnitude = std::max(magnitude, std::fabs(double(p[a])));
+        auto add = [&magnitude](const RTCBounds& b) {
+            for (float x : {b.lower_x, b.lower_y, b.lower_z, b.upper_x, b.upper_y, b.upper_z})
+                magnitude = std::max(magnitude, std::fabs(double(x)));
+        };
+        for (const TriangleShape& t : triangles) add(t.box());
+        for (const SphereShape& s : shapes.spheres) add(s.box());
+        for (const QuadShape& q : shapes.quads) add(q.box());
         return magnitude;
     }
 
@@ -472,7 +482,7 @@ struct EmbreeIntersector::Impl {
     // alone (triangle_filter) is traced again on the exact scene.
     void settle_closest(Lane& lane) const {
         bool disputed =
-            lane.disputed_t < kInfinity && lane.disputed_t <= search_limit(std::min(lane.best.t, lane.t_max));
+            lane.disputed_t < kInfinity && lane.disputed_t <= search_limit(lane, std::min(lane.best.t, lane.t_max));
         if (!lane.best_on_edge && !disputed) return;
         ++retraced;
         lane = fresh(lane);
@@ -499,7 +509,7 @@ struct EmbreeIntersector::Impl {
         if (!needs_embree(lane)) return;
         QueryContext context(&lane);
         RTCRayHit rayhit;
-        set_ray(rayhit.ray, lane, search_limit(std::min(lane.best.t, lane.t_max)), 0);
+        set_ray(rayhit.ray, lane, search_limit(lane, std::min(lane.best.t, lane.t_max)), 0);
         rayhit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
         rtcIntersect1(target, &context.embree, &rayhit);
         if (target != exact) settle_closest(lane);
@@ -509,7 +519,7 @@ struct EmbreeIntersector::Impl {
         if (!needs_embree(lane)) return;
         QueryContext context(&lane);
         RTCRay ray;
-        set_ray(ray, lane, search_limit(lane.t_max), 0);
+        set_ray(ray, lane, search_limit(lane, lane.t_max), 0);
         rtcOccluded1(target, &context.embree, &ray);
         if (target != exact) settle_occluded(lane);
     }
@@ -526,7 +536,7 @@ struct EmbreeIntersector::Impl {
             offer_listed(lanes[k]);
             if (!needs_embree(lanes[k])) continue;
             valid[k] = -1, any = true;
-            set_ray(rayhit.ray, k, lanes[k], search_limit(std::min(lanes[k].best.t, lanes[k].t_max)));
+            set_ray(rayhit.ray, k, lanes[k], search_limit(lanes[k], std::min(lanes[k].best.t, lanes[k].t_max)));
             rayhit.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
         }
         if (!any) return;
@@ -546,7 +556,7 @@ struct EmbreeIntersector::Impl {
             lanes[k].occluded = any_listed(lanes[k]);
             if (!needs_embree(lanes[k])) continue;
             valid[k] = -1, any = true;
-            set_ray(ray, k, lanes[k], search_limit(lanes[k].t_max));
+            set_ray(ray, k, lanes[k], search_limit(lanes[k], lanes[k].t_max));
         }
         if (!any) return;
         QueryContext context(lanes);
@@ -560,7 +570,8 @@ struct EmbreeIntersector::Impl {
         for (std::size_t k = 0; k < n; ++k) {
             offer_listed(lanes[k]);
             if (!needs_embree(lanes[k])) continue;
-            set_ray(rays[m].ray, lanes[k], search_limit(std::min(lanes[k].best.t, lanes[k].t_max)), unsigned(k));
+            set_ray(rays[m].ray, lanes[k], search_limit(lanes[k], std::min(lanes[k].best.t, lanes[k].t_max)),
+                    unsigned(k));
             rays[m++].hit.geomID = RTC_INVALID_GEOMETRY_ID;
         }
         if (m == 0) return;
@@ -574,7 +585,7 @@ struct EmbreeIntersector::Impl {
         for (std::size_t k = 0; k < n; ++k) {
             lanes[k].occluded = any_listed(lanes[k]);
             if (!needs_embree(lanes[k])) continue;
-            set_ray(rays[m++], lanes[k], search_limit(lanes[k].t_max), unsigned(k));
+            set_ray(rays[m++], lanes[k], search_limit(lanes[k], lanes[k].t_max), unsigned(k));
         }
         if (m == 0) return;
         QueryContext context(lanes);
@@ -630,7 +641,7 @@ struct EmbreeIntersector::Impl {
             Lane lanes[kStreamSize];
             for (std::size_t first = begin; first < end; first += kStreamSize) {
                 std::size_t n = std::min(kStreamSize, end - first);
-                for (std::size_t k = 0; k < n; ++k) lanes[k] = make_lane(rays, queue[first + k]);
+                for (std::size_t k = 0; k < n; ++k) lanes[k] = make_lane(rays, queue[first + k], search_slack);
                 trace(lanes, n, closest);
                 for (std::size_t k = 0; k < n; ++k) write(queue[first + k], lanes[k]);
             }
@@ -649,13 +660,13 @@ const EmbreeOptions& EmbreeIntersector::options() const { return impl_->options;
 std::uint64_t EmbreeIntersector::retraced_rays() const { return impl_->retraced; }
 
 HostHit EmbreeIntersector::closest(const vec3& origin, const vec3& direction, float t_max) const {
-    Lane lane = make_lane(origin, direction, t_max);
+    Lane lane = make_lane(origin, direction, t_max, impl_->search_slack);
     impl_->closest_one(impl_->scene, lane);
     return lane.best;
 }
 
 bool EmbreeIntersector::occluded(const vec3& origin, const vec3& direction, float t_max) const {
-    Lane lane = make_lane(origin, direction, t_max);
+    Lane lane = make_lane(origin, direction, t_max, impl_->search_slack);
     impl_->occluded_one(impl_->scene, lane);
     return lane.occluded;
 }

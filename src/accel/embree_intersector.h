@@ -61,7 +61,7 @@ enum class EmbreeTriangles {
     // User geometry: Embree's BVH over the triangles' boxes, our test in its
     // callback: every triangle whose box the ray enters is tested.
     User,
-    // Embree's robust triangles, each enlarged a little (2^-16 of the
+    // Embree's robust triangles, each enlarged a little (2^-18 of the
     // scene's largest coordinate beyond every edge), find the candidates; a
     // filter tests each with ours and keeps our verdict and distance. Embree's
     // test alone is not watertight at vertices (it can miss all the
