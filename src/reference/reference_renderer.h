@@ -24,8 +24,8 @@ struct ReferenceOptions {
 };
 
 // The faster intersector the precision allows, which `wavepath render
-// --backend reference` picks by default (bench/results/meshes.md, "Embree
-// intersector"): Embree in float, the BVH in double.
+// --backend reference` picks by default (bench/results/embree_intersector.md,
+// section f): Embree in float, the BVH in double.
 Intersector fastest_reference_intersector(bool double_precision);
 
 // Renders the scene with its own render settings and camera resolution. The
