@@ -481,8 +481,7 @@ struct EmbreeIntersector::Impl {
     // A lane Embree's triangles may have answered otherwise than our test
     // alone (triangle_filter) is traced again on the exact scene.
     void settle_closest(Lane& lane) const {
-        bool disputed =
-            lane.disputed_t < kInfinity && lane.disputed_t <= search_limit(lane, std::min(lane.best.t, lane.t_max));
+        bool disputed = lane.disputed_t < kInfinity && lane.disputed_t <= initial_t_far(lane);
         if (!lane.best_on_edge && !disputed) return;
         ++retraced;
         lane = fresh(lane);
@@ -504,76 +503,86 @@ struct EmbreeIntersector::Impl {
 
     // ---- one query of lanes, each kind ----
 
+    // The listed shapes' part of a query: the closest of them, or whether any lies before t_max.
+    void trace_listed(Lane& lane, bool closest) const {
+        if (closest)
+            offer_listed(lane);
+        else
+            lane.occluded = any_listed(lane);
+    }
+    // Embree's t_far for a lane's query: beyond its closest hit so far, or beyond its t_max.
+    static float initial_t_far(const Lane& lane) { return search_limit(lane, std::min(lane.best.t, lane.t_max)); }
+
     void closest_one(RTCScene target, Lane& lane) const {
-        offer_listed(lane);
+        trace_listed(lane, true);
         if (!needs_embree(lane)) return;
         QueryContext context(&lane);
         RTCRayHit rayhit;
-        set_ray(rayhit.ray, lane, search_limit(lane, std::min(lane.best.t, lane.t_max)), 0);
+        set_ray(rayhit.ray, lane, initial_t_far(lane), 0);
         rayhit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
         rtcIntersect1(target, &context.embree, &rayhit);
         if (target != exact) settle_closest(lane);
     }
     void occluded_one(RTCScene target, Lane& lane) const {
-        lane.occluded = any_listed(lane);
+        trace_listed(lane, false);
         if (!needs_embree(lane)) return;
         QueryContext context(&lane);
         RTCRay ray;
-        set_ray(ray, lane, search_limit(lane, lane.t_max), 0);
+        set_ray(ray, lane, initial_t_far(lane), 0);
         rtcOccluded1(target, &context.embree, &ray);
         if (target != exact) settle_occluded(lane);
     }
 
-    template <class P>
-    void closest_packet(Lane* lanes, std::size_t n) const {
-        constexpr int K = P::size;
-        alignas(64) int valid[K];
-        typename P::RayHit rayhit;
+    // A packet's valid mask and rays from up to P::size lanes; false: Embree need trace none.
+    template <class P, class RayK>
+    bool fill_packet(Lane* lanes, std::size_t n, bool closest, int* valid, RayK& ray) const {
         bool any = false;
-        for (int k = 0; k < K; ++k) {
+        for (int k = 0; k < P::size; ++k) {
             valid[k] = 0;
             if (std::size_t(k) >= n) continue;
-            offer_listed(lanes[k]);
+            trace_listed(lanes[k], closest);
             if (!needs_embree(lanes[k])) continue;
             valid[k] = -1, any = true;
-            set_ray(rayhit.ray, k, lanes[k], search_limit(lanes[k], std::min(lanes[k].best.t, lanes[k].t_max)));
-            rayhit.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
+            set_ray(ray, k, lanes[k], initial_t_far(lanes[k]));
         }
-        if (!any) return;
+        return any;
+    }
+    template <class P>
+    void closest_packet(Lane* lanes, std::size_t n) const {
+        alignas(64) int valid[P::size];
+        typename P::RayHit rayhit;
+        if (!fill_packet<P>(lanes, n, true, valid, rayhit.ray)) return;
+        std::fill(rayhit.hit.geomID, rayhit.hit.geomID + P::size, RTC_INVALID_GEOMETRY_ID);
         QueryContext context(lanes);
         P::intersect(valid, scene, &context.embree, &rayhit);
         settle_closest(lanes, n);
     }
     template <class P>
     void occluded_packet(Lane* lanes, std::size_t n) const {
-        constexpr int K = P::size;
-        alignas(64) int valid[K];
+        alignas(64) int valid[P::size];
         typename P::Ray ray;
-        bool any = false;
-        for (int k = 0; k < K; ++k) {
-            valid[k] = 0;
-            if (std::size_t(k) >= n) continue;
-            lanes[k].occluded = any_listed(lanes[k]);
-            if (!needs_embree(lanes[k])) continue;
-            valid[k] = -1, any = true;
-            set_ray(ray, k, lanes[k], search_limit(lanes[k], lanes[k].t_max));
-        }
-        if (!any) return;
+        if (!fill_packet<P>(lanes, n, false, valid, ray)) return;
         QueryContext context(lanes);
         P::occluded(valid, scene, &context.embree, &ray);
         settle_occluded(lanes, n);
     }
 
-    void closest_stream(Lane* lanes, std::size_t n) const {
-        RTCRayHit rays[kStreamSize];
+    // A stream's rays (`ray(i)`, the i-th) from the lanes Embree must trace, each with its lane as id; their count.
+    template <class RayAt>
+    unsigned fill_stream(Lane* lanes, std::size_t n, bool closest, const RayAt& ray) const {
         unsigned m = 0;
         for (std::size_t k = 0; k < n; ++k) {
-            offer_listed(lanes[k]);
-            if (!needs_embree(lanes[k])) continue;
-            set_ray(rays[m].ray, lanes[k], search_limit(lanes[k], std::min(lanes[k].best.t, lanes[k].t_max)),
-                    unsigned(k));
-            rays[m++].hit.geomID = RTC_INVALID_GEOMETRY_ID;
+            trace_listed(lanes[k], closest);
+            if (needs_embree(lanes[k])) set_ray(ray(m++), lanes[k], initial_t_far(lanes[k]), unsigned(k));
         }
+        return m;
+    }
+    void closest_stream(Lane* lanes, std::size_t n) const {
+        RTCRayHit rays[kStreamSize];
+        unsigned m = fill_stream(lanes, n, true, [&rays](unsigned i) -> RTCRay& {
+            rays[i].hit.geomID = RTC_INVALID_GEOMETRY_ID;
+            return rays[i].ray;
+        });
         if (m == 0) return;
         QueryContext context(lanes);
         rtcIntersect1M(scene, &context.embree, rays, m, sizeof(RTCRayHit));
@@ -581,12 +590,7 @@ struct EmbreeIntersector::Impl {
     }
     void occluded_stream(Lane* lanes, std::size_t n) const {
         RTCRay rays[kStreamSize];
-        unsigned m = 0;
-        for (std::size_t k = 0; k < n; ++k) {
-            lanes[k].occluded = any_listed(lanes[k]);
-            if (!needs_embree(lanes[k])) continue;
-            set_ray(rays[m++], lanes[k], search_limit(lanes[k], lanes[k].t_max), unsigned(k));
-        }
+        unsigned m = fill_stream(lanes, n, false, [&rays](unsigned i) -> RTCRay& { return rays[i]; });
         if (m == 0) return;
         QueryContext context(lanes);
         rtcOccluded1M(scene, &context.embree, rays, m, sizeof(RTCRay));
