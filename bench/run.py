@@ -439,30 +439,33 @@ def mesh_bench_header(m, title, series, sections):
             f"- {meta.get('embree_device', 'Embree ' + meta['embree'])}", ""]
 
 
+def markdown_table(columns, rows):
+    """A markdown table: a header of `columns`, then a line of cells for each row."""
+    return (["| " + " | ".join(columns) + " |", "|" + "---|" * len(columns)] +
+            ["| " + " | ".join(str(cell) for cell in row) + " |" for row in rows])
+
+
 def embree_markdown(m):
     text, met = embree_target(m)
     lines = mesh_bench_header(m, "The Embree intersector: Embree's traversal, our tests", "embree", " --sections bf")
     lines += ["## Target (issue 21)", "", f"- {'met' if met else 'NOT met'}: {text}"]
     lines += traversal_markdown(m)
-    an = m["analytic"]
+    an, ref = m["analytic"], m["reference"]
     lines += ["", "## f. Spheres and quads: tested in turn, or Embree user geometry", "",
               f"`{os.path.relpath(an[0]['scene'], ROOT)}` as shipped (spheres, quads, the mesh light, the bunny), "
               f"{an[0]['ray_count']:,} rays of each kind made as in b; the default intersector with its spheres "
               "and quads tested in turn before Embree runs, or as Embree user geometry (`_analytic_user`). "
-              f"{an[0]['repeats']} interleaved repetitions after a warm-up round.", "",
-              "| rays | query | tracer | Mrays/s best | Mrays/s median |", "|---|---|---|---|---|"]
-    for r in an:
-        lines.append(f"| {r['rays']} | {r['query']} | {r['tracer']} | {r['mrays_s_best']:.2f} | "
-                     f"{r['mrays_s_median']:.2f} |")
-    ref = m["reference"]
+              f"{an[0]['repeats']} interleaved repetitions after a warm-up round.", ""]
+    lines += markdown_table(["rays", "query", "tracer", "Mrays/s best", "Mrays/s median"],
+                            [[r["rays"], r["query"], r["tracer"], f"{r['mrays_s_best']:.2f}",
+                              f"{r['mrays_s_median']:.2f}"] for r in an])
     lines += ["", "## f. The reference renderer with each intersector", "",
               f"`render_reference` on 2 threads, {ref[0]['width']}x{ref[0]['height']}, {ref[0]['spp']} spp, "
               f"{ref[0]['repeats']} interleaved repetitions; pixels differing: between the two images of the last "
-              "repetition.", "", "| scene | intersector | Msamples/s min | median | pixels differing |",
-              "|---|---|---|---|---|"]
-    for r in ref:
-        lines.append(f"| {r['scene']} | {r['intersector']} | {r['msamples_s_min']:.4f} | "
-                     f"{r['msamples_s_median']:.4f} | {r['pixels_differing']} |")
+              "repetition.", ""]
+    lines += markdown_table(["scene", "intersector", "Msamples/s min", "median", "pixels differing"],
+                            [[r["scene"], r["intersector"], f"{r['msamples_s_min']:.4f}",
+                              f"{r['msamples_s_median']:.4f}", r["pixels_differing"]] for r in ref])
     return "\n".join(lines) + "\n"
 
 
