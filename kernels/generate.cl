@@ -6,6 +6,7 @@
  * finished paths come back through the free queue every iteration. */
 #include "device/lanes.h"
 #include "device/parameters.h"
+#include "device/pass_radiance.h"
 #include "device/path_queues.h"
 #include "device/path_vertex.h"
 
@@ -17,11 +18,8 @@ __kernel __attribute__((reqd_work_group_size(WP_GROUP_SIZE, 1, 1))) void generat
     lane_uint k = lane_positions();
     lane_int started = lanes.active && k < pass_size - issued;
     lane_uint item = issued + k;
-    /* work = pass_start + item, split into pixel and sample without 64-bit lanes:
-     * pass_pixel + item stays below 2^32 (limits.h: pixels <= 2^27, passes <= 2^30). */
-    uint pass_pixel = (uint)(pass_start % round_pixel_count), pass_sample = (uint)(pass_start / round_pixel_count);
-    lane_uint px = gather(round_pixels, started ? (pass_pixel + item) % round_pixel_count : (lane_uint)0u);
-    lane_uint s = pass_sample + (pass_pixel + item) / round_pixel_count;
+    PassSample work = pass_item_sample(round_pixels, round_pixel_count, pass_start, item, started);
+    lane_uint px = work.pixel, s = work.sample;
     PATH_WRITE(pixel, lanes, started, px);
     PATH_WRITE(sample, lanes, started, s);
     PATH_WRITE(pass_item, lanes, started, item);

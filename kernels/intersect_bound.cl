@@ -5,19 +5,16 @@
  * rays per work item, as in the stages. Ray r goes through the centre of
  * pixel r % (width * height); each ray writes its hit distance (0 for a miss
  * or past `ray_count`), so that the tests are not optimised away (and can be checked). */
+#include "device/camera.h"
 #include "device/lane_memory.h"
 #include "device/lanes.h"
 #include "device/parameters.h"
 #include "device/scene_hits.h"
-#include "shared/sampling.h"
 
 __kernel __attribute__((reqd_work_group_size(WP_GROUP_SIZE, 1, 1))) void intersect_bound(
     WP_PARAMETERS(WP_INTERSECT_BOUND_PARAMETERS)) {
     lane_uint ray = lane_positions(), pixel = ray % (scene->width * scene->height);
-    real x = (TO_REAL(pixel % scene->width) + REAL(0.5)) / (real)scene->width;
-    real y = (TO_REAL(pixel / scene->width) + REAL(0.5)) / (real)scene->height;
-    vec3 direction = camera_direction(uniform_vec3(scene->camera_right), uniform_vec3(scene->camera_up),
-                                      uniform_vec3(scene->camera_forward), scene->tan_half_fov_y, scene->aspect, x, y);
+    vec3 direction = pixel_ray_direction(scene, pixel, REAL(0.5), REAL(0.5));
     Hit hit = closest_hit(WP_SCENE_ARGS, make_vec3(REAL(0.0), REAL(0.0), REAL(0.0)), direction);
     store_where(hit_t, ray, ray < ray_count, hit.shape != WP_NO_HIT ? hit.t : (real)REAL(0.0));
 }

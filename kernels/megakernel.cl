@@ -57,23 +57,23 @@ WP_FN vec3 trace_paths(WP_SCENE_PARAMS, lane_int alive, lane_uint px, lane_uint 
         alive = alive && !missed;
         Vertex v = vertex_at(WP_SCENE_ARGS, hit.shape, origin, d, hit.t);
         Material m = v.material;
-        real weight = emission_weight(WP_SCENE_ARGS, hit.shape, origin, v, after_specular, bsdf_pdf);
-        radiance = add_finite(radiance, only_where(alive, emission_seen(m, v.front, weight, throughput)), &dropped[0]);
+        real weight = hit_emission_weight(WP_SCENE_ARGS, hit.shape, origin, v, after_specular, bsdf_pdf);
+        vec3 emitted = emission_seen(m.emission, m.two_sided, v.front, weight, throughput);
+        radiance = add_finite(radiance, only_where(alive, emitted), &dropped[0]);
         alive = alive && !(depth >= scene->max_depth || m.type == WP_MATERIAL_EMITTER);
 #if defined(WP_NEE) && defined(WP_HAS_DIFFUSE)
-        vec3 shadow_origin, shadow_direction, contribution;
-        real distance;
+        DirectLight direct;
         lane_int casts_shadow = alive && m.type == WP_MATERIAL_DIFFUSE &&
                                 sample_direct_light(WP_SCENE_ARGS, px, s, depth, v.surface.point, v.surface.error, v.nf,
-                                                    v.ns, v3_mul(throughput, m.albedo), &shadow_origin,
-                                                    &shadow_direction, &distance, &contribution);
+                                                    v.ns, throughput, m.albedo, &direct);
         *shadow_rays += casts_shadow ? (lane_uint)1u : (lane_uint)0u;
         lane_int lit = casts_shadow;
         if (lanes_any(casts_shadow))
-            lit = casts_shadow && !any_hit(WP_SCENE_ARGS, shadow_origin, shadow_direction, distance);
-        radiance = add_finite(radiance, only_where(lit, contribution), &dropped[1]);
+            lit = casts_shadow &&
+                  !any_hit(WP_SCENE_ARGS, direct.shadow.origin, direct.shadow.direction, direct.shadow.distance);
+        radiance = add_finite(radiance, only_where(lit, direct.contribution), &dropped[1]);
 #endif
-        Scattered scattered = scatter_vertex(v, d, seed, px, s, depth);
+        BsdfSample scattered = scatter_vertex(v, d, seed, px, s, depth);
         vec3 next_throughput = v3_mul(throughput, scattered.weight);
         real next_eta_scale = eta_scale * scattered.eta_squared;
         lane_int survives =
@@ -104,12 +104,10 @@ __kernel __attribute__((reqd_work_group_size(WP_GROUP_SIZE, 1, 1))) void megaker
     lane_uint item = lane_positions();
     lane_int active = item < pass_size;
     if (lanes_any(active)) {
-        /* work = pass_start + item, split into pixel and sample without 64-bit lanes (as generate.cl) */
-        uint pass_pixel = (uint)(pass_start % round_pixel_count), pass_sample = (uint)(pass_start / round_pixel_count);
-        lane_uint px = gather(round_pixels, active ? (pass_pixel + item) % round_pixel_count : (lane_uint)0u);
-        lane_uint s = pass_sample + (pass_pixel + item) / round_pixel_count;
+        PassSample work = pass_item_sample(round_pixels, round_pixel_count, pass_start, item, active);
         lane_uint extension_rays = 0u, shadow_rays = 0u, dropped[WP_NONFINITE_STAGE_COUNT] = {0u, 0u, 0u};
-        vec3 radiance = trace_paths(WP_SCENE_ARGS, active, px, s, &extension_rays, &shadow_rays, dropped);
+        vec3 radiance =
+            trace_paths(WP_SCENE_ARGS, active, work.pixel, work.sample, &extension_rays, &shadow_rays, dropped);
         finish_paths(pass_radiance, item, active, radiance);
         atomic_add(&group_extension_rays, lanes_sum(extension_rays));
         atomic_add(&group_shadow_rays, lanes_sum(shadow_rays));

@@ -17,7 +17,7 @@ __kernel __attribute__((reqd_work_group_size(WP_GROUP_SIZE, 1, 1))) void scatter
         vertex_at(WP_SCENE_ARGS, PATH_READ(hit_shape, lanes), PATH_READ(origin, lanes), d, PATH_READ(hit_t, lanes));
     uint seed = scene->seed;
     lane_uint px = PATH_READ(pixel, lanes), s = PATH_READ(sample, lanes), bounce = PATH_READ(depth, lanes);
-    Scattered scattered = scatter_vertex(v, d, seed, px, s, bounce);
+    BsdfSample scattered = scatter_vertex(v, d, seed, px, s, bounce);
     vec3 throughput = v3_mul(PATH_READ(throughput, lanes), scattered.weight);
     lane_uint new_depth = bounce + 1u, dropped = 0u;
 #ifdef WP_HAS_GLASS

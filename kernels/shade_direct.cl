@@ -31,9 +31,10 @@ __kernel __attribute__((reqd_work_group_size(WP_GROUP_SIZE, 1, 1))) void shade_d
 #else
     real bsdf_pdf = REAL(0.0);
 #endif
-    real weight = emission_weight(WP_SCENE_ARGS, shape, origin, v, after_specular, bsdf_pdf);
+    real weight = hit_emission_weight(WP_SCENE_ARGS, shape, origin, v, after_specular, bsdf_pdf);
     lane_uint dropped = 0u;
-    vec3 radiance = add_finite(PATH_READ(radiance, lanes), emission_seen(m, v.front, weight, throughput), &dropped);
+    vec3 radiance = add_finite(PATH_READ(radiance, lanes),
+                               emission_seen(m.emission, m.two_sided, v.front, weight, throughput), &dropped);
     count_nonfinite(slot_nonfinite, WP_COUNTER_NONFINITE_EMISSION, lanes, dropped);
     lane_int ends = lanes.active && (bounce >= scene->max_depth || m.type == WP_MATERIAL_EMITTER);
     lane_int scatters = lanes.active && !ends;
@@ -41,16 +42,14 @@ __kernel __attribute__((reqd_work_group_size(WP_GROUP_SIZE, 1, 1))) void shade_d
     PATH_WRITE(radiance, lanes, scatters, radiance);
     lane_int casts_shadow = 0;
 #if defined(WP_NEE) && defined(WP_HAS_DIFFUSE)
-    vec3 shadow_from, shadow_towards, contribution;
-    real distance;
+    DirectLight direct;
     lane_int carries = sample_direct_light(WP_SCENE_ARGS, PATH_READ(pixel, lanes), PATH_READ(sample, lanes), bounce,
-                                           v.surface.point, v.surface.error, v.nf, v.ns, v3_mul(throughput, m.albedo),
-                                           &shadow_from, &shadow_towards, &distance, &contribution);
+                                           v.surface.point, v.surface.error, v.nf, v.ns, throughput, m.albedo, &direct);
     casts_shadow = scatters && m.type == WP_MATERIAL_DIFFUSE && carries;
-    PATH_WRITE(shadow_origin, lanes, casts_shadow, shadow_from);
-    PATH_WRITE(shadow_direction, lanes, casts_shadow, shadow_towards);
-    PATH_WRITE(shadow_distance, lanes, casts_shadow, distance);
-    PATH_WRITE(shadow_radiance, lanes, casts_shadow, contribution);
+    PATH_WRITE(shadow_origin, lanes, casts_shadow, direct.shadow.origin);
+    PATH_WRITE(shadow_direction, lanes, casts_shadow, direct.shadow.direction);
+    PATH_WRITE(shadow_distance, lanes, casts_shadow, direct.shadow.distance);
+    PATH_WRITE(shadow_radiance, lanes, casts_shadow, direct.contribution);
 #endif
     STAGE_PUSH(SHADOW, lanes, casts_shadow);
     STAGE_PUSH(SCATTER, lanes, scatters);

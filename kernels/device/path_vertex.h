@@ -1,71 +1,72 @@
 /* The work at one path vertex, shared by the wavefront's stage kernels and
- * the megakernel so that both compute exactly the reference's estimator
- * (docs/architecture.md, "Conventions"): the camera ray, emission seen at a
- * hit, the light sample of next-event estimation, BSDF sampling and Russian
- * roulette. Written for any number of lanes (shared/prelude.h): every choice
- * is a select, so a lane computes what every other lane's case needs and
- * keeps its own. */
+ * the megakernel: the camera ray, emission seen at a hit, the light sample of
+ * next-event estimation, BSDF sampling and Russian roulette. What is computed
+ * is the shared code's (kernels/shared: materials/, lights.h, estimator.h,
+ * camera.h), which the reference calls too; this header reads each lane's
+ * scene data and chooses per lane (shared/prelude.h): every kind of shape,
+ * light and material in the scene is computed in every lane, and each lane
+ * keeps its own with a select. */
 #ifndef WP_DEVICE_PATH_VERTEX_H
 #define WP_DEVICE_PATH_VERTEX_H
 
-#include "shared/offset.h"
+#include "shared/estimator.h"
+#include "shared/lights.h"
+#include "shared/materials/bsdf.h"
 #include "shared/prelude.h"
 #include "shared/rng.h"
-#include "shared/sampling.h"
 #include "shared/triangle.h"
-#if defined(WP_HAS_MIRROR) || defined(WP_HAS_GLASS)
-#include "shared/fresnel.h"
+#ifdef WP_HAS_DIFFUSE
+#include "shared/direct_light.h"
+#include "shared/materials/diffuse.h"
 #endif
-#ifndef WP_HAS_GLASS
+#ifdef WP_HAS_MIRROR
+#include "shared/materials/mirror.h"
+#endif
+#ifdef WP_HAS_GLASS
+#include "shared/materials/glass.h"
+#else
 /* Without glass the dielectric code must not be compiled in: any use is a build error. */
 #pragma GCC poison fresnel_dielectric refract_direction
 #endif
+#include "device/camera.h"
 #include "device/features.h"
 #include "device/lane_memory.h"
 #include "device/light_ranges.h"
 #include "device/parameters.h"
 #include "device/surface.h"
 
-/* Whether `direction` leaves on the side `normal` points to. Shading
- * normals bend directions but only the geometric normal says where a ray
- * really goes: a direction sampled or reflected about ns that points into the
- * surface as nf sees it, or a ray arriving from behind ns, ends the path (as
- * in Mitsuba 3 and pbrt-v4's treatment of the two normals): continuing would
- * leak light through the surface or shade from the wrong side. Without
- * shading normals ns is nf and every such test passes. */
-WP_FN lane_int same_side(vec3 direction, vec3 normal) {
-#ifdef WP_HAS_SHADING_NORMALS
-    return v3_dot(direction, normal) > REAL(0.0);
+/* The build's choices as the values the shared functions take (the reference
+ * passes its scene's). */
+#ifdef WP_NEE
+#define WP_USES_NEE 1
 #else
-    return 1;
+#define WP_USES_NEE 0
 #endif
-}
+#ifdef WP_MIS
+#define WP_USES_MIS 1
+#else
+#define WP_USES_MIS 0
+#endif
+#ifdef WP_HAS_SHADING_NORMALS
+#define WP_USES_SHADING_NORMALS 1
+#else
+#define WP_USES_SHADING_NORMALS 0
+#endif
+#ifdef WP_UNIFORM_HEMISPHERE
+#define WP_USES_UNIFORM_HEMISPHERE 1
+#else
+#define WP_USES_UNIFORM_HEMISPHERE 0
+#endif
 
-/* The camera ray direction of sample s of pixel px (the camera is at the origin). */
+/* The camera ray direction of sample s of pixel px. */
 WP_FN vec3 camera_ray_direction(__global const SceneHeader *scene, lane_uint px, lane_uint s) {
-    lane_uint x = px % scene->width, y = px / scene->width;
-    real u0 = rng_uniform(scene->seed, px, s, 0u, DIM_FILM_X);
-    real u1 = rng_uniform(scene->seed, px, s, 0u, DIM_FILM_Y);
-    return camera_direction(uniform_vec3(scene->camera_right), uniform_vec3(scene->camera_up),
-                            uniform_vec3(scene->camera_forward), scene->tan_half_fov_y, scene->aspect,
-                            (TO_REAL(x) + u0) / (real)scene->width, (TO_REAL(y) + u1) / (real)scene->height);
-}
-
-/* Emission the path adds at a hit where the material emits towards the ray
- * (or is two-sided): throughput x emission x `weight`, the share of the
- * emission_weight below. */
-WP_FN vec3 emission_seen(Material m, lane_int front, real weight, vec3 throughput) {
-    lane_int emits = m.emission.x > REAL(0.0) || m.emission.y > REAL(0.0) || m.emission.z > REAL(0.0);
-    lane_int seen = emits && (m.two_sided || front) && weight > REAL(0.0);
-    return v3_select(seen, v3_scale(v3_mul(throughput, m.emission), weight),
-                     make_vec3(REAL(0.0), REAL(0.0), REAL(0.0)));
+    return pixel_ray_direction(scene, px, rng_uniform(scene->seed, px, s, 0u, DIM_FILM_X),
+                               rng_uniform(scene->seed, px, s, 0u, DIM_FILM_Y));
 }
 
 #ifdef WP_MIS
 /* The solid-angle density with which next-event estimation from `reference`
- * samples `point` (geometric normal `normal`) of light `light`: its
- * selection probability times the density of its point sampling
- * (sample_light_shape). */
+ * samples `point` (geometric normal `normal`) of light `light`. */
 WP_FN real light_point_pdf(WP_SCENE_PARAMS, lane_uint light, vec3 reference, vec3 point, vec3 normal) {
     lane_uint shape = SCENE_FIELD(lights, light, shape);
     lane_uint index = shape & WP_SHAPE_INDEX_MASK, type = shape >> WP_SHAPE_TYPE_SHIFT;
@@ -83,35 +84,37 @@ WP_FN real light_point_pdf(WP_SCENE_PARAMS, lane_uint light, vec3 reference, vec
     {
         lane_int is_quad = type == WP_SHAPE_QUAD;
         lane_uint i = is_quad ? index : (lane_uint)0u;
-        real area = v3_length(v3_cross(SCENE_FIELD(quads, i, edge1), SCENE_FIELD(quads, i, edge2)));
-        real quad_pdf = area_to_solid_angle_pdf(REAL(1.0) / area, reference, point, normal);
+        real quad_pdf =
+            quad_light_pdf(SCENE_FIELD(quads, i, edge1), SCENE_FIELD(quads, i, edge2), reference, point, normal);
         pdf = is_quad ? quad_pdf : pdf;
     }
 #endif
 #ifdef WP_HAS_MESH_LIGHTS
     {
-        real mesh_pdf = area_to_solid_angle_pdf(REAL(1.0) / SCENE_FIELD(lights, light, area), reference, point, normal);
+        real mesh_pdf = mesh_light_pdf(SCENE_FIELD(lights, light, area), reference, point, normal);
         pdf = type == WP_SHAPE_TRIANGLE ? mesh_pdf : pdf;
     }
 #endif
-    return light_selection_pmf(light_cdf, light) * pdf;
+    return light_sample_pdf(light_selection_pmf(light_cdf, light), pdf);
 }
 
-/* The light an emitting hit `shape` belongs to: a scan of the light table,
- * whose length is a compile-time constant in small scenes; a triangle's light
- * is its mesh's. */
+/* The light an emitting hit `shape` belongs to (light_key): a scan of the
+ * light table, whose length is a compile-time constant in small scenes. */
 WP_FN lane_uint light_of_shape(WP_SCENE_PARAMS, lane_uint shape) {
+    lane_uint kind = shape >> WP_SHAPE_TYPE_SHIFT, index = shape & WP_SHAPE_INDEX_MASK;
+    lane_int is_triangle = kind == WP_SHAPE_TRIANGLE;
 #ifdef WP_HAS_MESH_LIGHTS
-    lane_int is_mesh = shape >> WP_SHAPE_TYPE_SHIFT == WP_SHAPE_TRIANGLE;
-    lane_uint mesh = SCENE_FIELD(triangles, is_mesh ? shape & WP_SHAPE_INDEX_MASK : (lane_uint)0u, mesh);
+    lane_uint mesh = SCENE_FIELD(triangles, is_triangle ? index : (lane_uint)0u, mesh);
+#else
+    lane_uint mesh = 0u; /* no light is a mesh's */
 #endif
+    lane_uint key = light_key(is_triangle, index, mesh);
     lane_uint light = 0u;
     for (uint i = 0u; i < LIGHT_COUNT; ++i) {
-        lane_int is_this = lights[i].shape == shape;
-#ifdef WP_HAS_MESH_LIGHTS
-        is_this = is_this ||
-                  (is_mesh && lights[i].shape >> WP_SHAPE_TYPE_SHIFT == WP_SHAPE_TRIANGLE && lights[i].mesh == mesh);
-#endif
+        lane_uint light_shape = lights[i].shape; /* in every lane, so that its conditions are lane conditions */
+        lane_uint light_kind = light_shape >> WP_SHAPE_TYPE_SHIFT;
+        lane_int is_this = light_kind == kind && light_key(light_kind == WP_SHAPE_TRIANGLE,
+                                                           light_shape & WP_SHAPE_INDEX_MASK, lights[i].mesh) == key;
         light = is_this ? (lane_uint)i : light;
     }
     return light;
@@ -119,33 +122,17 @@ WP_FN lane_uint light_of_shape(WP_SCENE_PARAMS, lane_uint shape) {
 #endif
 
 /* The share of the emission at vertex v (reached along the ray from
- * `origin`) that the path counts: all of it after the camera or a specular
- * vertex, whose direction no light sample could have chosen, and at every
- * hit without next-event estimation (pure BSDF sampling); after a diffuse
- * vertex with next-event estimation, none (the light sample counts it) or,
- * with multiple importance sampling, the power heuristic's share of BSDF
- * sampling, whose density `bsdf_pdf` the bounce recorded. */
-WP_FN real emission_weight(WP_SCENE_PARAMS, lane_uint shape, vec3 origin, Vertex v, lane_int after_specular,
-                           real bsdf_pdf) {
-#if defined(WP_MIS)
+ * `origin`, which hit `shape`) that the path counts (emission_weight); the
+ * bounce recorded its density `bsdf_pdf`. */
+WP_FN real hit_emission_weight(WP_SCENE_PARAMS, lane_uint shape, vec3 origin, Vertex v, lane_int after_specular,
+                               real bsdf_pdf) {
+#ifdef WP_MIS
     real light_pdf =
         light_point_pdf(WP_SCENE_ARGS, light_of_shape(WP_SCENE_ARGS, shape), origin, v.surface.point, v.surface.normal);
-    return after_specular ? REAL(1.0) : power_heuristic(bsdf_pdf, light_pdf);
-#elif defined(WP_NEE)
-    return after_specular ? REAL(1.0) : REAL(0.0);
 #else
-    return REAL(1.0);
+    real light_pdf = REAL(0.0);
 #endif
-}
-
-/* The solid-angle density of scatter_diffuse's direction at cosine
- * `cos_theta` from the shading normal. */
-WP_FN real diffuse_pdf(real cos_theta) {
-#ifdef WP_UNIFORM_HEMISPHERE
-    return uniform_hemisphere_pdf();
-#else
-    return cosine_hemisphere_pdf(cos_theta);
-#endif
+    return emission_weight(after_specular, bsdf_pdf, light_pdf, WP_USES_NEE, WP_USES_MIS);
 }
 
 #ifdef WP_NEE
@@ -217,15 +204,14 @@ WP_FN LightPoint sample_light_shape(WP_SCENE_PARAMS, lane_uint light, vec3 x, re
     return p;
 }
 
-/* Samples one light for the diffuse vertex (x, nf, ns); returns where the
- * sample carries light, with the shadow ray and the contribution it adds when
- * unoccluded (the outputs hold no ray elsewhere). */
+#ifdef WP_HAS_DIFFUSE
+/* Samples one light for the diffuse vertex (x, nf, ns) of albedo `albedo`
+ * on a path of throughput `throughput` into *direct (diffuse_direct_light);
+ * returns where it carries light. */
 WP_FN lane_int sample_direct_light(WP_SCENE_PARAMS, lane_uint pixel, lane_uint sample, lane_uint bounce, vec3 x,
-                                   real x_error, vec3 nf, vec3 ns, vec3 weight, vec3 *shadow_origin,
-                                   vec3 *shadow_direction, real *shadow_distance, vec3 *contribution) {
+                                   real x_error, vec3 nf, vec3 ns, vec3 throughput, vec3 albedo, DirectLight *direct) {
     uint seed = scene->seed;
     lane_uint light = select_light(light_cdf, LIGHT_COUNT, rng_uniform(seed, pixel, sample, bounce, DIM_LIGHT_SELECT));
-    real pmf = light_selection_pmf(light_cdf, light);
 #ifdef WP_HAS_MESH_LIGHTS
     real u_triangle = rng_uniform(seed, pixel, sample, bounce, DIM_LIGHT_TRIANGLE);
 #else
@@ -233,142 +219,52 @@ WP_FN lane_int sample_direct_light(WP_SCENE_PARAMS, lane_uint pixel, lane_uint s
 #endif
     LightPoint p = sample_light_shape(WP_SCENE_ARGS, light, x, rng_uniform(seed, pixel, sample, bounce, DIM_LIGHT_U),
                                       rng_uniform(seed, pixel, sample, bounce, DIM_LIGHT_V), u_triangle);
-    LightSample ls = p.sample;
     Material emitter = material_at(materials, p.material);
-    vec3 wi = v3_normalize(v3_sub(ls.point, x));
-    real cos_surface = v3_dot(wi, ns);
-    lane_int light_faces_x = v3_dot(ls.normal, v3_sub(x, ls.point)) > REAL(0.0);
-    lane_int carries = ls.pdf_solid_angle != REAL(0.0) && cos_surface > REAL(0.0) && same_side(wi, nf) &&
-                       (emitter.two_sided || light_faces_x);
-    vec3 from = offset_ray_origin(x, nf, x_error);
-    vec3 to = offset_ray_origin(ls.point, v3_select(light_faces_x, ls.normal, v3_neg(ls.normal)),
-                                shadow_target_error(x, ls.point, p.magnitude));
-    vec3 along = v3_sub(to, from);
-    *shadow_distance = v3_length(along);
-    *shadow_direction = v3_div(along, *shadow_distance);
-    *shadow_origin = from;
-    real light_pdf = ls.pdf_solid_angle * pmf;
-    /* in the reference's order of operations */
-    *contribution = v3_div(v3_scale(v3_mul(v3_scale(weight, WP_INV_PI), emitter.emission), cos_surface), light_pdf);
-#ifdef WP_MIS
-    *contribution = v3_scale(*contribution, power_heuristic(light_pdf, diffuse_pdf(cos_surface)));
-#endif
-    return carries;
+    *direct = diffuse_direct_light(x, x_error, nf, ns, throughput, albedo, p.sample, p.magnitude,
+                                   light_selection_pmf(light_cdf, light), emitter.emission, emitter.two_sided,
+                                   WP_USES_UNIFORM_HEMISPHERE, WP_USES_MIS, WP_USES_SHADING_NORMALS);
+    return direct->carries;
 }
 #endif
-
-typedef struct {
-    vec3 direction;
-    vec3 weight;      /* throughput factor */
-    vec3 leave_side;  /* geometric normal on the side the new ray leaves into */
-    real pdf;         /* solid-angle density of a diffuse direction (0 for specular ones, whose density is a delta) */
-    real eta_squared; /* eta^2 of a refraction, whose weight is 1/eta^2; else 1 (roulette_survival) */
-    lane_uint specular;
-    lane_int valid; /* the direction leaves on leave_side (same_side): else the path ends */
-} Scattered;
-
-WP_FN Scattered select_scattered(lane_int choose_a, Scattered a, Scattered b) {
-    Scattered s;
-    s.direction = v3_select(choose_a, a.direction, b.direction);
-    s.weight = v3_select(choose_a, a.weight, b.weight);
-    s.leave_side = v3_select(choose_a, a.leave_side, b.leave_side);
-    s.pdf = choose_a ? a.pdf : b.pdf;
-    s.eta_squared = choose_a ? a.eta_squared : b.eta_squared;
-    s.specular = choose_a ? a.specular : b.specular;
-    s.valid = choose_a ? a.valid : b.valid;
-    return s;
-}
-
-#ifdef WP_HAS_DIFFUSE
-WP_FN Scattered scatter_diffuse(Material m, vec3 nf, vec3 ns, real u, real v) {
-    Scattered s;
-#ifdef WP_UNIFORM_HEMISPHERE
-    vec3 in_frame = sample_uniform_hemisphere(u, v);       /* `local` is an OpenCL keyword */
-    s.weight = v3_scale(m.albedo, REAL(2.0) * in_frame.z); /* albedo/pi * cos / (1/(2 pi)) */
-#else
-    vec3 in_frame = sample_cosine_hemisphere(u, v);
-    s.weight = m.albedo;
-#endif
-    s.direction = frame_to_world(frame_from_normal(ns), in_frame);
-    s.leave_side = nf;
-    s.pdf = diffuse_pdf(in_frame.z);
-    s.eta_squared = REAL(1.0);
-    s.specular = 0u;
-    s.valid = same_side(s.direction, nf);
-    return s;
-}
-#endif
-
-#ifdef WP_HAS_MIRROR
-WP_FN Scattered scatter_mirror(Material m, vec3 d, vec3 nf, vec3 ns) {
-    Scattered s;
-    s.direction = reflect_direction(d, ns);
-    s.weight = m.reflectance;
-    s.leave_side = nf;
-    s.pdf = REAL(0.0);
-    s.eta_squared = REAL(1.0);
-    s.specular = 1u;
-    s.valid = same_side(v3_neg(d), ns) && same_side(s.direction, nf);
-    return s;
-}
-#endif
-
-#ifdef WP_HAS_GLASS
-/* Fresnel chooses reflection or refraction; refraction scales radiance by 1/eta^2. */
-WP_FN Scattered scatter_glass(Material m, vec3 d, vec3 nf, vec3 ns, lane_int entering, real u_lobe) {
-    real eta = entering ? m.ior : REAL(1.0) / m.ior;
-    real reflectance = fresnel_dielectric(-v3_dot(d, ns), eta);
-    vec3 refracted;
-    lane_int refracts = u_lobe >= reflectance && refract_direction(d, ns, eta, &refracted);
-    Scattered s;
-    s.specular = 1u;
-    s.pdf = REAL(0.0);
-    s.eta_squared = refracts ? eta * eta : REAL(1.0);
-    s.direction = v3_select(refracts, refracted, reflect_direction(d, ns));
-    s.weight = v3_div(make_vec3(REAL(1.0), REAL(1.0), REAL(1.0)), refracts ? eta * eta : REAL(1.0));
-    s.leave_side = v3_select(refracts, v3_neg(nf), nf);
-    s.valid = same_side(v3_neg(d), ns) && same_side(s.direction, s.leave_side);
-    return s;
-}
 #endif
 
 /* BSDF sampling at bounce `bounce` of vertex v, reached along d, for its
- * material's type (every kind in the scene is sampled; each lane keeps its
+ * material's kind (every kind in the scene is sampled; each lane keeps its
  * material's). */
-WP_FN Scattered scatter_vertex(Vertex v, vec3 d, uint seed, lane_uint px, lane_uint s, lane_uint bounce) {
+WP_FN BsdfSample scatter_vertex(Vertex v, vec3 d, uint seed, lane_uint px, lane_uint s, lane_uint bounce) {
     Material m = v.material;
-    Scattered scattered;
-    scattered.direction = scattered.weight = scattered.leave_side = make_vec3(REAL(0.0), REAL(0.0), REAL(0.0));
-    scattered.pdf = REAL(0.0);
-    scattered.eta_squared = REAL(1.0);
-    scattered.specular = 0u;
-    scattered.valid = 0;
+    vec3 wo = v3_neg(d);
+    BsdfSample scattered = no_bsdf_sample();
 #ifdef WP_HAS_DIFFUSE
-    scattered = select_scattered(m.type == WP_MATERIAL_DIFFUSE,
-                                 scatter_diffuse(m, v.nf, v.ns, rng_uniform(seed, px, s, bounce, DIM_BSDF_U),
-                                                 rng_uniform(seed, px, s, bounce, DIM_BSDF_V)),
-                                 scattered);
+    scattered = select_bsdf_sample(m.type == WP_MATERIAL_DIFFUSE,
+                                   diffuse_sample(m.albedo, v.nf, v.ns, rng_uniform(seed, px, s, bounce, DIM_BSDF_U),
+                                                  rng_uniform(seed, px, s, bounce, DIM_BSDF_V),
+                                                  WP_USES_UNIFORM_HEMISPHERE, WP_USES_SHADING_NORMALS),
+                                   scattered);
 #endif
 #ifdef WP_HAS_MIRROR
-    scattered = select_scattered(m.type == WP_MATERIAL_MIRROR, scatter_mirror(m, d, v.nf, v.ns), scattered);
+    scattered = select_bsdf_sample(m.type == WP_MATERIAL_MIRROR,
+                                   mirror_sample(m.reflectance, wo, v.nf, v.ns, WP_USES_SHADING_NORMALS), scattered);
 #endif
 #ifdef WP_HAS_GLASS
-    scattered = select_scattered(
-        m.type == WP_MATERIAL_GLASS,
-        scatter_glass(m, d, v.nf, v.ns, v.front, rng_uniform(seed, px, s, bounce, DIM_BSDF_LOBE)), scattered);
+    scattered =
+        select_bsdf_sample(m.type == WP_MATERIAL_GLASS,
+                           glass_sample(m.ior, v.front, wo, v.nf, v.ns, rng_uniform(seed, px, s, bounce, DIM_BSDF_LOBE),
+                                        WP_TRANSPORT_RADIANCE, WP_USES_SHADING_NORMALS),
+                           scattered);
 #endif
     return scattered;
 }
 
-/* Russian roulette once new_depth reaches rr_depth: survival probability
- * roulette_survival(T, eta_scale), and T /= survival when the path survives. */
+/* Russian roulette (russian_roulette) once new_depth reaches rr_depth:
+ * returns where the path survives, its throughput divided by the survival
+ * probability where the roulette played. */
 WP_FN lane_int survives_roulette(vec3 *throughput, real eta_scale, uint seed, lane_uint px, lane_uint s,
                                  lane_uint bounce, lane_uint new_depth, uint rr_depth) {
-    lane_int plays = new_depth >= rr_depth;
-    real survival = roulette_survival(*throughput, eta_scale);
-    lane_int survives = rng_uniform(seed, px, s, bounce, DIM_ROULETTE) < survival;
-    *throughput = v3_select(plays, v3_div(*throughput, survival), *throughput);
-    return !plays || survives;
+    RouletteOutcome outcome =
+        russian_roulette(*throughput, eta_scale, new_depth >= rr_depth, rng_uniform(seed, px, s, bounce, DIM_ROULETTE));
+    *throughput = outcome.throughput;
+    return outcome.survives;
 }
 
 #endif

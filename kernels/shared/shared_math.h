@@ -5,9 +5,17 @@
 #define WP_SHARED_MATH_H
 
 #include "shared/bvh.h"
+#include "shared/camera.h"
+#include "shared/direct_light.h"
+#include "shared/estimator.h"
 #include "shared/fresnel.h"
 #include "shared/geometry.h"
 #include "shared/hit_point.h"
+#include "shared/lights.h"
+#include "shared/materials/bsdf.h"
+#include "shared/materials/diffuse.h"
+#include "shared/materials/glass.h"
+#include "shared/materials/mirror.h"
 #include "shared/offset.h"
 #include "shared/prelude.h"
 #include "shared/rng.h"

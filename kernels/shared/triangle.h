@@ -14,9 +14,9 @@
 #ifndef WP_SHARED_TRIANGLE_H
 #define WP_SHARED_TRIANGLE_H
 
+#include "shared/lights.h"
 #include "shared/offset.h"
 #include "shared/prelude.h"
-#include "shared/sampling.h"
 
 /* A mesh triangle as the kernels and the reference store it, in the order of
  * the BVH's leaves; front side: that of (p1 - p0) x (p2 - p0). */
@@ -126,17 +126,24 @@ WP_FN vec3 triangle_shading_normal(vec3 p0, vec3 p1, vec3 p2, vec3 n0, vec3 n1, 
     return v3_select(v3_dot(shading, geometric) < REAL(0.0), v3_neg(shading), shading);
 }
 
+/* The solid-angle density with which sample_triangle, from `reference`,
+ * picks the direction towards `point` (unit normal `normal`) on a mesh light
+ * of area mesh_area: every point of the mesh has the area density
+ * 1 / mesh_area. */
+WP_FN real mesh_light_pdf(real mesh_area, vec3 reference, vec3 point, vec3 normal) {
+    return area_to_solid_angle_pdf(REAL(1.0) / mesh_area, reference, point, normal);
+}
+
 /* A point uniform by area on the triangle (the square-root warp,
  * b0 = 1 - sqrt(u1), b1 = u2 sqrt(u1)), the triangle having been chosen in
- * proportion to its area among a mesh's of total area mesh_area: the point's
- * density is 1 / mesh_area, here in solid angle from `reference`. */
+ * proportion to its area among a mesh's of total area mesh_area. */
 WP_FN LightSample sample_triangle(vec3 p0, vec3 p1, vec3 p2, real mesh_area, vec3 reference, real u1, real u2) {
     real root = sqrt(u1);
     real b0 = REAL(1.0) - root, b1 = u2 * root;
     LightSample s;
     s.point = v3_add(v3_add(v3_scale(p0, b0), v3_scale(p1, b1)), v3_scale(p2, REAL(1.0) - b0 - b1));
     s.normal = triangle_normal(p0, p1, p2);
-    s.pdf_solid_angle = area_to_solid_angle_pdf(REAL(1.0) / mesh_area, reference, s.point, s.normal);
+    s.pdf_solid_angle = mesh_light_pdf(mesh_area, reference, s.point, s.normal);
     return s;
 }
 

@@ -35,14 +35,12 @@ std::uint32_t shape_ref(std::uint32_t type, int index) { return (type << WP_SHAP
 SceneHeader make_header(const Scene& scene) {
     SceneHeader h{};
     const Camera& c = scene.camera;
-    glm::dvec3 forward = glm::normalize(c.look_at - c.position);
-    glm::dvec3 right = glm::normalize(glm::cross(forward, c.up));
-    glm::dvec3 up = glm::cross(right, forward);
-    put(h.camera_right, right);
-    put(h.camera_up, up);
-    put(h.camera_forward, forward);
-    h.tan_half_fov_y = static_cast<float>(std::tan(glm::radians(c.fov_y_degrees) / 2.0));
-    h.aspect = static_cast<float>(static_cast<double>(c.width) / static_cast<double>(c.height));
+    auto frame = SharedMath<double>::camera_frame(c.position, c.look_at, c.up, c.tan_half_fov_y(), c.aspect());
+    put(h.camera_right, frame.right);
+    put(h.camera_up, frame.up);
+    put(h.camera_forward, frame.forward);
+    h.tan_half_fov_y = static_cast<float>(frame.tan_half_fov_y);
+    h.aspect = static_cast<float>(frame.aspect);
     put(h.background, scene.background);
     h.width = c.width;
     h.height = c.height;

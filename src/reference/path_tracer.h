@@ -216,153 +216,92 @@ LightPoint<Real> sample_light(const ReferenceScene<Real>& scene, const typename 
     }
 }
 
-// Whether `direction` leaves on the side `normal` points to; always true
-// without shading normals (kernels/device/path_vertex.h, same_side).
-template <class Real>
-bool same_side(const ReferenceScene<Real>& scene, const Vec3<Real>& direction, const Vec3<Real>& normal) {
-    return !scene.shading_normals || glm::dot(direction, normal) > Real(0);
-}
-
-// The solid-angle density of a diffuse bounce's direction at cosine
-// cos_theta from the shading normal (scatter's diffuse case).
-template <class Real>
-Real diffuse_pdf(const ReferenceScene<Real>& scene, Real cos_theta) {
-    using M = SharedMath<Real>;
-    return scene.render.hemisphere == Hemisphere::Uniform ? M::uniform_hemisphere_pdf()
-                                                          : M::cosine_hemisphere_pdf(cos_theta);
-}
-
 // The solid-angle density with which next-event estimation from `reference`
-// samples `point` (geometric normal `normal`) of light `index`: its selection
-// probability times the density of sample_light's point.
+// samples `point` (geometric normal `normal`) of light `index`.
 template <class Real>
 Real light_point_pdf(const ReferenceScene<Real>& scene, std::uint32_t index, const Vec3<Real>& reference,
                      const Vec3<Real>& point, const Vec3<Real>& normal) {
     using M = SharedMath<Real>;
     const auto& light = scene.lights[index];
-    Real pmf = M::light_selection_pmf(scene.light_cdf.data(), index);
+    Real point_pdf = 0;
     switch (light.shape) {
         case ShapeType::Sphere: {
             const auto& s = scene.spheres[light.index];
-            return pmf * M::sphere_light_pdf(s.center, s.radius, reference, point, normal);
+            point_pdf = M::sphere_light_pdf(s.center, s.radius, reference, point, normal);
+            break;
         }
         case ShapeType::Mesh:
-            return pmf * M::area_to_solid_angle_pdf(Real(1) / light.area, reference, point, normal);
+            point_pdf = M::mesh_light_pdf(light.area, reference, point, normal);
+            break;
         default: {
             const auto& q = scene.quads[light.index];
-            Real area = glm::length(glm::cross(q.edge1, q.edge2));
-            return pmf * M::area_to_solid_angle_pdf(Real(1) / area, reference, point, normal);
+            point_pdf = M::quad_light_pdf(q.edge1, q.edge2, reference, point, normal);
         }
     }
+    return M::light_sample_pdf(M::light_selection_pmf(scene.light_cdf.data(), index), point_pdf);
 }
 
-// light_point_pdf for the light the emitting shape `hit` belongs to (a
-// triangle's light is its mesh's); 0 where it is no light.
+// light_point_pdf for the light the shape `hit` belongs to (light_key); 0
+// where it is no light.
 template <class Real>
 Real light_pdf_at_hit(const ReferenceScene<Real>& scene, const ShapeHit<Real>& hit, const Vec3<Real>& reference,
                       const Vec3<Real>& point, const Vec3<Real>& normal) {
-    int index = hit.shape == ShapeType::Mesh ? static_cast<int>(scene.triangles[hit.index].mesh) : hit.index;
-    for (std::uint32_t i = 0; i < scene.lights.size(); ++i)
-        if (scene.lights[i].shape == hit.shape && scene.lights[i].index == index)
+    using M = SharedMath<Real>;
+    bool is_triangle = hit.shape == ShapeType::Mesh;
+    auto index = static_cast<std::uint32_t>(hit.index);
+    std::uint32_t key = M::light_key(is_triangle, index, is_triangle ? scene.triangles[index].mesh : 0u);
+    for (std::uint32_t i = 0; i < scene.lights.size(); ++i)  // a light's index is its mesh's for a mesh light
+        if (scene.lights[i].shape == hit.shape && static_cast<std::uint32_t>(scene.lights[i].index) == key)
             return light_point_pdf(scene, i, reference, point, normal);
     return Real(0);
 }
 
 // Next-event estimation at a diffuse point x (with error bound x_error) with
-// front-facing geometric and shading normals nf and ns:
-// one light chosen by the power CDF, one point on it, one shadow ray.
-// `weight` is the path throughput times the albedo; returns the radiance the
-// sample adds to the path.
+// front-facing geometric and shading normals nf and ns, albedo `albedo`, on
+// a path of throughput `throughput`: one light chosen by the power CDF, one
+// point on it, one shadow ray. Returns the radiance the sample adds.
 template <class Real>
 Vec3<Real> sample_direct_light(const ReferenceScene<Real>& scene, const Vec3<Real>& x, Real x_error,
-                               const Vec3<Real>& nf, const Vec3<Real>& ns, const Vec3<Real>& weight,
-                               const SampleRng<Real>& rng, std::uint32_t bounce, RayCounts& counts) {
+                               const Vec3<Real>& nf, const Vec3<Real>& ns, const Vec3<Real>& throughput,
+                               const Vec3<Real>& albedo, const SampleRng<Real>& rng, std::uint32_t bounce,
+                               RayCounts& counts) {
     using M = SharedMath<Real>;
-    using vec3 = typename M::vec3;
-    const vec3 none(Real(0));
     auto light_count = static_cast<std::uint32_t>(scene.lights.size());
     std::uint32_t index = M::select_light(scene.light_cdf.data(), light_count, rng(bounce, DIM_LIGHT_SELECT));
-    Real pmf = M::light_selection_pmf(scene.light_cdf.data(), index);
-    const auto& light = scene.lights[index];
-    LightPoint<Real> p = sample_light(scene, light, x, rng(bounce, DIM_LIGHT_U), rng(bounce, DIM_LIGHT_V),
+    LightPoint<Real> p = sample_light(scene, scene.lights[index], x, rng(bounce, DIM_LIGHT_U), rng(bounce, DIM_LIGHT_V),
                                       rng(bounce, DIM_LIGHT_TRIANGLE));
-    const auto& s = p.sample;
-    if (s.pdf_solid_angle == Real(0)) return none;
-
-    vec3 wi = glm::normalize(s.point - x);
-    Real cos_surface = glm::dot(wi, ns);
-    if (!(cos_surface > Real(0)) || !same_side(scene, wi, nf)) return none;
     const auto& emitter = scene.materials[p.material];
-    bool light_faces_x = glm::dot(s.normal, x - s.point) > Real(0);
-    if (!emitter.two_sided && !light_faces_x) return none;
-
-    vec3 origin = M::offset_ray_origin(x, nf, x_error);
-    vec3 target = M::offset_ray_origin(s.point, light_faces_x ? s.normal : -s.normal,
-                                       M::shadow_target_error(x, s.point, p.magnitude));
-    vec3 to_target = target - origin;
-    Real distance = glm::length(to_target);
+    typename M::DirectLight direct = M::diffuse_direct_light(
+        x, x_error, nf, ns, throughput, albedo, p.sample, p.magnitude,
+        M::light_selection_pmf(scene.light_cdf.data(), index), emitter.emission, emitter.two_sided,
+        scene.render.hemisphere == Hemisphere::Uniform, scene.mis, scene.shading_normals);
+    if (!direct.carries) return Vec3<Real>(Real(0));
     ++counts.shadow;
-    if (occluded(scene, Ray<Real>{origin, to_target / distance}, distance)) return none;
-    Real light_pdf = s.pdf_solid_angle * pmf;
-    vec3 contribution = weight * std::numbers::inv_pi_v<Real> * emitter.emission * cos_surface / light_pdf;
-    return scene.mis ? contribution * M::power_heuristic(light_pdf, diffuse_pdf(scene, cos_surface)) : contribution;
+    const auto& shadow = direct.shadow;
+    if (occluded(scene, Ray<Real>{shadow.origin, shadow.direction}, shadow.distance)) return Vec3<Real>(Real(0));
+    return direct.contribution;
 }
 
+// Samples the material at the surface point x, reached along direction d,
+// with the geometric and shading normals nf and ns facing d; the next ray
+// leaves from x on the sample's side.
 template <class Real>
-struct Scattered {
-    Ray<Real> ray;
-    Vec3<Real> weight;  // throughput factor
-    Real pdf;           // solid-angle density of a diffuse direction (0 for specular ones)
-    Real eta_squared;   // eta^2 of a refraction (whose weight is 1 / eta^2), else 1: roulette_survival
-    bool specular;
-    bool valid;  // the ray leaves on the side it was spawned for (same_side): else the path ends
-};
-
-// Samples the continuation of the path at a non-emitter surface point x. d
-// is the incoming direction, nf and ns the geometric and shading normals
-// facing d.
-template <class Real>
-Scattered<Real> scatter(const ReferenceScene<Real>& scene,
-                        const typename ReferenceScene<Real>::SurfaceMaterial& material, const SurfacePoint<Real>& x,
-                        const Vec3<Real>& d, const Vec3<Real>& nf, const Vec3<Real>& ns, const SampleRng<Real>& rng,
-                        std::uint32_t bounce) {
+typename SharedMath<Real>::BsdfSample scatter(const ReferenceScene<Real>& scene,
+                                              const typename ReferenceScene<Real>::SurfaceMaterial& material,
+                                              const SurfacePoint<Real>& x, const Vec3<Real>& d, const Vec3<Real>& nf,
+                                              const Vec3<Real>& ns, const SampleRng<Real>& rng, std::uint32_t bounce) {
     using M = SharedMath<Real>;
-    using vec3 = typename M::vec3;
-    auto leave = [&](const vec3& direction, const vec3& side, const vec3& weight, Real pdf, bool specular) {
-        bool arrives_validly = !specular || same_side(scene, -d, ns);
-        return Scattered<Real>{Ray<Real>{M::offset_ray_origin(x.point, side, x.error), direction},
-                               weight,
-                               pdf,
-                               Real(1),
-                               specular,
-                               arrives_validly && same_side(scene, direction, side)};
-    };
     switch (material.type) {
         case MaterialType::Mirror:
-            return leave(M::reflect_direction(d, ns), nf, material.reflectance, Real(0), true);
+            return M::mirror_sample(material.reflectance, -d, nf, ns, scene.shading_normals);
         case MaterialType::Glass: {
             bool entering = glm::dot(d, x.normal) < Real(0);
-            Real eta = entering ? material.ior : Real(1) / material.ior;
-            Real reflectance = M::fresnel_dielectric(-glm::dot(d, ns), eta);
-            vec3 refracted;
-            if (rng(bounce, DIM_BSDF_LOBE) < reflectance || !M::refract_direction(d, ns, eta, &refracted)) {
-                return leave(M::reflect_direction(d, ns), nf, vec3(Real(1)), Real(0), true);
-            }
-            Scattered<Real> refraction = leave(refracted, -nf, vec3(Real(1) / (eta * eta)), Real(0), true);
-            refraction.eta_squared = eta * eta;
-            return refraction;
+            return M::glass_sample(material.ior, entering, -d, nf, ns, rng(bounce, DIM_BSDF_LOBE),
+                                   WP_TRANSPORT_RADIANCE, scene.shading_normals);
         }
-        default: {  // diffuse
-            Real u = rng(bounce, DIM_BSDF_U), v = rng(bounce, DIM_BSDF_V);
-            if (scene.render.hemisphere == Hemisphere::Uniform) {  // weight albedo/pi * cos / (1/(2 pi))
-                vec3 local = M::sample_uniform_hemisphere(u, v);
-                return leave(M::frame_to_world(M::frame_from_normal(ns), local), nf,
-                             material.albedo * (Real(2) * local.z), diffuse_pdf(scene, local.z), false);
-            }
-            vec3 local = M::sample_cosine_hemisphere(u, v);
-            return leave(M::frame_to_world(M::frame_from_normal(ns), local), nf, material.albedo,
-                         diffuse_pdf(scene, local.z), false);
-        }
+        default:  // diffuse
+            return M::diffuse_sample(material.albedo, nf, ns, rng(bounce, DIM_BSDF_U), rng(bounce, DIM_BSDF_V),
+                                     scene.render.hemisphere == Hemisphere::Uniform, scene.shading_normals);
     }
 }
 
@@ -388,39 +327,34 @@ Vec3<Real> trace_path(const ReferenceScene<Real>& scene, Ray<Real> ray, const Sa
         bool front = glm::dot(ray.direction, surface.normal) < Real(0);
         vec3 nf = front ? surface.normal : -surface.normal;
         vec3 ns = front ? surface.shading : -surface.shading;
-        // Without NEE no light sample accounts for emission, so every hit counts it; after a diffuse
-        // bounce with NEE the light sample counts it, or with MIS shares it by the power heuristic.
-        if (material.emits && (material.two_sided || front)) {
-            Real weight = specular || !scene.nee ? Real(1)
-                          : scene.mis            ? M::power_heuristic(bsdf_pdf, light_pdf_at_hit(scene, hit, ray.origin,
-                                                                                                 surface.point, surface.normal))
-                                                 : Real(0);
-            if (weight > Real(0))
-                add_finite<Real>(radiance, throughput * material.emission * weight, NonfiniteStage::emission, counts);
-        }
+        bool weighs_emission = scene.mis && !specular && M::emits(material.emission);  // the power heuristic's case
+        Real light_pdf =
+            weighs_emission ? light_pdf_at_hit(scene, hit, ray.origin, surface.point, surface.normal) : Real(0);
+        Real weight = M::emission_weight(specular, bsdf_pdf, light_pdf, scene.nee, scene.mis);
+        add_finite<Real>(radiance, M::emission_seen(material.emission, material.two_sided, front, weight, throughput),
+                         NonfiniteStage::emission, counts);
         if (depth >= scene.render.max_depth || material.type == MaterialType::Emitter) break;
 
         auto bounce = static_cast<std::uint32_t>(depth);
         if (material.type == MaterialType::Diffuse && scene.nee) {
             add_finite<Real>(radiance,
-                             sample_direct_light(scene, surface.point, surface.error, nf, ns,
-                                                 throughput * material.albedo, rng, bounce, counts),
+                             sample_direct_light(scene, surface.point, surface.error, nf, ns, throughput,
+                                                 material.albedo, rng, bounce, counts),
                              NonfiniteStage::direct, counts);
         }
-        Scattered<Real> next = scatter(scene, material, surface, ray.direction, nf, ns, rng, bounce);
+        typename M::BsdfSample next = scatter(scene, material, surface, ray.direction, nf, ns, rng, bounce);
         if (!next.valid) break;
         throughput *= next.weight;
-        ray = next.ray;
+        ray = {M::offset_ray_origin(surface.point, next.leave_side, surface.error), next.direction};
         specular = next.specular;
         bsdf_pdf = next.pdf;
         eta_scale *= next.eta_squared;
 
         ++depth;
-        if (depth >= scene.render.rr_depth) {
-            Real survival = M::roulette_survival(throughput, eta_scale);
-            if (rng(bounce, DIM_ROULETTE) >= survival) break;
-            throughput /= survival;
-        }
+        typename M::RouletteOutcome roulette =
+            M::russian_roulette(throughput, eta_scale, depth >= scene.render.rr_depth, rng(bounce, DIM_ROULETTE));
+        if (!roulette.survives) break;
+        throughput = roulette.throughput;
         if (!SharedMath<Real>::vec3_is_finite(throughput)) {  // would carry NaN or Inf into every later term
             ++counts.nonfinite[static_cast<std::size_t>(NonfiniteStage::scatter)];
             break;
@@ -434,9 +368,8 @@ template <class Real>
 Ray<Real> camera_ray(const ReferenceScene<Real>& scene, int px, int py, const SampleRng<Real>& rng) {
     using M = SharedMath<Real>;
     const auto& c = scene.camera;
-    Real x = (Real(px) + rng(0, DIM_FILM_X)) / Real(c.width);
-    Real y = (Real(py) + rng(0, DIM_FILM_Y)) / Real(c.height);
-    return {c.position, M::camera_direction(c.right, c.up, c.forward, c.tan_half_fov_y, c.aspect, x, y)};
+    return {c.position, M::pixel_direction(c.frame, Real(px), Real(py), Real(c.width), Real(c.height),
+                                           rng(0, DIM_FILM_X), rng(0, DIM_FILM_Y))};
 }
 
 // Radiance of one camera sample (finite: every addition was checked).

@@ -48,7 +48,6 @@ struct ReferenceScene {
         vec3 emission;     // diffuse (optional) and emitter
         Real ior;          // glass
         bool two_sided;    // emission on both sides
-        bool emits;
     };
     struct LightRef {
         ShapeType shape;                               // Sphere, Quad or Mesh
@@ -56,11 +55,11 @@ struct ReferenceScene {
         std::uint32_t first_triangle, triangle_count;  // a mesh: its triangles in light_triangles
         Real area;                                     // a mesh: its area
     };
-    // Pinhole camera; the basis is built in double and then rounded, as a
-    // host would do before handing it to a kernel.
+    // Pinhole camera; its frame is built in double and then rounded, as the
+    // kernels' host does (opencl/scene_upload.cpp).
     struct PinholeCamera {
-        vec3 position, right, up, forward;
-        Real tan_half_fov_y, aspect;
+        vec3 position;
+        typename M::CameraFrame frame;
         int width, height;
     };
 
@@ -93,7 +92,7 @@ struct ReferenceScene {
         camera = convert_camera(scene.camera);
         for (const Material& m : scene.materials) {
             materials.push_back(
-                {m.type, vec3(m.albedo), vec3(m.reflectance), vec3(m.emission), Real(m.ior), m.two_sided, m.emits()});
+                {m.type, vec3(m.albedo), vec3(m.reflectance), vec3(m.emission), Real(m.ior), m.two_sided});
         }
         for (const Sphere& s : scene.spheres) spheres.push_back({vec3(s.center), Real(s.radius), s.material});
         for (const Plane& p : scene.planes) planes.push_back({vec3(p.point), vec3(p.normal), p.material});
@@ -136,13 +135,10 @@ struct ReferenceScene {
     }
 
     static PinholeCamera convert_camera(const Camera& c) {
-        glm::dvec3 forward = glm::normalize(c.look_at - c.position);
-        glm::dvec3 right = glm::normalize(glm::cross(forward, c.up));
-        glm::dvec3 up = glm::cross(right, forward);
-        double tan_half_fov_y = std::tan(glm::radians(c.fov_y_degrees) / 2.0);
-        double aspect = static_cast<double>(c.width) / static_cast<double>(c.height);
-        return {vec3(c.position),     vec3(right),  vec3(up), vec3(forward),
-                Real(tan_half_fov_y), Real(aspect), c.width,  c.height};
+        auto frame = SharedMath<double>::camera_frame(c.position, c.look_at, c.up, c.tan_half_fov_y(), c.aspect());
+        typename M::CameraFrame rounded{vec3(frame.right), vec3(frame.up), vec3(frame.forward),
+                                        Real(frame.tan_half_fov_y), Real(frame.aspect)};
+        return {vec3(c.position), rounded, c.width, c.height};
     }
 };
 

@@ -1,7 +1,11 @@
 #include "scene/scene.h"
 
+#include <cmath>
 #include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
 #include <numbers>
+
+#include "core/shared_math.h"
 
 namespace wp {
 namespace {
@@ -14,6 +18,12 @@ double emitted_power(const Material& material, double area) {
 }
 
 }  // namespace
+
+double Camera::tan_half_fov_y() const { return std::tan(glm::radians(fov_y_degrees) / 2.0); }
+
+double Camera::aspect() const { return static_cast<double>(width) / static_cast<double>(height); }
+
+bool Material::emits() const { return SharedMath<double>::emits(emission); }
 
 double triangle_area(const Mesh& mesh, const glm::uvec3& t) {
     return 0.5 * glm::length(
@@ -58,15 +68,15 @@ void build_light_table(Scene& scene) {
         const Sphere& s = scene.spheres[i];
         const Material& m = scene.materials[s.material];
         if (m.emits()) {
-            scene.lights.push_back(
-                {ShapeType::Sphere, i, emitted_power(m, 4.0 * std::numbers::pi * s.radius * s.radius)});
+            scene.lights.push_back({ShapeType::Sphere, i, emitted_power(m, SharedMath<double>::sphere_area(s.radius))});
         }
     }
     for (int i = 0; i < static_cast<int>(scene.quads.size()); ++i) {
         const Quad& q = scene.quads[i];
         const Material& m = scene.materials[q.material];
         if (m.emits()) {
-            scene.lights.push_back({ShapeType::Quad, i, emitted_power(m, glm::length(glm::cross(q.edge1, q.edge2)))});
+            scene.lights.push_back(
+                {ShapeType::Quad, i, emitted_power(m, SharedMath<double>::quad_area(q.edge1, q.edge2))});
         }
     }
     for (int i = 0; i < static_cast<int>(scene.meshes.size()); ++i) {

@@ -19,6 +19,8 @@ struct Camera {
     double fov_y_degrees = 40.0;
     int width = 0;
     int height = 0;
+    double tan_half_fov_y() const;
+    double aspect() const;  // width / height
 };
 
 // How diffuse vertices choose the next direction (the weight keeps the
@@ -45,7 +47,7 @@ struct Material {
     double ior = 1.5;             // glass
     glm::dvec3 emission{0.0};     // diffuse (optional) and emitter
     bool two_sided = false;       // emission on both sides
-    bool emits() const { return emission.x > 0.0 || emission.y > 0.0 || emission.z > 0.0; }
+    bool emits() const;
 };
 
 struct Sphere {

@@ -58,9 +58,7 @@ TEST(ReferenceMis, LightDensityAtAHitIsTheLightSamplesDensity) {
     for (int i = 0; i < 4000; ++i) {
         // A point seen by a random camera ray, if diffuse.
         wp::reference::Ray<double> camera{
-            reference.camera.position, M::camera_direction(reference.camera.right, reference.camera.up,
-                                                           reference.camera.forward, reference.camera.tan_half_fov_y,
-                                                           reference.camera.aspect, uniform(random), uniform(random))};
+            reference.camera.position, M::camera_direction(reference.camera.frame, uniform(random), uniform(random))};
         auto hit = wp::reference::closest_hit(reference, camera);
         if (!hit.found()) continue;
         auto x = wp::reference::surface_at(reference, camera, hit);

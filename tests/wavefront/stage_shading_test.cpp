@@ -62,7 +62,7 @@ TEST(ShadeDirectStage, LightSampleMatchesReference) {
         vec3 nf = glm::dot(ray.direction, surface.normal) < 0 ? surface.normal : -surface.normal;
         reference::SampleRng<float> rng{scene.render.seed, 0u, std::uint32_t(100 + i)};
         reference::RayCounts counts;
-        vec3 expected = reference::sample_direct_light(ref, surface.point, surface.error, nf, nf,
+        vec3 expected = reference::sample_direct_light(ref, surface.point, surface.error, nf, nf, vec3(1),
                                                        ref.materials[surface.material].albedo, rng, 0u, counts);
         for (int c = 0; c < 3; ++c)
             ASSERT_NEAR(radiance[c][i], expected[c], 1e-6f * expected[c]) << "path " << i << " channel " << c;
@@ -117,7 +117,7 @@ TEST(ScatterStage, GlassSplitFollowsFresnelAndMatchesReference) {
             reference::SampleRng<float> rng{scene.render.seed, 0u, std::uint32_t(i)};
             auto next = reference::scatter(ref, ref.materials[0], surface, ray.direction, nf, nf, rng, 0u);
             vec3 got(dir[0][i], dir[1][i], dir[2][i]);
-            ASSERT_NEAR(glm::length(got - next.ray.direction), 0.0f, 1e-6f) << "path " << i;
+            ASSERT_NEAR(glm::length(got - next.direction), 0.0f, 1e-6f) << "path " << i;
             ASSERT_NEAR(weight[i], next.weight.x, 1e-6f) << "path " << i;
             reflected += glm::dot(got, nf) > 0;
         }

@@ -1,0 +1,68 @@
+/* What every material's functions share (shared/materials/diffuse.h,
+ * mirror.h, glass.h): the sample they return, how lanes choose between
+ * kinds, and the two normals' rule.
+ *
+ * Conventions, the same for a path from the camera and for one from a light
+ * (a photon): directions are unit vectors pointing away from the surface; `wo`
+ * points back along the path (to where it came from) and a sample's
+ * `direction` is where it goes next. `nf` is the geometric normal and `ns` the
+ * shading normal, both turned to wo's side by the geometric test (the side the
+ * path arrived on). Nothing here knows which end of the path is the camera
+ * except where `transport` says what the path carries. */
+#ifndef WP_SHARED_MATERIALS_BSDF_H
+#define WP_SHARED_MATERIALS_BSDF_H
+
+#include "shared/prelude.h"
+
+/* What a path carries, where a material's weight depends on it (pbrt-v4's
+ * TransportMode): radiance (a path from the camera) or importance and flux (a
+ * path from a light). Refraction compresses radiance by 1/eta^2, not flux. */
+#define WP_TRANSPORT_RADIANCE 0u
+#define WP_TRANSPORT_IMPORTANCE 1u
+
+typedef struct {
+    vec3 direction;   /* where the path goes next (unit) */
+    vec3 weight;      /* f * cos / pdf: the path's throughput factor */
+    vec3 leave_side;  /* the geometric normal on the side `direction` leaves into: where the next ray starts */
+    real pdf;         /* solid-angle density of `direction`; 0 for a specular (delta) lobe */
+    real eta_squared; /* eta^2 of a refraction, else 1 (roulette_outcome's eta_scale) */
+    lane_uint specular;
+    lane_int valid; /* the sample is consistent with both normals (leaves_on_side): else the path ends */
+} BsdfSample;
+
+/* No sample: a lane whose material has no kind compiled in keeps this. */
+WP_FN BsdfSample no_bsdf_sample(void) {
+    BsdfSample s;
+    s.direction = s.weight = s.leave_side = make_vec3(REAL(0.0), REAL(0.0), REAL(0.0));
+    s.pdf = REAL(0.0);
+    s.eta_squared = REAL(1.0);
+    s.specular = 0u;
+    s.valid = 0;
+    return s;
+}
+
+WP_FN BsdfSample select_bsdf_sample(lane_int choose_a, BsdfSample a, BsdfSample b) {
+    BsdfSample s;
+    s.direction = v3_select(choose_a, a.direction, b.direction);
+    s.weight = v3_select(choose_a, a.weight, b.weight);
+    s.leave_side = v3_select(choose_a, a.leave_side, b.leave_side);
+    s.pdf = choose_a ? a.pdf : b.pdf;
+    s.eta_squared = choose_a ? a.eta_squared : b.eta_squared;
+    s.specular = choose_a ? a.specular : b.specular;
+    s.valid = choose_a ? a.valid : b.valid;
+    return s;
+}
+
+/* Whether `direction` leaves on the side `normal` points to. Shading normals
+ * bend directions but only the geometric normal says where a ray really goes:
+ * a direction sampled or reflected about ns that points into the surface as
+ * nf sees it, or a path arriving from behind ns at a specular surface, ends
+ * the path (as in Mitsuba 3 and pbrt-v4's treatment of the two normals):
+ * continuing would leak light through the surface or shade from the wrong
+ * side. Without shading normals (`shading_normals` 0, the same for every
+ * lane) ns is nf and every such test passes. */
+WP_FN lane_int leaves_on_side(vec3 direction, vec3 normal, int shading_normals) {
+    return !shading_normals || v3_dot(direction, normal) > REAL(0.0);
+}
+
+#endif
