@@ -5,6 +5,7 @@
 #include "device/parameters.h"
 #include "device/path_queues.h"
 #include "device/scene_hits.h"
+#include "shared/estimator.h"
 
 __kernel __attribute__((reqd_work_group_size(WP_GROUP_SIZE, 1, 1))) void intersect(WP_STAGE_PARAMS) {
     STAGE_QUEUES(intersect, RAY, WP_PUSHES(HIT, FREE));
@@ -18,7 +19,8 @@ __kernel __attribute__((reqd_work_group_size(WP_GROUP_SIZE, 1, 1))) void interse
     vec3 radiance = PATH_READ(radiance, lanes);
 #ifdef WP_HAS_BACKGROUND
     lane_uint dropped = 0u;
-    radiance = add_finite(radiance, v3_mul(PATH_READ(throughput, lanes), uniform_vec3(scene->background)), &dropped);
+    radiance =
+        add_finite(radiance, background_seen(PATH_READ(throughput, lanes), uniform_vec3(scene->background)), &dropped);
     count_nonfinite(slot_nonfinite, WP_COUNTER_NONFINITE_EMISSION, lanes, missed ? dropped : (lane_uint)0u);
 #endif
     finish_paths(pass_radiance, PATH_READ(pass_item, lanes), missed, radiance);

@@ -51,8 +51,8 @@ WP_FN vec3 trace_paths(WP_SCENE_PARAMS, lane_int alive, lane_uint px, lane_uint 
         Hit hit = closest_hit(WP_SCENE_ARGS, origin, d);
         lane_int missed = alive && hit.shape == WP_NO_HIT;
 #ifdef WP_HAS_BACKGROUND
-        radiance =
-            add_finite(radiance, only_where(missed, v3_mul(throughput, uniform_vec3(scene->background))), &dropped[0]);
+        radiance = add_finite(
+            radiance, only_where(missed, background_seen(throughput, uniform_vec3(scene->background))), &dropped[0]);
 #endif
         alive = alive && !missed;
         Vertex v = vertex_at(WP_SCENE_ARGS, hit.shape, origin, d, hit.t);

@@ -7,6 +7,7 @@
 #include "device/lane_memory.h"
 #include "device/parameters.h"
 #include "shared/hit_point.h"
+#include "shared/materials/bsdf.h"
 #include "shared/prelude.h"
 
 typedef struct {
@@ -138,9 +139,10 @@ WP_FN Vertex vertex_at(WP_SCENE_PARAMS, lane_uint shape, vec3 origin, vec3 direc
     Vertex v;
     v.surface = surface_at(WP_SCENE_ARGS, shape, origin, direction, t);
     v.material = material_at(materials, v.surface.material);
-    v.front = v3_dot(direction, v.surface.normal) < REAL(0.0);
-    v.nf = v3_select(v.front, v.surface.normal, v3_neg(v.surface.normal));
-    v.ns = v3_select(v.front, v.surface.shading, v3_neg(v.surface.shading));
+    FacingNormals facing = normals_facing(direction, v.surface.normal, v.surface.shading);
+    v.front = facing.front;
+    v.nf = facing.nf;
+    v.ns = facing.ns;
     return v;
 }
 

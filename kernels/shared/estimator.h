@@ -58,6 +58,10 @@ WP_FN vec3 emission_seen(vec3 emission, lane_int two_sided, lane_int front, real
     return v3_select(seen, v3_scale(v3_mul(throughput, emission), weight), make_vec3(REAL(0.0), REAL(0.0), REAL(0.0)));
 }
 
+/* The radiance a path of throughput `throughput` adds where it leaves the
+ * scene: all of the background's, which no light sample can choose. */
+WP_FN vec3 background_seen(vec3 throughput, vec3 background) { return v3_mul(throughput, background); }
+
 /* Whether a light's side that `light_normal` points to faces x from
  * `light_point`. */
 WP_FN lane_int light_faces(vec3 light_normal, vec3 light_point, vec3 x) {

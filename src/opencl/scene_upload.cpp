@@ -2,9 +2,6 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cmath>
-#include <glm/geometric.hpp>
-#include <glm/trigonometric.hpp>
 #include <sstream>
 
 #include "accel/bvh_layout.h"

@@ -1,7 +1,9 @@
 // The reference path tracer: the estimator of docs/architecture.md ("Conventions"), one camera sample
-// at a time, in plain scalar code over ReferenceScene<Real>. Every random
-// number comes from rng_uniform(seed, pixel, sample, bounce, dimension), so a
-// sample's path depends on nothing but those five numbers.
+// at a time, as a plain loop over the path in scalar code over ReferenceScene<Real>. Every formula
+// at a vertex is the shared code's (kernels/shared: materials/, lights.h, estimator.h,
+// direct_light.h, camera.h), which the kernels call too; this file reaches the scene's data and
+// decides the path's course. Every random number comes from rng_uniform(seed, pixel, sample,
+// bounce, dimension), so a sample's path depends on nothing but those five numbers.
 //
 // Choices the wavefront kernels must repeat to retrace these paths exactly:
 //  - shapes are tested spheres, then planes, then quads, each in scene order,
@@ -10,23 +12,11 @@
 //    shared/hit_point.h (a sphere hit moved back onto the sphere, a triangle
 //    hit interpolated from its barycentric coordinates), and spawned rays
 //    leave from offset_ray_origin(x, side, error);
-//  - the shadow ray runs from offset_ray_origin(x, nf, error) towards
-//    offset_ray_origin(light point, light normal facing x,
-//    shadow_target_error(x, light point, light magnitude)), with the unit
-//    direction and the distance between those two points;
-//  - the diffuse bounce direction is frame_to_world(frame_from_normal(ns),
-//    sample_cosine_hemisphere(u, v)) (or sample_uniform_hemisphere with
-//    render.hemisphere uniform), not renormalised;
-//  - with shading normals (a mesh's vertex normals, ns), BSDFs and the light
-//    sample's cosine use ns, spawned rays leave on the side of the geometric
-//    normal nf, and a path whose new direction is not on the side nf says it
-//    leaves to (or that arrives from behind ns at a mirror or glass) ends.
 #pragma once
 
 #include <cstdint>
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
-#include <numbers>
 #include <type_traits>
 
 #include "core/render.h"
@@ -271,10 +261,10 @@ Vec3<Real> sample_direct_light(const ReferenceScene<Real>& scene, const Vec3<Rea
     LightPoint<Real> p = sample_light(scene, scene.lights[index], x, rng(bounce, DIM_LIGHT_U), rng(bounce, DIM_LIGHT_V),
                                       rng(bounce, DIM_LIGHT_TRIANGLE));
     const auto& emitter = scene.materials[p.material];
-    typename M::DirectLight direct = M::diffuse_direct_light(
-        x, x_error, nf, ns, throughput, albedo, p.sample, p.magnitude,
-        M::light_selection_pmf(scene.light_cdf.data(), index), emitter.emission, emitter.two_sided,
-        scene.render.hemisphere == Hemisphere::Uniform, scene.mis, scene.shading_normals);
+    typename M::DirectLight direct =
+        M::diffuse_direct_light(x, x_error, nf, ns, throughput, albedo, p.sample, p.magnitude,
+                                M::light_selection_pmf(scene.light_cdf.data(), index), emitter.emission,
+                                emitter.two_sided, scene.uniform_hemisphere, scene.mis, scene.shading_normals);
     if (!direct.carries) return Vec3<Real>(Real(0));
     ++counts.shadow;
     const auto& shadow = direct.shadow;
@@ -282,26 +272,24 @@ Vec3<Real> sample_direct_light(const ReferenceScene<Real>& scene, const Vec3<Rea
     return direct.contribution;
 }
 
-// Samples the material at the surface point x, reached along direction d,
-// with the geometric and shading normals nf and ns facing d; the next ray
-// leaves from x on the sample's side.
+// Samples the material at a surface point reached along direction d, on the
+// `front` of the surface (the side its geometric normal points to) or its
+// back, with the geometric and shading normals nf and ns turned to face d.
 template <class Real>
 typename SharedMath<Real>::BsdfSample scatter(const ReferenceScene<Real>& scene,
                                               const typename ReferenceScene<Real>::SurfaceMaterial& material,
-                                              const SurfacePoint<Real>& x, const Vec3<Real>& d, const Vec3<Real>& nf,
+                                              const Vec3<Real>& d, bool front, const Vec3<Real>& nf,
                                               const Vec3<Real>& ns, const SampleRng<Real>& rng, std::uint32_t bounce) {
     using M = SharedMath<Real>;
     switch (material.type) {
         case MaterialType::Mirror:
             return M::mirror_sample(material.reflectance, -d, nf, ns, scene.shading_normals);
-        case MaterialType::Glass: {
-            bool entering = glm::dot(d, x.normal) < Real(0);
-            return M::glass_sample(material.ior, entering, -d, nf, ns, rng(bounce, DIM_BSDF_LOBE),
-                                   WP_TRANSPORT_RADIANCE, scene.shading_normals);
-        }
+        case MaterialType::Glass:
+            return M::glass_sample(material.ior, front, -d, nf, ns, rng(bounce, DIM_BSDF_LOBE), WP_TRANSPORT_RADIANCE,
+                                   scene.shading_normals);
         default:  // diffuse
             return M::diffuse_sample(material.albedo, nf, ns, rng(bounce, DIM_BSDF_U), rng(bounce, DIM_BSDF_V),
-                                     scene.render.hemisphere == Hemisphere::Uniform, scene.shading_normals);
+                                     scene.uniform_hemisphere, scene.shading_normals);
     }
 }
 
@@ -319,14 +307,15 @@ Vec3<Real> trace_path(const ReferenceScene<Real>& scene, Ray<Real> ray, const Sa
         ++counts.extension;
         ShapeHit<Real> hit = closest_hit(scene, ray);
         if (!hit.found()) {
-            add_finite<Real>(radiance, throughput * scene.background, NonfiniteStage::emission, counts);
+            add_finite<Real>(radiance, M::background_seen(throughput, scene.background), NonfiniteStage::emission,
+                             counts);
             break;
         }
         SurfacePoint<Real> surface = surface_at(scene, ray, hit);
         const auto& material = scene.materials[surface.material];
-        bool front = glm::dot(ray.direction, surface.normal) < Real(0);
-        vec3 nf = front ? surface.normal : -surface.normal;
-        vec3 ns = front ? surface.shading : -surface.shading;
+        typename M::FacingNormals facing = M::normals_facing(ray.direction, surface.normal, surface.shading);
+        const bool front = facing.front;
+        const vec3 &nf = facing.nf, &ns = facing.ns;
         bool weighs_emission = scene.mis && !specular && M::emits(material.emission);  // the power heuristic's case
         Real light_pdf =
             weighs_emission ? light_pdf_at_hit(scene, hit, ray.origin, surface.point, surface.normal) : Real(0);
@@ -342,7 +331,7 @@ Vec3<Real> trace_path(const ReferenceScene<Real>& scene, Ray<Real> ray, const Sa
                                                  material.albedo, rng, bounce, counts),
                              NonfiniteStage::direct, counts);
         }
-        typename M::BsdfSample next = scatter(scene, material, surface, ray.direction, nf, ns, rng, bounce);
+        typename M::BsdfSample next = scatter(scene, material, ray.direction, front, nf, ns, rng, bounce);
         if (!next.valid) break;
         throughput *= next.weight;
         ray = {M::offset_ray_origin(surface.point, next.leave_side, surface.error), next.direction};

@@ -2,10 +2,7 @@
 // all path arithmetic runs in Real, as the kernels' runs in float.
 #pragma once
 
-#include <cmath>
 #include <cstdint>
-#include <glm/geometric.hpp>
-#include <glm/trigonometric.hpp>
 #include <memory>
 #include <stdexcept>
 #include <type_traits>
@@ -65,9 +62,10 @@ struct ReferenceScene {
 
     PinholeCamera camera;
     RenderSettings render;
-    bool nee;              // next-event estimation runs (FeatureSet::nee)
-    bool mis;              // with multiple importance sampling (FeatureSet::mis)
-    bool shading_normals;  // some mesh shades with vertex normals (FeatureSet::shading_normals)
+    bool nee;                 // next-event estimation runs (FeatureSet::nee)
+    bool mis;                 // with multiple importance sampling (FeatureSet::mis)
+    bool shading_normals;     // some mesh shades with vertex normals (FeatureSet::shading_normals)
+    bool uniform_hemisphere;  // diffuse vertices sample the uniform hemisphere (render.hemisphere)
     vec3 background;
     std::vector<SurfaceMaterial> materials;
     std::vector<SphereShape> spheres;
@@ -88,6 +86,7 @@ struct ReferenceScene {
           nee(scene.features().nee),
           mis(scene.features().mis),
           shading_normals(scene.features().shading_normals),
+          uniform_hemisphere(scene.render.hemisphere == Hemisphere::Uniform),
           background(scene.background) {
         camera = convert_camera(scene.camera);
         for (const Material& m : scene.materials) {

@@ -66,6 +66,25 @@ double random_number(std::uint32_t sample, std::uint32_t dimension) {
 
 const glm::dvec3 kAlbedo(0.8, 0.5, 0.2);
 
+// The geometric normal alone says which side a path arrives on; the shading
+// normal turns with it, even where it leans so far that the path meets it from
+// its own front.
+TYPED_TEST(Materials, NormalsTurnToTheArrivingPathByTheGeometricNormal) {
+    using R = TypeParam;
+    using M = wp::SharedMath<R>;
+    const Vec3<R> normal(0, 0, 1), shading(Vec3<R>(glm::normalize(glm::dvec3(0.9, 0, 0.2))));
+    const Vec3<R> from_above(Vec3<R>(glm::normalize(glm::dvec3(1, 0, -0.1))));  // meets shading from behind
+    auto above = M::normals_facing(from_above, normal, shading);
+    EXPECT_TRUE(above.front);
+    EXPECT_EQ(above.nf, normal);
+    EXPECT_EQ(above.ns, shading);
+    const Vec3<R> from_below(Vec3<R>(glm::normalize(glm::dvec3(-1, 0, 0.1))));  // meets shading from its front
+    auto below = M::normals_facing(from_below, normal, shading);
+    EXPECT_FALSE(below.front);
+    EXPECT_EQ(below.nf, -normal);
+    EXPECT_EQ(below.ns, -shading);
+}
+
 TYPED_TEST(Materials, DiffusePdfIntegratesToOne) {
     using R = TypeParam;
     using M = wp::SharedMath<R>;

@@ -1,4 +1,4 @@
-// Direction and light sampling (kernels/shared/sampling.h), float and double.
+// Direction and light sampling (kernels/shared/sampling.h, lights.h), float and double.
 //
 // Distributions: Pearson chi-square goodness of fit over bins of equal
 // probability under the intended density, at significance kChiSquareAlpha =

@@ -125,10 +125,9 @@ double reference_hit_distance_sum(const Scene& scene, std::uint32_t rays) {
     double sum = 0.0;
     for (std::uint32_t r = 0; r < rays; ++r) {
         std::uint32_t pixel = r % std::uint32_t(c.width * c.height);
-        float x = (float(pixel % c.width) + 0.5f) / float(c.width),
-              y = (float(pixel / c.width) + 0.5f) / float(c.height);
-        reference::Ray<float> ray{c.position,
-                                  M::camera_direction(c.right, c.up, c.forward, c.tan_half_fov_y, c.aspect, x, y)};
+        reference::Ray<float> ray{
+            c.position, M::pixel_direction(c.frame, float(pixel % c.width), float(pixel / c.width), float(c.width),
+                                           float(c.height), 0.5f, 0.5f)};
         auto hit = reference::closest_hit(ref, ray);
         if (hit.found()) sum += hit.t;
     }

@@ -53,6 +53,25 @@ WP_FN BsdfSample select_bsdf_sample(lane_int choose_a, BsdfSample a, BsdfSample 
     return s;
 }
 
+/* A surface point's two normals turned to the side a path arrives on, and
+ * whether that is the front (the side the geometric normal points to). The
+ * geometric normal alone decides the side: the shading normal is turned with
+ * it (shared/triangle.h keeps it on the geometric normal's side). */
+typedef struct {
+    lane_int front;
+    vec3 nf, ns;
+} FacingNormals;
+
+/* For a path arriving along `direction` at a point of geometric normal
+ * `normal` and shading normal `shading`. */
+WP_FN FacingNormals normals_facing(vec3 direction, vec3 normal, vec3 shading) {
+    FacingNormals f;
+    f.front = v3_dot(direction, normal) < REAL(0.0);
+    f.nf = v3_select(f.front, normal, v3_neg(normal));
+    f.ns = v3_select(f.front, shading, v3_neg(shading));
+    return f;
+}
+
 /* Whether `direction` leaves on the side `normal` points to. Shading normals
  * bend directions but only the geometric normal says where a ray really goes:
  * a direction sampled or reflected about ns that points into the surface as
