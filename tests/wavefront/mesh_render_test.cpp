@@ -5,6 +5,7 @@
 
 #include "megakernel/megakernel_renderer.h"
 #include "reference/reference_renderer.h"
+#include "reference/reference_scene.h"
 #include "support/analytic_scenes.h"
 #include "support/meshes.h"
 #include "support/path_agreement.h"
@@ -114,6 +115,45 @@ TEST(MeshRender, EightLanesRetraceTheReferenceAsOneLaneDoes) {
     MegakernelOptions megakernel_options;
     megakernel_options.lanes = 8;
     EXPECT_EQ(render_megakernel(scene, megakernel_options, {}).image.rgb, eight.image.rgb) << "megakernel, 8 lanes";
+}
+
+// A parallelogram corner + u edge1 + v edge2 as a two-triangle mesh, its
+// front on the side of edge1 x edge2.
+Mesh panel(const glm::dvec3& corner, const glm::dvec3& edge1, const glm::dvec3& edge2, int material) {
+    Mesh mesh;
+    mesh.file = "panel (test)";
+    mesh.material = material;
+    mesh.positions = {corner, corner + edge1, corner + edge1 + edge2, corner + edge2};
+    mesh.triangles = {{0, 1, 2}, {0, 2, 3}};
+    return mesh;
+}
+
+// Two mesh lights and a plain mesh, placed so that a triangle of the first
+// light has, in the BVH's order, the index at which the second light's
+// triangles start among the light triangles: the light a hit belongs to is
+// its mesh's alone, whatever its index. The kernels once also took a light
+// whose shape word equalled the hit's (kernels/device/path_vertex.h before
+// light_key), which weighted that triangle's emission by the other light's
+// density: 207 of these 2304 pixels then disagreed with the reference.
+TEST(MeshRender, TwoMeshLightsRetraceTheReferencePathForPath) {
+    test::RenderBlock block{.width = 48, .height = 48, .spp = 1, .max_depth = 3, .rr_depth = 3, .seed = 5};
+    Scene scene = test::empty_scene(block, {0.0, -0.5, -3.0}, 60.0);
+    int white = test::add_material(scene, test::diffuse({0.7, 0.7, 0.7}));
+    int dim = test::add_material(scene, test::emitter({2.0, 2.0, 2.0}));
+    int bright = test::add_material(scene, test::emitter({20.0, 10.0, 5.0}));
+    scene.planes.push_back({{0.0, -1.0, 0.0}, {0.0, 1.0, 0.0}, white});
+    scene.meshes.push_back(panel({-2.5, -1.0, -5.0}, {5.0, 0.0, 0.0}, {0.0, 3.0, 0.0}, white));  // back wall
+    scene.meshes.push_back(panel({-2.0, 1.0, -4.5}, {2.5, 0.0, 0.0}, {0.0, 0.0, 3.0}, dim));     // faces down
+    scene.meshes.push_back(panel({-2.6, 0.9, -3.0}, {0.4, 0.0, 0.0}, {0.0, 0.0, 0.4}, bright));
+    build_light_table(scene);
+    reference::ReferenceScene<float> ref(scene);
+    ASSERT_EQ(ref.lights.size(), 2u);
+    const std::uint32_t second_light_start = ref.lights[1].first_triangle;
+    ASSERT_LT(second_light_start, ref.triangles.size());
+    ASSERT_EQ(ref.triangles[second_light_start].mesh, 1u) << "the first light's mesh holds that triangle index";
+    RenderResult reference = render_reference(scene, ReferenceOptions{2, false});
+    test::expect_path_for_path_agreement(render_wavefront(scene, {}, {}), reference, "wavefront, two mesh lights");
+    test::expect_path_for_path_agreement(render_megakernel(scene, {}, {}), reference, "megakernel, two mesh lights");
 }
 
 }  // namespace
