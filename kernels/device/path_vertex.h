@@ -20,13 +20,14 @@
 #include "shared/materials/diffuse.h"
 #endif
 #ifdef WP_HAS_MIRROR
-#include "shared/materials/mirror.h"
+#include "shared/materials/mirror.h" /* (and shared/fresnel.h, before the poison below) */
+#endif
+#ifndef WP_HAS_GLASS
+/* Without glass the dielectric code must not be compiled in: any use is a build error. */
+#pragma GCC poison fresnel_dielectric refract_direction
 #endif
 #ifdef WP_HAS_GLASS
 #include "shared/materials/glass.h"
-#else
-/* Without glass the dielectric code must not be compiled in: any use is a build error. */
-#pragma GCC poison fresnel_dielectric refract_direction
 #endif
 #include "device/camera.h"
 #include "device/features.h"

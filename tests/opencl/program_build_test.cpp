@@ -221,7 +221,7 @@ TEST(KernelOptions, ArchitectureDocListsEveryMacroTheyEmit) {
 // Without glass the kernels are built without WP_HAS_GLASS, and
 // kernels/device/path_vertex.h then poisons the dielectric functions: the
 // build succeeding proves no dielectric code is compiled in. The poison is
-// checked too: the same program with the glass branch forced in fails.
+// checked too: the same program with the glass material forced in fails.
 TEST(ProgramBuild, SceneWithoutGlassBuildsWithoutDielectricCode) {
     TempDir cache, kernels;
     ScopedEnv cache_env("WAVEPATH_CACHE_DIR", cache.path.string());
@@ -234,7 +234,8 @@ TEST(ProgramBuild, SceneWithoutGlassBuildsWithoutDielectricCode) {
 
     fs::path dir = copy_kernels(kernels.path / "kernels");
     ScopedEnv kernel_env("WAVEPATH_KERNEL_DIR", dir.string());
-    replace_in_file(dir / "device" / "path_vertex.h", "#ifdef WP_HAS_GLASS\n/* Fresnel", "#if 1\n/* Fresnel");
+    replace_in_file(dir / "device" / "path_vertex.h", "#ifdef WP_HAS_GLASS\n#include \"shared/materials/glass.h\"",
+                    "#if 1\n#include \"shared/materials/glass.h\"");
     try {
         build_wavefront(device, no_glass);
         FAIL() << "the glass code compiled without WP_HAS_GLASS";
@@ -250,11 +251,11 @@ TEST(ProgramBuild, EveryKernelHeaderCompilesOnItsOwn) {
     DeviceInfo device = choose_device("");
     cl::Context context(device.device);
     int headers = 0;
+    const fs::path root(WAVEPATH_SOURCE_DIR "/kernels");
     for (const char* folder : {"shared", "interface", "device"}) {
-        for (const fs::directory_entry& entry :
-             fs::directory_iterator(fs::path(WAVEPATH_SOURCE_DIR "/kernels") / folder)) {
-            const std::string include =
-                std::string("#include \"") + folder + "/" + entry.path().filename().string() + "\"\n";
+        for (const fs::directory_entry& entry : fs::recursive_directory_iterator(root / folder)) {
+            if (!entry.is_regular_file()) continue;  // shared/materials/ holds headers of its own
+            const std::string include = "#include \"" + entry.path().lexically_relative(root).string() + "\"\n";
             for (const char* lanes : {"1", "8"}) {
                 SCOPED_TRACE(include + " with " + lanes + " lanes");
                 cl::Program program(context, include + include);
