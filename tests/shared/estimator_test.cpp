@@ -58,9 +58,10 @@ TYPED_TEST(Estimator, PowerHeuristicIsVeachsBetaTwo) {
     EXPECT_EQ(M::power_heuristic(R(1), R(0)), R(1));
 }
 
-// The two strategies' weights for one sample, emission_weight (the bounce's)
-// and light_sample_weight, each given its own density first, sum to 1 over densities from 1e-15 to 1e15 apart (whose
-// squares would overflow float), and each lies in [0, 1].
+// The two strategies' weights for one sample, emission_weight (the
+// bounce's) and light_sample_weight, each given its own density first, sum
+// to 1 over densities from 1e-15 to 1e15 apart (whose squares would overflow
+// float), and each lies in [0, 1].
 TYPED_TEST(Estimator, EmissionAndLightSampleWeightsOfOneSampleSumToOne) {
     using R = TypeParam;
     using M = wp::SharedMath<R>;
