@@ -165,7 +165,8 @@ void add_backend_options(CLI::App& render, BackendOptions& options) {
 std::string estimator_name(const BackendOptions& options) {
     if (options.name != "reference") return "opencl";
     // Embree and the BVH differ in which of two shapes at one distance a ray hits, so in a few bits.
-    return "reference-" + options.precision + (reference_intersector(options) == Intersector::Embree ? "-embree" : "");
+    // (Embree traces in float only.)
+    return "reference-" + (reference_intersector(options) == Intersector::Embree ? "embree" : options.precision);
 }
 
 void run_with_backend(const Scene& scene, const BackendOptions& options, const Progress& progress,

@@ -38,8 +38,8 @@ std::vector<std::string> backend_names();
 
 // What a film from this backend's estimator is, for checkpoints and partial
 // films: "opencl" (wavefront and megakernel agree bit for bit),
-// "reference-float" or "reference-double", "-embree" after it for the
-// reference with the Embree intersector.
+// "reference-float", "reference-double" or "reference-embree" (the reference
+// tracing with Embree, in float); at most 16 bytes, the film file's field.
 std::string estimator_name(const BackendOptions& options);
 
 // What the command does with the backend's FilmRenderer once it is set up.

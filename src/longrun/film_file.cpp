@@ -5,6 +5,7 @@
 #include <cstring>
 #include <fstream>
 #include <iterator>
+#include <stdexcept>
 #include <vector>
 
 #include "core/atomic_file.h"
@@ -67,9 +68,12 @@ std::vector<char> encode(const FilmFile& file) {
     w.put(std::uint32_t((film.squares.empty() ? 0 : kFlagSquares) | (film.in_round() ? kFlagRound : 0)));
     w.put(file.identity.scene);
     w.put(file.identity.settings);
+    // A name of all 16 bytes has no NUL after it; the reader stops at 16.
+    if (file.identity.estimator.size() > kEstimatorBytes)
+        throw std::logic_error("estimator name '" + file.identity.estimator + "' is longer than the film file's " +
+                               std::to_string(kEstimatorBytes) + " bytes");
     std::array<char, kEstimatorBytes> estimator{};
-    std::copy_n(file.identity.estimator.begin(), std::min(file.identity.estimator.size(), kEstimatorBytes - 1),
-                estimator.begin());
+    std::copy(file.identity.estimator.begin(), file.identity.estimator.end(), estimator.begin());
     w.put_bytes(estimator.data(), estimator.size());
     w.put(std::uint32_t(film.width));
     w.put(std::uint32_t(film.height));

@@ -23,8 +23,8 @@ struct RenderIdentity {
     // render can be continued to more samples than first asked for.
     std::uint64_t settings = 0;
     // "opencl" (wavefront and megakernel, whose images are bit-identical),
-    // "reference-float" or "reference-double", "-embree" after it for the
-    // reference with the Embree intersector.
+    // "reference-float", "reference-double" or "reference-embree" (the
+    // reference tracing with Embree, in float); at most 16 bytes.
     std::string estimator;
 
     bool operator==(const RenderIdentity&) const = default;

@@ -83,7 +83,7 @@ TEST_F(LongRenderCli, RefusedCheckpointsChangeNothing) {
         {small_room_render_args(output, 8, {"--resume", checkpoint, "--width", "16"}),
          checkpoint + ": a film of 32x32 pixels"},
         {small_room_render_args(output, 8, {"--resume", checkpoint, "--backend", "reference"}),
-         checkpoint + ": rendered by the opencl estimator, this render uses reference-float"},
+         checkpoint + ": rendered by the opencl estimator, this render uses reference-embree"},
         {small_room_render_args(output, 2, {"--resume", checkpoint}),
          checkpoint + ": holds 3 samples per pixel, more than the 2"},
         {small_room_render_args(output, 8, {"--resume", out_ / "truncated.wpfilm"}), "truncated"},

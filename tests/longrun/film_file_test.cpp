@@ -7,6 +7,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <stdexcept>
 
 #include "support/analytic_scenes.h"
 #include "support/film_sums.h"
@@ -62,6 +63,19 @@ TEST_F(FilmFileTest, ReadsBackWhatWasWritten) {
         EXPECT_TRUE(test::same_sums(read.film.squares, film.squares));
     }
     EXPECT_EQ(dir_.entries(), std::vector<std::string>{"film.wpfilm"});  // no temporary left
+}
+
+// The estimator field holds 16 bytes: a name of all 16 reads back whole (it
+// once lost its last byte, so "reference-double" came back "reference-doubl"
+// and longer names collided with shorter ones); a longer one is refused when
+// written, never cut.
+TEST_F(FilmFileTest, EstimatorNamesOfSixteenBytesReadBackWholeAndLongerOnesAreRefused) {
+    for (const char* name : {"reference-double", "reference-embree", "reference-float"}) {
+        write_film_file(path_, {{0x1234, 0x5678, name}, example_film(false)});
+        EXPECT_EQ(read_film_file(path_).identity.estimator, name);
+    }
+    EXPECT_THROW(write_film_file(path_, {{0x1234, 0x5678, "reference-float-embree"}, example_film(false)}),
+                 std::logic_error);
 }
 
 TEST_F(FilmFileTest, TruncatedFilesAreRefused) {
