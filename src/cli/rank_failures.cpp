@@ -28,11 +28,14 @@ void on_every_rank(Ranks& ranks, const std::function<void()>& step) {
     // The first failing rank and its exit code, as the root sees them.
     struct Verdict {
         int rank = -1, exit_code = 0;
-    } verdict;
+    };
     const std::vector<std::uint64_t> codes = ranks.gather({std::uint64_t(failure ? exit_code_of(failure) : 0)});
-    for (std::size_t r = 0; r < codes.size() && verdict.rank < 0; ++r)
-        if (codes[r] != 0) verdict = {int(r), int(codes[r])};
-    ranks.broadcast(verdict);
+    const Verdict verdict = ranks.root_decides([&] {
+        Verdict first;
+        for (std::size_t r = 0; r < codes.size() && first.rank < 0; ++r)
+            if (codes[r] != 0) first = {int(r), int(codes[r])};
+        return first;
+    });
     if (verdict.rank < 0) return;
     if (verdict.rank == ranks.rank()) report_error(failure, rank_prefix(ranks));
     throw AlreadyReported(verdict.exit_code);

@@ -39,6 +39,19 @@ class Ranks {
         values.resize(size);
         if (size > 0) broadcast_bytes(values.data(), size * sizeof(T));
     }
+    // The root decides, every rank follows: `decide()` runs on the root
+    // alone, and every rank returns the root's result (a trivially copyable
+    // value or a vector of them, broadcast). Like every call here it is a
+    // collective: each rank makes it at the same point, so a branch on its
+    // result is taken alike everywhere, and what only the root knows (its
+    // clock, the summed films) reaches every rank only through it.
+    template <class Decide>
+    std::invoke_result_t<Decide&> root_decides(Decide&& decide) {
+        std::invoke_result_t<Decide&> decision{};
+        if (is_root()) decision = decide();
+        broadcast(decision);
+        return decision;
+    }
     // Every rank's `values` (each rank passes as many), in rank order, on the
     // root; empty elsewhere.
     virtual std::vector<std::uint64_t> gather(const std::vector<std::uint64_t>& values) = 0;

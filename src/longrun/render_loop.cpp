@@ -93,61 +93,233 @@ class Shares {
     double busy_s_ = 0.0;
 };
 
-// The root's adaptive round of the film it resumes, taken by every other
-// rank (their renderers start empty at work item `at`).
-void join_round(FilmRenderer& renderer, Ranks& ranks, std::uint64_t at) {
-    std::vector<std::uint32_t> pixels = renderer.round_pixels(), before;
-    if (ranks.is_root() && !pixels.empty()) before = renderer.film().samples_before;
-    ranks.broadcast(pixels);
-    ranks.broadcast(before);
-    if (ranks.is_root() || pixels.empty()) return;
-    Film round = empty_like(renderer.film(), at);
-    round.round_pixels = std::move(pixels);
-    round.samples_before = std::move(before);
-    renderer.load(round);
-}
+// Where the render is, in work items of adaptive sampling's round (over
+// every pixel unless it has stopped some). Every rank holds the same values:
+// each comes from the plan, from the root's decisions (Ranks::root_decides)
+// or from the renderer's round, which every rank begins alike.
+struct Position {
+    std::uint64_t done = 0;        // every rank together has rendered [film_begin, done)
+    std::uint64_t film_begin = 0;  // plan.items.begin, or the adaptive round's first work item
+    std::uint64_t pixels = 0;      // the round's pixels: a sample per pixel is this many work items
+    ItemRange planned;             // plan.items, counted in the round's work items
+    // The samples per pixel at which the round began (a checkpoint's film
+    // starts there); 0 outside a round.
+    std::uint64_t round_start_spp = 0;
+    std::uint64_t next_check = UINT64_MAX;  // where the error is next estimated; UINT64_MAX: never
+    std::uint64_t round_items = 0;          // a round: a pass of the root's renderer on every rank
+    std::uint64_t rendered = 0;             // work items rendered by this run, on all ranks
+};
 
-// At a check (a whole sample count of the round's pixels), on the root's
-// `film` (every rank's sums): the image's error estimate against the target,
-// then, if it `decide`s there, adaptive sampling's decision, which may begin
-// a round over fewer pixels on every rank. Returns why the render stops
-// there, if it does (`last`: it ends there anyway); every rank returns the same.
-std::optional<StopReason> check(Shares& shares, const LongRunPlan& plan, const Film& film, std::uint64_t pixels,
-                                bool decide, bool last, Ranks& ranks, LongRunResult& result) {
-    if (plan.target_error > 0.0) {
-        double error = ranks.is_root() ? relative_standard_error(film) : 0.0;
-        ranks.broadcast(error);
-        result.error = error;
-        if (error <= plan.target_error) return last ? StopReason::Done : StopReason::TargetError;
-    }
-    if (decide) {
-        std::vector<std::uint32_t> active;
-        if (ranks.is_root()) active = pixels_still_active(film, plan.adaptive.threshold);
-        ranks.broadcast(active);
-        if (active.empty()) return last ? StopReason::Done : StopReason::Converged;
-        if (active.size() < pixels) shares.begin_round(std::move(active), film.items);
-    }
-    return std::nullopt;
-}
+// One rank's part of run_long_render. The ranks work in lockstep: every rank
+// makes the same collective calls (the methods marked "Collective") in the
+// same order, so the root's decisions reach them all. A collective call is
+// made unconditionally or behind a test of the plan, the Position or a
+// decision of the root's; what one rank alone knows (its clock, its stop
+// request, its sums) reaches the others only through such a call.
+class LongRender {
+ public:
+    LongRender(FilmRenderer& renderer, const LongRunPlan& plan, const Progress& progress, Ranks& ranks)
+        : renderer_(renderer), plan_(plan), progress_(progress), ranks_(ranks), shares_(renderer) {}
 
-// Rays, threads and non-finite values summed over the ranks, and each rank's
-// work items and busy time, into `result` on the root (time_s is the caller's).
-void gather_stats(const RenderStats& mine, const Shares& shares, Ranks& ranks, LongRunResult& result) {
-    std::vector<std::uint64_t> figures{shares.rendered(), std::uint64_t(shares.busy_s() * 1e9), mine.extension_rays,
-                                       mine.shadow_rays, mine.threads};
-    figures.insert(figures.end(), mine.nonfinite_by_stage.begin(), mine.nonfinite_by_stage.end());
-    const std::vector<std::uint64_t> all = ranks.gather(figures);
-    for (std::size_t at = 0; at < all.size(); at += figures.size()) {
-        result.samples_per_rank.push_back(all[at]);
-        result.busy_s_per_rank.push_back(double(all[at + 1]) * 1e-9);
-        result.stats.extension_rays += all[at + 2];
-        result.stats.shadow_rays += all[at + 3];
-        result.stats.threads += all[at + 4];
-        NonfiniteCounts counts{};
-        std::copy_n(all.begin() + std::ptrdiff_t(at + 5), counts.size(), counts.begin());
-        result.stats.add_nonfinite(counts);
+    // Collective: the whole render, every rank's from the same plan.
+    LongRunResult run() {
+        start();
+        while (position_.done < position_.planned.end) {
+            if (out_of_time()) return finish(StopReason::TimeBudget);
+            const auto round_began = Clock::now();
+            render_round();
+            if (position_.done == position_.next_check)
+                if (const std::optional<StopReason> stop = check()) return finish(*stop);
+            const bool stop = stop_requested();
+            // After waiting for every rank: the round of the slowest.
+            longest_round_s_ = std::max(longest_round_s_, seconds_since(round_began));
+            if (stop)
+                return finish(position_.done < position_.planned.end ? StopReason::Interrupted : StopReason::Done);
+            if (checkpoint_due()) write_checkpoint(film_so_far());
+        }
+        return finish(StopReason::Done);
     }
-}
+
+ private:
+    // Collective: where the root's film starts (a checkpoint, with the
+    // adaptive round it may be in, which every other rank's empty film
+    // takes) and the round size, then the position they give.
+    void start() {
+        if (plan_.start) renderer_.load(*plan_.start);
+        position_.done = ranks_.root_decides([&] { return plan_.start ? plan_.start->items.end : plan_.items.begin; });
+        position_.film_begin =
+            ranks_.root_decides([&] { return plan_.start ? plan_.start->items.begin : plan_.items.begin; });
+        join_adaptive_round();
+        position_.round_items =
+            ranks_.root_decides([&] { return renderer_.pass_items() * std::uint64_t(ranks_.size()); });
+        take_round_pixels();
+        position_.round_start_spp = renderer_.round_pixels().empty() ? 0 : position_.film_begin / position_.pixels;
+        const bool checks = plan_.target_error > 0.0 || plan_.adaptive.on();
+        if (checks) position_.next_check = next_check_after(position_.done / position_.pixels) * position_.pixels;
+        progress_.report(double(position_.done - position_.planned.begin) /
+                         double(std::max<std::uint64_t>(position_.planned.size(), 1)));
+    }
+
+    // Collective: the root's adaptive round, taken by every other rank
+    // (their renderers start empty where the root's film ends).
+    void join_adaptive_round() {
+        std::vector<std::uint32_t> pixels = ranks_.root_decides([&] { return renderer_.round_pixels(); });
+        std::vector<std::uint32_t> before = ranks_.root_decides(
+            [&] { return pixels.empty() ? std::vector<std::uint32_t>{} : renderer_.film().samples_before; });
+        if (ranks_.is_root() || pixels.empty()) return;
+        Film round = empty_like(renderer_.film(), position_.done);
+        round.round_pixels = std::move(pixels);
+        round.samples_before = std::move(before);
+        renderer_.load(round);
+    }
+
+    // The renderer's round (its pixels) as the Position's.
+    void take_round_pixels() {
+        const std::vector<std::uint32_t>& round = renderer_.round_pixels();
+        position_.pixels = round.empty() ? plan_.pixels : std::uint64_t(round.size());
+        position_.planned = position_.pixels == plan_.pixels
+                                ? plan_.items
+                                : ItemRange{plan_.items.begin / plan_.pixels * position_.pixels,
+                                            plan_.items.end / plan_.pixels * position_.pixels};
+    }
+
+    // Collective, with a time budget: whether the next round would end past
+    // it, by the root's clock (it is assumed to take as long as the longest).
+    bool out_of_time() {
+        if (plan_.time_budget_s <= 0.0 || position_.rendered == 0) return false;
+        return ranks_.root_decides([&] { return seconds_since(started_) + longest_round_s_ > plan_.time_budget_s; });
+    }
+
+    // This rank's share of the next round, which ends at the planned end,
+    // after a pass on every rank, or at the next check.
+    void render_round() {
+        const ItemRange round{position_.done, std::min({position_.planned.end, position_.done + position_.round_items,
+                                                        position_.next_check})};
+        shares_.render(share_of(round, ranks_.rank(), ranks_.size()),
+                       round_progress(progress_, position_.planned, round));
+        position_.rendered += round.size();
+        position_.done = round.end;
+    }
+
+    // Collective, at a check (a whole sample count of the round's pixels):
+    // the root estimates the image's error against the target, then, if
+    // adaptive sampling decides there, which pixels go on; fewer begin a
+    // round over them on every rank. Returns why the render stops there, if
+    // it does.
+    std::optional<StopReason> check() {
+        const std::uint64_t spp = position_.done / position_.pixels;
+        const bool last = position_.done == position_.planned.end;  // it ends there anyway
+        const Film film = film_so_far();
+        if (plan_.target_error > 0.0) {
+            result_.error = ranks_.root_decides([&] { return relative_standard_error(film); });
+            if (result_.error <= plan_.target_error) return last ? StopReason::Done : StopReason::TargetError;
+        }
+        if (decides_at(spp)) {
+            std::vector<std::uint32_t> active =
+                ranks_.root_decides([&] { return pixels_still_active(film, plan_.adaptive.threshold); });
+            if (active.empty()) return last ? StopReason::Done : StopReason::Converged;
+            if (active.size() < position_.pixels) begin_adaptive_round(std::move(active), film.items, spp);
+        }
+        position_.next_check = next_check_after(spp) * position_.pixels;
+        return std::nullopt;
+    }
+
+    // Adaptive sampling's round over `pixels`, begun alike by every rank
+    // after `done` (the film's range so far), at `spp` samples per pixel.
+    void begin_adaptive_round(std::vector<std::uint32_t> pixels, const ItemRange& done, std::uint64_t spp) {
+        shares_.begin_round(std::move(pixels), done);
+        take_round_pixels();
+        position_.done = renderer_.items().end;
+        position_.film_begin = position_.done;
+        position_.round_start_spp = spp;
+    }
+
+    // Adaptive sampling decides at the checks from its minimum on that lie
+    // at least a whole image's worth of work items after the round began,
+    // so that a round over few pixels is not cut into passes too small to
+    // fill the device (a wavefront pass costs some iterations over all its slots).
+    bool decides_at(std::uint64_t spp) const {
+        return plan_.adaptive.on() && spp >= plan_.adaptive.min_spp &&
+               (spp - position_.round_start_spp) * position_.pixels >= plan_.pixels;
+    }
+
+    // The samples per pixel of the next check after `spp`: the error's next
+    // estimate, or adaptive sampling's next decision when there is no target.
+    std::uint64_t next_check_after(std::uint64_t spp) const {
+        std::uint64_t next = next_error_check(spp);
+        while (plan_.target_error <= 0.0 && !decides_at(next)) next = next_error_check(next);
+        return next;
+    }
+
+    // Collective: whether a stop was requested on any rank.
+    bool stop_requested() { return ranks_.any(plan_.stop_requested && plan_.stop_requested->load()); }
+
+    // Collective, with a checkpoint file and work left: whether one is due,
+    // by the root's clock.
+    bool checkpoint_due() {
+        if (plan_.checkpoint_path.empty() || position_.done >= position_.planned.end) return false;
+        return ranks_.root_decides([&] { return seconds_since(last_checkpoint_) >= plan_.checkpoint_every_s; });
+    }
+
+    // Writes `film` (the root's) as the checkpoint.
+    void write_checkpoint(const Film& film) {
+        if (ranks_.is_root()) write_film_file(plan_.checkpoint_path, {plan_.identity, film});
+        ++result_.checkpoints;
+        last_checkpoint_ = Clock::now();
+    }
+
+    // Collective: every rank's sums so far, on the root.
+    Film film_so_far() {
+        Film film = shares_.sums();
+        ranks_.sum_films_to_root(film);
+        film.items = {position_.film_begin, position_.done};
+        return film;
+    }
+
+    // Collective: the film, the last checkpoint and every rank's figures.
+    LongRunResult finish(StopReason reason) {
+        result_.reason = reason;
+        result_.film = film_so_far();
+        if (!plan_.checkpoint_path.empty()) write_checkpoint(result_.film);
+        gather_stats();
+        result_.stats.samples = position_.rendered;
+        result_.stats.time_s = seconds_since(started_);
+        renderer_.finish(result_.stats.time_s);
+        return std::move(result_);
+    }
+
+    // Collective: rays, threads and non-finite values summed over the ranks,
+    // and each rank's work items and busy time, on the root.
+    void gather_stats() {
+        const RenderStats mine = renderer_.stats();
+        std::vector<std::uint64_t> figures{shares_.rendered(), std::uint64_t(shares_.busy_s() * 1e9),
+                                           mine.extension_rays, mine.shadow_rays, mine.threads};
+        figures.insert(figures.end(), mine.nonfinite_by_stage.begin(), mine.nonfinite_by_stage.end());
+        const std::vector<std::uint64_t> all = ranks_.gather(figures);
+        for (std::size_t at = 0; at < all.size(); at += figures.size()) {
+            result_.samples_per_rank.push_back(all[at]);
+            result_.busy_s_per_rank.push_back(double(all[at + 1]) * 1e-9);
+            result_.stats.extension_rays += all[at + 2];
+            result_.stats.shadow_rays += all[at + 3];
+            result_.stats.threads += all[at + 4];
+            NonfiniteCounts counts{};
+            std::copy_n(all.begin() + std::ptrdiff_t(at + 5), counts.size(), counts.begin());
+            result_.stats.add_nonfinite(counts);
+        }
+    }
+
+    FilmRenderer& renderer_;
+    const LongRunPlan& plan_;
+    const Progress& progress_;
+    Ranks& ranks_;
+    Shares shares_;
+    Position position_;
+    LongRunResult result_;
+    // This rank's clock (the root's decides).
+    const Clock::time_point started_ = Clock::now();
+    Clock::time_point last_checkpoint_ = started_;
+    double longest_round_s_ = 0.0;
+};
 
 }  // namespace
 
@@ -168,118 +340,7 @@ const char* stop_reason_name(StopReason reason) {
 }
 
 LongRunResult run_long_render(FilmRenderer& renderer, const LongRunPlan& plan, const Progress& progress, Ranks& ranks) {
-    const auto start = Clock::now();
-    if (plan.start) renderer.load(*plan.start);
-    std::uint64_t at = plan.start ? plan.start->items.end : plan.items.begin;
-    ranks.broadcast(at);
-    // Where the film's range begins: plan.items.begin, or the adaptive round's first work item.
-    std::uint64_t film_begin = plan.start ? plan.start->items.begin : plan.items.begin;
-    ranks.broadcast(film_begin);
-    join_round(renderer, ranks, at);
-    // A round is a pass of the root's renderer on every rank.
-    std::uint64_t round_items = renderer.pass_items() * std::uint64_t(ranks.size());
-    ranks.broadcast(round_items);
-    Shares shares(renderer);
-    LongRunResult result;
-    // Every rank's sums so far, on the root (every rank must call it).
-    auto film_so_far = [&] {
-        Film film = shares.sums();
-        ranks.sum_films_to_root(film);
-        film.items = {film_begin, at};
-        return film;
-    };
-    auto checkpoint = [&](const Film& film) {
-        if (ranks.is_root()) write_film_file(plan.checkpoint_path, {plan.identity, film});
-        ++result.checkpoints;
-    };
-    auto last_checkpoint = start;
-    double longest_round_s = 0.0;
-    // Work items count in the adaptive round's pixels (all of them unless
-    // adaptive sampling has stopped some; the same on every rank): the
-    // planned range in those items, and where the render is in it.
-    auto round_pixel_count = [&] {
-        return renderer.round_pixels().empty() ? plan.pixels : std::uint64_t(renderer.round_pixels().size());
-    };
-    std::uint64_t pixels = round_pixel_count();
-    auto planned_in_round = [&] {
-        if (pixels == plan.pixels) return plan.items;
-        return ItemRange{plan.items.begin / plan.pixels * pixels, plan.items.end / plan.pixels * pixels};
-    };
-    ItemRange planned = planned_in_round();
-    std::uint64_t samples = 0;
-    // The samples per pixel at which the round began (a checkpoint's film
-    // starts there). Adaptive sampling decides at the checks from its minimum
-    // on that lie at least a whole image's worth of work items after that, so
-    // that a round over few pixels is not cut into passes too small to fill
-    // the device (a wavefront pass costs some iterations over all its slots).
-    std::uint64_t round_start = renderer.round_pixels().empty() ? 0 : film_begin / pixels;
-    auto decides_at = [&](std::uint64_t spp) {
-        return plan.adaptive.on() && spp >= plan.adaptive.min_spp && (spp - round_start) * pixels >= plan.pixels;
-    };
-    // Work items at which the error is next estimated (none without a target
-    // or adaptive sampling); adaptive sampling alone at its decisions only.
-    const bool checks = plan.target_error > 0.0 || plan.adaptive.on();
-    auto next_check_spp = [&](std::uint64_t spp) {
-        std::uint64_t next = next_error_check(spp);
-        while (plan.target_error <= 0.0 && !decides_at(next)) next = next_error_check(next);
-        return next;
-    };
-    std::uint64_t next_check = checks ? next_check_spp(at / pixels) * pixels : UINT64_MAX;
-    progress.report(double(at - planned.begin) / double(std::max<std::uint64_t>(planned.size(), 1)));
-    while (at < planned.end) {
-        // The next round is assumed to take as long as the longest so far.
-        if (plan.time_budget_s > 0.0 && samples > 0) {
-            bool out_of_time = seconds_since(start) + longest_round_s > plan.time_budget_s;
-            ranks.broadcast(out_of_time);
-            if (out_of_time) {
-                result.reason = StopReason::TimeBudget;
-                break;
-            }
-        }
-        const ItemRange round{at, std::min({planned.end, at + round_items, next_check})};
-        const auto round_began = Clock::now();
-        shares.render(share_of(round, ranks.rank(), ranks.size()), round_progress(progress, planned, round));
-        samples += round.size();
-        at = round.end;
-        if (at == next_check) {
-            const std::uint64_t spp = at / pixels;
-            if (const auto stop =
-                    check(shares, plan, film_so_far(), pixels, decides_at(spp), at == planned.end, ranks, result)) {
-                result.reason = *stop;
-                break;
-            }
-            if (round_pixel_count() != pixels) {  // a round over fewer pixels began
-                pixels = round_pixel_count();
-                planned = planned_in_round();
-                at = renderer.items().end;
-                film_begin = at;
-                round_start = spp;
-            }
-            next_check = next_check_spp(spp) * pixels;
-        }
-        // After waiting for every rank: the round of the slowest.
-        const bool stop = ranks.any(plan.stop_requested && plan.stop_requested->load());
-        longest_round_s = std::max(longest_round_s, seconds_since(round_began));
-        if (stop) {
-            result.reason = at < planned.end ? StopReason::Interrupted : StopReason::Done;
-            break;
-        }
-        if (!plan.checkpoint_path.empty() && at < planned.end) {
-            bool due = seconds_since(last_checkpoint) >= plan.checkpoint_every_s;
-            ranks.broadcast(due);
-            if (due) {
-                checkpoint(film_so_far());
-                last_checkpoint = Clock::now();
-            }
-        }
-    }
-    result.film = film_so_far();
-    if (!plan.checkpoint_path.empty()) checkpoint(result.film);
-    gather_stats(renderer.stats(), shares, ranks, result);
-    result.stats.samples = samples;
-    result.stats.time_s = seconds_since(start);
-    renderer.finish(result.stats.time_s);
-    return result;
+    return LongRender(renderer, plan, progress, ranks).run();
 }
 
 LongRunResult run_long_render(FilmRenderer& renderer, const LongRunPlan& plan, const Progress& progress) {
