@@ -8,6 +8,7 @@
 #include "cli/errors.h"
 #include "cli/flag_checks.h"
 #include "megakernel/megakernel_renderer.h"
+#include "opencl/lanes.h"
 #include "opencl/program_cache.h"
 #include "reference/reference_renderer.h"
 #include "wavefront/wavefront_renderer.h"
@@ -75,7 +76,7 @@ void run_on_wavefront(const Scene& scene, const BackendOptions& options, const P
                       std::uint64_t max_items, const FilmRun& run) {
     check_opencl_intersector(options);
     if (options.lanes != 0)
-        if (std::string problem = lanes_problem(options.lanes, options.compaction); !problem.empty())
+        if (std::string problem = lanes_problem(options.lanes, wavefront_lanes(options.compaction)); !problem.empty())
             throw UsageError(problem);
     WavefrontOptions wavefront{options.device, options.wavefront};
     wavefront.profile = wants_profile(options);
@@ -94,7 +95,9 @@ void run_on_megakernel(const Scene& scene, const BackendOptions& options, const 
                        const FilmRun& run) {
     check_opencl_intersector(options);
     if (options.lanes != 0)
-        if (std::string problem = megakernel_lanes_problem(options.lanes); !problem.empty()) throw UsageError(problem);
+        if (std::string problem = lanes_problem(options.lanes, LaneProgram::megakernel(scene.features().meshes));
+            !problem.empty())
+            throw UsageError(problem);
     run_on_opencl<MegakernelReport>(options, run, [&](MegakernelReport& report) {
         return make_megakernel_renderer(
             scene, {options.device, wants_profile(options), options.film_squares, options.lanes}, progress, &report);

@@ -1,13 +1,13 @@
 #include "megakernel/megakernel_renderer.h"
 
 #include <algorithm>
-#include <stdexcept>
 
 #include "interface/queues.h"
 #include "opencl/device.h"
 #include "opencl/film.h"
 #include "opencl/kernel_arguments.h"
 #include "opencl/kernel_options.h"
+#include "opencl/lanes.h"
 #include "opencl/launcher.h"
 #include "opencl/program_cache.h"
 #include "opencl/scene_upload.h"
@@ -34,16 +34,6 @@ NonfiniteCounts nonfinite_counts(const std::vector<std::uint32_t>& counts) {
     return by_stage;
 }
 
-// 8 lanes on CPUs, but 1 for meshes: a lane's BVH traversal diverges from the
-// others' at every node, and a work item waits for its longest path, so whole
-// paths of 8 such lanes ran slower than one lane (bench/results/analysis.md,
-// "Lanes with meshes").
-unsigned resolve_lanes(unsigned requested, const DeviceInfo& device, bool meshes) {
-    unsigned lanes = requested != 0 ? requested : device.type == "CPU" && !meshes ? 8u : 1u;
-    if (std::string problem = megakernel_lanes_problem(lanes); !problem.empty()) throw std::invalid_argument(problem);
-    return lanes;
-}
-
 class MegakernelFilmRenderer : public FilmRenderer {
  public:
     MegakernelFilmRenderer(const Scene& scene, const MegakernelOptions& options, const Progress& progress,
@@ -53,11 +43,9 @@ class MegakernelFilmRenderer : public FilmRenderer {
           queue_(context_, device_.device,
                  options.profile ? cl_command_queue_properties(CL_QUEUE_PROFILING_ENABLE) : 0),
           launcher_(queue_, options.profile),
-          lanes_(resolve_lanes(options.lanes, device_, scene.features().meshes)),
+          lanes_(resolve_lanes(options.lanes, LaneProgram::megakernel(scene.features().meshes), device_)),
           program_(build_program(context_, device_, {"megakernel.cl", "accumulate.cl"},
-                                 kernel_build_options(scene.features(), scene.render.hemisphere) +
-                                     film_build_options(options.film_squares) + shape_count_options(scene) +
-                                     " -DWP_LANES=" + std::to_string(lanes_),
+                                 program_build_options(scene, scene.features(), options.film_squares, "", lanes_),
                                  progress)),
           scene_(context_, flatten_scene(scene)),
           pass_radiance_(context_, CL_MEM_READ_WRITE, sizeof(float) * 3 * kPassSize),
@@ -141,11 +129,6 @@ class MegakernelFilmRenderer : public FilmRenderer {
 };
 
 }  // namespace
-
-std::string megakernel_lanes_problem(unsigned lanes) {
-    if (lanes != 1 && lanes != 8) return "megakernel lanes must be 1 or 8, not " + std::to_string(lanes);
-    return "";
-}
 
 std::unique_ptr<FilmRenderer> make_megakernel_renderer(const Scene& scene, const MegakernelOptions& options,
                                                        const Progress& progress, MegakernelReport* report) {

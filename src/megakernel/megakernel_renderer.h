@@ -19,12 +19,8 @@ struct MegakernelOptions {
     std::string device;         // as WavefrontOptions::device
     bool profile = false;       // time the launches with OpenCL events
     bool film_squares = false;  // the film keeps sums of squares (per-pixel variance)
-    unsigned lanes = 0;         // paths per work item: 1 or 8; 0: 8 on CPU devices without meshes, else 1
+    unsigned lanes = 0;         // paths per work item: 1 or 8; 0: resolve_lanes' choice (opencl/lanes.h)
 };
-
-// Why the megakernel cannot run `lanes` paths per work item ("" when it can):
-// 1 or 8.
-std::string megakernel_lanes_problem(unsigned lanes);
 
 struct MegakernelReport {
     std::string device;

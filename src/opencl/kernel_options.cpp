@@ -3,6 +3,8 @@
 #include <utility>
 #include <vector>
 
+#include "opencl/film.h"
+
 namespace wp {
 namespace {
 
@@ -51,6 +53,12 @@ std::string shape_count_options(const Scene& scene) {
     add("WP_QUAD_COUNT", scene.quads.size());
     add("WP_LIGHT_COUNT", scene.lights.size());
     return options;
+}
+
+std::string program_build_options(const Scene& scene, const FeatureSet& kernel_features, bool film_squares,
+                                  const std::string& backend_options, unsigned lanes) {
+    return kernel_build_options(kernel_features, scene.render.hemisphere) + film_build_options(film_squares) +
+           shape_count_options(scene) + backend_options + " -DWP_LANES=" + std::to_string(lanes);
 }
 
 std::string describe_features(const FeatureSet& features) {

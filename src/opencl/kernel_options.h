@@ -25,6 +25,13 @@ inline constexpr std::size_t kMaxUnrolledCount = 32;
 // (kernels/shared/prelude.h, "Lanes").
 std::string shape_count_options(const Scene& scene);
 
+// The build options of a renderer's program, for `kernel_features` (normally
+// scene.features()): kernel_build_options, the film's (film_build_options),
+// shape_count_options, the backend's own `backend_options` (each with a
+// space before it) and " -DWP_LANES=<lanes>".
+std::string program_build_options(const Scene& scene, const FeatureSet& kernel_features, bool film_squares,
+                                  const std::string& backend_options, unsigned lanes);
+
 // The features in use, space-separated ("spheres quads diffuse glass ..."), for --explain.
 std::string describe_features(const FeatureSet& features);
 

@@ -1,29 +1,15 @@
 #include "wavefront/compaction.h"
 
-#include <stdexcept>
-
 #include "interface/queues.h"
 #include "opencl/kernel_arguments.h"
 
 namespace wp {
 
 std::string compaction_build_option(Compaction compaction) {
-    return compaction == Compaction::Scan ? "-DWP_COMPACT_SCAN" : "";
+    return compaction == Compaction::Scan ? " -DWP_COMPACT_SCAN" : "";
 }
 
-std::string lanes_problem(unsigned lanes, Compaction compaction) {
-    if (lanes != 1 && lanes != 8) return "wavefront lanes must be 1 or 8, not " + std::to_string(lanes);
-    if (lanes != 1 && compaction != Compaction::Scan)
-        return "--lanes " + std::to_string(lanes) + " needs --compaction scan (atomic pushes are per work item)";
-    return "";
-}
-
-unsigned resolve_lanes(unsigned requested, Compaction compaction, const DeviceInfo& device) {
-    bool vector_lanes = device.type == "CPU" && compaction == Compaction::Scan;
-    unsigned lanes = requested != 0 ? requested : vector_lanes ? 8u : 1u;
-    if (std::string problem = lanes_problem(lanes, compaction); !problem.empty()) throw std::invalid_argument(problem);
-    return lanes;
-}
+LaneProgram wavefront_lanes(Compaction compaction) { return LaneProgram::wavefront(compaction == Compaction::Scan); }
 
 ScanCompaction::ScanCompaction(const cl::Context& context, const cl::Program& program, const cl::Buffer& queues,
                                const cl::Buffer& counts, std::size_t capacity)

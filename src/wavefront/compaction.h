@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <string>
 
-#include "opencl/device.h"
+#include "opencl/lanes.h"
 #include "opencl/launcher.h"
 
 namespace wp {
@@ -20,18 +20,11 @@ enum class Compaction {
 // PoCL (bench/results/defaults.md).
 inline constexpr Compaction kDefaultCompaction = Compaction::Scan;
 
-// "-DWP_COMPACT_SCAN" for scan compaction, "" for atomic.
+// " -DWP_COMPACT_SCAN" for scan compaction, "" for atomic.
 std::string compaction_build_option(Compaction compaction);
 
-// Why `lanes` paths per work item cannot run with `compaction` (atomic pushes
-// are per work item), or "" when they can.
-std::string lanes_problem(unsigned lanes, Compaction compaction);
-
-// The lanes the stage kernels use: `requested` (1 or 8), or when 0, 8 on CPU
-// devices with scan compaction (a work item's vector code is the only SIMD
-// PoCL gives, kernels/shared/prelude.h) and 1 elsewhere (GPUs run work items
-// in SIMD already). Throws std::invalid_argument with lanes_problem's words.
-unsigned resolve_lanes(unsigned requested, Compaction compaction, const DeviceInfo& device);
+// The stage kernels' program as resolve_lanes sees it (opencl/lanes.h).
+LaneProgram wavefront_lanes(Compaction compaction);
 
 // The three kernels of kernels/compact.cl over one queues buffer: each queue
 // selected by a mask is rebuilt from its marks, in ascending slot order.

@@ -9,13 +9,6 @@
 namespace wp {
 namespace {
 
-std::string program_options(const Scene& scene, bool film_squares, const FeatureSet& kernel_features,
-                            Compaction compaction, unsigned lanes) {
-    return kernel_build_options(kernel_features, scene.render.hemisphere) + film_build_options(film_squares) +
-           shape_count_options(scene) + " " + compaction_build_option(compaction) +
-           " -DWP_LANES=" + std::to_string(lanes);
-}
-
 // The kernel of a declared stage, or a DeviceError naming the stage whose file defines no such kernel.
 cl::Kernel stage_kernel(const cl::Program& program, const StageDeclaration& stage) {
     try {
@@ -43,13 +36,14 @@ Pipeline::Pipeline(const Scene& scene, const DeviceInfo& device, std::size_t cap
                    const FeatureSet& kernel_features, const PipelineOptions& options)
     : capacity_(capacity),
       pass_capacity_(pass_capacity),
-      lanes_(resolve_lanes(options.lanes, options.compaction, device)),
+      lanes_(resolve_lanes(options.lanes, wavefront_lanes(options.compaction), device)),
       iteration_(iteration_stages(kernel_features)),
       context_(device.device),
       queue_(context_, device.device, options.profile ? cl_command_queue_properties(CL_QUEUE_PROFILING_ENABLE) : 0),
       launcher_(queue_, options.profile),
       program_(build_program(context_, device, wavefront_kernel_files(),
-                             program_options(scene, options.film_squares, kernel_features, options.compaction, lanes_),
+                             program_build_options(scene, kernel_features, options.film_squares,
+                                                   compaction_build_option(options.compaction), lanes_),
                              options.progress)),
       scene_(context_, flatten_scene(scene)),
       state_(context_, capacity, kernel_features),

@@ -1,0 +1,31 @@
+// Lanes: the paths a work item of a program runs at once, as vector code
+// (-DWP_LANES; docs/architecture.md, "Lanes"). Both OpenCL backends compile
+// 1 or 8; which they take by default is each one's own policy, stated
+// side by side in resolve_lanes.
+#pragma once
+
+#include <string>
+
+#include "opencl/device.h"
+
+namespace wp {
+
+// The program whose lanes are chosen: its backend, and what in it decides.
+struct LaneProgram {
+    enum class Backend { Wavefront, Megakernel };
+    Backend backend;
+    bool scan_compaction = false;  // the wavefront's (atomic pushes are per work item)
+    bool meshes = false;           // the scene has triangle meshes
+
+    static LaneProgram wavefront(bool scan_compaction) { return {Backend::Wavefront, scan_compaction, false}; }
+    static LaneProgram megakernel(bool meshes) { return {Backend::Megakernel, false, meshes}; }
+};
+
+// Why `program` cannot run `lanes` paths per work item, or "" when it can.
+std::string lanes_problem(unsigned lanes, const LaneProgram& program);
+
+// The lanes `program` uses on `device`: `requested` (1 or 8), or when 0 the
+// backend's default there. Throws std::invalid_argument with lanes_problem's words.
+unsigned resolve_lanes(unsigned requested, const LaneProgram& program, const DeviceInfo& device);
+
+}  // namespace wp

@@ -1,0 +1,48 @@
+// The lanes each OpenCL backend takes (opencl/lanes.h): by default, and the
+// requests it refuses, with the words the command line prints.
+#include "opencl/lanes.h"
+
+#include <gtest/gtest.h>
+
+#include <stdexcept>
+
+namespace wp {
+namespace {
+
+DeviceInfo device_of_type(const char* type) {
+    DeviceInfo device;
+    device.type = type;
+    return device;
+}
+
+TEST(ResolveLanes, EightOnCpusOneOnGpusByDefault) {
+    const DeviceInfo cpu = device_of_type("CPU"), gpu = device_of_type("GPU");
+    EXPECT_EQ(resolve_lanes(0, LaneProgram::wavefront(true), cpu), 8u);
+    EXPECT_EQ(resolve_lanes(0, LaneProgram::wavefront(true), gpu), 1u);
+    EXPECT_EQ(resolve_lanes(0, LaneProgram::megakernel(false), cpu), 8u);
+    EXPECT_EQ(resolve_lanes(0, LaneProgram::megakernel(false), gpu), 1u);
+}
+
+TEST(ResolveLanes, EachBackendsExceptionsToEightOnCpus) {
+    const DeviceInfo cpu = device_of_type("CPU");
+    EXPECT_EQ(resolve_lanes(0, LaneProgram::wavefront(false), cpu), 1u) << "atomic pushes are per work item";
+    EXPECT_EQ(resolve_lanes(0, LaneProgram::megakernel(true), cpu), 1u) << "meshes in the megakernel";
+    EXPECT_EQ(resolve_lanes(8, LaneProgram::megakernel(true), cpu), 8u) << "a request overrides the default";
+    EXPECT_EQ(resolve_lanes(1, LaneProgram::wavefront(true), cpu), 1u);
+}
+
+TEST(ResolveLanes, RefusesWhatTheProgramCannotRun) {
+    EXPECT_EQ(lanes_problem(4, LaneProgram::wavefront(true)), "wavefront lanes must be 1 or 8, not 4");
+    EXPECT_EQ(lanes_problem(4, LaneProgram::megakernel(false)), "megakernel lanes must be 1 or 8, not 4");
+    EXPECT_EQ(lanes_problem(8, LaneProgram::wavefront(false)),
+              "--lanes 8 needs --compaction scan (atomic pushes are per work item)");
+    for (unsigned lanes : {1u, 8u}) {
+        EXPECT_EQ(lanes_problem(lanes, LaneProgram::megakernel(true)), "");
+        EXPECT_EQ(lanes_problem(lanes, LaneProgram::wavefront(true)), "");
+    }
+    EXPECT_EQ(lanes_problem(1, LaneProgram::wavefront(false)), "");
+    EXPECT_THROW(resolve_lanes(8, LaneProgram::wavefront(false), device_of_type("CPU")), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace wp
