@@ -10,12 +10,12 @@
 
 namespace wp {
 
-// The program whose lanes are chosen: its backend, and what in it decides.
+// The program whose lanes are chosen: its backend, and what decides there.
 struct LaneProgram {
     enum class Backend { Wavefront, Megakernel };
     Backend backend;
-    bool scan_compaction = false;  // the wavefront's (atomic pushes are per work item)
-    bool meshes = false;           // the scene has triangle meshes
+    bool scan_compaction = false;  // the wavefront's: its queues filled by scans, not atomic pushes
+    bool meshes = false;           // the megakernel's: the scene has triangle meshes
 
     static LaneProgram wavefront(bool scan_compaction) { return {Backend::Wavefront, scan_compaction, false}; }
     static LaneProgram megakernel(bool meshes) { return {Backend::Megakernel, false, meshes}; }
