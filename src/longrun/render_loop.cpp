@@ -102,10 +102,10 @@ class Shares {
 struct Position {
     std::uint64_t done = 0;        // every rank together has rendered [film_begin, done)
     std::uint64_t film_begin = 0;  // plan.items.begin, or the adaptive round's first work item
-    std::uint64_t pixels = 0;      // the round's pixels: a sample per pixel is this many work items
-    ItemRange planned;             // plan.items, counted in the round's work items
-    // The samples per pixel at which the round began (a checkpoint's film
-    // starts there); 0 outside a round.
+    std::uint64_t pixels = 0;      // the adaptive round's: a sample per pixel is this many work items
+    ItemRange planned;             // plan.items, counted in the adaptive round's work items
+    // The samples per pixel at which the adaptive round began (a
+    // checkpoint's film starts there); 0 outside one.
     std::uint64_t round_start_spp = 0;
     std::uint64_t next_check = UINT64_MAX;  // where the error is next estimated; UINT64_MAX: never
     std::uint64_t round_items = 0;          // a round: a pass of the root's renderer on every rank
@@ -175,7 +175,7 @@ class LongRender {
         renderer_.load(round);
     }
 
-    // The renderer's round (its pixels) as the Position's.
+    // The renderer's adaptive round (its pixels) as the Position's.
     void take_round_pixels() {
         const std::vector<std::uint32_t>& round = renderer_.round_pixels();
         position_.pixels = round.empty() ? plan_.pixels : std::uint64_t(round.size());
