@@ -5,8 +5,11 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <condition_variable>
+#include <functional>
 #include <glm/geometric.hpp>
 #include <limits>
+#include <mutex>
 #include <stdexcept>
 #include <thread>
 
@@ -22,21 +25,15 @@ constexpr HostHit kNoHit{M::real_max, WP_NO_HIT};
 
 std::uint32_t shape_id(std::uint32_t kind, std::uint32_t index) { return kind << WP_SHAPE_TYPE_SHIFT | index; }
 
-// What the tests and callbacks need of one ray, found through the Embree
-// ray's id (its index among the rays of one query).
+// One ray as the tests and the callbacks see it.
 struct Lane {
     vec3 origin, direction;
-    M::TriangleRay triangle_ray;  // the triangle test's shear, once per ray
+    M::TriangleRay triangle_ray;  // the triangle test's shear, set before a triangle is tested (with_triangle_ray)
     float t_max;                  // the ray's own: every test runs on it, so no hit depends on what was found before
     float search_slack;           // search_limit's absolute part, the scene's
     bool traceable;               // finite, with a positive t_max: handed to Embree
     HostHit best;                 // closest so far
     bool occluded;
-    // EmbreeTriangles::Filter: where Embree's watertight test and ours
-    // share a point between triangles differently, Embree may not offer the
-    // triangle ours hits; such rays are traced again on our test alone.
-    bool best_on_edge;  // ours puts the closest hit exactly on an edge or vertex (another triangle's too)
-    float disputed_t;   // the nearest Embree hit our test misses (infinity: none)
 };
 
 Lane make_lane(const RayArrays& rays, std::uint32_t slot, float search_slack) {
@@ -45,12 +42,9 @@ Lane make_lane(const RayArrays& rays, std::uint32_t slot, float search_slack) {
     lane.origin = vec3(rays.origin[0][slot], rays.origin[1][slot], rays.origin[2][slot]);
     lane.direction = vec3(rays.direction[0][slot], rays.direction[1][slot], rays.direction[2][slot]);
     lane.t_max = rays.t_max ? std::min(rays.t_max[slot], M::real_max) : M::real_max;
-    lane.triangle_ray = M::triangle_ray(lane.direction);
     lane.traceable = M::vec3_is_finite(lane.origin) && M::vec3_is_finite(lane.direction) && lane.t_max > 0.0f;
     lane.best = kNoHit;
     lane.occluded = false;
-    lane.best_on_edge = false;
-    lane.disputed_t = kInfinity;
     return lane;
 }
 
@@ -59,21 +53,25 @@ Lane make_lane(const vec3& origin, const vec3& direction, float t_max, float sea
     return make_lane(RayArrays{o, d, &t_max}, 0, search_slack);
 }
 
+void with_triangle_ray(Lane& lane) { lane.triangle_ray = M::triangle_ray(lane.direction); }
+
 // `candidate` becomes the lane's closest hit if it is a hit and precedes the closest so far.
 bool offer(Lane& lane, const HostHit& candidate) {
     if (!(candidate.t < lane.t_max) || !hit_precedes(candidate, lane.best)) return false;
     lane.best = candidate;
-    lane.best_on_edge = false;
     return true;
 }
 
 // Embree's t_far for a ray whose search ends at t: a little beyond t, so
-// that a shape our test puts at t (a tie) or just before it is still
-// tested although Embree's rounding puts its box (or its own distance to a
-// triangle) farther: 2^-10 of t, far above both roundings, also for rays
-// grazing a surface, plus the scene's search_slack for short rays, whose
-// distances both compute with errors of the coordinates' size.
+// that a shape our test puts at t (a tie) or just before it is still found
+// although Embree's rounding puts its box (or its own distance to an
+// enlarged triangle) farther: 2^-10 of t, far above both roundings, also
+// for rays grazing a surface, plus the scene's search_slack for short rays,
+// whose distances both compute with errors of the coordinates' size.
 float search_limit(const Lane& lane, float t) { return t * (1.0f + 0x1p-10f) + lane.search_slack; }
+
+// Embree's t_far for a lane's query: beyond its closest hit so far, or beyond its t_max.
+float initial_t_far(const Lane& lane) { return search_limit(lane, std::min(lane.best.t, lane.t_max)); }
 
 // ---- the shapes, each with our test ----
 
@@ -85,6 +83,8 @@ RTCBounds widened_box(const vec3& lower, const vec3& upper) {
     auto above = [margin](float x) { return std::nextafter(x + margin, kInfinity); };
     return {below(lower.x), below(lower.y), below(lower.z), 0.0f, above(upper.x), above(upper.y), above(upper.z), 0.0f};
 }
+
+using Corners = std::array<glm::dvec3, 3>;
 
 struct SphereShape {
     static constexpr std::uint32_t kind = WP_SHAPE_SPHERE;
@@ -102,6 +102,8 @@ struct PlaneShape {
 
 struct QuadShape {
     static constexpr std::uint32_t kind = WP_SHAPE_QUAD;
+    static constexpr unsigned triangles =
+        2;  // as Embree's triangles: (c, c + e1, c + e1 + e2), (c, c + e1 + e2, c + e2)
     vec3 corner, edge1, edge2;
     M::QuadPlane plane;  // quad_plane(edge1, edge2), once
     float t(const Lane& ray) const {
@@ -112,35 +114,27 @@ struct QuadShape {
         return widened_box(glm::min(glm::min(corner, far), glm::min(a, b)),
                            glm::max(glm::max(corner, far), glm::max(a, b)));
     }
+    Corners corners(unsigned half) const {
+        glm::dvec3 c(corner), e1(edge1), e2(edge2);
+        return half == 0 ? Corners{c, c + e1, c + e1 + e2} : Corners{c, c + e1 + e2, c + e2};
+    }
 };
 
 struct TriangleShape {
     static constexpr std::uint32_t kind = WP_SHAPE_TRIANGLE;
+    static constexpr unsigned triangles = 1;
     M::MeshTriangle triangle;
+    // Needs with_triangle_ray(ray).
     float t(const Lane& ray) const { return M::mesh_triangle_t(&triangle, ray.triangle_ray, ray.origin, ray.t_max); }
-    M::TriangleEdges edges(const Lane& ray) const {
-        return M::ray_triangle_edges(ray.triangle_ray, M::triangle_vertex(triangle.p0), M::triangle_vertex(triangle.p1),
-                                     M::triangle_vertex(triangle.p2), ray.origin);
-    }
     RTCBounds box() const {
         vec3 p0 = M::triangle_vertex(triangle.p0), p1 = M::triangle_vertex(triangle.p1),
              p2 = M::triangle_vertex(triangle.p2);
         return widened_box(glm::min(p0, glm::min(p1, p2)), glm::max(p0, glm::max(p1, p2)));
     }
-};
-
-// The shapes as the reference and the kernels convert them to float.
-struct AnalyticShapes {
-    std::vector<SphereShape> spheres;
-    std::vector<PlaneShape> planes;
-    std::vector<QuadShape> quads;
-
-    explicit AnalyticShapes(const Scene& scene) {
-        for (const Sphere& s : scene.spheres) spheres.push_back({vec3(s.center), float(s.radius)});
-        for (const Plane& p : scene.planes) planes.push_back({vec3(p.point), vec3(p.normal)});
-        for (const Quad& q : scene.quads)
-            quads.push_back(
-                {vec3(q.corner), vec3(q.edge1), vec3(q.edge2), M::quad_plane(vec3(q.edge1), vec3(q.edge2))});
+    Corners corners(unsigned) const {
+        Corners p;
+        for (int a = 0; a < 3; ++a) p[0][a] = triangle.p0[a], p[1][a] = triangle.p1[a], p[2][a] = triangle.p2[a];
+        return p;
     }
 };
 
@@ -154,116 +148,19 @@ bool any_of(const std::vector<Shape>& shapes, const Lane& lane) {
     return std::any_of(shapes.begin(), shapes.end(), [&](const Shape& s) { return s.t(lane) < lane.t_max; });
 }
 
-// ---- Embree's callbacks ----
-
-// The intersect context Embree hands to the callbacks, with the query's lanes after it.
-struct QueryContext {
-    RTCIntersectContext embree;  // first: callbacks get a pointer to it
-    Lane* lanes;
-
-    explicit QueryContext(Lane* l) : lanes(l) { rtcInitIntersectContext(&embree); }
-    static Lane& lane(const RTCIntersectContext* context, RTCRayN* ray, unsigned n, unsigned i) {
-        return reinterpret_cast<const QueryContext*>(context)->lanes[RTCRayN_id(ray, n, i)];
-    }
-};
-
-// User geometry: one primitive of Embree's a shape of ours.
-template <class Shape>
-struct ShapeList {
-    const std::vector<Shape>* shapes;
-    unsigned count() const { return unsigned(shapes->size()); }
-    bool offer_hits(Lane& lane, unsigned primitive) const {
-        return offer(lane, {(*shapes)[primitive].t(lane), shape_id(Shape::kind, primitive)});
-    }
-    bool hits(const Lane& lane, unsigned primitive) const { return (*shapes)[primitive].t(lane) < lane.t_max; }
-    RTCBounds box(unsigned primitive) const { return (*shapes)[primitive].box(); }
-};
-
-// Our tests of one primitive for each valid ray.
-template <class Primitives>
-void user_intersect(const RTCIntersectFunctionNArguments* args) {
-    const auto& primitives = *static_cast<const Primitives*>(args->geometryUserPtr);
-    RTCRayN* ray = RTCRayHitN_RayN(args->rayhit, args->N);
-    RTCHitN* hit = RTCRayHitN_HitN(args->rayhit, args->N);
-    for (unsigned i = 0; i < args->N; ++i) {
-        if (!args->valid[i]) continue;
-        Lane& lane = QueryContext::lane(args->context, ray, args->N, i);
-        if (!primitives.offer_hits(lane, args->primID)) continue;
-        RTCRayN_tfar(ray, args->N, i) = search_limit(lane, lane.best.t);
-        RTCHitN_geomID(hit, args->N, i) = args->geomID;
-        RTCHitN_primID(hit, args->N, i) = args->primID;
-    }
-}
-
-template <class Primitives>
-void user_occluded(const RTCOccludedFunctionNArguments* args) {
-    const auto& primitives = *static_cast<const Primitives*>(args->geometryUserPtr);
-    for (unsigned i = 0; i < args->N; ++i) {
-        if (!args->valid[i]) continue;
-        Lane& lane = QueryContext::lane(args->context, args->ray, args->N, i);
-        if (!primitives.hits(lane, args->primID)) continue;
-        lane.occluded = true;
-        RTCRayN_tfar(args->ray, args->N, i) = -kInfinity;  // Embree's mark of an occluded ray
-    }
-}
-
-template <class Primitives>
-void user_bounds(const RTCBoundsFunctionArguments* args) {
-    *args->bounds_o = static_cast<const Primitives*>(args->geometryUserPtr)->box(args->primID);
-}
-
-// Embree's own triangles: each hit its test finds is our test's to accept,
-// at our distance; Embree then searches on to a little beyond it. A hit ours
-// misses is disputed (ours gives that point to a neighbour, which Embree may
-// then not offer), and a hit ours puts exactly on an edge may have a
-// neighbour ours puts first: either sends the ray to be traced again on our
-// test alone (EmbreeIntersector::Impl::settle).
-void triangle_filter(const RTCFilterFunctionNArguments* args) {
-    const auto* triangles = static_cast<const TriangleShape*>(args->geometryUserPtr);
-    for (unsigned i = 0; i < args->N; ++i) {
-        if (!args->valid[i]) continue;
-        Lane& lane = QueryContext::lane(args->context, args->ray, args->N, i);
-        std::uint32_t index = RTCHitN_primID(args->hit, args->N, i);
-        M::TriangleEdges e = triangles[index].edges(lane);
-        float t = M::triangle_distance(e, lane.t_max);
-        if (!(t < lane.t_max)) lane.disputed_t = std::min(lane.disputed_t, RTCRayN_tfar(args->ray, args->N, i));
-        if (offer(lane, {t, shape_id(WP_SHAPE_TRIANGLE, index)})) {
-            lane.best_on_edge = e.e0 == 0.0f || e.e1 == 0.0f || e.e2 == 0.0f;
-            RTCRayN_tfar(args->ray, args->N, i) = search_limit(lane, lane.best.t);
-        } else {
-            args->valid[i] = 0;
-        }
-    }
-}
-
-void triangle_occlusion_filter(const RTCFilterFunctionNArguments* args) {
-    const auto* triangles = static_cast<const TriangleShape*>(args->geometryUserPtr);
-    for (unsigned i = 0; i < args->N; ++i) {
-        if (!args->valid[i]) continue;
-        Lane& lane = QueryContext::lane(args->context, args->ray, args->N, i);
-        if (triangles[RTCHitN_primID(args->hit, args->N, i)].t(lane) < lane.t_max) {
-            lane.occluded = true;
-        } else {
-            lane.disputed_t = std::min(lane.disputed_t, RTCRayN_tfar(args->ray, args->N, i));
-            args->valid[i] = 0;
-        }
-    }
-}
-
-// EmbreeTriangles::Filter hands Embree each triangle enlarged so that every
+// EmbreeMode::Verified hands Embree each triangle enlarged so that every
 // edge lies `margin` farther out (scaled about its incenter by 1 + margin /
 // inradius, at most doubled, then rounded outward): Embree's robust test,
 // which decides the points near an edge or vertex otherwise than ours and
-// can miss all the triangles around a vertex, then offers every triangle
-// ours hits (and some it does not, which the filter rejects and which send
-// the ray to be traced again). The margin, 2^-18 of the scene's largest
-// coordinate (64 of its float steps), is many times both tests' rounding;
-// it shrinks only as seen by a ray grazing the surface.
+// can miss all the triangles around a vertex, then hits every shape ours
+// hits. The margin, 2^-18 of the scene's largest coordinate (64 of its
+// float steps), is many times both tests' rounding; it shrinks only as seen
+// by a ray grazing the surface. The enlargement keeps the triangle's plane
+// (but for the rounding of its corners), so Embree's distances stay ours
+// within rounding.
 constexpr double kEnlargement = 0x1p-18;
 
-std::array<vec3, 3> enlarged(const M::MeshTriangle& t, double margin) {
-    std::array<glm::dvec3, 3> p;
-    for (int a = 0; a < 3; ++a) p[0][a] = t.p0[a], p[1][a] = t.p1[a], p[2][a] = t.p2[a];
+std::array<vec3, 3> enlarged(const Corners& p, double margin) {
     double a = glm::length(p[1] - p[2]), b = glm::length(p[2] - p[0]), c = glm::length(p[0] - p[1]);
     double perimeter = a + b + c;
     double inradius = glm::length(glm::cross(p[1] - p[0], p[2] - p[0])) / perimeter;
@@ -282,117 +179,225 @@ std::array<vec3, 3> enlarged(const M::MeshTriangle& t, double margin) {
     return out;
 }
 
+// ---- Embree's callbacks ----
+
+// The intersect context Embree hands to the callbacks, with the query's lane after it.
+struct QueryContext {
+    RTCIntersectContext embree;  // first: callbacks get a pointer to it
+    Lane* lane;
+
+    explicit QueryContext(Lane& l) : lane(&l) { rtcInitIntersectContext(&embree); }
+    static Lane& of(const RTCIntersectContext* context) {
+        return *reinterpret_cast<const QueryContext*>(context)->lane;
+    }
+};
+
+// Embree's primitives of one kind of our shapes: each a shape (user
+// geometry) or one of Shape::triangles triangles of a shape (Verified).
+template <class Shape>
+struct ShapeList {
+    const std::vector<Shape>* shapes;
+    static std::uint32_t shape_of(unsigned primitive) { return primitive / Shape::triangles; }
+    unsigned count() const { return unsigned(shapes->size()); }
+    HostHit hit(const Lane& lane, unsigned primitive) const {
+        return {(*shapes)[primitive].t(lane), shape_id(Shape::kind, primitive)};
+    }
+    bool hits(const Lane& lane, unsigned primitive) const { return (*shapes)[primitive].t(lane) < lane.t_max; }
+    RTCBounds box(unsigned primitive) const { return (*shapes)[primitive].box(); }
+};
+
+// Our test of one primitive (user geometry, EmbreeMode::Exact).
+template <class Shapes>
+void user_intersect(const RTCIntersectFunctionNArguments* args) {
+    if (!args->valid[0]) return;  // one ray at a time (N = 1)
+    const auto& shapes = *static_cast<const Shapes*>(args->geometryUserPtr);
+    Lane& lane = QueryContext::of(args->context);
+    if (!offer(lane, shapes.hit(lane, args->primID))) return;
+    RTCRayN* ray = RTCRayHitN_RayN(args->rayhit, args->N);
+    RTCHitN* hit = RTCRayHitN_HitN(args->rayhit, args->N);
+    RTCRayN_tfar(ray, args->N, 0) = search_limit(lane, lane.best.t);
+    RTCHitN_geomID(hit, args->N, 0) = args->geomID;
+    RTCHitN_primID(hit, args->N, 0) = args->primID;
+}
+
+template <class Shapes>
+void user_occluded(const RTCOccludedFunctionNArguments* args) {
+    if (!args->valid[0]) return;
+    const auto& shapes = *static_cast<const Shapes*>(args->geometryUserPtr);
+    Lane& lane = QueryContext::of(args->context);
+    if (!shapes.hits(lane, args->primID)) return;
+    lane.occluded = true;
+    RTCRayN_tfar(args->ray, args->N, 0) = -kInfinity;  // Embree's mark of an occluded ray
+}
+
+template <class Shapes>
+void user_bounds(const RTCBoundsFunctionArguments* args) {
+    *args->bounds_o = static_cast<const Shapes*>(args->geometryUserPtr)->box(args->primID);
+}
+
+// EmbreeMode::Verified's any hit: each shape Embree's enlarged triangles
+// offer counts only where our test hits it before t_max.
+template <class Shapes>
+void verified_occlusion_filter(const RTCFilterFunctionNArguments* args) {
+    if (!args->valid[0]) return;
+    const auto& shapes = *static_cast<const Shapes*>(args->geometryUserPtr);
+    Lane& lane = QueryContext::of(args->context);
+    if (shapes.hits(lane, Shapes::shape_of(RTCHitN_primID(args->hit, args->N, 0))))
+        lane.occluded = true;
+    else
+        args->valid[0] = 0;
+}
+
 // ---- queries ----
 
-void set_ray(RTCRay& ray, const Lane& lane, float t_far, unsigned id) {
+void set_ray(RTCRay& ray, const Lane& lane, float t_far) {
     ray.org_x = lane.origin.x, ray.org_y = lane.origin.y, ray.org_z = lane.origin.z;
     ray.dir_x = lane.direction.x, ray.dir_y = lane.direction.y, ray.dir_z = lane.direction.z;
     ray.tnear = 0.0f, ray.tfar = t_far, ray.time = 0.0f;
-    ray.mask = ~0u, ray.id = id, ray.flags = 0;
+    ray.mask = ~0u, ray.id = 0, ray.flags = 0;
 }
 
-template <class RayK>
-void set_ray(RayK& ray, int k, const Lane& lane, float t_far) {
-    ray.org_x[k] = lane.origin.x, ray.org_y[k] = lane.origin.y, ray.org_z[k] = lane.origin.z;
-    ray.dir_x[k] = lane.direction.x, ray.dir_y[k] = lane.direction.y, ray.dir_z[k] = lane.direction.z;
-    ray.tnear[k] = 0.0f, ray.tfar[k] = t_far, ray.time[k] = 0.0f;
-    ray.mask[k] = ~0u, ray.id[k] = unsigned(k), ray.flags[k] = 0;
-}
+// Rays per chunk of a queue: a thread takes chunks in turn, and the rays of
+// one chunk, traced one after the other, have their found shapes' data
+// fetched while the next ones are traced.
+constexpr std::size_t kChunk = 64;
 
-// Embree's packet types and functions for packets of K.
-template <int K, class RayHitK, class RayK, void (*intersect_k)(const int*, RTCScene, RTCIntersectContext*, RayHitK*),
-          void (*occluded_k)(const int*, RTCScene, RTCIntersectContext*, RayK*)>
-struct Packet {
-    static constexpr int size = K;
-    using RayHit = RayHitK;
-    using Ray = RayK;
-    static constexpr auto intersect = intersect_k;
-    static constexpr auto occluded = occluded_k;
+// Host threads started once, which run one job at a time over chunks taken
+// in turn (the caller's thread among them). Every ray's result depends on
+// that ray alone, so which thread takes which chunk changes nothing but the time.
+class WorkerThreads {
+ public:
+    explicit WorkerThreads(int threads) {
+        for (int i = 1; i < threads; ++i) workers_.emplace_back([this] { serve(); });
+    }
+    ~WorkerThreads() {
+        {
+            std::lock_guard lock(mutex_);
+            stopping_ = true;
+        }
+        wake_.notify_all();
+        for (std::thread& w : workers_) w.join();
+    }
+
+    // work(chunk) for every chunk in [0, chunks); returns when all are done.
+    void run(std::size_t chunks, const std::function<void(std::size_t)>& work) {
+        std::lock_guard one_job(job_);
+        {
+            std::lock_guard lock(mutex_);
+            work_ = &work;
+            chunks_ = chunks;
+            next_ = 0;
+            busy_ = workers_.size();
+            ++generation_;
+        }
+        wake_.notify_all();
+        take_chunks(work, chunks);
+        std::unique_lock lock(mutex_);
+        done_.wait(lock, [this] { return busy_ == 0; });
+    }
+
+ private:
+    void take_chunks(const std::function<void(std::size_t)>& work, std::size_t chunks) {
+        for (std::size_t chunk; (chunk = next_.fetch_add(1)) < chunks;) work(chunk);
+    }
+    void serve() {
+        for (std::uint64_t seen = 0;;) {
+            std::unique_lock lock(mutex_);
+            wake_.wait(lock, [&] { return stopping_ || generation_ != seen; });
+            if (stopping_) return;
+            seen = generation_;
+            const std::function<void(std::size_t)>& work = *work_;
+            std::size_t chunks = chunks_;
+            lock.unlock();
+            take_chunks(work, chunks);
+            lock.lock();
+            if (--busy_ == 0) done_.notify_one();
+        }
+    }
+
+    std::vector<std::thread> workers_;
+    std::mutex job_;  // one run at a time
+    std::mutex mutex_;
+    std::condition_variable wake_, done_;
+    const std::function<void(std::size_t)>* work_ = nullptr;
+    std::size_t chunks_ = 0, busy_ = 0;
+    std::atomic<std::size_t> next_{0};
+    std::uint64_t generation_ = 0;
+    bool stopping_ = false;
 };
-using Packet4 = Packet<4, RTCRayHit4, RTCRay4, rtcIntersect4, rtcOccluded4>;
-using Packet8 = Packet<8, RTCRayHit8, RTCRay8, rtcIntersect8, rtcOccluded8>;
-using Packet16 = Packet<16, RTCRayHit16, RTCRay16, rtcIntersect16, rtcOccluded16>;
-
-// Rays per stream call: the lanes of a stream stay in the first-level cache.
-constexpr std::size_t kStreamSize = 64;
-
-// The queue in parts, one per thread: static ranges, whole packets and
-// streams each (every ray's result depends on that ray alone, so how the
-// queue is cut changes nothing but the time).
-template <class Work>
-void for_each_part(std::size_t count, int threads, const Work& work) {
-    constexpr std::size_t kGrain = kStreamSize;
-    std::size_t grains = (count + kGrain - 1) / kGrain;
-    std::size_t parts = std::clamp<std::size_t>(threads, 1, std::max<std::size_t>(grains, 1));
-    auto range = [&](std::size_t p) { return std::min(count, grains * p / parts * kGrain); };
-    std::vector<std::thread> workers;
-    for (std::size_t p = 1; p < parts; ++p) workers.emplace_back([&, p] { work(range(p), range(p + 1)); });
-    work(range(0), range(1));
-    for (std::thread& w : workers) w.join();
-}
 
 std::string embree_error(RTCDevice device, const std::string& what) {
     return "Embree: " + what + " failed (error " + std::to_string(int(rtcGetDeviceError(device))) + ")";
 }
 
+// The shape Embree found for a ray (EmbreeMode::Verified), before our test.
+struct FoundShape {
+    unsigned geometry = RTC_INVALID_GEOMETRY_ID;  // WP_SHAPE_TRIANGLE or WP_SHAPE_QUAD
+    unsigned primitive = 0;
+};
+
 }  // namespace
 
 struct EmbreeIntersector::Impl {
     EmbreeOptions options;
-    AnalyticShapes shapes;
+    std::vector<SphereShape> spheres;  // tested in turn, as planes are
+    std::vector<PlaneShape> planes;
+    std::vector<QuadShape> quads;  // Embree's, as triangles are
     std::vector<TriangleShape> triangles;
-    // What the user geometries' callbacks read (their user data).
-    ShapeList<SphereShape> sphere_list{&shapes.spheres};
-    ShapeList<QuadShape> quad_list{&shapes.quads};
+    // What Embree's geometries hand their callbacks (their user data).
+    ShapeList<QuadShape> quad_list{&quads};
     ShapeList<TriangleShape> triangle_list{&triangles};
+    bool has_embree_shapes = false;  // any triangle or quad
+    float search_slack = 0.0f;       // 2^-16 of the largest coordinate: Lane::search_slack
     RTCDevice device = nullptr;
-    RTCScene scene = nullptr;  // what the queries trace
-    RTCScene exact =
-        nullptr;  // triangles as user geometry: `scene` itself, or with Filter the rays settle() sends back
-    bool has_geometry = false;  // anything in Embree's scenes
-    float search_slack = 0.0f;  // 2^-16 of the largest coordinate: Lane::search_slack
+    RTCScene verified = nullptr;  // EmbreeMode::Verified: enlarged triangles
+    RTCScene exact = nullptr;     // user geometry: EmbreeMode::Exact, and Verified's retraced rays
     mutable std::atomic<std::uint64_t> retraced{0};
+    std::unique_ptr<WorkerThreads> workers;
 
-    Impl(const Scene& source, std::vector<M::MeshTriangle> mesh_triangles, const EmbreeOptions& o)
-        : options(o), shapes(source) {
+    Impl(const Scene& source, std::vector<M::MeshTriangle> mesh_triangles, const EmbreeOptions& o) : options(o) {
         if (options.threads <= 0) options.threads = std::max(1, int(std::thread::hardware_concurrency()));
+        for (const Sphere& s : source.spheres) spheres.push_back({vec3(s.center), float(s.radius)});
+        for (const Plane& p : source.planes) planes.push_back({vec3(p.point), vec3(p.normal)});
+        for (const Quad& q : source.quads)
+            quads.push_back(
+                {vec3(q.corner), vec3(q.edge1), vec3(q.edge2), M::quad_plane(vec3(q.edge1), vec3(q.edge2))});
         triangles.reserve(mesh_triangles.size());
         for (const M::MeshTriangle& t : mesh_triangles) triangles.push_back({t});
+        has_embree_shapes = !triangles.empty() || !quads.empty();
         search_slack = float(0x1p-16 * coordinate_magnitude());
-        device = rtcNewDevice(nullptr);
+        device = rtcNewDevice(("threads=" + std::to_string(options.threads)).c_str());
         if (!device) throw std::runtime_error("Embree: cannot create a device");
         try {
-            scene = build_scene(options.triangles);
-            exact = options.triangles == EmbreeTriangles::User ? scene : build_scene(EmbreeTriangles::User);
+            exact = build_scene(EmbreeMode::Exact);
+            if (options.mode == EmbreeMode::Verified) verified = build_scene(EmbreeMode::Verified);
         } catch (...) {
             release();
             throw;
         }
+        workers = std::make_unique<WorkerThreads>(options.threads);
     }
     ~Impl() { release(); }
 
     void release() {
-        if (exact && exact != scene) rtcReleaseScene(exact);
-        if (scene) rtcReleaseScene(scene);
+        if (verified) rtcReleaseScene(verified);
+        if (exact) rtcReleaseScene(exact);
         if (device) rtcReleaseDevice(device);
-        exact = scene = nullptr, device = nullptr;
+        verified = exact = nullptr, device = nullptr;
     }
 
-    RTCScene build_scene(EmbreeTriangles mode) {
+    RTCScene build_scene(EmbreeMode mode) {
         RTCScene built = rtcNewScene(device);
         // Robust: box tests (and Embree's own triangle test) that never lose
-        // a hit to rounding, which the tie rule and watertightness need.
+        // a hit to rounding, which watertightness needs.
         rtcSetSceneFlags(built, RTC_SCENE_FLAG_ROBUST);
         rtcSetSceneBuildQuality(built, RTC_BUILD_QUALITY_MEDIUM);
-        if (!triangles.empty()) {
-            if (mode == EmbreeTriangles::Filter)
-                attach_native_triangles(built);
-            else
-                attach_user(built, triangle_list, WP_SHAPE_TRIANGLE);
-        }
-        if (options.analytic == EmbreeAnalytic::User) {
-            attach_user(built, sphere_list, WP_SHAPE_SPHERE);
-            attach_user(built, quad_list, WP_SHAPE_QUAD);
+        if (mode == EmbreeMode::Verified) {
+            attach_enlarged(built, quad_list);
+            attach_enlarged(built, triangle_list);
+        } else {
+            attach_user(built, quad_list);
+            attach_user(built, triangle_list);
         }
         rtcCommitScene(built);
         if (rtcGetDeviceError(device) != RTC_ERROR_NONE) {
@@ -411,244 +416,159 @@ struct EmbreeIntersector::Impl {
                 magnitude = std::max(magnitude, std::fabs(double(x)));
         };
         for (const TriangleShape& t : triangles) add(t.box());
-        for (const SphereShape& s : shapes.spheres) add(s.box());
-        for (const QuadShape& q : shapes.quads) add(q.box());
+        for (const SphereShape& s : spheres) add(s.box());
+        for (const QuadShape& q : quads) add(q.box());
         return magnitude;
     }
 
-    // Embree's triangles (primID = leaf-order index) a little larger than
-    // ours, under our filter.
-    void attach_native_triangles(RTCScene target) {
+    // Embree's robust triangles, Shape::triangles per shape, each enlarged
+    // (primID / Shape::triangles = the shape's index; geomID its kind), our
+    // test the judge of any hit.
+    template <class Shape>
+    void attach_enlarged(RTCScene target, const ShapeList<Shape>& list) {
+        const std::vector<Shape>& shapes = *list.shapes;
+        if (shapes.empty()) return;
+        const std::size_t count = Shape::triangles * shapes.size();
         RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
-        auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
-            geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), 3 * triangles.size()));
-        auto* indices = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
-            geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), triangles.size()));
+        auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0,
+                                                                     RTC_FORMAT_FLOAT3, 3 * sizeof(float), 3 * count));
+        auto* indices = static_cast<unsigned*>(
+            rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), count));
         if (!vertices || !indices) {
             rtcReleaseGeometry(geometry);
             throw std::runtime_error(embree_error(device, "allocating the triangles"));
         }
         const double margin = kEnlargement * coordinate_magnitude();
-        for (std::size_t i = 0; i < triangles.size(); ++i) {
-            std::array<vec3, 3> p = enlarged(triangles[i].triangle, margin);
+        for (std::size_t i = 0; i < count; ++i) {
+            std::array<vec3, 3> p = enlarged(shapes[i / Shape::triangles].corners(i % Shape::triangles), margin);
             for (unsigned v = 0; v < 3; ++v) {
                 std::copy(&p[v].x, &p[v].x + 3, vertices + 9 * i + 3 * v);
                 indices[3 * i + v] = unsigned(3 * i + v);
             }
         }
-        rtcSetGeometryUserData(geometry, triangles.data());
-        rtcSetGeometryIntersectFilterFunction(geometry, triangle_filter);
-        rtcSetGeometryOccludedFilterFunction(geometry, triangle_occlusion_filter);
-        attach(target, geometry, WP_SHAPE_TRIANGLE);
+        rtcSetGeometryUserData(geometry, const_cast<ShapeList<Shape>*>(&list));
+        rtcSetGeometryOccludedFilterFunction(geometry, verified_occlusion_filter<ShapeList<Shape>>);
+        attach(target, geometry, Shape::kind);
     }
 
-    // One user geometry of every shape of a kind, its geomID the kind.
-    template <class Primitives>
-    void attach_user(RTCScene target, const Primitives& primitives, std::uint32_t kind) {
-        if (primitives.count() == 0) return;
+    // One user geometry of every shape of a kind.
+    template <class Shape>
+    void attach_user(RTCScene target, const ShapeList<Shape>& list) {
+        if (list.count() == 0) return;
         RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
-        rtcSetGeometryUserPrimitiveCount(geometry, primitives.count());
-        rtcSetGeometryUserData(geometry, const_cast<Primitives*>(&primitives));
-        rtcSetGeometryBoundsFunction(geometry, user_bounds<Primitives>, nullptr);
-        rtcSetGeometryIntersectFunction(geometry, user_intersect<Primitives>);
-        rtcSetGeometryOccludedFunction(geometry, user_occluded<Primitives>);
-        attach(target, geometry, kind);
+        rtcSetGeometryUserPrimitiveCount(geometry, list.count());
+        rtcSetGeometryUserData(geometry, const_cast<ShapeList<Shape>*>(&list));
+        rtcSetGeometryBoundsFunction(geometry, user_bounds<ShapeList<Shape>>, nullptr);
+        rtcSetGeometryIntersectFunction(geometry, user_intersect<ShapeList<Shape>>);
+        rtcSetGeometryOccludedFunction(geometry, user_occluded<ShapeList<Shape>>);
+        attach(target, geometry, Shape::kind);
     }
 
     void attach(RTCScene target, RTCGeometry geometry, std::uint32_t kind) {
         rtcCommitGeometry(geometry);
         rtcAttachGeometryByID(target, geometry, kind);
         rtcReleaseGeometry(geometry);
-        has_geometry = true;
     }
 
-    // What is tested in turn, before Embree: planes, and with
-    // EmbreeAnalytic::Loop spheres and quads.
-    void offer_listed(Lane& lane) const {
-        if (options.analytic == EmbreeAnalytic::Loop) offer_each(shapes.spheres, lane);
-        offer_each(shapes.planes, lane);
-        if (options.analytic == EmbreeAnalytic::Loop) offer_each(shapes.quads, lane);
-    }
-    bool any_listed(const Lane& lane) const {
-        return (options.analytic == EmbreeAnalytic::Loop &&
-                (any_of(shapes.spheres, lane) || any_of(shapes.quads, lane))) ||
-               any_of(shapes.planes, lane);
-    }
+    // Lanes the spheres and planes leave to Embree.
+    bool needs_embree(const Lane& lane) const { return has_embree_shapes && lane.traceable && !lane.occluded; }
 
-    // Lanes the listed shapes leave to Embree.
-    bool needs_embree(const Lane& lane) const { return has_geometry && lane.traceable && !lane.occluded; }
+    // ---- closest hit ----
 
-    // A lane Embree's triangles may have answered otherwise than our test
-    // alone (triangle_filter) is traced again on the exact scene.
-    void settle_closest(Lane& lane) const {
-        bool disputed = lane.disputed_t < kInfinity && lane.disputed_t <= initial_t_far(lane);
-        if (!lane.best_on_edge && !disputed) return;
-        ++retraced;
-        lane = fresh(lane);
-        closest_one(exact, lane);
-    }
-    void settle_occluded(Lane& lane) const {
-        if (lane.occluded || lane.disputed_t == kInfinity) return;
-        ++retraced;
-        lane = fresh(lane);
-        occluded_one(exact, lane);
-    }
-    static Lane fresh(const Lane& lane) {
-        Lane again = lane;
-        again.best = kNoHit;
-        again.occluded = again.best_on_edge = false;
-        again.disputed_t = kInfinity;
-        return again;
-    }
-
-    // ---- one query of lanes, each kind ----
-
-    // The listed shapes' part of a query: the closest of them, or whether any lies before t_max.
-    void trace_listed(Lane& lane, bool closest) const {
-        if (closest)
-            offer_listed(lane);
-        else
-            lane.occluded = any_listed(lane);
-    }
-    // Embree's t_far for a lane's query: beyond its closest hit so far, or beyond its t_max.
-    static float initial_t_far(const Lane& lane) { return search_limit(lane, std::min(lane.best.t, lane.t_max)); }
-
-    void closest_one(RTCScene target, Lane& lane) const {
-        trace_listed(lane, true);
+    void closest_exact(Lane& lane) const {
+        offer_each(spheres, lane);
+        offer_each(planes, lane);
         if (!needs_embree(lane)) return;
-        QueryContext context(&lane);
+        with_triangle_ray(lane);
+        QueryContext context(lane);
         RTCRayHit rayhit;
-        set_ray(rayhit.ray, lane, initial_t_far(lane), 0);
+        set_ray(rayhit.ray, lane, initial_t_far(lane));
         rayhit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-        rtcIntersect1(target, &context.embree, &rayhit);
-        if (target != exact) settle_closest(lane);
+        rtcIntersect1(exact, &context.embree, &rayhit);
     }
-    void occluded_one(RTCScene target, Lane& lane) const {
-        trace_listed(lane, false);
+
+    // EmbreeMode::Verified, in two steps, so that a queue's rays are all
+    // traced before their found shapes are tested (whose data is then in
+    // cache): the spheres and planes and Embree's nearest enlarged shape.
+    FoundShape find(Lane& lane, RTCIntersectContext& context) const {
+        offer_each(spheres, lane);
+        offer_each(planes, lane);
+        if (!needs_embree(lane)) return {};
+        RTCRayHit rayhit;
+        set_ray(rayhit.ray, lane, initial_t_far(lane));
+        rayhit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+        rtcIntersect1(verified, &context, &rayhit);
+        FoundShape found{rayhit.hit.geomID, rayhit.hit.primID};
+        if (found.geometry == WP_SHAPE_TRIANGLE) {
+            const char* data = reinterpret_cast<const char*>(&triangles[found.primitive]);
+            __builtin_prefetch(data);
+            __builtin_prefetch(data + sizeof(TriangleShape) - 1);
+        }
+        return found;
+    }
+    // Then our test of the found shape gives its distance; where it misses,
+    // the ray is traced again Exact.
+    void settle(Lane& lane, const FoundShape& found) const {
+        if (found.geometry == RTC_INVALID_GEOMETRY_ID) return;
+        HostHit hit;
+        if (found.geometry == WP_SHAPE_TRIANGLE) {
+            with_triangle_ray(lane);
+            hit = triangle_list.hit(lane, found.primitive);
+        } else {
+            hit = quad_list.hit(lane, ShapeList<QuadShape>::shape_of(found.primitive));
+        }
+        if (hit.t < lane.t_max) {
+            offer(lane, hit);
+            return;
+        }
+        retraced.fetch_add(1, std::memory_order_relaxed);
+        lane.best = kNoHit;
+        closest_exact(lane);
+    }
+
+    void closest(Lane& lane) const {
+        if (options.mode == EmbreeMode::Exact) return closest_exact(lane);
+        RTCIntersectContext context;
+        rtcInitIntersectContext(&context);
+        settle(lane, find(lane, context));
+    }
+
+    void closest(Lane* lanes, std::size_t n) const {
+        if (options.mode == EmbreeMode::Exact) {
+            for (std::size_t k = 0; k < n; ++k) closest_exact(lanes[k]);
+            return;
+        }
+        RTCIntersectContext context;
+        rtcInitIntersectContext(&context);
+        FoundShape found[kChunk];
+        for (std::size_t k = 0; k < n; ++k) found[k] = find(lanes[k], context);
+        for (std::size_t k = 0; k < n; ++k) settle(lanes[k], found[k]);
+    }
+
+    // ---- any hit ----
+
+    void occluded(Lane& lane) const {
+        lane.occluded = any_of(spheres, lane) || any_of(planes, lane);
         if (!needs_embree(lane)) return;
-        QueryContext context(&lane);
+        with_triangle_ray(lane);
+        QueryContext context(lane);
         RTCRay ray;
-        set_ray(ray, lane, initial_t_far(lane), 0);
-        rtcOccluded1(target, &context.embree, &ray);
-        if (target != exact) settle_occluded(lane);
+        set_ray(ray, lane, initial_t_far(lane));
+        rtcOccluded1(options.mode == EmbreeMode::Verified ? verified : exact, &context.embree, &ray);
     }
 
-    // A packet's valid mask and rays from up to P::size lanes; false: Embree need trace none.
-    template <class P, class RayK>
-    bool fill_packet(Lane* lanes, std::size_t n, bool closest, int* valid, RayK& ray) const {
-        bool any = false;
-        for (int k = 0; k < P::size; ++k) {
-            valid[k] = 0;
-            if (std::size_t(k) >= n) continue;
-            trace_listed(lanes[k], closest);
-            if (!needs_embree(lanes[k])) continue;
-            valid[k] = -1, any = true;
-            set_ray(ray, k, lanes[k], initial_t_far(lanes[k]));
-        }
-        return any;
-    }
-    template <class P>
-    void closest_packet(Lane* lanes, std::size_t n) const {
-        alignas(64) int valid[P::size];
-        typename P::RayHit rayhit;
-        if (!fill_packet<P>(lanes, n, true, valid, rayhit.ray)) return;
-        std::fill(rayhit.hit.geomID, rayhit.hit.geomID + P::size, RTC_INVALID_GEOMETRY_ID);
-        QueryContext context(lanes);
-        P::intersect(valid, scene, &context.embree, &rayhit);
-        settle_closest(lanes, n);
-    }
-    template <class P>
-    void occluded_packet(Lane* lanes, std::size_t n) const {
-        alignas(64) int valid[P::size];
-        typename P::Ray ray;
-        if (!fill_packet<P>(lanes, n, false, valid, ray)) return;
-        QueryContext context(lanes);
-        P::occluded(valid, scene, &context.embree, &ray);
-        settle_occluded(lanes, n);
-    }
+    // ---- queues ----
 
-    // A stream's rays (`ray(i)`, the i-th) from the lanes Embree must trace, each with its lane as id; their count.
-    template <class RayAt>
-    unsigned fill_stream(Lane* lanes, std::size_t n, bool closest, const RayAt& ray) const {
-        unsigned m = 0;
-        for (std::size_t k = 0; k < n; ++k) {
-            trace_listed(lanes[k], closest);
-            if (needs_embree(lanes[k])) set_ray(ray(m++), lanes[k], initial_t_far(lanes[k]), unsigned(k));
-        }
-        return m;
-    }
-    void closest_stream(Lane* lanes, std::size_t n) const {
-        RTCRayHit rays[kStreamSize];
-        unsigned m = fill_stream(lanes, n, true, [&rays](unsigned i) -> RTCRay& {
-            rays[i].hit.geomID = RTC_INVALID_GEOMETRY_ID;
-            return rays[i].ray;
-        });
-        if (m == 0) return;
-        QueryContext context(lanes);
-        rtcIntersect1M(scene, &context.embree, rays, m, sizeof(RTCRayHit));
-        settle_closest(lanes, n);
-    }
-    void occluded_stream(Lane* lanes, std::size_t n) const {
-        RTCRay rays[kStreamSize];
-        unsigned m = fill_stream(lanes, n, false, [&rays](unsigned i) -> RTCRay& { return rays[i]; });
-        if (m == 0) return;
-        QueryContext context(lanes);
-        rtcOccluded1M(scene, &context.embree, rays, m, sizeof(RTCRay));
-        settle_occluded(lanes, n);
-    }
-
-    void settle_closest(Lane* lanes, std::size_t n) const {
-        if (scene == exact) return;
-        for (std::size_t k = 0; k < n; ++k)
-            if (needs_embree(lanes[k])) settle_closest(lanes[k]);
-    }
-    void settle_occluded(Lane* lanes, std::size_t n) const {
-        if (scene == exact) return;
-        for (std::size_t k = 0; k < n; ++k)
-            if (lanes[k].traceable) settle_occluded(lanes[k]);
-    }
-
-    // Up to kStreamSize lanes, in queries of the options' kind.
-    void trace(Lane* lanes, std::size_t n, bool closest) const {
-        switch (options.query) {
-            case EmbreeQuery::Single:
-                for (std::size_t k = 0; k < n; ++k)
-                    closest ? closest_one(scene, lanes[k]) : occluded_one(scene, lanes[k]);
-                break;
-            case EmbreeQuery::Packet4:
-                trace_packets<Packet4>(lanes, n, closest);
-                break;
-            case EmbreeQuery::Packet8:
-                trace_packets<Packet8>(lanes, n, closest);
-                break;
-            case EmbreeQuery::Packet16:
-                trace_packets<Packet16>(lanes, n, closest);
-                break;
-            case EmbreeQuery::Stream:
-                closest ? closest_stream(lanes, n) : occluded_stream(lanes, n);
-                break;
-        }
-    }
-    template <class P>
-    void trace_packets(Lane* lanes, std::size_t n, bool closest) const {
-        for (std::size_t k = 0; k < n; k += P::size) {
-            std::size_t m = std::min<std::size_t>(P::size, n - k);
-            closest ? closest_packet<P>(lanes + k, m) : occluded_packet<P>(lanes + k, m);
-        }
-    }
-
-    // The queue in runs of kStreamSize lanes on the options' threads; `write` stores each lane's result.
-    template <class Write>
-    void trace_queue(const RayArrays& rays, std::span<const std::uint32_t> queue, bool closest,
+    // The queue in chunks on the worker threads; `write` stores each lane's result.
+    template <class Trace, class Write>
+    void trace_queue(const RayArrays& rays, std::span<const std::uint32_t> queue, const Trace& trace,
                      const Write& write) const {
-        for_each_part(queue.size(), options.threads, [&](std::size_t begin, std::size_t end) {
-            Lane lanes[kStreamSize];
-            for (std::size_t first = begin; first < end; first += kStreamSize) {
-                std::size_t n = std::min(kStreamSize, end - first);
-                for (std::size_t k = 0; k < n; ++k) lanes[k] = make_lane(rays, queue[first + k], search_slack);
-                trace(lanes, n, closest);
-                for (std::size_t k = 0; k < n; ++k) write(queue[first + k], lanes[k]);
-            }
+        workers->run((queue.size() + kChunk - 1) / kChunk, [&](std::size_t chunk) {
+            const std::size_t first = chunk * kChunk, n = std::min(kChunk, queue.size() - first);
+            Lane lanes[kChunk];
+            for (std::size_t k = 0; k < n; ++k) lanes[k] = make_lane(rays, queue[first + k], search_slack);
+            trace(lanes, n);
+            for (std::size_t k = 0; k < n; ++k) write(queue[first + k], lanes[k]);
         });
     }
 };
@@ -665,36 +585,37 @@ std::uint64_t EmbreeIntersector::retraced_rays() const { return impl_->retraced;
 
 HostHit EmbreeIntersector::closest(const vec3& origin, const vec3& direction, float t_max) const {
     Lane lane = make_lane(origin, direction, t_max, impl_->search_slack);
-    impl_->closest_one(impl_->scene, lane);
+    impl_->closest(lane);
     return lane.best;
 }
 
 bool EmbreeIntersector::occluded(const vec3& origin, const vec3& direction, float t_max) const {
     Lane lane = make_lane(origin, direction, t_max, impl_->search_slack);
-    impl_->occluded_one(impl_->scene, lane);
+    impl_->occluded(lane);
     return lane.occluded;
 }
 
 void EmbreeIntersector::closest(const RayArrays& rays, std::span<const std::uint32_t> queue,
                                 const HitArrays& hits) const {
-    impl_->trace_queue(rays, queue, true, [&](std::uint32_t slot, const Lane& lane) {
-        hits.t[slot] = lane.best.t;
-        hits.shape[slot] = lane.best.shape;
-    });
+    impl_->trace_queue(
+        rays, queue, [&](Lane* lanes, std::size_t n) { impl_->closest(lanes, n); },
+        [&](std::uint32_t slot, const Lane& lane) {
+            hits.t[slot] = lane.best.t;
+            hits.shape[slot] = lane.best.shape;
+        });
 }
 
 void EmbreeIntersector::occluded(const RayArrays& rays, std::span<const std::uint32_t> queue,
                                  std::uint32_t* occluded) const {
-    impl_->trace_queue(rays, queue, false,
-                       [&](std::uint32_t slot, const Lane& lane) { occluded[slot] = lane.occluded ? 1u : 0u; });
+    impl_->trace_queue(
+        rays, queue,
+        [&](Lane* lanes, std::size_t n) {
+            for (std::size_t k = 0; k < n; ++k) impl_->occluded(lanes[k]);
+        },
+        [&](std::uint32_t slot, const Lane& lane) { occluded[slot] = lane.occluded ? 1u : 0u; });
 }
 
-std::string options_name(const EmbreeOptions& options) {
-    const char* queries[] = {"single", "packet4", "packet8", "packet16", "stream"};
-    return std::string(options.triangles == EmbreeTriangles::User ? "user_" : "filter_") +
-           queries[static_cast<int>(options.query)] +
-           (options.analytic == EmbreeAnalytic::User ? "_analytic_user" : "");
-}
+std::string mode_name(EmbreeMode mode) { return mode == EmbreeMode::Verified ? "verified" : "exact"; }
 
 std::string embree_device_summary() {
     RTCDevice device = rtcNewDevice(nullptr);

@@ -1,19 +1,15 @@
 // The scene's rays traced with Embree on host threads: the CPU devices'
 // alternative to our OpenCL BVH (kernels/shared/bvh.h), for the reference
-// now and for the wavefront's intersect stages over mapped buffers later.
+// and behind the wavefront's intersect stages (wavefront/host_trace.h).
 //
-// What makes it ours and not Embree's: every hit it reports is one of our
-// tests (the watertight triangle test of kernels/shared/triangle.h, the
+// What makes it ours and not Embree's: every distance it reports is one of
+// our tests (the watertight triangle test of kernels/shared/triangle.h, the
 // sphere, plane and quad tests of kernels/shared/geometry.h) run on the
-// ray's own t_max, so its distance is bit for bit the one the BVH reports
-// and the offsets computed from it stay conservative; Embree only decides
-// which primitives are tested. The closest hit is the first in the order of
-// hit_precedes among all that our tests report, a function of the ray alone:
-// the same for one ray or a queue, any query kind, any thread count.
-//
-// Where it may differ from bvh_trace: at a tie (two shapes at the very same
-// distance: a ray through an edge or vertex shared by triangles), which the
-// BVH gives to the first it visits and this gives to the smaller shape id.
+// ray's own t_max, bit for bit what bvh_trace reports for that shape, so
+// the offsets computed from it stay conservative. Embree decides which shape
+// a ray meets (EmbreeMode). Every result is a function of the ray alone: the
+// same for one ray or a queue, any thread count, any run (Embree's build is
+// deterministic, tests/accel/embree_intersector_test.cpp).
 #pragma once
 
 #include <array>
@@ -41,51 +37,52 @@ struct HostHit {
     std::uint32_t shape;
 };
 
-// The tie rule, the one order of hits along a ray: the nearer first and, at
-// the same distance, the smaller shape id (spheres, then planes, quads and
-// triangles, each kind by index). The reference's test order (spheres,
-// planes, quads, each replacing the hit only when strictly closer, then the
-// meshes) gives the same result for every tie but one between triangles.
+// The exact order of hits along a ray: the nearer first and, at the same
+// distance, the smaller shape id (spheres, then planes, quads and
+// triangles, each kind by index). EmbreeMode::Exact returns the first hit
+// in this order; the reference's BVH, testing spheres, planes and quads in
+// turn (each replacing the hit only when strictly closer) before the
+// meshes, returns the same for every tie but one between two triangles.
 constexpr bool hit_precedes(const HostHit& a, const HostHit& b) {
     return a.t < b.t || (a.t == b.t && a.shape < b.shape);
 }
 
 // What traces a renderer's rays: our BVH (kernels/shared/bvh.h, the OpenCL
 // kernels' and the reference's) or this Embree intersector (float only).
-// They differ only in which of two shapes at the very same distance a ray hits.
 enum class Intersector { Bvh, Embree };
 
-// How Embree meets our triangles (bench/mesh_bench.cpp measures both; both
-// find exactly the same hits, tests/accel/embree_intersector_test.cpp).
-enum class EmbreeTriangles {
-    // User geometry: Embree's BVH over the triangles' boxes, our test in its
-    // callback: every triangle whose box the ray enters is tested.
-    User,
-    // Embree's robust triangles, each enlarged a little (2^-18 of the
-    // scene's largest coordinate beyond every edge), find the candidates; a
-    // filter tests each with ours and keeps our verdict and distance. Embree's
-    // test alone is not watertight at vertices (it can miss all the
-    // triangles around one); enlarged, it offers every triangle ours hits. A
-    // ray where the two tests disagree within its closest hit (a candidate
-    // ours misses, or our hit exactly on an edge) is traced again as with
-    // User, so that the answer is ours whatever Embree offered.
-    Filter,
+// Who decides which shape a ray meets.
+enum class EmbreeMode {
+    // Embree, the default: its robust triangles hold the mesh triangles and
+    // the quads (two triangles each), each enlarged beyond every edge by
+    // 2^-18 of the scene's largest coordinate, so that wherever our test
+    // hits a shape, Embree's test hits the enlarged one. Closest hit: one
+    // rtcIntersect1, no callback, finds the nearest enlarged shape and our
+    // test recomputes its distance; where ours misses it (the ray passed
+    // through the margin alone, about 1 ray in 1000 on the bunny) the ray is
+    // traced again Exact. Spheres and planes are tested in turn first.
+    // Any hit: rtcOccluded1, our test run on each shape Embree offers (a
+    // filter: a shadow ray that reaches its light meets none).
+    //
+    // The tie rule: the closest hit is the first in hit_precedes' order
+    // among the spheres and planes and the one shape Embree found. Embree
+    // finds the shape nearest by its own distance, so where two triangles
+    // or quads lie within Embree's rounding of each other along the ray (a
+    // shared edge or vertex, touching or coincident surfaces: a near tie),
+    // Embree's choice stands, although our test may put the other one a few
+    // float steps nearer. Its choice is a function of the ray (its
+    // traversal visits one deterministic tree in an order set by the ray).
+    Verified,
+    // Our test as Embree user geometry for every triangle whose box the ray
+    // enters (quads, spheres and planes tested in turn): exactly the first
+    // hit in hit_precedes' order. Verified's fallback and the tests'
+    // yardstick; about half as fast (bench/results/embree_intersector.md).
+    Exact,
 };
 
-// How a queue is handed to Embree: one ray at a time (rtcIntersect1),
-// packets of 4, 8 or 16 with a valid mask, or streams (rtcIntersect1M).
-enum class EmbreeQuery { Single, Packet4, Packet8, Packet16, Stream };
-
-// Spheres and quads: tested in turn before Embree runs (Loop), or as Embree
-// user geometry beside the triangles (User). Planes, unbounded, are always
-// tested in turn.
-enum class EmbreeAnalytic { Loop, User };
-
 struct EmbreeOptions {
-    EmbreeTriangles triangles = EmbreeTriangles::User;
-    EmbreeQuery query = EmbreeQuery::Single;
-    EmbreeAnalytic analytic = EmbreeAnalytic::User;
-    int threads = 0;  // host threads tracing a queue; 0: all hardware threads
+    EmbreeMode mode = EmbreeMode::Verified;
+    int threads = 0;  // host threads building the scene and tracing a queue; 0: all hardware threads
 };
 
 // A queue's rays as the wavefront keeps its path state: one float array per
@@ -112,21 +109,22 @@ class EmbreeIntersector {
     EmbreeIntersector(const EmbreeIntersector&) = delete;
     EmbreeIntersector& operator=(const EmbreeIntersector&) = delete;
 
-    // One ray (the reference): the closest hit in (0, t_max), and whether any
-    // shape lies in (0, t_max).
+    // One ray, on the calling thread (the reference's): the closest hit in
+    // (0, t_max), and whether any shape lies in (0, t_max).
     HostHit closest(const SharedMath<float>::vec3& origin, const SharedMath<float>::vec3& direction, float t_max) const;
     bool occluded(const SharedMath<float>::vec3& origin, const SharedMath<float>::vec3& direction, float t_max) const;
 
-    // A queue (the slots in `queue`) on the options' threads: each slot's
-    // closest hit into `hits`, or into `occluded` 1 where any shape lies in
-    // (0, t_max) and 0 elsewhere. Slots outside the queue are left alone.
+    // A queue (the slots in `queue`) on the options' threads, one ray at a
+    // time: each slot's closest hit into `hits`, or into `occluded` 1 where
+    // any shape lies in (0, t_max) and 0 elsewhere. Slots outside the queue
+    // are left alone. One queue at a time: concurrent calls wait their turn.
     void closest(const RayArrays& rays, std::span<const std::uint32_t> queue, const HitArrays& hits) const;
     void occluded(const RayArrays& rays, std::span<const std::uint32_t> queue, std::uint32_t* occluded) const;
 
     const EmbreeOptions& options() const;
 
-    // Rays EmbreeTriangles::Filter traced a second time on our test alone
-    // (where Embree's test and ours split an edge differently), so far.
+    // Closest-hit rays EmbreeMode::Verified traced again Exact (our test
+    // missed the shape Embree found), so far.
     std::uint64_t retraced_rays() const;
 
     struct Impl;
@@ -135,9 +133,8 @@ class EmbreeIntersector {
     std::unique_ptr<Impl> impl_;
 };
 
-// The options' short name, e.g. "user_packet16" or "filter_single_analytic_user"
-// (their threads aside): the bench's and the tests' tracer names.
-std::string options_name(const EmbreeOptions& options);
+// "verified" or "exact": the bench's and the tests' names of the modes.
+std::string mode_name(EmbreeMode mode);
 
 // What Embree's device reports of itself: version, the ISA its kernels were
 // built for and are chosen among, and whether packets of 4, 8 and 16 and

@@ -232,12 +232,10 @@ int bvh_rays_not_crossing(const Mesh& mesh, double size) {
 }
 
 // Through the Embree intersector, in float.
-int embree_rays_not_crossing(const Mesh& mesh, double size, EmbreeTriangles triangles) {
+int embree_rays_not_crossing(const Mesh& mesh, double size, EmbreeMode mode) {
     Scene scene;
     scene.meshes = {mesh};
-    EmbreeOptions options;
-    options.triangles = triangles;
-    EmbreeIntersector embree(scene, traversable_bvh<float>(build_scene_bvh(scene)).triangles, options);
+    EmbreeIntersector embree(scene, traversable_bvh<float>(build_scene_bvh(scene)).triangles, {mode});
     return rays_not_crossing_as_expected<float>(mesh, size, [&](const vec3& origin, const vec3& direction) {
         return embree.closest(origin, direction, M::real_max).t;
     });
@@ -254,10 +252,10 @@ TEST(Watertight, RaysCrossAClosedMeshWhereAimedAtAnyScale) {
                 Mesh placed = test::transformed(mesh, scale, offset);
                 if (float_can_hold_it) {
                     EXPECT_EQ(bvh_rays_not_crossing<float>(placed, scale), 0) << mesh.file;
-                    EXPECT_EQ(embree_rays_not_crossing(placed, scale, EmbreeTriangles::User), 0)
-                        << mesh.file << ", Embree, user";
-                    EXPECT_EQ(embree_rays_not_crossing(placed, scale, EmbreeTriangles::Filter), 0)
-                        << mesh.file << ", Embree, filter";
+                    EXPECT_EQ(embree_rays_not_crossing(placed, scale, EmbreeMode::Verified), 0)
+                        << mesh.file << ", Embree, verified";
+                    EXPECT_EQ(embree_rays_not_crossing(placed, scale, EmbreeMode::Exact), 0)
+                        << mesh.file << ", Embree, exact";
                 }
                 EXPECT_EQ(bvh_rays_not_crossing<double>(placed, scale), 0) << mesh.file;
             }
