@@ -1,5 +1,6 @@
 /* Stage 4: any hit along each shadow ray, WP_LANES rays per work item
- * (device/lanes.h); an unoccluded one adds the light sample's contribution to its path. */
+ * (device/lanes.h), or, where the host traced them (WP_HOST_TRACED), its
+ * verdict; an unoccluded one adds the light sample's contribution to its path. */
 #include "device/guards.h"
 #include "device/lanes.h"
 #include "device/parameters.h"
@@ -10,9 +11,13 @@ __kernel __attribute__((reqd_work_group_size(WP_GROUP_SIZE, 1, 1))) void interse
     STAGE_QUEUES(intersect_shadow, SHADOW, WP_PUSHES_NOTHING);
 #ifdef WP_NEE
     Lanes lanes = queue_lanes(queues, counts, capacity, stage_consumes);
+#ifdef WP_HOST_TRACED
+    lane_int unoccluded = lanes.active && PATH_READ(shadow_occluded, lanes) == 0u;
+#else
     lane_int unoccluded =
         lanes.active && !any_hit(WP_SCENE_ARGS, PATH_READ(shadow_origin, lanes), PATH_READ(shadow_direction, lanes),
                                  PATH_READ(shadow_distance, lanes));
+#endif
     lane_uint dropped = 0u;
     vec3 radiance = add_finite(PATH_READ(radiance, lanes), PATH_READ(shadow_radiance, lanes), &dropped);
     PATH_WRITE(radiance, lanes, unoccluded, radiance);

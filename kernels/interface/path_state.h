@@ -16,7 +16,10 @@
  *   GLASS    the scene has a glass material (refractions scale radiance);
  *   NEE      next-event estimation runs (render.nee on and a light in the scene);
  *   MIS      NEE runs at diffuse vertices with multiple importance sampling
- *            (render.mis on). */
+ *            (render.mis on);
+ *   HOST_SHADOWS  NEE runs and the host traces the stages' rays
+ *            (--intersector embree, interface/stages.h): the shadow rays'
+ *            verdicts, which the host writes before intersect_shadow runs. */
 #ifndef WP_INTERFACE_PATH_STATE_H
 #define WP_INTERFACE_PATH_STATE_H
 
@@ -31,12 +34,13 @@
     X(vec3, radiance, ALWAYS, "generate shade_direct intersect_shadow",               \
       "intersect shade_direct intersect_shadow scatter")                              \
     X(float, hit_t, ALWAYS, "intersect", "shade_direct scatter")                      \
-    X(uint, hit_shape, ALWAYS, "intersect", "shade_direct scatter")                   \
+    X(uint, hit_shape, ALWAYS, "intersect", "intersect shade_direct scatter")         \
     X(uint, specular, SPECULAR, "generate scatter", "shade_direct")                   \
     X(vec3, shadow_origin, NEE, "shade_direct", "intersect_shadow")                   \
     X(vec3, shadow_direction, NEE, "shade_direct", "intersect_shadow")                \
     X(float, shadow_distance, NEE, "shade_direct", "intersect_shadow")                \
     X(vec3, shadow_radiance, NEE, "shade_direct", "intersect_shadow")                 \
+    X(uint, shadow_occluded, HOST_SHADOWS, "intersect_shadow", "intersect_shadow")    \
     X(float, bsdf_pdf, MIS, "scatter", "shade_direct")                                \
     X(float, eta_scale, GLASS, "generate scatter", "scatter")
 

@@ -12,23 +12,29 @@
  * checked when the kernel compiles (STAGE_PUSH). Adding a stage is one line
  * here and its kernel file.
  *
- * X(stage, consumes, pushes to, runs when), where
+ * X(stage, consumes, pushes to, runs when, traces), where
  *   consumes   a queue of interface/queues.h, by name (WP_QUEUE_<name>);
  *   pushes to  WP_PUSHES(queue, ...), the queues it may push to, or
  *              WP_PUSHES_NOTHING;
  *   runs when  a path state feature (interface/path_state.h): ALWAYS, or NEE
- *              for a stage that only next-event estimation needs. */
+ *              for a stage that only next-event estimation needs;
+ *   traces     the rays of the paths it consumes: CLOSEST_HIT (their
+ *              extension rays, into hit_t and hit_shape), ANY_HIT (their
+ *              shadow rays, blocked or not) or NO_RAYS. Where the host
+ *              traces (--intersector embree, src/wavefront/host_trace.h),
+ *              it traces a stage's queue before the stage's kernel, built
+ *              with WP_HOST_TRACED, reads the results and does the rest. */
 #ifndef WP_INTERFACE_STAGES_H
 #define WP_INTERFACE_STAGES_H
 
 #include "interface/queues.h"
 
-#define WP_STAGES(X)                                               \
-    X(generate, FREE, WP_PUSHES(RAY), ALWAYS)                      \
-    X(intersect, RAY, WP_PUSHES(HIT, FREE), ALWAYS)                \
-    X(shade_direct, HIT, WP_PUSHES(SHADOW, SCATTER, FREE), ALWAYS) \
-    X(intersect_shadow, SHADOW, WP_PUSHES_NOTHING, NEE)            \
-    X(scatter, SCATTER, WP_PUSHES(RAY, FREE), ALWAYS)
+#define WP_STAGES(X)                                                        \
+    X(generate, FREE, WP_PUSHES(RAY), ALWAYS, NO_RAYS)                      \
+    X(intersect, RAY, WP_PUSHES(HIT, FREE), ALWAYS, CLOSEST_HIT)            \
+    X(shade_direct, HIT, WP_PUSHES(SHADOW, SCATTER, FREE), ALWAYS, NO_RAYS) \
+    X(intersect_shadow, SHADOW, WP_PUSHES_NOTHING, NEE, ANY_HIT)            \
+    X(scatter, SCATTER, WP_PUSHES(RAY, FREE), ALWAYS, NO_RAYS)
 
 /* A set of queues as bits 1 << queue, from one to five queue names. */
 #define WP_QUEUE_BIT(queue) (1u << WP_QUEUE_##queue)

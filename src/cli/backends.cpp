@@ -11,6 +11,7 @@
 #include "opencl/lanes.h"
 #include "opencl/program_cache.h"
 #include "reference/reference_renderer.h"
+#include "wavefront/intersector_choice.h"
 #include "wavefront/wavefront_renderer.h"
 
 namespace wp::cli {
@@ -49,11 +50,18 @@ void run_on_reference(const Scene& scene, const BackendOptions& options, const P
     run(*renderer);
 }
 
-// The OpenCL backends trace with their BVH (Embree behind their intersect stages is to come).
-void check_opencl_intersector(const BackendOptions& options) {
+// The megakernel traces with its OpenCL BVH only.
+void check_megakernel_intersector(const BackendOptions& options) {
     if (options.intersector == "embree")
-        throw UsageError("--intersector embree: only the reference backend traces with Embree; the " + options.name +
-                         " backend traces with its OpenCL BVH");
+        throw UsageError(
+            "--intersector embree: the megakernel traces with its OpenCL BVH; the wavefront and the reference trace "
+            "with Embree");
+}
+
+// The wavefront's intersector: the one asked for, else default_intersector's for the device and scene.
+std::optional<Intersector> wavefront_intersector(const BackendOptions& options) {
+    if (options.intersector.empty()) return std::nullopt;
+    return options.intersector == "embree" ? Intersector::Embree : Intersector::Bvh;
 }
 
 // Runs an OpenCL backend: a kernel that fails to build shows the compiler's
@@ -74,11 +82,11 @@ void run_on_opencl(const BackendOptions& options, const FilmRun& run, Make make)
 
 void run_on_wavefront(const Scene& scene, const BackendOptions& options, const Progress& progress,
                       std::uint64_t max_items, const FilmRun& run) {
-    check_opencl_intersector(options);
     if (options.lanes != 0)
         if (std::string problem = lanes_problem(options.lanes, wavefront_lanes(options.compaction)); !problem.empty())
             throw UsageError(problem);
     WavefrontOptions wavefront{options.device, options.wavefront};
+    wavefront.intersector = wavefront_intersector(options);
     wavefront.profile = wants_profile(options);
     wavefront.compaction = options.compaction;
     wavefront.lanes = options.lanes;
@@ -93,7 +101,7 @@ void run_on_wavefront(const Scene& scene, const BackendOptions& options, const P
 
 void run_on_megakernel(const Scene& scene, const BackendOptions& options, const Progress& progress, std::uint64_t,
                        const FilmRun& run) {
-    check_opencl_intersector(options);
+    check_megakernel_intersector(options);
     if (options.lanes != 0)
         if (std::string problem = lanes_problem(options.lanes, LaneProgram::megakernel(scene.features().meshes));
             !problem.empty())
@@ -136,8 +144,11 @@ void add_backend_options(CLI::App& render, BackendOptions& options) {
         ->capture_default_str();
     render
         .add_option("--intersector", options.intersector,
-                    "What traces the rays: embree (Embree behind our own watertight tests, float only) or bvh (our "
-                    "BVH). Default: the fastest the backend has: embree for the reference in float, bvh otherwise")
+                    "What traces the rays: embree (Embree finds the shapes, our own watertight tests the distances; on "
+                    "the host: the reference in float, the wavefront on CPU devices) or bvh (our BVH). Default: the "
+                    "fastest the backend has: embree for the reference in float; for the wavefront embree on a CPU "
+                    "device for scenes with meshes, bvh otherwise (--explain says which and why); bvh for the "
+                    "megakernel")
         ->check(CLI::IsMember({"embree", "bvh"}));
     render.add_option("--wavefront", options.wavefront, "Paths in flight for the wavefront backend (0: automatic)")
         ->check(integer_in(0, kMaxWavefront))
@@ -165,11 +176,20 @@ void add_backend_options(CLI::App& render, BackendOptions& options) {
     render.add_option("--profile-json", options.profile_json, "Also write the wavefront's profile to this JSON file");
 }
 
-std::string estimator_name(const BackendOptions& options) {
-    if (options.name != "reference") return "opencl";
-    // Embree and the BVH differ in which of two shapes at one distance a ray hits, so in a few bits.
-    // (Embree traces in float only.)
-    return "reference-" + (reference_intersector(options) == Intersector::Embree ? "embree" : options.precision);
+std::string estimator_name(const BackendOptions& options, const Scene& scene) {
+    // Embree and the BVH differ in which of two shapes at (nearly) one distance a ray hits, so in a few bits.
+    // Embree traces in float only, so "reference-embree" says the precision too (and fits a film file's
+    // 16 bytes, longrun/film_file.h).
+    if (options.name == "reference")
+        return reference_intersector(options) == Intersector::Embree ? "reference-embree"
+                                                                     : "reference-" + options.precision;
+    if (options.name == "wavefront") {
+        std::optional<Intersector> asked = wavefront_intersector(options);
+        Intersector intersector =
+            asked ? *asked : default_intersector(choose_device(options.device), scene.features()).intersector;
+        if (intersector == Intersector::Embree) return "opencl-embree";
+    }
+    return "opencl";
 }
 
 void run_with_backend(const Scene& scene, const BackendOptions& options, const Progress& progress,

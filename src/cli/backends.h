@@ -37,10 +37,12 @@ void add_backend_options(CLI::App& render, BackendOptions& options);
 std::vector<std::string> backend_names();
 
 // What a film from this backend's estimator is, for checkpoints and partial
-// films: "opencl" (wavefront and megakernel agree bit for bit),
-// "reference-float", "reference-double" or "reference-embree" (the reference
-// tracing with Embree, in float); at most 16 bytes, the film file's field.
-std::string estimator_name(const BackendOptions& options);
+// films: "opencl" (wavefront and megakernel agree bit for bit, tracing with
+// the OpenCL BVH), "reference-float" or "reference-double"; tracing with
+// Embree, "opencl-embree" for the wavefront and "reference-embree" (float)
+// for the reference (for the wavefront's default intersector, the one
+// default_intersector picks for the device and `scene`).
+std::string estimator_name(const BackendOptions& options, const Scene& scene);
 
 // What the command does with the backend's FilmRenderer once it is set up.
 using FilmRun = std::function<void(FilmRenderer& renderer)>;

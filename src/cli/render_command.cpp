@@ -161,7 +161,7 @@ PreparedRender prepare_render(const RenderCommand& command, Ranks& ranks) {
         prepared.backend = command.backend;
         prepared.backend.film_squares = command.long_run.target_error.has_value() || plan.adaptive.on();
         plan.items = planned_items(command.long_run.samples, scene);
-        plan.identity = render_identity(scene, estimator_name(prepared.backend), plan.adaptive);
+        plan.identity = render_identity(scene, estimator_name(prepared.backend, scene), plan.adaptive);
     });
     const LongRunFlags& flags = command.long_run;
     plan.pixels = std::uint64_t(scene.camera.width) * scene.camera.height;

@@ -22,9 +22,11 @@ struct RenderIdentity {
     // film's sums over its first N work items are the same for any spp, so a
     // render can be continued to more samples than first asked for.
     std::uint64_t settings = 0;
-    // "opencl" (wavefront and megakernel, whose images are bit-identical),
-    // "reference-float", "reference-double" or "reference-embree" (the
-    // reference tracing with Embree, in float); at most 16 bytes.
+    // "opencl" (wavefront and megakernel tracing with the OpenCL BVH, whose
+    // images are bit-identical), "reference-float" or "reference-double";
+    // "opencl-embree" and "reference-embree" (float) where the wavefront or
+    // the reference traces with Embree (near ties go otherwise: a few bits
+    // differ). At most 16 characters (the film file's field).
     std::string estimator;
 
     bool operator==(const RenderIdentity&) const = default;

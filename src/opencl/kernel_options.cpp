@@ -30,6 +30,7 @@ std::vector<std::pair<const char*, const char*>> features_in_use(const FeatureSe
     add(f.background, "background", "WP_HAS_BACKGROUND");
     add(f.nee, "nee", "WP_NEE");
     add(f.mis, "mis", "WP_MIS");
+    add(f.host_traced, "host-traced", "WP_HOST_TRACED");
     return in_use;
 }
 

@@ -11,6 +11,10 @@ void KernelLauncher::launch(cl::Kernel& kernel, const char* name, std::size_t it
     if (profiling_) pending_.emplace_back(name, event);
 }
 
+void KernelLauncher::add_host_time(const std::string& row, double seconds) {
+    if (profiling_) host_time_.emplace_back(row, seconds);
+}
+
 void KernelLauncher::time_finished(RenderProfile& profile) {
     for (auto& [name, event] : pending_) {
         cl_ulong start = event.getProfilingInfo<CL_PROFILING_COMMAND_START>();
@@ -23,6 +27,13 @@ void KernelLauncher::time_finished(RenderProfile& profile) {
         last_kernel_end_ = std::max(last_kernel_end_, end);
     }
     pending_.clear();
+    for (const auto& [row, seconds] : host_time_) {
+        KernelProfile& k = profile.kernel(row);
+        ++k.launches;
+        k.device_s += seconds;
+        profile.gaps_s = std::max(0.0, profile.gaps_s - seconds);
+    }
+    host_time_.clear();
 }
 
 double event_seconds(const cl::Event& event) {

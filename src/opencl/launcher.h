@@ -4,6 +4,7 @@
 
 #include <CL/opencl.hpp>
 #include <cstddef>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -27,9 +28,13 @@ class KernelLauncher {
     // Launches `items` work items, rounded up to whole groups of `group`
     // (0: exactly `items`, groups left to the driver).
     void launch(cl::Kernel& kernel, const char* name, std::size_t items, std::size_t group = WP_GROUP_SIZE);
+    // Work the host did between launches, the device idle (the wavefront's
+    // host-traced stages): a row of the profile of its own, its seconds
+    // taken out of the idle time between kernels. Nothing without profiling.
+    void add_host_time(const std::string& row, double seconds);
     // Adds the launches finished since the last call (the queue must have been
-    // waited on) to `profile`: launches, device time and the device's idle
-    // time between kernels. Nothing without profiling.
+    // waited on) and the host's work to `profile`: launches, device time and
+    // the device's idle time between kernels. Nothing without profiling.
     void time_finished(RenderProfile& profile);
     bool profiling() const { return profiling_; }
 
@@ -37,6 +42,7 @@ class KernelLauncher {
     cl::CommandQueue& queue_;
     bool profiling_;
     std::vector<std::pair<const char*, cl::Event>> pending_;  // launched, not yet timed
+    std::vector<std::pair<std::string, double>> host_time_;   // not yet in the profile
     cl_ulong last_kernel_end_ = 0;
 };
 

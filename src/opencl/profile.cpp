@@ -49,13 +49,15 @@ double RenderProfile::fraction_of_intersect_bound(const std::string& name) const
 }
 
 std::string format_profile_table(const RenderProfile& p) {
-    std::string out = "wavepath profile (device time from OpenCL events; share of the render's wall time)\n";
+    std::string out =
+        "wavepath profile (device time from OpenCL events, host time for the embree: rows; share of the render's "
+        "wall time)\n";
     char line[256];
-    std::snprintf(line, sizeof line, "  %-18s %9s %13s %11s %13s %7s\n", "kernel", "launches", "items", "device ms",
+    std::snprintf(line, sizeof line, "  %-24s %9s %13s %11s %13s %7s\n", "kernel", "launches", "items", "device ms",
                   "Mitems/s", "share");
     out += line;
     auto row = [&](const char* name, const char* launches, const char* items, double seconds, const char* rate) {
-        std::snprintf(line, sizeof line, "  %-18s %9s %13s %11.2f %13s %6.1f%%\n", name, launches, items, seconds * 1e3,
+        std::snprintf(line, sizeof line, "  %-24s %9s %13s %11.2f %13s %6.1f%%\n", name, launches, items, seconds * 1e3,
                       rate, p.render_s > 0 ? 100.0 * seconds / p.render_s : 0.0);
         out += line;
     };

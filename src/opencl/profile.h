@@ -12,11 +12,13 @@
 
 namespace wp {
 
+// A kernel's row; or, for work the host does between kernels (the
+// wavefront's host-traced stages, rows "embree:<stage>"), the host's.
 struct KernelProfile {
     std::string name;
     std::uint64_t launches = 0;
     std::uint64_t items = 0;  // queue entries (or pixels, for accumulate) the launches processed
-    double device_s = 0.0;    // sum of the launches' end - start
+    double device_s = 0.0;    // sum of the launches' end - start (a host row: the host's wall time)
 };
 
 struct RenderProfile {

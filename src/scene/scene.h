@@ -99,6 +99,9 @@ struct FeatureSet {
     bool background = false;  // a non-black background
     bool nee = false;         // next-event estimation runs: render.nee is on and the scene has a light
     bool mis = false;         // nee runs at diffuse vertices and render.mis is on
+    // Not the scene's: the wavefront's kernels read the rays' hits, which the
+    // host traced (--intersector embree, kernels/interface/stages.h).
+    bool host_traced = false;
 };
 
 struct Scene {

@@ -38,14 +38,19 @@ bool path_feature_compiled(PathFeature feature, const FeatureSet& features) {
             return features.nee;
         case PathFeature::MIS:
             return features.mis;
+        case PathFeature::HOST_SHADOWS:
+            return features.nee && features.host_traced;
     }
     return false;
 }
 
 std::string path_state_table_markdown() {
-    static const char* feature_names[] = {"always", "specular (mirror or glass)", "glass",
+    static const char* feature_names[] = {"always",
+                                          "specular (mirror or glass)",
+                                          "glass",
                                           "nee (next-event estimation runs)",
-                                          "mis (next-event estimation with multiple importance sampling)"};
+                                          "mis (next-event estimation with multiple importance sampling)",
+                                          "nee with the shadow rays traced on the host (--intersector embree)"};
     std::ostringstream table;
     table << "| field | type | bytes/path | exists when | written by | read by |\n"
           << "|---|---|---|---|---|---|\n";
@@ -64,9 +69,13 @@ std::size_t PathState::bytes_per_path(const FeatureSet& features) {
 }
 
 PathState::PathState(const cl::Context& context, std::size_t capacity, const FeatureSet& features) {
+    // Where the host traces, it maps the rays and hits: memory the runtime
+    // allocates for the host to reach without a copy (on PoCL's CPU device
+    // a map is then the buffer's own address).
+    const cl_mem_flags flags = CL_MEM_READ_WRITE | (features.host_traced ? CL_MEM_ALLOC_HOST_PTR : 0);
     for (const PathStateField& f : path_state_fields()) {
         if (!path_feature_compiled(f.feature, features)) continue;
-        buffers_.emplace_back(context, CL_MEM_READ_WRITE, f.bytes * capacity);
+        buffers_.emplace_back(context, flags, f.bytes * capacity);
         names_.emplace_back(f.name);
         bytes_per_path_ += f.bytes;
     }

@@ -11,7 +11,7 @@
 
 namespace wp {
 
-enum class PathFeature { ALWAYS, SPECULAR, GLASS, NEE, MIS };
+enum class PathFeature { ALWAYS, SPECULAR, GLASS, NEE, MIS, HOST_SHADOWS };
 
 struct PathStateField {
     const char* type;
@@ -34,6 +34,7 @@ std::string path_state_table_markdown();
 
 class PathState {
  public:
+    // With features.host_traced, buffers the host maps without a copy (CL_MEM_ALLOC_HOST_PTR).
     PathState(const cl::Context& context, std::size_t capacity, const FeatureSet& features);
 
     // Sets a stage kernel's path state arguments (after WP_STAGE_PARAMETERS, in X-macro order).

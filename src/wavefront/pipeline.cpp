@@ -34,6 +34,10 @@ const std::vector<std::string>& wavefront_kernel_files() {
 
 Pipeline::Pipeline(const Scene& scene, const DeviceInfo& device, std::size_t capacity, std::size_t pass_capacity,
                    const FeatureSet& kernel_features, const PipelineOptions& options)
+    : Pipeline(scene, flatten_scene(scene), device, capacity, pass_capacity, kernel_features, options) {}
+
+Pipeline::Pipeline(const Scene& scene, const SceneLayout& layout, const DeviceInfo& device, std::size_t capacity,
+                   std::size_t pass_capacity, const FeatureSet& kernel_features, const PipelineOptions& options)
     : capacity_(capacity),
       pass_capacity_(pass_capacity),
       lanes_(resolve_lanes(options.lanes, wavefront_lanes(options.compaction), device)),
@@ -45,9 +49,10 @@ Pipeline::Pipeline(const Scene& scene, const DeviceInfo& device, std::size_t cap
                              program_build_options(scene, kernel_features, options.film_squares,
                                                    compaction_build_option(options.compaction), lanes_),
                              options.progress)),
-      scene_(context_, flatten_scene(scene)),
+      scene_(context_, layout),
       state_(context_, capacity, kernel_features),
-      queues_(context_, queue_, program_.program, capacity, options.compaction, iteration_),
+      queues_(context_, queue_, program_.program, capacity, options.compaction, iteration_,
+              kernel_features.host_traced),
       film_(context_, queue_, program_.program, scene.camera.width, scene.camera.height, options.film_squares),
       pass_radiance_(context_, CL_MEM_READ_WRITE, sizeof(float) * 3 * pass_capacity),
       slot_nonfinite_(context_, CL_MEM_READ_WRITE, sizeof(std::uint32_t) * WP_NONFINITE_STAGE_COUNT * capacity) {
@@ -64,6 +69,7 @@ Pipeline::Pipeline(const Scene& scene, const DeviceInfo& device, std::size_t cap
     bind_round();
     if (options.profile)
         ray_depths_.emplace(program_.program, queues_.queues(), queues_.counts(), capacity, state_.field("depth"));
+    if (kernel_features.host_traced) host_trace_.emplace(scene, layout.triangles);
     queue_.enqueueFillBuffer(slot_nonfinite_, std::uint32_t(0), 0, slot_nonfinite_.getInfo<CL_MEM_SIZE>());
 }
 
@@ -83,6 +89,9 @@ void Pipeline::run(Stage stage, std::size_t entries) {
         ray_depths_->count(launcher_, WP_QUEUE_RAY, WP_PROFILE_EXTENSION_BY_DEPTH, entries);
     if (ray_depths_ && stage == Stage::intersect_shadow)
         ray_depths_->count(launcher_, WP_QUEUE_SHADOW, WP_PROFILE_SHADOW_BY_DEPTH, entries);
+    if (host_trace_ && declaration(stage).traces != StageTrace::NO_RAYS)
+        launcher_.add_host_time(host_trace_row(declaration(stage)),
+                                host_trace_->trace(queue_, queues_, state_, capacity_, stage));
     launcher_.launch(stages_[static_cast<std::size_t>(stage)], declaration(stage).kernel,
                      divide_rounding_up(entries, lanes_));
 }

@@ -23,6 +23,7 @@
 #include "opencl/scene_upload.h"
 #include "scene/scene.h"
 #include "wavefront/compaction.h"
+#include "wavefront/host_trace.h"
 #include "wavefront/path_state.h"
 #include "wavefront/profiling.h"
 #include "wavefront/queue_set.h"
@@ -44,7 +45,9 @@ class Pipeline {
  public:
     // capacity: paths in flight; pass_capacity: most work items per pass.
     // The kernels are compiled for `kernel_features`, normally scene.features()
-    // (a superset also renders the scene, only slower).
+    // (a superset also renders the scene, only slower); with
+    // kernel_features.host_traced the host traces the stages' rays
+    // (wavefront/host_trace.h).
     Pipeline(const Scene& scene, const DeviceInfo& device, std::size_t capacity, std::size_t pass_capacity,
              const FeatureSet& kernel_features, const PipelineOptions& options = {});
 
@@ -72,7 +75,9 @@ class Pipeline {
     // on the device, so the host never waits between stages; positions past
     // it compute and write nothing, but cost as much as live ones, so a
     // nearly drained pass launches only what it can hold); with profiling,
-    // the count of its rays by depth first. Nothing when `entries` is 0.
+    // the count of its rays by depth first. Where the host traces, it traces
+    // a tracing stage's queue first (waiting for the device), its time the
+    // profile's host_trace_row. Nothing when `entries` is 0.
     void run(Stage stage, std::size_t entries);
     // The queue bookkeeping once `stage` has run (QueueSet::finish_stage).
     void finish_stage(Stage stage) { queues_.finish_stage(launcher_, stage); }
@@ -122,6 +127,8 @@ class Pipeline {
     std::vector<float> read_pass_radiance();
 
  private:
+    Pipeline(const Scene& scene, const SceneLayout& layout, const DeviceInfo& device, std::size_t capacity,
+             std::size_t pass_capacity, const FeatureSet& kernel_features, const PipelineOptions& options);
     void bind_round();
 
     std::size_t capacity_, pass_capacity_;
@@ -138,6 +145,7 @@ class Pipeline {
     cl::Buffer pass_radiance_, slot_nonfinite_;
     std::vector<cl::Kernel> stages_;             // by Stage
     std::optional<RayDepthCounter> ray_depths_;  // profiling only
+    std::optional<HostTrace> host_trace_;        // kernel_features.host_traced only
     RenderProfile profile_;
     std::uint64_t pass_start_ = 0;
     std::uint32_t pass_size_ = 0;

@@ -5,13 +5,15 @@
 namespace wp {
 
 QueueSet::QueueSet(const cl::Context& context, cl::CommandQueue& queue, const cl::Program& program,
-                   std::size_t capacity, Compaction compaction, const std::vector<Stage>& iteration)
+                   std::size_t capacity, Compaction compaction, const std::vector<Stage>& iteration, bool host_mapped)
     : queue_(queue),
       capacity_(capacity),
       compaction_(compaction),
       // With scan compaction, the marks of every queue after the queues.
-      queues_(context, CL_MEM_READ_WRITE, WP_QUEUE_COUNT * (compaction == Compaction::Scan ? 2 : 1) * queue_bytes()),
-      counts_(context, CL_MEM_READ_WRITE, sizeof(std::uint32_t) * WP_COUNTS_PROFILED_SIZE),
+      queues_(context, CL_MEM_READ_WRITE | (host_mapped ? CL_MEM_ALLOC_HOST_PTR : 0),
+              WP_QUEUE_COUNT * (compaction == Compaction::Scan ? 2 : 1) * queue_bytes()),
+      counts_(context, CL_MEM_READ_WRITE | (host_mapped ? CL_MEM_ALLOC_HOST_PTR : 0),
+              sizeof(std::uint32_t) * WP_COUNTS_PROFILED_SIZE),
       plan_(plan_queues(iteration)) {
     std::vector<std::uint32_t> identity(capacity);
     std::iota(identity.begin(), identity.end(), 0u);

@@ -23,9 +23,11 @@ using DeviceCounts = std::array<std::uint32_t, WP_COUNTS_SIZE>;
 class QueueSet {
  public:
     // `program` holds kernels/compact.cl (used with scan compaction);
-    // `iteration` is the stages an iteration runs, in order.
+    // `iteration` is the stages an iteration runs, in order; `host_mapped`:
+    // the host maps the queues and counts (wavefront/host_trace.h), so they
+    // are allocated for it to reach without a copy.
     QueueSet(const cl::Context& context, cl::CommandQueue& queue, const cl::Program& program, std::size_t capacity,
-             Compaction compaction, const std::vector<Stage>& iteration);
+             Compaction compaction, const std::vector<Stage>& iteration, bool host_mapped = false);
 
     const cl::Buffer& queues() const { return queues_; }
     const cl::Buffer& counts() const { return counts_; }

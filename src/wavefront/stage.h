@@ -15,19 +15,24 @@
 
 namespace wp {
 
-#define WP_STAGE_ENUMERATOR(stage, consumes, pushes, runs_when) stage,
+#define WP_STAGE_ENUMERATOR(stage, consumes, pushes, runs_when, traces) stage,
 enum class Stage { WP_STAGES(WP_STAGE_ENUMERATOR) };
 #undef WP_STAGE_ENUMERATOR
+
+// The rays a stage traces, those of the paths it consumes (what the host
+// traces before the stage's kernel with --intersector embree, wavefront/host_trace.h).
+enum class StageTrace { NO_RAYS, CLOSEST_HIT, ANY_HIT };
 
 struct StageDeclaration {
     const char* kernel;      // defined in kernels/<kernel>.cl
     std::uint32_t consumes;  // the queue it takes its paths from
     std::uint32_t pushes;    // the queues it may push to, as bits 1 << queue
     PathFeature runs_when;   // the path state feature it needs (ALWAYS, NEE)
+    StageTrace traces;
 };
 
-#define WP_STAGE_DECLARATION(stage, consumes, pushes, runs_when) \
-    StageDeclaration{#stage, WP_QUEUE_##consumes, pushes, PathFeature::runs_when},
+#define WP_STAGE_DECLARATION(stage, consumes, pushes, runs_when, traces) \
+    StageDeclaration{#stage, WP_QUEUE_##consumes, pushes, PathFeature::runs_when, StageTrace::traces},
 inline constexpr std::array stage_declarations{WP_STAGES(WP_STAGE_DECLARATION)};
 #undef WP_STAGE_DECLARATION
 

@@ -7,6 +7,7 @@
 #include "opencl/device.h"
 #include "opencl/film.h"
 #include "opencl/kernel_options.h"
+#include "wavefront/intersector_choice.h"
 #include "wavefront/pipeline.h"
 #include "wavefront/scheduler.h"
 #include "wavefront/stage.h"
@@ -33,6 +34,24 @@ FeatureSet every_shape_and_material(FeatureSet f) {
     return f;
 }
 
+// The intersector asked for, or the device's default for the scene; with why.
+// Throws DeviceError for Embree on a device that is not a CPU.
+IntersectorChoice choose_intersector(const WavefrontOptions& options, const DeviceInfo& device,
+                                     const FeatureSet& features) {
+    if (!options.intersector) return default_intersector(device, features);
+    if (*options.intersector == Intersector::Embree && device.type != "CPU")
+        throw DeviceError("--intersector embree: Embree traces on the host, which needs a CPU device; " + device.name +
+                          " is a " + device.type);
+    return {*options.intersector, "asked for"};
+}
+
+// The kernels' features: the scene's (or every shape's), and whether the host traces.
+FeatureSet kernel_features(const Scene& scene, const WavefrontOptions& options, Intersector intersector) {
+    FeatureSet f = options.specialise ? scene.features() : every_shape_and_material(scene.features());
+    f.host_traced = intersector == Intersector::Embree;
+    return f;
+}
+
 // Items each kernel processed: a stage's, the entries it took from its
 // queue summed over the iterations (generate: the free slots it filled);
 // accumulate's, the pass entries it summed; compaction's, the slots its
@@ -51,10 +70,12 @@ void fill_profile(RenderProfile& profile, const std::vector<IterationRecord>& it
         for (const IterationRecord& r : iterations) k.items += r.traced + r.shadow;
     }
     for (const StageDeclaration& stage : stage_declarations) {
-        if (!profile.has_kernel(stage.kernel)) continue;
-        KernelProfile& k = profile.kernel(stage.kernel);
-        k.items = 0;
-        for (const IterationRecord& r : iterations) k.items += r.taken_from(stage.consumes);
+        for (const std::string& row : {std::string(stage.kernel), host_trace_row(stage)}) {
+            if (!profile.has_kernel(row)) continue;
+            KernelProfile& k = profile.kernel(row);
+            k.items = 0;
+            for (const IterationRecord& r : iterations) k.items += r.taken_from(stage.consumes);
+        }
     }
     profile.kernel("accumulate").items = samples;
     profile.iterations = iterations.size();
@@ -102,6 +123,7 @@ std::string WavefrontReport::explain() const {
         << "path state: " << state_bytes_per_path << " bytes per path, " << state_bytes_per_path * wavefront / 1024
         << " KiB in all\n";
     if (!meshes.empty()) out << "meshes: " << meshes << "\n";
+    out << "intersector: " << intersector_name(intersector) << " (" << intersector_reason << ")\n";
     return out.str();
 }
 
@@ -112,7 +134,8 @@ class WavefrontFilmRenderer : public FilmRenderer {
     WavefrontFilmRenderer(const Scene& scene, const WavefrontOptions& options, const Progress& progress,
                           WavefrontReport* report, std::uint64_t max_items)
         : device_(choose_device(options.device)),
-          features_(options.specialise ? scene.features() : every_shape_and_material(scene.features())),
+          intersector_(choose_intersector(options, device_, scene.features())),
+          features_(kernel_features(scene, options, intersector_.intersector)),
           wavefront_(options.wavefront
                          ? options.wavefront
                          : default_wavefront_size(max_items, PathState::bytes_per_path(scene.features()), device_)),
@@ -132,6 +155,8 @@ class WavefrontFilmRenderer : public FilmRenderer {
         r.pass_capacity = pipeline_.pass_capacity();
         r.state_bytes_per_path = pipeline_.state().bytes_per_path();
         r.meshes = pipeline_.device_scene().meshes().describe();
+        r.intersector = intersector_.intersector;
+        r.intersector_reason = intersector_.reason;
     }
 
     std::uint64_t pass_items() const override { return pipeline_.pass_capacity(); }
@@ -152,7 +177,9 @@ class WavefrontFilmRenderer : public FilmRenderer {
         r.profile.render_s = render_seconds;
         r.profile.build_s = r.build_seconds;
         pipeline_.read_rays_by_depth(r.profile);
-        r.profile.intersect_bound_rays_per_s = pipeline_.measure_intersect_bound(kIntersectBoundRays).rays_per_s;
+        // The bound is the kernels' tracing: not what a host-traced render traces with.
+        if (!features_.host_traced)
+            r.profile.intersect_bound_rays_per_s = pipeline_.measure_intersect_bound(kIntersectBoundRays).rays_per_s;
     }
 
  protected:
@@ -166,6 +193,7 @@ class WavefrontFilmRenderer : public FilmRenderer {
 
  private:
     DeviceInfo device_;
+    IntersectorChoice intersector_;
     FeatureSet features_;
     std::size_t wavefront_;
     Pipeline pipeline_;

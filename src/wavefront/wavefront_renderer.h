@@ -4,9 +4,11 @@
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "accel/embree_intersector.h"
 #include "core/film_renderer.h"
 #include "core/render.h"
 #include "opencl/device.h"
@@ -24,6 +26,10 @@ struct WavefrontOptions {
     Compaction compaction = kDefaultCompaction;
     unsigned lanes = 0;         // paths per work item in the stage kernels (1 or 8); 0 = resolve_lanes' choice
     bool film_squares = false;  // the film keeps sums of squares (per-pixel variance, --target-error)
+    // What traces the rays: the OpenCL BVH in the kernels, or Embree on the
+    // host (CPU devices only; wavefront/host_trace.h). Unset:
+    // default_intersector's choice for the device and the scene (wavefront/intersector_choice.h).
+    std::optional<Intersector> intersector;
 };
 
 // Queue lengths of one iteration of the stage loop, for the profiler.
@@ -53,6 +59,8 @@ struct WavefrontReport {
     std::size_t state_bytes_per_path = 0;
     unsigned lanes = 1;  // paths per work item in the stage kernels
     std::string meshes;  // MeshSummary::describe(), "" without meshes
+    Intersector intersector = Intersector::Bvh;
+    std::string intersector_reason;  // why: asked for, or default_intersector's reason
     std::vector<IterationRecord> iterations;
     RenderProfile profile;  // filled when WavefrontOptions::profile
 

@@ -1,6 +1,7 @@
 // Meshes rendered: every OpenCL backend retraces the reference's paths
 // through a scene of triangle meshes (diffuse, mirror and glass), at 1 spp,
-// on every pixel.
+// on every pixel, both tracing with our BVH; and the wavefront tracing with
+// Embree on the host retraces the reference tracing with Embree.
 #include <gtest/gtest.h>
 
 #include "megakernel/megakernel_renderer.h"
@@ -10,6 +11,7 @@
 #include "support/meshes.h"
 #include "support/path_agreement.h"
 #include "wavefront/wavefront_renderer.h"
+#include "wavefront/wavefront_test_support.h"
 
 namespace wp {
 namespace {
@@ -32,10 +34,21 @@ Scene mesh_scene(int size, int spp) {
     return scene;
 }
 
+// The wavefront tracing with `intersector` (the library's default is the
+// device's, which on a CPU is Embree for meshes).
+WavefrontOptions traced_by(Intersector intersector, std::size_t wavefront = 0, unsigned lanes = 0) {
+    WavefrontOptions options;
+    options.intersector = intersector;
+    options.wavefront = wavefront;
+    options.lanes = lanes;
+    return options;
+}
+const WavefrontOptions kBvh = traced_by(Intersector::Bvh);
+
 TEST(MeshRender, WavefrontRetracesTheReferencePathForPath) {
     Scene scene = mesh_scene(48, 1);
     ASSERT_TRUE(scene.features().meshes);
-    test::expect_path_for_path_agreement(render_wavefront(scene, {}, {}),
+    test::expect_path_for_path_agreement(render_wavefront(scene, kBvh, {}),
                                          render_reference(scene, ReferenceOptions{2, false}), "wavefront, meshes");
 }
 
@@ -68,7 +81,7 @@ TEST(MeshRender, MeshLightRetracesTheReferencePathForPath) {
     ASSERT_TRUE(scene.features().mesh_lights);
     RenderResult reference = render_reference(scene, ReferenceOptions{2, false});
     EXPECT_GT(reference.stats.shadow_rays, 0u);
-    test::expect_path_for_path_agreement(render_wavefront(scene, {}, {}), reference, "wavefront, mesh light");
+    test::expect_path_for_path_agreement(render_wavefront(scene, kBvh, {}), reference, "wavefront, mesh light");
     test::expect_path_for_path_agreement(render_megakernel(scene, {}, {}), reference, "megakernel, mesh light");
 }
 
@@ -84,7 +97,7 @@ TEST(MeshRender, ShadingNormalsRetraceTheReferencePathForPath) {
     }
     ASSERT_TRUE(scene.features().shading_normals);
     RenderResult reference = render_reference(scene, ReferenceOptions{2, false});
-    test::expect_path_for_path_agreement(render_wavefront(scene, {}, {}), reference, "wavefront, shading normals");
+    test::expect_path_for_path_agreement(render_wavefront(scene, kBvh, {}), reference, "wavefront, shading normals");
     test::expect_path_for_path_agreement(render_megakernel(scene, {}, {}), reference, "megakernel, shading normals");
 }
 
@@ -100,8 +113,7 @@ TEST(MeshRender, EightLanesRetraceTheReferenceAsOneLaneDoes) {
     scene.meshes.push_back(test::transformed(test::icosphere(1, lamp), 0.25, {0.8, 0.9, -4.0}));
     build_light_table(scene);
     ASSERT_TRUE(scene.features().mesh_lights);
-    WavefrontOptions options;
-    options.wavefront = 320;  // queue lengths rarely a multiple of 8: partly filled last lanes
+    WavefrontOptions options = traced_by(Intersector::Bvh, 320);  // queue lengths rarely a multiple of 8
     options.lanes = 1;
     RenderResult one = render_wavefront(scene, options, {});
     options.lanes = 8;
@@ -152,8 +164,51 @@ TEST(MeshRender, TwoMeshLightsRetraceTheReferencePathForPath) {
     ASSERT_LT(second_light_start, ref.triangles.size());
     ASSERT_EQ(ref.triangles[second_light_start].mesh, 1u) << "the first light's mesh holds that triangle index";
     RenderResult reference = render_reference(scene, ReferenceOptions{2, false});
-    test::expect_path_for_path_agreement(render_wavefront(scene, {}, {}), reference, "wavefront, two mesh lights");
+    test::expect_path_for_path_agreement(render_wavefront(scene, kBvh, {}), reference, "wavefront, two mesh lights");
     test::expect_path_for_path_agreement(render_megakernel(scene, {}, {}), reference, "megakernel, two mesh lights");
+}
+
+// ---- Embree on the host (--intersector embree, wavefront/host_trace.h) ----
+
+// A shipped scene at size x size pixels and `spp` samples per pixel.
+Scene shipped(const std::string& name, int size, int spp) {
+    Scene scene = test::scene_from_file("scenes/" + name + ".json");
+    scene.camera.width = scene.camera.height = size;
+    scene.render.spp = spp;
+    return scene;
+}
+
+// Both ask the same intersector, so every ray, near ties included, meets the
+// same shape at the same distance (the tie rule is a function of the ray).
+TEST(MeshRender, WavefrontWithEmbreeRetracesTheReferenceWithEmbree) {
+    for (const char* name : {"cornell_mesh", "bunny"}) {
+        Scene scene = shipped(name, 48, 1);
+        WavefrontReport report;
+        RenderResult wavefront = render_wavefront(scene, traced_by(Intersector::Embree), {}, &report);
+        EXPECT_EQ(report.intersector, Intersector::Embree) << name;
+        EXPECT_NE(report.features.find("host-traced"), std::string::npos) << name;
+        EXPECT_GT(wavefront.stats.shadow_rays, 0u) << name;
+        ReferenceOptions reference{2, false};
+        reference.intersector = Intersector::Embree;
+        test::expect_path_for_path_agreement(wavefront, render_reference(scene, reference),
+                                             std::string("wavefront and reference with Embree, ") + name);
+    }
+}
+
+// The hits the host writes are a function of each ray alone: the same image,
+// to the bit, for any wavefront size (queue lengths rarely a multiple of 8,
+// passes cut elsewhere) and one lane or eight.
+TEST(MeshRender, EmbreeImagesAreBitIdenticalAcrossWavefrontSizesAndLanes) {
+    Scene scene = shipped("cornell_mesh", 32, 2);
+    RenderResult first = render_wavefront(scene, traced_by(Intersector::Embree, 0, 8), {});
+    EXPECT_GT(first.stats.shadow_rays, 0u);
+    for (auto [wavefront, lanes] : {std::pair{320u, 1u}, {320u, 8u}, {1088u, 1u}, {0u, 1u}}) {
+        RenderResult other = render_wavefront(scene, traced_by(Intersector::Embree, wavefront, lanes), {});
+        std::string label = "wavefront " + std::to_string(wavefront) + ", lanes " + std::to_string(lanes);
+        EXPECT_EQ(other.image.rgb, first.image.rgb) << label;
+        EXPECT_EQ(other.stats.extension_rays, first.stats.extension_rays) << label;
+        EXPECT_EQ(other.stats.shadow_rays, first.stats.shadow_rays) << label;
+    }
 }
 
 }  // namespace

@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "support/kernel_sources.h"
+#include "wavefront/host_trace.h"
 #include "wavefront/stage.h"
 
 namespace wp {
@@ -25,7 +26,8 @@ TEST(PathState, ArchitectureDocHasTheCurrentFieldTable) {
 
 // The fields' "written by" and "read by" (the docs table's columns) name
 // exactly the stages whose kernels, with the kernel headers they include,
-// PATH_WRITE and PATH_READ the field, in stage order.
+// PATH_WRITE and PATH_READ the field, or whose rays the host reads and whose
+// results it writes where it traces (host_trace_fields), in stage order.
 TEST(PathState, WritersAndReadersAreTheStagesThatWriteAndReadTheField) {
     std::map<std::string, std::string> written_by, read_by;  // field -> stages, space-separated
     auto add = [](std::string& stages, const char* stage) {
@@ -39,6 +41,9 @@ TEST(PathState, WritersAndReadersAreTheStagesThatWriteAndReadTheField) {
         std::set<std::string> reads, writes;
         for (std::sregex_iterator m(code.begin(), code.end(), use), end; m != end; ++m)
             ((*m)[1] == "READ" ? reads : writes).insert((*m)[2]);
+        const HostTraceFields host = host_trace_fields(stage.traces);
+        reads.insert(host.reads.begin(), host.reads.end());
+        writes.insert(host.writes.begin(), host.writes.end());
         for (const std::string& field : writes) add(written_by[field], stage.kernel);
         for (const std::string& field : reads) add(read_by[field], stage.kernel);
     }
@@ -61,9 +66,13 @@ TEST(PathState, FieldsExistOnlyForFeaturesInUse) {
     EXPECT_EQ(PathState::bytes_per_path(with_glass), base + 4 + 4);        // specular flag, eta_scale
     EXPECT_EQ(PathState::bytes_per_path(diffuse_nee), base + 10 * 4);      // shadow ray and contribution
     EXPECT_EQ(PathState::bytes_per_path(diffuse_mis), base + 10 * 4 + 4);  // and the bounce's density
+    FeatureSet glass_mis_host_traced = glass_mis, diffuse_host_traced = diffuse_only;
+    glass_mis_host_traced.host_traced = diffuse_host_traced.host_traced = true;
+    EXPECT_EQ(PathState::bytes_per_path(diffuse_host_traced), base);  // no shadow rays: nothing more
     std::size_t total = 0;
     for (const PathStateField& f : path_state_fields()) total += f.bytes;
-    EXPECT_EQ(PathState::bytes_per_path(glass_mis), total);
+    EXPECT_EQ(PathState::bytes_per_path(glass_mis_host_traced), total);
+    EXPECT_EQ(PathState::bytes_per_path(glass_mis), total - 4);  // the shadow rays' verdicts, from the host
 }
 
 }  // namespace

@@ -85,6 +85,34 @@ TEST(Profile, KernelItemsMatchTheRaysTheRenderCounted) {
     EXPECT_TRUE(std::isfinite(p.intersect_bound_rays_per_s));
 }
 
+// Where the host traces (--intersector embree), its share of a tracing
+// stage is a row of its own, "embree:<stage>", launched as often as the
+// stage's kernel over the same rays; its time is the host's, taken out of
+// the device's idle time between kernels (else counted twice); and no
+// intersect bound is measured (the bound is the kernels' tracing).
+TEST(Profile, HostTracedStagesHaveRowsOfTheirOwn) {
+    Scene scene = test::scene_from_file("scenes/cornell_mesh.json");
+    scene.camera.width = scene.camera.height = 32;
+    scene.render.spp = 2;
+    WavefrontOptions options;
+    options.intersector = Intersector::Embree;
+    options.profile = true;
+    WavefrontReport report;
+    RenderResult result = render_wavefront(scene, options, {}, &report);
+    RenderProfile& p = report.profile;
+    for (const char* stage : {"intersect", "intersect_shadow"}) {
+        const std::string row = std::string("embree:") + stage;
+        ASSERT_TRUE(p.has_kernel(row)) << row;
+        EXPECT_EQ(p.kernel(row).launches, p.kernel(stage).launches) << row;
+        EXPECT_EQ(p.kernel(row).items, p.kernel(stage).items) << row;
+        EXPECT_GT(p.kernel(row).device_s, 0.0) << row;
+    }
+    EXPECT_EQ(p.kernel("embree:intersect").items, result.stats.extension_rays);
+    EXPECT_EQ(p.kernel("embree:intersect_shadow").items, result.stats.shadow_rays);
+    EXPECT_LE(p.kernel_s() + p.gaps_s, 1.05 * p.render_s);
+    EXPECT_EQ(p.intersect_bound_rays_per_s, 0.0);
+}
+
 // docs/architecture.md's count of the kernels an iteration launches (at most:
 // scan compaction and next-event estimation, as here) is what one iteration
 // launches: every path of this render ends at its first hit (max_depth 0),

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "support/kernel_sources.h"
+#include "wavefront/host_trace.h"
 #include "wavefront/queue_plan.h"
 #include "wavefront/stage.h"
 
@@ -100,6 +101,25 @@ TEST(StageDeclaration, IntersectShadowRunsOnlyWithNextEventEstimation) {
     const std::vector<Stage> with_nee{Stage::generate, Stage::intersect, Stage::shade_direct, Stage::intersect_shadow,
                                       Stage::scatter};
     EXPECT_EQ(iteration_stages(features), with_nee);
+}
+
+// Where the host traces (--intersector embree), a stage that traces reads
+// what the host wrote for it: its kernel has a WP_HOST_TRACED branch that
+// reads one of those fields; no other kernel has such a branch.
+TEST(StageDeclaration, TracingStagesReadTheHostsResultsWhereItTraces) {
+    for (const StageDeclaration& stage : stage_declarations) {
+        const std::string source = test::read_text(test::kKernelDirectory / (std::string(stage.kernel) + ".cl"));
+        EXPECT_EQ(source.find("#ifdef WP_HOST_TRACED") != std::string::npos, stage.traces != StageTrace::NO_RAYS)
+            << stage.kernel;
+        const std::vector<std::string> written = host_trace_fields(stage.traces).writes;
+        EXPECT_EQ(written.empty(), stage.traces == StageTrace::NO_RAYS) << stage.kernel;
+        if (stage.traces == StageTrace::NO_RAYS) continue;
+        EXPECT_TRUE(std::any_of(written.begin(), written.end(), [&](const std::string& field) {
+            return source.find("PATH_READ(" + field) != std::string::npos;
+        })) << stage.kernel;
+    }
+    EXPECT_EQ(declaration(Stage::intersect).traces, StageTrace::CLOSEST_HIT);
+    EXPECT_EQ(declaration(Stage::intersect_shadow).traces, StageTrace::ANY_HIT);
 }
 
 // The bookkeeping derived from the declaration is the one the host did by
