@@ -7,12 +7,13 @@
 //     triangles, 1->4 midpoint subdivision above.
 //  b. Rays/s of closest hit and any hit on the bunny scene, side by side in
 //     one run: the wavefront's intersect and intersect_shadow stages
-//     (OpenCL, timed by their kernel events), the scalar C++ traversal on 2
-//     threads, Embree's rtcIntersect1 / rtcOccluded1 on 2 threads (not
-//     robust, and robust), and our Embree intersector
-//     (accel/embree_intersector.h) on a queue on 2 threads in each triangle
-//     mode and query kind, on the same rays and the same float triangles;
-//     repetitions interleaved.
+//     (OpenCL, timed by their kernel events; and as --intersector embree
+//     runs them, the host's trace timed by its clock plus the kernel's
+//     rest), the scalar C++ traversal on 2 threads, Embree's rtcIntersect1 /
+//     rtcOccluded1 on 2 threads (not robust, and robust), and our Embree
+//     intersector (accel/embree_intersector.h) on a queue on 2 threads in
+//     each mode, on the same rays and the same float triangles; repetitions
+//     interleaved.
 //  c. Whole-frame samples/s of the wavefront against triangle count.
 //  d. Lanes with meshes: the shipped scene (spheres, quads, a mesh light and
 //     the bunny) rendered with one lane and with 8 (the BVH traversed in
@@ -27,14 +28,17 @@
 //     light, the bunny) in each mode (rays/s), and the reference renderer
 //     with --intersector bvh and embree on the bunny and cornell_mesh
 //     (samples/s, pixels that differ).
+//  g. The wavefront with --intersector bvh and embree on the bunny,
+//     cornell_mesh and the room (no meshes): samples/s, and the tracing
+//     stages' rays/s (the host's trace and the kernel's rest).
 //
 // The traced scene is scenes/bunny.json with its two spheres left out and
 // each wall quad as two triangles, so that both tracers see exactly the same
 // geometry (Embree has no quad of ours and no sphere of ours).
 //
-// Usage: mesh_bench [--quick] [--json FILE] [--scene FILE] [--device CHOICE] [--repeats N] [--sections abcdef]
+// Usage: mesh_bench [--quick] [--json FILE] [--scene FILE] [--device CHOICE] [--repeats N] [--sections abcdefg]
 //                   [--baseline-kernels DIR]
-// --sections: which of a-f to run; --baseline-kernels: b also times the
+// --sections: which of a-g to run; --baseline-kernels: b also times the
 // stages built from DIR (another commit's kernels/), interleaved, as
 // opencl_baseline, and counts the rays where its hits differ from ours.
 #include <embree3/rtcore.h>
@@ -67,6 +71,7 @@
 #include "reference/reference_renderer.h"
 #include "reference/sample_rays.h"
 #include "scene/scene.h"
+#include "wavefront/intersector_choice.h"
 #include "wavefront/pipeline.h"
 #include "wavefront/wavefront_renderer.h"
 
@@ -100,6 +105,14 @@ std::string command_output(const std::string& command) {
     return out;
 }
 
+// The machine's load averages over 1, 5 and 15 minutes (/proc/loadavg), "" where unknown.
+std::string load_average() {
+    std::ifstream in("/proc/loadavg");
+    std::string one, five, fifteen;
+    in >> one >> five >> fifteen;
+    return in ? one + " " + five + " " + fifteen : "";
+}
+
 // Commit, date, machine and OpenCL platform: recorded with every result.
 json run_metadata(const DeviceInfo& device, bool quick) {
     std::string git = "git -C '" WAVEPATH_SOURCE_DIR "' ";
@@ -125,7 +138,8 @@ json run_metadata(const DeviceInfo& device, bool quick) {
             {"opencl_device", device.name},
             {"embree", RTC_VERSION_STRING},
             {"embree_device", embree_device_summary()},
-            {"mode", quick ? "quick" : "full"}};
+            {"mode", quick ? "quick" : "full"},
+            {"load_average_start", load_average()}};
 }
 
 // ---- meshes of every size, from the bunny ----
@@ -354,8 +368,9 @@ void split_threads(std::size_t n, const std::function<void(std::size_t, std::siz
 // The wavefront's intersect and intersect_shadow stages, run alone on given rays.
 class StageTracer {
  public:
-    StageTracer(const Scene& scene, const DeviceInfo& device, std::size_t n)
-        : n_(n), pipeline_(scene, device, n, n, scene.features(), options()) {
+    // host_traced: the stages as --intersector embree runs them (the host traces, the kernel does the rest).
+    StageTracer(const Scene& scene, const DeviceInfo& device, std::size_t n, bool host_traced = false)
+        : n_(n), pipeline_(scene, device, n, n, features(scene, host_traced), options()) {
         if (!scene.features().nee) throw std::runtime_error("the benchmark scene needs a light (intersect_shadow)");
         for (std::size_t i = 0; i < n; ++i) slots_.push_back(std::uint32_t(i));
     }
@@ -413,6 +428,11 @@ class StageTracer {
         o.profile = true;
         return o;
     }
+    static FeatureSet features(const Scene& scene, bool host_traced) {
+        FeatureSet f = scene.features();
+        f.host_traced = host_traced;
+        return f;
+    }
     void split(const std::vector<Ray>& rays, std::vector<float> (&o)[3], std::vector<float> (&d)[3]) const {
         if (rays.size() > n_) throw std::logic_error("more rays than slots");
         for (const Ray& r : rays)
@@ -424,12 +444,15 @@ class StageTracer {
             if (k.name == name) s += k.device_s;
         return s;
     }
+    // The stage's kernel time, and where the host traces, the host's time too (its profile row).
     double timed(const std::string& kernel, const std::function<void()>& run) {
         pipeline_.read_counts();  // earlier kernels' times in
-        double before = kernel_seconds(kernel);
+        const std::string host_row =
+            host_trace_row(declaration(kernel == "intersect" ? Stage::intersect : Stage::intersect_shadow));
+        double before = kernel_seconds(kernel) + kernel_seconds(host_row);
         run();
         pipeline_.read_counts();
-        return kernel_seconds(kernel) - before;
+        return kernel_seconds(kernel) + kernel_seconds(host_row) - before;
     }
 
     std::size_t n_;
@@ -658,7 +681,7 @@ json traversal_figures(const Scene& traced, const DeviceInfo& device, int repeat
     std::vector<RaySet> sets = make_rays(reference_scene);
     std::size_t capacity = 0;
     for (const RaySet& s : sets) capacity = std::max(capacity, s.rays.size());
-    StageTracer stages(traced, device, capacity);
+    StageTracer stages(traced, device, capacity), host_traced_stages(traced, device, capacity, true);
     EmbreeTracer embree(reference_scene.triangles, false), embree_robust(reference_scene.triangles, true);
     std::unique_ptr<StageTracer> baseline;
     if (!baseline_kernels.empty()) baseline = tracer_from(baseline_kernels, traced, device, capacity);
@@ -677,6 +700,11 @@ json traversal_figures(const Scene& traced, const DeviceInfo& device, int repeat
     std::vector<Tracer> impls = {
         {"opencl_stage", [&](const RaySet& set, ClosestResult& out) { return stages.closest(set.rays, out); },
          [&](const RaySet& set, std::vector<std::uint8_t>& out) { return stages.any(set.rays, set.segment, out); }},
+        {"embree_stage",
+         [&](const RaySet& set, ClosestResult& out) { return host_traced_stages.closest(set.rays, out); },
+         [&](const RaySet& set, std::vector<std::uint8_t>& out) {
+             return host_traced_stages.any(set.rays, set.segment, out);
+         }},
         {"scalar_cpp",
          [&](const RaySet& set, ClosestResult& out) { return scalar_closest(reference_scene, set.rays, out); },
          [&](const RaySet& set, std::vector<std::uint8_t>& out) {
@@ -689,7 +717,7 @@ json traversal_figures(const Scene& traced, const DeviceInfo& device, int repeat
              return embree_robust.any(set.rays, set.segment, out);
          }},
     };
-    const std::size_t kEmbree = 2, kScalar = 1, kFirstOurs = impls.size();
+    const std::size_t kEmbreeStage = 1, kScalar = 2, kEmbree = 3, kFirstOurs = impls.size();
     std::vector<std::unique_ptr<IntersectorTracer>> ours;
     for (EmbreeMode mode : {EmbreeMode::Verified, EmbreeMode::Exact}) {
         EmbreeOptions options{mode, int(kThreads)};
@@ -775,7 +803,7 @@ json traversal_figures(const Scene& traced, const DeviceInfo& device, int repeat
                 "other tri same t", "bit-identical");
     for (std::size_t s = 0; s < sets.size(); ++s) {
         const std::size_t count = sets[s].rays.size();
-        std::vector<std::pair<std::size_t, std::size_t>> pairs{{0, kEmbree}, {0, kScalar}};
+        std::vector<std::pair<std::size_t, std::size_t>> pairs{{0, kEmbree}, {0, kScalar}, {kScalar, kEmbreeStage}};
         if (baseline) pairs.emplace_back(0, baseline_index);
         for (std::size_t k = kFirstOurs; k < kFirstOurs + ours.size(); ++k) pairs.emplace_back(kScalar, k);
         for (auto [a, b] : pairs) {
@@ -814,6 +842,13 @@ json traversal_figures(const Scene& traced, const DeviceInfo& device, int repeat
 
 // ---- c. whole frames ----
 
+// Sections c, d and e measure our BVH in the kernels (the wavefront's default for meshes on a CPU is Embree).
+WavefrontOptions traced_by_bvh() {
+    WavefrontOptions options;
+    options.intersector = Intersector::Bvh;
+    return options;
+}
+
 // The fields of every whole-frame row: image size, samples, repetitions and samples/s.
 json frame_fields(int size, int spp, int repeats, const std::vector<double>& samples_per_s) {
     return {{"width", size},
@@ -837,10 +872,10 @@ json render_figures(const Scene& traced, const std::vector<Mesh>& meshes, int si
         scenes.push_back(scene);
     }
     std::vector<std::vector<double>> sps(scenes.size()), rps(scenes.size());
-    render_wavefront(scenes[0], WavefrontOptions{}, Progress{});  // warm-up: kernel compilation
+    render_wavefront(scenes[0], traced_by_bvh(), Progress{});  // warm-up: kernel compilation
     for (int r = 0; r < repeats; ++r) {
         for (std::size_t k = 0; k < scenes.size(); ++k) {
-            RenderStats stats = render_wavefront(scenes[k], WavefrontOptions{}, Progress{}).stats;
+            RenderStats stats = render_wavefront(scenes[k], traced_by_bvh(), Progress{}).stats;
             sps[k].push_back(double(stats.samples) / stats.time_s);
             rps[k].push_back(double(stats.extension_rays + stats.shadow_rays) / stats.time_s);
         }
@@ -880,7 +915,7 @@ json lanes_figures(const Scene& shipped, int size, int spp, int repeats) {
     std::vector<float> image[kConfigs];
     for (int r = -1; r < repeats; ++r) {  // r = -1: warm-up (kernel compilation)
         for (int k = 0; k < kConfigs; ++k) {
-            WavefrontOptions options;
+            WavefrontOptions options = traced_by_bvh();
             options.lanes = lanes[k];
             RenderResult plain = render_wavefront(scene, options, Progress{});
             options.profile = true;  // a render of its own: profiling adds count_depths and waits on events
@@ -944,8 +979,8 @@ json short_list_figures(int size, int spp, int repeats) {
     std::vector<std::vector<double>> sps(variants.size()), closest_ns(variants.size()), any_ns(variants.size());
     for (int r = -1; r < repeats; ++r) {
         for (std::size_t k = 0; k < variants.size(); ++k) {
-            RenderStats plain = render_wavefront(variants[k].loaded, WavefrontOptions{}, Progress{}).stats;
-            WavefrontOptions profiled;
+            RenderStats plain = render_wavefront(variants[k].loaded, traced_by_bvh(), Progress{}).stats;
+            WavefrontOptions profiled = traced_by_bvh();
             profiled.profile = true;
             WavefrontReport report;
             RenderStats stats = render_wavefront(variants[k].loaded, profiled, Progress{}, &report).stats;
@@ -1071,6 +1106,92 @@ json reference_figures(int size, int spp, int repeats) {
     return rows;
 }
 
+// ---- g. the wavefront with each intersector ----
+
+// The host's and the kernel's seconds of a tracing stage in a profile (the host's 0 with the BVH).
+struct StageSeconds {
+    double host = 0.0, kernel = 0.0;
+    std::uint64_t rays = 0;
+};
+StageSeconds stage_seconds(const RenderProfile& profile, Stage stage) {
+    const StageDeclaration& declared = declaration(stage);
+    const std::string host_row = host_trace_row(declared);
+    StageSeconds s;
+    for (const KernelProfile& k : profile.kernels) {
+        if (k.name == host_row) s.host = k.device_s;
+        if (k.name == declared.kernel) s.kernel = k.device_s, s.rays = k.items;
+    }
+    return s;
+}
+
+// The shipped mesh scenes (and the room, without meshes) rendered by the
+// wavefront tracing with our BVH in the kernels and with Embree on the host:
+// samples/s of unprofiled renders, interleaved; the tracing stages' rays/s
+// from a profiled render of its own (the host's trace and the kernel's rest).
+json wavefront_intersector_figures(const DeviceInfo& device, int size, int spp, int repeats) {
+    const Intersector kinds[] = {Intersector::Bvh, Intersector::Embree};
+    const char* names[] = {"bunny", "cornell_mesh", "room"};
+    std::vector<Scene> scenes;
+    for (const char* name : names) {
+        Scene scene = load_scene(std::string(WAVEPATH_SOURCE_DIR "/scenes/") + name + ".json");
+        scene.camera.width = scene.camera.height = size;
+        scene.render.spp = spp;
+        scenes.push_back(scene);
+    }
+    std::printf(
+        "\n## g. The wavefront with each intersector: %dx%d, %d spp, %d interleaved repetitions (after one warm-up "
+        "render each), default options but --intersector; the tracing stages from a profiled render of its own\n\n",
+        size, size, spp, repeats);
+    // [scene][intersector]
+    std::vector<std::array<std::vector<double>, 2>> sps(scenes.size());
+    std::vector<std::array<std::vector<StageSeconds>, 2>> closest(scenes.size()), any(scenes.size());
+    for (int r = -1; r < repeats; ++r) {
+        for (std::size_t k = 0; k < scenes.size(); ++k) {
+            for (int i = 0; i < 2; ++i) {
+                WavefrontOptions options;
+                options.device = std::to_string(device.index);
+                options.intersector = kinds[i];
+                RenderStats plain = render_wavefront(scenes[k], options, Progress{}).stats;
+                options.profile = true;
+                WavefrontReport report;
+                render_wavefront(scenes[k], options, Progress{}, &report);
+                if (r < 0) continue;
+                sps[k][i].push_back(double(plain.samples) / plain.time_s);
+                closest[k][i].push_back(stage_seconds(report.profile, Stage::intersect));
+                any[k][i].push_back(stage_seconds(report.profile, Stage::intersect_shadow));
+            }
+        }
+    }
+    auto rate = [](const std::vector<StageSeconds>& runs, bool host_only) {
+        std::vector<double> per_s;
+        for (const StageSeconds& s : runs) per_s.push_back(double(s.rays) / (host_only ? s.host : s.host + s.kernel));
+        return per_s;
+    };
+    std::printf("%-13s %-12s %16s %10s %12s %22s %22s\n", "scene", "intersector", "Msamples/s min", "median",
+                "of bvh (med)", "intersect Mrays/s", "shadow Mrays/s");
+    json rows = json::array();
+    for (std::size_t k = 0; k < scenes.size(); ++k) {
+        for (int i = 0; i < 2; ++i) {
+            double ratio = median(sps[k][i]) / median(sps[k][0]);
+            std::vector<double> stage_closest = rate(closest[k][i], false), stage_any = rate(any[k][i], false);
+            std::printf("%-13s %-12s %16.4f %10.4f %11.2fx %22.2f %22.2f\n", names[k],
+                        intersector_name(kinds[i]).c_str(), minimum(sps[k][i]) / 1e6, median(sps[k][i]) / 1e6, ratio,
+                        median(stage_closest) / 1e6, median(stage_any) / 1e6);
+            json row = frame_fields(size, spp, repeats, sps[k][i]);
+            row.update({{"scene", names[k]},
+                        {"intersector", intersector_name(kinds[i])},
+                        {"of_bvh_median", ratio},
+                        {"intersect_mrays_s_median", median(stage_closest) / 1e6},
+                        {"intersect_shadow_mrays_s_median", median(stage_any) / 1e6}});
+            if (kinds[i] == Intersector::Embree)
+                row.update({{"intersect_host_mrays_s_median", median(rate(closest[k][i], true)) / 1e6},
+                            {"intersect_shadow_host_mrays_s_median", median(rate(any[k][i], true)) / 1e6}});
+            rows.push_back(row);
+        }
+    }
+    return rows;
+}
+
 int run(int argc, char** argv) {
     bool quick = false;
     std::string json_path, scene_path = WAVEPATH_SOURCE_DIR "/scenes/bunny.json", device_choice, sections = "abcdef",
@@ -1098,7 +1219,7 @@ int run(int argc, char** argv) {
             baseline_kernels = value();
         } else {
             std::cerr << "usage: mesh_bench [--quick] [--json FILE] [--scene FILE] [--device CHOICE] [--repeats N] "
-                         "[--sections abcdef] [--baseline-kernels DIR]\n";
+                         "[--sections abcdefg] [--baseline-kernels DIR]\n";
             return 2;
         }
     }
@@ -1134,6 +1255,10 @@ int run(int argc, char** argv) {
         results["shipped_scene"] = shipped_scene_figures(scene, quick ? 128 : 512, repeats);
         results["reference"] = quick ? reference_figures(64, 1, 3) : reference_figures(128, 4, 5);
     }
+    if (wanted('g'))
+        results["wavefront"] = quick ? wavefront_intersector_figures(device, 64, 1, 3)
+                                     : wavefront_intersector_figures(device, 256, 16, repeats);
+    results["meta"]["load_average_end"] = load_average();
     if (!json_path.empty()) {
         std::ofstream out(json_path);
         out << results.dump(1) << "\n";

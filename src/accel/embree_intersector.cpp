@@ -242,6 +242,7 @@ void verified_occlusion_filter(const RTCFilterFunctionNArguments* args) {
     if (!args->valid[0]) return;
     const auto& shapes = *static_cast<const Shapes*>(args->geometryUserPtr);
     Lane& lane = QueryContext::of(args->context);
+    with_triangle_ray(lane);  // here, not for every ray: most shadow rays meet no shape
     if (shapes.hits(lane, Shapes::shape_of(RTCHitN_primID(args->hit, args->N, 0))))
         lane.occluded = true;
     else
@@ -550,7 +551,7 @@ struct EmbreeIntersector::Impl {
     void occluded(Lane& lane) const {
         lane.occluded = any_of(spheres, lane) || any_of(planes, lane);
         if (!needs_embree(lane)) return;
-        with_triangle_ray(lane);
+        if (options.mode == EmbreeMode::Exact) with_triangle_ray(lane);  // every callback needs it
         QueryContext context(lane);
         RTCRay ray;
         set_ray(ray, lane, initial_t_far(lane));

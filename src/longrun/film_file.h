@@ -3,7 +3,7 @@
 // Little-endian, in this order (docs/long-renders.md, "Film files"):
 //   magic "WPFILM\r\n" (8 bytes), format version (u32), flags (u32; bit 0:
 //   sums of squares follow the sums), scene hash (u64), settings hash (u64),
-//   estimator (16 bytes, ASCII, zero-padded), width (u32), height (u32),
+//   estimator (16 bytes, ASCII, zero-padded when shorter), width (u32), height (u32),
 //   first work item (u64), end work item (u64), limbs per sum (u32), fraction
 //   bits (u32), then the sums (3 per pixel, each WP_FILM_LIMBS u64 limbs,
 //   least significant first), the squares if flagged (bit 0), the adaptive

@@ -113,7 +113,9 @@ const UsageCase kUsageErrors[] = {
     {"EmbreeInDouble",
      {"--backend", "reference", "--precision", "double", "--intersector", "embree"},
      "--intersector embree: Embree traces in float only"},
-    {"EmbreeOnTheWavefront", {"--intersector", "embree"}, "--intersector embree: only the reference backend"},
+    {"EmbreeOnTheMegakernel",
+     {"--backend", "megakernel", "--intersector", "embree"},
+     "--intersector embree: the megakernel traces with its OpenCL BVH"},
     {"UnknownNee", {"--nee", "maybe"}, "--nee: "},
     {"UnknownHemisphere", {"--hemisphere", "cos"}, "--hemisphere: "},
     {"UnknownFlag", {"--sp", "4"}, "The following argument"},
@@ -301,6 +303,22 @@ TEST_F(CliTest, ReferenceRendersWithEitherIntersector) {
         ASSERT_EQ(result.exit_code, 0) << intersector << ": " << result.err;
         EXPECT_EQ(read_image(output_path()).width, 8);
     }
+}
+
+// The wavefront traces with either; --explain names the intersector and why
+// (the test scene has no meshes: the OpenCL BVH by default), and both give
+// the same image.
+TEST_F(CliTest, WavefrontRendersWithEitherIntersectorAndExplainsWhich) {
+    const CommandResult by_default = render(base_scene().dump(), {"--explain", "-q"});
+    ASSERT_EQ(by_default.exit_code, 0) << by_default.err;
+    EXPECT_NE(by_default.out.find("intersector: bvh (the OpenCL BVH: without meshes"), std::string::npos)
+        << by_default.out;
+    const std::vector<float> bvh = read_image(output_path()).rgb;
+    const CommandResult embree = render(base_scene().dump(), {"--intersector", "embree", "--explain", "-q"});
+    ASSERT_EQ(embree.exit_code, 0) << embree.err;
+    EXPECT_NE(embree.out.find("intersector: embree (asked for)"), std::string::npos) << embree.out;
+    EXPECT_EQ(read_image(output_path()).width, 8);
+    EXPECT_EQ(read_image(output_path()).rgb, bvh);  // no triangles, so no near tie: the same hits
 }
 
 TEST_F(CliTest, ExistingOutputIsReplacedOnlyBySuccess) {

@@ -7,14 +7,44 @@
 #include <thread>
 #include <vector>
 
+#include "cli/backends.h"
 #include "cli/errors.h"
 #include "cli/options.h"
 #include "cli/progress.h"
 #include "cli/summary.h"
 #include "core/atomic_file.h"
+#include "opencl/device.h"
+#include "wavefront/intersector_choice.h"
 
 namespace wp::cli {
 namespace {
+
+// A checkpoint's estimator names what traced its rays: Embree and the BVH
+// may decide a near tie otherwise, so their films must not mix.
+TEST(EstimatorName, NamesTheIntersector) {
+    Scene with_mesh;
+    with_mesh.meshes.push_back({});
+    with_mesh.meshes.back().positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+    with_mesh.meshes.back().triangles = {{0, 1, 2}};
+    ASSERT_TRUE(with_mesh.features().meshes);
+    auto name = [&](const char* backend, const char* intersector, const char* precision = "float") {
+        BackendOptions options;
+        options.name = backend;
+        options.intersector = intersector;
+        options.precision = precision;
+        return estimator_name(options, with_mesh);
+    };
+    EXPECT_EQ(name("wavefront", "bvh"), "opencl");
+    EXPECT_EQ(name("megakernel", ""), "opencl");
+    EXPECT_EQ(name("wavefront", "embree"), "opencl-embree");
+    EXPECT_EQ(name("reference", "embree"), "reference-embree");
+    EXPECT_EQ(name("reference", "bvh"), "reference-float");
+    EXPECT_EQ(name("reference", ""), "reference-embree");  // the reference's default in float
+    EXPECT_EQ(name("reference", "", "double"), "reference-double");
+    // The wavefront's default: the device's (on this CPU device, Embree for a scene with meshes).
+    bool embree = default_intersector(choose_device(""), with_mesh.features()).intersector == Intersector::Embree;
+    EXPECT_EQ(name("wavefront", ""), embree ? "opencl-embree" : "opencl");
+}
 
 TEST(Progress, DurationFormats) {
     EXPECT_EQ(format_duration(0.0), "0s");

@@ -84,6 +84,9 @@ TEST_F(LongRenderCli, RefusedCheckpointsChangeNothing) {
          checkpoint + ": a film of 32x32 pixels"},
         {small_room_render_args(output, 8, {"--resume", checkpoint, "--backend", "reference"}),
          checkpoint + ": rendered by the opencl estimator, this render uses reference-embree"},
+        // the room has no meshes: the wavefront's default traces with the OpenCL BVH
+        {small_room_render_args(output, 8, {"--resume", checkpoint, "--intersector", "embree"}),
+         checkpoint + ": rendered by the opencl estimator, this render uses opencl-embree"},
         {small_room_render_args(output, 2, {"--resume", checkpoint}),
          checkpoint + ": holds 3 samples per pixel, more than the 2"},
         {small_room_render_args(output, 8, {"--resume", out_ / "truncated.wpfilm"}), "truncated"},

@@ -70,7 +70,7 @@ TEST_F(FilmFileTest, ReadsBackWhatWasWritten) {
 // and longer names collided with shorter ones); a longer one is refused when
 // written, never cut.
 TEST_F(FilmFileTest, EstimatorNamesOfSixteenBytesReadBackWholeAndLongerOnesAreRefused) {
-    for (const char* name : {"reference-double", "reference-embree", "reference-float"}) {
+    for (const char* name : {"opencl", "opencl-embree", "reference-float", "reference-double", "reference-embree"}) {
         write_film_file(path_, {{0x1234, 0x5678, name}, example_film(false)});
         EXPECT_EQ(read_film_file(path_).identity.estimator, name);
     }
