@@ -1,7 +1,8 @@
 // Meshes rendered: every OpenCL backend retraces the reference's paths
 // through a scene of triangle meshes (diffuse, mirror and glass), at 1 spp,
-// on every pixel, both tracing with our BVH; and the wavefront tracing with
-// Embree on the host retraces the reference tracing with Embree.
+// on every pixel, both tracing with our BVH; and on the shipped scenes the
+// wavefront retraces the reference with either intersector, Embree on the
+// host or our BVH.
 #include <gtest/gtest.h>
 
 #include "megakernel/megakernel_renderer.h"
@@ -10,6 +11,7 @@
 #include "support/analytic_scenes.h"
 #include "support/meshes.h"
 #include "support/path_agreement.h"
+#include "wavefront/intersector_choice.h"
 #include "wavefront/wavefront_renderer.h"
 #include "wavefront/wavefront_test_support.h"
 
@@ -178,20 +180,26 @@ Scene shipped(const std::string& name, int size, int spp) {
     return scene;
 }
 
-// Both ask the same intersector, so every ray, near ties included, meets the
-// same shape at the same distance (the tie rule is a function of the ray).
-TEST(MeshRender, WavefrontWithEmbreeRetracesTheReferenceWithEmbree) {
-    for (const char* name : {"cornell_mesh", "bunny"}) {
+// The wavefront and the reference asking the same intersector: with Embree,
+// every ray, near ties included, meets the same shape at the same distance
+// (the tie rule is a function of the ray); with the BVH, both traverse the
+// same tree. The shipped scenes, with meshes and without.
+TEST(MeshRender, WavefrontRetracesTheReferenceWithTheSameIntersectorOnTheShippedScenes) {
+    for (const char* name : {"cornell", "cornell_mesh", "bunny", "room"}) {
         Scene scene = shipped(name, 48, 1);
-        WavefrontReport report;
-        RenderResult wavefront = render_wavefront(scene, traced_by(Intersector::Embree), {}, &report);
-        EXPECT_EQ(report.intersector, Intersector::Embree) << name;
-        EXPECT_NE(report.features.find("host-traced"), std::string::npos) << name;
-        EXPECT_GT(wavefront.stats.shadow_rays, 0u) << name;
-        ReferenceOptions reference{2, false};
-        reference.intersector = Intersector::Embree;
-        test::expect_path_for_path_agreement(wavefront, render_reference(scene, reference),
-                                             std::string("wavefront and reference with Embree, ") + name);
+        for (Intersector intersector : {Intersector::Embree, Intersector::Bvh}) {
+            std::string label = std::string(name) + ", " + intersector_name(intersector);
+            WavefrontReport report;
+            RenderResult wavefront = render_wavefront(scene, traced_by(intersector), {}, &report);
+            EXPECT_EQ(report.intersector, intersector) << label;
+            EXPECT_EQ(report.features.find("host-traced") != std::string::npos, intersector == Intersector::Embree)
+                << label;
+            EXPECT_GT(wavefront.stats.shadow_rays, 0u) << label;
+            ReferenceOptions reference{2, false};
+            reference.intersector = intersector;
+            test::expect_path_for_path_agreement(wavefront, render_reference(scene, reference),
+                                                 "wavefront and reference, " + label);
+        }
     }
 }
 
