@@ -16,6 +16,25 @@ void add_integer(CLI::App& app, const std::string& flag, std::optional<Int>& val
     app.add_option(flag, value, help)->check(integer_in(min, max));
 }
 
+// The limits each mesh file's import process runs under (docs/scene-format.md, "Mesh import limits").
+void add_mesh_import_options(CLI::App& render, MeshImportLimits& limits) {
+    render
+        .add_option("--mesh-import-memory", limits.memory_mib,
+                    "Memory in MiB each mesh file's import may use (its process's address space beyond its start); "
+                    "raise it for very large meshes")
+        ->check(integer_in(1, std::int64_t(kMaxImportMemoryMib)))
+        ->capture_default_str();
+    render
+        .add_option("--mesh-import-cpu", limits.cpu_s, "CPU seconds each mesh file's import may use")
+        ->check(integer_in(1, kMaxImportCpuS))
+        ->capture_default_str();
+    render
+        .add_option("--mesh-import-time", limits.wall_s,
+                    "Seconds each mesh file's import may take before it is stopped (wall clock)")
+        ->check(CLI::Range(1e-3, kMaxImportWallS))
+        ->capture_default_str();
+}
+
 }  // namespace
 
 void add_render_options(CLI::App& render, RenderCommand& command) {
@@ -48,6 +67,7 @@ void add_render_options(CLI::App& render, RenderCommand& command) {
         ->check(CLI::IsMember({"cosine", "uniform"}));
 
     add_backend_options(render, command.backend);
+    add_mesh_import_options(render, command.mesh_import);
 
     LongRunFlags& l = command.long_run;
     render.add_option("--checkpoint", l.checkpoint,

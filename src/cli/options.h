@@ -7,6 +7,7 @@
 #include <string>
 
 #include "cli/backends.h"
+#include "import/import_limits.h"
 #include "scene/scene.h"
 
 namespace wp::cli {
@@ -37,6 +38,7 @@ struct RenderCommand {
     RenderOverrides overrides;
     LongRunFlags long_run;
     BackendOptions backend;
+    MeshImportLimits mesh_import;  // --mesh-import-memory, --mesh-import-cpu, --mesh-import-time
 };
 
 // Adds SCENE, -o and every render flag to `render`. Each numeric flag is

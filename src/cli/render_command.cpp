@@ -153,7 +153,7 @@ PreparedRender prepare_render(const RenderCommand& command, Ranks& ranks) {
     LongRunPlan& plan = prepared.plan;
     on_every_rank(ranks, [&] {
         if (ranks.is_root()) check_outputs(command);
-        scene = load_scene(command.scene_path);
+        scene = load_scene(command.scene_path, command.mesh_import);
         apply_overrides(command.overrides, scene);
         if (command.long_run.target_error && !command.long_run.samples.empty())
             throw UsageError("--target-error: needs the whole render, not a --samples range");

@@ -1,8 +1,6 @@
 #include "scene/json_field.h"
 
-#include <array>
 #include <cctype>
-#include <charconv>
 #include <cmath>
 
 #include "scene/scene.h"
@@ -37,12 +35,6 @@ std::string range_text(std::int64_t min, std::int64_t max) {
 std::string json_member_path(const std::string& parent, std::string_view key) {
     if (!is_identifier(key)) return parent + "[" + nlohmann::json(key).dump() + "]";
     return parent.empty() ? std::string(key) : parent + "." + std::string(key);
-}
-
-std::string format_number(double value) {
-    std::array<char, 32> buffer{};
-    auto result = std::to_chars(buffer.data(), buffer.data() + buffer.size(), value);
-    return std::string(buffer.data(), result.ptr);
 }
 
 JsonField::JsonField(const nlohmann::json& value, std::string path, const std::string& source)

@@ -11,6 +11,8 @@
 #include <string>
 #include <string_view>
 
+#include "core/number_text.h"
+
 namespace wp {
 
 // The largest magnitude accepted for any real number in a scene: keeps
@@ -19,9 +21,6 @@ inline constexpr double kMaxSceneMagnitude = 1e12;
 
 // "camera" + "fov_y" -> "camera.fov_y"; odd names are quoted: materials["my light"].
 std::string json_member_path(const std::string& parent, std::string_view key);
-
-// Shortest text that reads back as the same double ("-1", "0.1", "1e+13").
-std::string format_number(double value);
 
 class JsonField {
  public:

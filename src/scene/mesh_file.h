@@ -1,23 +1,19 @@
-// Triangle meshes from files (OBJ, PLY, OFF, STL, glTF 2.0, and whatever
-// else assimp reads), checked and transformed to world space in double.
+// Triangle meshes from files (OBJ, PLY, OFF, STL, glTF 2.0), read by assimp
+// in a child process (import/import_process.h), checked and transformed to
+// world space in double here.
 #pragma once
 
 #include <filesystem>
 #include <glm/mat4x4.hpp>
-#include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "import/import_limits.h"
+#include "import/imported_scene.h"
+#include "import/mesh_file_error.h"
 #include "scene/scene.h"
 
 namespace wp {
-
-// A problem with a mesh file, one line without the file's name (the scene
-// loader prefixes the scene file, the JSON path and the mesh file).
-class MeshFileError : public std::runtime_error {
- public:
-    using std::runtime_error::runtime_error;
-};
 
 struct MeshFileOptions {
     glm::dmat4 to_world{1.0};          // applied after the file's own node transforms; invertible
@@ -28,7 +24,13 @@ struct MeshFileOptions {
 // Reads every mesh of the file's node graph, merged into one, with node
 // transforms and then `to_world` applied. Fills positions, normals (only if
 // every vertex has one in the file), triangles and degenerate_dropped of the
-// result; file and material are the caller's. Throws MeshFileError.
-Mesh read_mesh_file(const std::filesystem::path& path, const MeshFileOptions& options);
+// result; file and material are the caller's. Throws MeshFileError
+// (ImportProcessError if the import process failed).
+Mesh read_mesh_file(const std::filesystem::path& path, const MeshFileOptions& options,
+                    const MeshImportLimits& limits = {});
+
+// What read_mesh_file makes of an imported file: its meshes checked
+// (finite vertices, indices in range), then merged as above.
+Mesh mesh_from_import(const ImportedScene& imported, const MeshFileOptions& options);
 
 }  // namespace wp

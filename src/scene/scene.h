@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include "import/import_limits.h"
+
 namespace wp {
 
 struct Camera {
@@ -140,7 +142,9 @@ std::vector<double> cumulative_distribution(const std::vector<double>& weights);
 // and meshes (in that order). The loader calls it; tests that build scenes in code call it too.
 void build_light_table(Scene& scene);
 
-Scene load_scene(const std::string& path);
-Scene parse_scene(const std::string& json_text, const std::string& source_name);
+// Mesh files are imported under `mesh_import` (import/import_limits.h).
+Scene load_scene(const std::string& path, const MeshImportLimits& mesh_import = {});
+Scene parse_scene(const std::string& json_text, const std::string& source_name,
+                  const MeshImportLimits& mesh_import = {});
 
 }  // namespace wp

@@ -40,7 +40,8 @@ std::string read_text_file(const std::string& path) {
 
 }  // namespace
 
-Scene parse_scene(const std::string& json_text, const std::string& source_name) {
+Scene parse_scene(const std::string& json_text, const std::string& source_name,
+                  const MeshImportLimits& mesh_import) {
     const nlohmann::json document = parse_json_strictly(json_text, source_name);
     const JsonField root = root_field(document, source_name);
     root.allow_only_keys({"camera", "render", "background", "materials", "shapes"});
@@ -53,13 +54,15 @@ Scene parse_scene(const std::string& json_text, const std::string& source_name) 
         scene.background = background->vec3_in(0.0, kMaxSceneMagnitude);
     }
     if (auto materials = root.optional_member("materials")) scene.materials = read_materials(*materials);
-    if (auto shapes = root.optional_member("shapes")) read_shapes(*shapes, scene);
+    if (auto shapes = root.optional_member("shapes")) read_shapes(*shapes, scene, mesh_import);
 
     rebase_to_camera(scene);
     build_light_table(scene);
     return scene;
 }
 
-Scene load_scene(const std::string& path) { return parse_scene(read_text_file(path), path); }
+Scene load_scene(const std::string& path, const MeshImportLimits& mesh_import) {
+    return parse_scene(read_text_file(path), path, mesh_import);
+}
 
 }  // namespace wp

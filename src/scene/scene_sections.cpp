@@ -257,7 +257,7 @@ MeshFileOptions read_mesh_options(const JsonField& field) {
 }
 
 // The mesh file's path is relative to the scene file's directory.
-Mesh read_mesh(const JsonField& field, const Scene& scene) {
+Mesh read_mesh(const JsonField& field, const Scene& scene, const MeshImportLimits& mesh_import) {
     field.allow_only_keys({"type", "file", "material", "transform", "face_normals", "objects"});
     JsonField file_field = field.member("file");
     const std::string file = file_field.string();
@@ -266,7 +266,7 @@ Mesh read_mesh(const JsonField& field, const Scene& scene) {
     const int material = resolve_material(field, scene.materials);
     Mesh mesh;
     try {
-        mesh = read_mesh_file(std::filesystem::path(scene.source).parent_path() / file, options);
+        mesh = read_mesh_file(std::filesystem::path(scene.source).parent_path() / file, options, mesh_import);
     } catch (const MeshFileError& error) {
         file_field.fail(file + ": " + error.what());
     }
@@ -275,7 +275,7 @@ Mesh read_mesh(const JsonField& field, const Scene& scene) {
     return mesh;
 }
 
-void read_shape(const JsonField& field, Scene& scene) {
+void read_shape(const JsonField& field, Scene& scene, const MeshImportLimits& mesh_import) {
     JsonField type_field = field.member("type");
     std::string type = type_field.string();
     if (type == "sphere") {
@@ -285,7 +285,7 @@ void read_shape(const JsonField& field, Scene& scene) {
     } else if (type == "quad") {
         scene.quads.push_back(read_quad(field, scene.materials));
     } else if (type == "mesh") {
-        scene.meshes.push_back(read_mesh(field, scene));
+        scene.meshes.push_back(read_mesh(field, scene, mesh_import));
         std::size_t triangles = 0;
         for (const Mesh& mesh : scene.meshes) triangles += mesh.triangles.size();
         if (triangles > kMaxTriangles)
@@ -341,9 +341,9 @@ std::vector<Material> read_materials(const JsonField& field) {
     return materials;
 }
 
-void read_shapes(const JsonField& field, Scene& scene) {
+void read_shapes(const JsonField& field, Scene& scene, const MeshImportLimits& mesh_import) {
     std::size_t count = field.array_size();
-    for (std::size_t i = 0; i < count; ++i) read_shape(field.element(i), scene);
+    for (std::size_t i = 0; i < count; ++i) read_shape(field.element(i), scene, mesh_import);
 }
 
 }  // namespace wp

@@ -17,7 +17,7 @@ Camera read_camera(const JsonField& field);
 RenderSettings read_render(const JsonField& field);
 std::vector<Material> read_materials(const JsonField& field);
 // Appends to scene.spheres/planes/quads/meshes; materials and source must already be set
-// (mesh files are found relative to the directory of scene.source).
-void read_shapes(const JsonField& field, Scene& scene);
+// (mesh files are found relative to the directory of scene.source, and imported under `mesh_import`).
+void read_shapes(const JsonField& field, Scene& scene, const MeshImportLimits& mesh_import);
 
 }  // namespace wp

@@ -1,7 +1,7 @@
-// libFuzzer target: a mesh file -> a Mesh, or the one MeshFileError. The
-// input is the file's extension, a newline, then its bytes; extensions are
-// the formats docs/scene-format.md lists (others are skipped: assimp reads
-// many more, which scenes may name but the project does not vouch for).
+// libFuzzer target: a mesh file -> a Mesh, or the one MeshFileError, through
+// the contained import (assimp in wavepath-import's process). The input is
+// the file's extension, a newline, then its bytes; extensions are the
+// formats docs/scene-format.md lists (wavepath refuses the others' readers).
 #include <unistd.h>
 
 #include <cstddef>
@@ -11,6 +11,8 @@
 #include <set>
 #include <string>
 
+#include "import_failures.h"
+#include "import/import_process.h"
 #include "scene/mesh_file.h"
 
 namespace {
@@ -38,7 +40,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const std::filesystem::path file = scratch.path / ("mesh." + input.substr(0, newline));
     std::ofstream(file, std::ios::binary).write(input.data() + newline + 1, input.size() - newline - 1);
     try {
-        wp::read_mesh_file(file, wp::MeshFileOptions{});
+        wp::read_mesh_file(file, wp::MeshFileOptions{}, wp::fuzz::kImportLimits);
+    } catch (const wp::ImportProcessError& error) {
+        wp::fuzz::note_import_failure(error.what(), data, size);
     } catch (const wp::MeshFileError&) {
     }
     std::filesystem::remove(file);

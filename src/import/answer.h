@@ -1,0 +1,58 @@
+// What wavepath-import (the mesh import helper, import/helper/main.cpp)
+// sends back on its answer pipe, and how wavepath reads it: one answer,
+// either the imported scene or the one-line reason it could not be read.
+// The parent trusts nothing in it: decode_answer checks every length, count,
+// flag and index against the bytes that arrived.
+//
+// Layout, in the machine's byte order (the helper is built with wavepath):
+//   "WPIMPORT" then u32 version (kAnswerVersion), u32 kind:
+//   kind 1 (failure): u32 length (1 to kMaxFailureLength), that many bytes of text;
+//   kind 2 (scene):   u32 mesh count, then each mesh:
+//                       u32 vertices, u32 has_normals (0 or 1), u32 triangles,
+//                       f32 x, y, z per vertex, the normals likewise if it has them,
+//                       u32 i0, i1, i2 per triangle;
+//                     u32 node count, then each node (depth first, the root first):
+//                       u32 parent (0xffffffff for the root only, else below the node's own index),
+//                       f32[16] transform (row-major), u32 name length (up to kMaxNodeName), the name,
+//                       u32 mesh count, u32 per mesh (each below the scene's mesh count);
+//   and nothing after it.
+#pragma once
+
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <variant>
+
+#include "import/imported_scene.h"
+
+namespace wp {
+
+inline constexpr std::uint32_t kAnswerVersion = 1;
+inline constexpr std::size_t kMaxFailureLength = 4096;
+
+// The helper's file descriptor for its answer, and its exit statuses besides 0 (answered).
+inline constexpr int kAnswerFd = 3;
+inline constexpr int kHelperUsageStatus = 2;         // its command line was not what wavepath passes, or its limits could not be set
+inline constexpr int kHelperOutOfMemoryStatus = 10;  // an allocation failed under its memory limit
+
+// An answer's message when the file could not be imported (one line).
+struct ImportFailure {
+    std::string message;
+};
+
+using ImportAnswer = std::variant<ImportedScene, ImportFailure>;
+
+std::string encode_answer(const ImportedScene& scene);
+std::string encode_answer(const ImportFailure& failure);  // the message cut to kMaxFailureLength bytes
+
+// An answer that is not one well-formed answer; what() says what is wrong.
+class MalformedAnswer : public std::runtime_error {
+ public:
+    using std::runtime_error::runtime_error;
+};
+
+// The answer `bytes` hold, or MalformedAnswer.
+ImportAnswer decode_answer(std::string_view bytes);
+
+}  // namespace wp

@@ -1,0 +1,224 @@
+#include "import/helper/assimp_import.h"
+
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+
+#include <algorithm>
+#include <assimp/DefaultLogger.hpp>
+#include <assimp/Importer.hpp>
+#include <assimp/LogStream.hpp>
+#include <assimp/ProgressHandler.hpp>
+#include <assimp/importerdesc.h>
+#include <cerrno>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <memory>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "import/mesh_file_error.h"
+#include "import/mesh_invariants.h"
+
+namespace wp {
+namespace {
+
+// ---- assimp's log ----
+
+// assimp reports some problems only in its log and then carries on with a
+// guess: an OFF index out of range is clamped, a polygon without an ear is
+// fanned. This collects the error lines logged while it lives (DefaultLogger
+// is global: imports must not run on several threads at once).
+class AssimpErrorCapture : private Assimp::LogStream {
+ public:
+    AssimpErrorCapture() : created_logger_(Assimp::DefaultLogger::isNullLogger()) {
+        if (created_logger_) Assimp::DefaultLogger::create(nullptr, Assimp::Logger::NORMAL, 0);
+        Assimp::DefaultLogger::get()->attachStream(this, Assimp::Logger::Err);
+    }
+    ~AssimpErrorCapture() override {
+        Assimp::DefaultLogger::get()->detachStream(this, Assimp::Logger::Err);  // ownership comes back
+        if (created_logger_) Assimp::DefaultLogger::kill();
+    }
+    AssimpErrorCapture(const AssimpErrorCapture&) = delete;
+    AssimpErrorCapture& operator=(const AssimpErrorCapture&) = delete;
+
+    // The first logged error containing `text`, without assimp's prefix; empty if none.
+    std::string find(std::string_view text) const {
+        for (const std::string& line : errors_) {
+            if (line.find(text) != std::string::npos) return line;
+        }
+        return {};
+    }
+
+ private:
+    void write(const char* message) override {
+        std::string line(message);
+        static constexpr std::string_view kPrefix = "Error, T0: ";
+        if (line.rfind(kPrefix, 0) == 0) line.erase(0, kPrefix.size());
+        while (!line.empty() && (line.back() == '\n' || line.back() == '\r')) line.pop_back();
+        errors_.push_back(line);
+    }
+
+    bool created_logger_;
+    std::vector<std::string> errors_;
+};
+
+// assimp's messages may span lines; ours are one line.
+std::string one_line(std::string text) {
+    std::replace(text.begin(), text.end(), '\n', ' ');
+    std::replace(text.begin(), text.end(), '\r', ' ');
+    while (!text.empty() && text.back() == ' ') text.pop_back();
+    return text;
+}
+
+// ---- the reader ----
+
+// assimp's names for the readers of the formats docs/scene-format.md lists.
+constexpr std::string_view kDocumentedReaders[] = {
+    "Wavefront Object Importer",        "Stanford Polygon Library (PLY) Importer", "OFF Importer",
+    "Stereolithography (STL) Importer", "glTF2 Importer"};
+
+// Why the reader assimp chose for the file may not read it; empty if it may
+// or none is chosen yet. assimp's ReadFile records its choice (by the
+// extension, else by each reader's signature check) as "importerIndex".
+std::string reader_refusal(const Assimp::Importer& importer) {
+    const int index = importer.GetPropertyInteger("importerIndex", -1);
+    const aiImporterDesc* reader = index < 0 ? nullptr : importer.GetImporterInfo(std::size_t(index));
+    if (reader == nullptr ||
+        std::find(std::begin(kDocumentedReaders), std::end(kDocumentedReaders), reader->mName) !=
+            std::end(kDocumentedReaders))
+        return {};
+    return "format not supported: assimp chose its reader \"" + std::string(reader->mName) +
+           "\"; wavepath reads OBJ, PLY, OFF, STL and glTF 2.0";
+}
+
+// Stops the import before a reader of another format reads the file:
+// assimp reports the read's first progress (0 of the file's size) after
+// choosing the reader and before calling it. A throw here makes ReadFile
+// return null.
+class ReaderGate : public Assimp::ProgressHandler {
+ public:
+    explicit ReaderGate(const Assimp::Importer& importer) : importer_(importer) {}
+
+    bool Update(float) override { return true; }
+    void UpdateFileRead(int, int) override {
+        if (checked_) return;
+        checked_ = true;
+        refusal_ = reader_refusal(importer_);
+        if (!refusal_.empty()) throw std::runtime_error(refusal_);
+    }
+    const std::string& refusal() const { return refusal_; }
+
+ private:
+    const Assimp::Importer& importer_;
+    bool checked_ = false;
+    std::string refusal_;
+};
+
+// ---- reading ----
+
+// assimp's own message for a missing file names neither errno nor the reason.
+void check_readable(const std::filesystem::path& path) {
+    std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"), &std::fclose);
+    if (!file) throw MeshFileError(std::string("cannot open: ") + std::strerror(errno));
+    errno = 0;
+    std::fgetc(file.get());
+    if (std::ferror(file.get())) throw MeshFileError(std::string("cannot read: ") + std::strerror(errno));
+}
+
+glm::dvec3 to_dvec3(const aiVector3D& v) { return {v.x, v.y, v.z}; }
+
+// Checked before assimp's post-processing, which relies on them (import/mesh_invariants.h).
+void check_raw_mesh(const aiMesh& mesh) {
+    for (unsigned v = 0; v < mesh.mNumVertices; ++v) check_finite_vertex(to_dvec3(mesh.mVertices[v]));
+    for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
+        const aiFace& face = mesh.mFaces[f];
+        check_face({face.mIndices, face.mNumIndices}, mesh.mNumVertices);
+    }
+}
+
+// The file's scene, triangulated with identical vertices joined, or MeshFileError.
+const aiScene* import_triangles(Assimp::Importer& importer, const std::filesystem::path& path) {
+    AssimpErrorCapture log;
+    auto* gate = new ReaderGate(importer);
+    importer.SetProgressHandler(gate);  // the importer owns it
+    const aiScene* scene = importer.ReadFile(path.string(), 0);
+    if (!gate->refusal().empty()) throw MeshFileError(gate->refusal());
+    if (!scene) throw MeshFileError("assimp cannot read it: " + one_line(importer.GetErrorString()));
+    if (std::string refusal = reader_refusal(importer); !refusal.empty()) throw MeshFileError(refusal);
+    if (std::string error = log.find("out of range"); !error.empty())
+        throw MeshFileError("index out of range: " + one_line(error));
+    for (unsigned m = 0; m < scene->mNumMeshes; ++m) check_raw_mesh(*scene->mMeshes[m]);
+
+    scene = importer.ApplyPostProcessing(aiProcess_Triangulate);
+    if (std::string error = log.find("triangulate"); !error.empty())
+        throw MeshFileError("a polygon cannot be triangulated: " + one_line(error));
+    if (scene) scene = importer.ApplyPostProcessing(aiProcess_JoinIdenticalVertices);
+    if (!scene) throw MeshFileError("assimp cannot process it: " + one_line(importer.GetErrorString()));
+    return scene;
+}
+
+// ---- what goes back ----
+
+glm::vec3 to_vec3(const aiVector3D& v) { return {v.x, v.y, v.z}; }
+
+ImportedMesh imported_mesh(const aiMesh& mesh) {
+    ImportedMesh out;
+    out.positions.reserve(mesh.mNumVertices);
+    for (unsigned v = 0; v < mesh.mNumVertices; ++v) out.positions.push_back(to_vec3(mesh.mVertices[v]));
+    out.has_normals = mesh.mNormals != nullptr;
+    if (out.has_normals) {
+        out.normals.reserve(mesh.mNumVertices);
+        for (unsigned v = 0; v < mesh.mNumVertices; ++v) out.normals.push_back(to_vec3(mesh.mNormals[v]));
+    }
+    out.triangles.reserve(mesh.mNumFaces);
+    for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
+        const aiFace& face = mesh.mFaces[f];
+        // Triangulation leaves only points and lines, which check_raw_mesh refused.
+        if (face.mNumIndices != 3)
+            throw MeshFileError("assimp left a face of " + std::to_string(face.mNumIndices) + " vertices");
+        out.triangles.emplace_back(face.mIndices[0], face.mIndices[1], face.mIndices[2]);
+    }
+    return out;
+}
+
+ImportedNode imported_node(const aiNode& node, std::uint32_t parent) {
+    ImportedNode out;
+    out.parent = parent;
+    out.name = node.mName.C_Str();
+    const aiMatrix4x4& m = node.mTransformation;
+    out.transform = {m.a1, m.a2, m.a3, m.a4, m.b1, m.b2, m.b3, m.b4, m.c1, m.c2, m.c3, m.c4, m.d1, m.d2, m.d3, m.d4};
+    out.meshes.assign(node.mMeshes, node.mMeshes + node.mNumMeshes);
+    return out;
+}
+
+// The node graph depth first, each node before its children (in order).
+std::vector<ImportedNode> imported_nodes(const aiNode* root) {
+    std::vector<ImportedNode> nodes;
+    std::vector<std::pair<const aiNode*, std::uint32_t>> pending;  // a node and its parent's index
+    if (root) pending.emplace_back(root, ImportedNode::kNoParent);
+    while (!pending.empty()) {
+        const auto [node, parent] = pending.back();
+        pending.pop_back();
+        const auto index = static_cast<std::uint32_t>(nodes.size());
+        nodes.push_back(imported_node(*node, parent));
+        for (unsigned i = node->mNumChildren; i-- > 0;) pending.emplace_back(node->mChildren[i], index);
+    }
+    return nodes;
+}
+
+}  // namespace
+
+ImportedScene import_with_assimp(const std::filesystem::path& path) {
+    check_readable(path);
+    Assimp::Importer importer;
+    const aiScene* scene = import_triangles(importer, path);
+    ImportedScene imported;
+    for (unsigned m = 0; m < scene->mNumMeshes; ++m) imported.meshes.push_back(imported_mesh(*scene->mMeshes[m]));
+    imported.nodes = imported_nodes(scene->mRootNode);
+    return imported;
+}
+
+}  // namespace wp

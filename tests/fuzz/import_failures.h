@@ -1,0 +1,36 @@
+// What the fuzzers do with a mesh import that failed in wavepath-import's
+// process (a crash, its memory, CPU or wall-time limit, a malformed answer):
+// wavepath turned it into its one error, so it is no finding for libFuzzer,
+// but it is what the fuzzers' runs count (docs/bad-input.md). Each is one
+// line on stderr, "import failure: <message>", and its input is kept in the
+// directory $WAVEPATH_FUZZ_IMPORT_FAILURES names, if set.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <string>
+#include <string_view>
+
+#include "import/import_limits.h"
+
+namespace wp::fuzz {
+
+// Small enough for two fuzzers side by side, under libFuzzer's 10 s -timeout.
+inline const MeshImportLimits kImportLimits{1024, 4, 8.0};
+
+inline void note_import_failure(const std::string& message, const std::uint8_t* data, std::size_t size) {
+    std::fprintf(stderr, "import failure: %s\n", message.c_str());
+    const char* directory = std::getenv("WAVEPATH_FUZZ_IMPORT_FAILURES");
+    if (directory == nullptr) return;
+    const std::string_view input(reinterpret_cast<const char*>(data), size);
+    char name[40];
+    std::snprintf(name, sizeof name, "import-failure-%016zx", std::hash<std::string_view>{}(input));
+    std::ofstream(std::filesystem::path(directory) / name, std::ios::binary).write(input.data(), input.size());
+}
+
+}  // namespace wp::fuzz

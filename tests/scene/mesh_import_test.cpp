@@ -1,0 +1,306 @@
+// The contained mesh import (import/import_process.h): wavepath-import's
+// answer is assimp's scene in process to the bit; each way the helper can
+// fail (a crash, its memory, CPU and wall-time limits, a malformed answer,
+// an exit status) is one ImportProcessError; a malformed answer is refused
+// whichever part of it is wrong; a reader of another format is refused.
+#include <gtest/gtest.h>
+#include <sys/stat.h>
+
+#include <chrono>
+#include <cstring>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "import/answer.h"
+#include "import/helper/assimp_import.h"
+#include "import/import_process.h"
+#include "scene/mesh_file.h"
+#include "support/mesh_files.h"
+#include "support/temp_directory.h"
+#include "support/thrown_message.h"
+
+namespace wp::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+template <class T>
+bool same_bytes(const std::vector<T>& a, const std::vector<T>& b) {
+    return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0;
+}
+
+void expect_same_scene(const ImportedScene& a, const ImportedScene& b) {
+    ASSERT_EQ(a.meshes.size(), b.meshes.size());
+    for (std::size_t m = 0; m < a.meshes.size(); ++m) {
+        SCOPED_TRACE("mesh " + std::to_string(m));
+        EXPECT_TRUE(same_bytes(a.meshes[m].positions, b.meshes[m].positions));
+        EXPECT_EQ(a.meshes[m].has_normals, b.meshes[m].has_normals);
+        EXPECT_TRUE(same_bytes(a.meshes[m].normals, b.meshes[m].normals));
+        EXPECT_TRUE(same_bytes(a.meshes[m].triangles, b.meshes[m].triangles));
+    }
+    ASSERT_EQ(a.nodes.size(), b.nodes.size());
+    for (std::size_t n = 0; n < a.nodes.size(); ++n) {
+        SCOPED_TRACE("node " + std::to_string(n));
+        EXPECT_EQ(a.nodes[n].parent, b.nodes[n].parent);
+        EXPECT_EQ(a.nodes[n].name, b.nodes[n].name);
+        EXPECT_EQ(std::memcmp(a.nodes[n].transform.data(), b.nodes[n].transform.data(), 64), 0);
+        EXPECT_EQ(a.nodes[n].meshes, b.nodes[n].meshes);
+    }
+}
+
+void expect_same_mesh(const Mesh& a, const Mesh& b) {
+    EXPECT_TRUE(same_bytes(a.positions, b.positions));
+    EXPECT_TRUE(same_bytes(a.normals, b.normals));
+    EXPECT_TRUE(same_bytes(a.triangles, b.triangles));
+    EXPECT_EQ(a.degenerate_dropped, b.degenerate_dropped);
+}
+
+const fs::path kBunny = fs::path(WAVEPATH_SOURCE_DIR) / "scenes/meshes/bunny.obj";
+
+// ---- contained and in process alike ----
+
+struct SameFileCase {
+    const char* name;
+    const char* file;
+    std::string (*contents)();
+};
+
+const SameFileCase kSameFileCases[] = {
+    {"Obj", "square.obj", [] { return std::string(kSquareObj); }},
+    {"PlyAsciiWithNormals", "square.ply", [] { return std::string(kSquarePlyAscii); }},
+    {"PlyBinary", "square.ply", square_ply_binary},
+    {"Off", "square.off", [] { return std::string(kSquareOff); }},
+    {"StlAscii", "square.stl", [] { return std::string(kSquareStlAscii); }},
+    {"StlBinary", "square.stl", square_stl_binary},
+    {"GltfNodeGraph", "squares.gltf", two_squares_gltf},
+};
+
+class ContainedImport : public ::testing::TestWithParam<SameFileCase> {};
+
+TEST_P(ContainedImport, IsTheInProcessImportToTheBit) {
+    const TempDirectory dir("files");
+    const fs::path file = dir.path() / GetParam().file;
+    write_file(file, GetParam().contents());
+    const ImportedScene contained = import_in_child(file, {});
+    const ImportedScene in_process = import_with_assimp(file);
+    ASSERT_FALSE(in_process.meshes.empty());
+    expect_same_scene(contained, in_process);
+    expect_same_mesh(mesh_from_import(contained, {}), mesh_from_import(in_process, {}));
+}
+
+INSTANTIATE_TEST_SUITE_P(Formats, ContainedImport, ::testing::ValuesIn(kSameFileCases),
+                         [](const auto& info) { return std::string(info.param.name); });
+
+TEST(ContainedImportOfTheBunny, IsTheInProcessImportToTheBit) {
+    ASSERT_TRUE(fs::exists(kBunny)) << kBunny << " is missing: run scripts/setup.sh";
+    const ImportedScene contained = import_in_child(kBunny, {});
+    const ImportedScene in_process = import_with_assimp(kBunny);
+    expect_same_scene(contained, in_process);
+    const Mesh mesh = read_mesh_file(kBunny, {});
+    EXPECT_EQ(mesh.triangles.size(), 69666u);
+    expect_same_mesh(mesh, mesh_from_import(in_process, {}));
+}
+
+TEST(ContainedImport, PassesTheHelpersMessageOn) {
+    EXPECT_EQ(thrown_message<MeshFileError>([] { import_in_child("/nonexistent/mesh.obj", {}); }),
+              "cannot open: No such file or directory");
+}
+
+// ---- only the documented formats ----
+
+TEST(ContainedImport, RefusesTheReaderOfAnotherFormatNamingIt) {
+    const TempDirectory dir("files");
+    // OBJ text, which the OBJ reader would read; the extension is the Neutral File Format's.
+    const fs::path file = dir.path() / "square.nff";
+    write_file(file, kSquareObj);
+    const std::string message =
+        "format not supported: assimp chose its reader \"Neutral File Format Importer\"; wavepath reads OBJ, PLY, "
+        "OFF, STL and glTF 2.0";
+    EXPECT_EQ(thrown_message<MeshFileError>([&] { import_in_child(file, {}); }), message);
+    EXPECT_EQ(thrown_message<MeshFileError>([&] { import_with_assimp(file); }), message);
+}
+
+// ---- the helper's failures ----
+
+// A stand-in for the helper: a /bin/sh script in `dir` that runs `body`.
+fs::path fake_helper(const TempDirectory& dir, const std::string& body) {
+    const fs::path helper = dir.path() / kImportHelperName;
+    write_text(helper, "#!/bin/sh\n" + body + "\n");
+    fs::permissions(helper, fs::perms::owner_all);
+    return helper;
+}
+
+struct FailureCase {
+    const char* name;
+    const char* helper_body;
+    ImportProcessFailure failure;
+    const char* message;
+    double wall_s = 2.0;  // the CPU limit's case: long enough that a loaded machine gives it its second
+};
+
+const FailureCase kFailureCases[] = {
+    {"Crash", "kill -SEGV $$", ImportProcessFailure::Crashed,
+     "wavepath-import crashed importing it (signal 11: Segmentation fault)"},
+    {"Abort", "kill -ABRT $$", ImportProcessFailure::Crashed,
+     "wavepath-import crashed importing it (signal 6: Aborted)"},
+    {"OutOfMemoryStatus", "exit 10", ImportProcessFailure::OutOfMemory,
+     "wavepath-import ran out of memory importing it (limit 64 MiB, --mesh-import-memory)"},
+    {"OtherStatus", "exit 7", ImportProcessFailure::ExitStatus, "wavepath-import exited with status 7"},
+    {"CpuLimit", "ulimit -S -t 1; while :; do :; done", ImportProcessFailure::CpuTime,
+     "wavepath-import used its 1 s of CPU time importing it (--mesh-import-cpu)", 60.0},
+    {"Hang", "exec sleep 60", ImportProcessFailure::WallTime,
+     "wavepath-import did not finish within 2 s and was stopped (--mesh-import-time)"},
+    {"HangAfterClosingItsAnswer", "exec 3>&-; exec sleep 60", ImportProcessFailure::WallTime,
+     "wavepath-import did not finish within 2 s and was stopped (--mesh-import-time)"},
+    {"Garbage", "printf garbage >&3", ImportProcessFailure::Malformed,
+     "wavepath-import sent a malformed answer: it does not begin with \"WPIMPORT\""},
+    {"NoAnswer", "exit 0", ImportProcessFailure::Malformed,
+     "wavepath-import sent a malformed answer: it does not begin with \"WPIMPORT\""},
+    {"AnswerBeyondItsMemory", "head -c 70000000 /dev/zero >&3", ImportProcessFailure::Malformed,
+     "wavepath-import sent a malformed answer: more than 67108864 bytes"},
+};
+
+class HelperFailure : public ::testing::TestWithParam<FailureCase> {};
+
+TEST_P(HelperFailure, IsOneImportProcessError) {
+    const FailureCase& c = GetParam();
+    const TempDirectory dir("helper");
+    const auto start = std::chrono::steady_clock::now();
+    try {
+        import_in_child(kBunny, {64, 1, c.wall_s}, fake_helper(dir, c.helper_body));
+        FAIL() << "no error";
+    } catch (const ImportProcessError& error) {
+        EXPECT_EQ(error.failure(), c.failure);
+        EXPECT_EQ(std::string(error.what()), c.message);
+    }
+    // Stopped at its limit, not left to finish (sleep 60).
+    EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::duration<double>(c.wall_s + 10.0));
+}
+
+INSTANTIATE_TEST_SUITE_P(Helpers, HelperFailure, ::testing::ValuesIn(kFailureCases),
+                         [](const auto& info) { return std::string(info.param.name); });
+
+TEST(HelperFailure, AnAnswerThenACrashIsACrash) {
+    const TempDirectory dir("helper");
+    write_file(dir.path() / "answer", encode_answer(import_with_assimp(kBunny)));
+    const fs::path helper = fake_helper(dir, "cat \"$(dirname \"$0\")/answer\" >&3; kill -SEGV $$");
+    EXPECT_EQ(thrown_message<ImportProcessError>([&] { import_in_child(kBunny, {}, helper); }),
+              "wavepath-import crashed importing it (signal 11: Segmentation fault)");
+}
+
+TEST(HelperFailure, AWellFormedAnswerFromAnyHelperIsTaken) {
+    // The fake helper's answer is the bunny's, whatever file it was asked for:
+    // the test of the fakes above is the process, not the file.
+    const TempDirectory dir("helper");
+    const ImportedScene bunny = import_with_assimp(kBunny);
+    write_file(dir.path() / "answer", encode_answer(bunny));
+    const fs::path helper = fake_helper(dir, "cat \"$(dirname \"$0\")/answer\" >&3");
+    expect_same_scene(import_in_child("/nonexistent.obj", {}, helper), bunny);
+}
+
+// The real helper under its own limits.
+TEST(RealHelper, RunsOutOfMemoryUnderASmallLimit) {
+    EXPECT_EQ(thrown_message<ImportProcessError>([] { import_in_child(kBunny, {1, 60, 60.0}); }),
+              "wavepath-import ran out of memory importing it (limit 1 MiB, --mesh-import-memory)");
+}
+
+TEST(RealHelper, IsStoppedWhenItHangs) {
+    // Opening a FIFO without a writer blocks: the helper hangs before assimp reads anything.
+    const TempDirectory dir("fifo");
+    const fs::path fifo = dir.path() / "mesh.obj";
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+    EXPECT_EQ(thrown_message<ImportProcessError>([&] { import_in_child(fifo, {64, 60, 0.5}); }),
+              "wavepath-import did not finish within 0.5 s and was stopped (--mesh-import-time)");
+}
+
+TEST(RealHelper, IsFoundBesideTheRunningExecutable) {
+    EXPECT_EQ(import_helper_path(), fs::read_symlink("/proc/self/exe").parent_path() / "wavepath-import");
+    EXPECT_TRUE(fs::exists(import_helper_path()));
+}
+
+TEST(RealHelper, MissingIsAnInstallationProblem) {
+    EXPECT_EQ(thrown_message<ImportHelperUnavailable>([] { import_in_child(kBunny, {}, "/nonexistent/helper"); }),
+              "cannot start the mesh import helper /nonexistent/helper: No such file or directory");
+}
+
+// ---- the answer's format ----
+
+// Two meshes (one with normals) and three nodes, two of them instancing mesh 1.
+ImportedScene small_scene() {
+    ImportedScene scene;
+    scene.meshes.push_back({{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, false, {}, {{0, 1, 2}}});
+    scene.meshes.push_back({{{0, 0, 1}, {1, 0, 1}, {0, 1, 1}, {1, 1, 1}},
+                            true,
+                            {{0, 0, 1}, {0, 0, 1}, {0, 0, 1}, {0, 0, 1}},
+                            {{0, 1, 2}, {2, 1, 3}}});
+    const std::array<float, 16> identity{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+    std::array<float, 16> moved = identity;
+    moved[3] = 2.5f;
+    scene.nodes.push_back({ImportedNode::kNoParent, "root", identity, {0}});
+    scene.nodes.push_back({0, "a", moved, {1}});
+    scene.nodes.push_back({1, "b", identity, {1, 0}});
+    return scene;
+}
+
+std::string malformation(const std::string& bytes) {
+    return thrown_message<MalformedAnswer>([&] { decode_answer(bytes); });
+}
+
+TEST(Answer, RoundTrips) {
+    const ImportedScene scene = small_scene();
+    expect_same_scene(std::get<ImportedScene>(decode_answer(encode_answer(scene))), scene);
+    EXPECT_EQ(std::get<ImportFailure>(decode_answer(encode_answer(ImportFailure{"no good"}))).message, "no good");
+}
+
+TEST(Answer, EveryTruncationIsMalformed) {
+    const std::string bytes = encode_answer(small_scene());
+    for (std::size_t size = 0; size < bytes.size(); ++size)
+        EXPECT_NE(malformation(bytes.substr(0, size)), "(none)") << size << " of " << bytes.size() << " bytes";
+}
+
+TEST(Answer, MalformedPartsAreNamed) {
+    const std::string good = encode_answer(small_scene());
+    EXPECT_EQ(malformation(good + "x"), "1 bytes after the answer");
+    std::string bytes = good;
+    bytes[8] = 2;  // the version
+    EXPECT_EQ(malformation(bytes), "version 2, not 1");
+    bytes = good;
+    bytes[12] = 3;  // the kind
+    EXPECT_EQ(malformation(bytes), "kind 3, neither 1 nor 2");
+    bytes = good;
+    bytes[24] = 2;  // mesh 0's normals flag (after the header's 16 bytes, the mesh count, its vertex count)
+    EXPECT_EQ(malformation(bytes), "mesh 0's normals flag is 2");
+    bytes = good;
+    bytes[20] = static_cast<char>(0xff);  // mesh 0's vertex count, now 255 vertices of 12 bytes
+    EXPECT_EQ(malformation(bytes).rfind("it ends within mesh 0's positions (3060 bytes, ", 0), 0u);
+
+    ImportedScene scene = small_scene();
+    scene.nodes[2].parent = 2;
+    EXPECT_EQ(malformation(encode_answer(scene)), "node 2's parent is 2 (not an earlier node)");
+    scene = small_scene();
+    scene.nodes[0].parent = 0;
+    EXPECT_EQ(malformation(encode_answer(scene)), "node 0's parent is 0 (the root has none)");
+    scene = small_scene();
+    scene.nodes[1].meshes = {2};
+    EXPECT_EQ(malformation(encode_answer(scene)), "node 1 names mesh 2 of 2");
+    scene = small_scene();
+    scene.nodes[1].name.assign(kMaxNodeName + 1, 'n');
+    EXPECT_EQ(malformation(encode_answer(scene)), "node 1's name of 1024 bytes (0 to 1023 expected)");
+    EXPECT_EQ(malformation(encode_answer(ImportFailure{""})), "the failure message of 0 bytes (1 to 4096 expected)");
+}
+
+// ---- wavepath's invariants, checked again on what came back ----
+
+TEST(ImportedMeshChecks, RefuseWhatTheHelperShouldHaveRefused) {
+    ImportedScene scene = small_scene();
+    scene.meshes[1].triangles[1].z = 4;
+    EXPECT_EQ(thrown_message<MeshFileError>([&] { mesh_from_import(scene, {}); }),
+              "vertex index 4 out of range (4 vertices)");
+    scene = small_scene();
+    scene.meshes[0].positions[1].y = std::numeric_limits<float>::infinity();
+    EXPECT_EQ(thrown_message<MeshFileError>([&] { mesh_from_import(scene, {}); }), "vertex (1, inf, 0) is not finite");
+}
+
+}  // namespace
+}  // namespace wp::test
