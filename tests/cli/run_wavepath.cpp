@@ -16,7 +16,7 @@ namespace wp::test {
 namespace fs = std::filesystem;
 
 RunningWavepath::RunningWavepath(const std::vector<std::string>& args, const fs::path& scratch,
-                                 const std::vector<std::string>& launcher)
+                                 const std::vector<std::string>& launcher, const fs::path& binary)
     : scratch_(scratch) {
     const fs::path out_file = scratch / "stdout.txt", err_file = scratch / "stderr.txt";
     posix_spawn_file_actions_t actions;
@@ -25,7 +25,7 @@ RunningWavepath::RunningWavepath(const std::vector<std::string>& args, const fs:
     posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, err_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
 
     std::vector<std::string> argv_strings = launcher;
-    argv_strings.push_back(WAVEPATH_BINARY);
+    argv_strings.push_back(binary);
     argv_strings.insert(argv_strings.end(), args.begin(), args.end());
     std::vector<char*> argv;
     for (std::string& arg : argv_strings) argv.push_back(arg.data());
@@ -59,8 +59,8 @@ CommandResult RunningWavepath::wait() {
 }
 
 CommandResult run_wavepath(const std::vector<std::string>& args, const fs::path& scratch,
-                           const std::vector<std::string>& launcher) {
-    return RunningWavepath(args, scratch, launcher).wait();
+                           const std::vector<std::string>& launcher, const fs::path& binary) {
+    return RunningWavepath(args, scratch, launcher, binary).wait();
 }
 
 }  // namespace wp::test
