@@ -48,7 +48,6 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <ctime>
 #include <fstream>
 #include <functional>
 #include <glm/geometric.hpp>
@@ -60,11 +59,11 @@
 #include <stdexcept>
 #include <string>
 #include <thread>
-#include <unordered_map>
 #include <vector>
 
 #include "accel/bvh.h"
 #include "accel/embree_intersector.h"
+#include "bench_support.h"
 #include "opencl/device.h"
 #include "opencl/scene_upload.h"
 #include "reference/path_tracer.h"
@@ -81,29 +80,13 @@ using namespace wp;
 using json = nlohmann::json;
 using M = SharedMath<float>;
 using Ray = reference::Ray<float>;
-using Clock = std::chrono::steady_clock;
+using bench::Clock;
+using bench::median;
+using bench::minimum;
+using bench::seconds_since;
+using bench::subdivide;
 
 constexpr unsigned kThreads = 2;  // the scalar C++ traversal's and Embree's tracing threads
-
-double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
-
-double median(std::vector<double> v) {
-    std::sort(v.begin(), v.end());
-    std::size_t n = v.size();
-    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-double minimum(const std::vector<double>& v) { return *std::min_element(v.begin(), v.end()); }
-
-std::string command_output(const std::string& command) {
-    std::string out;
-    if (FILE* pipe = ::popen(command.c_str(), "r")) {
-        char buffer[256];
-        while (std::fgets(buffer, sizeof buffer, pipe)) out += buffer;
-        ::pclose(pipe);
-    }
-    while (!out.empty() && (out.back() == '\n' || out.back() == ' ')) out.pop_back();
-    return out;
-}
 
 // The machine's load averages over 1, 5 and 15 minutes (/proc/loadavg), "" where unknown.
 std::string load_average() {
@@ -115,31 +98,14 @@ std::string load_average() {
 
 // Commit, date, machine and OpenCL platform: recorded with every result.
 json run_metadata(const DeviceInfo& device, bool quick) {
-    std::string git = "git -C '" WAVEPATH_SOURCE_DIR "' ";
-    std::string commit = command_output(git + "rev-parse --short=12 HEAD 2>/dev/null");
-    if (commit.empty()) commit = "unknown";
-    if (!command_output(git + "status --porcelain --untracked-files=no 2>/dev/null").empty()) commit += "+dirty";
-    std::time_t now = std::time(nullptr);
-    char date[32];
-    std::strftime(date, sizeof date, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
-    std::string cpu = "unknown";
-    std::ifstream cpuinfo("/proc/cpuinfo");
-    for (std::string line; std::getline(cpuinfo, line);) {
-        if (line.rfind("model name", 0) == 0) {
-            cpu = line.substr(line.find(':') + 2);
-            break;
-        }
-    }
-    return {{"commit", commit},
-            {"date", date},
-            {"cpu", cpu},
-            {"cores", std::thread::hardware_concurrency()},
-            {"opencl_platform", device.platform_version},
-            {"opencl_device", device.name},
-            {"embree", RTC_VERSION_STRING},
-            {"embree_device", embree_device_summary()},
-            {"mode", quick ? "quick" : "full"},
-            {"load_average_start", load_average()}};
+    json meta = bench::machine_metadata();
+    meta["opencl_platform"] = device.platform_version;
+    meta["opencl_device"] = device.name;
+    meta["embree"] = RTC_VERSION_STRING;
+    meta["embree_device"] = embree_device_summary();
+    meta["mode"] = quick ? "quick" : "full";
+    meta["load_average_start"] = load_average();
+    return meta;
 }
 
 // ---- meshes of every size, from the bunny ----
@@ -151,25 +117,6 @@ Mesh with_geometry(const Mesh& like, std::vector<glm::dvec3> positions, std::vec
     m.positions = std::move(positions);
     m.triangles = std::move(triangles);
     return m;  // face normals only, at every size
-}
-
-// 1->4 midpoint subdivision; shared edges share their midpoint, so a closed mesh stays closed.
-Mesh subdivide(const Mesh& mesh) {
-    std::vector<glm::dvec3> positions = mesh.positions;
-    std::unordered_map<std::uint64_t, std::uint32_t> midpoints;
-    auto midpoint = [&](std::uint32_t a, std::uint32_t b) {
-        std::uint64_t key = std::uint64_t(std::min(a, b)) << 32 | std::max(a, b);
-        auto [it, added] = midpoints.try_emplace(key, std::uint32_t(positions.size()));
-        if (added) positions.push_back(0.5 * (mesh.positions[a] + mesh.positions[b]));
-        return it->second;
-    };
-    std::vector<glm::uvec3> triangles;
-    triangles.reserve(4 * mesh.triangles.size());
-    for (const glm::uvec3& t : mesh.triangles) {
-        std::uint32_t ab = midpoint(t.x, t.y), bc = midpoint(t.y, t.z), ca = midpoint(t.z, t.x);
-        triangles.insert(triangles.end(), {{t.x, ab, ca}, {ab, t.y, bc}, {ca, bc, t.z}, {ab, bc, ca}});
-    }
-    return with_geometry(mesh, std::move(positions), std::move(triangles));
 }
 
 // Vertex clustering on a grid of `cells` along the longest side: each cell's
