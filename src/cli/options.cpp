@@ -24,8 +24,7 @@ void add_mesh_import_options(CLI::App& render, MeshImportLimits& limits) {
                     "raise it for very large meshes")
         ->check(integer_in(1, std::int64_t(kMaxImportMemoryMib)))
         ->capture_default_str();
-    render
-        .add_option("--mesh-import-cpu", limits.cpu_s, "CPU seconds each mesh file's import may use")
+    render.add_option("--mesh-import-cpu", limits.cpu_s, "CPU seconds each mesh file's import may use")
         ->check(integer_in(1, kMaxImportCpuS))
         ->capture_default_str();
     render

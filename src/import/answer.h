@@ -31,10 +31,12 @@ namespace wp {
 inline constexpr std::uint32_t kAnswerVersion = 1;
 inline constexpr std::size_t kMaxFailureLength = 4096;
 
-// The helper's file descriptor for its answer, and its exit statuses besides 0 (answered).
+// The helper's file descriptor for its answer, and its exit statuses besides
+// 0 (answered): its command line was not what wavepath passes or its limits
+// could not be set (usage), an allocation failed under its memory limit.
 inline constexpr int kAnswerFd = 3;
-inline constexpr int kHelperUsageStatus = 2;         // its command line was not what wavepath passes, or its limits could not be set
-inline constexpr int kHelperOutOfMemoryStatus = 10;  // an allocation failed under its memory limit
+inline constexpr int kHelperUsageStatus = 2;
+inline constexpr int kHelperOutOfMemoryStatus = 10;
 
 // An answer's message when the file could not be imported (one line).
 struct ImportFailure {

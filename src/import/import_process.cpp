@@ -64,8 +64,9 @@ bool wait_readable(int fd, Clock::time_point deadline) {
         const int ready = ::poll(&entry, 1, milliseconds_until(deadline));
         if (ready > 0) return true;
         if (ready == 0) return false;
-        if (errno != EINTR) throw ImportHelperUnavailable("poll on " + std::string(kImportHelperName) + "'s answer: " +
-                                                          errno_text(errno));
+        if (errno != EINTR)
+            throw ImportHelperUnavailable("poll on " + std::string(kImportHelperName) +
+                                          "'s answer: " + errno_text(errno));
     }
 }
 
@@ -176,8 +177,8 @@ bool read_answer(int fd, Clock::time_point deadline, std::size_t max_bytes, std:
         if (count == 0) return true;
         if (count < 0) {
             if (errno == EINTR) continue;
-            throw ImportHelperUnavailable("reading " + std::string(kImportHelperName) + "'s answer: " +
-                                          errno_text(errno));
+            throw ImportHelperUnavailable("reading " + std::string(kImportHelperName) +
+                                          "'s answer: " + errno_text(errno));
         }
         if (answer.size() + std::size_t(count) > max_bytes)
             fail(ImportProcessFailure::Malformed,
@@ -200,8 +201,8 @@ std::string signal_text(int signal) { return "signal " + std::to_string(signal) 
     const int signal = WTERMSIG(status);
     // SIGXCPU at its soft CPU limit, SIGKILL at the hard one a second later.
     if (signal == SIGXCPU || (signal == SIGKILL && cpu_s >= double(limits.cpu_s)))
-        fail(ImportProcessFailure::CpuTime, "used its " + std::to_string(limits.cpu_s) +
-                                                " s of CPU time importing it (--mesh-import-cpu)");
+        fail(ImportProcessFailure::CpuTime,
+             "used its " + std::to_string(limits.cpu_s) + " s of CPU time importing it (--mesh-import-cpu)");
     fail(ImportProcessFailure::Crashed, "crashed importing it (" + signal_text(signal) + ")");
 }
 
@@ -225,8 +226,8 @@ ImportedScene import_in_child(const std::filesystem::path& file, const MeshImpor
     if (!answered || !process.wait_exit(deadline)) {
         process.kill();
         process.reap();
-        fail(ImportProcessFailure::WallTime, "did not finish within " + format_number(limits.wall_s) +
-                                                 " s and was stopped (--mesh-import-time)");
+        fail(ImportProcessFailure::WallTime,
+             "did not finish within " + format_number(limits.wall_s) + " s and was stopped (--mesh-import-time)");
     }
     const auto [status, cpu_s] = process.reap();
     if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) fail_on_status(status, cpu_s, limits);

@@ -23,10 +23,10 @@ struct ImportedMesh {
 // before its children, so a node's parent comes before it.
 struct ImportedNode {
     static constexpr std::uint32_t kNoParent = 0xffffffffu;
-    std::uint32_t parent = kNoParent;    // the root's is kNoParent, every other node's is below its own index
-    std::string name;                    // at most kMaxNodeName bytes
-    std::array<float, 16> transform{};   // row-major, to the parent's coordinates
-    std::vector<std::uint32_t> meshes;   // indices into ImportedScene::meshes
+    std::uint32_t parent = kNoParent;   // the root's is kNoParent, every other node's is below its own index
+    std::string name;                   // at most kMaxNodeName bytes
+    std::array<float, 16> transform{};  // row-major, to the parent's coordinates
+    std::vector<std::uint32_t> meshes;  // indices into ImportedScene::meshes
 };
 
 struct ImportedScene {

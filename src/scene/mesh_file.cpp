@@ -55,8 +55,8 @@ class MeshMerger {
             const bool root = node.parent == ImportedNode::kNoParent;
             const glm::dmat4 parent_to_file = root ? glm::dmat4(1.0) : node_to_file[node.parent];
             node_to_file[n] = parent_to_file * to_dmat4(node.transform);
-            selected[n] = (root ? options_.objects.empty() : selected[node.parent]) |
-                          select(node.name, !node.meshes.empty());
+            selected[n] =
+                (root ? options_.objects.empty() : selected[node.parent]) | select(node.name, !node.meshes.empty());
             if (selected[n]) add_node_meshes(node, node_to_file[n]);
         }
         check_objects_found();
@@ -170,8 +170,7 @@ Mesh mesh_from_import(const ImportedScene& imported, const MeshFileOptions& opti
     return MeshMerger(imported, options).merge();
 }
 
-Mesh read_mesh_file(const std::filesystem::path& path, const MeshFileOptions& options,
-                    const MeshImportLimits& limits) {
+Mesh read_mesh_file(const std::filesystem::path& path, const MeshFileOptions& options, const MeshImportLimits& limits) {
     return mesh_from_import(import_in_child(path, limits), options);
 }
 

@@ -40,8 +40,7 @@ std::string read_text_file(const std::string& path) {
 
 }  // namespace
 
-Scene parse_scene(const std::string& json_text, const std::string& source_name,
-                  const MeshImportLimits& mesh_import) {
+Scene parse_scene(const std::string& json_text, const std::string& source_name, const MeshImportLimits& mesh_import) {
     const nlohmann::json document = parse_json_strictly(json_text, source_name);
     const JsonField root = root_field(document, source_name);
     root.allow_only_keys({"camera", "render", "background", "materials", "shapes"});

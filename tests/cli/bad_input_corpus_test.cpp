@@ -34,8 +34,16 @@ const CorpusKind kKinds[] = {
     // that a loaded machine does not change which limit a case meets.
     {"scenes", ".json",
      [](const std::string& scene, const std::string& output) {
-         return std::vector<std::string>{"render",           scene, "-o", output, "--mesh-import-memory", "1024",
-                                         "--mesh-import-cpu", "5",  "--mesh-import-time", "300"};
+         return std::vector<std::string>{"render",
+                                         scene,
+                                         "-o",
+                                         output,
+                                         "--mesh-import-memory",
+                                         "1024",
+                                         "--mesh-import-cpu",
+                                         "5",
+                                         "--mesh-import-time",
+                                         "300"};
      }},
     // scripts/make_checkpoint_corpus.py writes these, for this command.
     {"checkpoints", ".wpfilm",

@@ -44,9 +44,8 @@ class MeshImportCli : public ::testing::Test {
     }
     void expect_one_error(const CommandResult& result, const fs::path& mesh, const std::string& problem) {
         EXPECT_EQ(result.exit_code, 3);
-        EXPECT_EQ(result.err,
-                  "wavepath: error: " + (files_ / "scene.json") + ": shapes[1].file: " + mesh.string() + ": " +
-                      problem + "\n");
+        EXPECT_EQ(result.err, "wavepath: error: " + (files_ / "scene.json") + ": shapes[1].file: " + mesh.string() +
+                                  ": " + problem + "\n");
         EXPECT_EQ(result.out, "");
         EXPECT_EQ(outputs_.entries(), std::vector<std::string>{});
     }

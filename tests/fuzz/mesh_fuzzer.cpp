@@ -11,8 +11,8 @@
 #include <set>
 #include <string>
 
-#include "import_failures.h"
 #include "import/import_process.h"
+#include "import_failures.h"
 #include "scene/mesh_file.h"
 
 namespace {

@@ -7,8 +7,8 @@
 #include <cstdlib>
 #include <string>
 
-#include "import_failures.h"
 #include "import/import_process.h"
+#include "import_failures.h"
 #include "scene/scene.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

@@ -201,7 +201,9 @@ TEST(HelperFailure, AWellFormedAnswerFromAnyHelperIsTaken) {
 
 // The real helper under its own limits.
 TEST(RealHelper, RunsOutOfMemoryUnderASmallLimit) {
-    EXPECT_EQ(thrown_message<ImportProcessError>([] { import_in_child(kBunny, {1, 60, 60.0}); }),
+    EXPECT_EQ(thrown_message<ImportProcessError>([] {
+                  import_in_child(kBunny, {1, 60, 60.0});
+              }),
               "wavepath-import ran out of memory importing it (limit 1 MiB, --mesh-import-memory)");
 }
 
@@ -210,7 +212,9 @@ TEST(RealHelper, IsStoppedWhenItHangs) {
     const TempDirectory dir("fifo");
     const fs::path fifo = dir.path() / "mesh.obj";
     ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
-    EXPECT_EQ(thrown_message<ImportProcessError>([&] { import_in_child(fifo, {64, 60, 0.5}); }),
+    EXPECT_EQ(thrown_message<ImportProcessError>([&] {
+                  import_in_child(fifo, {64, 60, 0.5});
+              }),
               "wavepath-import did not finish within 0.5 s and was stopped (--mesh-import-time)");
 }
 

@@ -1,5 +1,6 @@
 #include "import/helper/assimp_import.h"
 
+#include <assimp/importerdesc.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
@@ -8,7 +9,6 @@
 #include <assimp/Importer.hpp>
 #include <assimp/LogStream.hpp>
 #include <assimp/ProgressHandler.hpp>
-#include <assimp/importerdesc.h>
 #include <cerrno>
 #include <cstdint>
 #include <cstdio>
@@ -76,9 +76,9 @@ std::string one_line(std::string text) {
 // ---- the reader ----
 
 // assimp's names for the readers of the formats docs/scene-format.md lists.
-constexpr std::string_view kDocumentedReaders[] = {
-    "Wavefront Object Importer",        "Stanford Polygon Library (PLY) Importer", "OFF Importer",
-    "Stereolithography (STL) Importer", "glTF2 Importer"};
+constexpr std::string_view kDocumentedReaders[] = {"Wavefront Object Importer",
+                                                   "Stanford Polygon Library (PLY) Importer", "OFF Importer",
+                                                   "Stereolithography (STL) Importer", "glTF2 Importer"};
 
 // Why the reader assimp chose for the file may not read it; empty if it may
 // or none is chosen yet. assimp's ReadFile records its choice (by the
@@ -86,9 +86,8 @@ constexpr std::string_view kDocumentedReaders[] = {
 std::string reader_refusal(const Assimp::Importer& importer) {
     const int index = importer.GetPropertyInteger("importerIndex", -1);
     const aiImporterDesc* reader = index < 0 ? nullptr : importer.GetImporterInfo(std::size_t(index));
-    if (reader == nullptr ||
-        std::find(std::begin(kDocumentedReaders), std::end(kDocumentedReaders), reader->mName) !=
-            std::end(kDocumentedReaders))
+    if (reader == nullptr || std::find(std::begin(kDocumentedReaders), std::end(kDocumentedReaders), reader->mName) !=
+                                 std::end(kDocumentedReaders))
         return {};
     return "format not supported: assimp chose its reader \"" + std::string(reader->mName) +
            "\"; wavepath reads OBJ, PLY, OFF, STL and glTF 2.0";
