@@ -64,46 +64,53 @@ void write_obj(const Mesh& mesh, const fs::path& file) {
     std::fclose(out);
 }
 
-// CPU seconds (user and system) of this process and of every process it waited for.
-double cpu_seconds() {
-    double total = 0.0;
+// What an import used: wall-clock seconds, CPU seconds (user + system) and of
+// those the system's, and minor page faults (first touches of memory); CPU
+// and faults of this process and of every process it waited for.
+struct Usage {
+    double wall = 0.0, cpu = 0.0, system = 0.0, faults = 0.0;
+};
+constexpr double Usage::*kMeasures[] = {&Usage::wall, &Usage::cpu, &Usage::system, &Usage::faults};
+constexpr const char* kMeasureNames[] = {"wall clock s", "CPU s", "system CPU s", "minor page faults"};
+
+Usage resources_used() {
+    Usage usage;
     for (int who : {RUSAGE_SELF, RUSAGE_CHILDREN}) {
-        rusage usage{};
-        ::getrusage(who, &usage);
-        for (const timeval& t : {usage.ru_utime, usage.ru_stime}) total += double(t.tv_sec) + 1e-6 * double(t.tv_usec);
+        rusage r{};
+        ::getrusage(who, &r);
+        const auto seconds = [](const timeval& t) { return double(t.tv_sec) + 1e-6 * double(t.tv_usec); };
+        usage.cpu += seconds(r.ru_utime) + seconds(r.ru_stime);
+        usage.system += seconds(r.ru_stime);
+        usage.faults += double(r.ru_minflt);
     }
-    return total;
+    return usage;
 }
 
-struct Seconds {
-    double wall = 0.0, cpu = 0.0;
-};
-
-Seconds time_import(const std::function<Mesh()>& import, Mesh* result = nullptr) {
+Usage measure_import(const std::function<Mesh()>& import, Mesh* result = nullptr) {
     const Clock::time_point start = Clock::now();
-    const double cpu_start = cpu_seconds();
+    const Usage before = resources_used();
     Mesh mesh = import();
-    const Seconds seconds{seconds_since(start), cpu_seconds() - cpu_start};
+    const Usage after = resources_used();
     if (result) *result = std::move(mesh);
-    return seconds;
+    return {seconds_since(start), after.cpu - before.cpu, after.system - before.system, after.faults - before.faults};
 }
 
 // One import in a new process: this program again, with --import-once.
-Seconds time_import_in_fresh_process(bool contained_turn, const fs::path& file) {
+Usage measure_import_in_fresh_process(bool contained_turn, const fs::path& file) {
     const std::string command = "'" + fs::read_symlink("/proc/self/exe").string() + "' --import-once " +
                                 (contained_turn ? "contained" : "in_process") + " '" + file.string() + "'";
-    Seconds seconds;
+    Usage usage;
     FILE* pipe = ::popen(command.c_str(), "r");
-    const bool read = pipe && std::fscanf(pipe, "%lf %lf", &seconds.wall, &seconds.cpu) == 2;
+    const bool read =
+        pipe && std::fscanf(pipe, "%lf %lf %lf %lf", &usage.wall, &usage.cpu, &usage.system, &usage.faults) == 4;
     if (pipe) ::pclose(pipe);
     if (!read) throw std::runtime_error("no figures from " + command);
-    return seconds;
+    return usage;
 }
 
 struct Timing {
-    std::vector<double> in_process_s, contained_s;          // wall clock
-    std::vector<double> in_process_cpu_s, contained_cpu_s;  // CPU
-    bool identical = true;                                  // each warm result, to the bit (fresh: not compared)
+    std::vector<Usage> in_process, contained;
+    bool identical = true;  // each warm result, to the bit (fresh: not compared)
 };
 
 Timing time_imports(const fs::path& file, int runs, bool fresh) {
@@ -112,17 +119,15 @@ Timing time_imports(const fs::path& file, int runs, bool fresh) {
     for (int run = -1; run < runs; ++run) {  // run -1: unrecorded
         for (int turn = 0; turn < 2; ++turn) {
             const bool contained_turn = (run + turn) % 2 != 0;  // alternating which goes first
-            Seconds seconds;
+            Usage usage;
             if (fresh) {
-                seconds = time_import_in_fresh_process(contained_turn, file);
+                usage = measure_import_in_fresh_process(contained_turn, file);
             } else {
                 Mesh mesh;
-                seconds = time_import([&] { return contained_turn ? contained(file) : in_process(file); }, &mesh);
+                usage = measure_import([&] { return contained_turn ? contained(file) : in_process(file); }, &mesh);
                 timing.identical &= identical(mesh, reference);
             }
-            if (run < 0) continue;
-            (contained_turn ? timing.contained_s : timing.in_process_s).push_back(seconds.wall);
-            (contained_turn ? timing.contained_cpu_s : timing.in_process_cpu_s).push_back(seconds.cpu);
+            if (run >= 0) (contained_turn ? timing.contained : timing.in_process).push_back(usage);
         }
     }
     return timing;
@@ -165,19 +170,19 @@ std::string with_thousands(std::uint64_t n) {
     return text;
 }
 
-json statistics(const std::vector<double>& seconds) {
-    return {{"min", minimum(seconds)}, {"median", median(seconds)}, {"all", seconds}};
+json statistics(const std::vector<Usage>& usages, double Usage::*measure) {
+    std::vector<double> values;
+    for (const Usage& usage : usages) values.push_back(usage.*measure);
+    return {{"min", minimum(values)}, {"median", median(values)}, {"all", values}};
 }
 
 json timing_row(const std::string& mesh, std::size_t triangles, const char* setting, const Timing& timing) {
-    return {
-        {"mesh", mesh},
-        {"triangles", triangles},
-        {"setting", setting},
-        {"wall", {{"in_process_s", statistics(timing.in_process_s)}, {"contained_s", statistics(timing.contained_s)}}},
-        {"cpu",
-         {{"in_process_s", statistics(timing.in_process_cpu_s)}, {"contained_s", statistics(timing.contained_cpu_s)}}},
-        {"identical", timing.identical}};
+    json row{{"mesh", mesh}, {"triangles", triangles}, {"setting", setting}, {"identical", timing.identical}};
+    for (std::size_t m = 0; m < std::size(kMeasures); ++m) {
+        row["measures"][kMeasureNames[m]] = {{"in_process", statistics(timing.in_process, kMeasures[m])},
+                                             {"contained", statistics(timing.contained, kMeasures[m])}};
+    }
+    return row;
 }
 
 std::string markdown(const json& results) {
@@ -198,20 +203,21 @@ std::string markdown(const json& results) {
         "Contained: `read_mesh_file`, which starts `wavepath-import` for the file under the default limits, "
         "reads and checks its answer, then `mesh_from_import`. Warm: every import in the benchmark's process, "
         "one after another. Fresh: every import in a new process (the benchmark started again), as a wavepath run "
-        "imports its meshes once; the process's start is not counted. CPU is user + system time, the helper's and the "
-        "fresh process's included. Warm results are "
+        "imports its meshes once; the process's start is not counted. CPU is user + system time; CPU and page faults "
+        "include the helper's and the fresh process's. Warm results are "
         "compared bit for bit with the first in-process one on every run.\n\n";
     text +=
-        "| mesh | triangles | setting | time | in process s (min / median) | contained s (min / median) | "
+        "| mesh | triangles | setting | measure | in process (min / median) | contained (min / median) | "
         "contained / in process (min, median) |\n|---|---|---|---|---|---|---|\n";
     for (const json& row : results["timings"]) {
-        for (const char* clock : {"wall", "cpu"}) {
-            const json& in = row[clock]["in_process_s"];
-            const json& out = row[clock]["contained_s"];
+        for (const char* measure : kMeasureNames) {
+            const json& in = row["measures"][measure]["in_process"];
+            const json& out = row["measures"][measure]["contained"];
+            const int decimals = measure == std::string("minor page faults") ? 0 : 3;
             text += "| " + row["mesh"].get<std::string>() + " | " + with_thousands(row["triangles"]) + " | " +
-                    row["setting"].get<std::string>() + " | " + (clock == std::string("wall") ? "wall clock" : "CPU") +
-                    " | " + fixed(in["min"], 3) + " / " + fixed(in["median"], 3) + " | " + fixed(out["min"], 3) +
-                    " / " + fixed(out["median"], 3) + " | " +
+                    row["setting"].get<std::string>() + " | " + measure + " | " + fixed(in["min"], decimals) + " / " +
+                    fixed(in["median"], decimals) + " | " + fixed(out["min"], decimals) + " / " +
+                    fixed(out["median"], decimals) + " | " +
                     fixed(out["min"].get<double>() / in["min"].get<double>(), 3) + ", " +
                     fixed(out["median"].get<double>() / in["median"].get<double>(), 3) + " |\n";
         }
@@ -239,8 +245,8 @@ int main(int argc, char** argv) {
     if (argc == 4 && argv[1] == std::string("--import-once")) {
         const bool contained_mode = argv[2] == std::string("contained");
         const fs::path file = argv[3];
-        const Seconds seconds = time_import([&] { return contained_mode ? contained(file) : in_process(file); });
-        std::printf("%.6f %.6f\n", seconds.wall, seconds.cpu);
+        const Usage usage = measure_import([&] { return contained_mode ? contained(file) : in_process(file); });
+        std::printf("%.6f %.6f %.6f %.0f\n", usage.wall, usage.cpu, usage.system, usage.faults);
         return 0;
     }
     int runs = 7;
@@ -271,9 +277,10 @@ int main(int argc, char** argv) {
         for (const bool fresh : {false, true}) {
             const Timing timing = time_imports(file, runs, fresh);
             results["timings"].push_back(timing_row(name, triangles, fresh ? "fresh" : "warm", timing));
-            std::printf("%s, %s: in process %.3f s wall, %.3f s CPU; contained %.3f s wall, %.3f s CPU (medians)\n",
-                        name.c_str(), fresh ? "fresh" : "warm", median(timing.in_process_s),
-                        median(timing.in_process_cpu_s), median(timing.contained_s), median(timing.contained_cpu_s));
+            const json& cpu = results["timings"].back()["measures"]["CPU s"];
+            std::printf("%s, %s: CPU s (medians) in process %.3f, contained %.3f\n", name.c_str(),
+                        fresh ? "fresh" : "warm", cpu["in_process"]["median"].get<double>(),
+                        cpu["contained"]["median"].get<double>());
         }
     }
     for (const auto& [name, file] : meshes)

@@ -8,6 +8,9 @@
 #   e.g. bash tests/fuzz/run_fuzzer.sh build-asan/tests/fuzz/fuzz_scene scene 600
 # runs=N fuzzes N inputs instead of for a time: the same inputs on any
 # machine (CTest's short runs), where a time limit reaches further on a faster one.
+# With WAVEPATH_FUZZ_IMPORT_FAILURES=DIR, fuzz_mesh and fuzz_scene keep in DIR
+# the inputs whose import failed inside wavepath-import (crash, limit,
+# malformed answer: wavepath's one error, not a finding; tests/fuzz/import_failures.h).
 set -euo pipefail
 fuzzer=$(realpath "$1") name=$2 limit=$3
 shift 3
