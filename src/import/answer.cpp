@@ -29,7 +29,7 @@ class AnswerWriter {
     template <class T>
     void put_array(const std::vector<T>& values) {
         static_assert(std::is_trivially_copyable_v<T>);
-        bytes_.append(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(T));
+        if (!values.empty()) bytes_.append(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(T));
     }
     void put_text(std::string_view text) {
         put_count(text.size());
@@ -57,7 +57,8 @@ class AnswerReader {
     std::vector<T> take_array(std::uint32_t count, const std::string& what) {
         const char* bytes = take_bytes(sizeof(T), count, what);
         std::vector<T> values(count);
-        std::memcpy(values.data(), bytes, std::size_t{count} * sizeof(T));
+        if (count > 0)
+            std::memcpy(values.data(), bytes, std::size_t{count} * sizeof(T));  // an empty one's data() is null
         return values;
     }
     std::string take_text(std::size_t min, std::size_t max, const std::string& what) {
