@@ -32,9 +32,9 @@ std::string range_text(std::int64_t min, std::int64_t max) {
 
 }  // namespace
 
-std::string json_member_path(const std::string& parent, std::string_view key) {
-    if (!is_identifier(key)) return parent + "[" + nlohmann::json(key).dump() + "]";
-    return parent.empty() ? std::string(key) : parent + "." + std::string(key);
+std::string json_member_path(std::string parent, std::string_view key) {
+    if (!is_identifier(key)) return parent.append("[").append(nlohmann::json(key).dump()).append("]");
+    return parent.empty() ? std::string(key) : parent.append(".").append(key);
 }
 
 JsonField::JsonField(const nlohmann::json& value, std::string path, const std::string& source)

@@ -20,7 +20,7 @@ namespace wp {
 inline constexpr double kMaxSceneMagnitude = 1e12;
 
 // "camera" + "fov_y" -> "camera.fov_y"; odd names are quoted: materials["my light"].
-std::string json_member_path(const std::string& parent, std::string_view key);
+std::string json_member_path(std::string parent, std::string_view key);
 
 class JsonField {
  public:

@@ -67,11 +67,15 @@ class SyntaxChecker : public nlohmann::json_sax<nlohmann::json> {
         return true;
     }
 
+    // Appended in place: copying the path at every level would cost the square of the depth
+    // (fuzz_scene: a duplicate key under 40,000 nested arrays took 20 s under AddressSanitizer).
     std::string path() const {
         std::string path;
         for (const Scope& scope : scopes_) {
-            path = scope.is_object ? json_member_path(path, scope.key)
-                                   : path + "[" + std::to_string(scope.elements - 1) + "]";
+            if (scope.is_object)
+                path = json_member_path(std::move(path), scope.key);
+            else
+                path.append("[").append(std::to_string(scope.elements - 1)).append("]");
         }
         return path;
     }

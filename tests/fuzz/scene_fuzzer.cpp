@@ -6,22 +6,42 @@
 #include <cstdint>
 #include <cstdlib>
 #include <string>
+#include <string_view>
 
 #include "import/import_process.h"
 #include "import_failures.h"
 #include "scene/scene.h"
 
+namespace {
+
+const std::string source = WAVEPATH_FUZZ_SCENE_DIR "/fuzz.json";
+
+// "<source>: shapes[i].file: <mesh file>: wavepath-import crashed ..." (import/import_process.h); the
+// input may hold such text elsewhere too, in a key or a string that an error quotes.
+bool is_import_failure(const std::string& message) {
+    static const std::string mark = std::string(": ") + wp::kImportHelperName + " ";
+    const std::size_t file = message.find("].file: "), helper = message.find(mark);
+    if (message.rfind(source + ": shapes[", 0) != 0 || file == std::string::npos || helper == std::string::npos ||
+        helper < file)
+        return false;
+    const std::string_view failure = std::string_view(message).substr(helper + mark.size());
+    for (std::string_view verb :
+         {"crashed", "ran out of memory", "used its", "did not finish", "sent a malformed", "exited with status"}) {
+        if (failure.starts_with(verb)) return true;
+    }
+    return false;
+}
+
+}  // namespace
+
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-    static const std::string source = WAVEPATH_FUZZ_SCENE_DIR "/fuzz.json";
     try {
         wp::parse_scene(std::string(reinterpret_cast<const char*>(data), size), source, wp::fuzz::kImportLimits);
     } catch (const wp::SceneError& error) {
         // "<source>: <where>: <problem>"
         const std::string message = error.what();
         if (message.rfind(source + ": ", 0) != 0) std::abort();
-        // "...: <mesh file>: wavepath-import crashed ..." (import/import_process.h)
-        if (message.find(std::string(": ") + wp::kImportHelperName + " ") != std::string::npos)
-            wp::fuzz::note_import_failure(message, data, size);
+        if (is_import_failure(message)) wp::fuzz::note_import_failure(message, data, size);
     }
     return 0;
 }
