@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Installs what rendering needs, builds the wavepath binary (not the tests),
+# Installs what rendering needs, builds the wavepath binary and its mesh import
+# helper wavepath-import (not the tests),
 # and renders the default scene to out/room.png.
 # Usage: bash scripts/render.sh [extra wavepath render flags]
 set -euo pipefail

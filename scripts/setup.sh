@@ -2,6 +2,7 @@
 # Installs what wavepath needs on Debian 12 (idempotent) and builds it in build/.
 # Usage: bash scripts/setup.sh [render|test|--list-packages]
 #   render           the renderer alone: its packages, then the wavepath binary
+#                    (and wavepath-import beside it, the mesh import helper it starts)
 #   test (default)   also the test suite and the benchmark: every package, every target
 #   --list-packages  print the Debian packages of `test` (what tests/packages checks against)
 set -euo pipefail
