@@ -24,6 +24,7 @@
 #include <unistd.h>
 
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -251,12 +252,24 @@ int main(int argc, char** argv) {
     }
     int runs = 7;
     std::string markdown_path, json_path, keep;
-    for (int i = 1; i + 1 < argc; i += 2) {
+    for (int i = 1; i < argc; i += 2) {
         const std::string flag = argv[i];
-        if (flag == "--runs") runs = std::stoi(argv[i + 1]);
-        if (flag == "--markdown") markdown_path = argv[i + 1];
-        if (flag == "--json") json_path = argv[i + 1];
-        if (flag == "--keep") keep = argv[i + 1];
+        const char* value = i + 1 < argc ? argv[i + 1] : nullptr;
+        if (value != nullptr && flag == "--runs" && std::atoi(value) > 0) {
+            runs = std::atoi(value);
+        } else if (value != nullptr && flag == "--markdown") {
+            markdown_path = value;
+        } else if (value != nullptr && flag == "--json") {
+            json_path = value;
+        } else if (value != nullptr && flag == "--keep") {
+            keep = value;
+        } else {
+            std::fprintf(stderr,
+                         "import_bench: bad argument '%s' (usage: import_bench [--runs N] [--markdown FILE] "
+                         "[--json FILE] [--keep DIR])\n",
+                         flag.c_str());
+            return 2;
+        }
     }
     json results;
     results["meta"] = machine_metadata();
