@@ -3,6 +3,8 @@
 #include <charconv>
 #include <string>
 
+#include "core/number_text.h"
+
 namespace wp::cli {
 
 namespace {
@@ -10,6 +12,8 @@ namespace {
 std::string range_text(std::int64_t min, std::int64_t max) {
     return "[" + std::to_string(min) + ", " + std::to_string(max) + "]";
 }
+
+std::string range_text(double min, double max) { return "[" + format_number(min) + ", " + format_number(max) + "]"; }
 
 }  // namespace
 
@@ -25,6 +29,20 @@ CLI::Validator integer_in(std::int64_t min, std::int64_t max) {
             return {};
         },
         "INT in " + range_text(min, max));
+}
+
+CLI::Validator number_in(double min, double max) {
+    return CLI::Validator(
+        [min, max](std::string& text) -> std::string {
+            double value = 0;
+            const char* end = text.data() + text.size();
+            const auto [stop, error] = std::from_chars(text.data(), end, value);
+            // NaN fails both comparisons; from_chars reads "nan" as it.
+            if (error != std::errc() || stop != end || !(value >= min && value <= max))
+                return "must be a number in " + range_text(min, max) + ", got " + text;
+            return {};
+        },
+        "FLOAT in " + range_text(min, max));
 }
 
 }  // namespace wp::cli

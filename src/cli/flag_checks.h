@@ -11,4 +11,8 @@ namespace wp::cli {
 // "--flag: must be in [min, max], got <text>" (exit 2).
 CLI::Validator integer_in(std::int64_t min, std::int64_t max);
 
+// Accepts a decimal number in [min, max] (not NaN, which CLI::Range lets
+// through); otherwise "--flag: must be a number in [min, max], got <text>".
+CLI::Validator number_in(double min, double max);
+
 }  // namespace wp::cli

@@ -30,7 +30,7 @@ void add_mesh_import_options(CLI::App& render, MeshImportLimits& limits) {
     render
         .add_option("--mesh-import-time", limits.wall_s,
                     "Seconds each mesh file's import may take before it is stopped (wall clock)")
-        ->check(CLI::Range(1e-3, kMaxImportWallS))
+        ->check(number_in(1e-3, kMaxImportWallS))
         ->capture_default_str();
 }
 
