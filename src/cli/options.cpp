@@ -73,24 +73,24 @@ void add_render_options(CLI::App& render, RenderCommand& command) {
                       "Write a checkpoint (a film file, .wpfilm) to this file every --checkpoint-every seconds "
                       "and at the end");
     render.add_option("--checkpoint-every", l.checkpoint_every_s, "Seconds between checkpoints (0: after every pass)")
-        ->check(CLI::Range(0.0, 1e9))
+        ->check(number_in(0.0, 1e9))
         ->capture_default_str();
     render.add_option("--resume", l.resume,
                       "Continue the render whose checkpoint this is (same scene and settings; "
                       "the image is bit-identical to an uninterrupted render's)");
     render.add_option("--time", l.time_s, "Time budget in seconds: stop before a pass that would end past it")
-        ->check(CLI::Range(1e-3, 1e9));
+        ->check(number_in(1e-3, 1e9));
     render
         .add_option("--target-error", l.target_error,
                     "Stop once the image's estimated relative standard error is at most this (checked at 4, 5, 6, "
                     "8, 10, ... samples per pixel; docs/long-renders.md)")
-        ->check(CLI::Range(1e-9, 1.0));
+        ->check(number_in(1e-9, 1.0));
     render
         .add_option("--adaptive", l.adaptive,
                     "Adaptive sampling: after max(8, spp/16) samples, a pixel stops once its estimated error "
                     "(standard error over the square root of its value) and its neighbours' is at most this, "
                     "e.g. 0.01 (docs/long-renders.md)")
-        ->check(CLI::Range(1e-9, 1e9));
+        ->check(number_in(1e-9, 1e9));
     render.add_option("--samples", l.samples,
                       "A:B renders samples A to B-1 of every pixel into a partial film (-o FILE.wpfilm), "
                       "for `wavepath merge`");
