@@ -3,8 +3,8 @@
  * round_pixels[w % round_pixel_count], sample w / round_pixel_count) from the camera to their ends, with the same
  * per-vertex functions (device/path_vertex.h) and random numbers as the wavefront's stages, and writes their radiance
  * to their pass entries for accumulate.cl. It keeps the whole path in registers: no path state, no queues, but
- * divergent loops. With several lanes (-DWP_LANES=8 on CPUs, as the
- * wavefront's stages) the lanes run as vector code until the last of their
+ * divergent loops. With several lanes (-DWP_LANES=4, 8 or 16 on CPUs, as
+ * the wavefront's stages) the lanes run as vector code until the last of their
  * paths ends: the single-kernel design at its best on a CPU, the like-for-like
  * baseline for the wavefront. */
 #include "device/guards.h"
@@ -15,18 +15,6 @@
 #include "device/scene_hits.h"
 #include "device/surface.h"
 #include "interface/queues.h"
-
-#if WP_LANES == 1
-WP_FN int lanes_any(lane_int x) { return x != 0; }
-WP_FN uint lanes_sum(lane_uint x) { return x; }
-#else
-WP_FN int lanes_any(lane_int x) { return any(x); }
-WP_FN uint lanes_sum(lane_uint x) {
-    uint4 half_sum = x.lo + x.hi;
-    uint2 quarter_sum = half_sum.lo + half_sum.hi;
-    return quarter_sum.x + quarter_sum.y;
-}
-#endif
 
 /* t where `where` holds, else nothing: a term added only in some lanes. */
 WP_FN vec3 only_where(lane_int where, vec3 term) {

@@ -14,10 +14,16 @@
 #include "device/parameters.h"
 #include "shared/prelude.h"
 
+/* Each lane's number: 0, 1, ..., WP_LANES - 1. */
 #if WP_LANES == 1
-#define LANE_INDEX 0u
+WP_FN lane_uint lane_numbers(void) { return 0u; }
 #else
-#define LANE_INDEX ((lane_uint)(0u, 1u, 2u, 3u, 4u, 5u, 6u, 7u))
+#define WP_LANE_NUMBER(s, k) k##u,
+WP_FN lane_uint lane_numbers(void) {
+    uint numbers[WP_LANES] = {WP_FOR_LANES(WP_LANE_NUMBER)};
+    return LANES_LOAD(numbers);
+}
+#undef WP_LANE_NUMBER
 #endif
 
 typedef struct {
@@ -28,7 +34,7 @@ typedef struct {
 } Lanes;
 
 /* Positions get_global_id(0) * WP_LANES onwards of a queue. */
-WP_FN lane_uint lane_positions(void) { return (uint)get_global_id(0) * WP_LANES + LANE_INDEX; }
+WP_FN lane_uint lane_positions(void) { return (uint)get_global_id(0) * WP_LANES + lane_numbers(); }
 
 WP_FN Lanes queue_lanes(__global const uint *queues, __global const uint *counts, uint capacity, uint queue) {
     Lanes lanes;
@@ -41,7 +47,7 @@ WP_FN Lanes queue_lanes(__global const uint *queues, __global const uint *counts
 #else
     /* Queues are compacted in slot order and freed slots are refilled each
      * iteration, so runs of consecutive slots are the common case. */
-    lanes.contiguous = all(lanes.active) && all(lanes.slot == lanes.slot.s0 + LANE_INDEX);
+    lanes.contiguous = all(lanes.active) && all(lanes.slot == lanes.slot.s0 + lane_numbers());
 #endif
     return lanes;
 }
@@ -66,10 +72,10 @@ WP_OVERLOAD WP_FN void slot_write(__global uint *field, Lanes lanes, lane_int wh
 }
 #else
 WP_OVERLOAD WP_FN real slot_read(__global const float *field, Lanes lanes) {
-    return lanes.contiguous ? vload8(0, field + lanes.slot.s0) : gather(field, lanes.slot);
+    return lanes.contiguous ? LANES_LOAD(field + lanes.slot.s0) : gather(field, lanes.slot);
 }
 WP_OVERLOAD WP_FN lane_uint slot_read(__global const uint *field, Lanes lanes) {
-    return lanes.contiguous ? vload8(0, field + lanes.slot.s0) : gather(field, lanes.slot);
+    return lanes.contiguous ? LANES_LOAD(field + lanes.slot.s0) : gather(field, lanes.slot);
 }
 WP_OVERLOAD WP_FN void slot_write(__global float *field, Lanes lanes, lane_int where, real value) {
     if (!lanes.contiguous) {
@@ -77,7 +83,7 @@ WP_OVERLOAD WP_FN void slot_write(__global float *field, Lanes lanes, lane_int w
         return;
     }
     __global float *at = field + lanes.slot.s0;
-    vstore8(select(vload8(0, at), value, where), 0, at);
+    LANES_STORE(select(LANES_LOAD(at), value, where), at);
 }
 WP_OVERLOAD WP_FN void slot_write(__global uint *field, Lanes lanes, lane_int where, lane_uint value) {
     if (!lanes.contiguous) {
@@ -85,7 +91,7 @@ WP_OVERLOAD WP_FN void slot_write(__global uint *field, Lanes lanes, lane_int wh
         return;
     }
     __global uint *at = field + lanes.slot.s0;
-    vstore8(select(vload8(0, at), value, where), 0, at);
+    LANES_STORE(select(LANES_LOAD(at), value, where), at);
 }
 #endif
 

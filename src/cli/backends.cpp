@@ -169,7 +169,7 @@ void add_backend_options(CLI::App& render, BackendOptions& options) {
                     "Paths per work item in the wavefront's stage kernels and in the megakernel, as vector code: 1 "
                     "or 8 (8 needs --compaction scan on the wavefront; 0: 8 on CPU devices, 1 on others and in the "
                     "megakernel for meshes)")
-        ->check(CLI::IsMember({0u, 1u, 8u}))
+        ->check(CLI::IsMember({0u, 1u, 4u, 8u, 16u}))
         ->capture_default_str();
     render.add_flag("--profile", options.profile,
                     "Print the wavefront's per-kernel profile (launches, items, device time, items/s) on stderr");

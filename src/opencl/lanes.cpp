@@ -32,8 +32,9 @@ unsigned default_lanes(const LaneProgram& program, const DeviceInfo& device) {
 }  // namespace
 
 std::string lanes_problem(unsigned lanes, const LaneProgram& program) {
-    if (lanes != 1 && lanes != 8)
-        return std::string(backend_name(program.backend)) + " lanes must be 1 or 8, not " + std::to_string(lanes);
+    if (!lanes_compiled(lanes))
+        return std::string(backend_name(program.backend)) + " lanes must be 1, 4, 8 or 16, not " +
+               std::to_string(lanes);
     if (lanes != 1 && program.backend == LaneProgram::Backend::Wavefront && !program.scan_compaction)
         return "--lanes " + std::to_string(lanes) + " needs --compaction scan (atomic pushes are per work item)";
     return "";

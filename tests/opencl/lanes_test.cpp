@@ -32,11 +32,11 @@ TEST(ResolveLanes, EachBackendsExceptionsToEightOnCpus) {
 }
 
 TEST(ResolveLanes, RefusesWhatTheProgramCannotRun) {
-    EXPECT_EQ(lanes_problem(4, LaneProgram::wavefront(true)), "wavefront lanes must be 1 or 8, not 4");
-    EXPECT_EQ(lanes_problem(4, LaneProgram::megakernel(false)), "megakernel lanes must be 1 or 8, not 4");
+    EXPECT_EQ(lanes_problem(2, LaneProgram::wavefront(true)), "wavefront lanes must be 1, 4, 8 or 16, not 2");
+    EXPECT_EQ(lanes_problem(32, LaneProgram::megakernel(false)), "megakernel lanes must be 1, 4, 8 or 16, not 32");
     EXPECT_EQ(lanes_problem(8, LaneProgram::wavefront(false)),
               "--lanes 8 needs --compaction scan (atomic pushes are per work item)");
-    for (unsigned lanes : {1u, 8u}) {
+    for (unsigned lanes : {1u, 4u, 8u, 16u}) {
         EXPECT_EQ(lanes_problem(lanes, LaneProgram::megakernel(true)), "");
         EXPECT_EQ(lanes_problem(lanes, LaneProgram::wavefront(true)), "");
     }
