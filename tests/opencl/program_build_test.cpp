@@ -67,10 +67,15 @@ TEST(Devices, ListedWithTheirProperties) {
         EXPECT_GT(d.compute_units, 0u);
         EXPECT_GT(d.global_memory_bytes, 0u);
         EXPECT_NE(d.opencl_c_version.find("OpenCL C"), std::string::npos);
+        EXPECT_GT(d.preferred_float_vector_width, 0u);
+        EXPECT_GT(d.native_float_vector_width, 0u);
     }
     std::string table = describe_devices(devices);
     EXPECT_NE(table.find(devices[0].name), std::string::npos);
     EXPECT_NE(table.find("compute units"), std::string::npos);
+    EXPECT_NE(table.find("float vector width: preferred " + std::to_string(devices[0].preferred_float_vector_width) +
+                         ", native " + std::to_string(devices[0].native_float_vector_width)),
+              std::string::npos);
 }
 
 TEST(Devices, ChosenByIndexOrNameAndBadChoicesNamed) {
