@@ -31,7 +31,7 @@ typedef struct {
         n.box[1][2].s = row.s8, n.box[1][3].s = row.s9, n.box[1][4].s = row.sa, n.box[1][5].s = row.sb;    \
         n.child[0].s = as_uint(row.sc), n.child[1].s = as_uint(row.sd);                                    \
     }
-WP_FN LaneNodes lane_nodes(__global const BvhNode *nodes, lane_uint node) {
+WP_LANE_FN LaneNodes lane_nodes(__global const BvhNode *nodes, lane_uint node) {
     LaneNodes n;
     WP_FOR_LANES(WP_NODE_LANE)
     return n;
@@ -51,7 +51,7 @@ typedef struct {
         t.p1.y.s = row.s4, t.p1.z.s = row.s5, t.p2.x.s = row.s6, t.p2.y.s = row.s7;       \
         t.p2.z.s = triangles[index.s].p2[2];                                              \
     }
-WP_FN LaneTriangles lane_triangles(__global const MeshTriangle *triangles, lane_uint index) {
+WP_LANE_FN LaneTriangles lane_triangles(__global const MeshTriangle *triangles, lane_uint index) {
     LaneTriangles t;
     WP_FOR_LANES(WP_TRIANGLE_LANE)
     return t;
@@ -84,13 +84,13 @@ typedef struct {
 
 #define WP_PUSH_LANE(s, k) stacks->node[stacks->depth.s * WP_LANES + k] = node.s;
 /* node pushed where push holds. */
-WP_FN void lanes_push(LaneStacks *stacks, lane_int push, lane_uint node) {
+WP_LANE_FN void lanes_push(LaneStacks *stacks, lane_int push, lane_uint node) {
     WP_FOR_LANES(WP_PUSH_LANE)
     stacks->depth -= push; /* push is -1 where true */
 }
 #define WP_TOP_LANE(s, k) top.s = stacks->node[top_depth.s * WP_LANES + k];
 /* The nodes on top of the stacks where pop holds (popped; the depth must be above 0 there), else `node`. */
-WP_FN lane_uint lanes_pop(LaneStacks *stacks, lane_int pop, lane_uint node) {
+WP_LANE_FN lane_uint lanes_pop(LaneStacks *stacks, lane_int pop, lane_uint node) {
     lane_int top_depth = max(stacks->depth - 1, 0);
     lane_uint top;
     WP_FOR_LANES(WP_TOP_LANE)

@@ -64,10 +64,13 @@ typedef WP_LANE_VECTOR(int) lane_int; /* a condition: -1 (all bits) where true, 
 typedef WP_LANE_VECTOR(uint) lane_uint;
 #define TO_REAL(x) WP_LANE_VECTOR(convert_float)(x)
 #define TO_LANE_INT(x) WP_LANE_VECTOR(convert_int)(x) /* toward zero, as a C cast */
-/* WP_LANES consecutive elements at p, and stored there. */
+/* The WP_LANES consecutive elements at p. */
 #define LANES_LOAD(p) WP_LANE_VECTOR(vload)(0, p)
-#define LANES_STORE(value, p) WP_LANE_VECTOR(vstore)(value, 0, p)
 #endif
+/* A function that repeats its body per lane (WP_FOR_LANES): always inlined.
+ * At 16 lanes LLVM's inliner otherwise calls it, its vector arguments and
+ * result passed through the stack (the shading stages ran at half speed). */
+#define WP_LANE_FN static inline __attribute__((always_inline))
 /* Kernel-side functions overloaded on their pointer's type (clang's
  * extension, which every OpenCL C compiler built on clang has). */
 #define WP_OVERLOAD __attribute__((overloadable))
@@ -90,11 +93,11 @@ WP_OVERLOAD WP_FN real gather(__global const float *p, lane_uint index) { return
 WP_OVERLOAD WP_FN lane_uint gather(__global const uint *p, lane_uint index) { return p[index]; }
 #else
 #define WP_GATHER_LANE(s, k) p[index.s],
-WP_OVERLOAD WP_FN real gather(__global const float *p, lane_uint index) {
+WP_OVERLOAD WP_LANE_FN real gather(__global const float *p, lane_uint index) {
     float values[WP_LANES] = {WP_FOR_LANES(WP_GATHER_LANE)};
     return LANES_LOAD(values);
 }
-WP_OVERLOAD WP_FN lane_uint gather(__global const uint *p, lane_uint index) {
+WP_OVERLOAD WP_LANE_FN lane_uint gather(__global const uint *p, lane_uint index) {
     uint values[WP_LANES] = {WP_FOR_LANES(WP_GATHER_LANE)};
     return LANES_LOAD(values);
 }
@@ -109,7 +112,7 @@ WP_FN uint lanes_sum(lane_uint x) { return x; }
 #else
 WP_FN int lanes_any(lane_int condition) { return any(condition); }
 #define WP_ADD_LANE(s, k) sum += x.s;
-WP_FN uint lanes_sum(lane_uint x) {
+WP_LANE_FN uint lanes_sum(lane_uint x) {
     uint sum = 0u;
     WP_FOR_LANES(WP_ADD_LANE)
     return sum;
