@@ -9,21 +9,26 @@
 namespace wp {
 namespace {
 
-DeviceInfo device_of_type(const char* type) {
+// A device of `type` whose preferred float vectors hold `width` floats
+// (PoCL on an AVX-512 CPU: 16).
+DeviceInfo device_of_type(const char* type, unsigned width = 16) {
     DeviceInfo device;
     device.type = type;
+    device.preferred_float_vector_width = width;
     return device;
 }
 
-TEST(ResolveLanes, EightOnCpusOneOnGpusByDefault) {
-    const DeviceInfo cpu = device_of_type("CPU"), gpu = device_of_type("GPU");
-    EXPECT_EQ(resolve_lanes(0, LaneProgram::wavefront(true), cpu), 8u);
+TEST(ResolveLanes, TheCpusVectorWidthOnCpusOneOnGpusByDefault) {
+    const DeviceInfo avx512 = device_of_type("CPU"), avx2 = device_of_type("CPU", 8), gpu = device_of_type("GPU");
+    EXPECT_EQ(resolve_lanes(0, LaneProgram::wavefront(true), avx512), 16u);
+    EXPECT_EQ(resolve_lanes(0, LaneProgram::wavefront(true), avx2), 8u);
     EXPECT_EQ(resolve_lanes(0, LaneProgram::wavefront(true), gpu), 1u);
-    EXPECT_EQ(resolve_lanes(0, LaneProgram::megakernel(false), cpu), 8u);
+    EXPECT_EQ(resolve_lanes(0, LaneProgram::megakernel(false), avx512), 16u);
+    EXPECT_EQ(resolve_lanes(0, LaneProgram::megakernel(false), avx2), 8u);
     EXPECT_EQ(resolve_lanes(0, LaneProgram::megakernel(false), gpu), 1u);
 }
 
-TEST(ResolveLanes, EachBackendsExceptionsToEightOnCpus) {
+TEST(ResolveLanes, EachBackendsExceptionsToTheVectorWidthOnCpus) {
     const DeviceInfo cpu = device_of_type("CPU");
     EXPECT_EQ(resolve_lanes(0, LaneProgram::wavefront(false), cpu), 1u) << "atomic pushes are per work item";
     EXPECT_EQ(resolve_lanes(0, LaneProgram::megakernel(true), cpu), 1u) << "meshes in the megakernel";
