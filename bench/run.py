@@ -2,7 +2,7 @@
 """wavepath benchmark: throughput, scaling and speed versus accuracy, beside Mitsuba 3.
 
 Usage: python3 bench/run.py [--quick] [--check] [--out bench/out] [--binary build/wavepath]
-                            [--mesh-bench build/bench/mesh_bench] [--series throughput,scaling,accuracy,meshes,estimators,lanes]
+                            [--mesh-bench build/bench/mesh_bench] [--series throughput,scaling,accuracy,meshes,estimators,embree,lanes]
 
 Runs the wavepath executable (build it first: bash scripts/setup.sh, which also
 installs Mitsuba 3) and writes into --out: results.json, one CSV per study, PNG
