@@ -7,6 +7,7 @@
 #include <string>
 
 #include "megakernel/megakernel_renderer.h"
+#include "opencl/device.h"
 #include "reference/reference_renderer.h"
 #include "support/image_statistics.h"
 #include "support/path_agreement.h"
@@ -22,12 +23,12 @@ MegakernelOptions with_lanes(unsigned lanes) {
     return options;
 }
 
-// 45 x 45 pixels: 2025 work items, so the last work item of 8 lanes has one
-// active lane, which must not disturb the others.
-TEST(Megakernel, OneSampleMatchesReferencePathForPathWithOneAndEightLanes) {
+// 45 x 45 pixels: 2025 work items, so the last work item has one active
+// lane with 4 and 8 lanes and 9 with 16, which must not disturb the others.
+TEST(Megakernel, OneSampleMatchesReferencePathForPathWithEveryLaneCount) {
     Scene scene = test::small_room(45, 1);
     RenderResult reference = render_reference(scene, ReferenceOptions{2, false});
-    for (unsigned lanes : {1u, 8u}) {
+    for (unsigned lanes : {1u, 4u, 8u, 16u}) {
         MegakernelReport report;
         RenderResult megakernel = render_megakernel(scene, with_lanes(lanes), {}, &report);
         EXPECT_EQ(report.lanes, lanes);
@@ -35,10 +36,14 @@ TEST(Megakernel, OneSampleMatchesReferencePathForPathWithOneAndEightLanes) {
     }
 }
 
-TEST(Megakernel, UsesEightLanesOnCpus) {
+// By default as many lanes as the CPU's vectors hold (PoCL's devices are
+// CPUs): its preferred float vector width, 16 at most.
+TEST(Megakernel, UsesTheCpusVectorWidth) {
     MegakernelReport report;
     render_megakernel(test::small_room(8, 1), {}, {}, &report);
-    EXPECT_EQ(report.lanes, 8u) << "PoCL's devices are CPUs";
+    const DeviceInfo device = choose_device("");
+    ASSERT_EQ(device.type, "CPU");
+    EXPECT_EQ(report.lanes, std::min(device.preferred_float_vector_width, 16u));
 }
 
 // Both OpenCL backends run the same float code per vertex and accumulate each
@@ -47,7 +52,7 @@ TEST(Megakernel, UsesEightLanesOnCpus) {
 TEST(Megakernel, BitIdenticalToWavefront) {
     Scene scene = test::small_room(40, 3);
     RenderResult wavefront = render_wavefront(scene, {}, {});
-    for (unsigned lanes : {1u, 8u}) {
+    for (unsigned lanes : {1u, 4u, 8u, 16u}) {
         RenderResult megakernel = render_megakernel(scene, with_lanes(lanes), {});
         EXPECT_EQ(megakernel.image.rgb, wavefront.image.rgb) << "lanes " << lanes;
         EXPECT_EQ(megakernel.stats.extension_rays, wavefront.stats.extension_rays) << "lanes " << lanes;

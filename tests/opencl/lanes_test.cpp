@@ -49,5 +49,22 @@ TEST(ResolveLanes, RefusesWhatTheProgramCannotRun) {
     EXPECT_THROW(resolve_lanes(8, LaneProgram::wavefront(false), device_of_type("CPU")), std::invalid_argument);
 }
 
+// The lanes a device's vectors hold: a CPU's preferred float vector width
+// (rounded down to a count the kernels compile), at most the backend's widest;
+// one lane on GPUs, which run work items in SIMD themselves.
+TEST(ResolveLanes, VectorLanesFollowTheDevicesPreferredFloatWidth) {
+    EXPECT_EQ(vector_lanes(device_of_type("CPU", 16), 16), 16u) << "AVX-512";
+    EXPECT_EQ(vector_lanes(device_of_type("CPU", 8), 16), 8u) << "AVX2";
+    EXPECT_EQ(vector_lanes(device_of_type("CPU", 4), 16), 4u) << "SSE, NEON";
+    EXPECT_EQ(vector_lanes(device_of_type("CPU", 1), 16), 1u) << "a runtime that vectorises across work items";
+    EXPECT_EQ(vector_lanes(device_of_type("CPU", 2), 16), 1u) << "2 lanes are not compiled";
+    EXPECT_EQ(vector_lanes(device_of_type("CPU", 32), 16), 16u);
+    EXPECT_EQ(vector_lanes(device_of_type("CPU", 16), 8), 8u) << "the backend's widest";
+    EXPECT_EQ(vector_lanes(device_of_type("CPU", 16), 1), 1u);
+    EXPECT_EQ(vector_lanes(device_of_type("GPU", 4), 16), 1u);
+    for (unsigned lanes : {1u, 4u, 8u, 16u}) EXPECT_TRUE(lanes_compiled(lanes)) << lanes;
+    for (unsigned lanes : {0u, 2u, 3u, 12u, 32u}) EXPECT_FALSE(lanes_compiled(lanes)) << lanes;
+}
+
 }  // namespace
 }  // namespace wp

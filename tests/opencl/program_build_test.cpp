@@ -249,8 +249,8 @@ TEST(ProgramBuild, SceneWithoutGlassBuildsWithoutDielectricCode) {
     }
 }
 
-// Every kernel header compiles as the only include of a program, with one
-// lane and with eight, and twice in a row (include guards): each includes
+// Every kernel header compiles as the only include of a program, with each
+// lane count (1, 4, 8, 16), and twice in a row (include guards): each includes
 // what it uses, so no header depends on what an includer happened to include first.
 TEST(ProgramBuild, EveryKernelHeaderCompilesOnItsOwn) {
     DeviceInfo device = choose_device("");
@@ -261,12 +261,12 @@ TEST(ProgramBuild, EveryKernelHeaderCompilesOnItsOwn) {
         for (const fs::directory_entry& entry : fs::recursive_directory_iterator(root / folder)) {
             if (!entry.is_regular_file()) continue;  // shared/materials/ holds headers of its own
             const std::string include = "#include \"" + entry.path().lexically_relative(root).string() + "\"\n";
-            for (const char* lanes : {"1", "8"}) {
+            for (const char* lanes : {"1", "4", "8", "16"}) {
                 SCOPED_TRACE(include + " with " + lanes + " lanes");
                 cl::Program program(context, include + include);
                 const std::string options =
                     std::string("-cl-std=CL1.2 -I " WAVEPATH_SOURCE_DIR "/kernels -DWP_LANES=") + lanes +
-                    (lanes[0] == '8' ? " -DWP_COMPACT_SCAN" : "");
+                    (std::string(lanes) != "1" ? " -DWP_COMPACT_SCAN" : "");
                 try {
                     program.build({device.device}, options.c_str());
                 } catch (const cl::BuildError&) {

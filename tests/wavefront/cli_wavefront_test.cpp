@@ -113,5 +113,14 @@ TEST(WavefrontCli, EightLanesWithAtomicPushesIsAUsageError) {
     EXPECT_FALSE(std::filesystem::exists(out));
 }
 
+TEST(WavefrontCli, LaneCountTheKernelsDoNotCompileIsAUsageError) {
+    std::string out = output_path("wavepath-lanes-2.png");
+    CommandRun r = run(cache_env(), "render '" WAVEPATH_SOURCE_DIR "/scenes/test/room_small.json' -o '" + out +
+                                        "' --lanes 2");
+    EXPECT_EQ(r.exit_code, 2) << r.output;
+    EXPECT_EQ(r.output, "wavepath: error: --lanes: 2 not in {0,1,4,8,16} (see wavepath render --help)\n");
+    EXPECT_FALSE(std::filesystem::exists(out));
+}
+
 }  // namespace
 }  // namespace wp

@@ -54,13 +54,13 @@ TEST(MeshRender, WavefrontRetracesTheReferencePathForPath) {
                                          render_reference(scene, ReferenceOptions{2, false}), "wavefront, meshes");
 }
 
-// With its default for meshes, one lane, and with eight (--lanes 8): the
+// With its default for meshes, one lane, and with 16 (--lanes 16): the
 // megakernel traverses the BVH as the wavefront's stages do
-// (device/bvh_lanes.h with eight).
+// (device/bvh_lanes.h with several lanes).
 TEST(MeshRender, MegakernelRetracesTheReferencePathForPath) {
     Scene scene = mesh_scene(48, 1);
     RenderResult reference = render_reference(scene, ReferenceOptions{2, false});
-    for (unsigned lanes : {0u, 8u}) {
+    for (unsigned lanes : {0u, 16u}) {
         MegakernelOptions options;
         options.lanes = lanes;
         MegakernelReport report;
