@@ -48,17 +48,19 @@ class Runner:
         self.scratch = scratch
         self.warm = set()
 
-    def render(self, scene, backend, width, height, spp, extra=(), profile=False, image=False, seed=None):
+    def render(self, scene, backend, width, height, spp, extra=(), profile=False, image=False, seed=None,
+               warm_spp=None):
         """One render; returns the stats JSON (plus 'profile' and 'image' when asked).
 
         The first render of each OpenCL configuration is run twice and the
         first discarded: PoCL compiles each kernel for its launch geometry
         when it is first enqueued, which is not the renderer's speed (`seed`
-        does not change the geometry, so it is not part of the configuration)."""
+        does not change the geometry, so it is not part of the configuration).
+        `warm_spp`: fewer spp for that first render, where they launch the same geometry."""
         key = (scene, backend, width, height, spp, tuple(extra), profile)
         if backend != "reference" and key not in self.warm:
             self.warm.add(key)
-            self.render(scene, backend, width, height, spp, extra, profile, seed=seed)
+            self.render(scene, backend, width, height, warm_spp or spp, extra, profile, seed=seed)
         out = os.path.join(self.scratch, "image.pfm")
         stats_path = os.path.join(self.scratch, "stats.json")
         profile_path = os.path.join(self.scratch, "profile.json")
@@ -386,13 +388,14 @@ def lanes(runner, cfg):
         for _ in range(cfg["lanes_repeats"]):
             for backend, n in configurations:
                 load = os.getloadavg()[0]
-                s = runner.render(path, backend, size, size, spp, extra=["--lanes", str(n)])
+                s = runner.render(path, backend, size, size, spp, extra=["--lanes", str(n)],
+                                  warm_spp=min(4, spp))
                 runs[(backend, n)].append({"samples_per_s": s["samples_per_s"], "time_s": s["time_s"],
                                            "load_1min": load})
         stages = {}
         for n in LANE_COUNTS:
-            profile = runner.render(path, "wavefront", size, size, spp, extra=["--lanes", str(n)],
-                                    profile=True)["profile"]
+            profile = runner.render(path, "wavefront", size, size, spp, extra=["--lanes", str(n)], profile=True,
+                                    warm_spp=min(4, spp))["profile"]
             stages[n] = {k["name"]: k["device_s"] for k in profile["kernels"]}
         for backend, n in configurations:
             r = runs[(backend, n)]
@@ -421,8 +424,8 @@ def lanes_markdown(rows, meta, cfg):
              f"- OpenCL: {meta['opencl_platform']}; device {meta['opencl_device']}; float vector width "
              f"{meta.get('opencl_float_vector_width', '?')}", "",
              f"Each scene at {cfg['lanes_size']}x{cfg['lanes_size']}, {cfg['lanes_repeats']} repetitions; every "
-             "repetition renders each backend at each `--lanes` in turn, after one unrecorded warm-up render of "
-             "each (PoCL compiles per launch size). Samples/s over the render's time (device setup and kernel build "
+             "repetition renders each backend at each `--lanes` in turn, after unrecorded warm-up renders of "
+             "each at 4 spp (PoCL compiles each kernel at its first launch; 4 spp launch the same sizes). Samples/s over the render's time (device setup and kernel build "
              "left out, as `--stats-json` counts them). Of 1 and of 8: samples/s over that of 1 or 8 lanes of the "
              "same backend in the same repetition (min / median). Fastest: the highest median of its scene and "
              "backend (*).", "",
@@ -976,7 +979,7 @@ def main():
                "nee_series": ["on", "off"], "hemisphere_series": ["cosine", "uniform"],
                "estimator_scenes": ["room.json", "cornell.json"], "estimator_size": 128, "estimator_spp": 16,
                "estimator_seeds": 5, "estimator_depths": [8, 32], "estimator_rr": [1, 2, 3, 5, 8],
-               "lanes_scenes": {"room.json": 128, "cornell.json": 128, "bunny.json": 32}, "lanes_size": 256,
+               "lanes_scenes": {"room.json": 192, "cornell.json": 192, "bunny.json": 48}, "lanes_size": 256,
                "lanes_repeats": 5}
     mesh_flags = ((["--quick"] if args.quick else []) +
                   (["--repeats", str(args.mesh_repeats)] if args.mesh_repeats else []))
