@@ -153,7 +153,8 @@ def throughput(runner, peer, cfg):
     for scene in cfg["scenes"]:
         path = os.path.join(ROOT, "scenes", scene)
         # (label, backend, flags); the wavefront also with one path per work item, to show what its lanes give
-        # the megakernel too: 8 lanes is the single-kernel design at its best on a CPU (like for like), 1 the scalar one
+        # the megakernel too: its default lanes are the single-kernel design at its best on a CPU (like for like), 1 the
+        # scalar one
         configurations = [("wavefront", "wavefront", []), ("wavefront-1-lane", "wavefront", ["--lanes", "1"]),
                           ("megakernel", "megakernel", []), ("megakernel-1-lane", "megakernel", ["--lanes", "1"]),
                           ("reference", "reference", []), ("mitsuba", None, [])]

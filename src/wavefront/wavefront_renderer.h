@@ -24,7 +24,7 @@ struct WavefrontOptions {
     bool specialise = true;     // compile only the scene's features (false: every shape and material, for comparison)
     bool profile = false;       // time every kernel (WavefrontReport::profile)
     Compaction compaction = kDefaultCompaction;
-    unsigned lanes = 0;         // paths per work item in the stage kernels (1 or 8); 0 = resolve_lanes' choice
+    unsigned lanes = 0;         // paths per work item in the stage kernels (1, 4, 8 or 16); 0 = resolve_lanes' choice
     bool film_squares = false;  // the film keeps sums of squares (per-pixel variance, --target-error)
     // What traces the rays: the OpenCL BVH in the kernels, or Embree on the
     // host (CPU devices only; wavefront/host_trace.h). Unset:
