@@ -80,8 +80,8 @@ TEST(WavefrontCli, ColdCacheSaysKernelsAreBuiltWarmCacheDoesNot) {
 TEST(WavefrontCli, DevicesListed) {
     CommandRun r = run("", "devices");
     EXPECT_EQ(r.exit_code, 0);
-    for (const char* text : {"[0] ", "platform: ", "type: ", "compute units: ", "memory: ", "OpenCL C ",
-                             "float vector width: preferred "})
+    for (const char* text :
+         {"[0] ", "platform: ", "type: ", "compute units: ", "memory: ", "OpenCL C ", "float vector width: preferred "})
         EXPECT_NE(r.output.find(text), std::string::npos) << text << "\n" << r.output;
 }
 
