@@ -23,13 +23,13 @@ typedef struct {
 } LaneNodes;
 
 /* A lane's node, one 64-byte load, into its component of each word's vector. */
-#define WP_NODE_LANE(s, k)                                                                                  \
-    {                                                                                                      \
-        float16 row = vload16(0, &nodes[node.s].bounds[0][0]);                                             \
-        n.box[0][0].s = row.s0, n.box[0][1].s = row.s1, n.box[0][2].s = row.s2, n.box[0][3].s = row.s3;    \
-        n.box[0][4].s = row.s4, n.box[0][5].s = row.s5, n.box[1][0].s = row.s6, n.box[1][1].s = row.s7;    \
-        n.box[1][2].s = row.s8, n.box[1][3].s = row.s9, n.box[1][4].s = row.sa, n.box[1][5].s = row.sb;    \
-        n.child[0].s = as_uint(row.sc), n.child[1].s = as_uint(row.sd);                                    \
+#define WP_NODE_LANE(s, k)                                                                              \
+    {                                                                                                   \
+        float16 row = vload16(0, &nodes[node.s].bounds[0][0]);                                          \
+        n.box[0][0].s = row.s0, n.box[0][1].s = row.s1, n.box[0][2].s = row.s2, n.box[0][3].s = row.s3; \
+        n.box[0][4].s = row.s4, n.box[0][5].s = row.s5, n.box[1][0].s = row.s6, n.box[1][1].s = row.s7; \
+        n.box[1][2].s = row.s8, n.box[1][3].s = row.s9, n.box[1][4].s = row.sa, n.box[1][5].s = row.sb; \
+        n.child[0].s = as_uint(row.sc), n.child[1].s = as_uint(row.sd);                                 \
     }
 WP_LANE_FN LaneNodes lane_nodes(__global const BvhNode *nodes, lane_uint node) {
     LaneNodes n;
@@ -44,12 +44,12 @@ typedef struct {
 } LaneTriangles;
 
 /* A lane's triangle: p0, p1 and p2's x, y from one 32-byte load, then p2's z. */
-#define WP_TRIANGLE_LANE(s, k)                                                             \
-    {                                                                                     \
-        float8 row = vload8(0, &triangles[index.s].p0[0]);                                \
-        t.p0.x.s = row.s0, t.p0.y.s = row.s1, t.p0.z.s = row.s2, t.p1.x.s = row.s3;       \
-        t.p1.y.s = row.s4, t.p1.z.s = row.s5, t.p2.x.s = row.s6, t.p2.y.s = row.s7;       \
-        t.p2.z.s = triangles[index.s].p2[2];                                              \
+#define WP_TRIANGLE_LANE(s, k)                                                      \
+    {                                                                               \
+        float8 row = vload8(0, &triangles[index.s].p0[0]);                          \
+        t.p0.x.s = row.s0, t.p0.y.s = row.s1, t.p0.z.s = row.s2, t.p1.x.s = row.s3; \
+        t.p1.y.s = row.s4, t.p1.z.s = row.s5, t.p2.x.s = row.s6, t.p2.y.s = row.s7; \
+        t.p2.z.s = triangles[index.s].p2[2];                                        \
     }
 WP_LANE_FN LaneTriangles lane_triangles(__global const MeshTriangle *triangles, lane_uint index) {
     LaneTriangles t;

@@ -21,12 +21,9 @@ WP_FN void add_where_nonzero(__global uint *p, lane_uint index, lane_uint value)
 #else
 #define WP_STORE_LANE(s, k) \
     if (where.s) p[index.s] = value.s;
-WP_OVERLOAD WP_LANE_FN void store_where(__global float *p, lane_uint index, lane_int where, real value) {
-    WP_FOR_LANES(WP_STORE_LANE)
-}
-WP_OVERLOAD WP_LANE_FN void store_where(__global uint *p, lane_uint index, lane_int where, lane_uint value) {
-    WP_FOR_LANES(WP_STORE_LANE)
-}
+WP_OVERLOAD WP_LANE_FN void store_where(__global float *p, lane_uint index, lane_int where,
+                                        real value){WP_FOR_LANES(WP_STORE_LANE)} WP_OVERLOAD WP_LANE_FN
+    void store_where(__global uint *p, lane_uint index, lane_int where, lane_uint value){WP_FOR_LANES(WP_STORE_LANE)}
 #undef WP_STORE_LANE
 #define WP_ADD_LANE(s, k) \
     if (value.s != 0u) p[index.s] += value.s;
