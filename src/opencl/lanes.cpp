@@ -12,7 +12,7 @@ const char* backend_name(LaneProgram::Backend backend) {
 
 unsigned default_lanes(const LaneProgram& program, const DeviceInfo& device) {
     // As many lanes as the device's vectors hold (vector_lanes), up to the
-    // most that measured fastest per backend (bench/results/lanes.md).
+    // most each backend takes (measured by bench/run.py --series lanes).
     switch (program.backend) {
         case LaneProgram::Backend::Wavefront:
             // Atomic pushes are per work item. Meshes get as many lanes as
