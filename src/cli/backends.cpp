@@ -165,10 +165,12 @@ void add_backend_options(CLI::App& render, BackendOptions& options) {
             std::map<std::string, Compaction>{{"atomic", Compaction::Atomic}, {"scan", Compaction::Scan}}))
         ->default_str(kDefaultCompaction == Compaction::Scan ? "scan" : "atomic");
     render
-        .add_option("--lanes", options.lanes,
-                    "Paths per work item in the wavefront's stage kernels and in the megakernel, as vector code: 1, "
-                    "4, 8 or 16 (more than 1 needs --compaction scan on the wavefront; 0: on CPU devices as many as "
-                    "their float vectors hold, 1 on others and in the megakernel for meshes; opencl/lanes.cpp)")
+        .add_option(
+            "--lanes", options.lanes,
+            "Paths per work item in the wavefront's stage kernels and in the megakernel, as vector code: 1, "
+            "4, 8 or 16 (more than 1 needs --compaction scan on the wavefront; 0: the measured default, 8 on CPU "
+            "devices, 1 on others and in the megakernel for meshes, until bench/run.py --series lanes shows "
+            "another count faster; opencl/lanes.cpp)")
         ->check(CLI::IsMember({0u, 1u, 4u, 8u, 16u}))
         ->capture_default_str();
     render.add_flag("--profile", options.profile,

@@ -1,6 +1,5 @@
 #include "opencl/lanes.h"
 
-#include <algorithm>
 #include <stdexcept>
 
 namespace wp {
@@ -11,32 +10,29 @@ const char* backend_name(LaneProgram::Backend backend) {
 }
 
 unsigned default_lanes(const LaneProgram& program, const DeviceInfo& device) {
-    // As many lanes as the device's vectors hold (vector_lanes), up to the
-    // most each backend takes (measured by bench/run.py --series lanes).
+    // A GPU runs work items in SIMD already; on a CPU a work item's vector
+    // code is the only SIMD PoCL gives (kernels/shared/prelude.h). The
+    // kernels also compile 4 and 16 lanes (--lanes); the defaults stay at the
+    // 8 measured (bench/results/defaults.md) until bench/run.py --series lanes
+    // shows another count faster.
+    if (device.type != "CPU") return 1;
     switch (program.backend) {
         case LaneProgram::Backend::Wavefront:
-            // Atomic pushes are per work item. Meshes get as many lanes as
-            // the others: the stages that trace lose less than the others
-            // gain (docs/architecture.md, "Meshes and their BVH").
-            return program.scan_compaction ? vector_lanes(device, 16) : 1;
+            // Atomic pushes are per work item. Meshes get 8 lanes too: the
+            // stages that trace lose less than the others gain
+            // (docs/architecture.md, "Meshes and their BVH").
+            return program.scan_compaction ? 8 : 1;
         case LaneProgram::Backend::Megakernel:
             // Not for meshes: a lane's BVH traversal diverges from the
             // others' at every node, and a work item waits for its longest
-            // path, so whole paths of several such lanes ran slower than one.
-            return vector_lanes(device, program.meshes ? 1 : 16);
+            // path, so whole paths of 8 such lanes ran slower than one lane
+            // (bench/results/analysis.md, "Lanes with meshes").
+            return program.meshes ? 1 : 8;
     }
     return 1;
 }
 
 }  // namespace
-
-unsigned vector_lanes(const DeviceInfo& device, unsigned widest) {
-    if (device.type != "CPU") return 1;
-    unsigned lanes = 1;
-    for (unsigned wider = 2; wider <= std::min(widest, device.preferred_float_vector_width); wider *= 2)
-        if (lanes_compiled(wider)) lanes = wider;
-    return lanes;
-}
 
 std::string lanes_problem(unsigned lanes, const LaneProgram& program) {
     if (!lanes_compiled(lanes))

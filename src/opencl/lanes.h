@@ -25,12 +25,6 @@ struct LaneProgram {
 // (kernels/shared/prelude.h, "Lanes").
 inline constexpr bool lanes_compiled(unsigned lanes) { return lanes == 1 || lanes == 4 || lanes == 8 || lanes == 16; }
 
-// The lanes `device`'s vectors hold, up to `widest`: on a CPU the most the
-// kernels compile within its preferred float vector width (PoCL: 16 with
-// AVX-512, 8 with AVX2, 4 with SSE or NEON); 1 elsewhere, since GPUs run work
-// items in SIMD themselves.
-unsigned vector_lanes(const DeviceInfo& device, unsigned widest);
-
 // Why `program` cannot run `lanes` paths per work item, or "" when it can.
 std::string lanes_problem(unsigned lanes, const LaneProgram& program);
 
