@@ -380,7 +380,7 @@ def lanes(runner, cfg):
     """Samples/s per lane count (--lanes) for both OpenCL backends, per scene: each repetition renders every
     backend and lane count in turn (interleaved), the 1-minute load average read before each render; then one
     profiled wavefront render per lane count, for its stages' device times. Ratios against one lane and against
-    8 (the former default on CPUs) are taken repetition by repetition."""
+    8 (the default on CPUs, measured before 4 and 16 were compiled) are taken repetition by repetition."""
     rows = []
     for scene, spp in cfg["lanes_scenes"].items():
         path = os.path.join(ROOT, "scenes", scene)
