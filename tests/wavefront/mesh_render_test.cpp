@@ -209,13 +209,13 @@ TEST(MeshRender, WavefrontRetracesTheReferenceWithTheSameIntersectorOnTheShipped
 }
 
 // The hits the host writes are a function of each ray alone: the same image,
-// to the bit, for any wavefront size (queue lengths rarely a multiple of 8,
-// passes cut elsewhere) and one lane or eight.
+// to the bit, for any wavefront size (queue lengths rarely a multiple of the
+// lanes, passes cut elsewhere) and 1, 4, 8 or 16 lanes.
 TEST(MeshRender, EmbreeImagesAreBitIdenticalAcrossWavefrontSizesAndLanes) {
     Scene scene = shipped("cornell_mesh", 32, 2);
     RenderResult first = render_wavefront(scene, traced_by(Intersector::Embree, 0, 8), {});
     EXPECT_GT(first.stats.shadow_rays, 0u);
-    for (auto [wavefront, lanes] : {std::pair{320u, 1u}, {320u, 8u}, {1088u, 1u}, {0u, 1u}}) {
+    for (auto [wavefront, lanes] : {std::pair{320u, 1u}, {320u, 4u}, {320u, 8u}, {320u, 16u}, {1088u, 1u}, {0u, 1u}}) {
         RenderResult other = render_wavefront(scene, traced_by(Intersector::Embree, wavefront, lanes), {});
         std::string label = "wavefront " + std::to_string(wavefront) + ", lanes " + std::to_string(lanes);
         EXPECT_EQ(other.image.rgb, first.image.rgb) << label;
