@@ -1,6 +1,8 @@
 /* Stage 4: any hit along each shadow ray, WP_LANES rays per work item
  * (device/lanes.h), or, where the host traced them (WP_HOST_TRACED), its
- * verdict; an unoccluded one adds the light sample's contribution to its path. */
+ * verdict; an unoccluded one adds the light sample's contribution to its
+ * path, and to its pass entry, since shade may have ended the path after
+ * casting the ray (a continuing path's entry is written again when it ends). */
 #include "device/guards.h"
 #include "device/lanes.h"
 #include "device/parameters.h"
@@ -21,6 +23,7 @@ __kernel __attribute__((reqd_work_group_size(WP_GROUP_SIZE, 1, 1))) void interse
     lane_uint dropped = 0u;
     vec3 radiance = add_finite(PATH_READ(radiance, lanes), PATH_READ(shadow_radiance, lanes), &dropped);
     PATH_WRITE(radiance, lanes, unoccluded, radiance);
+    finish_paths(pass_radiance, PATH_READ(pass_item, lanes), unoccluded, radiance);
     count_nonfinite(slot_nonfinite, WP_COUNTER_NONFINITE_DIRECT, lanes, unoccluded ? dropped : (lane_uint)0u);
 #endif
 }

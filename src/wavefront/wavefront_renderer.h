@@ -36,9 +36,8 @@ struct WavefrontOptions {
 struct IterationRecord {
     std::uint32_t generated = 0;   // camera rays started
     std::uint32_t traced = 0;      // extension rays intersected
-    std::uint32_t hits = 0;        // of those, hits (to shade_direct)
+    std::uint32_t hits = 0;        // of those, hits (to shade)
     std::uint32_t shadow = 0;      // shadow rays
-    std::uint32_t scattered = 0;   // paths scatter sampled (hits that did not end in shade_direct)
     std::uint32_t continuing = 0;  // paths that scattered on
     std::uint32_t finished = 0;    // paths that ended
 

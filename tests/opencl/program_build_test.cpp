@@ -179,8 +179,9 @@ EditedBuild build_edited_copy(const std::string& file, const std::string& from, 
 // it compiles: a push to a queue the declaration does not list fails the
 // build at the push.
 TEST(ProgramBuild, PushToAQueueTheStageDoesNotDeclareFailsToCompile) {
-    EditedBuild built = build_edited_copy("scatter.cl", "STAGE_PUSH(RAY, lanes, continues)",
-                                          "STAGE_PUSH(SHADOW, lanes, continues)", "scatter.cl", "STAGE_PUSH(SHADOW");
+    EditedBuild built =
+        build_edited_copy("intersect.cl", "STAGE_PUSH(HIT, lanes, hit_something)",
+                          "STAGE_PUSH(SHADOW, lanes, hit_something)", "intersect.cl", "STAGE_PUSH(SHADOW");
     EXPECT_NE(built.error.find(built.expected_location), std::string::npos) << built.error;
     EXPECT_NE(built.error.find("a push to SHADOW, which the stage's declaration"), std::string::npos) << built.error;
 }
@@ -188,10 +189,10 @@ TEST(ProgramBuild, PushToAQueueTheStageDoesNotDeclareFailsToCompile) {
 // And a declaration changed without its kernel fails the build at the
 // kernel's first line, which states its queues.
 TEST(ProgramBuild, StageOpeningWithOtherQueuesThanItsDeclarationFailsToCompile) {
-    EditedBuild built = build_edited_copy("interface/stages.h", "X(scatter, SCATTER, WP_PUSHES(RAY, FREE), ALWAYS)",
-                                          "X(scatter, SCATTER, WP_PUSHES(RAY), ALWAYS)", "scatter.cl", "STAGE_QUEUES");
+    EditedBuild built = build_edited_copy("interface/stages.h", "X(shade, HIT, WP_PUSHES(SHADOW, RAY, FREE), ALWAYS)",
+                                          "X(shade, HIT, WP_PUSHES(RAY, FREE), ALWAYS)", "shade.cl", "STAGE_QUEUES");
     EXPECT_NE(built.error.find(built.expected_location), std::string::npos) << built.error;
-    EXPECT_NE(built.error.find("the queues of scatter differ from its declaration"), std::string::npos) << built.error;
+    EXPECT_NE(built.error.find("the queues of shade differ from its declaration"), std::string::npos) << built.error;
 }
 
 // docs/architecture.md ("Specialisation") lists exactly the macros that

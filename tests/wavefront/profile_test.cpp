@@ -51,9 +51,8 @@ TEST(Profile, KernelItemsMatchTheRaysTheRenderCounted) {
     EXPECT_EQ(p.kernel("intersect_shadow").items, reference.stats.shadow_rays);
     EXPECT_EQ(p.kernel("accumulate").items, samples);
     EXPECT_EQ(p.kernel("generate").items, samples);  // every camera ray took one free slot
-    // Every hit is shaded; those that did not end there scatter.
-    EXPECT_LE(p.kernel("scatter").items, p.kernel("shade_direct").items);
-    EXPECT_LE(p.kernel("shade_direct").items, p.kernel("intersect").items);
+    // Every hit is shaded.
+    EXPECT_LE(p.kernel("shade").items, p.kernel("intersect").items);
 
     // The kernels' own per-depth counts add up to the reference's rays; depth 0 is the camera rays.
     EXPECT_EQ(sum(p.extension_rays_by_depth), reference.stats.extension_rays);
@@ -63,7 +62,7 @@ TEST(Profile, KernelItemsMatchTheRaysTheRenderCounted) {
     for (std::size_t d = 1; d < p.extension_rays_by_depth.size(); ++d)
         EXPECT_LE(p.extension_rays_by_depth[d], p.extension_rays_by_depth[d - 1]) << "depth " << d;
 
-    for (const char* stage : {"generate", "intersect", "shade_direct", "intersect_shadow", "scatter"}) {
+    for (const char* stage : {"generate", "intersect", "shade", "intersect_shadow"}) {
         EXPECT_GT(p.kernel(stage).device_s, 0.0) << stage;
         if (std::string(stage) != "generate") {
             EXPECT_EQ(p.kernel(stage).launches, p.iterations) << stage;
@@ -111,6 +110,25 @@ TEST(Profile, HostTracedStagesHaveRowsOfTheirOwn) {
     EXPECT_EQ(p.kernel("embree:intersect_shadow").items, result.stats.shadow_rays);
     EXPECT_LE(p.kernel_s() + p.gaps_s, 1.05 * p.render_s);
     EXPECT_EQ(p.intersect_bound_rays_per_s, 0.0);
+}
+
+// A shadow ray is counted at the depth of the vertex that cast it, although
+// shade has moved its path's depth on by then: with max_depth 1 every light
+// sample is cast at the camera ray's hit, depth 0.
+TEST(Profile, ShadowRaysAreCountedAtTheDepthOfTheirVertex) {
+    Scene scene = test::scene_from_file("scenes/test/room_small.json");
+    scene.camera.width = scene.camera.height = 16;
+    scene.render.spp = 1;
+    scene.render.max_depth = 1;
+    WavefrontOptions options;
+    options.profile = true;
+    WavefrontReport report;
+    RenderResult result = render_wavefront(scene, options, {}, &report);
+    const std::vector<std::uint64_t>& shadow = report.profile.shadow_rays_by_depth;
+    ASSERT_FALSE(shadow.empty());
+    EXPECT_GT(shadow[0], 0u);
+    EXPECT_EQ(shadow[0], result.stats.shadow_rays);
+    EXPECT_EQ(sum(shadow), shadow[0]);
 }
 
 // docs/architecture.md's count of the kernels an iteration launches (at most:
