@@ -7,8 +7,8 @@
  * next-event estimation at a diffuse vertex (its shadow ray goes to
  * intersect_shadow with its would-be contribution), then BSDF sampling, the
  * throughput and Russian roulette. The path state is read once and written
- * once. A path that ends here still has its shadow ray traced: intersect_shadow
- * adds the light sample to its pass entry too, after the emission, as the
+ * once. A path that ends here with a shadow ray to trace is finished by
+ * intersect_shadow, which adds the light sample after the emission, as the
  * megakernel does. */
 #include "device/guards.h"
 #include "device/lanes.h"
@@ -76,8 +76,11 @@ __kernel __attribute__((reqd_work_group_size(WP_GROUP_SIZE, 1, 1))) void shade(W
 #ifdef WP_HAS_GLASS
     PATH_WRITE(eta_scale, lanes, continues, step.eta_scale);
 #endif
+#ifdef WP_NEE
+    PATH_WRITE(shadow_ends_path, lanes, casts_shadow, ends ? (lane_uint)1u : (lane_uint)0u);
+#endif
     PATH_WRITE(radiance, lanes, continues || casts_shadow, radiance);
-    finish_paths(pass_radiance, PATH_READ(pass_item, lanes), ends, radiance);
+    finish_paths(pass_radiance, PATH_READ(pass_item, lanes), ends && !casts_shadow, radiance);
     STAGE_PUSH(SHADOW, lanes, casts_shadow);
     STAGE_PUSH(RAY, lanes, continues);
     STAGE_PUSH(FREE, lanes, ends);

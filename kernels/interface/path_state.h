@@ -39,6 +39,7 @@
     X(vec3, shadow_direction, NEE, "shade", "intersect_shadow")                                      \
     X(float, shadow_distance, NEE, "shade", "intersect_shadow")                                      \
     X(vec3, shadow_radiance, NEE, "shade", "intersect_shadow")                                       \
+    X(uint, shadow_ends_path, NEE, "shade", "intersect_shadow")                                      \
     X(uint, shadow_occluded, HOST_SHADOWS, "intersect_shadow", "intersect_shadow")                   \
     X(float, bsdf_pdf, MIS, "shade", "shade")                                                        \
     X(float, eta_scale, GLASS, "generate shade", "shade")
