@@ -139,13 +139,13 @@ TEST(ProgramBuild, BrokenKernelNamesFileAndLine) {
     ScopedEnv cache_env("WAVEPATH_CACHE_DIR", cache.path.string());
     fs::path dir = copy_kernels(kernels.path / "kernels");
     ScopedEnv kernel_env("WAVEPATH_KERNEL_DIR", dir.string());
-    replace_in_file(dir / "scatter.cl", "uint new_depth = bounce + 1u,", "uint new_depth = bounce + undeclared_thing,");
-    int line = line_of(dir / "scatter.cl", "undeclared_thing");
+    replace_in_file(dir / "shade.cl", "bounce + 1u);", "bounce + undeclared_thing);");
+    int line = line_of(dir / "shade.cl", "undeclared_thing");
     try {
         build_wavefront(choose_device(""), diffuse_spheres());
         FAIL() << "expected KernelBuildError";
     } catch (const KernelBuildError& e) {
-        std::string expected = (dir / "scatter.cl").string() + ":" + std::to_string(line) + ": ";
+        std::string expected = (dir / "shade.cl").string() + ":" + std::to_string(line) + ": ";
         EXPECT_NE(std::string(e.what()).find(expected), std::string::npos) << e.what();
         EXPECT_NE(std::string(e.what()).find("undeclared_thing"), std::string::npos) << e.what();
         EXPECT_NE(e.log().find("undeclared_thing"), std::string::npos);

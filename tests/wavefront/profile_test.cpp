@@ -27,6 +27,25 @@ std::uint64_t sum(const std::vector<std::uint64_t>& values) {
     return std::accumulate(values.begin(), values.end(), std::uint64_t(0));
 }
 
+// A profiled wavefront render of scenes/test/room_small.json at size x size,
+// 1 spp, max_depth `max_depth`, `wavefront` paths in flight (0: automatic).
+struct ProfiledRender {
+    RenderResult result;
+    WavefrontReport report;
+};
+ProfiledRender profiled_small_room(int size, int max_depth, std::size_t wavefront = 0) {
+    Scene scene = test::scene_from_file("scenes/test/room_small.json");
+    scene.camera.width = scene.camera.height = size;
+    scene.render.spp = 1;
+    scene.render.max_depth = max_depth;
+    WavefrontOptions options;
+    options.wavefront = wavefront;
+    options.profile = true;
+    ProfiledRender rendered;
+    rendered.result = render_wavefront(scene, options, {}, &rendered.report);
+    return rendered;
+}
+
 // The stage kernels' items against counts from sources independent of the
 // host's queue bookkeeping (IterationRecord, from which fill_profile sums
 // the items): the scalar reference renderer's rays for the same scene
@@ -116,18 +135,11 @@ TEST(Profile, HostTracedStagesHaveRowsOfTheirOwn) {
 // shade has moved its path's depth on by then: with max_depth 1 every light
 // sample is cast at the camera ray's hit, depth 0.
 TEST(Profile, ShadowRaysAreCountedAtTheDepthOfTheirVertex) {
-    Scene scene = test::scene_from_file("scenes/test/room_small.json");
-    scene.camera.width = scene.camera.height = 16;
-    scene.render.spp = 1;
-    scene.render.max_depth = 1;
-    WavefrontOptions options;
-    options.profile = true;
-    WavefrontReport report;
-    RenderResult result = render_wavefront(scene, options, {}, &report);
-    const std::vector<std::uint64_t>& shadow = report.profile.shadow_rays_by_depth;
+    ProfiledRender rendered = profiled_small_room(16, 1);
+    const std::vector<std::uint64_t>& shadow = rendered.report.profile.shadow_rays_by_depth;
     ASSERT_FALSE(shadow.empty());
     EXPECT_GT(shadow[0], 0u);
-    EXPECT_EQ(shadow[0], result.stats.shadow_rays);
+    EXPECT_EQ(shadow[0], rendered.result.stats.shadow_rays);
     EXPECT_EQ(sum(shadow), shadow[0]);
 }
 
@@ -137,15 +149,7 @@ TEST(Profile, ShadowRaysAreCountedAtTheDepthOfTheirVertex) {
 // so it is one pass of one iteration, and its profile counts every launch
 // but the pass's accumulate.
 TEST(Profile, ArchitectureDocCountsTheKernelsOfAnIteration) {
-    Scene scene = test::scene_from_file("scenes/test/room_small.json");
-    scene.camera.width = scene.camera.height = 8;
-    scene.render.spp = 1;
-    scene.render.max_depth = 0;
-    WavefrontOptions options;
-    options.wavefront = 64;
-    options.profile = true;
-    WavefrontReport report;
-    render_wavefront(scene, options, {}, &report);
+    WavefrontReport report = profiled_small_room(8, 0, 64).report;
     ASSERT_EQ(report.iterations.size(), 1u);
     std::uint64_t launches = 0;
     for (const KernelProfile& k : report.profile.kernels)
