@@ -17,6 +17,7 @@ NAME.md, headed by the commit, date, machine and OpenCL platform.
 import argparse
 import json
 import os
+import resource
 import statistics
 import subprocess
 import sys
@@ -35,11 +36,20 @@ def render(binary, scene, backend, size, spp, scratch):
             "--backend", backend, "--width", str(size), "--height", str(size), "--spp", str(spp),
             "--stats-json", stats_path]
     load_before = os.getloadavg()[0]
+    cpu_before = children_cpu_s()
     subprocess.run(args, check=True, cwd=ROOT)
+    cpu_s = children_cpu_s() - cpu_before
     with open(stats_path) as f:
         stats = json.load(f)
-    return {"samples_per_s": stats["samples_per_s"], "time_s": stats["time_s"], "load_before": load_before,
+    return {"samples_per_s": stats["samples_per_s"], "time_s": stats["time_s"], "cpu_s": cpu_s,
+            "samples_per_cpu_s": stats["samples"] / cpu_s, "load_before": load_before,
             "load_after": os.getloadavg()[0]}
+
+
+def children_cpu_s():
+    """CPU time (user and system) of the finished child processes so far."""
+    usage = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return usage.ru_utime + usage.ru_stime
 
 
 def git(*args):
@@ -69,23 +79,23 @@ def rows_of(runs, builds, scenes):
         for label, _ in builds:
             for backend in BACKENDS:
                 r = runs[(scene, label, backend)]
-                sps = [x["samples_per_s"] / 1e6 for x in r]
                 rows.append({"scene": scene, "size": size, "spp": spp, "build": label, "what": backend,
-                             **{f"msamples_s_{k}": v for k, v in spread(sps).items()},
+                             **{f"msamples_s_{k}": v for k, v in spread([x["samples_per_s"] / 1e6 for x in r]).items()},
+                             **{f"msamples_cpu_s_{k}": v
+                                for k, v in spread([x["samples_per_cpu_s"] / 1e6 for x in r]).items()},
                              "load_median": statistics.median(x["load_before"] for x in r)})
 
-        def ratio(a, b):  # repetition by repetition
-            return spread([x["samples_per_s"] / y["samples_per_s"] for x, y in zip(runs[a], runs[b])])
+        def ratios(a, b):  # repetition by repetition, of samples/s and of samples per CPU second
+            return {f"{measure}_{k}": v for measure in ("samples_per_s", "samples_per_cpu_s")
+                    for k, v in spread([x[measure] / y[measure] for x, y in zip(runs[a], runs[b])]).items()}
 
         for label, _ in builds:
             rows.append({"scene": scene, "build": label, "what": "wavefront/megakernel",
-                         **{f"ratio_{k}": v for k, v in
-                            ratio((scene, label, "wavefront"), (scene, label, "megakernel")).items()}})
+                         **ratios((scene, label, "wavefront"), (scene, label, "megakernel"))})
         for label, _ in builds[1:]:
             for backend in BACKENDS:
                 rows.append({"scene": scene, "build": label, "what": f"{backend} / {first}'s",
-                             **{f"ratio_{k}": v for k, v in
-                                ratio((scene, label, backend), (scene, first, backend)).items()}})
+                             **ratios((scene, label, backend), (scene, first, backend))})
     return rows
 
 
@@ -97,18 +107,25 @@ def markdown(meta, rows, repeats):
              f"device {meta['opencl_device']}",
              f"- {repeats} interleaved repetitions after one discarded warm-up render per configuration; "
              f"load average (1 min) {meta['load_start']:.2f} at the start, {meta['load_end']:.2f} at the end",
-             "", "| scene | build | backend | Msamples/s min | median | max | load (median) |", "|---|---|---|---|---|---|---|"]
+             "- Samples per CPU second: the render's samples over the CPU time (user and system) of its process, "
+             "start-up included; on a machine shared with other work it is steadier than samples/s, whose wall "
+             "time counts the other work's share of the cores",
+             "", "| scene | build | backend | Msamples/s min | median | max | Msamples/CPU s min | median | max "
+             "| load (median) |", "|---|---|---|---|---|---|---|---|---|---|"]
     for r in rows:
         if "msamples_s_min" in r:
             lines.append(f"| {r['scene']} {r['size']}x{r['size']} {r['spp']} spp | {r['build']} | {r['what']} | "
                          f"{r['msamples_s_min']:.3f} | {r['msamples_s_median']:.3f} | {r['msamples_s_max']:.3f} | "
-                         f"{r['load_median']:.1f} |")
-    lines += ["", "Ratios, repetition by repetition:", "", "| scene | build | ratio | min | median | max |",
-              "|---|---|---|---|---|---|"]
+                         f"{r['msamples_cpu_s_min']:.3f} | {r['msamples_cpu_s_median']:.3f} | "
+                         f"{r['msamples_cpu_s_max']:.3f} | {r['load_median']:.1f} |")
+    lines += ["", "Ratios, repetition by repetition:", "",
+              "| scene | build | ratio | samples/s min | median | max | samples/CPU s min | median | max |",
+              "|---|---|---|---|---|---|---|---|---|"]
     for r in rows:
-        if "ratio_min" in r:
-            lines.append(f"| {r['scene']} | {r['build']} | {r['what']} | {r['ratio_min']:.3f} | "
-                         f"{r['ratio_median']:.3f} | {r['ratio_max']:.3f} |")
+        if "samples_per_s_min" in r:
+            lines.append(f"| {r['scene']} | {r['build']} | {r['what']} | " + " | ".join(
+                f"{r[f'{m}_{k}']:.3f}" for m in ("samples_per_s", "samples_per_cpu_s") for k in ("min", "median", "max"))
+                + " |")
     return "\n".join(lines) + "\n"
 
 
