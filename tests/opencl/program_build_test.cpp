@@ -189,8 +189,9 @@ TEST(ProgramBuild, PushToAQueueTheStageDoesNotDeclareFailsToCompile) {
 // And a declaration changed without its kernel fails the build at the
 // kernel's first line, which states its queues.
 TEST(ProgramBuild, StageOpeningWithOtherQueuesThanItsDeclarationFailsToCompile) {
-    EditedBuild built = build_edited_copy("interface/stages.h", "X(shade, HIT, WP_PUSHES(SHADOW, RAY, FREE), ALWAYS)",
-                                          "X(shade, HIT, WP_PUSHES(RAY, FREE), ALWAYS)", "shade.cl", "STAGE_QUEUES");
+    EditedBuild built =
+        build_edited_copy("interface/stages.h", "X(shade, HIT, WP_PUSHES(SHADOW, RAY, FREE), ALWAYS, NO_RAYS)",
+                          "X(shade, HIT, WP_PUSHES(RAY, FREE), ALWAYS, NO_RAYS)", "shade.cl", "STAGE_QUEUES");
     EXPECT_NE(built.error.find(built.expected_location), std::string::npos) << built.error;
     EXPECT_NE(built.error.find("the queues of shade differ from its declaration"), std::string::npos) << built.error;
 }
