@@ -9,13 +9,19 @@
  * throughput and Russian roulette. The path state is read once and written
  * once. A path that ends here with a shadow ray to trace is finished by
  * intersect_shadow, which adds the light sample after the emission, as the
- * megakernel does. */
+ * megakernel does. SPPM's camera pass (-DWP_SPPM): the first diffuse vertex
+ * is the pixel's visible point, stored for the photon pass; the path bounces
+ * on from it only where an emission it may see there still counts
+ * (camera_pass_bounces_from_visible_point), and the hit after it ends the
+ * path once its emission counted. */
 #include "device/guards.h"
 #include "device/lanes.h"
 #include "device/parameters.h"
 #include "device/path_queues.h"
 #include "device/path_vertex.h"
+#include "device/sppm_pixels.h"
 #include "device/surface.h"
+#include "shared/sppm.h"
 
 __kernel __attribute__((reqd_work_group_size(WP_GROUP_SIZE, 1, 1))) void shade(WP_STAGE_PARAMS) {
     STAGE_QUEUES(shade, HIT, WP_PUSHES(SHADOW, RAY, FREE));
@@ -48,6 +54,9 @@ __kernel __attribute__((reqd_work_group_size(WP_GROUP_SIZE, 1, 1))) void shade(W
                    hit_emission(WP_SCENE_ARGS, shape, origin, v, after_specular, bsdf_pdf, throughput), &dropped);
     count_nonfinite(slot_nonfinite, WP_COUNTER_NONFINITE_EMISSION, lanes, dropped);
     lane_int scatters = lanes.active && !vertex_ends_path(v, bounce, scene->max_depth);
+#ifdef WP_SPPM
+    scatters = scatters && after_specular; /* the hit after the visible point ends the path */
+#endif
 
     lane_int casts_shadow = 0;
 #if defined(WP_NEE) && defined(WP_HAS_DIFFUSE)
@@ -59,9 +68,21 @@ __kernel __attribute__((reqd_work_group_size(WP_GROUP_SIZE, 1, 1))) void shade(W
     PATH_WRITE(shadow_radiance, lanes, casts_shadow, direct.contribution);
 #endif
 
+    lane_int bounces = scatters;
+#if defined(WP_SPPM) && defined(WP_HAS_DIFFUSE)
+    lane_int visible = scatters && v.material.type == WP_MATERIAL_DIFFUSE;
+    Lanes pixels = pixel_lanes(px, visible, scene_pixel_count(scene));
+    SPPM_WRITE(visible_point, pixels, visible, v.surface.point);
+    SPPM_WRITE(visible_normal, pixels, visible, v.ns);
+    SPPM_WRITE(visible_geometric_normal, pixels, visible, v.nf);
+    SPPM_WRITE(visible_weight, pixels, visible, v3_mul(throughput, v.material.albedo));
+    SPPM_WRITE(visible_depth, pixels, visible, bounce);
+    bounces = bounces && !(visible && !camera_pass_bounces_from_visible_point(WP_USES_NEE, WP_USES_MIS));
+#endif
+
     PathStep step = step_from_vertex(v, d, throughput, eta_scale, scene->seed, px, s, bounce, scene->rr_depth);
-    count_nonfinite(slot_nonfinite, WP_COUNTER_NONFINITE_SCATTER, lanes, scatters ? step.nonfinite : (lane_uint)0u);
-    lane_int continues = scatters && step.continues, ends = lanes.active && !continues;
+    count_nonfinite(slot_nonfinite, WP_COUNTER_NONFINITE_SCATTER, lanes, bounces ? step.nonfinite : (lane_uint)0u);
+    lane_int continues = bounces && step.continues, ends = lanes.active && !continues;
     PATH_WRITE(origin, lanes, continues, step.origin);
     PATH_WRITE(direction, lanes, continues, step.scattered.direction);
     PATH_WRITE(throughput, lanes, continues, step.throughput);

@@ -39,6 +39,11 @@
 #else
 #define WP_IF_HOST_SHADOWS(...)
 #endif
+#ifdef WP_SPPM
+#define WP_IF_SPPM(...) __VA_ARGS__
+#else
+#define WP_IF_SPPM(...)
+#endif
 
 /* Shape and light counts: compile-time constants where the host passes them
  * (small scenes), so the loops over them unroll into straight-line code that

@@ -8,6 +8,7 @@
 #include "device/features.h"
 #include "interface/kernel_parameters.h"
 #include "interface/path_state.h"
+#include "interface/sppm_state.h"
 #include "interface/scene_layout.h"
 #include "shared/bvh.h"
 #include "shared/triangle.h"
@@ -38,6 +39,12 @@ typedef struct {
  * binds the same buffers at the same positions for every stage. */
 #define WP_PATH_STATE_PARAM(type, name, feature, writers, readers) \
     WP_IF_##feature(, __global WP_STATE_ELEMENT_##type *restrict state_##name)
-#define WP_STAGE_PARAMS WP_PARAMETERS(WP_STAGE_PARAMETERS) WP_PATH_STATE(WP_PATH_STATE_PARAM)
+/* SPPM's state (interface/sppm_state.h) after the path state, only with the
+ * sppm integrator; in the grid and update kernels after their own. */
+#define WP_SPPM_STATE_PARAM(type, name, size, writers, readers) \
+    WP_IF_SPPM(, __global WP_STATE_ELEMENT_##type *restrict state_##name)
+#define WP_STAGE_PARAMS \
+    WP_PARAMETERS(WP_STAGE_PARAMETERS) WP_PATH_STATE(WP_PATH_STATE_PARAM) WP_SPPM_STATE(WP_SPPM_STATE_PARAM)
+#define WP_SPPM_PARAMS WP_PARAMETERS(WP_SPPM_KERNEL_PARAMETERS) WP_SPPM_STATE(WP_SPPM_STATE_PARAM)
 
 #endif

@@ -14,7 +14,7 @@
 #include "shared/prelude.h"
 
 /* Each stage's declared queues as constants: wp_consumes_<stage>, wp_pushes_<stage>. */
-#define WP_STAGE_QUEUE_CONSTANTS(stage, consumes, pushes, runs_when, traces) \
+#define WP_STAGE_QUEUE_CONSTANTS(stage, loop, consumes, pushes, runs_when, traces) \
     wp_consumes_##stage = WP_QUEUE_##consumes, wp_pushes_##stage = (pushes),
 enum { WP_STAGES(WP_STAGE_QUEUE_CONSTANTS) };
 

@@ -249,18 +249,46 @@ WP_FN lane_int vertex_light_sample(WP_SCENE_PARAMS, lane_int continues, Vertex v
 #endif
 #endif
 
-/* BSDF sampling at bounce `bounce` of vertex v, reached along d, for its
+/* The random numbers of a BSDF sample, of the material kinds compiled in:
+ * at bounce `bounce` of camera sample s of pixel px, and of photon `photon`
+ * of SPPM iteration `iteration` (shared/rng.h). */
+WP_FN BsdfRandom camera_bsdf_random(uint seed, lane_uint px, lane_uint s, lane_uint bounce) {
+    BsdfRandom random;
+    random.lobe = random.u = random.v = REAL(0.0);
+#ifdef WP_HAS_GLASS
+    random.lobe = rng_uniform(seed, px, s, bounce, DIM_BSDF_LOBE);
+#endif
+#ifdef WP_HAS_DIFFUSE
+    random.u = rng_uniform(seed, px, s, bounce, DIM_BSDF_U);
+    random.v = rng_uniform(seed, px, s, bounce, DIM_BSDF_V);
+#endif
+    return random;
+}
+
+WP_FN BsdfRandom photon_bsdf_random(uint seed, uint iteration, lane_uint photon, lane_uint bounce) {
+    BsdfRandom random;
+    random.lobe = random.u = random.v = REAL(0.0);
+#ifdef WP_HAS_GLASS
+    random.lobe = photon_uniform(seed, iteration, photon, bounce, DIM_PHOTON_BSDF_LOBE);
+#endif
+#ifdef WP_HAS_DIFFUSE
+    random.u = photon_uniform(seed, iteration, photon, bounce, DIM_PHOTON_BSDF_U);
+    random.v = photon_uniform(seed, iteration, photon, bounce, DIM_PHOTON_BSDF_V);
+#endif
+    return random;
+}
+
+/* BSDF sampling with `random` at vertex v, reached along d, for its
  * material's kind (every kind in the scene is sampled; each lane keeps its
- * material's). */
-WP_FN BsdfSample scatter_vertex(Vertex v, vec3 d, uint seed, lane_uint px, lane_uint s, lane_uint bounce) {
+ * material's), on a path that carries `transport` (WP_TRANSPORT_*). */
+WP_FN BsdfSample scatter_vertex(Vertex v, vec3 d, BsdfRandom random, uint transport) {
     Material m = v.material;
     vec3 wo = v3_neg(d);
     BsdfSample scattered = no_bsdf_sample();
 #ifdef WP_HAS_DIFFUSE
     scattered = select_bsdf_sample(m.type == WP_MATERIAL_DIFFUSE,
-                                   diffuse_sample(m.albedo, v.nf, v.ns, rng_uniform(seed, px, s, bounce, DIM_BSDF_U),
-                                                  rng_uniform(seed, px, s, bounce, DIM_BSDF_V),
-                                                  WP_USES_UNIFORM_HEMISPHERE, WP_USES_SHADING_NORMALS),
+                                   diffuse_sample(m.albedo, v.nf, v.ns, random.u, random.v, WP_USES_UNIFORM_HEMISPHERE,
+                                                  WP_USES_SHADING_NORMALS),
                                    scattered);
 #endif
 #ifdef WP_HAS_MIRROR
@@ -268,11 +296,9 @@ WP_FN BsdfSample scatter_vertex(Vertex v, vec3 d, uint seed, lane_uint px, lane_
                                    mirror_sample(m.reflectance, wo, v.nf, v.ns, WP_USES_SHADING_NORMALS), scattered);
 #endif
 #ifdef WP_HAS_GLASS
-    scattered =
-        select_bsdf_sample(m.type == WP_MATERIAL_GLASS,
-                           glass_sample(m.ior, v.front, wo, v.nf, v.ns, rng_uniform(seed, px, s, bounce, DIM_BSDF_LOBE),
-                                        WP_TRANSPORT_RADIANCE, WP_USES_SHADING_NORMALS),
-                           scattered);
+    scattered = select_bsdf_sample(
+        m.type == WP_MATERIAL_GLASS,
+        glass_sample(m.ior, v.front, wo, v.nf, v.ns, random.lobe, transport, WP_USES_SHADING_NORMALS), scattered);
 #endif
     return scattered;
 }
@@ -295,7 +321,7 @@ typedef struct {
 WP_FN PathStep step_from_vertex(Vertex v, vec3 d, vec3 throughput, real eta_scale, uint seed, lane_uint px, lane_uint s,
                                 lane_uint bounce, uint rr_depth) {
     PathStep step;
-    step.scattered = scatter_vertex(v, d, seed, px, s, bounce);
+    step.scattered = scatter_vertex(v, d, camera_bsdf_random(seed, px, s, bounce), WP_TRANSPORT_RADIANCE);
     step.origin = offset_ray_origin(v.surface.point, step.scattered.leave_side, v.surface.error);
     step.eta_scale = eta_scale * step.scattered.eta_squared;
     RouletteOutcome roulette =

@@ -46,6 +46,13 @@
     NEXT(__global float *, pass_radiance)     \
     NEXT(__global uint *, slot_nonfinite)
 
+/* SPPM's grid and update kernels (photon_grid.cl, sppm_update.cl); SPPM's
+ * state (interface/sppm_state.h) follows these, as it follows the path state
+ * in the stage kernels. counts: the counters of interface/queues.h. */
+#define WP_SPPM_KERNEL_PARAMETERS(FIRST, NEXT) \
+    FIRST(__global const SceneHeader *, scene)  \
+    NEXT(__global uint *, counts)
+
 #define WP_MEGAKERNEL_PARAMETERS(FIRST, NEXT) \
     WP_SCENE_PARAMETERS(FIRST, NEXT)          \
     NEXT(ulong, pass_start)                   \

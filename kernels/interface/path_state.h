@@ -19,29 +19,38 @@
  *            (render.mis on);
  *   HOST_SHADOWS  NEE runs and the host traces the stages' rays
  *            (--intersector embree, interface/stages.h): the shadow rays'
- *            verdicts, which the host writes before intersect_shadow runs. */
+ *            verdicts, which the host writes before intersect_shadow runs;
+ *   SPPM     the integrator is sppm: a slot holds a camera path, or in the
+ *            photon pass a photon (interface/stages.h), whose ray and hit
+ *            take the same fields (origin, direction, throughput, depth,
+ *            hit_t, hit_shape). */
 #ifndef WP_INTERFACE_PATH_STATE_H
 #define WP_INTERFACE_PATH_STATE_H
 
-#define WP_PATH_STATE(X)                                                                             \
-    X(uint, pixel, ALWAYS, "generate", "shade")                                                      \
-    X(uint, sample, ALWAYS, "generate", "shade")                                                     \
-    X(uint, pass_item, ALWAYS, "generate", "intersect shade intersect_shadow")                       \
-    X(uint, depth, ALWAYS, "generate shade", "shade")                                                \
-    X(vec3, origin, ALWAYS, "generate shade", "intersect shade")                                     \
-    X(vec3, direction, ALWAYS, "generate shade", "intersect shade")                                  \
-    X(vec3, throughput, ALWAYS, "generate shade", "intersect shade")                                 \
+#define WP_PATH_STATE(X) \
+    X(uint, pixel, ALWAYS, "generate", "shade") \
+    X(uint, sample, ALWAYS, "generate", "shade") \
+    X(uint, pass_item, ALWAYS, "generate", "intersect shade intersect_shadow") \
+    X(uint, depth, ALWAYS, "generate shade emit_photons scatter_photons", "shade deposit_photons scatter_photons") \
+    X(vec3, origin, ALWAYS, "generate shade emit_photons scatter_photons", \
+      "intersect shade intersect_photons deposit_photons scatter_photons") \
+    X(vec3, direction, ALWAYS, "generate shade emit_photons scatter_photons", \
+      "intersect shade intersect_photons deposit_photons scatter_photons") \
+    X(vec3, throughput, ALWAYS, "generate shade emit_photons scatter_photons", \
+      "intersect shade deposit_photons scatter_photons") \
     X(vec3, radiance, ALWAYS, "generate shade intersect_shadow", "intersect shade intersect_shadow") \
-    X(float, hit_t, ALWAYS, "intersect", "shade")                                                    \
-    X(uint, hit_shape, ALWAYS, "intersect", "intersect shade")                                       \
-    X(uint, specular, SPECULAR, "generate shade", "shade")                                           \
-    X(vec3, shadow_origin, NEE, "shade", "intersect_shadow")                                         \
-    X(vec3, shadow_direction, NEE, "shade", "intersect_shadow")                                      \
-    X(float, shadow_distance, NEE, "shade", "intersect_shadow")                                      \
-    X(vec3, shadow_radiance, NEE, "shade", "intersect_shadow")                                       \
-    X(uint, shadow_ends_path, NEE, "shade", "intersect_shadow")                                      \
-    X(uint, shadow_occluded, HOST_SHADOWS, "intersect_shadow", "intersect_shadow")                   \
-    X(float, bsdf_pdf, MIS, "shade", "shade")                                                        \
-    X(float, eta_scale, GLASS, "generate shade", "shade")
+    X(float, hit_t, ALWAYS, "intersect intersect_photons", "shade deposit_photons scatter_photons") \
+    X(uint, hit_shape, ALWAYS, "intersect intersect_photons", "intersect shade deposit_photons scatter_photons") \
+    X(uint, specular, SPECULAR, "generate shade", "shade") \
+    X(vec3, shadow_origin, NEE, "shade", "intersect_shadow") \
+    X(vec3, shadow_direction, NEE, "shade", "intersect_shadow") \
+    X(float, shadow_distance, NEE, "shade", "intersect_shadow") \
+    X(vec3, shadow_radiance, NEE, "shade", "intersect_shadow") \
+    X(uint, shadow_ends_path, NEE, "shade", "intersect_shadow") \
+    X(uint, shadow_occluded, HOST_SHADOWS, "intersect_shadow", "intersect_shadow") \
+    X(float, bsdf_pdf, MIS, "shade", "shade") \
+    X(float, eta_scale, GLASS, "generate shade", "shade") \
+    X(uint, photon, SPPM, "emit_photons", "scatter_photons") \
+    X(vec3, photon_flux, SPPM, "emit_photons", "deposit_photons")
 
 #endif

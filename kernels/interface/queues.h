@@ -9,7 +9,13 @@
 #define WP_QUEUE_HIT 1u    /* paths whose extension ray hit a surface */
 #define WP_QUEUE_RAY 2u    /* paths with an extension ray to trace */
 #define WP_QUEUE_SHADOW 3u /* paths with a shadow ray to trace */
-#define WP_QUEUE_COUNT 4u
+/* SPPM's photon pass, which has the slots to itself once the camera pass of
+ * its iteration has drained (docs/architecture.md, "Photon mapping"). */
+#define WP_QUEUE_PHOTON_FREE 4u    /* slots without a photon */
+#define WP_QUEUE_PHOTON_RAY 5u     /* photons with a ray to trace */
+#define WP_QUEUE_PHOTON_HIT 6u     /* photons whose ray hit a surface */
+#define WP_QUEUE_PHOTON_SCATTER 7u /* photons that scatter at their hit */
+#define WP_QUEUE_COUNT 8u
 /* With scan compaction (-DWP_COMPACT_SCAN) the queues buffer also holds, after the queues, one
  * array of marks (0 or 1 per slot) per queue, from which kernels/compact.cl
  * builds the queue with a prefix sum. */
@@ -17,21 +23,22 @@
 /* Slots each work item of the compaction kernels handles, in order. */
 #define WP_COMPACT_BLOCK 256u
 
-#define WP_COUNTER_WORK \
-    (WP_QUEUE_COUNT + 0u) /* work items of the pass handed out before this generate (set by the host) */
+/* work items of the pass (photons of the iteration) handed out before this generate (emit_photons), set by the host */
+#define WP_COUNTER_WORK (WP_QUEUE_COUNT + 0u)
 /* Non-finite values dropped, one counter per stage where one can arise, in
  * the order of wp::nonfinite_stage_names (src/core/render.h). The megakernel
  * adds to these; the wavefront stages keep one counter per slot and stage
  * instead (count_nonfinite in kernels/device/guards.h), which the host sums. */
 #define WP_COUNTER_NONFINITE_EMISSION (WP_QUEUE_COUNT + 1u) /* emission or background added to the radiance */
 #define WP_COUNTER_NONFINITE_DIRECT (WP_QUEUE_COUNT + 2u)   /* a light sample's contribution added to the radiance */
-#define WP_COUNTER_NONFINITE_SCATTER \
-    (WP_QUEUE_COUNT + 3u) /* throughput after BSDF sampling and roulette (ends the path) */
+#define WP_COUNTER_NONFINITE_SCATTER (WP_QUEUE_COUNT + 3u) /* throughput after BSDF sampling and roulette (ends it) */
 #define WP_NONFINITE_STAGE_COUNT 3u
-#define WP_COUNTER_EXTENSION_RAYS \
-    (WP_QUEUE_COUNT + 4u) /* megakernel only: rays traced (the wavefront counts its queues) */
+/* megakernel only: rays traced (the wavefront counts its queues) */
+#define WP_COUNTER_EXTENSION_RAYS (WP_QUEUE_COUNT + 4u)
 #define WP_COUNTER_SHADOW_RAYS (WP_QUEUE_COUNT + 5u)
-#define WP_COUNTS_SIZE (WP_QUEUE_COUNT + 6u)
+/* SPPM: photons added to visible points in the iteration (sppm_update.cl sums them) */
+#define WP_COUNTER_PHOTON_DEPOSITS (WP_QUEUE_COUNT + 6u)
+#define WP_COUNTS_SIZE (WP_QUEUE_COUNT + 7u)
 
 /* With --profile, count_depths.cl counts rays per path depth in two
  * histograms after the counters (the last bin takes every deeper ray). */

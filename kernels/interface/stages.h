@@ -12,28 +12,37 @@
  * checked when the kernel compiles (STAGE_PUSH). Adding a stage is one line
  * here and its kernel file.
  *
- * X(stage, consumes, pushes to, runs when, traces), where
+ * X(stage, loop, consumes, pushes to, runs when, traces), where
+ *   loop       the loop of iterations the stage belongs to: CAMERA (the
+ *              paths from the camera) or PHOTON (SPPM's photon pass, which
+ *              runs once the camera pass of its iteration has drained);
  *   consumes   a queue of interface/queues.h, by name (WP_QUEUE_<name>);
  *   pushes to  WP_PUSHES(queue, ...), the queues it may push to, or
  *              WP_PUSHES_NOTHING;
- *   runs when  a path state feature (interface/path_state.h): ALWAYS, or NEE
- *              for a stage that only next-event estimation needs;
+ *   runs when  a path state feature (interface/path_state.h): ALWAYS, NEE
+ *              for a stage that only next-event estimation needs, SPPM for
+ *              one that only the sppm integrator needs;
  *   traces     the rays of the paths it consumes: CLOSEST_HIT (their
  *              extension rays, into hit_t and hit_shape), ANY_HIT (their
  *              shadow rays, blocked or not) or NO_RAYS. Where the host
  *              traces (--intersector embree, src/wavefront/host_trace.h),
  *              it traces a stage's queue before the stage's kernel, built
- *              with WP_HOST_TRACED, reads the results and does the rest. */
+ *              with WP_HOST_TRACED, reads the results and does the rest
+ *              (the camera loop's only: sppm traces on the device). */
 #ifndef WP_INTERFACE_STAGES_H
 #define WP_INTERFACE_STAGES_H
 
 #include "interface/queues.h"
 
-#define WP_STAGES(X)                                             \
-    X(generate, FREE, WP_PUSHES(RAY), ALWAYS, NO_RAYS)           \
-    X(intersect, RAY, WP_PUSHES(HIT, FREE), ALWAYS, CLOSEST_HIT) \
-    X(shade, HIT, WP_PUSHES(SHADOW, RAY, FREE), ALWAYS, NO_RAYS) \
-    X(intersect_shadow, SHADOW, WP_PUSHES_NOTHING, NEE, ANY_HIT)
+#define WP_STAGES(X) \
+    X(generate, CAMERA, FREE, WP_PUSHES(RAY), ALWAYS, NO_RAYS) \
+    X(intersect, CAMERA, RAY, WP_PUSHES(HIT, FREE), ALWAYS, CLOSEST_HIT) \
+    X(shade, CAMERA, HIT, WP_PUSHES(SHADOW, RAY, FREE), ALWAYS, NO_RAYS) \
+    X(intersect_shadow, CAMERA, SHADOW, WP_PUSHES_NOTHING, NEE, ANY_HIT) \
+    X(emit_photons, PHOTON, PHOTON_FREE, WP_PUSHES(PHOTON_RAY), SPPM, NO_RAYS) \
+    X(intersect_photons, PHOTON, PHOTON_RAY, WP_PUSHES(PHOTON_HIT, PHOTON_FREE), SPPM, CLOSEST_HIT) \
+    X(deposit_photons, PHOTON, PHOTON_HIT, WP_PUSHES(PHOTON_SCATTER, PHOTON_FREE), SPPM, NO_RAYS) \
+    X(scatter_photons, PHOTON, PHOTON_SCATTER, WP_PUSHES(PHOTON_RAY, PHOTON_FREE), SPPM, NO_RAYS)
 
 /* A set of queues as bits 1 << queue, from one to five queue names. */
 #define WP_QUEUE_BIT(queue) (1u << WP_QUEUE_##queue)

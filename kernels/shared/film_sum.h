@@ -18,13 +18,25 @@
 
 #ifdef __OPENCL_C_VERSION__
 typedef ulong film_limb;
+typedef uint film_word;
 #define WP_FILM_FN static inline
 #define WP_FLOAT_BITS(x) as_uint(x)
+#define WP_FILM_LDEXPF(x, e) ldexp((x), (e))
+#define WP_FILM_WORDS_POINTER volatile __global film_word *
+#define WP_FILM_CONST_WORDS_POINTER __global const film_word *
+#define WP_ATOMIC_ADD_WORD(p, v) atomic_add((p), (v))
 #else
+#include <atomic>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 typedef std::uint64_t film_limb;
+typedef std::uint32_t film_word;
 #define WP_FILM_FN inline
+#define WP_FILM_LDEXPF(x, e) std::ldexp((x), (e))
+#define WP_FILM_WORDS_POINTER film_word *
+#define WP_FILM_CONST_WORDS_POINTER const film_word *
+#define WP_ATOMIC_ADD_WORD(p, v) std::atomic_ref<film_word>(*(p)).fetch_add(v)
 inline std::uint32_t wp_float_bits(float x) {
     std::uint32_t bits;
     std::memcpy(&bits, &x, sizeof bits);
@@ -127,6 +139,60 @@ WP_FILM_FN film_sum film_sum_from_float_squared(float x) {
     int exponent;
     film_limb m = film_float_significand(x, &exponent);
     return film_sum_from_scaled(m * m, 2 * exponent, 0);
+}
+
+/* A sum that many threads add to at once (SPPM's photon flux at a pixel,
+ * which photons anywhere add to), kept as WP_FILM_WORDS 32-bit words, least
+ * significant first: film_words_add adds each word of a non-negative value
+ * with an atomic add, and a word that wraps carries 1 into the next with
+ * another. Integer adds commute, so once every add has returned the words
+ * hold the exact sum, whatever the order (OpenCL 1.2 has 32-bit integer
+ * atomics, no float or 64-bit ones). */
+#define WP_FILM_WORDS (2 * WP_FILM_LIMBS)
+
+WP_FILM_FN void film_words_add(WP_FILM_WORDS_POINTER words, film_sum value) {
+    for (int i = 0; i < WP_FILM_WORDS; ++i) {
+        film_word part = (film_word)(value.limb[i / 2] >> (32 * (i % 2)));
+        for (int k = i; part != 0u && k < WP_FILM_WORDS; ++k) {
+            film_word before = WP_ATOMIC_ADD_WORD(&words[k], part);
+            part = (film_word)(before + part) < before ? 1u : 0u; /* the carry */
+        }
+    }
+}
+
+/* The sum the words hold, once no add is under way. */
+WP_FILM_FN film_sum film_sum_from_words(WP_FILM_CONST_WORDS_POINTER words) {
+    film_sum s;
+    for (int i = 0; i < WP_FILM_LIMBS; ++i) s.limb[i] = ((film_limb)words[2 * i + 1] << 32) | words[2 * i];
+    return s;
+}
+
+/* The sum rounded once to the nearest float, ties to even (the photon
+ * flux an SPPM iteration deposited at a pixel, shared/sppm.h): its top 64
+ * bits from the highest set bit, every bit below them ORed into the lowest
+ * (a sticky bit), then the 24 kept and rounded. Sums are multiples of
+ * 2^-100, far above float's subnormals, so ldexp rounds nothing more; a sum
+ * beyond float's range is infinite. */
+WP_FILM_FN float film_sum_to_float(film_sum sum) {
+    int negative = (sum.limb[WP_FILM_LIMBS - 1] >> 63) != 0;
+    film_sum magnitude = negative ? film_sum_negate(sum) : sum;
+    int top = WP_FILM_LIMBS - 1;
+    while (top >= 0 && magnitude.limb[top] == 0) --top;
+    if (top < 0) return 0.0f;
+    int lead = 64 - film_bit_length(magnitude.limb[top]); /* leading zeros of the top limb */
+    film_limb window = magnitude.limb[top] << lead;
+    int sticky = 0;
+    if (top > 0) {
+        if (lead != 0) window |= magnitude.limb[top - 1] >> (64 - lead);
+        sticky = (magnitude.limb[top - 1] << lead) != 0;
+        for (int i = top - 2; i >= 0; --i) sticky = sticky || magnitude.limb[i] != 0;
+    }
+    film_limb kept = window >> 40; /* 24 bits, the highest set */
+    film_limb rest = window & ((((film_limb)1) << 40) - 1);
+    film_limb halfway = ((film_limb)1) << 39;
+    if (rest > halfway || (rest == halfway && (sticky || (kept & 1) != 0))) kept += 1; /* 2^24 still converts exactly */
+    float value = WP_FILM_LDEXPF((float)kept, 64 * top - lead + 40 - WP_FILM_FRACTION_BITS);
+    return negative ? -value : value;
 }
 
 #endif

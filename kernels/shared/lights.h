@@ -14,6 +14,21 @@ typedef struct {
     real pdf_solid_angle; /* density of the direction from the reference point; 0 = no sample */
 } LightSample;
 
+/* A point on a light's surface, uniform by area, with the light's unit
+ * normal there: where a light sample aims (the samplers below add its
+ * density) and where a photon starts (shared/photons.h). */
+typedef struct {
+    vec3 point, normal;
+} AreaPoint;
+
+WP_FN LightSample light_sample_at(AreaPoint at, real pdf_solid_angle) {
+    LightSample s;
+    s.point = at.point;
+    s.normal = at.normal;
+    s.pdf_solid_angle = pdf_solid_angle;
+    return s;
+}
+
 /* Converts an area density at `point` to a solid-angle density seen from `reference`. */
 WP_FN real area_to_solid_angle_pdf(real pdf_area, vec3 reference, vec3 point, vec3 normal) {
     vec3 to_reference = v3_sub(reference, point);
@@ -32,26 +47,35 @@ WP_FN real quad_light_pdf(vec3 edge1, vec3 edge2, vec3 reference, vec3 point, ve
 }
 
 /* Uniform by area over the parallelogram corner + u*edge1 + v*edge2. */
+WP_FN AreaPoint quad_point(vec3 corner, vec3 edge1, vec3 edge2, real u1, real u2) {
+    AreaPoint p;
+    p.point = v3_add_scaled(v3_add_scaled(corner, u1, edge1), u2, edge2);
+    p.normal = v3_div(v3_cross(edge1, edge2), quad_area(edge1, edge2));
+    return p;
+}
+
 WP_FN LightSample sample_quad(vec3 corner, vec3 edge1, vec3 edge2, vec3 reference, real u1, real u2) {
-    LightSample s;
-    s.point = v3_add_scaled(v3_add_scaled(corner, u1, edge1), u2, edge2);
-    s.normal = v3_div(v3_cross(edge1, edge2), quad_area(edge1, edge2));
-    s.pdf_solid_angle = quad_light_pdf(edge1, edge2, reference, s.point, s.normal);
-    return s;
+    AreaPoint p = quad_point(corner, edge1, edge2, u1, u2);
+    return light_sample_at(p, quad_light_pdf(edge1, edge2, reference, p.point, p.normal));
 }
 
 WP_FN real sphere_area(real radius) { return REAL(4.0) * WP_PI * radius * radius; }
 
 WP_FN real sphere_area_pdf(real radius) { return REAL(1.0) / sphere_area(radius); }
 
-/* Uniform by area over the whole sphere (used from inside or on the sphere). */
-WP_FN LightSample sample_sphere_area(vec3 center, real radius, vec3 reference, real u1, real u2) {
+/* Uniform by area over the whole sphere, with its outward normal. */
+WP_FN AreaPoint sphere_point(vec3 center, real radius, real u1, real u2) {
     real z = REAL(1.0) - REAL(2.0) * u1;
-    LightSample s;
-    s.normal = polar_vec3(safe_sqrt(REAL(1.0) - z * z), u2, z);
-    s.point = v3_add_scaled(center, radius, s.normal);
-    s.pdf_solid_angle = area_to_solid_angle_pdf(sphere_area_pdf(radius), reference, s.point, s.normal);
-    return s;
+    AreaPoint p;
+    p.normal = polar_vec3(safe_sqrt(REAL(1.0) - z * z), u2, z);
+    p.point = v3_add_scaled(center, radius, p.normal);
+    return p;
+}
+
+/* sphere_point as a light sample (used from inside or on the sphere). */
+WP_FN LightSample sample_sphere_area(vec3 center, real radius, vec3 reference, real u1, real u2) {
+    AreaPoint p = sphere_point(center, radius, u1, u2);
+    return light_sample_at(p, area_to_solid_angle_pdf(sphere_area_pdf(radius), reference, p.point, p.normal));
 }
 
 /* Uniform over the cone of directions the sphere subtends from an outside

@@ -40,6 +40,7 @@ typedef int lane_int;
 typedef uint lane_uint;
 #define TO_REAL(x) ((real)(x))
 #define TO_LANE_INT(x) ((lane_int)(x))
+#define TO_LANE_UINT(x) ((lane_uint)(x))
 #else
 /* F(s0, 0) F(s1, 1) ...: code once per lane, given its component and its
  * number (kernels/device/lane_memory.h, kernels/device/lanes.h). */
@@ -64,6 +65,7 @@ typedef WP_LANE_VECTOR(int) lane_int; /* a condition: -1 (all bits) where true, 
 typedef WP_LANE_VECTOR(uint) lane_uint;
 #define TO_REAL(x) WP_LANE_VECTOR(convert_float)(x)
 #define TO_LANE_INT(x) WP_LANE_VECTOR(convert_int)(x) /* toward zero, as a C cast */
+#define TO_LANE_UINT(x) WP_LANE_VECTOR(convert_uint)(x)
 /* The WP_LANES consecutive elements at p. */
 #define LANES_LOAD(p) WP_LANE_VECTOR(vload)(0, p)
 #endif
@@ -129,6 +131,7 @@ typedef uint lane_uint;
 typedef real real_element;
 #define TO_REAL(x) (static_cast<real>(x))
 #define TO_LANE_INT(x) (static_cast<lane_int>(x))
+#define TO_LANE_UINT(x) (static_cast<lane_uint>(x))
 template <class T>
 static T gather(const T *p, uint index) {
     return p[index];

@@ -21,7 +21,22 @@
 #define DIM_BSDF_V 7u
 #define DIM_ROULETTE 8u
 #define DIM_LIGHT_TRIANGLE 9u /* which triangle of a mesh light */
-#define DIM_COUNT 10u         /* dimensions per bounce; fits in 6 bits */
+/* A photon's (SPPM, shared/photons.h): keyed by (photon, iteration) where a
+ * camera sample is by (pixel, sample), with dimensions of their own, so that
+ * photon k and pixel k of one iteration never share a number. Emission at
+ * bounce 0, then the scattering at each bounce. */
+#define DIM_PHOTON_LIGHT_SELECT 10u   /* which light emits it */
+#define DIM_PHOTON_LIGHT_TRIANGLE 11u /* which triangle of a mesh light */
+#define DIM_PHOTON_POINT_U 12u        /* where on that light */
+#define DIM_PHOTON_POINT_V 13u
+#define DIM_PHOTON_SIDE 14u /* which side of a two-sided light */
+#define DIM_PHOTON_DIRECTION_U 15u
+#define DIM_PHOTON_DIRECTION_V 16u
+#define DIM_PHOTON_BSDF_LOBE 17u
+#define DIM_PHOTON_BSDF_U 18u
+#define DIM_PHOTON_BSDF_V 19u
+#define DIM_PHOTON_ROULETTE 20u
+#define DIM_COUNT 21u /* dimensions per bounce; fits in 6 bits */
 
 typedef struct {
     lane_uint x, y, z, w;
@@ -61,6 +76,13 @@ WP_FN lane_uint rng_bits(uint seed, lane_uint pixel, lane_uint sample, lane_uint
  * float and double builds draw identical numbers. */
 WP_FN real rng_uniform(uint seed, lane_uint pixel, lane_uint sample, lane_uint bounce, uint dimension) {
     return TO_REAL(rng_bits(seed, pixel, sample, bounce, dimension) >> 8u) * REAL(5.9604644775390625e-8);
+}
+
+/* The random number of photon `photon` of SPPM iteration `iteration` (a
+ * DIM_PHOTON_* dimension): a function of the photon alone, so the photons of
+ * an iteration are the same however their tracing is split. */
+WP_FN real photon_uniform(uint seed, uint iteration, lane_uint photon, lane_uint bounce, uint dimension) {
+    return rng_uniform(seed, photon, (lane_uint)iteration, bounce, dimension);
 }
 
 #endif

@@ -17,9 +17,12 @@
 #include "shared/materials/glass.h"
 #include "shared/materials/mirror.h"
 #include "shared/offset.h"
+#include "shared/photon_grid.h"
+#include "shared/photons.h"
 #include "shared/prelude.h"
 #include "shared/rng.h"
 #include "shared/sampling.h"
+#include "shared/sppm.h"
 #include "shared/triangle.h"
 
 #endif

@@ -135,16 +135,21 @@ WP_FN real mesh_light_pdf(real mesh_area, vec3 reference, vec3 point, vec3 norma
 }
 
 /* A point uniform by area on the triangle (the square-root warp,
- * b0 = 1 - sqrt(u1), b1 = u2 sqrt(u1)), the triangle having been chosen in
- * proportion to its area among a mesh's of total area mesh_area. */
-WP_FN LightSample sample_triangle(vec3 p0, vec3 p1, vec3 p2, real mesh_area, vec3 reference, real u1, real u2) {
+ * b0 = 1 - sqrt(u1), b1 = u2 sqrt(u1)), with its front normal. */
+WP_FN AreaPoint triangle_point(vec3 p0, vec3 p1, vec3 p2, real u1, real u2) {
     real root = sqrt(u1);
     real b0 = REAL(1.0) - root, b1 = u2 * root;
-    LightSample s;
-    s.point = v3_add(v3_add(v3_scale(p0, b0), v3_scale(p1, b1)), v3_scale(p2, REAL(1.0) - b0 - b1));
-    s.normal = triangle_normal(p0, p1, p2);
-    s.pdf_solid_angle = mesh_light_pdf(mesh_area, reference, s.point, s.normal);
-    return s;
+    AreaPoint p;
+    p.point = v3_add(v3_add(v3_scale(p0, b0), v3_scale(p1, b1)), v3_scale(p2, REAL(1.0) - b0 - b1));
+    p.normal = triangle_normal(p0, p1, p2);
+    return p;
+}
+
+/* triangle_point as a light sample, the triangle having been chosen in
+ * proportion to its area among a mesh's of total area mesh_area. */
+WP_FN LightSample sample_triangle(vec3 p0, vec3 p1, vec3 p2, real mesh_area, vec3 reference, real u1, real u2) {
+    AreaPoint p = triangle_point(p0, p1, p2, u1, u2);
+    return light_sample_at(p, mesh_light_pdf(mesh_area, reference, p.point, p.normal));
 }
 
 /* The magnitude a triangle's points and intersections are computed from (offset.h). */

@@ -87,6 +87,9 @@ void run_on_wavefront(const Scene& scene, const BackendOptions& options, const P
             throw UsageError(problem);
     WavefrontOptions wavefront{options.device, options.wavefront};
     wavefront.intersector = wavefront_intersector(options);
+    if (scene.render.integrator == Integrator::Sppm && wavefront.intersector == Intersector::Embree)
+        throw UsageError(
+            "--intersector embree: the sppm integrator's photon stages trace on the device; use --intersector bvh");
     wavefront.profile = wants_profile(options);
     wavefront.compaction = options.compaction;
     wavefront.lanes = options.lanes;
@@ -102,6 +105,10 @@ void run_on_wavefront(const Scene& scene, const BackendOptions& options, const P
 void run_on_megakernel(const Scene& scene, const BackendOptions& options, const Progress& progress, std::uint64_t,
                        const FilmRun& run) {
     check_megakernel_intersector(options);
+    if (scene.render.integrator == Integrator::Sppm)
+        throw UsageError(
+            "--backend megakernel: traces camera paths only; the sppm integrator runs on the wavefront and reference "
+            "backends (its photon pass needs every pixel's visible point first: docs/architecture.md)");
     if (options.lanes != 0)
         if (std::string problem = lanes_problem(options.lanes, LaneProgram::megakernel(scene.features().meshes));
             !problem.empty())

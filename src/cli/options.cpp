@@ -34,6 +34,23 @@ void add_mesh_import_options(CLI::App& render, MeshImportLimits& limits) {
         ->capture_default_str();
 }
 
+// The sppm flags, which need the sppm integrator (the scene's or --integrator's).
+void apply_sppm_overrides(const RenderOverrides& overrides, Scene& scene) {
+    const std::pair<const char*, bool> flags[] = {{"--photons", overrides.photons.has_value()},
+                                                  {"--initial-radius", overrides.initial_radius.has_value()},
+                                                  {"--alpha", overrides.alpha.has_value()}};
+    for (const auto& [flag, given] : flags)
+        if (given && scene.render.integrator != Integrator::Sppm)
+            throw UsageError(std::string(flag) +
+                             ": applies to the sppm integrator only (the scene's render.integrator is path; add "
+                             "--integrator sppm)");
+    if (overrides.photons) scene.render.sppm.photons = static_cast<std::uint32_t>(*overrides.photons);
+    if (overrides.initial_radius) scene.render.sppm.radius = *overrides.initial_radius;
+    if (overrides.alpha) scene.render.sppm.alpha = *overrides.alpha;
+    if (const std::string problem = sppm_problem(scene); !problem.empty())
+        throw UsageError("--integrator sppm: " + problem);
+}
+
 }  // namespace
 
 void add_render_options(CLI::App& render, RenderCommand& command) {
@@ -64,6 +81,24 @@ void add_render_options(CLI::App& render, RenderCommand& command) {
         .add_option("--hemisphere", o.hemisphere,
                     "Diffuse sampling: cosine or uniform hemisphere (overrides render.hemisphere)")
         ->check(CLI::IsMember({"cosine", "uniform"}));
+
+    render
+        .add_option("--integrator", o.integrator,
+                    "What estimates each pixel: path (path tracing) or sppm (stochastic progressive photon mapping, "
+                    "whose iterations --spp counts; overrides render.integrator)")
+        ->check(CLI::IsMember({"path", "sppm"}));
+    add_integer(render, "--photons", o.photons,
+                "sppm: photons per iteration (overrides render.photons; default one per pixel)", 1, kMaxPhotons);
+    render
+        .add_option("--initial-radius", o.initial_radius,
+                    "sppm: every pixel's first gathering radius, in scene units (overrides render.initial_radius; "
+                    "default from the scene's extent and a pixel's footprint, docs/scene-format.md)")
+        ->check(CLI::Range(1e-30, 1e12));
+    render
+        .add_option("--alpha", o.alpha,
+                    "sppm: the fraction of each iteration's photons a pixel keeps as its radius shrinks, in (0, 1] "
+                    "(overrides render.alpha; default 2/3)")
+        ->check(CLI::Range(1e-9, 1.0));
 
     add_backend_options(render, command.backend);
     add_mesh_import_options(render, command.mesh_import);
@@ -110,6 +145,9 @@ void apply_overrides(const RenderOverrides& overrides, Scene& scene) {
         scene.render.hemisphere = *overrides.hemisphere == "uniform" ? Hemisphere::Uniform : Hemisphere::Cosine;
     if (overrides.width) scene.camera.width = *overrides.width;
     if (overrides.height) scene.camera.height = *overrides.height;
+    if (overrides.integrator)
+        scene.render.integrator = *overrides.integrator == "sppm" ? Integrator::Sppm : Integrator::Path;
+    apply_sppm_overrides(overrides, scene);
 
     const std::int64_t pixels = std::int64_t{scene.camera.width} * scene.camera.height;
     if (pixels > kMaxPixels)

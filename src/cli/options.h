@@ -17,6 +17,9 @@ struct RenderOverrides {
     std::optional<int> spp, width, height, max_depth, rr_depth;
     std::optional<std::int64_t> seed;                 // wide enough to reject out-of-range values with a clear message
     std::optional<std::string> nee, mis, hemisphere;  // "on"/"off", "on"/"off", "cosine"/"uniform"
+    std::optional<std::string> integrator;            // "path"/"sppm"
+    std::optional<std::int64_t> photons;              // sppm: photons per iteration
+    std::optional<double> initial_radius, alpha;      // sppm
 };
 
 // Flags of long renders (docs/long-renders.md).
@@ -46,7 +49,8 @@ struct RenderCommand {
 void add_render_options(CLI::App& render, RenderCommand& command);
 
 // Applies the overrides to `scene`. Throws UsageError if the resulting
-// resolution exceeds the scene loader's pixel limit.
+// resolution exceeds the scene loader's pixel limit, for an sppm flag without
+// the sppm integrator, and for sppm on a scene it cannot render (sppm_problem).
 void apply_overrides(const RenderOverrides& overrides, Scene& scene);
 
 }  // namespace wp::cli

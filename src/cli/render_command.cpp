@@ -138,6 +138,26 @@ void check_every_rank_renders(Ranks& ranks, const LongRunPlan& plan) {
     });
 }
 
+// What SPPM cannot do (docs/long-renders.md, "SPPM"): its iterations are
+// not independent samples (each starts from the last one's radii, and its
+// photons' estimate is biased and correlated), so neither an error estimate
+// from their spread nor a split of them over processes applies.
+void check_sppm_flags(const LongRunFlags& flags, const Ranks& ranks) {
+    const char* why = "sppm's iterations are not independent samples (each starts from the radii the last one left)";
+    if (flags.target_error)
+        throw UsageError(std::string("--target-error: does not apply to the sppm integrator: ") + why +
+                         ", so their spread estimates no error; use --spp or --time");
+    if (flags.adaptive)
+        throw UsageError(std::string("--adaptive: does not apply to the sppm integrator: ") + why +
+                         ", and every iteration's photons reach every pixel");
+    if (!flags.samples.empty())
+        throw UsageError(std::string("--samples: does not apply to the sppm integrator: ") + why +
+                         ", so a range of them cannot be rendered apart and merged");
+    if (ranks.size() > 1)
+        throw UsageError(std::string("sppm runs in one process, not on ") + std::to_string(ranks.size()) +
+                         " MPI ranks: " + why + ", so they cannot be split among ranks as path tracing's samples are");
+}
+
 struct PreparedRender {
     Scene scene;
     BackendOptions backend;
@@ -155,6 +175,7 @@ PreparedRender prepare_render(const RenderCommand& command, Ranks& ranks) {
         if (ranks.is_root()) check_outputs(command);
         scene = load_scene(command.scene_path, command.mesh_import);
         apply_overrides(command.overrides, scene);
+        if (scene.render.integrator == Integrator::Sppm) check_sppm_flags(command.long_run, ranks);
         if (command.long_run.target_error && !command.long_run.samples.empty())
             throw UsageError("--target-error: needs the whole render, not a --samples range");
         plan.adaptive = adaptive_sampling(command.long_run, scene);

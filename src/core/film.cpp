@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <stdexcept>
 #include <string>
 
@@ -22,6 +23,15 @@ std::vector<film_sum> zero_sums(std::uint64_t pixels) {
 
 std::uint64_t samples_of_pixel(const ItemRange& items, std::uint64_t pixels, std::uint64_t pixel) {
     return items_below(items.end, pixels, pixel) - items_below(items.begin, pixels, pixel);
+}
+
+PhotonEstimate PhotonEstimate::start(std::uint64_t pixels, std::uint64_t photons_per_iteration, double radius) {
+    PhotonEstimate estimate;
+    estimate.photons_per_iteration = photons_per_iteration;
+    estimate.count.assign(pixels, 0.0);
+    estimate.radius.assign(pixels, radius);
+    estimate.flux.assign(kFilmChannels * pixels, 0.0);
+    return estimate;
 }
 
 Film Film::empty(int width, int height, std::uint64_t at, bool with_squares) {
@@ -87,6 +97,8 @@ void Film::append(const Film& next) {
                                     ", the next starts at " + std::to_string(next.items.begin));
     if (in_round() || next.in_round())
         throw std::invalid_argument("an adaptive film's pixels have their own sample counts: it cannot be added to");
+    if (!photons.empty() || !next.photons.empty())
+        throw std::invalid_argument("an SPPM film's iterations each need the one before: it cannot be added to");
     add_sums(next);
     items.end = next.items.end;
 }
@@ -111,6 +123,8 @@ void Film::add_sums(const Film& other) {
                                     std::to_string(other.height));
     if (other.squares.empty() != squares.empty())
         throw std::invalid_argument("one film has second moments and the other has not");
+    if (!photons.empty() || !other.photons.empty())
+        throw std::invalid_argument("SPPM films cannot be summed: each iteration needs the one before");
     for (std::size_t i = 0; i < sums.size(); ++i) sums[i] = film_sum_add(sums[i], other.sums[i]);
     for (std::size_t i = 0; i < squares.size(); ++i) squares[i] = film_sum_add(squares[i], other.squares[i]);
 }
@@ -120,9 +134,16 @@ Image Film::image() const {
     const std::vector<std::uint64_t> counts = sample_counts();
     for (std::uint64_t p = 0; p < pixel_count(); ++p) {
         std::uint64_t count = counts[p];
+        // SPPM: every photon emitted so far stands for the flux it carries over
+        // the disc of radius r (Hachisuka and Jensen 2009, eq. 8).
+        const double photon_area = photons.empty() ? 0.0
+                                                   : double(count) * double(photons.photons_per_iteration) *
+                                                         std::numbers::pi * photons.radius[p] * photons.radius[p];
         for (int c = 0; c < kFilmChannels; ++c) {
             std::size_t i = kFilmChannels * p + c;
-            image.rgb[i] = count == 0 ? 0.0f : static_cast<float>(film_sum_to_double(sums[i]) / double(count));
+            double value = count == 0 ? 0.0 : film_sum_to_double(sums[i]) / double(count);
+            if (photon_area > 0.0) value += photons.flux[i] / photon_area;
+            image.rgb[i] = static_cast<float>(value);
         }
     }
     return image;

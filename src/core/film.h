@@ -28,6 +28,22 @@ struct ItemRange {
 
 inline constexpr int kFilmChannels = 3;
 
+// SPPM's progressive estimate of the light photons bring to each pixel
+// (docs/architecture.md, "Photon mapping"), beside the film's sums of the
+// camera passes' emission and direct light: per pixel the photon count N,
+// the radius r and the flux tau (kFilmChannels), as the float backends keep
+// them (doubles hold their floats exactly). Empty for path tracing.
+struct PhotonEstimate {
+    std::uint64_t photons_per_iteration = 0;  // 0: none (path tracing)
+    std::vector<double> count, radius;        // per pixel
+    std::vector<double> flux;                 // kFilmChannels per pixel
+
+    // Every pixel at radius `radius`, no photon yet.
+    static PhotonEstimate start(std::uint64_t pixels, std::uint64_t photons_per_iteration, double radius);
+    bool empty() const { return photons_per_iteration == 0; }
+    bool operator==(const PhotonEstimate&) const = default;
+};
+
 struct Film {
     int width = 0, height = 0;
     ItemRange items;             // the work items whose samples are summed
@@ -39,6 +55,9 @@ struct Film {
     // work items sample (ascending), and every pixel's samples before the round.
     std::vector<std::uint32_t> round_pixels;
     std::vector<std::uint32_t> samples_before;
+    // SPPM: the photons' estimate after the range's iterations (each sample
+    // of a pixel is an iteration: the range is whole iterations).
+    PhotonEstimate photons;
 
     // An empty film of items [at, at): every sum zero.
     static Film empty(int width, int height, std::uint64_t at, bool with_squares);
@@ -55,17 +74,21 @@ struct Film {
     std::uint64_t max_samples() const;
 
     // Adds `next`, which must start where this film ends and match its size
-    // and squares, neither in a round (throws std::invalid_argument otherwise).
+    // and squares, neither in a round nor with photons (throws
+    // std::invalid_argument otherwise).
     void append(const Film& next);
     // Starts a round over `pixels` (ascending), which must all hold the same
     // number of samples c: the range becomes [c n, c n) for n pixels.
     void begin_round(std::vector<std::uint32_t> pixels);
     // Adds `other`'s sums and squares, whatever its range (this film's is
     // kept): the films of the interleaved slices that MPI ranks render. Same
-    // size and squares, as append.
+    // size and squares, as append; neither with photons (an SPPM iteration
+    // needs the last one's radii).
     void add_sums(const Film& other);
 
-    // Each pixel's sums divided by its sample count (0 where it has none).
+    // Each pixel's sums divided by its sample count (0 where it has none);
+    // with photons, plus their estimate tau / (iterations x photons per
+    // iteration x pi r^2).
     Image image() const;
 };
 

@@ -33,6 +33,9 @@ struct RenderStats {
     std::uint64_t samples = 0;         // camera samples (pixels x spp)
     std::uint64_t extension_rays = 0;  // camera and bounce rays
     std::uint64_t shadow_rays = 0;
+    std::uint64_t photons = 0;             // SPPM: photons emitted (and traced)
+    std::uint64_t photon_rays = 0;         // SPPM: the photons' rays
+    std::uint64_t photon_deposits = 0;     // SPPM: photons stored at a pixel's visible point
     NonfiniteCounts nonfinite_by_stage{};  // non-finite values dropped, per NonfiniteStage
     std::uint64_t nonfinite = 0;           // their sum
     std::uint64_t threads = 0;             // CPU threads the reference backend rendered on; 0 for OpenCL

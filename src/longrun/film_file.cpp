@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstring>
 #include <fstream>
 #include <iterator>
@@ -18,7 +19,8 @@ namespace {
 constexpr std::array<char, 8> kMagic{'W', 'P', 'F', 'I', 'L', 'M', '\r', '\n'};
 constexpr std::size_t kEstimatorBytes = 16;
 constexpr std::uint32_t kFlagSquares = 1;
-constexpr std::uint32_t kFlagRound = 2;  // version 2 on
+constexpr std::uint32_t kFlagRound = 2;    // version 2 on
+constexpr std::uint32_t kFlagPhotons = 4;  // version 3 on
 constexpr std::size_t kHeaderBytes = 8 + 4 + 4 + 8 + 8 + kEstimatorBytes + 4 + 4 + 8 + 8 + 4 + 4;
 constexpr std::size_t kChecksumBytes = 8;
 
@@ -65,7 +67,8 @@ std::vector<char> encode(const FilmFile& file) {
     Writer w;
     w.put_bytes(kMagic.data(), kMagic.size());
     w.put(kFilmFileVersion);
-    w.put(std::uint32_t((film.squares.empty() ? 0 : kFlagSquares) | (film.in_round() ? kFlagRound : 0)));
+    w.put(std::uint32_t((film.squares.empty() ? 0 : kFlagSquares) | (film.in_round() ? kFlagRound : 0) |
+                        (film.photons.empty() ? 0 : kFlagPhotons)));
     w.put(file.identity.scene);
     w.put(file.identity.settings);
     // A name of all 16 bytes has no NUL after it; the reader stops at 16.
@@ -87,6 +90,12 @@ std::vector<char> encode(const FilmFile& file) {
         w.put(std::uint32_t(film.round_pixels.size()));
         w.put_bytes(film.round_pixels.data(), sizeof(std::uint32_t) * film.round_pixels.size());
         w.put_bytes(film.samples_before.data(), sizeof(std::uint32_t) * film.samples_before.size());
+    }
+    if (!film.photons.empty()) {
+        const PhotonEstimate& photons = film.photons;
+        w.put(photons.photons_per_iteration);
+        for (const std::vector<double>* values : {&photons.count, &photons.radius, &photons.flux})
+            w.put_bytes(values->data(), sizeof(double) * values->size());
     }
     w.put(fnv1a64(w.bytes().data(), w.bytes().size()));
     return std::move(w.bytes());
@@ -144,6 +153,24 @@ void check_round(const std::string& path, const Film& film) {
         refuse(path, "corrupted adaptive round (work items to " + std::to_string(film.items.end) + ")");
 }
 
+// The bytes of a photon estimate of `pixels` pixels.
+std::uint64_t photon_estimate_bytes(std::uint64_t pixels) {
+    return sizeof(std::uint64_t) + sizeof(double) * pixels * (2 + kFilmChannels);
+}
+
+// A photon estimate as read (after the checksum): photons a render may emit,
+// counts and flux finite and not negative, radii finite and positive.
+void check_photons(const std::string& path, const PhotonEstimate& photons) {
+    if (photons.photons_per_iteration < 1 || photons.photons_per_iteration > std::uint64_t(kMaxPhotons))
+        refuse(path, "corrupted photon estimate (" + std::to_string(photons.photons_per_iteration) +
+                         " photons per iteration)");
+    auto all = [](const std::vector<double>& values, auto ok) { return std::all_of(values.begin(), values.end(), ok); };
+    auto finite_and_not_negative = [](double x) { return std::isfinite(x) && x >= 0.0; };
+    if (!all(photons.count, finite_and_not_negative) || !all(photons.flux, finite_and_not_negative) ||
+        !all(photons.radius, [](double r) { return std::isfinite(r) && r > 0.0; }))
+        refuse(path, "corrupted photon estimate (a count, radius or flux out of range)");
+}
+
 }  // namespace
 
 bool is_film_path(const std::string& path) {
@@ -187,11 +214,12 @@ FilmFile parse_film_file(const std::vector<char>& bytes, const std::string& path
         std::uint64_t(width) * height > std::uint64_t(kMaxPixels))
         refuse(path, "corrupted header (size " + std::to_string(width) + "x" + std::to_string(height) + ")");
     const bool squares = (flags & kFlagSquares) != 0, in_round = (flags & kFlagRound) != 0;
+    const bool photons = (flags & kFlagPhotons) != 0;
     const std::uint64_t pixels = std::uint64_t(width) * height;
     const std::uint64_t sums = std::uint64_t(kFilmChannels) * pixels * (squares ? 2 : 1);
     const std::uint64_t sums_end = kHeaderBytes + sizeof(film_sum) * sums;
-    const std::uint64_t expected =
-        sums_end + (in_round ? round_table_bytes(bytes, sums_end, pixels) : 0) + kChecksumBytes;
+    const std::uint64_t expected = sums_end + (in_round ? round_table_bytes(bytes, sums_end, pixels) : 0) +
+                                   (photons ? photon_estimate_bytes(pixels) : 0) + kChecksumBytes;
     if (bytes.size() < expected)
         refuse(path, "truncated (" + std::to_string(bytes.size()) + " bytes of " + std::to_string(expected) + ")");
     if (bytes.size() > expected)
@@ -199,7 +227,9 @@ FilmFile parse_film_file(const std::vector<char>& bytes, const std::string& path
     std::uint64_t stored;
     std::memcpy(&stored, bytes.data() + expected - kChecksumBytes, sizeof stored);
     if (stored != fnv1a64(bytes.data(), expected - kChecksumBytes)) refuse(path, "corrupted (checksum mismatch)");
-    const std::uint32_t known = version >= 2 ? kFlagSquares | kFlagRound : kFlagSquares;
+    const std::uint32_t known = version >= 3   ? kFlagSquares | kFlagRound | kFlagPhotons
+                                : version == 2 ? kFlagSquares | kFlagRound
+                                               : kFlagSquares;
     if (flags & ~known) refuse(path, "unknown flags " + std::to_string(flags));
     if (limbs != WP_FILM_LIMBS || fraction_bits != WP_FILM_FRACTION_BITS)
         refuse(path, "film sums of " + std::to_string(limbs) + " limbs and " + std::to_string(fraction_bits) +
@@ -224,6 +254,12 @@ FilmFile parse_film_file(const std::vector<char>& bytes, const std::string& path
         r.get_bytes(film.samples_before.data(), sizeof(std::uint32_t) * pixels);
         check_round(path, film);
     }
+    if (photons) {
+        film.photons = PhotonEstimate::start(pixels, r.get<std::uint64_t>(), 0.0);
+        for (std::vector<double>* values : {&film.photons.count, &film.photons.radius, &film.photons.flux})
+            r.get_bytes(values->data(), sizeof(double) * values->size());
+        check_photons(path, film.photons);
+    }
     return file;
 }
 
@@ -239,8 +275,8 @@ void check_film_matches(const std::string& path, const FilmFile& file, const Ren
     if (file.identity.scene != identity.scene) refuse(path, "rendered from another scene (its content differs)");
     if (file.identity.settings != identity.settings)
         refuse(path,
-               "rendered with other settings (max_depth, rr_depth, seed, nee, mis, hemisphere or adaptive "
-               "sampling differ)");
+               "rendered with other settings (max_depth, rr_depth, seed, nee, mis, hemisphere, adaptive "
+               "sampling or the integrator and its settings differ)");
 }
 
 }  // namespace wp

@@ -8,8 +8,10 @@
 //   bits (u32), then the sums (3 per pixel, each WP_FILM_LIMBS u64 limbs,
 //   least significant first), the squares if flagged (bit 0), the adaptive
 //   round if flagged (bit 1: its pixel count n (u32), its n pixels (u32,
-//   ascending) and every pixel's samples before it (u32)), and last the
-//   FNV-1a 64 checksum (u64) of every byte before it.
+//   ascending) and every pixel's samples before it (u32)), SPPM's photon
+//   estimate if flagged (bit 2: photons per iteration (u64), then per pixel
+//   the photon counts N, the radii r (f64 each) and the flux tau (3 f64 per
+//   pixel)), and last the FNV-1a 64 checksum (u64) of every byte before it.
 // The film's range (and round) says everything else: pixel p holds the
 // samples s with first <= s * pixels + p < end, so the next work item of a
 // checkpoint is its end, and each pixel's sample count follows from the
@@ -25,8 +27,9 @@
 
 namespace wp {
 
-// Version 2 added the adaptive round (flag bit 1); version 1 files are read too.
-inline constexpr std::uint32_t kFilmFileVersion = 2;
+// Version 2 added the adaptive round (flag bit 1), version 3 SPPM's photon
+// estimate (flag bit 2); earlier versions are read too.
+inline constexpr std::uint32_t kFilmFileVersion = 3;
 inline constexpr const char* kFilmFileExtension = ".wpfilm";
 
 // A film file that cannot be used: unreadable, not a film file, truncated,

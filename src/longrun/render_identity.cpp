@@ -61,19 +61,24 @@ std::uint64_t scene_hash(const Scene& scene) {
     return h.value();
 }
 
-// Adaptive sampling is hashed only when on, so that films without it keep
-// the hash they had before it existed.
-std::uint64_t settings_hash(const RenderSettings& r, const AdaptiveSampling& adaptive) {
+// Adaptive sampling and SPPM are hashed only when on, so that films without
+// them keep the hash they had before they existed. SPPM's photons per
+// iteration and initial radius as they resolve (their defaults depend on the
+// image and the scene).
+std::uint64_t settings_hash(const Scene& scene, const AdaptiveSampling& adaptive) {
+    const RenderSettings& r = scene.render;
     Hasher h;
     h.add(r.max_depth).add(r.rr_depth).add(r.seed).add(r.nee).add(r.mis).add(r.hemisphere);
     if (adaptive.on()) h.add(adaptive.threshold).add(adaptive.min_spp);
+    if (r.integrator == Integrator::Sppm)
+        h.add(r.integrator).add(sppm_photons(scene)).add(sppm_initial_radius(scene)).add(r.sppm.alpha);
     return h.value();
 }
 
 }  // namespace
 
 RenderIdentity render_identity(const Scene& scene, const std::string& estimator, const AdaptiveSampling& adaptive) {
-    return {scene_hash(scene), settings_hash(scene.render, adaptive), estimator};
+    return {scene_hash(scene), settings_hash(scene, adaptive), estimator};
 }
 
 }  // namespace wp

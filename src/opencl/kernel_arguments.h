@@ -18,6 +18,10 @@ struct Scene {
 struct Stage {
     enum : cl_uint { WP_STAGE_PARAMETERS(WP_ARGUMENT_INDEX, WP_ARGUMENT_INDEX) count };
 };
+// SPPM's state (kernels/interface/sppm_state.h) follows these, from Sppm::count on.
+struct Sppm {
+    enum : cl_uint { WP_SPPM_KERNEL_PARAMETERS(WP_ARGUMENT_INDEX, WP_ARGUMENT_INDEX) count };
+};
 struct Megakernel {
     enum : cl_uint { WP_MEGAKERNEL_PARAMETERS(WP_ARGUMENT_INDEX, WP_ARGUMENT_INDEX) count };
 };

@@ -55,6 +55,8 @@ class DeviceScene {
     DeviceScene(const cl::Context& context, const SceneLayout& layout);
     // Sets a kernel's scene arguments (WP_SCENE_PARAMETERS, first in every kernel that traces).
     void bind(cl::Kernel& kernel) const;
+    // The scene header alone (kernels that take it without the rest).
+    const cl::Buffer& header() const { return buffers_[arg::Scene::scene]; }
     const MeshSummary& meshes() const { return meshes_; }
 
  private:

@@ -28,7 +28,10 @@ namespace wp::reference {
 struct RayCounts {
     std::uint64_t extension = 0;  // camera and bounce rays
     std::uint64_t shadow = 0;
-    NonfiniteCounts nonfinite{};  // non-finite values dropped, per NonfiniteStage
+    std::uint64_t photons = 0;          // SPPM: photons emitted
+    std::uint64_t photon_rays = 0;      // their rays
+    std::uint64_t photon_deposits = 0;  // photons added to a visible point
+    NonfiniteCounts nonfinite{};        // non-finite values dropped, per NonfiniteStage
 };
 
 // Adds `term` to `radiance` unless the sum is not finite (a NaN or Inf term,
@@ -272,30 +275,52 @@ Vec3<Real> sample_direct_light(const ReferenceScene<Real>& scene, const Vec3<Rea
     return direct.contribution;
 }
 
+// The random numbers of a camera path's BSDF sample at `bounce`.
+template <class Real>
+typename SharedMath<Real>::BsdfRandom camera_bsdf_random(const SampleRng<Real>& rng, std::uint32_t bounce) {
+    return {rng(bounce, DIM_BSDF_LOBE), rng(bounce, DIM_BSDF_U), rng(bounce, DIM_BSDF_V)};
+}
+
 // Samples the material at a surface point reached along direction d, on the
 // `front` of the surface (the side its geometric normal points to) or its
-// back, with the geometric and shading normals nf and ns turned to face d.
+// back, with the geometric and shading normals nf and ns turned to face d,
+// for a path that carries `transport` (WP_TRANSPORT_*).
 template <class Real>
 typename SharedMath<Real>::BsdfSample scatter(const ReferenceScene<Real>& scene,
                                               const typename ReferenceScene<Real>::SurfaceMaterial& material,
                                               const Vec3<Real>& d, bool front, const Vec3<Real>& nf,
-                                              const Vec3<Real>& ns, const SampleRng<Real>& rng, std::uint32_t bounce) {
+                                              const Vec3<Real>& ns, const typename SharedMath<Real>::BsdfRandom& random,
+                                              std::uint32_t transport) {
     using M = SharedMath<Real>;
     switch (material.type) {
         case MaterialType::Mirror:
             return M::mirror_sample(material.reflectance, -d, nf, ns, scene.shading_normals);
         case MaterialType::Glass:
-            return M::glass_sample(material.ior, front, -d, nf, ns, rng(bounce, DIM_BSDF_LOBE), WP_TRANSPORT_RADIANCE,
-                                   scene.shading_normals);
+            return M::glass_sample(material.ior, front, -d, nf, ns, random.lobe, transport, scene.shading_normals);
         default:  // diffuse
-            return M::diffuse_sample(material.albedo, nf, ns, rng(bounce, DIM_BSDF_U), rng(bounce, DIM_BSDF_V),
-                                     scene.uniform_hemisphere, scene.shading_normals);
+            return M::diffuse_sample(material.albedo, nf, ns, random.u, random.v, scene.uniform_hemisphere,
+                                     scene.shading_normals);
     }
 }
 
-// Radiance carried by one path that starts with `ray`.
+// Where an SPPM camera path first met a diffuse surface (after any mirror and
+// glass): the visible point photons add to (docs/architecture.md, "Photon mapping").
 template <class Real>
-Vec3<Real> trace_path(const ReferenceScene<Real>& scene, Ray<Real> ray, const SampleRng<Real>& rng, RayCounts& counts) {
+struct VisiblePoint {
+    Vec3<Real> point{0}, nf{0}, ns{0};  // the normals on the camera's side
+    Vec3<Real> weight{0};               // the path's throughput times the albedo
+    std::uint32_t depth = WP_NO_VISIBLE_POINT;
+    bool found() const { return depth != WP_NO_VISIBLE_POINT; }
+};
+
+// Radiance carried by one path that starts with `ray`. With `visible` (the
+// camera pass of SPPM) the path records its first diffuse vertex there and
+// ends at the hit after it, where it adds the emission it finds: the path
+// tracer's estimator of the light that reaches the camera after at most one
+// diffuse vertex; the photons bring the rest.
+template <class Real>
+Vec3<Real> trace_path(const ReferenceScene<Real>& scene, Ray<Real> ray, const SampleRng<Real>& rng, RayCounts& counts,
+                      VisiblePoint<Real>* visible = nullptr) {
     using M = SharedMath<Real>;
     using vec3 = typename M::vec3;
     vec3 throughput(Real(1));
@@ -323,6 +348,7 @@ Vec3<Real> trace_path(const ReferenceScene<Real>& scene, Ray<Real> ray, const Sa
         add_finite<Real>(radiance, M::emission_seen(material.emission, material.two_sided, front, weight, throughput),
                          NonfiniteStage::emission, counts);
         if (depth >= scene.render.max_depth || material.type == MaterialType::Emitter) break;
+        if (visible && visible->found()) break;  // the hit after the visible point
 
         auto bounce = static_cast<std::uint32_t>(depth);
         if (material.type == MaterialType::Diffuse && scene.nee) {
@@ -331,7 +357,12 @@ Vec3<Real> trace_path(const ReferenceScene<Real>& scene, Ray<Real> ray, const Sa
                                                  material.albedo, rng, bounce, counts),
                              NonfiniteStage::direct, counts);
         }
-        typename M::BsdfSample next = scatter(scene, material, ray.direction, front, nf, ns, rng, bounce);
+        if (visible && material.type == MaterialType::Diffuse) {
+            *visible = {surface.point, nf, ns, throughput * material.albedo, bounce};
+            if (!M::camera_pass_bounces_from_visible_point(scene.nee, scene.mis)) break;
+        }
+        typename M::BsdfSample next =
+            scatter(scene, material, ray.direction, front, nf, ns, camera_bsdf_random(rng, bounce), WP_TRANSPORT_RADIANCE);
         if (!next.valid) break;
         throughput *= next.weight;
         ray = {M::offset_ray_origin(surface.point, next.leave_side, surface.error), next.direction};
@@ -361,12 +392,14 @@ Ray<Real> camera_ray(const ReferenceScene<Real>& scene, int px, int py, const Sa
                                            rng(0, DIM_FILM_X), rng(0, DIM_FILM_Y))};
 }
 
-// Radiance of one camera sample (finite: every addition was checked).
+// Radiance of one camera sample (finite: every addition was checked); with
+// `visible`, SPPM's camera pass (trace_path).
 template <class Real>
-Vec3<Real> trace_camera_sample(const ReferenceScene<Real>& scene, int px, int py, int sample, RayCounts& counts) {
+Vec3<Real> trace_camera_sample(const ReferenceScene<Real>& scene, int px, int py, int sample, RayCounts& counts,
+                               VisiblePoint<Real>* visible = nullptr) {
     auto pixel = static_cast<std::uint32_t>(py * scene.camera.width + px);
     SampleRng<Real> rng{scene.render.seed, pixel, static_cast<std::uint32_t>(sample)};
-    return trace_path(scene, camera_ray(scene, px, py, rng), rng, counts);
+    return trace_path(scene, camera_ray(scene, px, py, rng), rng, counts, visible);
 }
 
 }  // namespace wp::reference

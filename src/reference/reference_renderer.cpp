@@ -4,10 +4,11 @@
 #include <atomic>
 #include <numeric>
 #include <stdexcept>
-#include <thread>
 #include <vector>
 
 #include "reference/path_tracer.h"
+#include "reference/reference_threads.h"
+#include "reference/sppm_renderer.h"
 
 namespace wp {
 namespace {
@@ -31,18 +32,6 @@ struct TileGrid {
     }
 };
 
-// A sample as the film sums it: a float sample exactly as the kernels' film
-// does, a double one with its own 53 bits.
-film_sum film_value(float x) { return film_sum_from_float(x); }
-film_sum film_value(double x) { return film_sum_from_double(x); }
-film_sum film_square(float x) { return film_sum_from_float_squared(x); }
-film_sum film_square(double x) { return film_sum_from_double(x * x); }
-
-int worker_count(const ReferenceOptions& options, int tiles) {
-    int threads = options.threads > 0 ? options.threads : static_cast<int>(std::thread::hardware_concurrency());
-    return std::clamp(threads, 1, std::max(tiles, 1));
-}
-
 void check_settings(const Scene& scene) {
     if (scene.camera.width < 1 || scene.camera.height < 1) {
         throw std::invalid_argument("render_reference: resolution must be at least 1x1");
@@ -59,7 +48,7 @@ class ReferenceFilmRenderer : public FilmRenderer {
           width_(source.camera.width),
           height_(source.camera.height),
           grid_{(width_ + kTileSize - 1) / kTileSize, (height_ + kTileSize - 1) / kTileSize},
-          counts_(worker_count(options, grid_.columns * grid_.rows)),
+          counts_(reference::worker_count(options.threads, std::size_t(grid_.columns) * grid_.rows)),
           film_(Film::empty(width_, height_, 0, options.film_squares)) {
         use_round_pixels({});
     }
@@ -89,10 +78,7 @@ class ReferenceFilmRenderer : public FilmRenderer {
                 progress.report(static_cast<double>(++tiles_done) / tile_count);
             }
         };
-        std::vector<std::thread> workers;
-        for (std::size_t i = 1; i < counts_.size(); ++i) workers.emplace_back(work, std::ref(counts_[i]));
-        work(counts_[0]);
-        for (std::thread& w : workers) w.join();
+        reference::on_threads(int(counts_.size()), [&](int thread) { work(counts_[thread]); });
         film_.items.end = items.end;
     }
     Film read_film(const ItemRange& items) override {
@@ -134,8 +120,9 @@ class ReferenceFilmRenderer : public FilmRenderer {
     void add_sample(std::uint64_t pixel, const reference::Vec3<Real>& radiance) {
         for (int c = 0; c < kFilmChannels; ++c) {
             const std::size_t i = kFilmChannels * pixel + c;
-            film_.sums[i] = film_sum_add(film_.sums[i], film_value(radiance[c]));
-            if (!film_.squares.empty()) film_.squares[i] = film_sum_add(film_.squares[i], film_square(radiance[c]));
+            film_.sums[i] = film_sum_add(film_.sums[i], reference::film_value(radiance[c]));
+            if (!film_.squares.empty())
+                film_.squares[i] = film_sum_add(film_.squares[i], reference::film_square(radiance[c]));
         }
     }
 
@@ -157,6 +144,7 @@ Intersector fastest_reference_intersector(bool double_precision) {
 
 std::unique_ptr<FilmRenderer> make_reference_renderer(const Scene& scene, const ReferenceOptions& options) {
     check_settings(scene);
+    if (scene.render.integrator == Integrator::Sppm) return make_reference_sppm_renderer(scene, options);
     if (options.double_precision) return std::make_unique<ReferenceFilmRenderer<double>>(scene, options);
     return std::make_unique<ReferenceFilmRenderer<float>>(scene, options);
 }

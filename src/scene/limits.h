@@ -11,6 +11,9 @@ inline constexpr int kMaxResolution = 16384;
 inline constexpr std::int64_t kMaxPixels = std::int64_t{1} << 27;
 inline constexpr int kMaxSpp = 1 << 20;
 inline constexpr int kMaxDepthLimit = 100000;
+// Photons per SPPM iteration (a photon's index is 32 bits; the wavefront
+// emits an iteration's photons as one pass).
+inline constexpr std::int64_t kMaxPhotons = std::int64_t{1} << 30;
 // What a hit's shape index holds (kernels/interface/scene_layout.h, WP_SHAPE_INDEX_MASK + 1).
 inline constexpr std::size_t kMaxTriangles = std::size_t{1} << 29;
 

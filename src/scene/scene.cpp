@@ -1,6 +1,7 @@
 #include "scene/scene.h"
 
 #include <cmath>
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
 #include <numbers>
@@ -58,7 +59,40 @@ FeatureSet Scene::features() const {
     f.background = background.x > 0.0 || background.y > 0.0 || background.z > 0.0;
     f.nee = render.nee && !lights.empty();
     f.mis = f.nee && f.diffuse && render.mis;
+    f.sppm = render.integrator == Integrator::Sppm;
     return f;
+}
+
+std::string sppm_problem(const Scene& scene) {
+    if (scene.render.integrator != Integrator::Sppm || !scene.features().background) return "";
+    return "sppm takes its light from emitting shapes, and the background is not black: it would light paths no "
+           "photon takes (make the background black or render with the path integrator)";
+}
+
+std::uint64_t sppm_photons(const Scene& scene) {
+    if (scene.render.sppm.photons != 0) return scene.render.sppm.photons;
+    return std::uint64_t(scene.camera.width) * std::uint64_t(scene.camera.height);
+}
+
+double sppm_initial_radius(const Scene& scene) {
+    if (scene.render.sppm.radius > 0.0) return scene.render.sppm.radius;
+    glm::dvec3 low = scene.camera.position, high = scene.camera.position;
+    auto include = [&](const glm::dvec3& p) {
+        low = glm::min(low, p);
+        high = glm::max(high, p);
+    };
+    for (const Sphere& s : scene.spheres) {
+        include(s.center - glm::dvec3(s.radius));
+        include(s.center + glm::dvec3(s.radius));
+    }
+    for (const Quad& q : scene.quads)
+        for (const glm::dvec3& p : {q.corner, q.corner + q.edge1, q.corner + q.edge2, q.corner + q.edge1 + q.edge2})
+            include(p);
+    for (const Mesh& mesh : scene.meshes)
+        for (const glm::dvec3& p : mesh.positions) include(p);
+    double extent = glm::length(high - low);
+    if (!(extent > 0.0)) extent = 1.0;  // the camera alone, or planes only
+    return 2.0 * extent * 2.0 * scene.camera.tan_half_fov_y() / double(scene.camera.height);
 }
 
 void build_light_table(Scene& scene) {

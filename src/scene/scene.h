@@ -29,6 +29,16 @@ struct Camera {
 // estimator unbiased either way; cosine has the lower variance).
 enum class Hemisphere { Cosine, Uniform };
 
+// What estimates each pixel: path tracing, or stochastic progressive photon
+// mapping (docs/architecture.md, "Photon mapping"), whose iterations `spp` counts.
+enum class Integrator { Path, Sppm };
+
+struct SppmSettings {
+    std::uint32_t photons = 0;  // photons per iteration; 0: one per pixel
+    double radius = 0.0;        // initial radius of every pixel's visible point; 0: sppm_default_radius
+    double alpha = 2.0 / 3.0;   // the fraction of new photons a pixel keeps as its radius shrinks
+};
+
 struct RenderSettings {
     int spp = 16;
     int max_depth = 8;  // most scattering events a path may have
@@ -37,6 +47,8 @@ struct RenderSettings {
     bool nee = true;  // next-event estimation; off: emission is counted at every hit (pure BSDF sampling)
     bool mis = true;  // with nee: light samples and BSDF-sampled emitter hits combined by the power heuristic
     Hemisphere hemisphere = Hemisphere::Cosine;
+    Integrator integrator = Integrator::Path;
+    SppmSettings sppm;  // with Integrator::Sppm
 };
 
 enum class MaterialType { Diffuse, Mirror, Glass, Emitter };
@@ -101,6 +113,7 @@ struct FeatureSet {
     bool background = false;  // a non-black background
     bool nee = false;         // next-event estimation runs: render.nee is on and the scene has a light
     bool mis = false;         // nee runs at diffuse vertices and render.mis is on
+    bool sppm = false;        // the integrator is sppm: visible points and photons
     // Not the scene's: the wavefront's kernels read the rays' hits, which the
     // host traced (--intersector embree, kernels/interface/stages.h).
     bool host_traced = false;
@@ -129,6 +142,22 @@ class SceneError : public std::runtime_error {
  public:
     using std::runtime_error::runtime_error;
 };
+
+// Why the scene cannot be rendered with its sppm settings, or "" when it can:
+// photons leave emitting shapes only, so a background that is not black
+// would light paths no photon takes.
+std::string sppm_problem(const Scene& scene);
+
+// The photons per iteration: render.sppm.photons, or one per pixel.
+std::uint64_t sppm_photons(const Scene& scene);
+
+// The initial radius: render.sppm.radius, or by default twice the footprint
+// of a pixel, 2 tan(fov_y / 2) / height, at the distance of the scene's
+// extent D, the diagonal of the box around the camera and every bounded
+// shape (planes are not): a surface seen from D, lit evenly, then gathers
+// about 4 pi photons per pixel and iteration at one photon per pixel
+// (docs/scene-format.md).
+double sppm_initial_radius(const Scene& scene);
 
 // A mesh triangle's area, and a mesh's (in double).
 double triangle_area(const Mesh& mesh, const glm::uvec3& triangle);

@@ -57,6 +57,8 @@ Scene parse_scene(const std::string& json_text, const std::string& source_name, 
 
     rebase_to_camera(scene);
     build_light_table(scene);
+    if (const std::string problem = sppm_problem(scene); !problem.empty())
+        root.member("render").member("integrator").fail(problem);
     return scene;
 }
 

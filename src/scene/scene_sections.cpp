@@ -321,8 +321,32 @@ Hemisphere read_hemisphere(const JsonField& field) {
     field.fail("unknown hemisphere sampling " + nlohmann::json(name).dump() + " (expected \"cosine\" or \"uniform\")");
 }
 
+Integrator read_integrator(const JsonField& field) {
+    std::string name = field.string();
+    if (name == "path") return Integrator::Path;
+    if (name == "sppm") return Integrator::Sppm;
+    field.fail("unknown integrator " + nlohmann::json(name).dump() + " (expected \"path\" or \"sppm\")");
+}
+
+// The sppm integrator's keys; with the path integrator each is an error.
+SppmSettings read_sppm(const JsonField& field, Integrator integrator) {
+    SppmSettings sppm;
+    for (const char* key : {"photons", "initial_radius", "alpha"})
+        if (auto found = field.optional_member(key); found && integrator != Integrator::Sppm)
+            found->fail("applies to the sppm integrator only (render.integrator is \"path\")");
+    read_optional_integer(field, "photons", 1, kMaxPhotons, sppm.photons);
+    if (auto radius = field.optional_member("initial_radius")) sppm.radius = read_positive(*radius);
+    if (auto alpha = field.optional_member("alpha")) {
+        sppm.alpha = alpha->number();
+        if (!(sppm.alpha > 0.0 && sppm.alpha <= 1.0))
+            alpha->fail("must be in (0, 1], got " + format_number(sppm.alpha));
+    }
+    return sppm;
+}
+
 RenderSettings read_render(const JsonField& field) {
-    field.allow_only_keys({"spp", "max_depth", "rr_depth", "seed", "nee", "mis", "hemisphere"});
+    field.allow_only_keys({"spp", "max_depth", "rr_depth", "seed", "nee", "mis", "hemisphere", "integrator", "photons",
+                           "initial_radius", "alpha"});
     RenderSettings render;
     read_optional_integer(field, "spp", 1, kMaxSpp, render.spp);
     read_optional_integer(field, "max_depth", 0, kMaxDepthLimit, render.max_depth);
@@ -332,6 +356,9 @@ RenderSettings read_render(const JsonField& field) {
     if (std::optional<JsonField> mis = field.optional_member("mis")) render.mis = mis->boolean();
     if (std::optional<JsonField> hemisphere = field.optional_member("hemisphere"))
         render.hemisphere = read_hemisphere(*hemisphere);
+    if (std::optional<JsonField> integrator = field.optional_member("integrator"))
+        render.integrator = read_integrator(*integrator);
+    render.sppm = read_sppm(field, render.integrator);
     return render;
 }
 

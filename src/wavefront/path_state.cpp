@@ -40,6 +40,8 @@ bool path_feature_compiled(PathFeature feature, const FeatureSet& features) {
             return features.mis;
         case PathFeature::HOST_SHADOWS:
             return features.nee && features.host_traced;
+        case PathFeature::SPPM:
+            return features.sppm;
     }
     return false;
 }
@@ -50,7 +52,8 @@ std::string path_state_table_markdown() {
                                           "glass",
                                           "nee (next-event estimation runs)",
                                           "mis (next-event estimation with multiple importance sampling)",
-                                          "nee with the shadow rays traced on the host (--intersector embree)"};
+                                          "nee with the shadow rays traced on the host (--intersector embree)",
+                                          "sppm (the sppm integrator)"};
     std::ostringstream table;
     table << "| field | type | bytes/path | exists when | written by | read by |\n"
           << "|---|---|---|---|---|---|\n";

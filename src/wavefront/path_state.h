@@ -11,7 +11,7 @@
 
 namespace wp {
 
-enum class PathFeature { ALWAYS, SPECULAR, GLASS, NEE, MIS, HOST_SHADOWS };
+enum class PathFeature { ALWAYS, SPECULAR, GLASS, NEE, MIS, HOST_SHADOWS, SPPM };
 
 struct PathStateField {
     const char* type;
@@ -42,6 +42,9 @@ class PathState {
     // The buffer of a compiled field; throws std::out_of_range otherwise.
     const cl::Buffer& field(const std::string& name) const;
     bool has_field(const std::string& name) const;
+    // The compiled fields: the stage kernels' arguments after them start at
+    // arg::Stage::count plus this.
+    cl_uint field_count() const { return cl_uint(buffers_.size()); }
     std::size_t bytes_per_path() const { return bytes_per_path_; }
 
     // The bytes per path the kernels for this scene need, without allocating.

@@ -25,7 +25,8 @@ const std::vector<std::string>& wavefront_kernel_files() {
     static const std::vector<std::string> files = [] {
         std::vector<std::string> names;
         for (const StageDeclaration& stage : stage_declarations) names.push_back(std::string(stage.kernel) + ".cl");
-        for (const char* other : {"compact.cl", "accumulate.cl", "count_depths.cl", "intersect_bound.cl"})
+        for (const char* other :
+             {"compact.cl", "accumulate.cl", "count_depths.cl", "intersect_bound.cl", "photon_grid.cl", "sppm_update.cl"})
             names.push_back(other);
         return names;
     }();
@@ -41,7 +42,8 @@ Pipeline::Pipeline(const Scene& scene, const SceneLayout& layout, const DeviceIn
     : capacity_(capacity),
       pass_capacity_(pass_capacity),
       lanes_(resolve_lanes(options.lanes, wavefront_lanes(options.compaction), device)),
-      iteration_(iteration_stages(kernel_features)),
+      iteration_(iteration_stages(kernel_features, StageLoop::CAMERA)),
+      photon_iteration_(iteration_stages(kernel_features, StageLoop::PHOTON)),
       context_(device.device),
       queue_(context_, device.device, options.profile ? cl_command_queue_properties(CL_QUEUE_PROFILING_ENABLE) : 0),
       launcher_(queue_, options.profile),
@@ -51,11 +53,17 @@ Pipeline::Pipeline(const Scene& scene, const SceneLayout& layout, const DeviceIn
                              options.progress)),
       scene_(context_, layout),
       state_(context_, capacity, kernel_features),
-      queues_(context_, queue_, program_.program, capacity, options.compaction, iteration_,
-              kernel_features.host_traced),
+      queues_(context_, queue_, program_.program, capacity, options.compaction,
+              plan_queues(std::vector<std::vector<Stage>>{iteration_, photon_iteration_}), kernel_features.host_traced),
       film_(context_, queue_, program_.program, scene.camera.width, scene.camera.height, options.film_squares),
       pass_radiance_(context_, CL_MEM_READ_WRITE, sizeof(float) * 3 * pass_capacity),
       slot_nonfinite_(context_, CL_MEM_READ_WRITE, sizeof(std::uint32_t) * WP_NONFINITE_STAGE_COUNT * capacity) {
+    if (kernel_features.sppm) {
+        photons_per_iteration_ = scene.lights.empty() ? 0 : static_cast<std::uint32_t>(sppm_photons(scene));
+        sppm_.emplace(context_, queue_, program_.program, scene_, queues_.counts(),
+                      std::uint64_t(scene.camera.width) * std::uint64_t(scene.camera.height), lanes_,
+                      static_cast<float>(sppm_initial_radius(scene)));
+    }
     for (const StageDeclaration& stage : stage_declarations) {
         cl::Kernel& kernel = stages_.emplace_back(stage_kernel(program_.program, stage));
         scene_.bind(kernel);
@@ -65,6 +73,7 @@ Pipeline::Pipeline(const Scene& scene, const SceneLayout& layout, const DeviceIn
         kernel.setArg(arg::Stage::pass_radiance, pass_radiance_);
         kernel.setArg(arg::Stage::slot_nonfinite, slot_nonfinite_);
         state_.bind(kernel);
+        if (sppm_) sppm_->state().bind(kernel, arg::Stage::count + state_.field_count());
     }
     bind_round();
     if (options.profile)
@@ -82,6 +91,19 @@ void Pipeline::begin_pass(std::uint64_t start, std::uint32_t size) {
     }
     queues_.reset();
 }
+
+void Pipeline::begin_photon_pass(std::uint32_t iteration) {
+    pass_start_ = std::uint64_t(iteration) * photons_per_iteration_;
+    pass_size_ = photons_per_iteration_;
+    for (Stage stage : photon_iteration_) {
+        cl::Kernel& k = stages_[static_cast<std::size_t>(stage)];
+        k.setArg(arg::Stage::pass_start, cl_ulong(pass_start_));
+        k.setArg(arg::Stage::pass_size, cl_uint(pass_size_));
+    }
+    queues_.reset(WP_QUEUE_PHOTON_FREE);
+}
+
+std::uint32_t Pipeline::photon_deposits() { return queues_.read_counts()[WP_COUNTER_PHOTON_DEPOSITS]; }
 
 void Pipeline::run(Stage stage, std::size_t entries) {
     if (entries == 0) return;

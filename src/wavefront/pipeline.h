@@ -27,6 +27,7 @@
 #include "wavefront/path_state.h"
 #include "wavefront/profiling.h"
 #include "wavefront/queue_set.h"
+#include "wavefront/sppm_pass.h"
 #include "wavefront/stage.h"
 
 namespace wp {
@@ -59,12 +60,25 @@ class Pipeline {
     std::size_t capacity() const { return capacity_; }
     std::size_t pass_capacity() const { return pass_capacity_; }
     QueueSet& queues() { return queues_; }
-    // The stages an iteration runs, in order (iteration_stages of the kernel features).
+    // The stages an iteration of the camera pass runs, in order (iteration_stages of the kernel features).
     const std::vector<Stage>& iteration() const { return iteration_; }
+    // Those of SPPM's photon pass (none without the sppm integrator).
+    const std::vector<Stage>& photon_iteration() const { return photon_iteration_; }
+    // SPPM's state and kernels besides the stages (the sppm integrator only).
+    SppmPass* sppm() { return sppm_ ? &*sppm_ : nullptr; }
+    // SPPM: the photons of an iteration's photon pass (0 without a light to emit them).
+    std::uint32_t photons_per_iteration() const { return photons_per_iteration_; }
+    KernelLauncher& launcher() { return launcher_; }
 
     // Starts the pass of work items [start, start + size): every slot free,
     // every other queue empty, the work counter at 0.
     void begin_pass(std::uint64_t start, std::uint32_t size);
+    // Starts SPPM's photon pass of iteration `iteration`: its photons are the
+    // work items of the pass (emit_photons.cl), every slot is free for them.
+    void begin_photon_pass(std::uint32_t iteration);
+    // SPPM: the photons added to visible points since the last counter reset
+    // (sppm_update.cl counts them; every pass's start resets the counters).
+    std::uint32_t photon_deposits();
     // Tells the next generate how many work items of the pass earlier ones handed out.
     void set_issued(std::uint32_t issued) { queues_.set_issued(issued); }
     // An iteration runs each of its stages as start_stage, run, finish_stage.
@@ -133,7 +147,7 @@ class Pipeline {
 
     std::size_t capacity_, pass_capacity_;
     unsigned lanes_;
-    std::vector<Stage> iteration_;
+    std::vector<Stage> iteration_, photon_iteration_;
     cl::Context context_;
     cl::CommandQueue queue_;
     KernelLauncher launcher_;
@@ -143,12 +157,14 @@ class Pipeline {
     QueueSet queues_;
     DeviceFilm film_;
     cl::Buffer pass_radiance_, slot_nonfinite_;
+    std::optional<SppmPass> sppm_;               // the sppm integrator only
     std::vector<cl::Kernel> stages_;             // by Stage
     std::optional<RayDepthCounter> ray_depths_;  // profiling only
     std::optional<HostTrace> host_trace_;        // kernel_features.host_traced only
     RenderProfile profile_;
     std::uint64_t pass_start_ = 0;
     std::uint32_t pass_size_ = 0;
+    std::uint32_t photons_per_iteration_ = 0;
 };
 
 // The kernel files of the program, in build order: the stages' (kernels/<stage>.cl), then the others.

@@ -49,4 +49,13 @@ QueuePlan plan_queues(const std::vector<Stage>& iteration) {
     return plan;
 }
 
+QueuePlan plan_queues(const std::vector<std::vector<Stage>>& loops) {
+    QueuePlan plan{};
+    for (const std::vector<Stage>& loop : loops) {
+        const QueuePlan of_loop = plan_queues(loop);
+        for (Stage stage : loop) plan[static_cast<std::size_t>(stage)] = of_loop[static_cast<std::size_t>(stage)];
+    }
+    return plan;
+}
+
 }  // namespace wp

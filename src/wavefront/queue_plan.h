@@ -30,5 +30,8 @@ using QueuePlan = std::array<StageBookkeeping, kStageCount>;
 
 // The bookkeeping of an iteration that runs `iteration`, in that order.
 QueuePlan plan_queues(const std::vector<Stage>& iteration);
+// The bookkeeping of loops of iterations that never run at once (the camera
+// pass and SPPM's photon pass): each stage's is its loop's.
+QueuePlan plan_queues(const std::vector<std::vector<Stage>>& loops);
 
 }  // namespace wp

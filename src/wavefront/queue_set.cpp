@@ -5,7 +5,7 @@
 namespace wp {
 
 QueueSet::QueueSet(const cl::Context& context, cl::CommandQueue& queue, const cl::Program& program,
-                   std::size_t capacity, Compaction compaction, const std::vector<Stage>& iteration, bool host_mapped)
+                   std::size_t capacity, Compaction compaction, const QueuePlan& plan, bool host_mapped)
     : queue_(queue),
       capacity_(capacity),
       compaction_(compaction),
@@ -14,7 +14,7 @@ QueueSet::QueueSet(const cl::Context& context, cl::CommandQueue& queue, const cl
               WP_QUEUE_COUNT * (compaction == Compaction::Scan ? 2 : 1) * queue_bytes()),
       counts_(context, CL_MEM_READ_WRITE | (host_mapped ? CL_MEM_ALLOC_HOST_PTR : 0),
               sizeof(std::uint32_t) * WP_COUNTS_PROFILED_SIZE),
-      plan_(plan_queues(iteration)) {
+      plan_(plan) {
     std::vector<std::uint32_t> identity(capacity);
     std::iota(identity.begin(), identity.end(), 0u);
     identity_slots_ = cl::Buffer(context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, queue_bytes(), identity.data());
@@ -25,13 +25,13 @@ QueueSet::QueueSet(const cl::Context& context, cl::CommandQueue& queue, const cl
     }
 }
 
-void QueueSet::reset() {
+void QueueSet::reset(std::uint32_t free_queue) {
     if (scan_)  // no marks left from the last pass
         queue_.enqueueFillBuffer(queues_, std::uint32_t(0), WP_QUEUE_COUNT * queue_bytes(),
                                  WP_QUEUE_COUNT * queue_bytes());
-    queue_.enqueueCopyBuffer(identity_slots_, queues_, 0, WP_QUEUE_FREE * queue_bytes(), queue_bytes());
+    queue_.enqueueCopyBuffer(identity_slots_, queues_, 0, free_queue * queue_bytes(), queue_bytes());
     DeviceCounts counts{};
-    counts[WP_QUEUE_FREE] = static_cast<std::uint32_t>(capacity_);
+    counts[free_queue] = static_cast<std::uint32_t>(capacity_);
     queue_.enqueueWriteBuffer(counts_, CL_TRUE, 0, sizeof counts, counts.data());
 }
 

@@ -22,18 +22,20 @@ using DeviceCounts = std::array<std::uint32_t, WP_COUNTS_SIZE>;
 
 class QueueSet {
  public:
-    // `program` holds kernels/compact.cl (used with scan compaction);
-    // `iteration` is the stages an iteration runs, in order; `host_mapped`:
-    // the host maps the queues and counts (wavefront/host_trace.h), so they
-    // are allocated for it to reach without a copy.
+    // `program` holds kernels/compact.cl (used with scan compaction); `plan`
+    // is the bookkeeping of the iterations the stages run in (plan_queues);
+    // `host_mapped`: the host maps the queues and counts
+    // (wavefront/host_trace.h), so they are allocated for it to reach
+    // without a copy.
     QueueSet(const cl::Context& context, cl::CommandQueue& queue, const cl::Program& program, std::size_t capacity,
-             Compaction compaction, const std::vector<Stage>& iteration, bool host_mapped = false);
+             Compaction compaction, const QueuePlan& plan, bool host_mapped = false);
 
     const cl::Buffer& queues() const { return queues_; }
     const cl::Buffer& counts() const { return counts_; }
 
-    // Every slot free, every other queue empty, no marks, the work counter at 0.
-    void reset();
+    // Every slot in `free_queue` (FREE, or PHOTON_FREE for SPPM's photon
+    // pass), every other queue empty, no marks, the counters at 0.
+    void reset(std::uint32_t free_queue = WP_QUEUE_FREE);
     // Tells the next generate how many work items of the pass earlier ones handed out.
     void set_issued(std::uint32_t issued);
     // The bookkeeping around a stage of the iteration (wavefront/queue_plan.h).

@@ -15,9 +15,13 @@
 
 namespace wp {
 
-#define WP_STAGE_ENUMERATOR(stage, consumes, pushes, runs_when, traces) stage,
+#define WP_STAGE_ENUMERATOR(stage, loop, consumes, pushes, runs_when, traces) stage,
 enum class Stage { WP_STAGES(WP_STAGE_ENUMERATOR) };
 #undef WP_STAGE_ENUMERATOR
+
+// The loops of iterations (kernels/interface/stages.h): the camera paths', and
+// SPPM's photon pass, which runs once the camera pass of its iteration drained.
+enum class StageLoop { CAMERA, PHOTON };
 
 // The rays a stage traces, those of the paths it consumes (what the host
 // traces before the stage's kernel with --intersector embree, wavefront/host_trace.h).
@@ -25,14 +29,15 @@ enum class StageTrace { NO_RAYS, CLOSEST_HIT, ANY_HIT };
 
 struct StageDeclaration {
     const char* kernel;      // defined in kernels/<kernel>.cl
+    StageLoop loop;          // the loop it belongs to
     std::uint32_t consumes;  // the queue it takes its paths from
     std::uint32_t pushes;    // the queues it may push to, as bits 1 << queue
-    PathFeature runs_when;   // the path state feature it needs (ALWAYS, NEE)
+    PathFeature runs_when;   // the path state feature it needs (ALWAYS, NEE, SPPM)
     StageTrace traces;
 };
 
-#define WP_STAGE_DECLARATION(stage, consumes, pushes, runs_when, traces) \
-    StageDeclaration{#stage, WP_QUEUE_##consumes, pushes, PathFeature::runs_when, StageTrace::traces},
+#define WP_STAGE_DECLARATION(stage, loop, consumes, pushes, runs_when, traces) \
+    StageDeclaration{#stage, StageLoop::loop, WP_QUEUE_##consumes, pushes, PathFeature::runs_when, StageTrace::traces},
 inline constexpr std::array stage_declarations{WP_STAGES(WP_STAGE_DECLARATION)};
 #undef WP_STAGE_DECLARATION
 
@@ -59,7 +64,7 @@ inline constexpr const StageDeclaration& declaration(Stage stage) {
     return stage_declarations[static_cast<std::size_t>(stage)];
 }
 
-// The stages an iteration runs with kernels built for `features`, in order.
-std::vector<Stage> iteration_stages(const FeatureSet& features);
+// The stages an iteration of `loop` runs with kernels built for `features`, in order.
+std::vector<Stage> iteration_stages(const FeatureSet& features, StageLoop loop = StageLoop::CAMERA);
 
 }  // namespace wp

@@ -84,15 +84,24 @@ void fill_profile(RenderProfile& profile, const std::vector<IterationRecord>& it
 }  // namespace
 
 std::uint32_t IterationRecord::taken_from(std::uint32_t queue) const {
+    const bool photons = loop == StageLoop::PHOTON;
     switch (queue) {
         case WP_QUEUE_FREE:
-            return generated;
+            return photons ? 0 : generated;
         case WP_QUEUE_RAY:
-            return traced;
+            return photons ? 0 : traced;
         case WP_QUEUE_HIT:
-            return hits;
+            return photons ? 0 : hits;
         case WP_QUEUE_SHADOW:
-            return shadow;
+            return photons ? 0 : shadow;
+        case WP_QUEUE_PHOTON_FREE:
+            return photons ? generated : 0;
+        case WP_QUEUE_PHOTON_RAY:
+            return photons ? traced : 0;
+        case WP_QUEUE_PHOTON_HIT:
+            return photons ? hits : 0;
+        case WP_QUEUE_PHOTON_SCATTER:
+            return photons ? scattered : 0;
     }
     return 0;
 }
@@ -140,7 +149,11 @@ class WavefrontFilmRenderer : public FilmRenderer {
           pipeline_(scene, device_, wavefront_, std::min<std::uint64_t>(max_items, kPassesPerWavefront * wavefront_),
                     features_, {options.profile, options.compaction, options.lanes, progress, options.film_squares}),
           profile_(options.profile),
-          report_(report ? *report : local_report_) {
+          report_(report ? *report : local_report_),
+          photons_per_iteration_(sppm_photons(scene)),
+          pixels_(scene.render.integrator == Integrator::Sppm
+                      ? std::uint64_t(scene.camera.width) * std::uint64_t(scene.camera.height)
+                      : 0) {
         WavefrontReport& r = report_;
         r.device = device_.name + " (" + device_.platform + ")";
         r.features = describe_features(features_);
@@ -157,12 +170,18 @@ class WavefrontFilmRenderer : public FilmRenderer {
         r.intersector_reason = intersector_.reason;
     }
 
-    std::uint64_t pass_items() const override { return pipeline_.pass_capacity(); }
+    // SPPM: an iteration (its camera pass may take several of the pipeline's passes).
+    std::uint64_t pass_items() const override {
+        return pixels_ != 0 ? pixels_ : pipeline_.pass_capacity();
+    }
 
     RenderStats stats() const override {
         RenderStats stats;
         stats.extension_rays = totals_.extension_rays;
         stats.shadow_rays = totals_.shadow_rays;
+        stats.photons = totals_.photons;
+        stats.photon_rays = totals_.photon_rays;
+        stats.photon_deposits = totals_.photon_deposits;
         stats.add_nonfinite(totals_.nonfinite);
         return stats;
     }
@@ -182,12 +201,30 @@ class WavefrontFilmRenderer : public FilmRenderer {
 
  protected:
     void render_items(const ItemRange& items, const Progress& progress) override {
-        run_schedule(pipeline_, items, progress, totals_, report_.iterations);
+        if (pipeline_.sppm())
+            render_sppm_iterations(items, progress);
+        else
+            run_schedule(pipeline_, items, progress, totals_, report_.iterations);
         samples_ += items.size();
     }
-    Film read_film(const ItemRange& items) override { return pipeline_.read_film(items); }
-    void load_film(const Film& film) override { pipeline_.load_film(film); }
-    void use_round_pixels(const std::vector<std::uint32_t>& pixels) override { pipeline_.set_round_pixels(pixels); }
+    Film read_film(const ItemRange& items) override {
+        Film film = pipeline_.read_film(items);
+        if (SppmPass* sppm = pipeline_.sppm()) film.photons = sppm->read(photons_per_iteration_);
+        return film;
+    }
+    void load_film(const Film& film) override {
+        if (SppmPass* sppm = pipeline_.sppm()) {
+            if (film.photons.photons_per_iteration != photons_per_iteration_)
+                throw std::invalid_argument("sppm: a film without this render's photons per iteration");
+            sppm->load(film.photons);
+        }
+        pipeline_.load_film(film);
+    }
+    void use_round_pixels(const std::vector<std::uint32_t>& pixels) override {
+        if (pipeline_.sppm() && !pixels.empty())
+            throw std::invalid_argument("sppm: every iteration renders every pixel");
+        pipeline_.set_round_pixels(pixels);
+    }
 
  private:
     DeviceInfo device_;
@@ -198,8 +235,24 @@ class WavefrontFilmRenderer : public FilmRenderer {
     bool profile_;
     WavefrontReport local_report_;
     WavefrontReport& report_;
+    // SPPM: whole iterations (every pixel's sample i is iteration i).
+    void render_sppm_iterations(const ItemRange& items, const Progress& progress) {
+        const std::uint64_t pixels = pixels_;
+        if (items.begin % pixels != 0 || items.end % pixels != 0)
+            throw std::invalid_argument("sppm: work items must be whole iterations (every pixel's next sample)");
+        const std::uint64_t first = items.begin / pixels, end = items.end / pixels;
+        for (std::uint64_t iteration = first; iteration < end; ++iteration) {
+            Progress within;  // the camera pass's share of the iteration stands for it
+            if (progress.samples)
+                within.samples = [&](double f) { progress.report((double(iteration - first) + f) / double(end - first)); };
+            run_sppm_iteration(pipeline_, static_cast<std::uint32_t>(iteration), within, totals_, report_.iterations);
+        }
+    }
+
     ScheduleTotals totals_;
     std::uint64_t samples_ = 0;
+    std::uint64_t photons_per_iteration_;  // SPPM (the film's PhotonEstimate)
+    std::uint64_t pixels_;                 // SPPM: the work items of an iteration; 0 for path tracing
 };
 
 }  // namespace
@@ -208,8 +261,10 @@ std::unique_ptr<FilmRenderer> make_wavefront_renderer(const Scene& scene, const 
                                                       const Progress& progress, WavefrontReport* report,
                                                       std::uint64_t max_items) {
     const std::uint64_t every_item = std::uint64_t(scene.camera.width) * scene.camera.height * scene.render.spp;
-    return std::make_unique<WavefrontFilmRenderer>(scene, options, progress, report,
-                                                   max_items ? max_items : every_item);
+    std::uint64_t items = max_items ? max_items : every_item;
+    // SPPM's photon pass goes through the same slots: an iteration's photons size them too.
+    if (scene.render.integrator == Integrator::Sppm) items = std::max(items, sppm_photons(scene));
+    return std::make_unique<WavefrontFilmRenderer>(scene, options, progress, report, items);
 }
 
 RenderResult render_wavefront(const Scene& scene, const WavefrontOptions& options, const Progress& progress,

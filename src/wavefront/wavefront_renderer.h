@@ -15,6 +15,7 @@
 #include "opencl/profile.h"
 #include "scene/scene.h"
 #include "wavefront/compaction.h"
+#include "wavefront/stage.h"
 
 namespace wp {
 
@@ -32,12 +33,15 @@ struct WavefrontOptions {
     std::optional<Intersector> intersector;
 };
 
-// Queue lengths of one iteration of the stage loop, for the profiler.
+// Queue lengths of one iteration of a stage loop, for the profiler: of the
+// camera pass, or of SPPM's photon pass (whose photons take the paths' words).
 struct IterationRecord {
-    std::uint32_t generated = 0;   // camera rays started
+    StageLoop loop = StageLoop::CAMERA;
+    std::uint32_t generated = 0;   // camera rays started (photons emitted)
     std::uint32_t traced = 0;      // extension rays intersected
-    std::uint32_t hits = 0;        // of those, hits (to shade)
+    std::uint32_t hits = 0;        // of those, hits (to shade, deposit_photons)
     std::uint32_t shadow = 0;      // shadow rays
+    std::uint32_t scattered = 0;   // photon pass: photons scatter_photons takes (hits deposit_photons did not end)
     std::uint32_t continuing = 0;  // paths that scattered on
     std::uint32_t finished = 0;    // paths that ended
 

@@ -112,7 +112,8 @@ TEST(ShadeStage, GlassSplitFollowsFresnelAndMatchesReference) {
             vec3 nf = entering ? surface.normal : -surface.normal;
             fresnel = M::fresnel_dielectric(-glm::dot(ray.direction, nf), entering ? 1.5f : 1 / 1.5f);
             reference::SampleRng<float> rng{scene.render.seed, 0u, std::uint32_t(i)};
-            auto next = reference::scatter(ref, ref.materials[0], ray.direction, entering, nf, nf, rng, 0u);
+            auto next = reference::scatter(ref, ref.materials[0], ray.direction, entering, nf, nf,
+                                           reference::camera_bsdf_random(rng, 0u), WP_TRANSPORT_RADIANCE);
             vec3 got(dir[0][i], dir[1][i], dir[2][i]);
             ASSERT_NEAR(glm::length(got - next.direction), 0.0f, 1e-6f) << "path " << i;
             ASSERT_NEAR(weight[i], next.weight.x, 1e-6f) << "path " << i;

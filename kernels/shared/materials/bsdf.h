@@ -30,6 +30,13 @@ typedef struct {
     lane_int valid; /* the sample is consistent with both normals (leaves_on_side): else the path ends */
 } BsdfSample;
 
+/* The random numbers one BSDF sample takes: glass's choice of lobe and
+ * the diffuse direction (u, v). A camera path draws them from DIM_BSDF_*, a
+ * photon from DIM_PHOTON_BSDF_* (shared/rng.h). */
+typedef struct {
+    real lobe, u, v;
+} BsdfRandom;
+
 /* No sample: a lane whose material has no kind compiled in keeps this. */
 WP_FN BsdfSample no_bsdf_sample(void) {
     BsdfSample s;
@@ -82,6 +89,20 @@ WP_FN FacingNormals normals_facing(vec3 direction, vec3 normal, vec3 shading) {
  * lane) ns is nf and every such test passes. */
 WP_FN lane_int leaves_on_side(vec3 direction, vec3 normal, int shading_normals) {
     return !shading_normals || v3_dot(direction, normal) > REAL(0.0);
+}
+
+/* Veach's correction for shading normals on a path that carries importance
+ * or flux (a photon; thesis section 5.3.2): such a path's throughput at a
+ * vertex where the shading normal ns differs from the geometric normal nf
+ * takes |wo.ns| |wi.nf| / (|wo.nf| |wi.ns|) besides the BSDF sample's
+ * weight, where wo points back along the path and wi is where it goes next;
+ * otherwise light paths and camera paths would estimate different
+ * equations, and a photon map would disagree with path tracing wherever
+ * shading normals lean. 0 where a direction grazes the geometric surface. */
+WP_FN real shading_normal_adjoint(vec3 wo, vec3 wi, vec3 nf, vec3 ns) {
+    real numerator = fabs(v3_dot(wo, ns)) * fabs(v3_dot(wi, nf));
+    real denominator = fabs(v3_dot(wo, nf)) * fabs(v3_dot(wi, ns));
+    return denominator > REAL(0.0) ? numerator / denominator : REAL(0.0);
 }
 
 #endif

@@ -1,0 +1,47 @@
+/* SPPM's state beside the path state (docs/architecture.md, "Photon
+ * mapping"), declared once: per pixel its visible point of the iteration,
+ * its progressive estimate and what the iteration's photons brought it, and
+ * the grid over the visible points. Every entry is one device buffer
+ * (structure of arrays; a vec3 entry holds three planes of `size` floats),
+ * which exists only with the sppm integrator. The list expands into the
+ * host's buffers (src/wavefront/sppm_state.cpp), the parameters of the
+ * stage kernels (after the path state's) and of the grid and update kernels
+ * (WP_SPPM_PARAMS, device/parameters.h), and the table in
+ * docs/architecture.md.
+ *
+ * X(type, name, size, written by, read by): type uint, float or vec3; the
+ * kernel files (kernels/<file>.cl) that write and read it, through
+ * SPPM_WRITE and SPPM_READ (device/sppm_pixels.h) or SPPM_ARRAY; size:
+ *   PIXELS    one per pixel;
+ *   DEPOSITS  WP_FILM_WORDS per pixel and channel: the photon flux of the
+ *             iteration, summed exactly by film_words_add (shared/film_sum.h);
+ *   BUCKETS   one per bucket of the grid (shared/photon_grid.h) and one more;
+ *   BLOCKS    one per block of WP_GRID_SCAN_BLOCK buckets and one more: the
+ *             counting sort's prefix sum;
+ *   ENTRIES   WP_GRID_CELLS_PER_SPHERE per pixel: the buckets' lists;
+ *   FRAME     four: the grid's origin (x, y, z) and cell size (0: no
+ *             visible point). */
+#ifndef WP_INTERFACE_SPPM_STATE_H
+#define WP_INTERFACE_SPPM_STATE_H
+
+#define WP_SPPM_STATE(X)                                                                        \
+    X(vec3, visible_point, PIXELS, "shade", "deposit_photons photon_grid")               \
+    X(vec3, visible_normal, PIXELS, "shade", "deposit_photons")                          \
+    X(vec3, visible_geometric_normal, PIXELS, "shade", "deposit_photons")                \
+    X(vec3, visible_weight, PIXELS, "shade", "deposit_photons")                          \
+    X(uint, visible_depth, PIXELS, "shade", "deposit_photons photon_grid")               \
+    X(float, sppm_count, PIXELS, "sppm_update", "sppm_update")                                  \
+    X(float, sppm_radius, PIXELS, "sppm_update", "deposit_photons photon_grid sppm_update")     \
+    X(vec3, sppm_flux, PIXELS, "sppm_update", "sppm_update")                                    \
+    X(uint, iteration_photons, PIXELS, "deposit_photons", "sppm_update")                        \
+    X(uint, iteration_flux, DEPOSITS, "deposit_photons", "sppm_update")                         \
+    X(float, grid_frame, FRAME, "photon_grid", "deposit_photons photon_grid")                   \
+    X(uint, grid_counts, BUCKETS, "photon_grid", "photon_grid")                                 \
+    X(uint, grid_block_sums, BLOCKS, "photon_grid", "photon_grid")                              \
+    X(uint, grid_starts, BUCKETS, "photon_grid", "deposit_photons photon_grid")                 \
+    X(uint, grid_entries, ENTRIES, "photon_grid", "deposit_photons")
+
+/* Buckets per block of the counting sort's prefix sum (photon_grid.cl). */
+#define WP_GRID_SCAN_BLOCK 256u
+
+#endif

@@ -1,0 +1,82 @@
+/* Stochastic progressive photon mapping (Hachisuka and Jensen, 2009; the
+ * form of pbrt-v4's SPPMIntegrator; docs/architecture.md, "Photon
+ * mapping"): what a photon adds to a pixel's visible point, and each
+ * pixel's update after an iteration. The visible points themselves are
+ * written where the camera path first meets a diffuse surface, the photons
+ * found through the grid of shared/photon_grid.h, by the caller. */
+#ifndef WP_SHARED_SPPM_H
+#define WP_SHARED_SPPM_H
+
+#include "shared/materials/bsdf.h"
+#include "shared/materials/diffuse.h"
+#include "shared/prelude.h"
+
+/* A pixel's visible point has no depth where its camera path met no diffuse
+ * surface in the iteration (it left the scene, hit an emitter, or ended). */
+#define WP_NO_VISIBLE_POINT 0xffffffffu
+
+/* Whether SPPM's camera pass bounces once more from a visible point, to
+ * add the emission it finds there: only where emission after a diffuse
+ * vertex can count (emission_weight, shared/estimator.h): without next-event
+ * estimation, or with multiple importance sampling, whose light sample at
+ * the visible point counts only its share. Photons add what arrives after
+ * more scattering. */
+WP_FN int camera_pass_bounces_from_visible_point(int nee, int mis) { return !nee || mis; }
+
+/* Whether a photon at x falls within the visible point at `center` of
+ * radius `radius`. */
+WP_FN lane_int photon_within(vec3 center, real radius, vec3 x) {
+    vec3 d = v3_sub(x, center);
+    return v3_dot(d, d) < radius * radius;
+}
+
+/* Whether a photon that has scattered `photon_depth` times may add to a
+ * visible point `visible_depth` camera bounces deep: the path they join
+ * scatters visible_depth + 1 + photon_depth times, at most max_depth as in
+ * path tracing; a photon that has not scattered (depth 0) is direct light,
+ * which the camera pass counts. */
+WP_FN lane_int photon_depth_counts(lane_uint visible_depth, lane_uint photon_depth, uint max_depth) {
+    return visible_depth != WP_NO_VISIBLE_POINT && photon_depth >= 1u &&
+           visible_depth + 1u + photon_depth <= max_depth;
+}
+
+/* What a photon carrying `power` along `direction` adds to the flux of a
+ * diffuse visible point of normals nf and ns (on the camera's side) whose
+ * camera path has throughput times albedo `weight`: weight / pi * power
+ * where it arrives above ns and on nf's side. The density estimate counts
+ * flux per unit of geometric area, where the shading model wants the cosine
+ * to ns: with shading normals each photon takes |wi.ns| / |wi.nf| (the
+ * adjoint correction at the gathering vertex, shading_normal_adjoint). */
+WP_FN vec3 photon_deposit(vec3 weight, vec3 nf, vec3 ns, vec3 direction, vec3 power, int shading_normals) {
+    vec3 wi = v3_neg(direction);
+    lane_int arrives = leaves_on_side(wi, nf, shading_normals);
+    real correction = shading_normals ? fabs(v3_dot(wi, ns)) / fabs(v3_dot(wi, nf)) : (real)REAL(1.0);
+    vec3 deposit = v3_scale(v3_mul(diffuse_eval(weight, ns, wi), power), correction);
+    return v3_select(arrives, deposit, make_vec3(REAL(0.0), REAL(0.0), REAL(0.0)));
+}
+
+/* A pixel's progressive estimate: N (`count`, the photons it has kept),
+ * the radius r and tau (`flux`, the flux gathered within it). */
+typedef struct {
+    real count, radius;
+    vec3 flux;
+} SppmPixel;
+
+/* The update after an iteration in which `photons` (M) photons fell within
+ * the radius and deposited `deposited` (Phi), with gamma = alpha:
+ *   N' = N + alpha M,  r'^2 = r^2 N' / (N + M),  tau' = (tau + Phi) r'^2 / r^2,
+ * so the radius shrinks as the photons come (Hachisuka and Jensen, eq. 7
+ * and 11). Nothing changes where no photon came. */
+WP_FN SppmPixel sppm_pixel_update(SppmPixel pixel, lane_uint photons, vec3 deposited, real alpha) {
+    real m = TO_REAL(photons);
+    real count = pixel.count + alpha * m;
+    real shrink = count / (pixel.count + m); /* r'^2 / r^2 */
+    lane_int came = photons > 0u;
+    SppmPixel next;
+    next.count = came ? count : pixel.count;
+    next.radius = came ? pixel.radius * sqrt(shrink) : pixel.radius;
+    next.flux = v3_select(came, v3_scale(v3_add(pixel.flux, deposited), shrink), pixel.flux);
+    return next;
+}
+
+#endif
