@@ -213,6 +213,8 @@ void report_run(const RenderCommand& command, const Scene& scene, const LongRunP
     summary.error = result.error;
     summary.adaptive = plan.adaptive.on();
     if (summary.adaptive) summarise_samples(result.film, scene.render.spp, summary);
+    summary.sppm = !result.film.photons.empty();
+    if (summary.sppm) summary.mean_radius = result.film.photons.mean_radius();
     summary.samples_per_rank = result.samples_per_rank;
     summary.busy_s_per_rank = result.busy_s_per_rank;
     if (!command.stats_json_path.empty()) write_stats_json(summary, command.stats_json_path);

@@ -60,6 +60,15 @@ std::string adaptive_text(const RunSummary& summary) {
     return text;
 }
 
+std::string sppm_text(const RunSummary& summary) {
+    if (!summary.sppm) return "";
+    char text[128];
+    std::snprintf(text, sizeof text, ", sppm: %llu photons, %llu stored, mean radius %.4g",
+                  static_cast<unsigned long long>(summary.stats.photons),
+                  static_cast<unsigned long long>(summary.stats.photon_deposits), summary.mean_radius);
+    return text;
+}
+
 std::string ranks_text(const RunSummary& summary) {
     const std::size_t ranks = summary.samples_per_rank.size();
     return ranks > 1 ? ", " + std::to_string(ranks) + " ranks" : "";
@@ -76,7 +85,8 @@ std::string format_summary_line(const RunSummary& summary) {
                   per_second(s.shadow_rays, s.time_s) * 1e-6, static_cast<unsigned long long>(s.nonfinite));
     return "wavepath: wrote " + summary.output_path + " (" + std::to_string(summary.width) + "x" +
            std::to_string(summary.height) + ", " + samples_text(summary) + ", " + summary.backend +
-           ranks_text(summary) + ") " + figures + nonfinite_breakdown(s) + error_text(summary) + adaptive_text(summary);
+           ranks_text(summary) + ") " + figures + nonfinite_breakdown(s) + error_text(summary) + adaptive_text(summary) +
+           sppm_text(summary);
 }
 
 nlohmann::json stats_json(const RunSummary& summary) {
@@ -93,6 +103,11 @@ nlohmann::json stats_json(const RunSummary& summary) {
         {"adaptive", summary.adaptive
                          ? nlohmann::json{{"spp_mean", summary.spp_mean}, {"stopped_early", summary.stopped_early}}
                          : nlohmann::json(nullptr)},
+        {"sppm", summary.sppm ? nlohmann::json{{"photons", s.photons},
+                                               {"photon_rays", s.photon_rays},
+                                               {"photon_deposits", s.photon_deposits},
+                                               {"mean_radius", summary.mean_radius}}
+                              : nlohmann::json(nullptr)},
         {"ranks", std::max<std::size_t>(summary.samples_per_rank.size(), 1)},
         {"samples_per_rank",
          summary.samples_per_rank.empty() ? std::vector<std::uint64_t>{s.samples} : summary.samples_per_rank},

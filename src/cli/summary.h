@@ -21,6 +21,8 @@ struct RunSummary {
     bool adaptive = false;       // --adaptive: the two figures below are reported
     double spp_mean = 0.0;       // samples per pixel, mean over the pixels
     double stopped_early = 0.0;  // fraction of pixels with fewer samples than asked for
+    bool sppm = false;           // the sppm integrator: the photons' figures are reported
+    double mean_radius = 0.0;    // sppm: the pixels' gathering radius, mean over the pixels
     // Work items each rank rendered, in rank order (one entry in one process).
     std::vector<std::uint64_t> samples_per_rank;
     std::vector<double> busy_s_per_rank;  // seconds each rank spent rendering (not waiting)
@@ -32,12 +34,14 @@ struct RunSummary {
 // A render that stopped early or holds a partial range says what the pixels
 // have: "(512x512, 12-13 of 64 spp, stopped: time budget, wavefront)"; with
 // --target-error the last estimate follows: ", estimated relative error 0.0098";
-// with --adaptive: ", adaptive: mean 23.4 spp, 71.2% of pixels stopped early".
+// with --adaptive: ", adaptive: mean 23.4 spp, 71.2% of pixels stopped early"; with
+// the sppm integrator: ", sppm: 65536 photons, 20417 stored, mean radius 0.0123".
 // On several MPI ranks the backend reads "wavefront, 3 ranks".
 std::string format_summary_line(const RunSummary& summary);
 
 // {"backend","width","height","spp","spp_done_min","spp_done_max","stopped","error_estimate" (or null),
-//  "adaptive" (null, or {"spp_mean","stopped_early"}), "ranks","samples_per_rank","render_s_per_rank","time_s",
+//  "adaptive" (null, or {"spp_mean","stopped_early"}),
+//  "sppm" (null, or {"photons","photon_rays","photon_deposits","mean_radius"}), "ranks","samples_per_rank","render_s_per_rank","time_s",
 //  "samples","samples_per_s",
 //  "extension_rays","extension_rays_per_s","shadow_rays","shadow_rays_per_s","nonfinite",
 //  "nonfinite_by_stage": {"emission","direct","scatter"}}

@@ -295,7 +295,9 @@ class LongRender {
     void gather_stats() {
         const RenderStats mine = renderer_.stats();
         std::vector<std::uint64_t> figures{shares_.rendered(), std::uint64_t(shares_.busy_s() * 1e9),
-                                           mine.extension_rays, mine.shadow_rays, mine.threads};
+                                           mine.extension_rays,  mine.shadow_rays,
+                                           mine.threads,         mine.photons,
+                                           mine.photon_rays,     mine.photon_deposits};
         figures.insert(figures.end(), mine.nonfinite_by_stage.begin(), mine.nonfinite_by_stage.end());
         const std::vector<std::uint64_t> all = ranks_.gather(figures);
         for (std::size_t at = 0; at < all.size(); at += figures.size()) {
@@ -304,8 +306,11 @@ class LongRender {
             result_.stats.extension_rays += all[at + 2];
             result_.stats.shadow_rays += all[at + 3];
             result_.stats.threads += all[at + 4];
+            result_.stats.photons += all[at + 5];
+            result_.stats.photon_rays += all[at + 6];
+            result_.stats.photon_deposits += all[at + 7];
             NonfiniteCounts counts{};
-            std::copy_n(all.begin() + std::ptrdiff_t(at + 5), counts.size(), counts.begin());
+            std::copy_n(all.begin() + std::ptrdiff_t(at + 8), counts.size(), counts.begin());
             result_.stats.add_nonfinite(counts);
         }
     }

@@ -11,6 +11,7 @@
 
 #include "support/kernel_sources.h"
 #include "wavefront/host_trace.h"
+#include "wavefront/sppm_state.h"
 #include "wavefront/stage.h"
 
 namespace wp {
@@ -22,6 +23,14 @@ TEST(PathState, ArchitectureDocHasTheCurrentFieldTable) {
     doc << in.rdbuf();
     EXPECT_NE(doc.str().find(path_state_table_markdown()), std::string::npos) << "docs/architecture.md must contain:\n"
                                                                               << path_state_table_markdown();
+}
+
+TEST(SppmState, ArchitectureDocHasTheCurrentEntryTable) {
+    std::ifstream in(WAVEPATH_SOURCE_DIR "/docs/architecture.md");
+    std::stringstream doc;
+    doc << in.rdbuf();
+    EXPECT_NE(doc.str().find(sppm_state_table_markdown()), std::string::npos) << "docs/architecture.md must contain:\n"
+                                                                              << sppm_state_table_markdown();
 }
 
 // The fields' "written by" and "read by" (the docs table's columns) name
@@ -69,10 +78,15 @@ TEST(PathState, FieldsExistOnlyForFeaturesInUse) {
     FeatureSet glass_mis_host_traced = glass_mis, diffuse_host_traced = diffuse_only;
     glass_mis_host_traced.host_traced = diffuse_host_traced.host_traced = true;
     EXPECT_EQ(PathState::bytes_per_path(diffuse_host_traced), base);  // no shadow rays: nothing more
+    FeatureSet sppm = glass_mis;
+    sppm.sppm = true;
+    EXPECT_EQ(PathState::bytes_per_path(sppm), PathState::bytes_per_path(glass_mis) + 4 + 12);  // photon, its flux
+    FeatureSet everything = glass_mis_host_traced;
+    everything.sppm = true;
     std::size_t total = 0;
     for (const PathStateField& f : path_state_fields()) total += f.bytes;
-    EXPECT_EQ(PathState::bytes_per_path(glass_mis_host_traced), total);
-    EXPECT_EQ(PathState::bytes_per_path(glass_mis), total - 4);  // the shadow rays' verdicts, from the host
+    EXPECT_EQ(PathState::bytes_per_path(everything), total);
+    EXPECT_EQ(PathState::bytes_per_path(glass_mis), total - 4 - 16);  // the shadow verdicts, the photons
 }
 
 }  // namespace

@@ -18,8 +18,14 @@
 namespace wp {
 namespace {
 
-const std::map<std::string, std::uint32_t> kQueueByName{
-    {"FREE", WP_QUEUE_FREE}, {"HIT", WP_QUEUE_HIT}, {"RAY", WP_QUEUE_RAY}, {"SHADOW", WP_QUEUE_SHADOW}};
+const std::map<std::string, std::uint32_t> kQueueByName{{"FREE", WP_QUEUE_FREE},
+                                                        {"HIT", WP_QUEUE_HIT},
+                                                        {"RAY", WP_QUEUE_RAY},
+                                                        {"SHADOW", WP_QUEUE_SHADOW},
+                                                        {"PHOTON_FREE", WP_QUEUE_PHOTON_FREE},
+                                                        {"PHOTON_RAY", WP_QUEUE_PHOTON_RAY},
+                                                        {"PHOTON_HIT", WP_QUEUE_PHOTON_HIT},
+                                                        {"PHOTON_SCATTER", WP_QUEUE_PHOTON_SCATTER}};
 
 std::uint32_t bit(const char* queue) { return 1u << kQueueByName.at(queue); }
 
@@ -39,7 +45,7 @@ std::string queue_names(std::uint32_t mask) {
 
 // Queue names in `text` (FREE, HIT ...), as a mask.
 std::uint32_t queues_named_in(const std::string& text) {
-    static const std::regex word(R"(\b[A-Z]+\b)");
+    static const std::regex word(R"(\b[A-Z_]+\b)");
     std::uint32_t mask = 0;
     for (std::sregex_iterator m(text.begin(), text.end(), word), end; m != end; ++m)
         if (auto queue = kQueueByName.find(m->str()); queue != kQueueByName.end()) mask |= 1u << queue->second;
@@ -97,6 +103,12 @@ TEST(StageDeclaration, IntersectShadowRunsOnlyWithNextEventEstimation) {
     features.nee = true;
     const std::vector<Stage> with_nee{Stage::generate, Stage::intersect, Stage::shade, Stage::intersect_shadow};
     EXPECT_EQ(iteration_stages(features), with_nee);
+    EXPECT_TRUE(iteration_stages(features, StageLoop::PHOTON).empty());
+    features.sppm = true;  // the camera pass is path tracing's; the photon pass runs its own loop
+    EXPECT_EQ(iteration_stages(features), with_nee);
+    const std::vector<Stage> photons{Stage::emit_photons, Stage::intersect_photons, Stage::deposit_photons,
+                                     Stage::scatter_photons};
+    EXPECT_EQ(iteration_stages(features, StageLoop::PHOTON), photons);
 }
 
 // Where the host traces (--intersector embree), a stage that traces reads
