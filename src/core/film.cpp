@@ -34,12 +34,6 @@ PhotonEstimate PhotonEstimate::start(std::uint64_t pixels, std::uint64_t photons
     return estimate;
 }
 
-double PhotonEstimate::mean_radius() const {
-    double sum = 0.0;
-    for (double r : radius) sum += r;
-    return radius.empty() ? 0.0 : sum / double(radius.size());
-}
-
 Film Film::empty(int width, int height, std::uint64_t at, bool with_squares) {
     Film film;
     film.width = width;

@@ -41,7 +41,6 @@ struct PhotonEstimate {
     // Every pixel at radius `radius`, no photon yet.
     static PhotonEstimate start(std::uint64_t pixels, std::uint64_t photons_per_iteration, double radius);
     bool empty() const { return photons_per_iteration == 0; }
-    double mean_radius() const;
     bool operator==(const PhotonEstimate&) const = default;
 };
 

@@ -55,16 +55,7 @@ class ReferenceFilmRenderer : public FilmRenderer {
 
     std::uint64_t pass_items() const override { return kPassItems; }
 
-    RenderStats stats() const override {
-        RenderStats stats;
-        stats.threads = counts_.size();
-        for (const reference::RayCounts& c : counts_) {
-            stats.extension_rays += c.extension;
-            stats.shadow_rays += c.shadow;
-            stats.add_nonfinite(c.nonfinite);
-        }
-        return stats;
-    }
+    RenderStats stats() const override { return reference::summed_stats(counts_); }
 
  protected:
     // Tiles go to the threads; each pixel adds its samples among `items` in

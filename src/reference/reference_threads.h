@@ -1,5 +1,5 @@
-// What the reference's renderers share: the threads they render on, and how
-// a value they computed enters a film's exact sums.
+// What the reference's renderers share: the threads they render on, their
+// figures, and how a value they computed enters a film's exact sums.
 #pragma once
 
 #include <algorithm>
@@ -8,6 +8,8 @@
 #include <vector>
 
 #include "core/film.h"
+#include "core/render.h"
+#include "reference/path_tracer.h"
 
 namespace wp::reference {
 
@@ -25,6 +27,21 @@ void on_threads(int threads, const Work& work) {
     for (int i = 1; i < threads; ++i) workers.emplace_back(work, i);
     work(0);
     for (std::thread& w : workers) w.join();
+}
+
+// The figures of a render's threads (one RayCounts each), summed.
+inline RenderStats summed_stats(const std::vector<RayCounts>& counts) {
+    RenderStats stats;
+    stats.threads = counts.size();
+    for (const RayCounts& c : counts) {
+        stats.extension_rays += c.extension;
+        stats.shadow_rays += c.shadow;
+        stats.photons += c.photons;
+        stats.photon_rays += c.photon_rays;
+        stats.photon_deposits += c.photon_deposits;
+        stats.add_nonfinite(c.nonfinite);
+    }
+    return stats;
 }
 
 // A value as the film sums it: a float exactly as the kernels' film does, a

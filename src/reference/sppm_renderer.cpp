@@ -52,19 +52,7 @@ class ReferenceSppmRenderer : public FilmRenderer {
 
     std::uint64_t pass_items() const override { return pixels_; }
 
-    RenderStats stats() const override {
-        RenderStats stats;
-        stats.threads = counts_.size();
-        for (const reference::RayCounts& c : counts_) {
-            stats.extension_rays += c.extension;
-            stats.shadow_rays += c.shadow;
-            stats.photons += c.photons;
-            stats.photon_rays += c.photon_rays;
-            stats.photon_deposits += c.photon_deposits;
-            stats.add_nonfinite(c.nonfinite);
-        }
-        return stats;
-    }
+    RenderStats stats() const override { return reference::summed_stats(counts_); }
 
  protected:
     void render_items(const ItemRange& items, const Progress& progress) override {

@@ -134,6 +134,16 @@ const UsageCase kUsageErrors[] = {
     {"UnknownHemisphere", {"--hemisphere", "cos"}, "--hemisphere: "},
     {"UnknownFlag", {"--sp", "4"}, "The following argument"},
     {"FlagWithoutValue", {"--spp"}, "--spp"},
+    {"UnknownIntegrator", {"--integrator", "bdpt"}, "--integrator: "},
+    {"PhotonsWithoutSppm", {"--photons", "100"}, "--photons: applies to the sppm integrator only"},
+    {"AlphaWithoutSppm", {"--alpha", "0.5"}, "--alpha: applies to the sppm integrator only"},
+    {"ZeroPhotons", {"--integrator", "sppm", "--photons", "0"}, "--photons: must be in [1, 1073741824], got 0"},
+    {"AlphaAboveOne", {"--integrator", "sppm", "--alpha", "1.5"}, "--alpha: "},
+    {"SppmOnTheMegakernel", {"--integrator", "sppm", "--backend", "megakernel"}, "--backend megakernel: "},
+    {"SppmWithTargetError",
+     {"--integrator", "sppm", "--target-error", "0.1"},
+     "--target-error: does not apply to the sppm integrator"},
+    {"SppmAdaptive", {"--integrator", "sppm", "--adaptive", "0.1"}, "--adaptive: does not apply to the sppm integrator"},
 };
 
 void PrintTo(const UsageCase& c, std::ostream* out) { *out << c.name; }
@@ -241,6 +251,24 @@ TEST_F(CliTest, StatsJsonHasConsistentFigures) {
     EXPECT_GE(extension, 72u);
     EXPECT_GT(shadow, 0u);
     EXPECT_LE(shadow, extension);
+}
+
+// SPPM on the reference (no kernel build): the photons' figures, from the
+// 2 iterations of 50 photons asked for.
+TEST_F(CliTest, StatsJsonHasSppmFigures) {
+    const std::string stats_path = outputs_ / "stats.json";
+    const CommandResult result = render(base_scene().dump(), {"--backend", "reference", "--integrator", "sppm",
+                                                              "--photons", "50", "--initial-radius", "0.25",
+                                                              "--stats-json", stats_path});
+    ASSERT_EQ(result.exit_code, 0) << result.err;
+    EXPECT_NE(result.err.find(", sppm: 100 photons, "), std::string::npos) << result.err;
+    const json stats = json::parse(read_text(stats_path));
+    EXPECT_EQ(stats["sppm"]["photons"], 100);
+    EXPECT_GE(stats["sppm"]["photon_rays"].get<std::uint64_t>(), 100u);
+    EXPECT_GT(stats["sppm"]["photon_deposits"].get<std::uint64_t>(), 0u);
+    const double radius = stats["sppm"]["mean_radius"];
+    EXPECT_GT(radius, 0.0);
+    EXPECT_LE(radius, 0.25);  // radii only shrink
 }
 
 TEST_F(CliTest, FlagsOverrideTheScene) {

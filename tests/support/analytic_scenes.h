@@ -28,7 +28,11 @@ inline Scene empty_scene(const RenderBlock& block, const glm::dvec3& look_at, do
     scene.camera.fov_y_degrees = fov_y_degrees;
     scene.camera.width = block.width;
     scene.camera.height = block.height;
-    scene.render = {block.spp, block.max_depth, block.rr_depth, block.seed};
+    scene.render = RenderSettings{};
+    scene.render.spp = block.spp;
+    scene.render.max_depth = block.max_depth;
+    scene.render.rr_depth = block.rr_depth;
+    scene.render.seed = block.seed;
     return scene;
 }
 

@@ -17,21 +17,16 @@
 namespace wp {
 namespace {
 
-TEST(PathState, ArchitectureDocHasTheCurrentFieldTable) {
+void expect_architecture_doc_contains(const std::string& table) {
     std::ifstream in(WAVEPATH_SOURCE_DIR "/docs/architecture.md");
     std::stringstream doc;
     doc << in.rdbuf();
-    EXPECT_NE(doc.str().find(path_state_table_markdown()), std::string::npos) << "docs/architecture.md must contain:\n"
-                                                                              << path_state_table_markdown();
+    EXPECT_NE(doc.str().find(table), std::string::npos) << "docs/architecture.md must contain:\n" << table;
 }
 
-TEST(SppmState, ArchitectureDocHasTheCurrentEntryTable) {
-    std::ifstream in(WAVEPATH_SOURCE_DIR "/docs/architecture.md");
-    std::stringstream doc;
-    doc << in.rdbuf();
-    EXPECT_NE(doc.str().find(sppm_state_table_markdown()), std::string::npos) << "docs/architecture.md must contain:\n"
-                                                                              << sppm_state_table_markdown();
-}
+TEST(PathState, ArchitectureDocHasTheCurrentFieldTable) { expect_architecture_doc_contains(path_state_table_markdown()); }
+
+TEST(SppmState, ArchitectureDocHasTheCurrentEntryTable) { expect_architecture_doc_contains(sppm_state_table_markdown()); }
 
 // The fields' "written by" and "read by" (the docs table's columns) name
 // exactly the stages whose kernels, with the kernel headers they include,
