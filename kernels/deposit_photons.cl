@@ -32,9 +32,9 @@ __kernel __attribute__((reqd_work_group_size(WP_GROUP_SIZE, 1, 1))) void deposit
     lane_uint count = lands ? gather(SPPM_IN(grid_starts), bucket + 1u) - first : (lane_uint)0u;
     for (uint e = 0u; lanes_any(e < count); ++e) {
         lane_int candidate = e < count;
-        Lanes near = pixel_lanes(gather(SPPM_IN(grid_entries), candidate ? first + e : (lane_uint)0u), candidate, pixels);
-        lane_int takes = candidate &&
-                         photon_depth_counts(SPPM_READ(visible_depth, near), depth, scene->max_depth) &&
+        Lanes near =
+            pixel_lanes(gather(SPPM_IN(grid_entries), candidate ? first + e : (lane_uint)0u), candidate, pixels);
+        lane_int takes = candidate && photon_depth_counts(SPPM_READ(visible_depth, near), depth, scene->max_depth) &&
                          photon_within(SPPM_READ(visible_point, near), SPPM_READ(sppm_radius, near), x);
         vec3 flux = photon_deposit(SPPM_READ(visible_weight, near), SPPM_READ(visible_geometric_normal, near),
                                    SPPM_READ(visible_normal, near), d, power, WP_USES_SHADING_NORMALS);
@@ -42,7 +42,8 @@ __kernel __attribute__((reqd_work_group_size(WP_GROUP_SIZE, 1, 1))) void deposit
         add_flux_where(SPPM_OUT(iteration_flux), near.slot, takes, flux);
     }
 #endif
-    lane_int ends = lanes.active && (v.material.type == WP_MATERIAL_EMITTER || !photon_may_scatter(depth, scene->max_depth));
+    lane_int ends =
+        lanes.active && (v.material.type == WP_MATERIAL_EMITTER || !photon_may_scatter(depth, scene->max_depth));
     lane_int scatters = lanes.active && !ends;
 #else
     lane_int ends = 0, scatters = 0;

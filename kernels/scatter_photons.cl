@@ -20,13 +20,13 @@ __kernel __attribute__((reqd_work_group_size(WP_GROUP_SIZE, 1, 1))) void scatter
         vertex_at(WP_SCENE_ARGS, PATH_READ(hit_shape, lanes), PATH_READ(origin, lanes), d, PATH_READ(hit_t, lanes));
     uint seed = scene->seed, iteration = photon_pass_iteration(scene, pass_start);
     lane_uint photon = PATH_READ(photon, lanes), depth = PATH_READ(depth, lanes);
-    BsdfSample scattered =
-        photon_bsdf_sample(scatter_vertex(v, d, photon_bsdf_random(seed, iteration, photon, depth), WP_TRANSPORT_IMPORTANCE),
-                           v3_neg(d), v.nf, v.ns, WP_USES_SHADING_NORMALS);
+    BsdfSample scattered = photon_bsdf_sample(
+        scatter_vertex(v, d, photon_bsdf_random(seed, iteration, photon, depth), WP_TRANSPORT_IMPORTANCE), v3_neg(d),
+        v.nf, v.ns, WP_USES_SHADING_NORMALS);
     lane_uint new_depth = depth + 1u, dropped = 0u;
-    RouletteOutcome roulette =
-        russian_roulette(v3_mul(PATH_READ(throughput, lanes), scattered.weight), REAL(1.0), new_depth >= scene->rr_depth,
-                         photon_uniform(seed, iteration, photon, depth, DIM_PHOTON_ROULETTE));
+    RouletteOutcome roulette = russian_roulette(v3_mul(PATH_READ(throughput, lanes), scattered.weight), REAL(1.0),
+                                                new_depth >= scene->rr_depth,
+                                                photon_uniform(seed, iteration, photon, depth, DIM_PHOTON_ROULETTE));
     lane_int continues =
         lanes.active && scattered.valid && roulette.survives && throughput_is_finite(roulette.throughput, &dropped);
     count_nonfinite(slot_nonfinite, WP_COUNTER_NONFINITE_SCATTER, lanes,

@@ -8,8 +8,8 @@
 #include "device/features.h"
 #include "interface/kernel_parameters.h"
 #include "interface/path_state.h"
-#include "interface/sppm_state.h"
 #include "interface/scene_layout.h"
+#include "interface/sppm_state.h"
 #include "shared/bvh.h"
 #include "shared/triangle.h"
 

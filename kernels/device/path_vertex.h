@@ -286,10 +286,10 @@ WP_FN BsdfSample scatter_vertex(Vertex v, vec3 d, BsdfRandom random, uint transp
     vec3 wo = v3_neg(d);
     BsdfSample scattered = no_bsdf_sample();
 #ifdef WP_HAS_DIFFUSE
-    scattered = select_bsdf_sample(m.type == WP_MATERIAL_DIFFUSE,
-                                   diffuse_sample(m.albedo, v.nf, v.ns, random.u, random.v, WP_USES_UNIFORM_HEMISPHERE,
-                                                  WP_USES_SHADING_NORMALS),
-                                   scattered);
+    scattered = select_bsdf_sample(
+        m.type == WP_MATERIAL_DIFFUSE,
+        diffuse_sample(m.albedo, v.nf, v.ns, random.u, random.v, WP_USES_UNIFORM_HEMISPHERE, WP_USES_SHADING_NORMALS),
+        scattered);
 #endif
 #ifdef WP_HAS_MIRROR
     scattered = select_bsdf_sample(m.type == WP_MATERIAL_MIRROR,

@@ -110,11 +110,13 @@ WP_FN EmittedPhoton emit_scene_photon(WP_SCENE_PARAMS, uint iteration, lane_uint
 #else
     real u_triangle = REAL(0.0);
 #endif
-    EmissionPoint e = emission_point(WP_SCENE_ARGS, light, photon_uniform(seed, iteration, photon, 0u, DIM_PHOTON_POINT_U),
-                                     photon_uniform(seed, iteration, photon, 0u, DIM_PHOTON_POINT_V), u_triangle);
+    EmissionPoint e =
+        emission_point(WP_SCENE_ARGS, light, photon_uniform(seed, iteration, photon, 0u, DIM_PHOTON_POINT_U),
+                       photon_uniform(seed, iteration, photon, 0u, DIM_PHOTON_POINT_V), u_triangle);
     Material emitter = material_at(materials, e.material);
     return emit_photon(e.at, shape_point_error(e.magnitude), e.area, light_selection_pmf(light_cdf, light),
-                       emitter.emission, emitter.two_sided, photon_uniform(seed, iteration, photon, 0u, DIM_PHOTON_SIDE),
+                       emitter.emission, emitter.two_sided,
+                       photon_uniform(seed, iteration, photon, 0u, DIM_PHOTON_SIDE),
                        photon_uniform(seed, iteration, photon, 0u, DIM_PHOTON_DIRECTION_U),
                        photon_uniform(seed, iteration, photon, 0u, DIM_PHOTON_DIRECTION_V));
 }

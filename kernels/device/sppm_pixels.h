@@ -69,8 +69,8 @@ WP_FN void add_flux_where(volatile __global uint *words, lane_uint pixel, lane_i
     film_words_add(words + (3u * pixel + 1u) * WP_FILM_WORDS, film_sum_from_float(value.y));
     film_words_add(words + (3u * pixel + 2u) * WP_FILM_WORDS, film_sum_from_float(value.z));
 #else
-#define WP_ADD_FLUX_LANE(s, k)                                                                           \
-    if (where.s) {                                                                                     \
+#define WP_ADD_FLUX_LANE(s, k)                                                                       \
+    if (where.s) {                                                                                   \
         film_words_add(words + (3u * pixel.s + 0u) * WP_FILM_WORDS, film_sum_from_float(value.x.s)); \
         film_words_add(words + (3u * pixel.s + 1u) * WP_FILM_WORDS, film_sum_from_float(value.y.s)); \
         film_words_add(words + (3u * pixel.s + 2u) * WP_FILM_WORDS, film_sum_from_float(value.z.s)); \

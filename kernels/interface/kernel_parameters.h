@@ -50,7 +50,7 @@
  * state (interface/sppm_state.h) follows these, as it follows the path state
  * in the stage kernels. counts: the counters of interface/queues.h. */
 #define WP_SPPM_KERNEL_PARAMETERS(FIRST, NEXT) \
-    FIRST(__global const SceneHeader *, scene)  \
+    FIRST(__global const SceneHeader *, scene) \
     NEXT(__global uint *, counts)
 
 #define WP_MEGAKERNEL_PARAMETERS(FIRST, NEXT) \

@@ -36,8 +36,7 @@ WP_FN lane_int photon_within(vec3 center, real radius, vec3 x) {
  * path tracing; a photon that has not scattered (depth 0) is direct light,
  * which the camera pass counts. */
 WP_FN lane_int photon_depth_counts(lane_uint visible_depth, lane_uint photon_depth, uint max_depth) {
-    return visible_depth != WP_NO_VISIBLE_POINT && photon_depth >= 1u &&
-           visible_depth + 1u + photon_depth <= max_depth;
+    return visible_depth != WP_NO_VISIBLE_POINT && photon_depth >= 1u && visible_depth + 1u + photon_depth <= max_depth;
 }
 
 /* What a photon carrying `power` along `direction` adds to the flux of a

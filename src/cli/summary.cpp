@@ -85,8 +85,8 @@ std::string format_summary_line(const RunSummary& summary) {
                   per_second(s.shadow_rays, s.time_s) * 1e-6, static_cast<unsigned long long>(s.nonfinite));
     return "wavepath: wrote " + summary.output_path + " (" + std::to_string(summary.width) + "x" +
            std::to_string(summary.height) + ", " + samples_text(summary) + ", " + summary.backend +
-           ranks_text(summary) + ") " + figures + nonfinite_breakdown(s) + error_text(summary) + adaptive_text(summary) +
-           sppm_text(summary);
+           ranks_text(summary) + ") " + figures + nonfinite_breakdown(s) + error_text(summary) +
+           adaptive_text(summary) + sppm_text(summary);
 }
 
 nlohmann::json stats_json(const RunSummary& summary) {

@@ -41,8 +41,8 @@ std::string format_summary_line(const RunSummary& summary);
 
 // {"backend","width","height","spp","spp_done_min","spp_done_max","stopped","error_estimate" (or null),
 //  "adaptive" (null, or {"spp_mean","stopped_early"}),
-//  "sppm" (null, or {"photons","photon_rays","photon_deposits","mean_radius"}), "ranks","samples_per_rank","render_s_per_rank","time_s",
-//  "samples","samples_per_s",
+//  "sppm" (null, or {"photons","photon_rays","photon_deposits","mean_radius"}),
+//  "ranks","samples_per_rank","render_s_per_rank","time_s", "samples","samples_per_s",
 //  "extension_rays","extension_rays_per_s","shadow_rays","shadow_rays_per_s","nonfinite",
 //  "nonfinite_by_stage": {"emission","direct","scatter"}}
 nlohmann::json stats_json(const RunSummary& summary);

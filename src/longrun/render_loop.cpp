@@ -294,10 +294,10 @@ class LongRender {
     // and each rank's work items and busy time, on the root.
     void gather_stats() {
         const RenderStats mine = renderer_.stats();
-        std::vector<std::uint64_t> figures{shares_.rendered(), std::uint64_t(shares_.busy_s() * 1e9),
-                                           mine.extension_rays,  mine.shadow_rays,
-                                           mine.threads,         mine.photons,
-                                           mine.photon_rays,     mine.photon_deposits};
+        std::vector<std::uint64_t> figures{shares_.rendered(),  std::uint64_t(shares_.busy_s() * 1e9),
+                                           mine.extension_rays, mine.shadow_rays,
+                                           mine.threads,        mine.photons,
+                                           mine.photon_rays,    mine.photon_deposits};
         figures.insert(figures.end(), mine.nonfinite_by_stage.begin(), mine.nonfinite_by_stage.end());
         const std::vector<std::uint64_t> all = ranks_.gather(figures);
         for (std::size_t at = 0; at < all.size(); at += figures.size()) {

@@ -361,8 +361,8 @@ Vec3<Real> trace_path(const ReferenceScene<Real>& scene, Ray<Real> ray, const Sa
             *visible = {surface.point, nf, ns, throughput * material.albedo, bounce};
             if (!M::camera_pass_bounces_from_visible_point(scene.nee, scene.mis)) break;
         }
-        typename M::BsdfSample next =
-            scatter(scene, material, ray.direction, front, nf, ns, camera_bsdf_random(rng, bounce), WP_TRANSPORT_RADIANCE);
+        typename M::BsdfSample next = scatter(scene, material, ray.direction, front, nf, ns,
+                                              camera_bsdf_random(rng, bounce), WP_TRANSPORT_RADIANCE);
         if (!next.valid) break;
         throughput *= next.weight;
         ray = {M::offset_ray_origin(surface.point, next.leave_side, surface.error), next.direction};

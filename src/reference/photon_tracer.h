@@ -96,16 +96,17 @@ void trace_photon(const ReferenceScene<Real>& scene, const PhotonRng<Real>& rng,
         SurfacePoint<Real> surface = surface_at(scene, ray, hit);
         const auto& material = scene.materials[surface.material];
         if (material.type == MaterialType::Emitter) break;  // reflects nothing
-        if (material.type == MaterialType::Diffuse) deposit(surface.point, ray.direction, photon.flux * throughput, depth);
+        if (material.type == MaterialType::Diffuse)
+            deposit(surface.point, ray.direction, photon.flux * throughput, depth);
         if (!M::photon_may_scatter(depth, static_cast<std::uint32_t>(scene.render.max_depth))) break;
 
         typename M::FacingNormals facing = M::normals_facing(ray.direction, surface.normal, surface.shading);
         const typename M::BsdfRandom random{rng(depth, DIM_PHOTON_BSDF_LOBE), rng(depth, DIM_PHOTON_BSDF_U),
                                             rng(depth, DIM_PHOTON_BSDF_V)};
-        typename M::BsdfSample next = M::photon_bsdf_sample(
-            scatter(scene, material, ray.direction, facing.front, facing.nf, facing.ns, random,
-                    WP_TRANSPORT_IMPORTANCE),
-            -ray.direction, facing.nf, facing.ns, scene.shading_normals);
+        typename M::BsdfSample next =
+            M::photon_bsdf_sample(scatter(scene, material, ray.direction, facing.front, facing.nf, facing.ns, random,
+                                          WP_TRANSPORT_IMPORTANCE),
+                                  -ray.direction, facing.nf, facing.ns, scene.shading_normals);
         if (!next.valid) break;
         throughput *= next.weight;
         ray = {M::offset_ray_origin(surface.point, next.leave_side, surface.error), next.direction};

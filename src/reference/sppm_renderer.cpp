@@ -172,9 +172,11 @@ class ReferenceSppmRenderer : public FilmRenderer {
                 for (std::uint32_t e = grid_.starts[bucket]; e < grid_.starts[bucket + 1]; ++e) {
                     const std::uint32_t p = grid_.entries[e];
                     const reference::VisiblePoint<Real>& vp = visible_[p];
-                    if (!M::photon_depth_counts(vp.depth, depth, max_depth) || !M::photon_within(vp.point, radius_[p], x))
+                    if (!M::photon_depth_counts(vp.depth, depth, max_depth) ||
+                        !M::photon_within(vp.point, radius_[p], x))
                         continue;
-                    const vec3 flux = M::photon_deposit(vp.weight, vp.nf, vp.ns, direction, power, scene_.shading_normals);
+                    const vec3 flux =
+                        M::photon_deposit(vp.weight, vp.nf, vp.ns, direction, power, scene_.shading_normals);
                     std::atomic_ref<std::uint32_t>(photon_counts_[p]).fetch_add(1u);
                     for (int c = 0; c < kFilmChannels; ++c)
                         film_words_add(&photon_flux_[(kFilmChannels * p + c) * WP_FILM_WORDS],
@@ -209,8 +211,8 @@ class ReferenceSppmRenderer : public FilmRenderer {
     std::vector<reference::RayCounts> counts_;  // one per thread
     Film film_;                                 // the camera passes' sums
     std::vector<reference::VisiblePoint<Real>> visible_;
-    std::vector<Real> count_, radius_;  // N, r
-    std::vector<vec3> flux_;            // tau
+    std::vector<Real> count_, radius_;          // N, r
+    std::vector<vec3> flux_;                    // tau
     std::vector<std::uint32_t> photon_counts_;  // M of the iteration
     std::vector<film_word> photon_flux_;        // Phi of the iteration, WP_FILM_WORDS per pixel and channel
     Grid grid_;

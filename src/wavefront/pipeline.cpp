@@ -25,8 +25,8 @@ const std::vector<std::string>& wavefront_kernel_files() {
     static const std::vector<std::string> files = [] {
         std::vector<std::string> names;
         for (const StageDeclaration& stage : stage_declarations) names.push_back(std::string(stage.kernel) + ".cl");
-        for (const char* other :
-             {"compact.cl", "accumulate.cl", "count_depths.cl", "intersect_bound.cl", "photon_grid.cl", "sppm_update.cl"})
+        for (const char* other : {"compact.cl", "accumulate.cl", "count_depths.cl", "intersect_bound.cl",
+                                  "photon_grid.cl", "sppm_update.cl"})
             names.push_back(other);
         return names;
     }();

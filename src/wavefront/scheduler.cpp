@@ -96,8 +96,8 @@ void run_sppm_iteration(Pipeline& pipeline, std::uint32_t iteration, const Progr
     run_schedule(pipeline, {iteration * pixels, (iteration + 1) * pixels}, progress, totals, iterations);
     if (pipeline.photons_per_iteration() > 0 && sppm.build_grid(pipeline.launcher())) {
         pipeline.begin_photon_pass(iteration);
-        drain_pass(pipeline, StageLoop::PHOTON, pipeline.photons_per_iteration(), [](std::uint32_t) {}, totals,
-                   iterations);
+        drain_pass(
+            pipeline, StageLoop::PHOTON, pipeline.photons_per_iteration(), [](std::uint32_t) {}, totals, iterations);
     }
     sppm.update(pipeline.launcher());
     totals.photon_deposits += pipeline.photon_deposits();

@@ -4,9 +4,9 @@
 #include <stdexcept>
 #include <vector>
 
+#include "core/shared_math.h"
 #include "interface/sppm_state.h"
 #include "opencl/kernel_arguments.h"
-#include "core/shared_math.h"
 
 namespace wp {
 

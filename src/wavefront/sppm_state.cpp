@@ -26,9 +26,9 @@ const std::vector<SppmStateField>& sppm_state_fields() {
 }
 
 std::string sppm_state_table_markdown() {
-    static const char* size_names[] = {
-        "1 per pixel", "3 x 8 words per pixel (exact flux sums)", "1 per bucket, + 1", "1 per 256 buckets, + 1",
-        "8 per pixel", "4"};
+    static const char* size_names[] = {"1 per pixel",       "3 x 8 words per pixel (exact flux sums)",
+                                       "1 per bucket, + 1", "1 per 256 buckets, + 1",
+                                       "8 per pixel",       "4"};
     std::ostringstream table;
     table << "| entry | type | elements | written by | read by |\n|---|---|---|---|---|\n";
     for (const SppmStateField& f : sppm_state_fields())

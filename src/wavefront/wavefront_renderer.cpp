@@ -171,9 +171,7 @@ class WavefrontFilmRenderer : public FilmRenderer {
     }
 
     // SPPM: an iteration (its camera pass may take several of the pipeline's passes).
-    std::uint64_t pass_items() const override {
-        return pixels_ != 0 ? pixels_ : pipeline_.pass_capacity();
-    }
+    std::uint64_t pass_items() const override { return pixels_ != 0 ? pixels_ : pipeline_.pass_capacity(); }
 
     RenderStats stats() const override {
         RenderStats stats;
@@ -244,7 +242,9 @@ class WavefrontFilmRenderer : public FilmRenderer {
         for (std::uint64_t iteration = first; iteration < end; ++iteration) {
             Progress within;  // the camera pass's share of the iteration stands for it
             if (progress.samples)
-                within.samples = [&](double f) { progress.report((double(iteration - first) + f) / double(end - first)); };
+                within.samples = [&](double f) {
+                    progress.report((double(iteration - first) + f) / double(end - first));
+                };
             run_sppm_iteration(pipeline_, static_cast<std::uint32_t>(iteration), within, totals_, report_.iterations);
         }
     }

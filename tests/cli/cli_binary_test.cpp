@@ -143,7 +143,9 @@ const UsageCase kUsageErrors[] = {
     {"SppmWithTargetError",
      {"--integrator", "sppm", "--target-error", "0.1"},
      "--target-error: does not apply to the sppm integrator"},
-    {"SppmAdaptive", {"--integrator", "sppm", "--adaptive", "0.1"}, "--adaptive: does not apply to the sppm integrator"},
+    {"SppmAdaptive",
+     {"--integrator", "sppm", "--adaptive", "0.1"},
+     "--adaptive: does not apply to the sppm integrator"},
 };
 
 void PrintTo(const UsageCase& c, std::ostream* out) { *out << c.name; }
@@ -257,9 +259,9 @@ TEST_F(CliTest, StatsJsonHasConsistentFigures) {
 // 2 iterations of 50 photons asked for.
 TEST_F(CliTest, StatsJsonHasSppmFigures) {
     const std::string stats_path = outputs_ / "stats.json";
-    const CommandResult result = render(base_scene().dump(), {"--backend", "reference", "--integrator", "sppm",
-                                                              "--photons", "50", "--initial-radius", "0.25",
-                                                              "--stats-json", stats_path});
+    const CommandResult result =
+        render(base_scene().dump(), {"--backend", "reference", "--integrator", "sppm", "--photons", "50",
+                                     "--initial-radius", "0.25", "--stats-json", stats_path});
     ASSERT_EQ(result.exit_code, 0) << result.err;
     EXPECT_NE(result.err.find(", sppm: 100 photons, "), std::string::npos) << result.err;
     const json stats = json::parse(read_text(stats_path));

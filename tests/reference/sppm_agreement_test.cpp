@@ -30,8 +30,8 @@
 #include <cstdio>
 
 #include "reference/reference_renderer.h"
-#include "support/statistics.h"
 #include "scene/scene.h"
+#include "support/statistics.h"
 
 namespace wp {
 namespace {
@@ -99,10 +99,11 @@ TEST(SppmAgainstPathTracing, CornellBlocksAgreeWithinNoiseAndAShrinkingBias) {
             const double bias_bound = kBiasAtInitialRadius * path[i].mean() * shrink * shrink;
             const double noise = std::hypot(sppm[i].standard_error(), path[i].standard_error());
             const double difference = sppm[i].mean() - path[i].mean();
-            std::printf("[figure] cornell block %d, %d iterations: SPPM %.5f +- %.5f, path %.5f +- %.5f (%+.2f%%), "
-                        "radius %.3f r0, bias bound %.5f\n",
-                        i, iterations, sppm[i].mean(), sppm[i].standard_error(), path[i].mean(),
-                        path[i].standard_error(), 100.0 * difference / path[i].mean(), shrink, bias_bound);
+            std::printf(
+                "[figure] cornell block %d, %d iterations: SPPM %.5f +- %.5f, path %.5f +- %.5f (%+.2f%%), "
+                "radius %.3f r0, bias bound %.5f\n",
+                i, iterations, sppm[i].mean(), sppm[i].standard_error(), path[i].mean(), path[i].standard_error(),
+                100.0 * difference / path[i].mean(), shrink, bias_bound);
             EXPECT_LE(std::fabs(difference), test::kSigmaTolerance * noise + bias_bound)
                 << "block " << i << " at " << iterations << " iterations";
         }

@@ -19,8 +19,6 @@
 // for path tracing (262,144 samples), 3 s for SPPM (8 renders of 32
 // iterations of 32,768 photons), 4 s for the convergence order (12 renders
 // of 256 iterations of 4,096 photons).
-#include "support/caustic_patch.h"
-
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -29,6 +27,7 @@
 #include <vector>
 
 #include "reference/reference_renderer.h"
+#include "support/caustic_patch.h"
 #include "support/image_statistics.h"
 #include "support/statistics.h"
 
@@ -43,10 +42,8 @@ constexpr int kMaxDepth = 3 + 2 * kRoundTrips;
 constexpr double kInitialRadius = 0.02;
 
 wp::Scene sppm_scene(const CausticPatch& c, int iterations, std::uint32_t photons, std::uint32_t seed) {
-    wp::Scene scene =
-        caustic_patch_scene(RenderBlock{.width = 1, .height = 1, .spp = iterations, .max_depth = kMaxDepth,
-                                        .seed = seed},
-                            c);
+    wp::Scene scene = caustic_patch_scene(
+        RenderBlock{.width = 1, .height = 1, .spp = iterations, .max_depth = kMaxDepth, .seed = seed}, c);
     scene.render.integrator = wp::Integrator::Sppm;
     scene.render.sppm.photons = photons;
     scene.render.sppm.radius = kInitialRadius;
@@ -63,7 +60,8 @@ TEST(CausticPatch, QuadratureGivesTheFormFactorsOfTheLightWithoutGlass) {
     for (auto [x, z] : {std::pair{0.0, 0.0}, std::pair{0.03, -0.01}, std::pair{-0.02, 0.025}}) {
         double form_factor = 0.0;
         for (double dx : {a - x, a + x})
-            for (double dz : {a - z, a + z}) form_factor += wp::test::point_to_corner_rectangle_form_factor(dx, dz, height);
+            for (double dz : {a - z, a + z})
+                form_factor += wp::test::point_to_corner_rectangle_form_factor(dx, dz, height);
         const double expected = air.radiance * std::numbers::pi * form_factor;
         EXPECT_NEAR(wp::test::caustic_patch_irradiance(air, x, z, 0), expected, 1e-9 * expected) << x << " " << z;
     }
@@ -71,8 +69,8 @@ TEST(CausticPatch, QuadratureGivesTheFormFactorsOfTheLightWithoutGlass) {
 
 TEST(CausticPatch, PathTracingAgreesWithTheQuadrature) {
     const CausticPatch c;
-    const wp::Scene scene = caustic_patch_scene(
-        RenderBlock{.width = 32, .height = 32, .spp = 256, .max_depth = kMaxDepth, .seed = 3}, c);
+    const wp::Scene scene =
+        caustic_patch_scene(RenderBlock{.width = 32, .height = 32, .spp = 256, .max_depth = kMaxDepth, .seed = 3}, c);
     const wp::RenderResult result = wp::render_reference(scene, {.threads = 2});
     const double expected = wp::test::caustic_patch_radiance(c, 0.0, 0.0, kRoundTrips);
     const RunningMean mean = wp::test::channel_mean(result.image, 0);

@@ -24,9 +24,13 @@ void expect_architecture_doc_contains(const std::string& table) {
     EXPECT_NE(doc.str().find(table), std::string::npos) << "docs/architecture.md must contain:\n" << table;
 }
 
-TEST(PathState, ArchitectureDocHasTheCurrentFieldTable) { expect_architecture_doc_contains(path_state_table_markdown()); }
+TEST(PathState, ArchitectureDocHasTheCurrentFieldTable) {
+    expect_architecture_doc_contains(path_state_table_markdown());
+}
 
-TEST(SppmState, ArchitectureDocHasTheCurrentEntryTable) { expect_architecture_doc_contains(sppm_state_table_markdown()); }
+TEST(SppmState, ArchitectureDocHasTheCurrentEntryTable) {
+    expect_architecture_doc_contains(sppm_state_table_markdown());
+}
 
 // The fields' "written by" and "read by" (the docs table's columns) name
 // exactly the stages whose kernels, with the kernel headers they include,
