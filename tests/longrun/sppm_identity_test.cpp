@@ -16,7 +16,7 @@
 #include "reference/reference_renderer.h"
 #include "support/temp_directory.h"
 #include "wavefront/wavefront_renderer.h"
-#include "wavefront_test_support.h"
+#include "wavefront/wavefront_test_support.h"
 
 namespace wp {
 namespace {
