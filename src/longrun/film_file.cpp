@@ -208,6 +208,12 @@ FilmFile parse_film_file(const std::vector<char>& bytes, const std::string& path
     film.items.begin = r.get<std::uint64_t>();
     film.items.end = r.get<std::uint64_t>();
     const auto limbs = r.get<std::uint32_t>(), fraction_bits = r.get<std::uint32_t>();
+    // Before any size is taken from the flags: a flag this version does not
+    // know sizes nothing this reader could check.
+    const std::uint32_t known = version >= 3   ? kFlagSquares | kFlagRound | kFlagPhotons
+                                : version == 2 ? kFlagSquares | kFlagRound
+                                               : kFlagSquares;
+    if (flags & ~known) refuse(path, "unknown flags " + std::to_string(flags));
 
     // Sizes from the header are only trusted once bounded.
     if (width < 1 || height < 1 || width > std::uint32_t(kMaxResolution) || height > std::uint32_t(kMaxResolution) ||
@@ -227,10 +233,6 @@ FilmFile parse_film_file(const std::vector<char>& bytes, const std::string& path
     std::uint64_t stored;
     std::memcpy(&stored, bytes.data() + expected - kChecksumBytes, sizeof stored);
     if (stored != fnv1a64(bytes.data(), expected - kChecksumBytes)) refuse(path, "corrupted (checksum mismatch)");
-    const std::uint32_t known = version >= 3   ? kFlagSquares | kFlagRound | kFlagPhotons
-                                : version == 2 ? kFlagSquares | kFlagRound
-                                               : kFlagSquares;
-    if (flags & ~known) refuse(path, "unknown flags " + std::to_string(flags));
     if (limbs != WP_FILM_LIMBS || fraction_bits != WP_FILM_FRACTION_BITS)
         refuse(path, "film sums of " + std::to_string(limbs) + " limbs and " + std::to_string(fraction_bits) +
                          " fraction bits, this wavepath keeps " + std::to_string(WP_FILM_LIMBS) + " and " +

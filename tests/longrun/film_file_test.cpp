@@ -65,6 +65,23 @@ TEST_F(FilmFileTest, ReadsBackWhatWasWritten) {
     EXPECT_EQ(dir_.entries(), std::vector<std::string>{"film.wpfilm"});  // no temporary left
 }
 
+// SPPM's photon estimate (flag bit 2) reads back exactly; one with a
+// radius of 0 is refused as corrupted.
+TEST_F(FilmFileTest, SppmPhotonEstimatesReadBackAndBadOnesAreRefused) {
+    Film film = example_film(false);
+    film.photons = PhotonEstimate::start(15, 4096, 0.125);
+    for (std::size_t p = 0; p < 15; ++p) {
+        film.photons.count[p] = double(p) * 0.5f;
+        film.photons.radius[p] = 0.125 - double(p) * 1e-3f;
+        for (int c = 0; c < 3; ++c) film.photons.flux[3 * p + c] = double(p + c) * 0.3f;
+    }
+    write_film_file(path_, {kIdentity, film});
+    EXPECT_EQ(read_film_file(path_).film.photons, film.photons);
+    film.photons.radius[7] = 0.0;
+    write_film_file(path_, {kIdentity, film});
+    EXPECT_EQ(read_error(path_), path_ + ": corrupted photon estimate (a count, radius or flux out of range)");
+}
+
 // The estimator field holds 16 bytes: a name of all 16 reads back whole (it
 // once lost its last byte, so "reference-double" came back "reference-doubl"
 // and longer names collided with shorter ones); a longer one is refused when
@@ -111,9 +128,9 @@ TEST_F(FilmFileTest, CorruptedBytesFailTheChecksum) {
 TEST_F(FilmFileTest, NewerVersionsAndOtherFilesAreRefused) {
     write_film_file(path_, {kIdentity, example_film(false)});
     std::vector<char> bytes = file_bytes(path_);
-    bytes[8] = 3;  // the version's low byte
+    bytes[8] = 4;  // the version's low byte
     write_bytes(path_, bytes);
-    EXPECT_EQ(read_error(path_), path_ + ": film format version 3 is newer than this wavepath reads (2)");
+    EXPECT_EQ(read_error(path_), path_ + ": film format version 4 is newer than this wavepath reads (3)");
     test::write_text(path_, "P3\n1 1\n255\n0 0 0\n");
     EXPECT_EQ(read_error(path_), path_ + ": not a wavepath film file (no WPFILM signature)");
     EXPECT_EQ(read_error(dir_ / "missing.wpfilm"), dir_ / "missing.wpfilm" + ": cannot read the film file");
