@@ -17,7 +17,6 @@ line through the non-adaptive renders) over its own (equal time), and the
 non-adaptive relMSE at its mean spp over its own (equal samples: what the
 placement of the samples gains, before the cost of rounds and checks).
 """
-import argparse
 import json
 import os
 import statistics
@@ -27,7 +26,7 @@ import time
 
 import numpy as np
 
-from run import ROOT, Runner, loglog_at, rel_mse, run_meta, scene_max_depth, spread
+from run import ROOT, Runner, loglog_at, rel_mse, run_meta, scene_max_depth, spread, study_arguments
 from mitsuba_peer import MitsubaPeer
 
 SCENES = ["room.json", "cornell.json"]
@@ -118,14 +117,8 @@ def markdown(meta, rows, repeats):
 
 
 def main():
-    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("--out", default=os.path.join(ROOT, "bench", "results"))
-    parser.add_argument("--binary", default=os.path.join(ROOT, "build", "wavepath"))
-    parser.add_argument("--cache", default=os.path.join(ROOT, "bench", "out", "converged-cache"))
-    parser.add_argument("--repeats", type=int, default=5)
-    args = parser.parse_args()
+    args = study_arguments(__doc__)
     start = time.time()
-    os.makedirs(args.out, exist_ok=True)
     with tempfile.TemporaryDirectory(prefix="wavepath-adaptive-") as scratch:
         os.environ.setdefault("WAVEPATH_CACHE_DIR", os.path.join(scratch, "program-cache"))
         binary = os.path.abspath(args.binary)

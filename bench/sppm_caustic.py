@@ -17,7 +17,6 @@ over the image, and the image mean over the truth's; then, for each SPPM row,
 path tracing's relMSE in the region at the same median time (log-log line
 through the path-tracing rows) over SPPM's: the issue's target is at least 10x.
 """
-import argparse
 import json
 import os
 import statistics
@@ -26,7 +25,7 @@ import time
 
 import numpy as np
 
-from run import ROOT, Runner, loglog_at, rel_mse, run_meta, spread
+from run import ROOT, Runner, loglog_at, rel_mse, run_meta, spread, study_arguments
 from mitsuba_peer import MitsubaPeer
 
 SCENE = os.path.join(ROOT, "bench", "scenes", "sppm_caustic.json")
@@ -105,14 +104,8 @@ def markdown(meta, rows, repeats, truth_floor):
 
 
 def main():
-    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("--out", default=os.path.join(ROOT, "bench", "results"))
-    parser.add_argument("--binary", default=os.path.join(ROOT, "build", "wavepath"))
-    parser.add_argument("--cache", default=os.path.join(ROOT, "bench", "out", "converged-cache"))
-    parser.add_argument("--repeats", type=int, default=5)
-    args = parser.parse_args()
+    args = study_arguments(__doc__)
     start = time.time()
-    os.makedirs(args.out, exist_ok=True)
     with tempfile.TemporaryDirectory(prefix="wavepath-sppm-") as scratch:
         os.environ.setdefault("WAVEPATH_CACHE_DIR", os.path.join(scratch, "program-cache"))
         binary = os.path.abspath(args.binary)

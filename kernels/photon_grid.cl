@@ -89,17 +89,33 @@ __kernel __attribute__((reqd_work_group_size(WP_GROUP_SIZE, 1, 1))) void grid_bo
 #endif
 }
 
+#ifdef WP_SPPM
+/* Each `visible` lane's sphere (center, radius) counted into the buckets of
+ * the cells it meets (an atomic increment per listed cell); with `fill`, also
+ * written as `slot` at its bucket's start plus the count before it. */
+WP_FN void list_sphere(GridFrame frame, vec3 center, real radius, lane_int visible, uint buckets,
+                       volatile __global uint *counts, __global const uint *starts, __global uint *entries,
+                       lane_uint slot, int fill) {
+    for (uint k = 0u; k < WP_GRID_CELLS_PER_SPHERE; ++k) {
+        GridCell cell = grid_cell_of_sphere(frame, center, radius, buckets, k);
+        lane_int listed = visible && cell.listed;
+        lane_uint before = atomic_increment_where(counts, cell.bucket, listed);
+        if (fill) store_where(entries, gather(starts, cell.bucket) + before, listed, slot);
+    }
+}
+#endif
+
+/* The work item's pixels' visible points listed in the grid (list_sphere). */
+#define WP_LIST_VISIBLE_POINTS(fill)                                                                              \
+    Lanes own = own_pixel_lanes(scene_pixel_count(scene));                                                        \
+    lane_int visible = own.active && SPPM_READ(visible_depth, own) != WP_NO_VISIBLE_POINT;                        \
+    list_sphere(read_grid_frame(SPPM_IN(grid_frame)), SPPM_READ(visible_point, own), SPPM_READ(sppm_radius, own), \
+                visible, grid_bucket_count(scene), SPPM_OUT(grid_counts), SPPM_IN(grid_starts),                   \
+                SPPM_OUT(grid_entries), own.slot, fill)
+
 __kernel __attribute__((reqd_work_group_size(WP_GROUP_SIZE, 1, 1))) void grid_count(WP_SPPM_PARAMS) {
 #ifdef WP_SPPM
-    Lanes own = own_pixel_lanes(scene_pixel_count(scene));
-    lane_int visible = own.active && SPPM_READ(visible_depth, own) != WP_NO_VISIBLE_POINT;
-    GridFrame frame = read_grid_frame(SPPM_IN(grid_frame));
-    vec3 center = SPPM_READ(visible_point, own);
-    real radius = SPPM_READ(sppm_radius, own);
-    for (uint k = 0u; k < WP_GRID_CELLS_PER_SPHERE; ++k) {
-        GridCell cell = grid_cell_of_sphere(frame, center, radius, grid_bucket_count(scene), k);
-        atomic_increment_where(SPPM_OUT(grid_counts), cell.bucket, visible && cell.listed);
-    }
+    WP_LIST_VISIBLE_POINTS(0);
 #endif
 }
 
@@ -150,17 +166,6 @@ __kernel void grid_scan_write(WP_SPPM_PARAMS) {
 
 __kernel __attribute__((reqd_work_group_size(WP_GROUP_SIZE, 1, 1))) void grid_fill(WP_SPPM_PARAMS) {
 #ifdef WP_SPPM
-    Lanes own = own_pixel_lanes(scene_pixel_count(scene));
-    lane_int visible = own.active && SPPM_READ(visible_depth, own) != WP_NO_VISIBLE_POINT;
-    GridFrame frame = read_grid_frame(SPPM_IN(grid_frame));
-    vec3 center = SPPM_READ(visible_point, own);
-    real radius = SPPM_READ(sppm_radius, own);
-    for (uint k = 0u; k < WP_GRID_CELLS_PER_SPHERE; ++k) {
-        GridCell cell = grid_cell_of_sphere(frame, center, radius, grid_bucket_count(scene), k);
-        lane_int listed = visible && cell.listed;
-        lane_uint at = gather(SPPM_IN(grid_starts), cell.bucket) +
-                       atomic_increment_where(SPPM_OUT(grid_counts), cell.bucket, listed);
-        store_where(SPPM_OUT(grid_entries), at, listed, own.slot);
-    }
+    WP_LIST_VISIBLE_POINTS(1);
 #endif
 }

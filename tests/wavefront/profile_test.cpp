@@ -129,6 +129,30 @@ TEST(Profile, HostTracedStagesHaveRowsOfTheirOwn) {
     EXPECT_EQ(p.kernel("embree:intersect_shadow").items, result.stats.shadow_rays);
     EXPECT_LE(p.kernel_s() + p.gaps_s, 1.05 * p.render_s);
     EXPECT_EQ(p.intersect_bound_rays_per_s, 0.0);
+
+// SPPM's photon stages and its grid and update kernels are profiled too:
+// emit_photons takes every photon, intersect_photons every photon ray, and
+// the grid and update kernels run once per iteration (each iteration has
+// visible points here).
+TEST(Profile, SppmProfilesThePhotonStagesAndTheGrid) {
+    Scene scene = test::scene_from_file("bench/scenes/sppm_caustic.json");
+    scene.camera.width = scene.camera.height = 16;
+    scene.render.spp = 2;
+    scene.render.integrator = Integrator::Sppm;
+    scene.render.sppm.photons = 700;
+    WavefrontOptions options;
+    options.wavefront = 256;  // the photon pass takes several iterations of its stages
+    options.profile = true;
+    WavefrontReport report;
+    const RenderResult result = render_wavefront(scene, options, {}, &report);
+    RenderProfile& p = report.profile;
+    EXPECT_EQ(result.stats.photons, 2u * 700u);
+    EXPECT_EQ(p.kernel("emit_photons").items, result.stats.photons);
+    EXPECT_EQ(p.kernel("intersect_photons").items, result.stats.photon_rays);
+    EXPECT_LE(p.kernel("deposit_photons").items, p.kernel("intersect_photons").items);
+    EXPECT_LE(p.kernel("scatter_photons").items, p.kernel("deposit_photons").items);
+    for (const char* kernel : {"grid_bounds", "grid_count", "grid_fill", "sppm_update"})
+        EXPECT_EQ(p.kernel(kernel).launches, 2u) << kernel;
 }
 
 // A shadow ray is counted at the depth of the vertex that cast it, although
