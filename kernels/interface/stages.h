@@ -27,21 +27,23 @@
  *              shadow rays, blocked or not) or NO_RAYS. Where the host
  *              traces (--intersector embree, src/wavefront/host_trace.h),
  *              it traces a stage's queue before the stage's kernel, built
- *              with WP_HOST_TRACED, reads the results and does the rest
- *              (the camera loop's only: sppm traces on the device). */
+ *              with WP_HOST_TRACED, reads the results and does the rest.
+ *              The photon stages trace on the device (sppm takes the BVH),
+ *              so intersect_photons, which traces closest hits, is NO_RAYS
+ *              here: there is nothing for the host to trace before it. */
 #ifndef WP_INTERFACE_STAGES_H
 #define WP_INTERFACE_STAGES_H
 
 #include "interface/queues.h"
 
-#define WP_STAGES(X)                                                                                \
-    X(generate, CAMERA, FREE, WP_PUSHES(RAY), ALWAYS, NO_RAYS)                                      \
-    X(intersect, CAMERA, RAY, WP_PUSHES(HIT, FREE), ALWAYS, CLOSEST_HIT)                            \
-    X(shade, CAMERA, HIT, WP_PUSHES(SHADOW, RAY, FREE), ALWAYS, NO_RAYS)                            \
-    X(intersect_shadow, CAMERA, SHADOW, WP_PUSHES_NOTHING, NEE, ANY_HIT)                            \
-    X(emit_photons, PHOTON, PHOTON_FREE, WP_PUSHES(PHOTON_RAY), SPPM, NO_RAYS)                      \
-    X(intersect_photons, PHOTON, PHOTON_RAY, WP_PUSHES(PHOTON_HIT, PHOTON_FREE), SPPM, CLOSEST_HIT) \
-    X(deposit_photons, PHOTON, PHOTON_HIT, WP_PUSHES(PHOTON_SCATTER, PHOTON_FREE), SPPM, NO_RAYS)   \
+#define WP_STAGES(X)                                                                              \
+    X(generate, CAMERA, FREE, WP_PUSHES(RAY), ALWAYS, NO_RAYS)                                    \
+    X(intersect, CAMERA, RAY, WP_PUSHES(HIT, FREE), ALWAYS, CLOSEST_HIT)                          \
+    X(shade, CAMERA, HIT, WP_PUSHES(SHADOW, RAY, FREE), ALWAYS, NO_RAYS)                          \
+    X(intersect_shadow, CAMERA, SHADOW, WP_PUSHES_NOTHING, NEE, ANY_HIT)                          \
+    X(emit_photons, PHOTON, PHOTON_FREE, WP_PUSHES(PHOTON_RAY), SPPM, NO_RAYS)                    \
+    X(intersect_photons, PHOTON, PHOTON_RAY, WP_PUSHES(PHOTON_HIT, PHOTON_FREE), SPPM, NO_RAYS)   \
+    X(deposit_photons, PHOTON, PHOTON_HIT, WP_PUSHES(PHOTON_SCATTER, PHOTON_FREE), SPPM, NO_RAYS) \
     X(scatter_photons, PHOTON, PHOTON_SCATTER, WP_PUSHES(PHOTON_RAY, PHOTON_FREE), SPPM, NO_RAYS)
 
 /* A set of queues as bits 1 << queue, from one to five queue names. */

@@ -129,6 +129,7 @@ TEST(Profile, HostTracedStagesHaveRowsOfTheirOwn) {
     EXPECT_EQ(p.kernel("embree:intersect_shadow").items, result.stats.shadow_rays);
     EXPECT_LE(p.kernel_s() + p.gaps_s, 1.05 * p.render_s);
     EXPECT_EQ(p.intersect_bound_rays_per_s, 0.0);
+}
 
 // SPPM's photon stages and its grid and update kernels are profiled too:
 // emit_photons takes every photon, intersect_photons every photon ray, and

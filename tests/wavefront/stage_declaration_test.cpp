@@ -88,7 +88,8 @@ TEST(StageDeclaration, EveryStageHasItsKernelWithTheDeclaredQueues) {
 // The check above fails on the two mistakes it is there for: a stage added to
 // the declaration without a kernel, and a declared push no kernel makes.
 TEST(StageDeclaration, KernelCheckFindsAStageWithoutKernelAndAPushNeverMade) {
-    StageDeclaration without_kernel{"shade_indirect", StageLoop::CAMERA, WP_QUEUE_HIT, bit("RAY"), PathFeature::ALWAYS};
+    StageDeclaration without_kernel{"shade_indirect", StageLoop::CAMERA,   WP_QUEUE_HIT,
+                                    bit("RAY"),       PathFeature::ALWAYS, StageTrace::NO_RAYS};
     EXPECT_EQ(kernel_file_problem(without_kernel), "no kernels/shade_indirect.cl");
     StageDeclaration intersect = declaration(Stage::intersect);
     intersect.pushes |= bit("SHADOW");
