@@ -146,6 +146,9 @@ const UsageCase kUsageErrors[] = {
     {"SppmAdaptive",
      {"--integrator", "sppm", "--adaptive", "0.1"},
      "--adaptive: does not apply to the sppm integrator"},
+    {"SppmWithEmbreeOnTheWavefront",
+     {"--integrator", "sppm", "--intersector", "embree"},
+     "--intersector embree: the sppm integrator's photon stages trace on the device"},
 };
 
 void PrintTo(const UsageCase& c, std::ostream* out) { *out << c.name; }
