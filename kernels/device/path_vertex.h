@@ -145,71 +145,101 @@ WP_FN lane_int vertex_ends_path(Vertex v, lane_uint bounce, uint max_depth) {
     return bounce >= max_depth || v.material.type == WP_MATERIAL_EMITTER;
 }
 
+/* Light `light`'s shape in each lane, read for its kind: every light kind in
+ * the scene is read and each lane keeps its own kind's; a lane whose light is
+ * of another kind reads that kind's arrays at index 0. u_triangle picks a
+ * mesh light's triangle in proportion to area. With it, the material that
+ * emits and the magnitude its error comes from (offset.h). Camera paths
+ * sample it as seen from a point (sample_light_shape), photons leave it
+ * uniformly by area (device/photon_vertex.h). */
+typedef struct {
+    lane_uint type; /* WP_SHAPE_* */
+    lane_uint material;
+    real magnitude;
+#ifdef WP_HAS_SPHERE_LIGHTS
+    vec3 center;
+    real radius;
+#endif
+#ifdef WP_HAS_QUAD_LIGHTS
+    vec3 corner, edge1, edge2;
+#endif
+#ifdef WP_HAS_MESH_LIGHTS
+    vec3 p0, p1, p2; /* the triangle u_triangle picked */
+    real mesh_area;  /* the whole mesh light's */
+#endif
+} LightShape;
+
+WP_FN LightShape light_shape(WP_SCENE_PARAMS, lane_uint light, real u_triangle) {
+    lane_uint shape = SCENE_FIELD(lights, light, shape);
+    lane_uint index = shape & WP_SHAPE_INDEX_MASK;
+    LightShape l;
+    l.type = shape >> WP_SHAPE_TYPE_SHIFT;
+    l.material = 0u;
+    l.magnitude = REAL(0.0);
+#ifdef WP_HAS_SPHERE_LIGHTS
+    {
+        lane_int is_sphere = l.type == WP_SHAPE_SPHERE;
+        lane_uint i = is_sphere ? index : (lane_uint)0u;
+        l.center = SCENE_FIELD(spheres, i, center);
+        l.radius = SCENE_FIELD(spheres, i, radius);
+        l.material = is_sphere ? SCENE_FIELD(spheres, i, material) : l.material;
+        l.magnitude = is_sphere ? sphere_magnitude(l.center, l.radius) : l.magnitude;
+    }
+#endif
+#ifdef WP_HAS_QUAD_LIGHTS
+    {
+        lane_int is_quad = l.type == WP_SHAPE_QUAD;
+        lane_uint i = is_quad ? index : (lane_uint)0u;
+        l.corner = SCENE_FIELD(quads, i, corner);
+        l.edge1 = SCENE_FIELD(quads, i, edge1);
+        l.edge2 = SCENE_FIELD(quads, i, edge2);
+        l.material = is_quad ? SCENE_FIELD(quads, i, material) : l.material;
+        l.magnitude = is_quad ? quad_magnitude(l.corner, l.edge1, l.edge2) : l.magnitude;
+    }
+#endif
+#ifdef WP_HAS_MESH_LIGHTS
+    {
+        lane_int is_mesh = l.type == WP_SHAPE_TRIANGLE;
+        lane_uint first = is_mesh ? index : (lane_uint)0u;
+        lane_uint count = is_mesh ? SCENE_FIELD(lights, light, triangle_count) : (lane_uint)0u;
+        lane_uint k = select_light_in_range(light_triangle_cdf, first, count, u_triangle);
+        l.p0 = SCENE_FIELD(light_triangles, k, p0);
+        l.p1 = SCENE_FIELD(light_triangles, k, p1);
+        l.p2 = SCENE_FIELD(light_triangles, k, p2);
+        l.mesh_area = SCENE_FIELD(lights, light, area);
+        l.material = is_mesh ? SCENE_FIELD(light_triangles, k, material) : l.material;
+        l.magnitude = is_mesh ? triangle_magnitude(l.p0, l.p1, l.p2) : l.magnitude;
+    }
+#endif
+    return l;
+}
+
 #ifdef WP_NEE
-/* A point sampled on light `light`, with its material and magnitude
- * (offset.h). Every light kind in the scene is sampled and each lane keeps
- * its own kind's; a lane whose light is of another kind reads that kind's
- * arrays at index 0. u and v place the point; u_triangle picks a mesh
- * light's triangle in proportion to area. */
+/* A point sampled on light `light` as seen from x, with its material and
+ * magnitude (light_shape). u and v place the point; u_triangle picks a mesh
+ * light's triangle. */
 typedef struct {
     LightSample sample;
     lane_uint material;
     real magnitude;
 } LightPoint;
 
-WP_FN LightPoint select_light_point(lane_int choose_a, LightPoint a, LightPoint b) {
-    LightPoint p;
-    p.sample = select_light_sample(choose_a, a.sample, b.sample);
-    p.material = choose_a ? a.material : b.material;
-    p.magnitude = choose_a ? a.magnitude : b.magnitude;
-    return p;
-}
-
 WP_FN LightPoint sample_light_shape(WP_SCENE_PARAMS, lane_uint light, vec3 x, real u, real v, real u_triangle) {
-    lane_uint shape = SCENE_FIELD(lights, light, shape);
-    lane_uint index = shape & WP_SHAPE_INDEX_MASK, type = shape >> WP_SHAPE_TYPE_SHIFT;
-    LightPoint p, kind;
+    LightShape l = light_shape(WP_SCENE_ARGS, light, u_triangle);
+    LightPoint p;
     p.sample.point = p.sample.normal = make_vec3(REAL(0.0), REAL(0.0), REAL(0.0));
     p.sample.pdf_solid_angle = REAL(0.0);
-    p.material = 0u;
-    p.magnitude = REAL(0.0);
+    p.material = l.material;
+    p.magnitude = l.magnitude;
 #ifdef WP_HAS_SPHERE_LIGHTS
-    {
-        lane_int is_sphere = type == WP_SHAPE_SPHERE;
-        lane_uint i = is_sphere ? index : (lane_uint)0u;
-        vec3 center = SCENE_FIELD(spheres, i, center);
-        real radius = SCENE_FIELD(spheres, i, radius);
-        kind.sample = sample_sphere(center, radius, x, u, v);
-        kind.material = SCENE_FIELD(spheres, i, material);
-        kind.magnitude = sphere_magnitude(center, radius);
-        p = select_light_point(is_sphere, kind, p);
-    }
+    p.sample = select_light_sample(l.type == WP_SHAPE_SPHERE, sample_sphere(l.center, l.radius, x, u, v), p.sample);
 #endif
 #ifdef WP_HAS_QUAD_LIGHTS
-    {
-        lane_int is_quad = type == WP_SHAPE_QUAD;
-        lane_uint i = is_quad ? index : (lane_uint)0u;
-        vec3 corner = SCENE_FIELD(quads, i, corner), edge1 = SCENE_FIELD(quads, i, edge1);
-        vec3 edge2 = SCENE_FIELD(quads, i, edge2);
-        kind.sample = sample_quad(corner, edge1, edge2, x, u, v);
-        kind.material = SCENE_FIELD(quads, i, material);
-        kind.magnitude = quad_magnitude(corner, edge1, edge2);
-        p = select_light_point(is_quad, kind, p);
-    }
+    p.sample = select_light_sample(l.type == WP_SHAPE_QUAD, sample_quad(l.corner, l.edge1, l.edge2, x, u, v), p.sample);
 #endif
 #ifdef WP_HAS_MESH_LIGHTS
-    {
-        lane_int is_mesh = type == WP_SHAPE_TRIANGLE;
-        lane_uint first = is_mesh ? index : (lane_uint)0u;
-        lane_uint count = is_mesh ? SCENE_FIELD(lights, light, triangle_count) : (lane_uint)0u;
-        lane_uint k = select_light_in_range(light_triangle_cdf, first, count, u_triangle);
-        vec3 p0 = SCENE_FIELD(light_triangles, k, p0), p1 = SCENE_FIELD(light_triangles, k, p1);
-        vec3 p2 = SCENE_FIELD(light_triangles, k, p2);
-        kind.sample = sample_triangle(p0, p1, p2, SCENE_FIELD(lights, light, area), x, u, v);
-        kind.material = SCENE_FIELD(light_triangles, k, material);
-        kind.magnitude = triangle_magnitude(p0, p1, p2);
-        p = select_light_point(is_mesh, kind, p);
-    }
+    p.sample = select_light_sample(l.type == WP_SHAPE_TRIANGLE, sample_triangle(l.p0, l.p1, l.p2, l.mesh_area, x, u, v),
+                                   p.sample);
 #endif
     return p;
 }

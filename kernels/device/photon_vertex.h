@@ -28,14 +28,12 @@ WP_FN uint photon_pass_iteration(__global const SceneHeader *scene, ulong pass_s
     return (uint)(pass_start / scene->photons);
 }
 
-/* Where a photon leaves light `light`: a point uniform by area (u, v; a mesh
- * light's triangle by u_triangle, in proportion to area), the light's area,
- * the material that emits there and the magnitude its error comes from.
- * Every light kind in the scene is computed and each lane keeps its own. */
+/* Where a photon leaves light `light`: a point uniform by area on its shape
+ * (light_shape; u, v place the point, u_triangle picks a mesh light's
+ * triangle in proportion to area), with the light's area. */
 typedef struct {
     AreaPoint at;
-    real area, magnitude;
-    lane_uint material;
+    real area;
 } EmissionPoint;
 
 WP_FN EmissionPoint select_emission_point(lane_int choose_a, EmissionPoint a, EmissionPoint b) {
@@ -43,58 +41,27 @@ WP_FN EmissionPoint select_emission_point(lane_int choose_a, EmissionPoint a, Em
     p.at.point = v3_select(choose_a, a.at.point, b.at.point);
     p.at.normal = v3_select(choose_a, a.at.normal, b.at.normal);
     p.area = choose_a ? a.area : b.area;
-    p.magnitude = choose_a ? a.magnitude : b.magnitude;
-    p.material = choose_a ? a.material : b.material;
     return p;
 }
 
-WP_FN EmissionPoint emission_point(WP_SCENE_PARAMS, lane_uint light, real u, real v, real u_triangle) {
-    lane_uint shape = SCENE_FIELD(lights, light, shape);
-    lane_uint index = shape & WP_SHAPE_INDEX_MASK, type = shape >> WP_SHAPE_TYPE_SHIFT;
+WP_FN EmissionPoint emission_point(LightShape l, real u, real v) {
     EmissionPoint p, kind;
     p.at.point = p.at.normal = make_vec3(REAL(0.0), REAL(0.0), REAL(0.0));
-    p.area = p.magnitude = REAL(0.0);
-    p.material = 0u;
+    p.area = REAL(0.0);
 #ifdef WP_HAS_SPHERE_LIGHTS
-    {
-        lane_int is_sphere = type == WP_SHAPE_SPHERE;
-        lane_uint i = is_sphere ? index : (lane_uint)0u;
-        vec3 center = SCENE_FIELD(spheres, i, center);
-        real radius = SCENE_FIELD(spheres, i, radius);
-        kind.at = sphere_point(center, radius, u, v);
-        kind.area = sphere_area(radius);
-        kind.magnitude = sphere_magnitude(center, radius);
-        kind.material = SCENE_FIELD(spheres, i, material);
-        p = select_emission_point(is_sphere, kind, p);
-    }
+    kind.at = sphere_point(l.center, l.radius, u, v);
+    kind.area = sphere_area(l.radius);
+    p = select_emission_point(l.type == WP_SHAPE_SPHERE, kind, p);
 #endif
 #ifdef WP_HAS_QUAD_LIGHTS
-    {
-        lane_int is_quad = type == WP_SHAPE_QUAD;
-        lane_uint i = is_quad ? index : (lane_uint)0u;
-        vec3 corner = SCENE_FIELD(quads, i, corner), edge1 = SCENE_FIELD(quads, i, edge1);
-        vec3 edge2 = SCENE_FIELD(quads, i, edge2);
-        kind.at = quad_point(corner, edge1, edge2, u, v);
-        kind.area = quad_area(edge1, edge2);
-        kind.magnitude = quad_magnitude(corner, edge1, edge2);
-        kind.material = SCENE_FIELD(quads, i, material);
-        p = select_emission_point(is_quad, kind, p);
-    }
+    kind.at = quad_point(l.corner, l.edge1, l.edge2, u, v);
+    kind.area = quad_area(l.edge1, l.edge2);
+    p = select_emission_point(l.type == WP_SHAPE_QUAD, kind, p);
 #endif
 #ifdef WP_HAS_MESH_LIGHTS
-    {
-        lane_int is_mesh = type == WP_SHAPE_TRIANGLE;
-        lane_uint first = is_mesh ? index : (lane_uint)0u;
-        lane_uint count = is_mesh ? SCENE_FIELD(lights, light, triangle_count) : (lane_uint)0u;
-        lane_uint k = select_light_in_range(light_triangle_cdf, first, count, u_triangle);
-        vec3 p0 = SCENE_FIELD(light_triangles, k, p0), p1 = SCENE_FIELD(light_triangles, k, p1);
-        vec3 p2 = SCENE_FIELD(light_triangles, k, p2);
-        kind.at = triangle_point(p0, p1, p2, u, v);
-        kind.area = SCENE_FIELD(lights, light, area);
-        kind.magnitude = triangle_magnitude(p0, p1, p2);
-        kind.material = SCENE_FIELD(light_triangles, k, material);
-        p = select_emission_point(is_mesh, kind, p);
-    }
+    kind.at = triangle_point(l.p0, l.p1, l.p2, u, v);
+    kind.area = l.mesh_area;
+    p = select_emission_point(l.type == WP_SHAPE_TRIANGLE, kind, p);
 #endif
     return p;
 }
@@ -110,11 +77,11 @@ WP_FN EmittedPhoton emit_scene_photon(WP_SCENE_PARAMS, uint iteration, lane_uint
 #else
     real u_triangle = REAL(0.0);
 #endif
-    EmissionPoint e =
-        emission_point(WP_SCENE_ARGS, light, photon_uniform(seed, iteration, photon, 0u, DIM_PHOTON_POINT_U),
-                       photon_uniform(seed, iteration, photon, 0u, DIM_PHOTON_POINT_V), u_triangle);
-    Material emitter = material_at(materials, e.material);
-    return emit_photon(e.at, shape_point_error(e.magnitude), e.area, light_selection_pmf(light_cdf, light),
+    LightShape shape = light_shape(WP_SCENE_ARGS, light, u_triangle);
+    EmissionPoint e = emission_point(shape, photon_uniform(seed, iteration, photon, 0u, DIM_PHOTON_POINT_U),
+                                     photon_uniform(seed, iteration, photon, 0u, DIM_PHOTON_POINT_V));
+    Material emitter = material_at(materials, shape.material);
+    return emit_photon(e.at, shape_point_error(shape.magnitude), e.area, light_selection_pmf(light_cdf, light),
                        emitter.emission, emitter.two_sided,
                        photon_uniform(seed, iteration, photon, 0u, DIM_PHOTON_SIDE),
                        photon_uniform(seed, iteration, photon, 0u, DIM_PHOTON_DIRECTION_U),
