@@ -68,8 +68,9 @@ __kernel __attribute__((reqd_work_group_size(WP_GROUP_SIZE, 1, 1))) void shade(W
     PATH_WRITE(shadow_radiance, lanes, casts_shadow, direct.contribution);
 #endif
 
-    lane_int bounces = scatters;
+    lane_int bounces = scatters; /* BSDF sampling and roulette decide whether it goes on */
 #if defined(WP_SPPM) && defined(WP_HAS_DIFFUSE)
+    /* SPPM's camera pass: the pixel's visible point */
     lane_int visible = scatters && v.material.type == WP_MATERIAL_DIFFUSE;
     Lanes pixels = pixel_lanes(px, visible, scene_pixel_count(scene));
     SPPM_WRITE(visible_point, pixels, visible, v.surface.point);
@@ -77,7 +78,7 @@ __kernel __attribute__((reqd_work_group_size(WP_GROUP_SIZE, 1, 1))) void shade(W
     SPPM_WRITE(visible_geometric_normal, pixels, visible, v.nf);
     SPPM_WRITE(visible_weight, pixels, visible, v3_mul(throughput, v.material.albedo));
     SPPM_WRITE(visible_depth, pixels, visible, bounce);
-    bounces = bounces && !(visible && !camera_pass_bounces_from_visible_point(WP_USES_NEE, WP_USES_MIS));
+    bounces = scatters && (!visible || camera_pass_bounces_from_visible_point(WP_USES_NEE, WP_USES_MIS));
 #endif
 
     PathStep step = step_from_vertex(v, d, throughput, eta_scale, scene->seed, px, s, bounce, scene->rr_depth);

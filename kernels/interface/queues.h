@@ -31,7 +31,7 @@
  * instead (count_nonfinite in kernels/device/guards.h), which the host sums. */
 #define WP_COUNTER_NONFINITE_EMISSION (WP_QUEUE_COUNT + 1u) /* emission or background added to the radiance */
 #define WP_COUNTER_NONFINITE_DIRECT (WP_QUEUE_COUNT + 2u)   /* a light sample's contribution added to the radiance */
-#define WP_COUNTER_NONFINITE_SCATTER (WP_QUEUE_COUNT + 3u) /* throughput after BSDF sampling and roulette (ends it) */
+#define WP_COUNTER_NONFINITE_SCATTER (WP_QUEUE_COUNT + 3u)  /* throughput after BSDF sampling and roulette (ends it) */
 #define WP_NONFINITE_STAGE_COUNT 3u
 /* megakernel only: rays traced (the wavefront counts its queues) */
 #define WP_COUNTER_EXTENSION_RAYS (WP_QUEUE_COUNT + 4u)

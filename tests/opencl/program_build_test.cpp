@@ -190,8 +190,8 @@ TEST(ProgramBuild, PushToAQueueTheStageDoesNotDeclareFailsToCompile) {
 // kernel's first line, which states its queues.
 TEST(ProgramBuild, StageOpeningWithOtherQueuesThanItsDeclarationFailsToCompile) {
     EditedBuild built =
-        build_edited_copy("interface/stages.h", "X(shade, HIT, WP_PUSHES(SHADOW, RAY, FREE), ALWAYS, NO_RAYS)",
-                          "X(shade, HIT, WP_PUSHES(RAY, FREE), ALWAYS, NO_RAYS)", "shade.cl", "STAGE_QUEUES");
+        build_edited_copy("interface/stages.h", "X(shade, CAMERA, HIT, WP_PUSHES(SHADOW, RAY, FREE), ALWAYS, NO_RAYS)",
+                          "X(shade, CAMERA, HIT, WP_PUSHES(RAY, FREE), ALWAYS, NO_RAYS)", "shade.cl", "STAGE_QUEUES");
     EXPECT_NE(built.error.find(built.expected_location), std::string::npos) << built.error;
     EXPECT_NE(built.error.find("the queues of shade differ from its declaration"), std::string::npos) << built.error;
 }
