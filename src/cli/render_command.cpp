@@ -158,7 +158,7 @@ PreparedRender prepare_render(const RenderCommand& command, Ranks& ranks) {
         if (command.long_run.target_error && !command.long_run.samples.empty())
             throw UsageError("--target-error: needs the whole render, not a --samples range");
         plan.adaptive = adaptive_sampling(command.long_run, scene);
-        prepared.backend = command.backend;
+        prepared.backend = resolve_backend(command.backend, scene);
         prepared.backend.film_squares = command.long_run.target_error.has_value() || plan.adaptive.on();
         plan.items = planned_items(command.long_run.samples, scene);
         plan.identity = render_identity(scene, estimator_name(prepared.backend, scene), plan.adaptive);
@@ -177,10 +177,12 @@ PreparedRender prepare_render(const RenderCommand& command, Ranks& ranks) {
     return prepared;
 }
 
-void report_run(const RenderCommand& command, const Scene& scene, const LongRunPlan& plan,
-                const LongRunResult& result) {
+void report_run(const RenderCommand& command, const PreparedRender& prepared, const LongRunResult& result) {
+    const Scene& scene = prepared.scene;
+    const LongRunPlan& plan = prepared.plan;
     RunSummary summary;
-    summary.backend = command.backend.name;
+    summary.backend = prepared.backend.name;
+    summary.backend_choice = prepared.backend.chosen;
     summary.output_path = command.output_path;
     summary.width = scene.camera.width;
     summary.height = scene.camera.height;
@@ -221,7 +223,7 @@ int run_render(const RenderCommand& command) {
     if (!ranks->is_root()) return kExitOk;
 
     write_output(command, plan.identity, result.film);
-    report_run(command, prepared.scene, plan, result);
+    report_run(command, prepared, result);
     return result.reason == StopReason::Interrupted ? kExitInterrupted : kExitOk;
 }
 

@@ -53,6 +53,19 @@ class MpiCli : public ::testing::Test {
     TempDirectory scratch_{"scratch"}, out_{"out"};
 };
 
+// The default backend (auto) on 2 ranks: each rank chooses for its own
+// device, and either OpenCL backend's film is the same estimator's, so the
+// image is the one-process render's.
+TEST_F(MpiCli, AutoBackendOnTwoRanksGivesTheOneProcessBits) {
+    const std::string one = out_ / "auto_one.pfm", two = out_ / "auto_two.pfm";
+    ASSERT_EQ(run({"render", kSmallRoomScene, "-o", one, "--spp", "4", "-q"}).exit_code, 0);
+    CommandResult r = run_on(2, {"render", kSmallRoomScene, "-o", two, "--spp", "4"});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_TRUE(same_bytes(two, one));
+    EXPECT_NE(r.err.find(" (auto: "), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find(", 2 ranks) in "), std::string::npos) << r.err;
+}
+
 TEST_F(MpiCli, OneTwoAndThreeRanksGiveTheOneProcessBits) {
     const std::string one = one_process(7);
     EXPECT_FALSE(same_bytes(one_process(6), one));  // the comparison can tell renders apart
@@ -63,7 +76,7 @@ TEST_F(MpiCli, OneTwoAndThreeRanksGiveTheOneProcessBits) {
         ASSERT_EQ(r.exit_code, 0) << r.err;
         EXPECT_TRUE(same_bytes(out, one));
         if (ranks > 1) {
-            EXPECT_NE(r.err.find("(32x32, 7 spp, wavefront, " + std::to_string(ranks) + " ranks)"), std::string::npos)
+            EXPECT_NE(r.err.find("(32x32, 7 spp, wavefront (auto: --wavefront given), " + std::to_string(ranks) + " ranks)"), std::string::npos)
                 << r.err;
         }
         const nlohmann::json json = nlohmann::json::parse(read_text(stats));
@@ -262,7 +275,7 @@ TEST_F(MpiCli, SigintOnMpirunWritesTheImageOfTheCheckpoint) {
     job.send(SIGINT);
     CommandResult r = job.wait();
     EXPECT_NE(r.exit_code, 0) << r.err;
-    EXPECT_NE(r.err.find("stopped: interrupted, wavefront, 2 ranks"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("stopped: interrupted, wavefront (auto: --wavefront given), 2 ranks"), std::string::npos) << r.err;
     ASSERT_EQ(run({"merge", checkpoint, "-o", merged, "-q"}).exit_code, 0);
     EXPECT_TRUE(same_bytes(out, merged));
 }

@@ -1,0 +1,240 @@
+#!/usr/bin/env python3
+"""Efficiency of the default command against Mitsuba 3 (issue 21's first target).
+
+Usage: python3 bench/efficiency.py [--binary build/wavepath] [--out bench/results] [--repeats 5]
+                                   [--quiet-load 2.5] [--wait-s 1200] [--scenes room.json,cornell.json,bunny.json]
+
+Efficiency is 1 / (relMSE x time): relMSE against Mitsuba's converged image of the scene (bench/mitsuba_peer.py,
+cached in bench/out/converged-cache as bench/run.py caches them), less that image's own noise, and the render's
+time. Measured per scene at 256x256 for:
+- the default command, `wavepath render scene.json` with nothing but the size, spp and the outputs (and a seed per
+  run: one image's relMSE is itself noisy, so each run renders other samples);
+- each explicit backend (--backend wavefront, megakernel, reference);
+- Mitsuba llvm_ad_rgb with its independent sampler (the peer of the targets) and with each of its other samplers,
+  to name its best for the scene.
+Each repetition renders every configuration once, in turn (interleaved), with the load average taken before each
+render. A configuration's efficiency is 1 / mean over runs of (relMSE x time), with the standard error of that
+mean; its ratio to Mitsuba's is stated with the two errors combined, and also per repetition (min and median).
+Writes efficiency.json and efficiency.md into --out, headed by the commit, date, machine, OpenCL platform and the
+command that reproduces them. --quiet-load waits (up to --wait-s) for the 1-minute load average to fall below it
+before starting, and the results say whether it did.
+"""
+import argparse
+import json
+import math
+import os
+import shlex
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from mitsuba_peer import MitsubaPeer  # noqa: E402
+from run import ROOT, Runner, rel_mse, rel_noise, run_meta, scene_max_depth, spread  # noqa: E402
+
+SIZE = 256
+# spp per run: a few seconds each on a quiet 2-core machine; 64 and 16 are squares and powers of two, which
+# every Mitsuba sampler but `orthogonal` (a prime's square: 121 and 25) takes as they are.
+SCENE_SPP = {"room.json": 64, "cornell.json": 64, "bunny.json": 16}
+CONVERGED_SPP = 4096
+BACKENDS = ["wavefront", "megakernel", "reference"]  # the explicit ones, beside the default command
+OPENCL_BACKENDS = ["wavefront", "megakernel"]  # those --backend auto chooses from
+MITSUBA_SAMPLERS = ["independent", "stratified", "multijitter", "orthogonal", "ldsampler"]
+PEER = "mitsuba-independent"  # what the targets are stated against
+
+
+def load_average():
+    return os.getloadavg()[0]
+
+
+def wait_for_quiet(threshold, wait_s):
+    """Polls the 1-minute load average each minute until it falls below `threshold` or `wait_s` passes."""
+    start, seen = time.time(), []
+    while True:
+        seen.append(round(load_average(), 2))
+        if seen[-1] < threshold or time.time() - start >= wait_s:
+            return {"threshold": threshold, "waited_s": round(time.time() - start), "loads_seen": seen,
+                    "quiet": seen[-1] < threshold}
+        time.sleep(60)
+
+
+def scene_has_meshes(path):
+    with open(path) as f:
+        return any(shape.get("type") == "mesh" for shape in json.load(f).get("shapes", []))
+
+
+def configurations():
+    """(label, how): how is ("wavepath", backend or None for the default command) or ("mitsuba", sampler)."""
+    return ([("default", ("wavepath", None))] + [(b, ("wavepath", b)) for b in BACKENDS] +
+            [(f"mitsuba-{s}", ("mitsuba", s)) for s in MITSUBA_SAMPLERS])
+
+
+def measure_scene(runner, peer, scene, spp, repeats, cache):
+    """Every configuration's runs on one scene, interleaved: relMSE (less the truth's noise), time, samples/s
+    and the load average before the run."""
+    path = os.path.join(ROOT, "scenes", scene)
+    truth = peer.converged(path, SIZE, CONVERGED_SPP, scene_max_depth(path), cache)
+    noise = rel_noise(truth.variance, truth.image)
+    runs = {label: [] for label, _ in configurations()}
+    for repetition in range(repeats):
+        for label, (renderer, what) in configurations():
+            load = load_average()
+            if renderer == "mitsuba":
+                r = peer.render(path, SIZE, spp, seed=repetition, sampler=what)
+                backend = "mitsuba " + what
+            else:
+                r = runner.render(path, what, SIZE, SIZE, spp, image=True, seed=repetition)
+                backend = r["backend"]
+            relmse = rel_mse(r["image"], truth.image) - noise
+            runs[label].append({"repetition": repetition, "backend": backend, "relmse": relmse,
+                                "time_s": r["time_s"], "samples": r["samples"],
+                                "samples_per_s": r["samples_per_s"], "load_average": round(load, 2),
+                                "backend_choice": r.get("backend_choice")})
+    return {"scene": scene, "spp": spp, "meshes": scene_has_meshes(path), "truth_spp": CONVERGED_SPP,
+            "truth_noise_relmse": noise, "truth_file": os.path.basename(truth.file), "runs": runs}
+
+
+def efficiency(runs):
+    """1 / mean(relMSE x time) over the runs, its standard error, and per-run figures."""
+    products = [r["relmse"] * r["time_s"] for r in runs]
+    mean = statistics.mean(products)
+    se = statistics.stdev(products) / math.sqrt(len(products))
+    return {"efficiency": 1.0 / mean, "efficiency_rel_se": se / mean,
+            "relmse_mean": statistics.mean(r["relmse"] for r in runs),
+            "relmse_x_spp": statistics.mean(r["relmse"] * r["samples"] for r in runs) / SIZE ** 2,
+            "time_s": spread([r["time_s"] for r in runs]),
+            "msamples_s": spread([r["samples_per_s"] / 1e6 for r in runs]),
+            "load_average": spread([r["load_average"] for r in runs]),
+            "backends_run": sorted({r["backend"] for r in runs})}
+
+
+def ratio(a_runs, b_runs, a, b):
+    """a's efficiency over b's: of the estimates (with the relative errors combined) and per repetition."""
+    per_repetition = [(rb["relmse"] * rb["time_s"]) / (ra["relmse"] * ra["time_s"]) for ra, rb in zip(a_runs, b_runs)]
+    return {"ratio": a["efficiency"] / b["efficiency"],
+            "ratio_rel_se": math.hypot(a["efficiency_rel_se"], b["efficiency_rel_se"]),
+            "per_repetition": spread(per_repetition)}
+
+
+def summarise(scene_runs):
+    """Per scene: each configuration's efficiency and its ratio to Mitsuba's independent sampler; Mitsuba's best
+    sampler; the wavefront's samples/s over the megakernel's; which OpenCL backend is the more efficient."""
+    runs = scene_runs["runs"]
+    configs = {label: efficiency(r) for label, r in runs.items()}
+    for label, c in configs.items():
+        c["vs_mitsuba"] = ratio(runs[label], runs[PEER], c, configs[PEER])
+    samplers = [f"mitsuba-{s}" for s in MITSUBA_SAMPLERS]
+    best_sampler = max(samplers, key=lambda label: configs[label]["efficiency"])
+    wavefront_over_megakernel = [w["samples_per_s"] / m["samples_per_s"]
+                                 for w, m in zip(runs["wavefront"], runs["megakernel"])]
+    fastest = max(OPENCL_BACKENDS, key=lambda b: configs[b]["efficiency"])
+    others = [b for b in OPENCL_BACKENDS if b != fastest]
+    runner_up = max(others, key=lambda b: configs[b]["efficiency"])
+    return {"scene": scene_runs["scene"], "spp": scene_runs["spp"], "meshes": scene_runs["meshes"],
+            "truth_spp": scene_runs["truth_spp"], "truth_noise_relmse": scene_runs["truth_noise_relmse"],
+            "truth_file": scene_runs["truth_file"], "configurations": configs,
+            "mitsuba_best_sampler": best_sampler.removeprefix("mitsuba-"),
+            "wavefront_over_megakernel_samples_s": spread(wavefront_over_megakernel),
+            "fastest_opencl_backend": {"backend": fastest, "runner_up": runner_up,
+                                       **ratio(runs[fastest], runs[runner_up], configs[fastest],
+                                               configs[runner_up])}}
+
+
+def device_type(binary):
+    """The type (CPU, GPU...) `wavepath devices` gives device 0, the one run_meta names."""
+    lines = subprocess.run([binary, "devices"], capture_output=True, text=True).stdout.splitlines()
+    for i, line in enumerate(lines):
+        if line.startswith("[0]"):
+            return next((l.split(":", 1)[1].strip() for l in lines[i + 1:] if l.strip().startswith("type:")), "")
+    return ""
+
+
+def markdown(results):
+    m, command = results["meta"], results["command"]
+    quiet = results["quiet"]
+    loads = [r["load_average"] for s in results["raw"] for runs in s["runs"].values() for r in runs]
+    lines = ["# Efficiency against Mitsuba 3 (issue 21)", "",
+             f"Generated by `{command}`; do not edit by hand.", "",
+             f"- commit `{m['commit']}`, {m['date']}, {m['wavepath']} ({m['build_type']} build)",
+             f"- machine: {m['cpu']}, {m['cores']} cores",
+             f"- OpenCL: {m['opencl_platform']}; device {m['opencl_device']} ({results['device_type']})",
+             f"- peer: {m['mitsuba']}; truth: Mitsuba's converged image at {CONVERGED_SPP} spp per scene",
+             f"- load average (1 min) before each render: {min(loads):.2f}-{max(loads):.2f}, median "
+             f"{statistics.median(loads):.2f}; waited {quiet['waited_s']} s for it to fall below "
+             f"{quiet['threshold']} (seen: {', '.join(map(str, quiet['loads_seen']))}): "
+             + ("it did." if quiet["quiet"] else "it did not; measured anyway, interleaved."),
+             f"- {results['repeats']} repetitions; each renders every configuration once, in turn", "",
+             "Efficiency = 1 / (relMSE x time), estimated as 1 / mean over the runs of relMSE x time (each run its "
+             "own seed), +- the standard error of that mean, relative. relMSE: mean over pixels and channels of "
+             "(x - r)^2 / (r^2 + 0.01) against the truth r, less the truth's own noise. Time: the render's "
+             "(wavepath's from --stats-json, device setup and kernel build left out; Mitsuba's `mi.render` and "
+             "reading the image back, scene loading left out; each configuration's first render discarded). "
+             "x Mitsuba: efficiency over Mitsuba's with its independent sampler (the target's peer), of the "
+             "estimates (+- combined error) and per repetition (min / median). relMSE x spp: the variance per "
+             "sample, which speed does not change. `default` is `wavepath render scene.json` with only the "
+             "size, spp, seed and outputs; its backend column is what it ran.", ""]
+    for s in results["scenes"]:
+        lines += [f"## {s['scene']} ({SIZE}x{SIZE}, {s['spp']} spp{', meshes' if s['meshes'] else ''})", "",
+                  "| configuration | ran | efficiency (+- rel. se) | x Mitsuba (+- se) | x Mitsuba per repetition "
+                  "(min / median) | relMSE | relMSE x spp | time s (min / median) | Msamples/s (min / median) |",
+                  "|---|---|---|---|---|---|---|---|---|"]
+        for label, c in s["configurations"].items():
+            v = c["vs_mitsuba"]
+            lines.append(
+                f"| {label} | {', '.join(c['backends_run'])} | {c['efficiency']:.4g} (+-{100 * c['efficiency_rel_se']:.0f}%) | "
+                f"{v['ratio']:.2f} (+-{v['ratio'] * v['ratio_rel_se']:.2f}) | {v['per_repetition']['min']:.2f} / "
+                f"{v['per_repetition']['median']:.2f} | {c['relmse_mean']:.4g} | {c['relmse_x_spp']:.4g} | "
+                f"{c['time_s']['min']:.3f} / {c['time_s']['median']:.3f} | {c['msamples_s']['min']:.3f} / "
+                f"{c['msamples_s']['median']:.3f} |")
+        w, f = s["wavefront_over_megakernel_samples_s"], s["fastest_opencl_backend"]
+        best = s["configurations"]["mitsuba-" + s["mitsuba_best_sampler"]]
+        lines += ["", f"- Mitsuba's most efficient sampler here: {s['mitsuba_best_sampler']} "
+                      f"({best['vs_mitsuba']['ratio']:.2f}x its independent sampler's efficiency).",
+                  f"- The wavefront's samples/s over the megakernel's, per repetition: {w['min']:.2f} (min), "
+                  f"{w['median']:.2f} (median), {w['max']:.2f} (max).",
+                  f"- The more efficient OpenCL backend: {f['backend']}, {f['ratio']:.2f}x the {f['runner_up']}'s "
+                  f"efficiency (+-{f['ratio'] * f['ratio_rel_se']:.2f}; per repetition "
+                  f"{f['per_repetition']['min']:.2f}-{f['per_repetition']['max']:.2f}, median "
+                  f"{f['per_repetition']['median']:.2f}).", ""]
+    return "\n".join(lines)
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--binary", default=os.path.join(ROOT, "build", "wavepath"))
+    parser.add_argument("--out", default=os.path.join(ROOT, "bench", "results"))
+    parser.add_argument("--cache", default=os.path.join(ROOT, "bench", "out", "converged-cache"),
+                        help="converged Mitsuba images (shared with bench/run.py)")
+    parser.add_argument("--repeats", type=int, default=5)
+    parser.add_argument("--quiet-load", type=float, default=2.5)
+    parser.add_argument("--wait-s", type=float, default=1200)
+    parser.add_argument("--scenes", default=",".join(SCENE_SPP))
+    args = parser.parse_args()
+    command = "python3 bench/efficiency.py" + "".join(
+        f" {flag} {shlex.quote(str(value))}" for flag, value, default in
+        (("--repeats", args.repeats, 5), ("--scenes", args.scenes, ",".join(SCENE_SPP)))
+        if value != default)
+    quiet = wait_for_quiet(args.quiet_load, args.wait_s)
+    binary = os.path.abspath(args.binary)
+    start = time.time()
+    with tempfile.TemporaryDirectory(prefix="wavepath-efficiency-") as scratch:
+        os.environ.setdefault("WAVEPATH_CACHE_DIR", os.path.join(ROOT, "bench", "out", "program-cache"))
+        runner, peer = Runner(binary, scratch), MitsubaPeer()
+        meta = run_meta(binary, peer)
+        raw = [measure_scene(runner, peer, scene, SCENE_SPP[scene], args.repeats, args.cache)
+               for scene in args.scenes.split(",")]
+    results = {"command": command, "meta": meta, "device_type": device_type(binary),
+               "quiet": quiet, "repeats": args.repeats, "size": SIZE, "elapsed_s": round(time.time() - start),
+               "scenes": [summarise(s) for s in raw], "raw": raw}
+    os.makedirs(args.out, exist_ok=True)
+    with open(os.path.join(args.out, "efficiency.json"), "w") as f:
+        json.dump(results, f, indent=1)
+    with open(os.path.join(args.out, "efficiency.md"), "w") as f:
+        f.write(markdown(results))
+    print(f"efficiency: wrote {args.out}/efficiency.md in {results['elapsed_s']} s")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,132 @@
+// --backend auto, the default, through the binary on a CPU device (PoCL):
+// its choice for a scene with and without meshes, stated by --explain, the
+// summary line and --stats-json; an explicit --backend and the wavefront's
+// own flags honoured; --profile-json under its choice; and a checkpoint of
+// its render resumed by an explicit backend to the same bits.
+#include <gtest/gtest.h>
+
+#include <map>
+#include <nlohmann/json.hpp>
+
+#include "cli/backend_choice.h"
+#include "cli/run_wavepath.h"
+#include "cli/small_room_render.h"
+
+namespace wp::test {
+namespace {
+
+using nlohmann::json;
+
+std::string first_line(const std::string& text) { return text.substr(0, text.find('\n')); }
+
+class AutoBackendCli : public ::testing::Test {
+ protected:
+    void SetUp() override {
+        // Without --device a GPU is preferred: the CPU's choice is tested where PoCL's CPU is the only device.
+        const CommandResult devices = run({"devices"});
+        ASSERT_EQ(devices.exit_code, 0) << devices.err;
+        if (devices.out.find("type: CPU") == std::string::npos || devices.out.find("type: GPU") != std::string::npos)
+            GTEST_SKIP() << "the default device is not a CPU:\n" << devices.out;
+    }
+    CommandResult run(const std::vector<std::string>& args) { return run_wavepath(args, scratch_.path()); }
+    // The small room (no meshes) at 32x32, as `wavepath render SCENE -o OUT --spp N` and `extra`.
+    CommandResult render_room(const std::string& out, int spp, std::vector<std::string> extra) {
+        std::vector<std::string> args{"render", kSmallRoomScene, "-o", out, "--spp", std::to_string(spp)};
+        args.insert(args.end(), extra.begin(), extra.end());
+        return run(args);
+    }
+    // A square mesh under a quad light, 8x8.
+    std::string mesh_scene() {
+        write_text(out_ / "square.obj", "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nf 1 2 3 4\n");
+        const std::string scene = out_ / "mesh.json";
+        write_text(scene, R"({"camera": {"position": [0, 0, 3], "look_at": [0, 0, 0], "fov_y": 60, "width": 8,
+            "height": 8}, "render": {"spp": 2, "max_depth": 2},
+            "materials": {"white": {"type": "diffuse", "albedo": [0.5, 0.5, 0.5]},
+                          "lamp": {"type": "emitter", "radiance": [4, 4, 4]}},
+            "shapes": [{"type": "mesh", "file": "square.obj", "material": "white"},
+                       {"type": "quad", "corner": [-0.5, -0.5, 2], "edge1": [0, 1, 0], "edge2": [1, 0, 0],
+                        "material": "lamp"}]})");
+        return scene;
+    }
+    TempDirectory scratch_{"scratch"}, out_{"out"};
+};
+
+// For each scene: --explain's first line names the backend and the
+// situation with the table's evidence, the summary line the backend and the
+// situation, --stats-json the backend and the explanation.
+TEST_F(AutoBackendCli, ChoosesForTheSceneOnACpuDeviceAndSaysWhy) {
+    struct Case {
+        std::string scene;
+        bool meshes;
+        std::string situation;
+    };
+    for (const Case& c : {Case{kSmallRoomScene, false, "CPU device, no meshes"},
+                          Case{mesh_scene(), true, "CPU device, meshes"}}) {
+        SCOPED_TRACE(c.situation);
+        const cli::BackendChoice choice = cli::choose_backend({cli::DeviceKind::Cpu, c.meshes});
+        const std::string stats = out_ / "stats.json";
+        const CommandResult r = run({"render", c.scene, "-o", out_ / "out.pfm", "--spp", "1", "--explain",
+                                     "--stats-json", stats});
+        ASSERT_EQ(r.exit_code, 0) << r.err;
+        const std::string explanation = "auto: " + c.situation + ": " + choice.evidence;
+        EXPECT_EQ(first_line(r.out), "backend: " + choice.backend + " (" + explanation + ")") << r.out;
+        EXPECT_NE(explanation.find(" in bench/results/efficiency.md"), std::string::npos) << explanation;
+        EXPECT_NE(r.err.find(", " + choice.backend + " (auto: " + c.situation + ")) in "), std::string::npos) << r.err;
+        const json figures = json::parse(read_text(stats));
+        EXPECT_EQ(figures["backend"], choice.backend);
+        EXPECT_EQ(figures["backend_choice"], explanation);
+    }
+}
+
+TEST_F(AutoBackendCli, ExplicitBackendAndTheWavefrontsFlagsAreHonoured) {
+    const std::string stats = out_ / "stats.json";
+    const CommandResult named =
+        render_room(out_ / "a.pfm", 1, {"--backend", "wavefront", "--explain", "--stats-json", stats});
+    ASSERT_EQ(named.exit_code, 0) << named.err;
+    EXPECT_EQ(first_line(named.out), "backend: wavefront (--backend)");
+    EXPECT_NE(named.err.find(", wavefront) in "), std::string::npos) << named.err;
+    EXPECT_TRUE(json::parse(read_text(stats))["backend_choice"].is_null());
+
+    const CommandResult flags = render_room(out_ / "b.pfm", 1, {"--compaction", "atomic", "--lanes", "1", "--explain"});
+    ASSERT_EQ(flags.exit_code, 0) << flags.err;
+    EXPECT_EQ(first_line(flags.out), "backend: wavefront (auto: --compaction given: only the wavefront takes it)");
+    EXPECT_NE(flags.err.find(", wavefront (auto: --compaction given)) in "), std::string::npos) << flags.err;
+}
+
+// The profile is the chosen backend's, and agrees with the render's figures.
+TEST_F(AutoBackendCli, ProfileIsTheChosenBackends) {
+    const std::string stats = out_ / "stats.json", profile_path = out_ / "profile.json";
+    const CommandResult r = render_room(out_ / "out.pfm", 2, {"--stats-json", stats, "--profile-json", profile_path});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const json figures = json::parse(read_text(stats)), profile = json::parse(read_text(profile_path));
+    const std::string backend = figures["backend"];
+    ASSERT_EQ(backend, cli::choose_backend({cli::DeviceKind::Cpu, false}).backend);
+    std::map<std::string, json> kernels;
+    for (const json& k : profile["kernels"]) kernels[k["name"]] = k;
+    EXPECT_EQ(kernels.count(backend == "megakernel" ? "megakernel" : "intersect"), 1u) << profile.dump();
+    EXPECT_EQ(kernels["accumulate"]["items"], figures["samples"]);
+    EXPECT_EQ(figures["samples"], 2u * 32 * 32);
+    EXPECT_EQ(profile["render_s"], figures["time_s"]);
+}
+
+// Auto's films are the OpenCL estimator's whichever backend it picks: its
+// checkpoint resumes on each explicit OpenCL backend to the bits of its
+// uninterrupted render.
+TEST_F(AutoBackendCli, CheckpointResumesOnEitherOpenClBackend) {
+    const std::string whole = out_ / "whole.pfm", checkpoint = out_ / "c.wpfilm";
+    ASSERT_EQ(render_room(whole, 6, {"-q"}).exit_code, 0);
+    ASSERT_EQ(render_room(out_ / "part.pfm", 3, {"-q", "--checkpoint", checkpoint}).exit_code, 0);
+    EXPECT_FALSE(same_bytes(out_ / "part.pfm", whole));  // the comparison can tell images apart
+    for (const char* backend : {"wavefront", "megakernel"}) {
+        SCOPED_TRACE(backend);
+        const std::string resumed = out_ / (std::string(backend) + ".pfm"), stats = out_ / "stats.json";
+        const CommandResult r =
+            render_room(resumed, 6, {"-q", "--resume", checkpoint, "--backend", backend, "--stats-json", stats});
+        ASSERT_EQ(r.exit_code, 0) << r.err;
+        EXPECT_TRUE(same_bytes(resumed, whole));
+        EXPECT_EQ(rendered_samples(stats), 3u * 32 * 32);
+    }
+}
+
+}  // namespace
+}  // namespace wp::test
