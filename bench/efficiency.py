@@ -111,10 +111,11 @@ def efficiency(runs):
 
 
 def ratio(a_runs, b_runs, a, b):
-    """a's efficiency over b's: of the estimates (with the relative errors combined) and per repetition."""
+    """a's efficiency over b's: of the estimates, and per repetition (the two renders side by side, so the load's
+    drift over the run cancels), with the standard error of the per-repetition ratios' mean."""
     per_repetition = [(rb["relmse"] * rb["time_s"]) / (ra["relmse"] * ra["time_s"]) for ra, rb in zip(a_runs, b_runs)]
     return {"ratio": a["efficiency"] / b["efficiency"],
-            "ratio_rel_se": math.hypot(a["efficiency_rel_se"], b["efficiency_rel_se"]),
+            "ratio_se": statistics.stdev(per_repetition) / math.sqrt(len(per_repetition)),
             "per_repetition": spread(per_repetition)}
 
 
@@ -171,23 +172,25 @@ def markdown(results):
              "(x - r)^2 / (r^2 + 0.01) against the truth r, less the truth's own noise. Time: the render's "
              "(wavepath's from --stats-json, device setup and kernel build left out; Mitsuba's `mi.render` and "
              "reading the image back, scene loading left out; each configuration's first render discarded). "
-             "x Mitsuba: efficiency over Mitsuba's with its independent sampler (the target's peer), of the "
-             "estimates (+- combined error) and per repetition (min / median). relMSE x spp: the variance per "
+             "x Mitsuba: efficiency over Mitsuba's with its independent sampler (the target's peer): the ratio of "
+             "the estimates, and per repetition (the two renders side by side) min / median / max with the "
+             "standard error of their mean. relMSE x spp: the variance per "
              "sample, which speed does not change. `default` is `wavepath render scene.json` with only the "
              "size, spp, seed and outputs; its backend column is what it ran.", ""]
     for s in results["scenes"]:
         lines += [f"## {s['scene']} ({SIZE}x{SIZE}, {s['spp']} spp{', meshes' if s['meshes'] else ''})", "",
-                  "| configuration | ran | efficiency (+- rel. se) | x Mitsuba (+- se) | x Mitsuba per repetition "
-                  "(min / median) | relMSE | relMSE x spp | time s (min / median) | Msamples/s (min / median) |",
-                  "|---|---|---|---|---|---|---|---|---|"]
+                  "| configuration | ran | efficiency (+- rel. se) | x Mitsuba | x Mitsuba per repetition "
+                  "(min / median / max, +- se) | relMSE | relMSE x spp | time s (min / median) | "
+                  "Msamples/s (min / median) | load |",
+                  "|---|---|---|---|---|---|---|---|---|---|"]
         for label, c in s["configurations"].items():
-            v = c["vs_mitsuba"]
+            v, p, load = c["vs_mitsuba"], c["vs_mitsuba"]["per_repetition"], c["load_average"]
             lines.append(
                 f"| {label} | {', '.join(c['backends_run'])} | {c['efficiency']:.4g} (+-{100 * c['efficiency_rel_se']:.0f}%) | "
-                f"{v['ratio']:.2f} (+-{v['ratio'] * v['ratio_rel_se']:.2f}) | {v['per_repetition']['min']:.2f} / "
-                f"{v['per_repetition']['median']:.2f} | {c['relmse_mean']:.4g} | {c['relmse_x_spp']:.4g} | "
-                f"{c['time_s']['min']:.3f} / {c['time_s']['median']:.3f} | {c['msamples_s']['min']:.3f} / "
-                f"{c['msamples_s']['median']:.3f} |")
+                f"{v['ratio']:.2f} | {p['min']:.2f} / {p['median']:.2f} / {p['max']:.2f} (+-{v['ratio_se']:.2f}) | "
+                f"{c['relmse_mean']:.4g} | {c['relmse_x_spp']:.4g} | {c['time_s']['min']:.3f} / "
+                f"{c['time_s']['median']:.3f} | {c['msamples_s']['min']:.3f} / {c['msamples_s']['median']:.3f} | "
+                f"{load['min']:.1f}-{load['max']:.1f} |")
         w, f = s["wavefront_over_megakernel_samples_s"], s["fastest_opencl_backend"]
         best = s["configurations"]["mitsuba-" + s["mitsuba_best_sampler"]]
         lines += ["", f"- Mitsuba's most efficient sampler here: {s['mitsuba_best_sampler']} "
@@ -195,9 +198,8 @@ def markdown(results):
                   f"- The wavefront's samples/s over the megakernel's, per repetition: {w['min']:.2f} (min), "
                   f"{w['median']:.2f} (median), {w['max']:.2f} (max).",
                   f"- The more efficient OpenCL backend: {f['backend']}, {f['ratio']:.2f}x the {f['runner_up']}'s "
-                  f"efficiency (+-{f['ratio'] * f['ratio_rel_se']:.2f}; per repetition "
-                  f"{f['per_repetition']['min']:.2f}-{f['per_repetition']['max']:.2f}, median "
-                  f"{f['per_repetition']['median']:.2f}).", ""]
+                  f"efficiency (per repetition {f['per_repetition']['min']:.2f}-{f['per_repetition']['max']:.2f}, "
+                  f"median {f['per_repetition']['median']:.2f}, +-{f['ratio_se']:.2f}).", ""]
     return "\n".join(lines)
 
 
