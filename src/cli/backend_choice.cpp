@@ -37,22 +37,15 @@ std::string evidence(const ChoiceRule& rule) {
 }
 
 const char* device_name(DeviceKind kind) {
-    switch (kind) {
-        case DeviceKind::Cpu:
-            return "CPU";
-        case DeviceKind::Gpu:
-            return "GPU";
-        case DeviceKind::Other:
-            break;
-    }
-    return "other";
+    return kind == DeviceKind::Cpu ? "CPU" : kind == DeviceKind::Gpu ? "GPU" : "other";
 }
 
 }  // namespace
 
 Situation situation_of(const DeviceInfo& device, const Scene& scene) {
-    const DeviceKind kind = device.type == "CPU" ? DeviceKind::Cpu : device.type == "GPU" ? DeviceKind::Gpu
-                                                                                          : DeviceKind::Other;
+    const DeviceKind kind = device.type == "CPU"   ? DeviceKind::Cpu
+                            : device.type == "GPU" ? DeviceKind::Gpu
+                                                   : DeviceKind::Other;
     return {kind, scene.features().meshes};
 }
 
@@ -74,8 +67,6 @@ BackendChoice choose_backend(const Situation& situation) {
     return {rule.backend, describe(situation), evidence(rule)};
 }
 
-std::string explain_choice(const BackendChoice& choice) {
-    return "auto: " + choice.situation + ": " + choice.evidence;
-}
+std::string explain_choice(const BackendChoice& choice) { return "auto: " + choice.situation + ": " + choice.evidence; }
 
 }  // namespace wp::cli

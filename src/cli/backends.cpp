@@ -127,14 +127,14 @@ std::string backend_help() {
     std::string help = std::string("Renderer: ") + kAuto +
                        " (the default: the fastest for the device and the scene by the bench's figures; "
                        "--explain and the summary line say which and why)";
-    for (const Backend& backend : kBackends) help += std::string(", ") + backend.name + " (" + backend.description + ")";
+    for (const Backend& backend : kBackends)
+        help += std::string(", ") + backend.name + " (" + backend.description + ")";
     return help;
 }
 
 // --explain's first line: "backend: megakernel (auto: CPU device, no meshes: ...)".
 std::string explain_backend(const BackendOptions& options) {
-    return "backend: " + options.name + " (" + (options.chosen ? explain_choice(*options.chosen) : "--backend") +
-           ")\n";
+    return "backend: " + options.name + " (" + (options.chosen ? explain_choice(*options.chosen) : "--backend") + ")\n";
 }
 
 // Notes each use of a flag only the wavefront takes, for --backend auto.
@@ -196,7 +196,8 @@ void add_backend_options(CLI::App& render, BackendOptions& options) {
         ->capture_default_str();
     render.add_flag("--profile", options.profile,
                     "Print the OpenCL backend's per-kernel profile (launches, items, device time, items/s) on stderr");
-    render.add_option("--profile-json", options.profile_json, "Also write the OpenCL backend's profile to this JSON file");
+    render.add_option("--profile-json", options.profile_json,
+                      "Also write the OpenCL backend's profile to this JSON file");
 }
 
 BackendOptions resolve_backend(const BackendOptions& options, const Scene& scene) {
@@ -206,8 +207,8 @@ BackendOptions resolve_backend(const BackendOptions& options, const Scene& scene
         std::string flags = options.wavefront_flags.front();
         for (std::size_t i = 1; i < options.wavefront_flags.size(); ++i) flags += ", " + options.wavefront_flags[i];
         const bool one = options.wavefront_flags.size() == 1;
-        resolved.chosen = BackendChoice{"wavefront", flags + " given", one ? "only the wavefront takes it"
-                                                                            : "only the wavefront takes them"};
+        resolved.chosen = BackendChoice{"wavefront", flags + " given",
+                                        one ? "only the wavefront takes it" : "only the wavefront takes them"};
     } else {
         resolved.chosen = choose_backend(situation_of(choose_device(options.device), scene));
     }

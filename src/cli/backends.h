@@ -21,10 +21,10 @@
 namespace wp::cli {
 
 struct BackendOptions {
-    std::string name = "auto";  // a backend, or "auto" until resolve_backend names one
-    std::optional<BackendChoice> chosen;  // how auto chose `name`; none when --backend named it
+    std::string name = "auto";                 // a backend, or "auto" until resolve_backend names one
+    std::optional<BackendChoice> chosen;       // how auto chose `name`; none when --backend named it
     std::vector<std::string> wavefront_flags;  // the flags given that only the wavefront takes
-    int threads = 0;  // CPU threads for the reference; 0 = all hardware threads
+    int threads = 0;                           // CPU threads for the reference; 0 = all hardware threads
     std::string precision = "float";
     std::string intersector;                     // "embree" or "bvh"; "" = the backend's fastest
     std::size_t wavefront = 0;                   // paths in flight for the wavefront; 0 = automatic
@@ -63,8 +63,8 @@ std::string estimator_name(const BackendOptions& options, const Scene& scene);
 using FilmRun = std::function<void(FilmRenderer& renderer)>;
 
 // Sets up the backend named in `options` (resolved), calls `run` with it,
-// then prints or writes its profile and --explain as asked. `max_items` (0: pixels x spp) sizes the automatic wavefront. Throws
-// UsageError for an option the backend does not support.
+// then prints or writes its profile and --explain as asked. `max_items` (0: pixels x spp) sizes the automatic
+// wavefront. Throws UsageError for an option the backend does not support.
 void run_with_backend(const Scene& scene, const BackendOptions& options, const Progress& progress,
                       std::uint64_t max_items, const FilmRun& run);
 

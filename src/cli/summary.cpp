@@ -88,8 +88,8 @@ nlohmann::json stats_json(const RunSummary& summary) {
     const RenderStats& s = summary.stats;
     return {
         {"backend", summary.backend},
-        {"backend_choice", summary.backend_choice ? nlohmann::json(explain_choice(*summary.backend_choice))
-                                                  : nlohmann::json(nullptr)},
+        {"backend_choice",
+         summary.backend_choice ? nlohmann::json(explain_choice(*summary.backend_choice)) : nlohmann::json(nullptr)},
         {"width", summary.width},
         {"height", summary.height},
         {"spp", summary.spp},

@@ -25,7 +25,7 @@ struct RunSummary {
     double stopped_early = 0.0;  // fraction of pixels with fewer samples than asked for
     // Work items each rank rendered, in rank order (one entry in one process).
     std::vector<std::uint64_t> samples_per_rank;
-    std::vector<double> busy_s_per_rank;  // seconds each rank spent rendering (not waiting)
+    std::vector<double> busy_s_per_rank;          // seconds each rank spent rendering (not waiting)
     std::optional<BackendChoice> backend_choice;  // how --backend auto chose `backend`; none when --backend named it
 };
 
@@ -40,7 +40,8 @@ struct RunSummary {
 // meshes)"; on several MPI ranks "wavefront, 3 ranks".
 std::string format_summary_line(const RunSummary& summary);
 
-// {"backend","backend_choice" (explain_choice's words, or null),"width","height","spp","spp_done_min","spp_done_max","stopped","error_estimate" (or null),
+// {"backend","backend_choice" (explain_choice's words, or
+// null),"width","height","spp","spp_done_min","spp_done_max","stopped","error_estimate" (or null),
 //  "adaptive" (null, or {"spp_mean","stopped_early"}), "ranks","samples_per_rank","render_s_per_rank","time_s",
 //  "samples","samples_per_s",
 //  "extension_rays","extension_rays_per_s","shadow_rays","shadow_rays_per_s","nonfinite",

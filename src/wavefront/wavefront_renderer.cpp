@@ -115,8 +115,8 @@ std::string WavefrontReport::explain() const {
     std::ostringstream out;
     out << "device: " << device << "\n"
         << "features: " << features << "\n"
-        << explain_build(build_options, cache_hit, build_seconds, cache_file)
-        << "wavefront: " << wavefront << " paths in flight, passes of up to " << pass_capacity << " samples, " << lanes
+        << explain_build(build_options, cache_hit, build_seconds, cache_file) << "wavefront: " << wavefront
+        << " paths in flight, passes of up to " << pass_capacity << " samples, " << lanes
         << (lanes == 1 ? " path" : " paths") << " per work item in the stage kernels\n"
         << "path state: " << state_bytes_per_path << " bytes per path, " << state_bytes_per_path * wavefront / 1024
         << " KiB in all\n";

@@ -60,13 +60,13 @@ TEST_F(AutoBackendCli, ChoosesForTheSceneOnACpuDeviceAndSaysWhy) {
         bool meshes;
         std::string situation;
     };
-    for (const Case& c : {Case{kSmallRoomScene, false, "CPU device, no meshes"},
-                          Case{mesh_scene(), true, "CPU device, meshes"}}) {
+    for (const Case& c :
+         {Case{kSmallRoomScene, false, "CPU device, no meshes"}, Case{mesh_scene(), true, "CPU device, meshes"}}) {
         SCOPED_TRACE(c.situation);
         const cli::BackendChoice choice = cli::choose_backend({cli::DeviceKind::Cpu, c.meshes});
         const std::string stats = out_ / "stats.json";
-        const CommandResult r = run({"render", c.scene, "-o", out_ / "out.pfm", "--spp", "1", "--explain",
-                                     "--stats-json", stats});
+        const CommandResult r =
+            run({"render", c.scene, "-o", out_ / "out.pfm", "--spp", "1", "--explain", "--stats-json", stats});
         ASSERT_EQ(r.exit_code, 0) << r.err;
         const std::string explanation = "auto: " + c.situation + ": " + choice.evidence;
         EXPECT_EQ(first_line(r.out), "backend: " + choice.backend + " (" + explanation + ")") << r.out;

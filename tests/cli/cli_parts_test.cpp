@@ -175,7 +175,8 @@ TEST(Progress, ConcurrentUpdatesAreSafe) {
 }
 
 RunSummary example_summary() {
-    RunSummary summary{"reference", "out/room.png", 640, 480, 16, 16, 16, "done", -1.0, {}, false, 0.0, 0.0, {}, {}, {}};
+    RunSummary summary{"reference", "out/room.png", 640, 480, 16, 16, 16, "done", -1.0,
+                       {},          false,          0.0, 0.0, {}, {}, {}};
     summary.stats.time_s = 2.0;
     summary.stats.samples = 640ull * 480 * 16;  // 4915200
     summary.stats.extension_rays = 12'000'000;

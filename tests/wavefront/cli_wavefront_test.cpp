@@ -1,4 +1,5 @@
-// The wavefront through the wavepath executable: --explain, --wavefront, --lanes, `wavepath devices`, and device errors.
+// The wavefront through the wavepath executable: --explain, --wavefront, --lanes, `wavepath devices`, and device
+// errors.
 #include <gtest/gtest.h>
 
 #include <array>
@@ -38,8 +39,8 @@ TEST(WavefrontCli, ExplainSaysWhatWasBuilt) {
                                         "' --spp 1 --backend wavefront --wavefront 256 --explain");
     EXPECT_EQ(r.exit_code, 0) << r.output;
     for (const char* text :
-         {"backend: wavefront (--backend)\n", "features: spheres quads diffuse mirror glass emitter quad-lights nee", "build options: -cl-std=CL1.2",
-          "-DWP_HAS_GLASS", "program: cache", "wavefront: 256 paths in flight",
+         {"backend: wavefront (--backend)\n", "features: spheres quads diffuse mirror glass emitter quad-lights nee",
+          "build options: -cl-std=CL1.2", "-DWP_HAS_GLASS", "program: cache", "wavefront: 256 paths in flight",
           "paths per work item in the stage kernels", "bytes per path", "spp, wavefront) in "})
         EXPECT_NE(r.output.find(text), std::string::npos) << text << "\n" << r.output;
     EXPECT_TRUE(std::filesystem::exists(out));
