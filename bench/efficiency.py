@@ -39,8 +39,7 @@ SIZE = 256
 # every Mitsuba sampler but `orthogonal` (a prime's square: 121 and 25) takes as they are.
 SCENE_SPP = {"room.json": 64, "cornell.json": 64, "bunny.json": 16}
 CONVERGED_SPP = 4096
-BACKENDS = ["wavefront", "megakernel", "reference"]  # the explicit ones, beside the default command
-OPENCL_BACKENDS = ["wavefront", "megakernel"]  # those --backend auto chooses from
+BACKENDS = ["wavefront", "megakernel", "reference"]  # the explicit ones, beside the default command; --backend auto ranks them
 MITSUBA_SAMPLERS = ["independent", "stratified", "multijitter", "orthogonal", "ldsampler"]
 PEER = "mitsuba-independent"  # what the targets are stated against
 
@@ -121,7 +120,8 @@ def ratio(a_runs, b_runs, a, b):
 
 def summarise(scene_runs):
     """Per scene: each configuration's efficiency and its ratio to Mitsuba's independent sampler; Mitsuba's best
-    sampler; the wavefront's samples/s over the megakernel's; which OpenCL backend is the more efficient."""
+    sampler; the wavefront's samples/s over the megakernel's; the explicit backends ranked by efficiency, each
+    with its ratio over the next (the ranking --backend auto's table restates, src/cli/backend_choice.cpp)."""
     runs = scene_runs["runs"]
     configs = {label: efficiency(r) for label, r in runs.items()}
     for label, c in configs.items():
@@ -130,17 +130,14 @@ def summarise(scene_runs):
     best_sampler = max(samplers, key=lambda label: configs[label]["efficiency"])
     wavefront_over_megakernel = [w["samples_per_s"] / m["samples_per_s"]
                                  for w, m in zip(runs["wavefront"], runs["megakernel"])]
-    fastest = max(OPENCL_BACKENDS, key=lambda b: configs[b]["efficiency"])
-    others = [b for b in OPENCL_BACKENDS if b != fastest]
-    runner_up = max(others, key=lambda b: configs[b]["efficiency"])
+    ranked = sorted(BACKENDS, key=lambda b: configs[b]["efficiency"], reverse=True)
+    ranking = [{"backend": b, **({"over_next": ratio(runs[b], runs[n], configs[b], configs[n])} if n else {})}
+               for b, n in zip(ranked, ranked[1:] + [None])]
     return {"scene": scene_runs["scene"], "spp": scene_runs["spp"], "meshes": scene_runs["meshes"],
             "truth_spp": scene_runs["truth_spp"], "truth_noise_relmse": scene_runs["truth_noise_relmse"],
             "truth_file": scene_runs["truth_file"], "configurations": configs,
             "mitsuba_best_sampler": best_sampler.removeprefix("mitsuba-"),
-            "wavefront_over_megakernel_samples_s": spread(wavefront_over_megakernel),
-            "fastest_opencl_backend": {"backend": fastest, "runner_up": runner_up,
-                                       **ratio(runs[fastest], runs[runner_up], configs[fastest],
-                                               configs[runner_up])}}
+            "wavefront_over_megakernel_samples_s": spread(wavefront_over_megakernel), "ranking": ranking}
 
 
 def device_type(binary):
@@ -191,15 +188,18 @@ def markdown(results):
                 f"{c['relmse_mean']:.4g} | {c['relmse_x_spp']:.4g} | {c['time_s']['min']:.3f} / "
                 f"{c['time_s']['median']:.3f} | {c['msamples_s']['min']:.3f} / {c['msamples_s']['median']:.3f} | "
                 f"{load['min']:.1f}-{load['max']:.1f} |")
-        w, f = s["wavefront_over_megakernel_samples_s"], s["fastest_opencl_backend"]
+        w = s["wavefront_over_megakernel_samples_s"]
+        ranking = ", then ".join(
+            r["backend"] + (f" ({r['over_next']['per_repetition']['median']:.2f}x the next's efficiency, per repetition "
+                            f"{r['over_next']['per_repetition']['min']:.2f}-{r['over_next']['per_repetition']['max']:.2f}"
+                            f", +-{r['over_next']['ratio_se']:.2f})" if "over_next" in r else "")
+            for r in s["ranking"])
         best = s["configurations"]["mitsuba-" + s["mitsuba_best_sampler"]]
         lines += ["", f"- Mitsuba's most efficient sampler here: {s['mitsuba_best_sampler']} "
                       f"({best['vs_mitsuba']['ratio']:.2f}x its independent sampler's efficiency).",
                   f"- The wavefront's samples/s over the megakernel's, per repetition: {w['min']:.2f} (min), "
                   f"{w['median']:.2f} (median), {w['max']:.2f} (max).",
-                  f"- The more efficient OpenCL backend: {f['backend']}, {f['ratio']:.2f}x the {f['runner_up']}'s "
-                  f"efficiency (per repetition {f['per_repetition']['min']:.2f}-{f['per_repetition']['max']:.2f}, "
-                  f"median {f['per_repetition']['median']:.2f}, +-{f['ratio_se']:.2f}).", ""]
+                  f"- The explicit backends by efficiency (the ranking `--backend auto` restates): {ranking}.", ""]
     return "\n".join(lines)
 
 

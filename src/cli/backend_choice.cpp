@@ -1,7 +1,6 @@
 #include "cli/backend_choice.h"
 
 #include <algorithm>
-#include <array>
 #include <cstdio>
 
 namespace wp::cli {
@@ -9,12 +8,26 @@ namespace wp::cli {
 namespace {
 
 // The efficiency ratios are those of bench/results/efficiency.json (python3
-// bench/efficiency.py), rounded to two digits: the test
-// BackendChoice.RulesAgreeWithTheBench fails when they no longer are.
+// bench/efficiency.py), to two digits: BackendChoice.RulesAgreeWithTheBench
+// fails when they no longer are.
 constexpr std::array<ChoiceRule, 3> kRules{{
-    {DeviceKind::Cpu, false, "megakernel", "wavefront", 0.0, 0.0, "room, cornell", "bench/results/efficiency.md", ""},
-    {DeviceKind::Cpu, true, "megakernel", "wavefront", 0.0, 0.0, "bunny", "bench/results/efficiency.md", ""},
-    {std::nullopt, std::nullopt, "wavefront", "", 0.0, 0.0, "", "",
+    {DeviceKind::Cpu,
+     false,
+     {{{"megakernel", 0.0, 0.0}, {"wavefront", 0.0, 0.0}, {"reference", 0.0, 0.0}}},
+     "room, cornell",
+     "bench/results/efficiency.md",
+     ""},
+    {DeviceKind::Cpu,
+     true,
+     {{{"reference", 0.0, 0.0}, {"megakernel", 0.0, 0.0}, {"wavefront", 0.0, 0.0}}},
+     "bunny",
+     "bench/results/efficiency.md",
+     ""},
+    {std::nullopt,
+     std::nullopt,
+     {{{"wavefront", 0.0, 0.0}, {"megakernel", 0.0, 0.0}, {"reference", 0.0, 0.0}}},
+     "",
+     "",
      "not measured on other devices yet: the wavefront, the design meant for GPUs"},
 }};
 
@@ -22,18 +35,41 @@ bool covers(const ChoiceRule& rule, const Situation& situation) {
     return (!rule.device || *rule.device == situation.device) && (!rule.meshes || *rule.meshes == situation.meshes);
 }
 
-std::string ratio_text(const ChoiceRule& rule) {
-    char text[32];
-    if (rule.ratio_low == rule.ratio_high)
-        std::snprintf(text, sizeof text, "%.2gx", rule.ratio_low);
-    else
-        std::snprintf(text, sizeof text, "%.2g-%.2gx", rule.ratio_low, rule.ratio_high);
+bool takes(const LimitingFlag& flag, const char* backend) {
+    return std::find(flag.backends.begin(), flag.backends.end(), backend) != flag.backends.end();
+}
+
+bool takes_all(const std::vector<LimitingFlag>& flags, const char* backend) {
+    return std::all_of(flags.begin(), flags.end(), [&](const LimitingFlag& flag) { return takes(flag, backend); });
+}
+
+std::string joined(const std::vector<LimitingFlag>& flags) {
+    std::string text;
+    for (const LimitingFlag& flag : flags) text += (text.empty() ? "" : ", ") + flag.flag;
     return text;
 }
 
-std::string evidence(const ChoiceRule& rule) {
-    if (*rule.source == '\0') return rule.unmeasured;
-    return ratio_text(rule) + " the " + rule.runner_up + "'s efficiency on " + rule.scenes + " in " + rule.source;
+std::string ratio_text(const Ranked& ranked) {
+    char text[32];
+    if (ranked.over_next_low == ranked.over_next_high)
+        std::snprintf(text, sizeof text, "%.2gx", ranked.over_next_low);
+    else
+        std::snprintf(text, sizeof text, "%.2g-%.2gx", ranked.over_next_low, ranked.over_next_high);
+    return text;
+}
+
+// Why `pick` (at `at` in the rule's ranking) was chosen under `flags`.
+std::string evidence(const ChoiceRule& rule, std::size_t at, const std::vector<LimitingFlag>& flags) {
+    const auto taken = std::count_if(rule.ranking.begin(), rule.ranking.end(),
+                                     [&](const Ranked& ranked) { return takes_all(flags, ranked.backend); });
+    const std::string pick = rule.ranking[at].backend;
+    if (taken == 1) return "only the " + pick + " takes " + (flags.size() == 1 ? "it" : "them all");
+    std::string text = *rule.source == '\0' ? std::string(rule.unmeasured)
+                                            : ratio_text(rule.ranking[at]) + " the " + rule.ranking[at + 1].backend +
+                                                  "'s efficiency on " + rule.scenes + " in " + rule.source;
+    if (at > 0)
+        text += std::string("; the ") + rule.ranking[0].backend + ", ranked first, does not take " + joined(flags);
+    return text;
 }
 
 const char* device_name(DeviceKind kind) {
@@ -62,9 +98,15 @@ const ChoiceRule& rule_for(const Situation& situation) {
                          [&](const ChoiceRule& rule) { return covers(rule, situation); });
 }
 
-BackendChoice choose_backend(const Situation& situation) {
+BackendChoice choose_backend(const Situation& situation, const std::vector<LimitingFlag>& flags) {
     const ChoiceRule& rule = rule_for(situation);
-    return {rule.backend, describe(situation), evidence(rule)};
+    const auto pick = std::find_if(rule.ranking.begin(), rule.ranking.end(),
+                                   [&](const Ranked& ranked) { return takes_all(flags, ranked.backend); });
+    if (pick == rule.ranking.end())
+        throw NoBackendTakesTheFlags(joined(flags) + ": no backend takes all of these together");
+    const std::string given = flags.empty() ? "" : ", " + joined(flags) + " given";
+    return {pick->backend, describe(situation) + given,
+            evidence(rule, std::size_t(pick - rule.ranking.begin()), flags)};
 }
 
 std::string explain_choice(const BackendChoice& choice) { return "auto: " + choice.situation + ": " + choice.evidence; }

@@ -1,16 +1,20 @@
 // --backend auto, the default: the backend chosen for the device and the
 // scene from the bench's figures. The policy is the table in
-// backend_choice.cpp, one rule per kind of device and scene, each citing
-// the bench/results file its figures come from (tests/cli check them
-// against that file). The intersector and the lanes, once they are
-// choices, become columns of the same table: a field in Situation for
-// what they depend on, one in ChoiceRule and BackendChoice for what is
-// picked.
+// backend_choice.cpp: one rule per kind of device and scene, ranking the
+// backends by their measured efficiency and citing the bench/results file
+// the figures come from (tests/cli/backend_choice_test.cpp checks them
+// against it). Flags that only some backends take narrow the ranking.
+// The intersector and the lanes, once they are choices, extend it: a field
+// in Situation for what they depend on, one in Ranked and BackendChoice for
+// what is picked.
 #pragma once
 
+#include <array>
 #include <optional>
 #include <span>
+#include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "opencl/device.h"
 #include "scene/scene.h"
@@ -30,35 +34,52 @@ Situation situation_of(const DeviceInfo& device, const Scene& scene);
 // "CPU device, no meshes".
 std::string describe(const Situation& situation);
 
-// One row of the table: the situations it covers (unset: any), what it
-// picks, and the measured evidence.
+// A backend in a rule's ranking, with its efficiency over the next one's:
+// the lowest and highest, over the rule's scenes, of the median over the
+// bench's repetitions (0: not measured).
+struct Ranked {
+    const char* backend;
+    double over_next_low, over_next_high;
+};
+
+// One row of the table: the situations it covers (unset: any), every
+// backend from the most efficient down, and where that was measured.
 struct ChoiceRule {
     std::optional<DeviceKind> device;
     std::optional<bool> meshes;
-    const char* backend;
-    // Against the runner-up: its efficiency ratio, lowest and highest over
-    // the scenes named, as measured in `source` ("": nothing measured, and
-    // `unmeasured` says why the pick stands).
-    const char* runner_up;
-    double ratio_low, ratio_high;
-    const char* scenes;  // "room, cornell": bench scenes of this situation
-    const char* source;
-    const char* unmeasured;
+    std::array<Ranked, 3> ranking;
+    const char* scenes;      // "room, cornell": the bench's scenes of this situation
+    const char* source;      // "bench/results/efficiency.md"; "": nothing measured
+    const char* unmeasured;  // without a source: why the ranking stands
 };
 
 std::span<const ChoiceRule> backend_choice_rules();
 
-struct BackendChoice {
-    std::string backend;
-    std::string situation;  // "CPU device, no meshes", or the flags that decided
-    std::string evidence;   // "1.9-2.1x the wavefront's efficiency on room, cornell in bench/results/efficiency.md"
-};
-
 // The first rule covering `situation` (the table ends with one covering all).
 const ChoiceRule& rule_for(const Situation& situation);
 
-// rule_for's pick and why.
-BackendChoice choose_backend(const Situation& situation);
+// A flag given on the command line that only some backends take
+// ("--profile": wavefront and megakernel).
+struct LimitingFlag {
+    std::string flag;
+    std::vector<std::string> backends;
+};
+
+struct BackendChoice {
+    std::string backend;
+    std::string situation;  // "CPU device, no meshes", then ", --profile given" for limiting flags
+    std::string evidence;   // "1.9-2.1x the wavefront's efficiency on room, cornell in bench/results/efficiency.md"
+};
+
+// No backend takes every limiting flag given: one line naming them.
+class NoBackendTakesTheFlags : public std::invalid_argument {
+ public:
+    using std::invalid_argument::invalid_argument;
+};
+
+// The highest-ranked backend of rule_for(situation) that takes every flag
+// in `flags`, and why. Throws NoBackendTakesTheFlags.
+BackendChoice choose_backend(const Situation& situation, const std::vector<LimitingFlag>& flags = {});
 
 // "auto: CPU device, no meshes: 1.9-2.1x ...".
 std::string explain_choice(const BackendChoice& choice);

@@ -137,10 +137,21 @@ std::string explain_backend(const BackendOptions& options) {
     return "backend: " + options.name + " (" + (options.chosen ? explain_choice(*options.chosen) : "--backend") + ")\n";
 }
 
-// Notes each use of a flag only the wavefront takes, for --backend auto.
-CLI::Option* wavefront_only(CLI::Option* option, BackendOptions& options) {
-    const std::string flag = option->get_name();
-    return option->each([&options, flag](const std::string&) { options.wavefront_flags.push_back(flag); });
+// For --backend auto, which chooses among the backends that take every flag given.
+const std::vector<std::string> kWavefrontOnly{"wavefront"}, kOpenClOnly{"wavefront", "megakernel"},
+    kReferenceOnly{"reference"}, kEmbreeTracers{"wavefront", "reference"};
+
+void note_limiting_flag(BackendOptions& options, const std::string& flag, const std::vector<std::string>& backends) {
+    std::vector<LimitingFlag>& given = options.limiting_flags;
+    if (std::none_of(given.begin(), given.end(), [&](const LimitingFlag& f) { return f.flag == flag; }))
+        given.push_back({flag, backends});
+}
+
+// `option` given on the command line narrows auto's choice to `backends`.
+CLI::Option* taken_only_by(CLI::Option* option, BackendOptions& options, const std::vector<std::string>& backends) {
+    return option->each([&options, &backends, flag = option->get_name()](const std::string&) {
+        note_limiting_flag(options, flag, backends);
+    });
 }
 
 }  // namespace
@@ -155,10 +166,12 @@ void add_backend_options(CLI::App& render, BackendOptions& options) {
     std::vector<std::string> names = backend_names();
     names.insert(names.begin(), kAuto);
     render.add_option("--backend", options.name, backend_help())->check(CLI::IsMember(names))->capture_default_str();
-    render.add_option("--threads", options.threads, "CPU threads for the reference backend (0: all)")
+    taken_only_by(render.add_option("--threads", options.threads, "CPU threads for the reference backend (0: all)"),
+                  options, kReferenceOnly)
         ->check(integer_in(0, kMaxThreads))
         ->capture_default_str();
-    render.add_option("--precision", options.precision, "Arithmetic of the reference backend")
+    taken_only_by(render.add_option("--precision", options.precision, "Arithmetic of the reference backend"), options,
+                  kReferenceOnly)
         ->check(CLI::IsMember({"float", "double"}))
         ->capture_default_str();
     render
@@ -168,11 +181,13 @@ void add_backend_options(CLI::App& render, BackendOptions& options) {
                     "fastest the backend has: embree for the reference in float; for the wavefront embree on a CPU "
                     "device for scenes with meshes, bvh otherwise (--explain says which and why); bvh for the "
                     "megakernel")
-        ->check(CLI::IsMember({"embree", "bvh"}));
-    wavefront_only(render.add_option("--wavefront", options.wavefront,
-                                     "Paths in flight for the wavefront backend (0: automatic; picks the "
-                                     "wavefront under --backend auto)"),
-                   options)
+        ->check(CLI::IsMember({"embree", "bvh"}))
+        ->each([&options](const std::string& intersector) {
+            if (intersector == "embree") note_limiting_flag(options, "--intersector embree", kEmbreeTracers);
+        });
+    taken_only_by(
+        render.add_option("--wavefront", options.wavefront, "Paths in flight for the wavefront backend (0: automatic)"),
+        options, kWavefrontOnly)
         ->check(integer_in(0, kMaxWavefront))
         ->capture_default_str();
     render.add_option("--device", options.device,
@@ -180,37 +195,36 @@ void add_backend_options(CLI::App& render, BackendOptions& options) {
     render.add_flag("--explain", options.explain,
                     "Print the backend and why it was chosen, then the OpenCL backends' device, build options and "
                     "program cache hit or miss, and the wavefront's feature set and state size");
-    wavefront_only(render.add_option("--compaction", options.compaction,
-                                     "How the wavefront fills its queues: atomic (pushes aggregated per work "
-                                     "group) or scan (stable prefix sum); picks the wavefront under --backend auto"),
-                   options)
+    taken_only_by(render.add_option("--compaction", options.compaction,
+                                    "How the wavefront fills its queues: atomic (pushes aggregated per work group) "
+                                    "or scan (stable prefix sum)"),
+                  options, kWavefrontOnly)
         ->transform(CLI::CheckedTransformer(
             std::map<std::string, Compaction>{{"atomic", Compaction::Atomic}, {"scan", Compaction::Scan}}))
         ->default_str(kDefaultCompaction == Compaction::Scan ? "scan" : "atomic");
-    render
-        .add_option("--lanes", options.lanes,
-                    "Paths per work item in the wavefront's stage kernels and in the megakernel, as vector code: 1 "
-                    "or 8 (8 needs --compaction scan on the wavefront; 0: 8 on CPU devices, 1 on others and in the "
-                    "megakernel for meshes)")
+    taken_only_by(render.add_option("--lanes", options.lanes,
+                                    "Paths per work item in the wavefront's stage kernels and in the megakernel, as "
+                                    "vector code: 1 or 8 (8 needs --compaction scan on the wavefront; 0: 8 on CPU "
+                                    "devices, 1 on others and in the megakernel for meshes)"),
+                  options, kOpenClOnly)
         ->check(CLI::IsMember({0u, 1u, 8u}))
         ->capture_default_str();
-    render.add_flag("--profile", options.profile,
-                    "Print the OpenCL backend's per-kernel profile (launches, items, device time, items/s) on stderr");
-    render.add_option("--profile-json", options.profile_json,
-                      "Also write the OpenCL backend's profile to this JSON file");
+    taken_only_by(render.add_flag("--profile", options.profile,
+                                  "Print the OpenCL backend's per-kernel profile (launches, items, device time, "
+                                  "items/s) on stderr"),
+                  options, kOpenClOnly);
+    taken_only_by(render.add_option("--profile-json", options.profile_json,
+                                    "Also write the OpenCL backend's profile to this JSON file"),
+                  options, kOpenClOnly);
 }
 
 BackendOptions resolve_backend(const BackendOptions& options, const Scene& scene) {
     BackendOptions resolved = options;
     if (options.name != kAuto) return resolved;
-    if (!options.wavefront_flags.empty()) {
-        std::string flags = options.wavefront_flags.front();
-        for (std::size_t i = 1; i < options.wavefront_flags.size(); ++i) flags += ", " + options.wavefront_flags[i];
-        const bool one = options.wavefront_flags.size() == 1;
-        resolved.chosen = BackendChoice{"wavefront", flags + " given",
-                                        one ? "only the wavefront takes it" : "only the wavefront takes them"};
-    } else {
-        resolved.chosen = choose_backend(situation_of(choose_device(options.device), scene));
+    try {
+        resolved.chosen = choose_backend(situation_of(choose_device(options.device), scene), options.limiting_flags);
+    } catch (const NoBackendTakesTheFlags& error) {
+        throw UsageError(error.what());
     }
     resolved.name = resolved.chosen->backend;
     return resolved;

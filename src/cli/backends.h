@@ -23,7 +23,7 @@ namespace wp::cli {
 struct BackendOptions {
     std::string name = "auto";                 // a backend, or "auto" until resolve_backend names one
     std::optional<BackendChoice> chosen;       // how auto chose `name`; none when --backend named it
-    std::vector<std::string> wavefront_flags;  // the flags given that only the wavefront takes
+    std::vector<LimitingFlag> limiting_flags;  // flags given that only some backends take
     int threads = 0;                           // CPU threads for the reference; 0 = all hardware threads
     std::string precision = "float";
     std::string intersector;                     // "embree" or "bvh"; "" = the backend's fastest
@@ -44,11 +44,14 @@ void add_backend_options(CLI::App& render, BackendOptions& options);
 std::vector<std::string> backend_names();
 
 // `options` with --backend auto resolved for this scene on the device
-// --device names: a flag only the wavefront takes (--wavefront,
-// --compaction) picks it, else the table of cli/backend_choice.h. Auto
-// picks only OpenCL backends, whose films are the same estimator's, so a
-// checkpoint resumes whatever each run picked. Throws DeviceError when
-// there is no such device.
+// --device names: the highest-ranked backend in the table of
+// cli/backend_choice.h that takes every flag given (--wavefront and
+// --compaction only the wavefront; --lanes, --profile and --profile-json
+// the OpenCL backends; --threads, --precision and --intersector embree the
+// reference). The choice depends on the device kind, the scene and the
+// flags alone, so a checkpoint resumes with the same one. Throws
+// DeviceError when there is no such device, UsageError when no backend
+// takes all the flags given.
 BackendOptions resolve_backend(const BackendOptions& options, const Scene& scene);
 
 // What a film from this backend's estimator is, for checkpoints and partial

@@ -1,10 +1,11 @@
 // --backend auto, the default, through the binary on a CPU device (PoCL):
 // its choice for a scene with and without meshes, stated by --explain, the
-// summary line and --stats-json; an explicit --backend and the wavefront's
-// own flags honoured; --profile-json under its choice; and a checkpoint of
-// its render resumed by an explicit backend to the same bits.
+// summary line and --stats-json; an explicit --backend and the flags only
+// some backends take honoured; --profile-json under it; and checkpoints of
+// its renders resumed to the same bits.
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <map>
 #include <nlohmann/json.hpp>
 
@@ -35,7 +36,7 @@ class AutoBackendCli : public ::testing::Test {
         args.insert(args.end(), extra.begin(), extra.end());
         return run(args);
     }
-    // A square mesh under a quad light, 8x8.
+    // A square mesh lit by a small quad light between it and the camera, 8x8.
     std::string mesh_scene() {
         write_text(out_ / "square.obj", "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nf 1 2 3 4\n");
         const std::string scene = out_ / "mesh.json";
@@ -44,7 +45,7 @@ class AutoBackendCli : public ::testing::Test {
             "materials": {"white": {"type": "diffuse", "albedo": [0.5, 0.5, 0.5]},
                           "lamp": {"type": "emitter", "radiance": [4, 4, 4]}},
             "shapes": [{"type": "mesh", "file": "square.obj", "material": "white"},
-                       {"type": "quad", "corner": [-0.5, -0.5, 2], "edge1": [0, 1, 0], "edge2": [1, 0, 0],
+                       {"type": "quad", "corner": [-0.25, -0.25, 1], "edge1": [0, 0.5, 0], "edge2": [0.5, 0, 0],
                         "material": "lamp"}]})");
         return scene;
     }
@@ -78,7 +79,7 @@ TEST_F(AutoBackendCli, ChoosesForTheSceneOnACpuDeviceAndSaysWhy) {
     }
 }
 
-TEST_F(AutoBackendCli, ExplicitBackendAndTheWavefrontsFlagsAreHonoured) {
+TEST_F(AutoBackendCli, ExplicitBackendAndFlagsSomeBackendsTakeAreHonoured) {
     const std::string stats = out_ / "stats.json";
     const CommandResult named =
         render_room(out_ / "a.pfm", 1, {"--backend", "wavefront", "--explain", "--stats-json", stats});
@@ -89,42 +90,76 @@ TEST_F(AutoBackendCli, ExplicitBackendAndTheWavefrontsFlagsAreHonoured) {
 
     const CommandResult flags = render_room(out_ / "b.pfm", 1, {"--compaction", "atomic", "--lanes", "1", "--explain"});
     ASSERT_EQ(flags.exit_code, 0) << flags.err;
-    EXPECT_EQ(first_line(flags.out), "backend: wavefront (auto: --compaction given: only the wavefront takes it)");
-    EXPECT_NE(flags.err.find(", wavefront (auto: --compaction given)) in "), std::string::npos) << flags.err;
+    EXPECT_EQ(first_line(flags.out),
+              "backend: wavefront (auto: CPU device, no meshes, --compaction, --lanes given: only the wavefront takes "
+              "them all)");
+    EXPECT_NE(flags.err.find(", wavefront (auto: CPU device, no meshes, --compaction, --lanes given)) in "),
+              std::string::npos)
+        << flags.err;
+
+    const CommandResult none = render_room(out_ / "c.pfm", 1, {"--precision", "double", "--profile"});
+    EXPECT_EQ(none.exit_code, 2) << none.err;
+    EXPECT_EQ(none.err, "wavepath: error: --precision, --profile: no backend takes all of these together\n");
+    EXPECT_FALSE(std::filesystem::exists(out_ / "c.pfm"));
 }
 
-// The profile is the chosen backend's, and agrees with the render's figures.
-TEST_F(AutoBackendCli, ProfileIsTheChosenBackends) {
+// --profile-json on the mesh scene, whose first pick may be one without
+// kernels: auto takes the best OpenCL backend, whose profile agrees with the
+// render's figures.
+TEST_F(AutoBackendCli, ProfileTakesAnOpenClBackend) {
     const std::string stats = out_ / "stats.json", profile_path = out_ / "profile.json";
-    const CommandResult r = render_room(out_ / "out.pfm", 2, {"--stats-json", stats, "--profile-json", profile_path});
+    const CommandResult r =
+        run({"render", mesh_scene(), "-o", out_ / "out.pfm", "--stats-json", stats, "--profile-json", profile_path});
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const json figures = json::parse(read_text(stats)), profile = json::parse(read_text(profile_path));
     const std::string backend = figures["backend"];
-    ASSERT_EQ(backend, cli::choose_backend({cli::DeviceKind::Cpu, false}).backend);
+    ASSERT_EQ(
+        backend,
+        cli::choose_backend({cli::DeviceKind::Cpu, true}, {{"--profile-json", {"wavefront", "megakernel"}}}).backend);
+    EXPECT_EQ(figures["backend_choice"].get<std::string>().rfind("auto: CPU device, meshes, --profile-json given: ", 0),
+              0u);
     std::map<std::string, json> kernels;
     for (const json& k : profile["kernels"]) kernels[k["name"]] = k;
     EXPECT_EQ(kernels.count(backend == "megakernel" ? "megakernel" : "intersect"), 1u) << profile.dump();
     EXPECT_EQ(kernels["accumulate"]["items"], figures["samples"]);
-    EXPECT_EQ(figures["samples"], 2u * 32 * 32);
+    EXPECT_EQ(figures["samples"], 2u * 8 * 8);
     EXPECT_EQ(profile["render_s"], figures["time_s"]);
 }
 
-// Auto's films are the OpenCL estimator's whichever backend it picks: its
-// checkpoint resumes on each explicit OpenCL backend to the bits of its
-// uninterrupted render.
-TEST_F(AutoBackendCli, CheckpointResumesOnEitherOpenClBackend) {
-    const std::string whole = out_ / "whole.pfm", checkpoint = out_ / "c.wpfilm";
-    ASSERT_EQ(render_room(whole, 6, {"-q"}).exit_code, 0);
-    ASSERT_EQ(render_room(out_ / "part.pfm", 3, {"-q", "--checkpoint", checkpoint}).exit_code, 0);
-    EXPECT_FALSE(same_bytes(out_ / "part.pfm", whole));  // the comparison can tell images apart
-    for (const char* backend : {"wavefront", "megakernel"}) {
-        SCOPED_TRACE(backend);
-        const std::string resumed = out_ / (std::string(backend) + ".pfm"), stats = out_ / "stats.json";
-        const CommandResult r =
-            render_room(resumed, 6, {"-q", "--resume", checkpoint, "--backend", backend, "--stats-json", stats});
-        ASSERT_EQ(r.exit_code, 0) << r.err;
-        EXPECT_TRUE(same_bytes(resumed, whole));
-        EXPECT_EQ(rendered_samples(stats), 3u * 32 * 32);
+// Without a limiting flag the choice depends on the device kind and the
+// scene alone, so a checkpoint of auto's render resumes under auto to the
+// bits of its uninterrupted render, on each scene; and where auto picked an
+// OpenCL backend, its film is the OpenCL estimator's, so the checkpoint
+// resumes on either OpenCL backend too.
+TEST_F(AutoBackendCli, CheckpointsResumeUnderAutoAndOnEitherOpenClBackend) {
+    struct Case {
+        std::string scene;
+        bool meshes;
+    };
+    for (const Case& c : {Case{kSmallRoomScene, false}, Case{mesh_scene(), true}}) {
+        SCOPED_TRACE(c.scene);
+        const std::string whole = out_ / "whole.pfm", checkpoint = out_ / "c.wpfilm";
+        auto render = [&](const std::string& out, int spp, std::vector<std::string> extra) {
+            std::vector<std::string> args{"render", c.scene, "-o", out, "--spp", std::to_string(spp), "-q"};
+            args.insert(args.end(), extra.begin(), extra.end());
+            return run(args).exit_code;
+        };
+        ASSERT_EQ(render(whole, 6, {}), 0);
+        ASSERT_EQ(render(out_ / "part.pfm", 3, {"--checkpoint", checkpoint}), 0);
+        EXPECT_FALSE(same_bytes(out_ / "part.pfm", whole));  // the comparison can tell images apart
+        std::vector<std::vector<std::string>> resumes{{}};
+        if (cli::choose_backend({cli::DeviceKind::Cpu, c.meshes}).backend != "reference")
+            resumes.insert(resumes.end(), {{"--backend", "wavefront"}, {"--backend", "megakernel"}});
+        for (std::vector<std::string> resume : resumes) {
+            SCOPED_TRACE(resume.empty() ? "auto" : resume.back());
+            const std::string resumed = out_ / "resumed.pfm", stats = out_ / "stats.json";
+            resume.insert(resume.end(), {"--resume", checkpoint, "--stats-json", stats});
+            ASSERT_EQ(render(resumed, 6, resume), 0);
+            EXPECT_TRUE(same_bytes(resumed, whole));
+            const json figures = json::parse(read_text(stats));
+            EXPECT_EQ(figures["samples"].get<std::uint64_t>() * 2,
+                      figures["width"].get<std::uint64_t>() * figures["height"].get<std::uint64_t>() * 6);
+        }
     }
 }
 

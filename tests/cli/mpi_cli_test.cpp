@@ -76,9 +76,7 @@ TEST_F(MpiCli, OneTwoAndThreeRanksGiveTheOneProcessBits) {
         ASSERT_EQ(r.exit_code, 0) << r.err;
         EXPECT_TRUE(same_bytes(out, one));
         if (ranks > 1) {
-            EXPECT_NE(
-                r.err.find("(32x32, 7 spp, wavefront (auto: --wavefront given), " + std::to_string(ranks) + " ranks)"),
-                std::string::npos)
+            EXPECT_NE(r.err.find(", --wavefront given), " + std::to_string(ranks) + " ranks)"), std::string::npos)
                 << r.err;
         }
         const nlohmann::json json = nlohmann::json::parse(read_text(stats));
@@ -277,8 +275,8 @@ TEST_F(MpiCli, SigintOnMpirunWritesTheImageOfTheCheckpoint) {
     job.send(SIGINT);
     CommandResult r = job.wait();
     EXPECT_NE(r.exit_code, 0) << r.err;
-    EXPECT_NE(r.err.find("stopped: interrupted, wavefront (auto: --wavefront given), 2 ranks"), std::string::npos)
-        << r.err;
+    EXPECT_NE(r.err.find("stopped: interrupted, wavefront (auto: "), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find(", --wavefront given), 2 ranks)"), std::string::npos) << r.err;
     ASSERT_EQ(run({"merge", checkpoint, "-o", merged, "-q"}).exit_code, 0);
     EXPECT_TRUE(same_bytes(out, merged));
 }
