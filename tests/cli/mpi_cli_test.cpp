@@ -171,7 +171,7 @@ TEST_F(MpiCli, AdaptiveSamplingGivesTheOneProcessBits) {
 }
 
 // Rank 1 runs its own command line (mpirun's MPMD form, `A : B`): a scene
-// it cannot load, or other settings, fail the job before anything is
+// it cannot load, other settings or another estimator fail the job before anything is
 // rendered: one error line naming the rank, its exit code, no output.
 TEST_F(MpiCli, ARankThatCannotStartFailsTheJobWithOneLine) {
     const std::string out = out_ / "out.pfm";
@@ -209,6 +209,19 @@ TEST_F(MpiCli, ARankThatCannotStartFailsTheJobWithOneLine) {
     r = run_on(1, other_spp);
     EXPECT_EQ(r.exit_code, 2) << r.err;
     EXPECT_NE(r.err.find("wavepath: error: rank 1 was given other settings than rank 0"), std::string::npos) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(out));
+
+    // Another estimator: what --backend auto's choices on two kinds of device would give.
+    std::vector<std::string> other_estimator = args;
+    other_estimator.insert(other_estimator.end(), {":", "-n", "1", WAVEPATH_BINARY});
+    const std::vector<std::string> reference = small_room_render_args(out, 4, {"--backend", "reference"});
+    other_estimator.insert(other_estimator.end(), reference.begin(), reference.end());
+    r = run_on(1, other_estimator);
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_NE(r.err.find("wavepath: error: rank 1 renders with another estimator than rank 0 (another backend: "
+                         "--backend auto chooses per kind of device; give --backend)"),
+              std::string::npos)
+        << r.err;
     EXPECT_FALSE(std::filesystem::exists(out));
 }
 
