@@ -149,6 +149,30 @@ def device_type(binary):
     return ""
 
 
+def targets(results):
+    """Issue 21's targets read off the run: (text, met) pairs."""
+    lines = []
+    for s in results["scenes"]:
+        c = s["configurations"]
+        d, m = c["default"], c[PEER]
+        speed = d["msamples_s"]["median"] / m["msamples_s"]["median"]
+        accuracy = m["relmse_x_spp"] / d["relmse_x_spp"]
+        v, best = d["vs_mitsuba"], c["mitsuba-" + s["mitsuba_best_sampler"]]
+        lines.append((f"{s['scene']}: the default command ({', '.join(d['backends_run'])}) at {v['ratio']:.2f}x "
+                      f"Mitsuba's efficiency (per repetition {v['per_repetition']['min']:.2f}-"
+                      f"{v['per_repetition']['max']:.2f}, median {v['per_repetition']['median']:.2f}; target 1.5x): "
+                      f"{speed:.2f}x its samples/s (medians) times {accuracy:.2f}x its accuracy per sample "
+                      f"(Mitsuba's relMSE x spp over ours); against Mitsuba's best sampler here, "
+                      f"{s['mitsuba_best_sampler']}, {d['efficiency'] / best['efficiency']:.2f}x",
+                      v["per_repetition"]["median"] >= 1.5))
+    for s in results["scenes"]:
+        if not s["meshes"]:
+            w = s["wavefront_over_megakernel_samples_s"]
+            lines.append((f"{s['scene']}: the wavefront at {w['median']:.2f}x the megakernel's samples/s (median per "
+                          f"repetition, {w['min']:.2f}-{w['max']:.2f}; target 0.9x)", w["median"] >= 0.9))
+    return lines
+
+
 def markdown(results):
     m, command = results["meta"], results["command"]
     quiet = results["quiet"]
@@ -163,7 +187,10 @@ def markdown(results):
              f"{statistics.median(loads):.2f}; waited {quiet['waited_s']} s for it to fall below "
              f"{quiet['threshold']} (seen: {', '.join(map(str, quiet['loads_seen']))}): "
              + ("it did." if quiet["quiet"] else "it did not; measured anyway, interleaved."),
-             f"- {results['repeats']} repetitions; each renders every configuration once, in turn", "",
+             f"- {results['repeats']} repetitions; each renders every configuration once, in turn; "
+             f"{results['elapsed_s']} s in all", "", "## Issue 21's targets in this run", ""]
+    lines += [f"- {'met' if met else 'NOT met'}: {text}." for text, met in targets(results)]
+    lines += ["", "## Method", "",
              "Efficiency = 1 / (relMSE x time), estimated as 1 / mean over the runs of relMSE x time (each run its "
              "own seed), +- the standard error of that mean, relative. relMSE: mean over pixels and channels of "
              "(x - r)^2 / (r^2 + 0.01) against the truth r, less the truth's own noise. Time: the render's "
@@ -213,7 +240,16 @@ def main():
     parser.add_argument("--quiet-load", type=float, default=2.5)
     parser.add_argument("--wait-s", type=float, default=1200)
     parser.add_argument("--scenes", default=",".join(SCENE_SPP))
+    parser.add_argument("--markdown-only", action="store_true",
+                        help="write efficiency.md again from --out's efficiency.json, measuring nothing")
     args = parser.parse_args()
+    if args.markdown_only:
+        with open(os.path.join(args.out, "efficiency.json")) as f:
+            results = json.load(f)
+        results["scenes"] = [summarise(s) for s in results["raw"]]
+        with open(os.path.join(args.out, "efficiency.md"), "w") as f:
+            f.write(markdown(results))
+        return
     command = "python3 bench/efficiency.py" + "".join(
         f" {flag} {shlex.quote(str(value))}" for flag, value, default in
         (("--repeats", args.repeats, 5), ("--scenes", args.scenes, ",".join(SCENE_SPP)))
