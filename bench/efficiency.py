@@ -230,6 +230,16 @@ def markdown(results):
     return "\n".join(lines)
 
 
+def write_results(results, out):
+    """The runs' summary into `results`, then efficiency.json and efficiency.md into `out`."""
+    results["scenes"] = [summarise(s) for s in results["raw"]]
+    os.makedirs(out, exist_ok=True)
+    with open(os.path.join(out, "efficiency.json"), "w") as f:
+        json.dump(results, f, indent=1)
+    with open(os.path.join(out, "efficiency.md"), "w") as f:
+        f.write(markdown(results))
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--binary", default=os.path.join(ROOT, "build", "wavepath"))
@@ -240,15 +250,14 @@ def main():
     parser.add_argument("--quiet-load", type=float, default=2.5)
     parser.add_argument("--wait-s", type=float, default=1200)
     parser.add_argument("--scenes", default=",".join(SCENE_SPP))
-    parser.add_argument("--markdown-only", action="store_true",
-                        help="write efficiency.md again from --out's efficiency.json, measuring nothing")
+    parser.add_argument("--summarise-again", action="store_true",
+                        help="measure nothing: summarise --out's efficiency.json's runs again into it and "
+                             "efficiency.md (after a change to this script's summary)")
     args = parser.parse_args()
-    if args.markdown_only:
+    if args.summarise_again:
         with open(os.path.join(args.out, "efficiency.json")) as f:
             results = json.load(f)
-        results["scenes"] = [summarise(s) for s in results["raw"]]
-        with open(os.path.join(args.out, "efficiency.md"), "w") as f:
-            f.write(markdown(results))
+        write_results(results, args.out)
         return
     command = "python3 bench/efficiency.py" + "".join(
         f" {flag} {shlex.quote(str(value))}" for flag, value, default in
@@ -265,12 +274,8 @@ def main():
                for scene in args.scenes.split(",")]
     results = {"command": command, "meta": meta, "device_type": device_type(binary),
                "quiet": quiet, "repeats": args.repeats, "size": SIZE, "elapsed_s": round(time.time() - start),
-               "scenes": [summarise(s) for s in raw], "raw": raw}
-    os.makedirs(args.out, exist_ok=True)
-    with open(os.path.join(args.out, "efficiency.json"), "w") as f:
-        json.dump(results, f, indent=1)
-    with open(os.path.join(args.out, "efficiency.md"), "w") as f:
-        f.write(markdown(results))
+               "raw": raw}
+    write_results(results, args.out)
     print(f"efficiency: wrote {args.out}/efficiency.md in {results['elapsed_s']} s")
 
 
