@@ -125,8 +125,8 @@ constexpr const char* kAuto = "auto";
 
 std::string backend_help() {
     std::string help = std::string("Renderer: ") + kAuto +
-                       " (the default: the fastest for the device and the scene by the bench's figures; "
-                       "--explain and the summary line say which and why)";
+                       " (the default: the fastest for the device and the scene by the bench's figures, among "
+                       "the backends that take every flag given; --explain and the summary line say which and why)";
     for (const Backend& backend : kBackends)
         help += std::string(", ") + backend.name + " (" + backend.description + ")";
     return help;
