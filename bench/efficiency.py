@@ -64,6 +64,12 @@ def scene_has_meshes(path):
         return any(shape.get("type") == "mesh" for shape in json.load(f).get("shapes", []))
 
 
+def intersector(estimator):
+    """What traced the rays, as --intersector names it, from the film's estimator (opencl, opencl-embree,
+    reference-embree, reference-float...)."""
+    return "embree" if estimator.endswith("-embree") else "bvh"
+
+
 def configurations():
     """(label, how): how is ("wavepath", backend or None for the default command) or ("mitsuba", sampler)."""
     return ([("default", ("wavepath", None))] + [(b, ("wavepath", b)) for b in BACKENDS] +
@@ -82,12 +88,13 @@ def measure_scene(runner, peer, scene, spp, repeats, cache):
             load = load_average()
             if renderer == "mitsuba":
                 r = peer.render(path, SIZE, spp, seed=repetition, sampler=what)
-                backend = "mitsuba " + what
+                backend, traced_by = "mitsuba " + what, None
             else:
                 r = runner.render(path, what, SIZE, SIZE, spp, image=True, seed=repetition)
-                backend = r["backend"]
+                backend, traced_by = r["backend"], intersector(r["estimator"])
             relmse = rel_mse(r["image"], truth.image) - noise
-            runs[label].append({"repetition": repetition, "backend": backend, "relmse": relmse,
+            runs[label].append({"repetition": repetition, "backend": backend, "intersector": traced_by,
+                                "relmse": relmse,
                                 "time_s": r["time_s"], "samples": r["samples"],
                                 "samples_per_s": r["samples_per_s"], "load_average": round(load, 2),
                                 "backend_choice": r.get("backend_choice")})
@@ -106,7 +113,8 @@ def efficiency(runs):
             "time_s": spread([r["time_s"] for r in runs]),
             "msamples_s": spread([r["samples_per_s"] / 1e6 for r in runs]),
             "load_average": spread([r["load_average"] for r in runs]),
-            "backends_run": sorted({r["backend"] for r in runs})}
+            "backends_run": sorted({r["backend"] + (f" with {r['intersector']}" if r["intersector"] else "")
+                                    for r in runs})}
 
 
 def ratio(a_runs, b_runs, a, b):
@@ -131,7 +139,8 @@ def summarise(scene_runs):
     wavefront_over_megakernel = [w["samples_per_s"] / m["samples_per_s"]
                                  for w, m in zip(runs["wavefront"], runs["megakernel"])]
     ranked = sorted(BACKENDS, key=lambda b: configs[b]["efficiency"], reverse=True)
-    ranking = [{"backend": b, **({"over_next": ratio(runs[b], runs[n], configs[b], configs[n])} if n else {})}
+    ranking = [{"backend": b, "intersector": runs[b][0]["intersector"],
+                **({"over_next": ratio(runs[b], runs[n], configs[b], configs[n])} if n else {})}
                for b, n in zip(ranked, ranked[1:] + [None])]
     return {"scene": scene_runs["scene"], "spp": scene_runs["spp"], "meshes": scene_runs["meshes"],
             "truth_spp": scene_runs["truth_spp"], "truth_noise_relmse": scene_runs["truth_noise_relmse"],

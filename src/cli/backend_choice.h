@@ -4,9 +4,10 @@
 // backends by their measured efficiency and citing the bench/results file
 // the figures come from (tests/cli/backend_choice_test.cpp checks them
 // against it). Flags that only some backends take narrow the ranking.
-// The intersector and the lanes, once they are choices, extend it: a field
-// in Situation for what they depend on, one in Ranked and BackendChoice for
-// what is picked.
+// Each backend is ranked with the intersector it traces with by default in
+// the situation (the table states it, the tests check it is the backend's
+// default); the lanes are each OpenCL backend's own choice by the device's
+// vector width.
 #pragma once
 
 #include <array>
@@ -34,11 +35,14 @@ Situation situation_of(const DeviceInfo& device, const Scene& scene);
 // "CPU device, no meshes".
 std::string describe(const Situation& situation);
 
-// A backend in a rule's ranking, with its efficiency over the next one's:
-// the lowest and highest, over the rule's scenes, of the median over the
-// bench's repetitions (0: not measured).
+// A backend in a rule's ranking, with the intersector it traces with there
+// (its default in the situation, which the bench ran: "embree" or "bvh"),
+// and its efficiency over the next one's: the lowest and highest, over the
+// rule's scenes, of the median over the bench's repetitions (0: not
+// measured).
 struct Ranked {
     const char* backend;
+    const char* intersector;
     double over_next_low, over_next_high;
 };
 
@@ -68,7 +72,7 @@ struct LimitingFlag {
 struct BackendChoice {
     std::string backend;
     std::string situation;  // "CPU device, no meshes", then ", --profile given" for limiting flags
-    std::string evidence;   // "1.9-2.1x the wavefront's efficiency on room, cornell in bench/results/efficiency.md"
+    std::string evidence;   // "with bvh: 1.9-2.1x the efficiency of the wavefront with bvh on room, cornell in ..."
 };
 
 // No backend takes every limiting flag given: one line naming them.

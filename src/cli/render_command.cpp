@@ -189,6 +189,7 @@ void report_run(const RenderCommand& command, const PreparedRender& prepared, co
     RunSummary summary;
     summary.backend = prepared.backend.name;
     summary.backend_choice = prepared.backend.chosen;
+    summary.estimator = plan.identity.estimator;
     summary.output_path = command.output_path;
     summary.width = scene.camera.width;
     summary.height = scene.camera.height;

@@ -90,6 +90,7 @@ nlohmann::json stats_json(const RunSummary& summary) {
         {"backend", summary.backend},
         {"backend_choice",
          summary.backend_choice ? nlohmann::json(explain_choice(*summary.backend_choice)) : nlohmann::json(nullptr)},
+        {"estimator", summary.estimator},
         {"width", summary.width},
         {"height", summary.height},
         {"spp", summary.spp},

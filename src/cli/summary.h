@@ -27,6 +27,7 @@ struct RunSummary {
     std::vector<std::uint64_t> samples_per_rank;
     std::vector<double> busy_s_per_rank;          // seconds each rank spent rendering (not waiting)
     std::optional<BackendChoice> backend_choice;  // how --backend auto chose `backend`; none when --backend named it
+    std::string estimator;  // the film's estimator (cli/backends.h, estimator_name): it names the intersector
 };
 
 // "wavepath: wrote out.png (512x512, 64 spp, reference) in 12.3 s: 1.36 Msamples/s,
@@ -41,7 +42,7 @@ struct RunSummary {
 std::string format_summary_line(const RunSummary& summary);
 
 // {"backend","backend_choice" (explain_choice's words, or
-// null),"width","height","spp","spp_done_min","spp_done_max","stopped","error_estimate" (or null),
+// null),"estimator","width","height","spp","spp_done_min","spp_done_max","stopped","error_estimate" (or null),
 //  "adaptive" (null, or {"spp_mean","stopped_early"}), "ranks","samples_per_rank","render_s_per_rank","time_s",
 //  "samples","samples_per_s",
 //  "extension_rays","extension_rays_per_s","shadow_rays","shadow_rays_per_s","nonfinite",

@@ -54,7 +54,8 @@ class AutoBackendCli : public ::testing::Test {
 
 // For each scene: --explain's first line names the backend and the
 // situation with the table's evidence, the summary line the backend and the
-// situation, --stats-json the backend and the explanation.
+// situation, --stats-json the backend, the explanation and the estimator
+// (of the intersector the table ranks the backend with).
 TEST_F(AutoBackendCli, ChoosesForTheSceneOnACpuDeviceAndSaysWhy) {
     struct Case {
         std::string scene;
@@ -76,6 +77,10 @@ TEST_F(AutoBackendCli, ChoosesForTheSceneOnACpuDeviceAndSaysWhy) {
         const json figures = json::parse(read_text(stats));
         EXPECT_EQ(figures["backend"], choice.backend);
         EXPECT_EQ(figures["backend_choice"], explanation);
+        // The backend traced with the intersector the table ranks it with (the estimator names Embree).
+        const bool embree =
+            std::string(cli::rule_for({cli::DeviceKind::Cpu, c.meshes}).ranking[0].intersector) == "embree";
+        EXPECT_EQ(figures["estimator"].get<std::string>().ends_with("-embree"), embree) << figures["estimator"];
     }
 }
 

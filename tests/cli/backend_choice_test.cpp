@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 #include <vector>
 
+#include "reference/reference_renderer.h"
 #include "support/temp_directory.h"
 
 namespace wp::cli {
@@ -41,36 +42,69 @@ TEST(BackendChoice, SituationOfTheDeviceAndTheScene) {
 const std::vector<LimitingFlag> kProfile{{"--profile", {"wavefront", "megakernel"}}};
 const std::vector<LimitingFlag> kPrecision{{"--precision", {"reference"}}};
 
-// What the bench measured on a CPU, and what stands where nothing was measured.
+// What the table says of `ranked` against the backend after it, on a CPU.
+std::string measured_evidence(const Ranked& ranked, const Ranked& next, const std::string& scenes) {
+    return "with " + std::string(ranked.intersector) + ": " +
+           (ranked.over_next_low == ranked.over_next_high
+                ? two_digits(ranked.over_next_low)
+                : two_digits(ranked.over_next_low) + "-" + two_digits(ranked.over_next_high)) +
+           "x the efficiency of the " + next.backend + " with " + next.intersector + " on " + scenes +
+           " in bench/results/efficiency.md";
+}
+
+// On a CPU the first of the measured ranking, with its figures over the
+// second; elsewhere the wavefront, with why nothing was measured.
 TEST(BackendChoice, PicksAndStatements) {
-    EXPECT_EQ(choose_backend({DeviceKind::Cpu, false}).backend, "megakernel");
-    EXPECT_EQ(choose_backend({DeviceKind::Cpu, true}).backend, "reference");
+    for (const bool meshes : {false, true}) {
+        const ChoiceRule& rule = rule_for({DeviceKind::Cpu, meshes});
+        const BackendChoice cpu = choose_backend({DeviceKind::Cpu, meshes});
+        EXPECT_EQ(cpu.backend, rule.ranking[0].backend);
+        EXPECT_EQ(explain_choice(cpu),
+                  "auto: " + describe({DeviceKind::Cpu, meshes}) + ": " +
+                      measured_evidence(rule.ranking[0], rule.ranking[1], meshes ? "bunny" : "room, cornell"));
+    }
     const BackendChoice gpu = choose_backend({DeviceKind::Gpu, true});
     EXPECT_EQ(gpu.backend, "wavefront");
     EXPECT_EQ(explain_choice(gpu),
               "auto: GPU device, meshes: not measured on other devices yet: the wavefront, the design meant for GPUs");
-    const std::string cpu = explain_choice(choose_backend({DeviceKind::Cpu, false}));
-    EXPECT_EQ(cpu.rfind("auto: CPU device, no meshes: ", 0), 0u) << cpu;
-    EXPECT_NE(cpu.find("x the wavefront's efficiency on room, cornell in bench/results/efficiency.md"),
-              std::string::npos)
-        << cpu;
 }
 
-// Flags only some backends take pass over the higher-ranked ones that do not.
+// Flags only some backends take pass over the higher-ranked ones that do
+// not: --profile takes the first OpenCL backend of the ranking, saying so
+// when the reference is ranked before it; a flag one backend alone takes
+// picks it; flags no backend takes together are refused.
 TEST(BackendChoice, FlagsNarrowTheRanking) {
-    const BackendChoice profiled = choose_backend({DeviceKind::Cpu, true}, kProfile);
-    EXPECT_EQ(profiled.backend, "megakernel");
-    EXPECT_EQ(profiled.situation, "CPU device, meshes, --profile given");
-    EXPECT_NE(profiled.evidence.find("x the wavefront's efficiency on bunny in bench/results/efficiency.md; the "
-                                     "reference, ranked first, does not take --profile"),
-              std::string::npos)
-        << profiled.evidence;
+    for (const bool meshes : {false, true}) {
+        const ChoiceRule& rule = rule_for({DeviceKind::Cpu, meshes});
+        const auto opencl = std::find_if(rule.ranking.begin(), rule.ranking.end(), [](const Ranked& ranked) {
+            return std::string(ranked.backend) != "reference";
+        });
+        ASSERT_NE(opencl + 1, rule.ranking.end()) << "the two OpenCL backends are ranked";
+        const BackendChoice profiled = choose_backend({DeviceKind::Cpu, meshes}, kProfile);
+        EXPECT_EQ(profiled.backend, opencl->backend);
+        EXPECT_EQ(profiled.situation, describe({DeviceKind::Cpu, meshes}) + ", --profile given");
+        std::string evidence = measured_evidence(*opencl, *(opencl + 1), meshes ? "bunny" : "room, cornell");
+        if (opencl != rule.ranking.begin()) evidence += "; the reference, ranked first, does not take --profile";
+        EXPECT_EQ(profiled.evidence, evidence);
+    }
     const BackendChoice precise = choose_backend({DeviceKind::Gpu, false}, kPrecision);
     EXPECT_EQ(precise.backend, "reference");
     EXPECT_EQ(explain_choice(precise), "auto: GPU device, no meshes, --precision given: only the reference takes it");
     std::vector<LimitingFlag> both = kProfile;
     both.push_back(kPrecision.front());
     EXPECT_THROW(choose_backend({DeviceKind::Cpu, false}, both), NoBackendTakesTheFlags);
+}
+
+// Each backend is ranked with the intersector it traces with by default in
+// the rule's situation, so that what auto runs is what the figures measured.
+TEST(BackendChoice, RankedIntersectorsAreTheBackendsDefaults) {
+    const std::string reference = fastest_reference_intersector(false) == Intersector::Embree ? "embree" : "bvh";
+    for (const ChoiceRule& rule : backend_choice_rules())
+        for (const Ranked& ranked : rule.ranking) {
+            SCOPED_TRACE(std::string(ranked.backend) + " for " + rule.scenes);
+            const std::string backend = ranked.backend;
+            EXPECT_EQ(ranked.intersector, backend == "reference" ? reference : "bvh");
+        }
 }
 
 // Each measured rule holds for every bench scene of its situation: its
@@ -100,6 +134,7 @@ TEST(BackendChoice, RulesAgreeWithTheBench) {
             ASSERT_EQ(ranking.size(), rule.ranking.size()) << name;
             for (std::size_t i = 0; i < ranking.size(); ++i) {
                 EXPECT_EQ(ranking[i]["backend"], rule.ranking[i].backend) << name << ", place " << i;
+                EXPECT_EQ(ranking[i]["intersector"], rule.ranking[i].intersector) << name << ", place " << i;
                 if (i + 1 == ranking.size()) continue;
                 const double ratio = ranking[i]["over_next"]["per_repetition"]["median"];
                 low[i] = std::min(low[i], ratio);

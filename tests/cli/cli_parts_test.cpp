@@ -175,8 +175,8 @@ TEST(Progress, ConcurrentUpdatesAreSafe) {
 }
 
 RunSummary example_summary() {
-    RunSummary summary{"reference", "out/room.png", 640, 480, 16, 16, 16, "done", -1.0,
-                       {},          false,          0.0, 0.0, {}, {}, {}};
+    RunSummary summary{"reference", "out/room.png",    640, 480, 16, 16, 16, "done", -1.0, {}, false, 0.0, 0.0, {}, {},
+                       {},          "reference-embree"};
     summary.stats.time_s = 2.0;
     summary.stats.samples = 640ull * 480 * 16;  // 4915200
     summary.stats.extension_rays = 12'000'000;
@@ -250,6 +250,7 @@ TEST(Summary, AutoChoiceIsNamedWithItsSituation) {
 TEST(Summary, StatsJsonHasTheFiguresAndRates) {
     const nlohmann::json stats = stats_json(example_summary());
     EXPECT_EQ(stats["backend"], "reference");
+    EXPECT_EQ(stats["estimator"], "reference-embree");
     EXPECT_EQ(stats["width"], 640);
     EXPECT_EQ(stats["height"], 480);
     EXPECT_EQ(stats["spp"], 16);
