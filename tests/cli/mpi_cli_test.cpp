@@ -54,8 +54,8 @@ class MpiCli : public ::testing::Test {
 };
 
 // The default backend (auto) on 2 ranks: each rank chooses for its own
-// device, and either OpenCL backend's film is the same estimator's, so the
-// image is the one-process render's.
+// device, here the same kind as the one process's, so the image is the
+// one-process render's.
 TEST_F(MpiCli, AutoBackendOnTwoRanksGivesTheOneProcessBits) {
     const std::string one = out_ / "auto_one.pfm", two = out_ / "auto_two.pfm";
     ASSERT_EQ(run({"render", kSmallRoomScene, "-o", one, "--spp", "4", "-q"}).exit_code, 0);
