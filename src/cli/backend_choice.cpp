@@ -19,7 +19,7 @@ constexpr std::array<ChoiceRule, 3> kRules{{
      ""},
     {DeviceKind::Cpu,
      true,
-     {{{"reference", "embree", 0.0, 0.0}, {"megakernel", "bvh", 0.0, 0.0}, {"wavefront", "bvh", 0.0, 0.0}}},
+     {{{"reference", "embree", 0.0, 0.0}, {"megakernel", "bvh", 0.0, 0.0}, {"wavefront", "embree", 0.0, 0.0}}},
      "bunny",
      "bench/results/efficiency.md",
      ""},

@@ -7,11 +7,13 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <vector>
 
 #include "reference/reference_renderer.h"
 #include "support/temp_directory.h"
+#include "wavefront/intersector_choice.h"
 
 namespace wp::cli {
 namespace {
@@ -96,14 +98,25 @@ TEST(BackendChoice, FlagsNarrowTheRanking) {
 }
 
 // Each backend is ranked with the intersector it traces with by default in
-// the rule's situation, so that what auto runs is what the figures measured.
+// the rule's situation (the wavefront's by the device and the scene's
+// meshes, the reference's in float), so that what auto runs is what the
+// figures measured.
 TEST(BackendChoice, RankedIntersectorsAreTheBackendsDefaults) {
-    const std::string reference = fastest_reference_intersector(false) == Intersector::Embree ? "embree" : "bvh";
     for (const ChoiceRule& rule : backend_choice_rules())
-        for (const Ranked& ranked : rule.ranking) {
-            SCOPED_TRACE(std::string(ranked.backend) + " for " + rule.scenes);
-            const std::string backend = ranked.backend;
-            EXPECT_EQ(ranked.intersector, backend == "reference" ? reference : "bvh");
+        for (const bool meshes : {false, true}) {
+            if (rule.meshes && *rule.meshes != meshes) continue;
+            DeviceInfo device;
+            device.type = rule.device == DeviceKind::Cpu ? "CPU" : "GPU";
+            FeatureSet features;
+            features.meshes = meshes;
+            const std::map<std::string, Intersector> defaults{
+                {"wavefront", default_intersector(device, features).intersector},
+                {"megakernel", Intersector::Bvh},
+                {"reference", fastest_reference_intersector(false)}};
+            for (const Ranked& ranked : rule.ranking) {
+                SCOPED_TRACE(std::string(ranked.backend) + " on a " + device.type + (meshes ? ", meshes" : ""));
+                EXPECT_EQ(ranked.intersector, intersector_name(defaults.at(ranked.backend)));
+            }
         }
 }
 
