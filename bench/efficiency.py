@@ -151,12 +151,17 @@ def summarise(scene_runs):
             "wavefront_over_megakernel_samples_s": spread(wavefront_over_megakernel), "ranking": ranking}
 
 
+def type_of(type_line):
+    """'CPU' of `wavepath devices`' line 'type: CPU, compute units: 2, ...'."""
+    return type_line.split(":", 1)[1].split(",", 1)[0].strip()
+
+
 def device_type(binary):
     """The type (CPU, GPU...) `wavepath devices` gives device 0, the one run_meta names."""
     lines = subprocess.run([binary, "devices"], capture_output=True, text=True).stdout.splitlines()
     for i, line in enumerate(lines):
         if line.startswith("[0]"):
-            return next((l.split(":", 1)[1].strip() for l in lines[i + 1:] if l.strip().startswith("type:")), "")
+            return next((type_of(l) for l in lines[i + 1:] if l.strip().startswith("type:")), "")
     return ""
 
 
