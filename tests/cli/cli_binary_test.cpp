@@ -326,12 +326,13 @@ TEST_F(CliTest, ReferenceRendersWithEitherIntersector) {
 // (the test scene has no meshes: the OpenCL BVH by default), and both give
 // the same image.
 TEST_F(CliTest, WavefrontRendersWithEitherIntersectorAndExplainsWhich) {
-    const CommandResult by_default = render(base_scene().dump(), {"--explain", "-q"});
+    const CommandResult by_default = render(base_scene().dump(), {"--backend", "wavefront", "--explain", "-q"});
     ASSERT_EQ(by_default.exit_code, 0) << by_default.err;
     EXPECT_NE(by_default.out.find("intersector: bvh (the OpenCL BVH: without meshes"), std::string::npos)
         << by_default.out;
     const std::vector<float> bvh = read_image(output_path()).rgb;
-    const CommandResult embree = render(base_scene().dump(), {"--intersector", "embree", "--explain", "-q"});
+    const CommandResult embree =
+        render(base_scene().dump(), {"--backend", "wavefront", "--intersector", "embree", "--explain", "-q"});
     ASSERT_EQ(embree.exit_code, 0) << embree.err;
     EXPECT_NE(embree.out.find("intersector: embree (asked for)"), std::string::npos) << embree.out;
     EXPECT_EQ(read_image(output_path()).width, 8);
