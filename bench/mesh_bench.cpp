@@ -851,8 +851,8 @@ json lanes_figures(const Scene& shipped, int size, int spp, int repeats) {
     scene.render.spp = spp;
     const unsigned lanes[] = {1u, 8u};
     constexpr int kConfigs = 2;
-    const std::vector<std::string> kernels{"generate", "intersect",     "shade_direct",  "intersect_shadow",
-                                           "scatter",  "compact_count", "compact_write", "accumulate"};
+    const std::vector<std::string> kernels{"generate",      "intersect",     "shade",     "intersect_shadow",
+                                           "compact_count", "compact_write", "accumulate"};
     std::printf(
         "\n## d. Lanes with meshes: %s, %dx%d, %d spp, %d interleaved repetitions (after one warm-up render each), "
         "one lane against 8\n\n",

@@ -2,7 +2,7 @@
 """wavepath benchmark: throughput, scaling and speed versus accuracy, beside Mitsuba 3.
 
 Usage: python3 bench/run.py [--quick] [--check] [--out bench/out] [--binary build/wavepath]
-                            [--mesh-bench build/bench/mesh_bench] [--series throughput,scaling,accuracy,meshes,estimators]
+                            [--mesh-bench build/bench/mesh_bench] [--series throughput,scaling,accuracy,meshes,estimators,embree,lanes]
 
 Runs the wavepath executable (build it first: bash scripts/setup.sh, which also
 installs Mitsuba 3) and writes into --out: results.json, one CSV per study, PNG
@@ -17,7 +17,10 @@ as about 1/spp, an image's mean strays from the truth's, or a ratio is not
 finite). The meshes series runs bench/mesh_bench (cmake --build build --target
 mesh_bench) and writes meshes.json, meshes.csv and meshes.md besides; the
 estimators series (not run by default) compares MIS, NEE and roulette settings
-per scene at equal spp and writes estimators.csv and estimators.md.
+per scene at equal spp and writes estimators.csv and estimators.md; the lanes
+series (not run by default) measures samples/s per --lanes count for both
+OpenCL backends and writes lanes.json and lanes.md (--lanes-short: at 128x128
+and a sixth of the spp).
 """
 import argparse
 import array
@@ -46,18 +49,20 @@ class Runner:
         self.scratch = scratch
         self.warm = set()
 
-    def render(self, scene, backend, width, height, spp, extra=(), profile=False, image=False, seed=None):
+    def render(self, scene, backend, width, height, spp, extra=(), profile=False, image=False, seed=None,
+               warm_spp=None):
         """One render with `backend` (None: no --backend flag, wavepath's default); returns the stats JSON
         (plus 'profile' and 'image' when asked).
 
         The first render of each OpenCL configuration is run twice and the
         first discarded: PoCL compiles each kernel for its launch geometry
         when it is first enqueued, which is not the renderer's speed (`seed`
-        does not change the geometry, so it is not part of the configuration)."""
+        does not change the geometry, so it is not part of the configuration).
+        `warm_spp`: fewer spp for that first render, where they launch the same geometry."""
         key = (scene, backend, width, height, spp, tuple(extra), profile)
         if backend != "reference" and key not in self.warm:
             self.warm.add(key)
-            self.render(scene, backend, width, height, spp, extra, profile, seed=seed)
+            self.render(scene, backend, width, height, warm_spp or spp, extra, profile, seed=seed)
         out = os.path.join(self.scratch, "image.pfm")
         stats_path = os.path.join(self.scratch, "stats.json")
         profile_path = os.path.join(self.scratch, "profile.json")
@@ -118,8 +123,9 @@ def machine(binary):
     devices = subprocess.run([binary, "devices"], capture_output=True, text=True).stdout.splitlines()
     device = next((line.split("] ", 1)[1].strip() for line in devices if line.startswith("[0]")), "")
     platform_line = next((line.split(":", 1)[1].strip() for line in devices if "platform:" in line), "")
+    widths = next((line.split(":", 1)[1].strip() for line in devices if "float vector width:" in line), "")
     return {"cpu": cpu, "cores": os.cpu_count(), "opencl_platform": platform_line, "opencl_device": device,
-            "python": platform.python_version()}
+            "opencl_float_vector_width": widths, "python": platform.python_version()}
 
 
 def run_meta(binary, peer):
@@ -151,7 +157,8 @@ def throughput(runner, peer, cfg):
     for scene in cfg["scenes"]:
         path = os.path.join(ROOT, "scenes", scene)
         # (label, backend, flags); the wavefront also with one path per work item, to show what its lanes give
-        # the megakernel too: 8 lanes is the single-kernel design at its best on a CPU (like for like), 1 the scalar one
+        # the megakernel too: its default lanes are the single-kernel design at its best on a CPU (like for like), 1 the
+        # scalar one
         configurations = [("wavefront", "wavefront", []), ("wavefront-1-lane", "wavefront", ["--lanes", "1"]),
                           ("megakernel", "megakernel", []), ("megakernel-1-lane", "megakernel", ["--lanes", "1"]),
                           ("reference", "reference", []), ("mitsuba", None, [])]
@@ -366,6 +373,89 @@ def estimators_markdown(rows, meta, truth_spp):
                      f"{r['time_s_min']:.3f} / {r['time_s_median']:.3f} | {r['efficiency']:.3g} | "
                      f"{r['efficiency_of_default_min']:.2f} / {r['efficiency_of_default_median']:.2f} | "
                      f"{r['rays_per_sample']:.2f} | {r['efficiency_per_ray_of_default']:.2f} |")
+    return "\n".join(lines) + "\n"
+
+
+LANE_COUNTS = [1, 4, 8, 16]
+
+
+def lanes(runner, cfg):
+    """Samples/s per lane count (--lanes) for both OpenCL backends, per scene: each repetition renders every
+    backend and lane count in turn (interleaved), the 1-minute load average read before each render; then one
+    profiled wavefront render per lane count, for its stages' device times. Ratios against one lane and against
+    8 (the default on CPUs, measured before 4 and 16 were compiled) are taken repetition by repetition."""
+    rows = []
+    for scene, spp in cfg["lanes_scenes"].items():
+        path = os.path.join(ROOT, "scenes", scene)
+        size = cfg["lanes_size"]
+        configurations = [(backend, n) for backend in ("wavefront", "megakernel") for n in LANE_COUNTS]
+        runs = {c: [] for c in configurations}
+        for _ in range(cfg["lanes_repeats"]):
+            for backend, n in configurations:
+                load = os.getloadavg()[0]
+                s = runner.render(path, backend, size, size, spp, extra=["--lanes", str(n)],
+                                  warm_spp=min(4, spp))
+                runs[(backend, n)].append({"samples_per_s": s["samples_per_s"], "time_s": s["time_s"],
+                                           "load_1min": load})
+        stages = {}
+        for n in LANE_COUNTS:
+            profile = runner.render(path, "wavefront", size, size, spp, extra=["--lanes", str(n)], profile=True,
+                                    warm_spp=min(4, spp))["profile"]
+            stages[n] = {k["name"]: k["device_s"] for k in profile["kernels"]}
+        for backend, n in configurations:
+            r = runs[(backend, n)]
+            sps = [x["samples_per_s"] / 1e6 for x in r]
+            row = {"scene": scene, "backend": backend, "lanes": n, "size": size, "spp": spp, "runs": len(r),
+                   "msamples_s_min": min(sps), "msamples_s_median": statistics.median(sps),
+                   "msamples_s_max": max(sps), "time_s_median": statistics.median(x["time_s"] for x in r),
+                   **{f"load_{k}": v for k, v in spread([x["load_1min"] for x in r]).items()},
+                   "runs_detail": r}
+            for base in (1, 8):
+                ratios = [a["samples_per_s"] / b["samples_per_s"] for a, b in zip(r, runs[(backend, base)])]
+                row.update({f"of_{base}_lanes_{k}": v for k, v in spread(ratios).items()})
+            if backend == "wavefront":
+                row["stage_device_s"] = stages[n]
+            rows.append(row)
+    return rows
+
+
+def lanes_markdown(rows, meta, cfg):
+    lines = ["# Lanes: samples/s per lane count", "",
+             f"Generated by `python3 bench/run.py --series lanes{' --lanes-short' if cfg.get('lanes_short') else ''}` "
+             "(its lanes.md and lanes.json); do not edit by hand.",
+             "",
+             f"- commit `{meta['commit']}`, {meta['date']}, build {meta['build_type']}",
+             f"- machine: {meta['cpu']}, {meta['cores']} cores, shared with other work: the 1-minute load average "
+             "read before each render is given per row (min / median / max); read the ratios, measured side by side",
+             f"- OpenCL: {meta['opencl_platform']}; device {meta['opencl_device']}; float vector width "
+             f"{meta.get('opencl_float_vector_width', '?')}", "",
+             f"Each scene at {cfg['lanes_size']}x{cfg['lanes_size']}, {cfg['lanes_repeats']} repetitions; every "
+             "repetition renders each backend at each `--lanes` in turn, after unrecorded warm-up renders of "
+             "each at 4 spp (PoCL compiles each kernel at its first launch; 4 spp launch the same sizes). Samples/s over the render's time (device setup and kernel build "
+             "left out, as `--stats-json` counts them). Of 1 and of 8: samples/s over that of 1 or 8 lanes of the "
+             "same backend in the same repetition (min / median). Fastest: the highest median of its scene and "
+             "backend (*).", "",
+             "| scene | spp | backend | lanes | Msamples/s min | median | of 1 lane (min / median) | "
+             "of 8 lanes (min / median) | load (min / median / max) |", "|---|---|---|---|---|---|---|---|---|"]
+    best = {}
+    for r in rows:
+        key = (r["scene"], r["backend"])
+        if key not in best or r["msamples_s_median"] > best[key]["msamples_s_median"]:
+            best[key] = r
+    for r in rows:
+        mark = " *" if best[(r["scene"], r["backend"])] is r else ""
+        lines.append(f"| {r['scene']} | {r['spp']} | {r['backend']} | {r['lanes']}{mark} | {r['msamples_s_min']:.3f} | "
+                     f"{r['msamples_s_median']:.3f} | {r['of_1_lanes_min']:.2f} / {r['of_1_lanes_median']:.2f} | "
+                     f"{r['of_8_lanes_min']:.2f} / {r['of_8_lanes_median']:.2f} | {r['load_min']:.1f} / "
+                     f"{r['load_median']:.1f} / {r['load_max']:.1f} |")
+    profiled = [r for r in rows if "stage_device_s" in r]
+    kernels = [k for k in profiled[0]["stage_device_s"] if any(r["stage_device_s"].get(k, 0) > 0 for r in profiled)]
+    lines += ["", "Wavefront kernels' device time per frame in ms, one profiled render per scene and lane count "
+              "(after the timed ones; a single run on a shared machine, so read large differences only):", "",
+              "| scene | lanes | " + " | ".join(kernels) + " |", "|---|---|" + "---|" * len(kernels)]
+    for r in profiled:
+        lines.append(f"| {r['scene']} | {r['lanes']} | "
+                     + " | ".join(f"{1e3 * r['stage_device_s'].get(k, 0.0):.0f}" for k in kernels) + " |")
     return "\n".join(lines) + "\n"
 
 
@@ -866,14 +956,16 @@ def main():
     parser.add_argument("--binary", default=os.path.join(ROOT, "build", "wavepath"))
     parser.add_argument("--mesh-bench", default=os.path.join(ROOT, "build", "bench", "mesh_bench"))
     parser.add_argument("--series", default="throughput,scaling,accuracy,meshes",
-                        help="comma-separated: throughput, scaling, accuracy, meshes, estimators, embree")
+                        help="comma-separated: throughput, scaling, accuracy, meshes, estimators, embree, lanes")
     parser.add_argument("--mesh-repeats", type=int, default=0,
                         help="bench/mesh_bench's interleaved repetitions (its default: 7, 5 with --quick)")
     parser.add_argument("--check", action="store_true",
                         help="exit 1 when the results show what a broken renderer would (bench_quick)")
+    parser.add_argument("--lanes-short", action="store_true",
+                        help="the lanes series at 128x128 and a sixth of its spp (about 15 minutes on 2 cores)")
     args = parser.parse_args()
     series = args.series.split(",")
-    unknown = set(series) - {"throughput", "scaling", "accuracy", "meshes", "estimators", "embree"}
+    unknown = set(series) - {"throughput", "scaling", "accuracy", "meshes", "estimators", "embree", "lanes"}
     if unknown:
         parser.error(f"unknown series: {', '.join(sorted(unknown))}")
     if args.quick:
@@ -883,7 +975,8 @@ def main():
                "spp_series": [1, 4, 16], "spp_backends": ["wavefront", "mitsuba"], "seeds": 3,
                "depth_series": [1, 8], "depth_spp": 8, "rr_series": [1000], "nee_series": ["off"],
                "hemisphere_series": ["uniform"], "estimator_scenes": ["cornell.json"], "estimator_size": 32,
-               "estimator_spp": 4, "estimator_seeds": 3, "estimator_depths": [8], "estimator_rr": []}
+               "estimator_spp": 4, "estimator_seeds": 3, "estimator_depths": [8], "estimator_rr": [],
+               "lanes_scenes": {"cornell.json": 2, "bunny.json": 1}, "lanes_size": 64, "lanes_repeats": 5}
     else:
         cfg = {"scenes": ["room.json", "cornell.json"], "size": 512, "spp": 4, "repeats": 5,
                "wavefront_log2": [12, 14, 16, 18, 20, 22], "resolutions": [128, 256, 512, 1024, 2048],
@@ -893,9 +986,14 @@ def main():
                "depth_series": [1, 2, 4, 8, 16, 32], "depth_spp": 16, "rr_series": [1, 2, 3, 5, 8, 1000],
                "nee_series": ["on", "off"], "hemisphere_series": ["cosine", "uniform"],
                "estimator_scenes": ["room.json", "cornell.json"], "estimator_size": 128, "estimator_spp": 16,
-               "estimator_seeds": 5, "estimator_depths": [8, 32], "estimator_rr": [1, 2, 3, 5, 8]}
+               "estimator_seeds": 5, "estimator_depths": [8, 32], "estimator_rr": [1, 2, 3, 5, 8],
+               "lanes_scenes": {"room.json": 192, "cornell.json": 192, "bunny.json": 48}, "lanes_size": 256,
+               "lanes_repeats": 5}
     mesh_flags = ((["--quick"] if args.quick else []) +
                   (["--repeats", str(args.mesh_repeats)] if args.mesh_repeats else []))
+    if args.lanes_short:
+        cfg.update({"lanes_scenes": {"room.json": 32, "cornell.json": 32, "bunny.json": 8}, "lanes_size": 128,
+                    "lanes_short": True})
     os.makedirs(args.out, exist_ok=True)
     start = time.time()
     with tempfile.TemporaryDirectory(prefix="wavepath-bench-") as scratch:
@@ -910,7 +1008,8 @@ def main():
                            ("meshes", lambda: meshes(os.path.abspath(args.mesh_bench), mesh_flags, args.out)),
                            ("estimators", lambda: estimators(runner, peer, cfg, args.out)),
                            ("embree", lambda: wavefront_embree(os.path.abspath(args.mesh_bench), mesh_flags,
-                                                               args.out))):
+                                                               args.out)),
+                           ("lanes", lambda: lanes(runner, cfg))):
             if study in series:
                 results[study] = run()
     results["elapsed_s"] = time.time() - start
@@ -933,6 +1032,12 @@ def main():
         write_csv(os.path.join(args.out, "estimators.csv"), results["estimators"])
         with open(os.path.join(args.out, "estimators.md"), "w") as f:
             f.write(estimators_markdown(results["estimators"], results["meta"], cfg["converged_spp"]))
+    if "lanes" in results:
+        with open(os.path.join(args.out, "lanes.json"), "w") as f:
+            json.dump({"meta": results["meta"], "config": {k: v for k, v in cfg.items() if k.startswith("lanes")},
+                       "rows": results["lanes"]}, f, indent=1)
+        with open(os.path.join(args.out, "lanes.md"), "w") as f:
+            f.write(lanes_markdown(results["lanes"], results["meta"], cfg))
     plots = plot(args.out, results) if all(k in results for k in ("throughput", "scaling", "accuracy")) else []
     with open(os.path.join(args.out, "summary.md"), "w") as f:
         f.write(summary(results, plots))

@@ -1,6 +1,8 @@
 /* --profile only: rays per path depth. Counts the depths of the paths in one
  * queue (RAY before intersect, SHADOW before intersect_shadow) into a
- * histogram in `counts` (the last bin takes every deeper ray). A kernel of
+ * histogram in `counts` (the last bin takes every deeper ray). A ray's depth
+ * is its path's `depth` less `depth_after_vertex`: 0 for an extension ray, 1
+ * for a shadow ray, since shade has counted the ray's vertex already. A kernel of
  * its own, so that profiling leaves the stage kernels as they are: the
  * atomics and barriers counting needs would keep them from vectorising.
  * Each work group fills a histogram in local memory and adds it to the
@@ -16,7 +18,8 @@ __kernel __attribute__((reqd_work_group_size(WP_GROUP_SIZE, 1, 1))) void count_d
     barrier(CLK_LOCAL_MEM_FENCE);
     uint k = get_global_id(0);
     if (k < counts[queue])
-        atomic_inc(&group_histogram[min(depth[queues[queue * capacity + k]], WP_PROFILE_DEPTHS - 1u)]);
+        atomic_inc(
+            &group_histogram[min(depth[queues[queue * capacity + k]] - depth_after_vertex, WP_PROFILE_DEPTHS - 1u)]);
     barrier(CLK_LOCAL_MEM_FENCE);
     for (uint i = get_local_id(0); i < WP_PROFILE_DEPTHS; i += get_local_size(0))
         if (group_histogram[i] != 0u) atomic_add(&counts[histogram_offset + i], group_histogram[i]);

@@ -1,6 +1,6 @@
 /* Stage 2: closest hit of each extension ray, WP_LANES rays per work item
  * (device/lanes.h), or, where the host traced them (WP_HOST_TRACED), the
- * hits it wrote. Hits go to shade_direct; misses take the background and end. */
+ * hits it wrote. Hits go to shade; misses take the background and end. */
 #include "device/guards.h"
 #include "device/lanes.h"
 #include "device/parameters.h"

@@ -3,8 +3,8 @@
  * round_pixels[w % round_pixel_count], sample w / round_pixel_count) from the camera to their ends, with the same
  * per-vertex functions (device/path_vertex.h) and random numbers as the wavefront's stages, and writes their radiance
  * to their pass entries for accumulate.cl. It keeps the whole path in registers: no path state, no queues, but
- * divergent loops. With several lanes (-DWP_LANES=8 on CPUs, as the
- * wavefront's stages) the lanes run as vector code until the last of their
+ * divergent loops. With several lanes (-DWP_LANES=4, 8 or 16 on CPUs, as
+ * the wavefront's stages) the lanes run as vector code until the last of their
  * paths ends: the single-kernel design at its best on a CPU, the like-for-like
  * baseline for the wavefront. */
 #include "device/guards.h"
@@ -15,18 +15,6 @@
 #include "device/scene_hits.h"
 #include "device/surface.h"
 #include "interface/queues.h"
-
-#if WP_LANES == 1
-WP_FN int lanes_any(lane_int x) { return x != 0; }
-WP_FN uint lanes_sum(lane_uint x) { return x; }
-#else
-WP_FN int lanes_any(lane_int x) { return any(x); }
-WP_FN uint lanes_sum(lane_uint x) {
-    uint4 half_sum = x.lo + x.hi;
-    uint2 quarter_sum = half_sum.lo + half_sum.hi;
-    return quarter_sum.x + quarter_sum.y;
-}
-#endif
 
 /* t where `where` holds, else nothing: a term added only in some lanes. */
 WP_FN vec3 only_where(lane_int where, vec3 term) {
@@ -56,16 +44,12 @@ WP_FN vec3 trace_paths(WP_SCENE_PARAMS, lane_int alive, lane_uint px, lane_uint 
 #endif
         alive = alive && !missed;
         Vertex v = vertex_at(WP_SCENE_ARGS, hit.shape, origin, d, hit.t);
-        Material m = v.material;
-        real weight = hit_emission_weight(WP_SCENE_ARGS, hit.shape, origin, v, after_specular, bsdf_pdf);
-        vec3 emitted = emission_seen(m.emission, m.two_sided, v.front, weight, throughput);
+        vec3 emitted = hit_emission(WP_SCENE_ARGS, hit.shape, origin, v, after_specular, bsdf_pdf, throughput);
         radiance = add_finite(radiance, only_where(alive, emitted), &dropped[0]);
-        alive = alive && !(depth >= scene->max_depth || m.type == WP_MATERIAL_EMITTER);
+        alive = alive && !vertex_ends_path(v, depth, scene->max_depth);
 #if defined(WP_NEE) && defined(WP_HAS_DIFFUSE)
         DirectLight direct;
-        lane_int casts_shadow = alive && m.type == WP_MATERIAL_DIFFUSE &&
-                                sample_direct_light(WP_SCENE_ARGS, px, s, depth, v.surface.point, v.surface.error, v.nf,
-                                                    v.ns, throughput, m.albedo, &direct);
+        lane_int casts_shadow = vertex_light_sample(WP_SCENE_ARGS, alive, v, px, s, depth, throughput, &direct);
         *shadow_rays += casts_shadow ? (lane_uint)1u : (lane_uint)0u;
         lane_int lit = casts_shadow;
         if (lanes_any(casts_shadow))
@@ -73,22 +57,15 @@ WP_FN vec3 trace_paths(WP_SCENE_PARAMS, lane_int alive, lane_uint px, lane_uint 
                   !any_hit(WP_SCENE_ARGS, direct.shadow.origin, direct.shadow.direction, direct.shadow.distance);
         radiance = add_finite(radiance, only_where(lit, direct.contribution), &dropped[1]);
 #endif
-        BsdfSample scattered = scatter_vertex(v, d, seed, px, s, depth);
-        vec3 next_throughput = v3_mul(throughput, scattered.weight);
-        real next_eta_scale = eta_scale * scattered.eta_squared;
-        lane_int survives =
-            survives_roulette(&next_throughput, next_eta_scale, seed, px, s, depth, depth + 1u, scene->rr_depth) &&
-            scattered.valid;
-        lane_uint nonfinite = 0u;
-        lane_int finite = throughput_is_finite(next_throughput, &nonfinite);
-        dropped[2] += alive && survives ? nonfinite : (lane_uint)0u;
-        alive = alive && survives && finite;
-        throughput = v3_select(alive, next_throughput, throughput);
-        eta_scale = alive ? next_eta_scale : eta_scale;
-        origin = v3_select(alive, offset_ray_origin(v.surface.point, scattered.leave_side, v.surface.error), origin);
-        d = v3_select(alive, scattered.direction, d);
-        after_specular = scattered.specular != 0u;
-        bsdf_pdf = scattered.pdf;
+        PathStep step = step_from_vertex(v, d, throughput, eta_scale, seed, px, s, depth, scene->rr_depth);
+        dropped[2] += alive ? step.nonfinite : (lane_uint)0u;
+        alive = alive && step.continues;
+        throughput = v3_select(alive, step.throughput, throughput);
+        eta_scale = alive ? step.eta_scale : eta_scale;
+        origin = v3_select(alive, step.origin, origin);
+        d = v3_select(alive, step.scattered.direction, d);
+        after_specular = step.scattered.specular != 0u;
+        bsdf_pdf = step.scattered.pdf;
     }
     return radiance;
 }

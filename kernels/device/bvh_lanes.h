@@ -1,4 +1,4 @@
-/* The BVH traversal of shared/bvh.h with 8 lanes: each lane traces its own
+/* The BVH traversal of shared/bvh.h with several lanes: each lane traces its own
  * ray with its own stack, node and distance, the steps of all lanes run as
  * vector code, until every lane has finished. Each lane does exactly what
  * bvh_trace does for its ray, so the results are bit-identical to it.
@@ -6,7 +6,7 @@
  * Memory is read a row per lane and then transposed: a lane's node is one
  * 64-byte vector load (a cache line) and its triangle's vertices one 32-byte
  * load and a word, rather than one scalar load per lane and word (14 per
- * node, 9 per triangle). */
+ * node, 9 per triangle). For any number of lanes. */
 #ifndef WP_DEVICE_BVH_LANES_H
 #define WP_DEVICE_BVH_LANES_H
 #if WP_LANES != 1 /* one lane: shared/bvh.h's bvh_trace */
@@ -16,44 +16,47 @@
 #include "shared/prelude.h"
 #include "shared/triangle.h"
 
-/* Word w of the 8 lanes' rows. */
-#define WP_COLUMN(row, w) \
-    (float8)(row[0].s##w, row[1].s##w, row[2].s##w, row[3].s##w, row[4].s##w, row[5].s##w, row[6].s##w, row[7].s##w)
-
 /* The lanes' nodes: each child's box, lower x, y, z then upper x, y, z, and its child word. */
 typedef struct {
     real box[2][6];
     lane_uint child[2];
 } LaneNodes;
 
-#define WP_NODE_ROW(s) vload16(0, &nodes[node.s].bounds[0][0]),
-WP_FN LaneNodes lane_nodes(__global const BvhNode *nodes, lane_uint node) {
-    float16 row[WP_LANES] = {WP_FOR_LANES(WP_NODE_ROW)};
+/* A lane's node, one 64-byte load, into its component of each word's vector. */
+#define WP_NODE_LANE(s, k)                                                                              \
+    {                                                                                                   \
+        float16 row = vload16(0, &nodes[node.s].bounds[0][0]);                                          \
+        n.box[0][0].s = row.s0, n.box[0][1].s = row.s1, n.box[0][2].s = row.s2, n.box[0][3].s = row.s3; \
+        n.box[0][4].s = row.s4, n.box[0][5].s = row.s5, n.box[1][0].s = row.s6, n.box[1][1].s = row.s7; \
+        n.box[1][2].s = row.s8, n.box[1][3].s = row.s9, n.box[1][4].s = row.sa, n.box[1][5].s = row.sb; \
+        n.child[0].s = as_uint(row.sc), n.child[1].s = as_uint(row.sd);                                 \
+    }
+WP_LANE_FN LaneNodes lane_nodes(__global const BvhNode *nodes, lane_uint node) {
     LaneNodes n;
-    n.box[0][0] = WP_COLUMN(row, 0), n.box[0][1] = WP_COLUMN(row, 1), n.box[0][2] = WP_COLUMN(row, 2);
-    n.box[0][3] = WP_COLUMN(row, 3), n.box[0][4] = WP_COLUMN(row, 4), n.box[0][5] = WP_COLUMN(row, 5);
-    n.box[1][0] = WP_COLUMN(row, 6), n.box[1][1] = WP_COLUMN(row, 7), n.box[1][2] = WP_COLUMN(row, 8);
-    n.box[1][3] = WP_COLUMN(row, 9), n.box[1][4] = WP_COLUMN(row, a), n.box[1][5] = WP_COLUMN(row, b);
-    n.child[0] = as_uint8(WP_COLUMN(row, c)), n.child[1] = as_uint8(WP_COLUMN(row, d));
+    WP_FOR_LANES(WP_NODE_LANE)
     return n;
 }
-#undef WP_NODE_ROW
+#undef WP_NODE_LANE
 
-/* The lanes' triangles' vertices (p0, p1 and p2's x, y from one load per lane). */
+/* The lanes' triangles' vertices. */
 typedef struct {
     vec3 p0, p1, p2;
 } LaneTriangles;
 
-#define WP_TRIANGLE_ROW(s) vload8(0, &triangles[index.s].p0[0]),
-WP_FN LaneTriangles lane_triangles(__global const MeshTriangle *triangles, lane_uint index) {
-    float8 row[WP_LANES] = {WP_FOR_LANES(WP_TRIANGLE_ROW)};
+/* A lane's triangle: p0, p1 and p2's x, y from one 32-byte load, then p2's z. */
+#define WP_TRIANGLE_LANE(s, k)                                                      \
+    {                                                                               \
+        float8 row = vload8(0, &triangles[index.s].p0[0]);                          \
+        t.p0.x.s = row.s0, t.p0.y.s = row.s1, t.p0.z.s = row.s2, t.p1.x.s = row.s3; \
+        t.p1.y.s = row.s4, t.p1.z.s = row.s5, t.p2.x.s = row.s6, t.p2.y.s = row.s7; \
+        t.p2.z.s = triangles[index.s].p2[2];                                        \
+    }
+WP_LANE_FN LaneTriangles lane_triangles(__global const MeshTriangle *triangles, lane_uint index) {
     LaneTriangles t;
-    t.p0 = make_vec3(WP_COLUMN(row, 0), WP_COLUMN(row, 1), WP_COLUMN(row, 2));
-    t.p1 = make_vec3(WP_COLUMN(row, 3), WP_COLUMN(row, 4), WP_COLUMN(row, 5));
-    t.p2 = make_vec3(WP_COLUMN(row, 6), WP_COLUMN(row, 7), SCENE_FIELD(triangles, index, p2[2]));
+    WP_FOR_LANES(WP_TRIANGLE_LANE)
     return t;
 }
-#undef WP_TRIANGLE_ROW
+#undef WP_TRIANGLE_LANE
 
 /* The lanes' entry distances (box_entry) into a box of their nodes. */
 WP_FN real lanes_box_entry(const real *box, vec3 origin, vec3 inverse, real limit) {
@@ -79,25 +82,23 @@ typedef struct {
     lane_int depth;
 } LaneStacks;
 
-#define WP_EACH_LANE(F) F(s0, 0) F(s1, 1) F(s2, 2) F(s3, 3) F(s4, 4) F(s5, 5) F(s6, 6) F(s7, 7)
 #define WP_PUSH_LANE(s, k) stacks->node[stacks->depth.s * WP_LANES + k] = node.s;
 /* node pushed where push holds. */
-WP_FN void lanes_push(LaneStacks *stacks, lane_int push, lane_uint node) {
-    WP_EACH_LANE(WP_PUSH_LANE)
+WP_LANE_FN void lanes_push(LaneStacks *stacks, lane_int push, lane_uint node) {
+    WP_FOR_LANES(WP_PUSH_LANE)
     stacks->depth -= push; /* push is -1 where true */
 }
 #define WP_TOP_LANE(s, k) top.s = stacks->node[top_depth.s * WP_LANES + k];
 /* The nodes on top of the stacks where pop holds (popped; the depth must be above 0 there), else `node`. */
-WP_FN lane_uint lanes_pop(LaneStacks *stacks, lane_int pop, lane_uint node) {
+WP_LANE_FN lane_uint lanes_pop(LaneStacks *stacks, lane_int pop, lane_uint node) {
     lane_int top_depth = max(stacks->depth - 1, 0);
     lane_uint top;
-    WP_EACH_LANE(WP_TOP_LANE)
+    WP_FOR_LANES(WP_TOP_LANE)
     stacks->depth += pop;
     return pop ? top : node;
 }
 #undef WP_PUSH_LANE
 #undef WP_TOP_LANE
-#undef WP_EACH_LANE
 
 /* bvh_trace (shared/bvh.h) in every lane. A lane tests the triangles of both
  * children's leaves in one loop, child 0's first as bvh_trace does, so the
@@ -115,7 +116,7 @@ WP_FN real bvh_trace(__global const BvhNode *nodes, __global const MeshTriangle 
     stacks.depth = 0;
     lane_uint node = 0u;
     lane_int running = (lane_int)(-1); /* the lane has not finished */
-    while (any(running)) {
+    while (lanes_any(running)) {
         LaneNodes n = lane_nodes(nodes, node);
         real entry[2] = {lanes_box_entry(n.box[0], origin, inverse, limit),
                          lanes_box_entry(n.box[1], origin, inverse, limit)};
@@ -127,7 +128,7 @@ WP_FN real bvh_trace(__global const BvhNode *nodes, __global const MeshTriangle 
         lane_uint count0 = leaf[0] ? leaf_count(n.child[0]) : (lane_uint)0u;
         lane_uint count = count0 + (leaf[1] ? leaf_count(n.child[1]) : (lane_uint)0u);
         lane_uint first0 = leaf_first(n.child[0]), first1 = leaf_first(n.child[1]) - count0;
-        for (uint k = 0u; any(convert_int8(count > k) & running); ++k) {
+        for (uint k = 0u; lanes_any(count > k && running); ++k) {
             lane_int testing = count > k && running;
             lane_uint index = testing ? (k < count0 ? first0 : first1) + k : (lane_uint)0u;
             LaneTriangles p = lane_triangles(triangles, index);
@@ -150,8 +151,6 @@ WP_FN real bvh_trace(__global const BvhNode *nodes, __global const MeshTriangle 
     }
     return t_max;
 }
-
-#undef WP_COLUMN
 
 #endif
 

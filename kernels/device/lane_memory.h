@@ -19,22 +19,22 @@ WP_FN void add_where_nonzero(__global uint *p, lane_uint index, lane_uint value)
     if (value != 0u) p[index] += value;
 }
 #else
-#define WP_STORE_LANE(s) \
+#define WP_STORE_LANE(s, k) \
     if (where.s) p[index.s] = value.s;
-WP_OVERLOAD WP_FN void store_where(__global float *p, lane_uint index, lane_int where,
-                                   real value){WP_FOR_LANES(WP_STORE_LANE)} WP_OVERLOAD WP_FN
+WP_OVERLOAD WP_LANE_FN void store_where(__global float *p, lane_uint index, lane_int where,
+                                        real value){WP_FOR_LANES(WP_STORE_LANE)} WP_OVERLOAD WP_LANE_FN
     void store_where(__global uint *p, lane_uint index, lane_int where, lane_uint value){WP_FOR_LANES(WP_STORE_LANE)}
 #undef WP_STORE_LANE
-#define WP_ADD_LANE(s) \
+#define WP_ADD_LANE(s, k) \
     if (value.s != 0u) p[index.s] += value.s;
-WP_FN void add_where_nonzero(__global uint *p, lane_uint index, lane_uint value) {
+WP_LANE_FN void add_where_nonzero(__global uint *p, lane_uint index, lane_uint value) {
     WP_FOR_LANES(WP_ADD_LANE)
 }
 #undef WP_ADD_LANE
 #endif
 
 /* A float[3] member at per-lane word offsets from it. */
-WP_OVERLOAD WP_FN vec3 gather(__global const float (*p)[3], lane_uint index) {
+WP_OVERLOAD WP_LANE_FN vec3 gather(__global const float (*p)[3], lane_uint index) {
     return make_vec3(gather(&(*p)[0], index), gather(&(*p)[1], index), gather(&(*p)[2], index));
 }
 

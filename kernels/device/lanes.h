@@ -14,10 +14,16 @@
 #include "device/parameters.h"
 #include "shared/prelude.h"
 
+/* Each lane's number: 0, 1, ..., WP_LANES - 1. */
 #if WP_LANES == 1
-#define LANE_INDEX 0u
+WP_FN lane_uint lane_numbers(void) { return 0u; }
 #else
-#define LANE_INDEX ((lane_uint)(0u, 1u, 2u, 3u, 4u, 5u, 6u, 7u))
+#define WP_LANE_NUMBER(s, k) k##u,
+WP_LANE_FN lane_uint lane_numbers(void) {
+    uint numbers[WP_LANES] = {WP_FOR_LANES(WP_LANE_NUMBER)};
+    return LANES_LOAD(numbers);
+}
+#undef WP_LANE_NUMBER
 #endif
 
 typedef struct {
@@ -28,20 +34,24 @@ typedef struct {
 } Lanes;
 
 /* Positions get_global_id(0) * WP_LANES onwards of a queue. */
-WP_FN lane_uint lane_positions(void) { return (uint)get_global_id(0) * WP_LANES + LANE_INDEX; }
+WP_FN lane_uint lane_positions(void) { return (uint)get_global_id(0) * WP_LANES + lane_numbers(); }
 
 WP_FN Lanes queue_lanes(__global const uint *queues, __global const uint *counts, uint capacity, uint queue) {
     Lanes lanes;
     lane_uint position = lane_positions();
+    __global const uint *entries = queues + queue * capacity;
     lanes.active = position < counts[queue];
-    lanes.slot = gather(queues + queue * capacity, lanes.active ? position : (lane_uint)0u);
     lanes.capacity = capacity;
 #if WP_LANES == 1
+    lanes.slot = entries[lanes.active ? position : 0u];
     lanes.contiguous = 0;
 #else
+    /* The lanes' entries are consecutive: one vector load when all are in the queue. */
+    int full = all(lanes.active);
+    lanes.slot = full ? LANES_LOAD(entries + position.s0) : gather(entries, lanes.active ? position : (lane_uint)0u);
     /* Queues are compacted in slot order and freed slots are refilled each
      * iteration, so runs of consecutive slots are the common case. */
-    lanes.contiguous = all(lanes.active) && all(lanes.slot == lanes.slot.s0 + LANE_INDEX);
+    lanes.contiguous = full && all(lanes.slot == lanes.slot.s0 + lane_numbers());
 #endif
     return lanes;
 }
@@ -65,37 +75,41 @@ WP_OVERLOAD WP_FN void slot_write(__global uint *field, Lanes lanes, lane_int wh
     store_where(field, lanes.slot, where, value);
 }
 #else
-WP_OVERLOAD WP_FN real slot_read(__global const float *field, Lanes lanes) {
-    return lanes.contiguous ? vload8(0, field + lanes.slot.s0) : gather(field, lanes.slot);
+/* The lanes' vectors aligned as one element, so that they can be stored at
+ * any slot in one instruction (PoCL 3.1's vstore16 of floats is four float4 stores). */
+typedef real real_at_slot __attribute__((aligned(4)));
+typedef lane_uint lane_uint_at_slot __attribute__((aligned(4)));
+WP_OVERLOAD WP_LANE_FN real slot_read(__global const float *field, Lanes lanes) {
+    return lanes.contiguous ? LANES_LOAD(field + lanes.slot.s0) : gather(field, lanes.slot);
 }
-WP_OVERLOAD WP_FN lane_uint slot_read(__global const uint *field, Lanes lanes) {
-    return lanes.contiguous ? vload8(0, field + lanes.slot.s0) : gather(field, lanes.slot);
+WP_OVERLOAD WP_LANE_FN lane_uint slot_read(__global const uint *field, Lanes lanes) {
+    return lanes.contiguous ? LANES_LOAD(field + lanes.slot.s0) : gather(field, lanes.slot);
 }
-WP_OVERLOAD WP_FN void slot_write(__global float *field, Lanes lanes, lane_int where, real value) {
+WP_OVERLOAD WP_LANE_FN void slot_write(__global float *field, Lanes lanes, lane_int where, real value) {
     if (!lanes.contiguous) {
         store_where(field, lanes.slot, where, value);
         return;
     }
     __global float *at = field + lanes.slot.s0;
-    vstore8(select(vload8(0, at), value, where), 0, at);
+    *(__global real_at_slot *)at = select(LANES_LOAD(at), value, where);
 }
-WP_OVERLOAD WP_FN void slot_write(__global uint *field, Lanes lanes, lane_int where, lane_uint value) {
+WP_OVERLOAD WP_LANE_FN void slot_write(__global uint *field, Lanes lanes, lane_int where, lane_uint value) {
     if (!lanes.contiguous) {
         store_where(field, lanes.slot, where, value);
         return;
     }
     __global uint *at = field + lanes.slot.s0;
-    vstore8(select(vload8(0, at), value, where), 0, at);
+    *(__global lane_uint_at_slot *)at = select(LANES_LOAD(at), value, where);
 }
 #endif
 
 /* A vec3 field: its three planes, each read and written as a float field. */
-WP_OVERLOAD WP_FN vec3 slot_read(__global const PlanarVec3 *field, Lanes lanes) {
+WP_OVERLOAD WP_LANE_FN vec3 slot_read(__global const PlanarVec3 *field, Lanes lanes) {
     __global const float *x = (__global const float *)field;
     return make_vec3(slot_read(x, lanes), slot_read(x + lanes.capacity, lanes),
                      slot_read(x + 2u * lanes.capacity, lanes));
 }
-WP_OVERLOAD WP_FN void slot_write(__global PlanarVec3 *field, Lanes lanes, lane_int where, vec3 value) {
+WP_OVERLOAD WP_LANE_FN void slot_write(__global PlanarVec3 *field, Lanes lanes, lane_int where, vec3 value) {
     __global float *x = (__global float *)field;
     slot_write(x, lanes, where, value.x);
     slot_write(x + lanes.capacity, lanes, where, value.y);

@@ -5,17 +5,11 @@
 
 #include "shared/prelude.h"
 
-#if WP_LANES == 1
-WP_FN int any_lane(lane_int condition) { return condition; }
-#else
-WP_FN int any_lane(lane_int condition) { return any(condition); }
-#endif
-
 /* first + select_light(cdf + first, count, u) in each lane: the same steps,
  * a lane's search idle (its index held at `first`) once its part is down to
  * one entry, until every lane's is. A lane with count 0 gets `first`. */
 WP_FN lane_uint select_light_in_range(__global const float *cdf, lane_uint first, lane_uint count, real u) {
-    for (lane_uint remaining = count; any_lane(remaining > 1u);) {
+    for (lane_uint remaining = count; lanes_any(remaining > 1u);) {
         lane_int searching = remaining > 1u;
         lane_uint step = searching ? remaining / 2u : (lane_uint)0u;
         lane_int above = u >= gather(cdf, searching ? first + step - 1u : first);

@@ -31,6 +31,7 @@
 #endif
 #include "device/camera.h"
 #include "device/features.h"
+#include "device/guards.h"
 #include "device/lane_memory.h"
 #include "device/light_ranges.h"
 #include "device/parameters.h"
@@ -122,18 +123,26 @@ WP_FN lane_uint light_of_shape(WP_SCENE_PARAMS, lane_uint shape) {
 }
 #endif
 
-/* The share of the emission at vertex v (reached along the ray from
- * `origin`, which hit `shape`) that the path counts (emission_weight); the
- * bounce recorded its density `bsdf_pdf`. */
-WP_FN real hit_emission_weight(WP_SCENE_PARAMS, lane_uint shape, vec3 origin, Vertex v, lane_int after_specular,
-                               real bsdf_pdf) {
+/* The emission a path of throughput `throughput` counts at vertex v (reached
+ * along the ray from `origin`, which hit `shape`): emission_seen with its
+ * share emission_weight; the bounce recorded its density `bsdf_pdf`. */
+WP_FN vec3 hit_emission(WP_SCENE_PARAMS, lane_uint shape, vec3 origin, Vertex v, lane_int after_specular, real bsdf_pdf,
+                        vec3 throughput) {
 #ifdef WP_MIS
     real light_pdf =
         light_point_pdf(WP_SCENE_ARGS, light_of_shape(WP_SCENE_ARGS, shape), origin, v.surface.point, v.surface.normal);
 #else
     real light_pdf = REAL(0.0);
 #endif
-    return emission_weight(after_specular, bsdf_pdf, light_pdf, WP_USES_NEE, WP_USES_MIS);
+    real weight = emission_weight(after_specular, bsdf_pdf, light_pdf, WP_USES_NEE, WP_USES_MIS);
+    return emission_seen(v.material.emission, v.material.two_sided, v.front, weight, throughput);
+}
+
+/* Whether the path ends at vertex v once its emission is counted: the depth
+ * cap (a vertex at depth max_depth adds its emission and no more) or an
+ * emitter material, which reflects nothing. */
+WP_FN lane_int vertex_ends_path(Vertex v, lane_uint bounce, uint max_depth) {
+    return bounce >= max_depth || v.material.type == WP_MATERIAL_EMITTER;
 }
 
 #ifdef WP_NEE
@@ -226,6 +235,17 @@ WP_FN lane_int sample_direct_light(WP_SCENE_PARAMS, lane_uint pixel, lane_uint s
                                    WP_USES_UNIFORM_HEMISPHERE, WP_USES_MIS, WP_USES_SHADING_NORMALS);
     return direct->carries;
 }
+
+/* The light sample of next-event estimation at vertex v, where the path
+ * `continues` past its emission (vertex_ends_path) and the material is
+ * diffuse: returns where it has a shadow ray to trace, its contribution in
+ * *direct. */
+WP_FN lane_int vertex_light_sample(WP_SCENE_PARAMS, lane_int continues, Vertex v, lane_uint pixel, lane_uint sample,
+                                   lane_uint bounce, vec3 throughput, DirectLight *direct) {
+    return continues && v.material.type == WP_MATERIAL_DIFFUSE &&
+           sample_direct_light(WP_SCENE_ARGS, pixel, sample, bounce, v.surface.point, v.surface.error, v.nf, v.ns,
+                               throughput, v.material.albedo, direct);
+}
 #endif
 #endif
 
@@ -257,15 +277,37 @@ WP_FN BsdfSample scatter_vertex(Vertex v, vec3 d, uint seed, lane_uint px, lane_
     return scattered;
 }
 
-/* Russian roulette (russian_roulette) once new_depth reaches rr_depth:
- * returns where the path survives, its throughput divided by the survival
- * probability where the roulette played. */
-WP_FN lane_int survives_roulette(vec3 *throughput, real eta_scale, uint seed, lane_uint px, lane_uint s,
-                                 lane_uint bounce, lane_uint new_depth, uint rr_depth) {
-    RouletteOutcome outcome =
-        russian_roulette(*throughput, eta_scale, new_depth >= rr_depth, rng_uniform(seed, px, s, bounce, DIM_ROULETTE));
-    *throughput = outcome.throughput;
-    return outcome.survives;
+/* Where a path goes from vertex v: its BSDF sample, the next ray and
+ * throughput, and whether it goes on at all. */
+typedef struct {
+    BsdfSample scattered;
+    vec3 origin;         /* of the next ray (its direction: scattered.direction) */
+    vec3 throughput;     /* times the sample's weight, over the survival probability where the roulette played */
+    real eta_scale;      /* times the sample's eta^2 */
+    lane_int continues;  /* a valid sample, the roulette survived and a finite throughput */
+    lane_uint nonfinite; /* 1 where a valid sample survived with a non-finite throughput (which ends the path) */
+} PathStep;
+
+/* BSDF sampling at bounce `bounce` of vertex v, reached along d by a path of
+ * throughput `throughput` and eta_scale `eta_scale` (roulette_survival),
+ * then Russian roulette (russian_roulette) once the depth after it reaches
+ * rr_depth. */
+WP_FN PathStep step_from_vertex(Vertex v, vec3 d, vec3 throughput, real eta_scale, uint seed, lane_uint px, lane_uint s,
+                                lane_uint bounce, uint rr_depth) {
+    PathStep step;
+    step.scattered = scatter_vertex(v, d, seed, px, s, bounce);
+    step.origin = offset_ray_origin(v.surface.point, step.scattered.leave_side, v.surface.error);
+    step.eta_scale = eta_scale * step.scattered.eta_squared;
+    RouletteOutcome roulette =
+        russian_roulette(v3_mul(throughput, step.scattered.weight), step.eta_scale, bounce + 1u >= rr_depth,
+                         rng_uniform(seed, px, s, bounce, DIM_ROULETTE));
+    step.throughput = roulette.throughput;
+    lane_uint nonfinite = 0u;
+    lane_int finite = throughput_is_finite(step.throughput, &nonfinite);
+    lane_int survives = step.scattered.valid && roulette.survives;
+    step.continues = survives && finite;
+    step.nonfinite = survives ? nonfinite : (lane_uint)0u;
+    return step;
 }
 
 #endif

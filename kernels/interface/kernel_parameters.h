@@ -32,7 +32,7 @@
  * unless adaptive sampling has stopped some): work item w is pixel
  * round_pixels[w % round_pixel_count], sample w / round_pixel_count. */
 
-/* generate, intersect, shade_direct, intersect_shadow and scatter; the path
+/* generate, intersect, shade and intersect_shadow; the path
  * state's fields (interface/path_state.h) follow these. */
 #define WP_STAGE_PARAMETERS(FIRST, NEXT)      \
     WP_SCENE_PARAMETERS(FIRST, NEXT)          \
@@ -95,6 +95,7 @@
     NEXT(uint, capacity)                        \
     NEXT(uint, queue)                           \
     NEXT(uint, histogram_offset)                \
+    NEXT(uint, depth_after_vertex)              \
     NEXT(__global const uint *, depth)
 
 #endif

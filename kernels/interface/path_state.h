@@ -23,25 +23,25 @@
 #ifndef WP_INTERFACE_PATH_STATE_H
 #define WP_INTERFACE_PATH_STATE_H
 
-#define WP_PATH_STATE(X)                                                              \
-    X(uint, pixel, ALWAYS, "generate", "shade_direct scatter")                        \
-    X(uint, sample, ALWAYS, "generate", "shade_direct scatter")                       \
-    X(uint, pass_item, ALWAYS, "generate", "intersect shade_direct scatter")          \
-    X(uint, depth, ALWAYS, "generate scatter", "shade_direct scatter")                \
-    X(vec3, origin, ALWAYS, "generate scatter", "intersect shade_direct scatter")     \
-    X(vec3, direction, ALWAYS, "generate scatter", "intersect shade_direct scatter")  \
-    X(vec3, throughput, ALWAYS, "generate scatter", "intersect shade_direct scatter") \
-    X(vec3, radiance, ALWAYS, "generate shade_direct intersect_shadow",               \
-      "intersect shade_direct intersect_shadow scatter")                              \
-    X(float, hit_t, ALWAYS, "intersect", "shade_direct scatter")                      \
-    X(uint, hit_shape, ALWAYS, "intersect", "intersect shade_direct scatter")         \
-    X(uint, specular, SPECULAR, "generate scatter", "shade_direct")                   \
-    X(vec3, shadow_origin, NEE, "shade_direct", "intersect_shadow")                   \
-    X(vec3, shadow_direction, NEE, "shade_direct", "intersect_shadow")                \
-    X(float, shadow_distance, NEE, "shade_direct", "intersect_shadow")                \
-    X(vec3, shadow_radiance, NEE, "shade_direct", "intersect_shadow")                 \
-    X(uint, shadow_occluded, HOST_SHADOWS, "intersect_shadow", "intersect_shadow")    \
-    X(float, bsdf_pdf, MIS, "scatter", "shade_direct")                                \
-    X(float, eta_scale, GLASS, "generate scatter", "scatter")
+#define WP_PATH_STATE(X)                                                                             \
+    X(uint, pixel, ALWAYS, "generate", "shade")                                                      \
+    X(uint, sample, ALWAYS, "generate", "shade")                                                     \
+    X(uint, pass_item, ALWAYS, "generate", "intersect shade intersect_shadow")                       \
+    X(uint, depth, ALWAYS, "generate shade", "shade")                                                \
+    X(vec3, origin, ALWAYS, "generate shade", "intersect shade")                                     \
+    X(vec3, direction, ALWAYS, "generate shade", "intersect shade")                                  \
+    X(vec3, throughput, ALWAYS, "generate shade", "intersect shade")                                 \
+    X(vec3, radiance, ALWAYS, "generate shade intersect_shadow", "intersect shade intersect_shadow") \
+    X(float, hit_t, ALWAYS, "intersect", "shade")                                                    \
+    X(uint, hit_shape, ALWAYS, "intersect", "intersect shade")                                       \
+    X(uint, specular, SPECULAR, "generate shade", "shade")                                           \
+    X(vec3, shadow_origin, NEE, "shade", "intersect_shadow")                                         \
+    X(vec3, shadow_direction, NEE, "shade", "intersect_shadow")                                      \
+    X(float, shadow_distance, NEE, "shade", "intersect_shadow")                                      \
+    X(vec3, shadow_radiance, NEE, "shade", "intersect_shadow")                                       \
+    X(uint, shadow_ends_path, NEE, "shade", "intersect_shadow")                                      \
+    X(uint, shadow_occluded, HOST_SHADOWS, "intersect_shadow", "intersect_shadow")                   \
+    X(float, bsdf_pdf, MIS, "shade", "shade")                                                        \
+    X(float, eta_scale, GLASS, "generate shade", "shade")
 
 #endif

@@ -5,12 +5,11 @@
 #ifndef WP_INTERFACE_QUEUES_H
 #define WP_INTERFACE_QUEUES_H
 
-#define WP_QUEUE_FREE 0u    /* slots without a path */
-#define WP_QUEUE_HIT 1u     /* paths whose extension ray hit a surface */
-#define WP_QUEUE_RAY 2u     /* paths with an extension ray to trace */
-#define WP_QUEUE_SHADOW 3u  /* paths with a shadow ray to trace */
-#define WP_QUEUE_SCATTER 4u /* paths that scatter at their hit */
-#define WP_QUEUE_COUNT 5u
+#define WP_QUEUE_FREE 0u   /* slots without a path */
+#define WP_QUEUE_HIT 1u    /* paths whose extension ray hit a surface */
+#define WP_QUEUE_RAY 2u    /* paths with an extension ray to trace */
+#define WP_QUEUE_SHADOW 3u /* paths with a shadow ray to trace */
+#define WP_QUEUE_COUNT 4u
 /* With scan compaction (-DWP_COMPACT_SCAN) the queues buffer also holds, after the queues, one
  * array of marks (0 or 1 per slot) per queue, from which kernels/compact.cl
  * builds the queue with a prefix sum. */
@@ -18,18 +17,21 @@
 /* Slots each work item of the compaction kernels handles, in order. */
 #define WP_COMPACT_BLOCK 256u
 
-#define WP_COUNTER_WORK 5u /* work items of the pass handed out before this generate (set by the host) */
+#define WP_COUNTER_WORK \
+    (WP_QUEUE_COUNT + 0u) /* work items of the pass handed out before this generate (set by the host) */
 /* Non-finite values dropped, one counter per stage where one can arise, in
  * the order of wp::nonfinite_stage_names (src/core/render.h). The megakernel
  * adds to these; the wavefront stages keep one counter per slot and stage
  * instead (count_nonfinite in kernels/device/guards.h), which the host sums. */
-#define WP_COUNTER_NONFINITE_EMISSION 6u /* emission or background added to the radiance */
-#define WP_COUNTER_NONFINITE_DIRECT 7u   /* a light sample's contribution added to the radiance */
-#define WP_COUNTER_NONFINITE_SCATTER 8u  /* throughput after BSDF sampling and roulette (ends the path) */
+#define WP_COUNTER_NONFINITE_EMISSION (WP_QUEUE_COUNT + 1u) /* emission or background added to the radiance */
+#define WP_COUNTER_NONFINITE_DIRECT (WP_QUEUE_COUNT + 2u)   /* a light sample's contribution added to the radiance */
+#define WP_COUNTER_NONFINITE_SCATTER \
+    (WP_QUEUE_COUNT + 3u) /* throughput after BSDF sampling and roulette (ends the path) */
 #define WP_NONFINITE_STAGE_COUNT 3u
-#define WP_COUNTER_EXTENSION_RAYS 9u /* megakernel only: rays traced (the wavefront counts its queues) */
-#define WP_COUNTER_SHADOW_RAYS 10u
-#define WP_COUNTS_SIZE 11u
+#define WP_COUNTER_EXTENSION_RAYS \
+    (WP_QUEUE_COUNT + 4u) /* megakernel only: rays traced (the wavefront counts its queues) */
+#define WP_COUNTER_SHADOW_RAYS (WP_QUEUE_COUNT + 5u)
+#define WP_COUNTS_SIZE (WP_QUEUE_COUNT + 6u)
 
 /* With --profile, count_depths.cl counts rays per path depth in two
  * histograms after the counters (the last bin takes every deeper ray). */

@@ -29,12 +29,11 @@
 
 #include "interface/queues.h"
 
-#define WP_STAGES(X)                                                        \
-    X(generate, FREE, WP_PUSHES(RAY), ALWAYS, NO_RAYS)                      \
-    X(intersect, RAY, WP_PUSHES(HIT, FREE), ALWAYS, CLOSEST_HIT)            \
-    X(shade_direct, HIT, WP_PUSHES(SHADOW, SCATTER, FREE), ALWAYS, NO_RAYS) \
-    X(intersect_shadow, SHADOW, WP_PUSHES_NOTHING, NEE, ANY_HIT)            \
-    X(scatter, SCATTER, WP_PUSHES(RAY, FREE), ALWAYS, NO_RAYS)
+#define WP_STAGES(X)                                             \
+    X(generate, FREE, WP_PUSHES(RAY), ALWAYS, NO_RAYS)           \
+    X(intersect, RAY, WP_PUSHES(HIT, FREE), ALWAYS, CLOSEST_HIT) \
+    X(shade, HIT, WP_PUSHES(SHADOW, RAY, FREE), ALWAYS, NO_RAYS) \
+    X(intersect_shadow, SHADOW, WP_PUSHES_NOTHING, NEE, ANY_HIT)
 
 /* A set of queues as bits 1 << queue, from one to five queue names. */
 #define WP_QUEUE_BIT(queue) (1u << WP_QUEUE_##queue)

@@ -2,8 +2,8 @@
  * OpenCL C (float only) and as C++ (float or double, via src/core/shared_math.h).
  *
  * Lanes: in OpenCL C a work item may handle WP_LANES paths at once (built
- * with -DWP_LANES=8, see kernels/device/lanes.h); `real` is then float8 and
- * every operation runs on all lanes. PoCL does not vectorise the stage
+ * with -DWP_LANES=4, 8 or 16, see kernels/device/lanes.h); `real` is then
+ * float4, float8 or float16 and every operation runs on all lanes. PoCL does not vectorise the stage
  * kernels across work items by itself (its SLP pass packs scalar code into
  * small vectors first, which its loop vectoriser then refuses), so the SIMD
  * the wavefront is built for is written out. WP_LANES is 1 by default.
@@ -40,17 +40,37 @@ typedef int lane_int;
 typedef uint lane_uint;
 #define TO_REAL(x) ((real)(x))
 #define TO_LANE_INT(x) ((lane_int)(x))
-#elif WP_LANES == 8
-typedef float8 real;
-typedef int8 lane_int; /* a condition: -1 (all bits) where true, as OpenCL's vector comparisons give */
-typedef uint8 lane_uint;
-#define TO_REAL(x) convert_float8(x)
-#define TO_LANE_INT(x) convert_int8(x) /* toward zero, as a C cast */
-/* F(s0) F(s1) ... F(s7): code once per lane (kernels/device/lane_memory.h, kernels/device/lanes.h). */
-#define WP_FOR_LANES(F) F(s0) F(s1) F(s2) F(s3) F(s4) F(s5) F(s6) F(s7)
 #else
-#error "WP_LANES must be 1 or 8"
+/* F(s0, 0) F(s1, 1) ...: code once per lane, given its component and its
+ * number (kernels/device/lane_memory.h, kernels/device/lanes.h). */
+#define WP_LANES_0_TO_3(F) F(s0, 0) F(s1, 1) F(s2, 2) F(s3, 3)
+#define WP_LANES_4_TO_7(F) F(s4, 4) F(s5, 5) F(s6, 6) F(s7, 7)
+#define WP_LANES_8_TO_15(F) F(s8, 8) F(s9, 9) F(sa, 10) F(sb, 11) F(sc, 12) F(sd, 13) F(se, 14) F(sf, 15)
+#if WP_LANES == 4
+#define WP_FOR_LANES(F) WP_LANES_0_TO_3(F)
+#elif WP_LANES == 8
+#define WP_FOR_LANES(F) WP_LANES_0_TO_3(F) WP_LANES_4_TO_7(F)
+#elif WP_LANES == 16
+#define WP_FOR_LANES(F) WP_LANES_0_TO_3(F) WP_LANES_4_TO_7(F) WP_LANES_8_TO_15(F)
+#else
+#error "WP_LANES must be 1, 4, 8 or 16"
 #endif
+/* name##WP_LANES: the lanes' vector type or built-in (float8, vload8 with 8 lanes). */
+#define WP_PASTE(name, lanes) name##lanes
+#define WP_LANE_NAME(name, lanes) WP_PASTE(name, lanes)
+#define WP_LANE_VECTOR(name) WP_LANE_NAME(name, WP_LANES)
+typedef WP_LANE_VECTOR(float) real;
+typedef WP_LANE_VECTOR(int) lane_int; /* a condition: -1 (all bits) where true, as OpenCL's vector comparisons give */
+typedef WP_LANE_VECTOR(uint) lane_uint;
+#define TO_REAL(x) WP_LANE_VECTOR(convert_float)(x)
+#define TO_LANE_INT(x) WP_LANE_VECTOR(convert_int)(x) /* toward zero, as a C cast */
+/* The WP_LANES consecutive elements at p. */
+#define LANES_LOAD(p) WP_LANE_VECTOR(vload)(0, p)
+#endif
+/* A function that repeats its body per lane (WP_FOR_LANES): always inlined.
+ * At 16 lanes LLVM's inliner otherwise calls it, its vector arguments and
+ * result passed through the stack (the shading stages ran at half speed). */
+#define WP_LANE_FN static inline __attribute__((always_inline))
 /* Kernel-side functions overloaded on their pointer's type (clang's
  * extension, which every OpenCL C compiler built on clang has). */
 #define WP_OVERLOAD __attribute__((overloadable))
@@ -72,16 +92,32 @@ WP_FN vec3 make_vec3(real x, real y, real z) {
 WP_OVERLOAD WP_FN real gather(__global const float *p, lane_uint index) { return p[index]; }
 WP_OVERLOAD WP_FN lane_uint gather(__global const uint *p, lane_uint index) { return p[index]; }
 #else
-#define WP_GATHER_LANE(s) p[index.s],
-WP_OVERLOAD WP_FN real gather(__global const float *p, lane_uint index) {
+#define WP_GATHER_LANE(s, k) p[index.s],
+WP_OVERLOAD WP_LANE_FN real gather(__global const float *p, lane_uint index) {
     float values[WP_LANES] = {WP_FOR_LANES(WP_GATHER_LANE)};
-    return vload8(0, values);
+    return LANES_LOAD(values);
 }
-WP_OVERLOAD WP_FN lane_uint gather(__global const uint *p, lane_uint index) {
+WP_OVERLOAD WP_LANE_FN lane_uint gather(__global const uint *p, lane_uint index) {
     uint values[WP_LANES] = {WP_FOR_LANES(WP_GATHER_LANE)};
-    return vload8(0, values);
+    return LANES_LOAD(values);
 }
 #undef WP_GATHER_LANE
+#endif
+
+/* Whether a condition holds in any lane (a loop runs while some lane needs it),
+ * and the lanes' counts added up. */
+#if WP_LANES == 1
+WP_FN int lanes_any(lane_int condition) { return condition != 0; }
+WP_FN uint lanes_sum(lane_uint x) { return x; }
+#else
+WP_FN int lanes_any(lane_int condition) { return any(condition); }
+#define WP_ADD_LANE(s, k) sum += x.s;
+WP_LANE_FN uint lanes_sum(lane_uint x) {
+    uint sum = 0u;
+    WP_FOR_LANES(WP_ADD_LANE)
+    return sum;
+}
+#undef WP_ADD_LANE
 #endif
 #else
 /* C++: the including namespace (src/core/shared_math.h) defines `real`,

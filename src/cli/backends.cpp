@@ -202,12 +202,14 @@ void add_backend_options(CLI::App& render, BackendOptions& options) {
         ->transform(CLI::CheckedTransformer(
             std::map<std::string, Compaction>{{"atomic", Compaction::Atomic}, {"scan", Compaction::Scan}}))
         ->default_str(kDefaultCompaction == Compaction::Scan ? "scan" : "atomic");
-    taken_only_by(render.add_option("--lanes", options.lanes,
-                                    "Paths per work item in the wavefront's stage kernels and in the megakernel, as "
-                                    "vector code: 1 or 8 (8 needs --compaction scan on the wavefront; 0: 8 on CPU "
-                                    "devices, 1 on others and in the megakernel for meshes)"),
+    taken_only_by(render.add_option(
+                      "--lanes", options.lanes,
+                      "Paths per work item in the wavefront's stage kernels and in the megakernel, as vector code: 1, "
+                      "4, 8 or 16 (more than 1 needs --compaction scan on the wavefront; 0: the measured default, 8 on "
+                      "CPU devices, 1 on others and in the megakernel for meshes, until bench/run.py --series lanes "
+                      "shows another count faster; opencl/lanes.cpp)"),
                   options, kOpenClOnly)
-        ->check(CLI::IsMember({0u, 1u, 8u}))
+        ->check(CLI::IsMember({0u, 1u, 4u, 8u, 16u}))
         ->capture_default_str();
     taken_only_by(render.add_flag("--profile", options.profile,
                                   "Print the OpenCL backend's per-kernel profile (launches, items, device time, "

@@ -31,7 +31,7 @@ struct BackendOptions {
     std::string device;                          // OpenCL device index or name substring; "" = prefer a GPU
     bool explain = false;                        // print the backend chosen and why, its build and state size
     Compaction compaction = kDefaultCompaction;  // the wavefront's queue filling
-    unsigned lanes = 0;                          // paths per work item in the wavefront's stage kernels; 0 = automatic
+    unsigned lanes = 0;                          // paths per work item in the OpenCL backends' kernels; 0 = automatic
     bool profile = false;                        // print the wavefront's per-kernel profile on stderr
     std::string profile_json;                    // also write the profile to this JSON file; "" = none
     bool film_squares = false;                   // the film keeps sums of squares (set by the render command)

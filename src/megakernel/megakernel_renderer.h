@@ -1,6 +1,6 @@
 // The megakernel baseline (--backend megakernel): kernels/megakernel.cl traces
-// whole paths, one work item per sample (or, as vector code, eight: lanes, as
-// the wavefront's stages on CPUs), on the same device, with the same
+// whole paths, one work item per sample (or, as vector code, 4, 8 or 16:
+// lanes, as the wavefront's stages on CPUs), on the same device, with the same
 // per-vertex code, random numbers and deterministic accumulation as the
 // wavefront, so the two designs are compared like for like.
 #pragma once
@@ -19,7 +19,7 @@ struct MegakernelOptions {
     std::string device;         // as WavefrontOptions::device
     bool profile = false;       // time the launches with OpenCL events
     bool film_squares = false;  // the film keeps sums of squares (per-pixel variance)
-    unsigned lanes = 0;         // paths per work item: 1 or 8; 0: resolve_lanes' choice (opencl/lanes.h)
+    unsigned lanes = 0;         // paths per work item: 1, 4, 8 or 16; 0: resolve_lanes' choice (opencl/lanes.h)
 };
 
 struct MegakernelReport {

@@ -33,6 +33,8 @@ DeviceInfo describe(const cl::Platform& platform, const cl::Device& device, int 
     info.global_memory_bytes = device.getInfo<CL_DEVICE_GLOBAL_MEM_SIZE>();
     info.max_allocation_bytes = device.getInfo<CL_DEVICE_MAX_MEM_ALLOC_SIZE>();
     info.fp64 = device.getInfo<CL_DEVICE_EXTENSIONS>().find("cl_khr_fp64") != std::string::npos;
+    info.preferred_float_vector_width = device.getInfo<CL_DEVICE_PREFERRED_VECTOR_WIDTH_FLOAT>();
+    info.native_float_vector_width = device.getInfo<CL_DEVICE_NATIVE_VECTOR_WIDTH_FLOAT>();
     info.device = device;
     return info;
 }
@@ -91,6 +93,8 @@ std::string describe_devices(const std::vector<DeviceInfo>& devices) {
             << "    type: " << d.type << ", compute units: " << d.compute_units
             << ", memory: " << d.global_memory_bytes / (1024 * 1024) << " MiB"
             << ", " << d.opencl_c_version << (d.fp64 ? ", fp64" : "") << "\n"
+            << "    float vector width: preferred " << d.preferred_float_vector_width << ", native "
+            << d.native_float_vector_width << "\n"
             << "    driver: " << d.driver_version << "\n";
     }
     return out.str();

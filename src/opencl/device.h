@@ -27,6 +27,11 @@ struct DeviceInfo {
     unsigned long long global_memory_bytes = 0;
     unsigned long long max_allocation_bytes = 0;
     bool fp64 = false;
+    // Floats per vector: what the device wants kernels to write out as vectors
+    // (preferred: 1 on GPUs and runtimes that vectorise across work items
+    // themselves, 16 from PoCL on AVX-512) and its vector registers' (native).
+    unsigned preferred_float_vector_width = 1;
+    unsigned native_float_vector_width = 1;
     cl::Device device;
 };
 

@@ -16,7 +16,7 @@ enum class Compaction {
     Scan,    // marks per slot, then a prefix sum over them (kernels/compact.cl): ascending slot order
 };
 // Scan: the stages then read the path state in memory order, without atomics
-// or barriers, and may run 8 lanes; measured faster than atomic pushes on
+// or barriers, and may run several lanes; measured faster than atomic pushes on
 // PoCL (bench/results/defaults.md).
 inline constexpr Compaction kDefaultCompaction = Compaction::Scan;
 

@@ -85,10 +85,8 @@ void Pipeline::begin_pass(std::uint64_t start, std::uint32_t size) {
 
 void Pipeline::run(Stage stage, std::size_t entries) {
     if (entries == 0) return;
-    if (ray_depths_ && stage == Stage::intersect)
-        ray_depths_->count(launcher_, WP_QUEUE_RAY, WP_PROFILE_EXTENSION_BY_DEPTH, entries);
-    if (ray_depths_ && stage == Stage::intersect_shadow)
-        ray_depths_->count(launcher_, WP_QUEUE_SHADOW, WP_PROFILE_SHADOW_BY_DEPTH, entries);
+    if (ray_depths_ && stage == Stage::intersect) ray_depths_->count_extension_rays(launcher_, entries);
+    if (ray_depths_ && stage == Stage::intersect_shadow) ray_depths_->count_shadow_rays(launcher_, entries);
     if (host_trace_ && declaration(stage).traces != StageTrace::NO_RAYS)
         launcher_.add_host_time(host_trace_row(declaration(stage)),
                                 host_trace_->trace(queue_, queues_, state_, capacity_, stage));

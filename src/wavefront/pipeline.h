@@ -34,7 +34,7 @@ namespace wp {
 struct PipelineOptions {
     bool profile = false;  // time every kernel with OpenCL events and count rays per depth (count_depths.cl)
     Compaction compaction = kDefaultCompaction;
-    unsigned lanes = 0;         // paths per work item in the stage kernels (1 or 8); 0: resolve_lanes' choice
+    unsigned lanes = 0;         // paths per work item in the stage kernels (1, 4, 8 or 16); 0: resolve_lanes' choice
     Progress progress;          // told when the kernels are compiled (a program cache miss)
     bool film_squares = false;  // the film keeps sums of squares (per-pixel variance)
 };

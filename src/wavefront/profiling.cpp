@@ -19,10 +19,20 @@ RayDepthCounter::RayDepthCounter(const cl::Program& program, const cl::Buffer& q
     kernel_.setArg(arg::CountDepths::depth, depth);
 }
 
+void RayDepthCounter::count_extension_rays(KernelLauncher& launcher, std::size_t entries) {
+    count(launcher, WP_QUEUE_RAY, WP_PROFILE_EXTENSION_BY_DEPTH, 0, entries);
+}
+
+// shade has counted the shadow ray's vertex in its path's depth already.
+void RayDepthCounter::count_shadow_rays(KernelLauncher& launcher, std::size_t entries) {
+    count(launcher, WP_QUEUE_SHADOW, WP_PROFILE_SHADOW_BY_DEPTH, 1, entries);
+}
+
 void RayDepthCounter::count(KernelLauncher& launcher, std::uint32_t queue, std::uint32_t histogram_offset,
-                            std::size_t entries) {
+                            std::uint32_t depth_after_vertex, std::size_t entries) {
     kernel_.setArg(arg::CountDepths::queue, cl_uint(queue));
     kernel_.setArg(arg::CountDepths::histogram_offset, cl_uint(histogram_offset));
+    kernel_.setArg(arg::CountDepths::depth_after_vertex, cl_uint(depth_after_vertex));
     launcher.launch(kernel_, "count_depths", entries);
 }
 

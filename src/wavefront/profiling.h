@@ -17,14 +17,18 @@ class RayDepthCounter {
  public:
     RayDepthCounter(const cl::Program& program, const cl::Buffer& queues, const cl::Buffer& counts,
                     std::size_t capacity, const cl::Buffer& depth);
-    // Counts queue `queue` (RAY before intersect, SHADOW before intersect_shadow),
-    // of at most `entries` entries, into the histogram at `histogram_offset`
-    // of the counters.
-    void count(KernelLauncher& launcher, std::uint32_t queue, std::uint32_t histogram_offset, std::size_t entries);
+    // Counts the extension rays (the RAY queue, before intersect) or the
+    // shadow rays (SHADOW, before intersect_shadow) of at most `entries`
+    // entries into their histogram among the counters.
+    void count_extension_rays(KernelLauncher& launcher, std::size_t entries);
+    void count_shadow_rays(KernelLauncher& launcher, std::size_t entries);
     // Extension and shadow rays per depth, counted so far.
     void read(cl::CommandQueue& queue, RenderProfile& profile) const;
 
  private:
+    void count(KernelLauncher& launcher, std::uint32_t queue, std::uint32_t histogram_offset,
+               std::uint32_t depth_after_vertex, std::size_t entries);
+
     cl::Kernel kernel_;
     cl::Buffer counts_;
 };

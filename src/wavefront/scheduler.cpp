@@ -12,8 +12,7 @@ namespace {
 // slots over the paths it starts, every other one over the rays traced, at
 // most one entry each. The queue bookkeeping around each stage leaves the
 // lengths of this iteration at the end: FREE the paths ended, HIT the hits,
-// SHADOW the shadow rays, SCATTER the paths scatter sampled, RAY the paths
-// continuing next iteration.
+// SHADOW the shadow rays, RAY the paths continuing next iteration.
 DeviceCounts run_iteration(Pipeline& p, std::uint32_t generated, std::uint32_t traced) {
     for (Stage stage : p.iteration()) {
         p.start_stage(stage);
@@ -40,7 +39,6 @@ void run_schedule(Pipeline& pipeline, const ItemRange& items, const Progress& pr
             DeviceCounts counts = run_iteration(pipeline, r.generated, r.traced);
             r.hits = counts[WP_QUEUE_HIT];
             r.shadow = counts[WP_QUEUE_SHADOW];  // 0 without next-event estimation
-            r.scattered = counts[WP_QUEUE_SCATTER];
             r.continuing = counts[WP_QUEUE_RAY];
             r.finished = counts[WP_QUEUE_FREE];
             iterations.push_back(r);

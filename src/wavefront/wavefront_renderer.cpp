@@ -93,8 +93,6 @@ std::uint32_t IterationRecord::taken_from(std::uint32_t queue) const {
             return hits;
         case WP_QUEUE_SHADOW:
             return shadow;
-        case WP_QUEUE_SCATTER:
-            return scattered;
     }
     return 0;
 }

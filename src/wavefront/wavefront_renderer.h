@@ -24,7 +24,7 @@ struct WavefrontOptions {
     bool specialise = true;     // compile only the scene's features (false: every shape and material, for comparison)
     bool profile = false;       // time every kernel (WavefrontReport::profile)
     Compaction compaction = kDefaultCompaction;
-    unsigned lanes = 0;         // paths per work item in the stage kernels (1 or 8); 0 = resolve_lanes' choice
+    unsigned lanes = 0;         // paths per work item in the stage kernels (1, 4, 8 or 16); 0 = resolve_lanes' choice
     bool film_squares = false;  // the film keeps sums of squares (per-pixel variance, --target-error)
     // What traces the rays: the OpenCL BVH in the kernels, or Embree on the
     // host (CPU devices only; wavefront/host_trace.h). Unset:
@@ -36,9 +36,8 @@ struct WavefrontOptions {
 struct IterationRecord {
     std::uint32_t generated = 0;   // camera rays started
     std::uint32_t traced = 0;      // extension rays intersected
-    std::uint32_t hits = 0;        // of those, hits (to shade_direct)
+    std::uint32_t hits = 0;        // of those, hits (to shade)
     std::uint32_t shadow = 0;      // shadow rays
-    std::uint32_t scattered = 0;   // paths scatter sampled (hits that did not end in shade_direct)
     std::uint32_t continuing = 0;  // paths that scattered on
     std::uint32_t finished = 0;    // paths that ended
 

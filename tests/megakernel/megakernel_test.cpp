@@ -22,12 +22,12 @@ MegakernelOptions with_lanes(unsigned lanes) {
     return options;
 }
 
-// 45 x 45 pixels: 2025 work items, so the last work item of 8 lanes has one
-// active lane, which must not disturb the others.
-TEST(Megakernel, OneSampleMatchesReferencePathForPathWithOneAndEightLanes) {
+// 45 x 45 pixels: 2025 work items, so the last work item has one active
+// lane with 4 and 8 lanes and 9 with 16, which must not disturb the others.
+TEST(Megakernel, OneSampleMatchesReferencePathForPathWithEveryLaneCount) {
     Scene scene = test::small_room(45, 1);
     RenderResult reference = render_reference(scene, ReferenceOptions{2, false});
-    for (unsigned lanes : {1u, 8u}) {
+    for (unsigned lanes : {1u, 4u, 8u, 16u}) {
         MegakernelReport report;
         RenderResult megakernel = render_megakernel(scene, with_lanes(lanes), {}, &report);
         EXPECT_EQ(report.lanes, lanes);
@@ -47,7 +47,7 @@ TEST(Megakernel, UsesEightLanesOnCpus) {
 TEST(Megakernel, BitIdenticalToWavefront) {
     Scene scene = test::small_room(40, 3);
     RenderResult wavefront = render_wavefront(scene, {}, {});
-    for (unsigned lanes : {1u, 8u}) {
+    for (unsigned lanes : {1u, 4u, 8u, 16u}) {
         RenderResult megakernel = render_megakernel(scene, with_lanes(lanes), {});
         EXPECT_EQ(megakernel.image.rgb, wavefront.image.rgb) << "lanes " << lanes;
         EXPECT_EQ(megakernel.stats.extension_rays, wavefront.stats.extension_rays) << "lanes " << lanes;

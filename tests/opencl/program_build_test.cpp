@@ -67,10 +67,15 @@ TEST(Devices, ListedWithTheirProperties) {
         EXPECT_GT(d.compute_units, 0u);
         EXPECT_GT(d.global_memory_bytes, 0u);
         EXPECT_NE(d.opencl_c_version.find("OpenCL C"), std::string::npos);
+        EXPECT_GT(d.preferred_float_vector_width, 0u);
+        EXPECT_GT(d.native_float_vector_width, 0u);
     }
     std::string table = describe_devices(devices);
     EXPECT_NE(table.find(devices[0].name), std::string::npos);
     EXPECT_NE(table.find("compute units"), std::string::npos);
+    EXPECT_NE(table.find("float vector width: preferred " + std::to_string(devices[0].preferred_float_vector_width) +
+                         ", native " + std::to_string(devices[0].native_float_vector_width)),
+              std::string::npos);
 }
 
 TEST(Devices, ChosenByIndexOrNameAndBadChoicesNamed) {
@@ -134,13 +139,13 @@ TEST(ProgramBuild, BrokenKernelNamesFileAndLine) {
     ScopedEnv cache_env("WAVEPATH_CACHE_DIR", cache.path.string());
     fs::path dir = copy_kernels(kernels.path / "kernels");
     ScopedEnv kernel_env("WAVEPATH_KERNEL_DIR", dir.string());
-    replace_in_file(dir / "scatter.cl", "uint new_depth = bounce + 1u,", "uint new_depth = bounce + undeclared_thing,");
-    int line = line_of(dir / "scatter.cl", "undeclared_thing");
+    replace_in_file(dir / "shade.cl", "bounce + 1u);", "bounce + undeclared_thing);");
+    int line = line_of(dir / "shade.cl", "undeclared_thing");
     try {
         build_wavefront(choose_device(""), diffuse_spheres());
         FAIL() << "expected KernelBuildError";
     } catch (const KernelBuildError& e) {
-        std::string expected = (dir / "scatter.cl").string() + ":" + std::to_string(line) + ": ";
+        std::string expected = (dir / "shade.cl").string() + ":" + std::to_string(line) + ": ";
         EXPECT_NE(std::string(e.what()).find(expected), std::string::npos) << e.what();
         EXPECT_NE(std::string(e.what()).find("undeclared_thing"), std::string::npos) << e.what();
         EXPECT_NE(e.log().find("undeclared_thing"), std::string::npos);
@@ -174,8 +179,9 @@ EditedBuild build_edited_copy(const std::string& file, const std::string& from, 
 // it compiles: a push to a queue the declaration does not list fails the
 // build at the push.
 TEST(ProgramBuild, PushToAQueueTheStageDoesNotDeclareFailsToCompile) {
-    EditedBuild built = build_edited_copy("scatter.cl", "STAGE_PUSH(RAY, lanes, continues)",
-                                          "STAGE_PUSH(SHADOW, lanes, continues)", "scatter.cl", "STAGE_PUSH(SHADOW");
+    EditedBuild built =
+        build_edited_copy("intersect.cl", "STAGE_PUSH(HIT, lanes, hit_something)",
+                          "STAGE_PUSH(SHADOW, lanes, hit_something)", "intersect.cl", "STAGE_PUSH(SHADOW");
     EXPECT_NE(built.error.find(built.expected_location), std::string::npos) << built.error;
     EXPECT_NE(built.error.find("a push to SHADOW, which the stage's declaration"), std::string::npos) << built.error;
 }
@@ -183,10 +189,11 @@ TEST(ProgramBuild, PushToAQueueTheStageDoesNotDeclareFailsToCompile) {
 // And a declaration changed without its kernel fails the build at the
 // kernel's first line, which states its queues.
 TEST(ProgramBuild, StageOpeningWithOtherQueuesThanItsDeclarationFailsToCompile) {
-    EditedBuild built = build_edited_copy("interface/stages.h", "X(scatter, SCATTER, WP_PUSHES(RAY, FREE), ALWAYS)",
-                                          "X(scatter, SCATTER, WP_PUSHES(RAY), ALWAYS)", "scatter.cl", "STAGE_QUEUES");
+    EditedBuild built =
+        build_edited_copy("interface/stages.h", "X(shade, HIT, WP_PUSHES(SHADOW, RAY, FREE), ALWAYS, NO_RAYS)",
+                          "X(shade, HIT, WP_PUSHES(RAY, FREE), ALWAYS, NO_RAYS)", "shade.cl", "STAGE_QUEUES");
     EXPECT_NE(built.error.find(built.expected_location), std::string::npos) << built.error;
-    EXPECT_NE(built.error.find("the queues of scatter differ from its declaration"), std::string::npos) << built.error;
+    EXPECT_NE(built.error.find("the queues of shade differ from its declaration"), std::string::npos) << built.error;
 }
 
 // docs/architecture.md ("Specialisation") lists exactly the macros that
@@ -244,8 +251,8 @@ TEST(ProgramBuild, SceneWithoutGlassBuildsWithoutDielectricCode) {
     }
 }
 
-// Every kernel header compiles as the only include of a program, with one
-// lane and with eight, and twice in a row (include guards): each includes
+// Every kernel header compiles as the only include of a program, with each
+// lane count (1, 4, 8, 16), and twice in a row (include guards): each includes
 // what it uses, so no header depends on what an includer happened to include first.
 TEST(ProgramBuild, EveryKernelHeaderCompilesOnItsOwn) {
     DeviceInfo device = choose_device("");
@@ -256,12 +263,12 @@ TEST(ProgramBuild, EveryKernelHeaderCompilesOnItsOwn) {
         for (const fs::directory_entry& entry : fs::recursive_directory_iterator(root / folder)) {
             if (!entry.is_regular_file()) continue;  // shared/materials/ holds headers of its own
             const std::string include = "#include \"" + entry.path().lexically_relative(root).string() + "\"\n";
-            for (const char* lanes : {"1", "8"}) {
+            for (const char* lanes : {"1", "4", "8", "16"}) {
                 SCOPED_TRACE(include + " with " + lanes + " lanes");
                 cl::Program program(context, include + include);
                 const std::string options =
                     std::string("-cl-std=CL1.2 -I " WAVEPATH_SOURCE_DIR "/kernels -DWP_LANES=") + lanes +
-                    (lanes[0] == '8' ? " -DWP_COMPACT_SCAN" : "");
+                    (std::string(lanes) != "1" ? " -DWP_COMPACT_SCAN" : "");
                 try {
                     program.build({device.device}, options.c_str());
                 } catch (const cl::BuildError&) {

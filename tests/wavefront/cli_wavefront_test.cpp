@@ -80,7 +80,8 @@ TEST(WavefrontCli, ColdCacheSaysKernelsAreBuiltWarmCacheDoesNot) {
 TEST(WavefrontCli, DevicesListed) {
     CommandRun r = run("", "devices");
     EXPECT_EQ(r.exit_code, 0);
-    for (const char* text : {"[0] ", "platform: ", "type: ", "compute units: ", "memory: ", "OpenCL C "})
+    for (const char* text :
+         {"[0] ", "platform: ", "type: ", "compute units: ", "memory: ", "OpenCL C ", "float vector width: preferred "})
         EXPECT_NE(r.output.find(text), std::string::npos) << text << "\n" << r.output;
 }
 
@@ -103,13 +104,23 @@ TEST(WavefrontCli, NoPlatformOrUnknownDeviceIsOneClearError) {
     EXPECT_FALSE(std::filesystem::exists(out));
 }
 
-TEST(WavefrontCli, EightLanesWithAtomicPushesIsAUsageError) {
-    std::string out = output_path("wavepath-lanes-atomic.png");
-    CommandRun r = run(cache_env(), "render '" WAVEPATH_SOURCE_DIR "/scenes/test/room_small.json' -o '" + out +
-                                        "' --lanes 8 --compaction atomic");
+// `render` of the small room with `flags` fails as a usage error with `message` alone, writing nothing.
+void expect_usage_error(const std::string& flags, const std::string& message) {
+    std::string out = output_path("wavepath-usage-error.png");
+    CommandRun r =
+        run(cache_env(), "render '" WAVEPATH_SOURCE_DIR "/scenes/test/room_small.json' -o '" + out + "' " + flags);
     EXPECT_EQ(r.exit_code, 2) << r.output;
-    EXPECT_EQ(r.output, "wavepath: error: --lanes 8 needs --compaction scan (atomic pushes are per work item)\n");
+    EXPECT_EQ(r.output, "wavepath: error: " + message + "\n");
     EXPECT_FALSE(std::filesystem::exists(out));
+}
+
+TEST(WavefrontCli, EightLanesWithAtomicPushesIsAUsageError) {
+    expect_usage_error("--lanes 8 --compaction atomic",
+                       "--lanes 8 needs --compaction scan (atomic pushes are per work item)");
+}
+
+TEST(WavefrontCli, LaneCountTheKernelsDoNotCompileIsAUsageError) {
+    expect_usage_error("--lanes 2", "--lanes: 2 not in {0,1,4,8,16} (see wavepath render --help)");
 }
 
 }  // namespace

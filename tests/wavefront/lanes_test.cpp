@@ -1,6 +1,7 @@
-// Lanes (kernels/device/lanes.h): the stage kernels with 8 paths per work
-// item as vector code compute exactly what one path per work item computes,
-// in scenes with every shape kind and material, background and both light kinds.
+// Lanes (kernels/device/lanes.h): the stage kernels with 4, 8 or 16 paths per
+// work item as vector code compute exactly what one path per work item
+// computes, in scenes with every shape kind and material, background and both
+// light kinds.
 #include <gtest/gtest.h>
 
 #include "wavefront/wavefront_renderer.h"
@@ -9,28 +10,32 @@
 namespace wp {
 namespace {
 
-void expect_same_image_with_one_and_eight_lanes(Scene scene) {
+void expect_same_image_with_every_lane_count(Scene scene) {
     scene.camera.width = scene.camera.height = 24;
     scene.render.spp = 3;
     WavefrontOptions options;
-    options.wavefront = 320;  // queue lengths rarely a multiple of 8: partly filled last lanes
+    options.wavefront = 320;  // queue lengths rarely a multiple of the lanes: partly filled last lanes
     options.lanes = 1;
     RenderResult one = render_wavefront(scene, options, {});
-    options.lanes = 8;
-    RenderResult eight = render_wavefront(scene, options, {});
-    EXPECT_EQ(one.image.rgb, eight.image.rgb);
-    EXPECT_EQ(one.stats.extension_rays, eight.stats.extension_rays);
-    EXPECT_EQ(one.stats.shadow_rays, eight.stats.shadow_rays);
     EXPECT_GT(one.stats.shadow_rays, 0u);
+    for (unsigned lanes : {4u, 8u, 16u}) {
+        options.lanes = lanes;
+        WavefrontReport report;
+        RenderResult many = render_wavefront(scene, options, {}, &report);
+        EXPECT_EQ(report.lanes, lanes);
+        EXPECT_EQ(one.image.rgb, many.image.rgb) << lanes << " lanes";
+        EXPECT_EQ(one.stats.extension_rays, many.stats.extension_rays) << lanes << " lanes";
+        EXPECT_EQ(one.stats.shadow_rays, many.stats.shadow_rays) << lanes << " lanes";
+    }
 }
 
-TEST(StageLanes, RoomRendersTheSameWithOneAndEightLanes) {
-    expect_same_image_with_one_and_eight_lanes(test::scene_from_file("scenes/room.json"));
+TEST(StageLanes, RoomRendersTheSameWithEveryLaneCount) {
+    expect_same_image_with_every_lane_count(test::scene_from_file("scenes/room.json"));
 }
 
 // Planes, a sphere light and a background.
 TEST(StageLanes, PlanesSphereLightAndBackgroundRenderTheSame) {
-    expect_same_image_with_one_and_eight_lanes(test::scene_from_json(R"({
+    expect_same_image_with_every_lane_count(test::scene_from_json(R"({
       "camera": {"position": [0, 1, 4], "look_at": [0, 1, 0], "up": [0, 1, 0], "fov_y": 60, "width": 8, "height": 8},
       "render": {"spp": 1, "max_depth": 5, "rr_depth": 2, "seed": 3},
       "background": [0.2, 0.3, 0.4],

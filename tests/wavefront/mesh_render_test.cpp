@@ -54,13 +54,13 @@ TEST(MeshRender, WavefrontRetracesTheReferencePathForPath) {
                                          render_reference(scene, ReferenceOptions{2, false}), "wavefront, meshes");
 }
 
-// With its default for meshes, one lane, and with eight (--lanes 8): the
+// With its default for meshes, one lane, and with 16 (--lanes 16): the
 // megakernel traverses the BVH as the wavefront's stages do
-// (device/bvh_lanes.h with eight).
+// (device/bvh_lanes.h with several lanes).
 TEST(MeshRender, MegakernelRetracesTheReferencePathForPath) {
     Scene scene = mesh_scene(48, 1);
     RenderResult reference = render_reference(scene, ReferenceOptions{2, false});
-    for (unsigned lanes : {0u, 8u}) {
+    for (unsigned lanes : {0u, 16u}) {
         MegakernelOptions options;
         options.lanes = lanes;
         MegakernelReport report;
@@ -103,11 +103,12 @@ TEST(MeshRender, ShadingNormalsRetraceTheReferencePathForPath) {
     test::expect_path_for_path_agreement(render_megakernel(scene, {}, {}), reference, "megakernel, shading normals");
 }
 
-// Meshes with 8 lanes, the BVH traversed in each lane (device/bvh_lanes.h):
-// the reference's paths and the same image as one lane. Three lights of 20,
-// 80 and 2 triangles (two meshes and the quad), so that the lanes of one
-// work item search triangle CDFs of different lengths.
-TEST(MeshRender, EightLanesRetraceTheReferenceAsOneLaneDoes) {
+// Meshes with 4, 8 and 16 lanes, the BVH traversed in each lane
+// (device/bvh_lanes.h): the reference's paths and the same image as one lane,
+// in the wavefront and the megakernel. Three lights of 20, 80 and 2 triangles
+// (two meshes and the quad), so that the lanes of one work item search
+// triangle CDFs of different lengths.
+TEST(MeshRender, EveryLaneCountRetracesTheReferenceAsOneLaneDoes) {
     Scene scene = mesh_scene(32, 1);
     int lamp = scene.quads.back().material;
     scene.materials[lamp].two_sided = true;
@@ -115,20 +116,24 @@ TEST(MeshRender, EightLanesRetraceTheReferenceAsOneLaneDoes) {
     scene.meshes.push_back(test::transformed(test::icosphere(1, lamp), 0.25, {0.8, 0.9, -4.0}));
     build_light_table(scene);
     ASSERT_TRUE(scene.features().mesh_lights);
-    WavefrontOptions options = traced_by(Intersector::Bvh, 320);  // queue lengths rarely a multiple of 8
+    // queue lengths rarely a multiple of the lanes: partly filled last lanes
+    WavefrontOptions options = traced_by(Intersector::Bvh, 320);
     options.lanes = 1;
     RenderResult one = render_wavefront(scene, options, {});
-    options.lanes = 8;
-    RenderResult eight = render_wavefront(scene, options, {});
-    test::expect_path_for_path_agreement(eight, render_reference(scene, ReferenceOptions{2, false}),
-                                         "wavefront, 8 lanes, three mesh and quad lights");
-    EXPECT_EQ(one.image.rgb, eight.image.rgb);
-    EXPECT_EQ(one.stats.extension_rays, eight.stats.extension_rays);
-    EXPECT_EQ(one.stats.shadow_rays, eight.stats.shadow_rays);
     EXPECT_GT(one.stats.shadow_rays, 0u);
-    MegakernelOptions megakernel_options;
-    megakernel_options.lanes = 8;
-    EXPECT_EQ(render_megakernel(scene, megakernel_options, {}).image.rgb, eight.image.rgb) << "megakernel, 8 lanes";
+    for (unsigned lanes : {4u, 8u, 16u}) {
+        options.lanes = lanes;
+        RenderResult many = render_wavefront(scene, options, {});
+        if (lanes == 16)
+            test::expect_path_for_path_agreement(many, render_reference(scene, ReferenceOptions{2, false}),
+                                                 "wavefront, 16 lanes, three mesh and quad lights");
+        EXPECT_EQ(one.image.rgb, many.image.rgb) << "wavefront, " << lanes << " lanes";
+        EXPECT_EQ(one.stats.extension_rays, many.stats.extension_rays) << "wavefront, " << lanes << " lanes";
+        EXPECT_EQ(one.stats.shadow_rays, many.stats.shadow_rays) << "wavefront, " << lanes << " lanes";
+    }
+    MegakernelOptions megakernel_options;  // its other lane counts: MegakernelRetracesTheReferencePathForPath
+    megakernel_options.lanes = 4;
+    EXPECT_EQ(render_megakernel(scene, megakernel_options, {}).image.rgb, one.image.rgb) << "megakernel, 4 lanes";
 }
 
 // A parallelogram corner + u edge1 + v edge2 as a two-triangle mesh, its
@@ -204,13 +209,13 @@ TEST(MeshRender, WavefrontRetracesTheReferenceWithTheSameIntersectorOnTheShipped
 }
 
 // The hits the host writes are a function of each ray alone: the same image,
-// to the bit, for any wavefront size (queue lengths rarely a multiple of 8,
-// passes cut elsewhere) and one lane or eight.
+// to the bit, for any wavefront size (queue lengths rarely a multiple of the
+// lanes, passes cut elsewhere) and 1, 4, 8 or 16 lanes.
 TEST(MeshRender, EmbreeImagesAreBitIdenticalAcrossWavefrontSizesAndLanes) {
     Scene scene = shipped("cornell_mesh", 32, 2);
     RenderResult first = render_wavefront(scene, traced_by(Intersector::Embree, 0, 8), {});
     EXPECT_GT(first.stats.shadow_rays, 0u);
-    for (auto [wavefront, lanes] : {std::pair{320u, 1u}, {320u, 8u}, {1088u, 1u}, {0u, 1u}}) {
+    for (auto [wavefront, lanes] : {std::pair{320u, 1u}, {320u, 4u}, {320u, 8u}, {320u, 16u}, {1088u, 1u}, {0u, 1u}}) {
         RenderResult other = render_wavefront(scene, traced_by(Intersector::Embree, wavefront, lanes), {});
         std::string label = "wavefront " + std::to_string(wavefront) + ", lanes " + std::to_string(lanes);
         EXPECT_EQ(other.image.rgb, first.image.rgb) << label;

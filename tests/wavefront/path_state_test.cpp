@@ -64,8 +64,8 @@ TEST(PathState, FieldsExistOnlyForFeaturesInUse) {
     diffuse_mis.mis = true;
     std::size_t base = PathState::bytes_per_path(diffuse_only);
     EXPECT_EQ(PathState::bytes_per_path(with_glass), base + 4 + 4);        // specular flag, eta_scale
-    EXPECT_EQ(PathState::bytes_per_path(diffuse_nee), base + 10 * 4);      // shadow ray and contribution
-    EXPECT_EQ(PathState::bytes_per_path(diffuse_mis), base + 10 * 4 + 4);  // and the bounce's density
+    EXPECT_EQ(PathState::bytes_per_path(diffuse_nee), base + 11 * 4);      // shadow ray, contribution, ends path
+    EXPECT_EQ(PathState::bytes_per_path(diffuse_mis), base + 11 * 4 + 4);  // and the bounce's density
     FeatureSet glass_mis_host_traced = glass_mis, diffuse_host_traced = diffuse_only;
     glass_mis_host_traced.host_traced = diffuse_host_traced.host_traced = true;
     EXPECT_EQ(PathState::bytes_per_path(diffuse_host_traced), base);  // no shadow rays: nothing more

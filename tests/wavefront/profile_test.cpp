@@ -27,6 +27,25 @@ std::uint64_t sum(const std::vector<std::uint64_t>& values) {
     return std::accumulate(values.begin(), values.end(), std::uint64_t(0));
 }
 
+// A profiled wavefront render of scenes/test/room_small.json at size x size,
+// 1 spp, max_depth `max_depth`, `wavefront` paths in flight (0: automatic).
+struct ProfiledRender {
+    RenderResult result;
+    WavefrontReport report;
+};
+ProfiledRender profiled_small_room(int size, int max_depth, std::size_t wavefront = 0) {
+    Scene scene = test::scene_from_file("scenes/test/room_small.json");
+    scene.camera.width = scene.camera.height = size;
+    scene.render.spp = 1;
+    scene.render.max_depth = max_depth;
+    WavefrontOptions options;
+    options.wavefront = wavefront;
+    options.profile = true;
+    ProfiledRender rendered;
+    rendered.result = render_wavefront(scene, options, {}, &rendered.report);
+    return rendered;
+}
+
 // The stage kernels' items against counts from sources independent of the
 // host's queue bookkeeping (IterationRecord, from which fill_profile sums
 // the items): the scalar reference renderer's rays for the same scene
@@ -51,9 +70,8 @@ TEST(Profile, KernelItemsMatchTheRaysTheRenderCounted) {
     EXPECT_EQ(p.kernel("intersect_shadow").items, reference.stats.shadow_rays);
     EXPECT_EQ(p.kernel("accumulate").items, samples);
     EXPECT_EQ(p.kernel("generate").items, samples);  // every camera ray took one free slot
-    // Every hit is shaded; those that did not end there scatter.
-    EXPECT_LE(p.kernel("scatter").items, p.kernel("shade_direct").items);
-    EXPECT_LE(p.kernel("shade_direct").items, p.kernel("intersect").items);
+    // Every hit is shaded.
+    EXPECT_LE(p.kernel("shade").items, p.kernel("intersect").items);
 
     // The kernels' own per-depth counts add up to the reference's rays; depth 0 is the camera rays.
     EXPECT_EQ(sum(p.extension_rays_by_depth), reference.stats.extension_rays);
@@ -63,7 +81,7 @@ TEST(Profile, KernelItemsMatchTheRaysTheRenderCounted) {
     for (std::size_t d = 1; d < p.extension_rays_by_depth.size(); ++d)
         EXPECT_LE(p.extension_rays_by_depth[d], p.extension_rays_by_depth[d - 1]) << "depth " << d;
 
-    for (const char* stage : {"generate", "intersect", "shade_direct", "intersect_shadow", "scatter"}) {
+    for (const char* stage : {"generate", "intersect", "shade", "intersect_shadow"}) {
         EXPECT_GT(p.kernel(stage).device_s, 0.0) << stage;
         if (std::string(stage) != "generate") {
             EXPECT_EQ(p.kernel(stage).launches, p.iterations) << stage;
@@ -113,21 +131,25 @@ TEST(Profile, HostTracedStagesHaveRowsOfTheirOwn) {
     EXPECT_EQ(p.intersect_bound_rays_per_s, 0.0);
 }
 
+// A shadow ray is counted at the depth of the vertex that cast it, although
+// shade has moved its path's depth on by then: with max_depth 1 every light
+// sample is cast at the camera ray's hit, depth 0.
+TEST(Profile, ShadowRaysAreCountedAtTheDepthOfTheirVertex) {
+    ProfiledRender rendered = profiled_small_room(16, 1);
+    const std::vector<std::uint64_t>& shadow = rendered.report.profile.shadow_rays_by_depth;
+    ASSERT_FALSE(shadow.empty());
+    EXPECT_GT(shadow[0], 0u);
+    EXPECT_EQ(shadow[0], rendered.result.stats.shadow_rays);
+    EXPECT_EQ(sum(shadow), shadow[0]);
+}
+
 // docs/architecture.md's count of the kernels an iteration launches (at most:
 // scan compaction and next-event estimation, as here) is what one iteration
 // launches: every path of this render ends at its first hit (max_depth 0),
 // so it is one pass of one iteration, and its profile counts every launch
 // but the pass's accumulate.
 TEST(Profile, ArchitectureDocCountsTheKernelsOfAnIteration) {
-    Scene scene = test::scene_from_file("scenes/test/room_small.json");
-    scene.camera.width = scene.camera.height = 8;
-    scene.render.spp = 1;
-    scene.render.max_depth = 0;
-    WavefrontOptions options;
-    options.wavefront = 64;
-    options.profile = true;
-    WavefrontReport report;
-    render_wavefront(scene, options, {}, &report);
+    WavefrontReport report = profiled_small_room(8, 0, 64).report;
     ASSERT_EQ(report.iterations.size(), 1u);
     std::uint64_t launches = 0;
     for (const KernelProfile& k : report.profile.kernels)

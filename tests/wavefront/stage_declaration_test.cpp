@@ -18,11 +18,8 @@
 namespace wp {
 namespace {
 
-const std::map<std::string, std::uint32_t> kQueueByName{{"FREE", WP_QUEUE_FREE},
-                                                        {"HIT", WP_QUEUE_HIT},
-                                                        {"RAY", WP_QUEUE_RAY},
-                                                        {"SHADOW", WP_QUEUE_SHADOW},
-                                                        {"SCATTER", WP_QUEUE_SCATTER}};
+const std::map<std::string, std::uint32_t> kQueueByName{
+    {"FREE", WP_QUEUE_FREE}, {"HIT", WP_QUEUE_HIT}, {"RAY", WP_QUEUE_RAY}, {"SHADOW", WP_QUEUE_SHADOW}};
 
 std::uint32_t bit(const char* queue) { return 1u << kQueueByName.at(queue); }
 
@@ -85,21 +82,20 @@ TEST(StageDeclaration, EveryStageHasItsKernelWithTheDeclaredQueues) {
 // The check above fails on the two mistakes it is there for: a stage added to
 // the declaration without a kernel, and a declared push no kernel makes.
 TEST(StageDeclaration, KernelCheckFindsAStageWithoutKernelAndAPushNeverMade) {
-    StageDeclaration without_kernel{"shade_indirect", WP_QUEUE_SCATTER, bit("RAY"), PathFeature::ALWAYS};
+    StageDeclaration without_kernel{"shade_indirect", WP_QUEUE_HIT, bit("RAY"), PathFeature::ALWAYS};
     EXPECT_EQ(kernel_file_problem(without_kernel), "no kernels/shade_indirect.cl");
-    StageDeclaration scatter = declaration(Stage::scatter);
-    scatter.pushes |= bit("SHADOW");
-    EXPECT_EQ(kernel_file_problem(scatter), "kernel scatter pushes to FREE RAY, declared FREE RAY SHADOW");
+    StageDeclaration intersect = declaration(Stage::intersect);
+    intersect.pushes |= bit("SHADOW");
+    EXPECT_EQ(kernel_file_problem(intersect), "kernel intersect pushes to FREE HIT, declared FREE HIT SHADOW");
 }
 
 TEST(StageDeclaration, IntersectShadowRunsOnlyWithNextEventEstimation) {
     FeatureSet features;
     features.spheres = features.diffuse = true;
-    const std::vector<Stage> without_nee{Stage::generate, Stage::intersect, Stage::shade_direct, Stage::scatter};
+    const std::vector<Stage> without_nee{Stage::generate, Stage::intersect, Stage::shade};
     EXPECT_EQ(iteration_stages(features), without_nee);
     features.nee = true;
-    const std::vector<Stage> with_nee{Stage::generate, Stage::intersect, Stage::shade_direct, Stage::intersect_shadow,
-                                      Stage::scatter};
+    const std::vector<Stage> with_nee{Stage::generate, Stage::intersect, Stage::shade, Stage::intersect_shadow};
     EXPECT_EQ(iteration_stages(features), with_nee);
 }
 
@@ -122,12 +118,11 @@ TEST(StageDeclaration, TracingStagesReadTheHostsResultsWhereItTraces) {
     EXPECT_EQ(declaration(Stage::intersect_shadow).traces, StageTrace::ANY_HIT);
 }
 
-// The bookkeeping derived from the declaration is the one the host did by
-// hand before it was derived (and docs/architecture.md describes): scan
-// compaction builds RAY after generate, HIT after intersect, SHADOW and
-// SCATTER after shade_direct, FREE and RAY after scatter (nothing after
-// intersect_shadow); atomic pushes empty FREE and HIT before intersect, SHADOW
-// and SCATTER before shade_direct, RAY before scatter.
+// The bookkeeping derived from the declaration (and docs/architecture.md
+// describes): scan compaction builds RAY after generate, HIT after
+// intersect, and SHADOW, RAY and FREE after shade (nothing after
+// intersect_shadow); atomic pushes empty FREE and HIT before intersect,
+// SHADOW and RAY before shade.
 TEST(StageDeclaration, QueueBookkeepingFollowsFromTheDeclaration) {
     for (bool nee : {true, false}) {
         SCOPED_TRACE(nee ? "with next-event estimation" : "without");
@@ -137,14 +132,12 @@ TEST(StageDeclaration, QueueBookkeepingFollowsFromTheDeclaration) {
         auto of = [&](Stage stage) { return plan[static_cast<std::size_t>(stage)]; };
         EXPECT_EQ(queue_names(of(Stage::generate).compacted_after), "RAY");
         EXPECT_EQ(queue_names(of(Stage::intersect).compacted_after), "HIT");
-        EXPECT_EQ(queue_names(of(Stage::shade_direct).compacted_after), "SHADOW SCATTER");
+        EXPECT_EQ(queue_names(of(Stage::shade).compacted_after), "FREE RAY SHADOW");
         EXPECT_EQ(queue_names(of(Stage::intersect_shadow).compacted_after), "");
-        EXPECT_EQ(queue_names(of(Stage::scatter).compacted_after), "FREE RAY");
         EXPECT_EQ(queue_names(of(Stage::generate).counts_cleared_before), "");
         EXPECT_EQ(queue_names(of(Stage::intersect).counts_cleared_before), "FREE HIT");
-        EXPECT_EQ(queue_names(of(Stage::shade_direct).counts_cleared_before), "SHADOW SCATTER");
+        EXPECT_EQ(queue_names(of(Stage::shade).counts_cleared_before), "RAY SHADOW");
         EXPECT_EQ(queue_names(of(Stage::intersect_shadow).counts_cleared_before), "");
-        EXPECT_EQ(queue_names(of(Stage::scatter).counts_cleared_before), "RAY");
     }
 }
 

@@ -1,5 +1,5 @@
-// shade_direct + intersect_shadow and scatter against the reference's
-// matching functions, on hand-built paths.
+// shade (its light sample, with intersect_shadow, and its BSDF sample)
+// against the reference's matching functions, on hand-built paths.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -15,12 +15,10 @@ namespace {
 using M = SharedMath<float>;
 using vec3 = M::vec3;
 
-// Runs intersect on the started paths and hands its hits to `next`.
-std::vector<std::uint32_t> intersect_and_queue_hits(Pipeline& pipeline, std::uint32_t next) {
+// Runs intersect on the started paths, which queues their hits for shade.
+std::vector<std::uint32_t> intersect_started_paths(Pipeline& pipeline) {
     pipeline.run_alone(Stage::intersect);
-    std::vector<std::uint32_t> hits = pipeline.queues().read_queue(WP_QUEUE_HIT);
-    pipeline.queues().set_queue(next, hits);
-    return hits;
+    return pipeline.queues().read_queue(WP_QUEUE_HIT);
 }
 
 constexpr const char* kLitPlane = R"({
@@ -36,7 +34,7 @@ constexpr const char* kLitPlane = R"({
 // Next-event estimation: light selection, the point on the light, the
 // geometry terms (cosines, distance, solid-angle pdf), the shadow ray and its
 // occlusion by the small sphere, per path against reference sample_direct_light.
-TEST(ShadeDirectStage, LightSampleMatchesReference) {
+TEST(ShadeStage, LightSampleMatchesReference) {
     Scene scene = test::scene_from_json(kLitPlane);
     reference::ReferenceScene<float> ref(scene);
     constexpr int kPaths = 2048;
@@ -47,10 +45,9 @@ TEST(ShadeDirectStage, LightSampleMatchesReference) {
     }
     Pipeline pipeline(scene, choose_device(""), kPaths, kPaths, scene.features());
     test::start_paths(pipeline, rays, 100);
-    std::vector<std::uint32_t> hits = intersect_and_queue_hits(pipeline, WP_QUEUE_HIT);
-    ASSERT_EQ(hits.size(), std::size_t(kPaths));
-    pipeline.run_alone(Stage::shade_direct);
-    EXPECT_EQ(pipeline.queues().read_queue(WP_QUEUE_SCATTER).size(), std::size_t(kPaths));
+    ASSERT_EQ(intersect_started_paths(pipeline).size(), std::size_t(kPaths));
+    pipeline.run_alone(Stage::shade);
+    EXPECT_EQ(pipeline.queues().read_queue(WP_QUEUE_RAY).size(), std::size_t(kPaths));  // max_depth 4, rr_depth 8
     pipeline.run_alone(Stage::intersect_shadow);
     std::vector<float> radiance[3] = {pipeline.read_field<float>("radiance", 0),
                                       pipeline.read_field<float>("radiance", 1),
@@ -79,12 +76,12 @@ constexpr const char* kGlassSphere = R"({
   "shapes": [{"type": "sphere", "center": [0, 0, -5], "radius": 1, "material": "glass"}]
 })";
 
-// The reflect/refract split of scatter against exact Fresnel, for rays
+// The reflect/refract split of shade's BSDF sampling against exact Fresnel, for rays
 // entering at 60 degrees, leaving at 25.8 degrees, and beyond the critical
 // angle (always reflected). With n paths the reflected fraction has standard
 // deviation sqrt(F (1 - F) / n); |z| < 5 gives a false failure of 6e-7 per
 // case. Every path's new direction and weight also match reference scatter.
-TEST(ScatterStage, GlassSplitFollowsFresnelAndMatchesReference) {
+TEST(ShadeStage, GlassSplitFollowsFresnelAndMatchesReference) {
     Scene scene = test::scene_from_json(kGlassSphere);
     reference::ReferenceScene<float> ref(scene);
     constexpr int kPerCase = 20000;
@@ -98,8 +95,8 @@ TEST(ScatterStage, GlassSplitFollowsFresnelAndMatchesReference) {
     for (const Case& c : cases)
         for (int i = 0; i < kPerCase; ++i) rays.push_back({vec3(0, c.height, c.inside ? -5 : 0), vec3(0, 0, -1)});
     test::start_paths(pipeline, rays);
-    ASSERT_EQ(intersect_and_queue_hits(pipeline, WP_QUEUE_SCATTER).size(), rays.size());
-    pipeline.run_alone(Stage::scatter);
+    ASSERT_EQ(intersect_started_paths(pipeline).size(), rays.size());
+    pipeline.run_alone(Stage::shade);
     ASSERT_EQ(pipeline.queues().read_queue(WP_QUEUE_RAY).size(), rays.size());  // rr_depth 8: no roulette yet
     std::vector<float> dir[3] = {pipeline.read_field<float>("direction", 0), pipeline.read_field<float>("direction", 1),
                                  pipeline.read_field<float>("direction", 2)};
