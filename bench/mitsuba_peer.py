@@ -41,30 +41,33 @@ class MitsubaPeer:
     def describe(self):
         return f"Mitsuba {self.version} {self.variant}"
 
-    def scene_dict(self, scene, size, spp, max_depth=None):
-        return mitsuba_scene.convert(scene, self.workdir, width=size, height=size, spp=spp, max_depth=max_depth)
+    def scene_dict(self, scene, size, spp, max_depth=None, sampler="independent"):
+        converted = mitsuba_scene.convert(scene, self.workdir, width=size, height=size, spp=spp, max_depth=max_depth)
+        converted["sensor"]["sampler"]["type"] = sampler
+        return converted
 
-    def load(self, scene, size, spp, max_depth=None):
-        key = (scene, size, spp, max_depth)
+    def load(self, scene, size, spp, max_depth=None, sampler="independent"):
+        key = (scene, size, spp, max_depth, sampler)
         if key not in self.loaded:
-            self.loaded[key] = mitsuba_scene.load(self.mi, self.scene_dict(scene, size, spp, max_depth))
+            self.loaded[key] = mitsuba_scene.load(self.mi, self.scene_dict(scene, size, spp, max_depth, sampler))
         return self.loaded[key]
 
-    def render(self, scene, size, spp, seed=0, max_depth=None):
-        """One render: time_s (the render and reading the image back; loading left out), samples_per_s and
-        the image as flat linear RGB floats in the bottom-up row order of wavepath's PFM files.
+    def render(self, scene, size, spp, seed=0, max_depth=None, sampler="independent"):
+        """One render: time_s (the render and reading the image back; loading left out), samples (those the
+        sampler took: some round spp to a square, a prime's square or a power of two), samples_per_s and the
+        image as flat linear RGB floats in the bottom-up row order of wavepath's PFM files.
 
         The first render of each configuration is run twice and the first discarded: Dr.Jit compiles its
         kernels then (or loads them from its cache), which is not the renderer's speed."""
-        loaded = self.load(scene, size, spp, max_depth)
-        key = (scene, size, spp, max_depth)
+        loaded = self.load(scene, size, spp, max_depth, sampler)
+        key = (scene, size, spp, max_depth, sampler)
         if key not in self.warm:
             self.warm.add(key)
             np.array(self.mi.render(loaded, seed=seed + 1_000_003))
         start = time.perf_counter()
         image = np.array(self.mi.render(loaded, seed=seed), dtype=np.float64)
         elapsed = time.perf_counter() - start
-        samples = size * size * spp
+        samples = size * size * loaded.sensors()[0].sampler().sample_count()
         return {"time_s": elapsed, "samples": samples, "samples_per_s": samples / elapsed,
                 "image": image[::-1].reshape(-1)}
 

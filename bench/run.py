@@ -51,7 +51,8 @@ class Runner:
 
     def render(self, scene, backend, width, height, spp, extra=(), profile=False, image=False, seed=None,
                warm_spp=None):
-        """One render; returns the stats JSON (plus 'profile' and 'image' when asked).
+        """One render with `backend` (None: no --backend flag, wavepath's default); returns the stats JSON
+        (plus 'profile' and 'image' when asked).
 
         The first render of each OpenCL configuration is run twice and the
         first discarded: PoCL compiles each kernel for its launch geometry
@@ -65,8 +66,10 @@ class Runner:
         out = os.path.join(self.scratch, "image.pfm")
         stats_path = os.path.join(self.scratch, "stats.json")
         profile_path = os.path.join(self.scratch, "profile.json")
-        args = [self.binary, "render", scene, "-o", out, "-q", "--backend", backend, "--width", str(width),
-                "--height", str(height), "--spp", str(spp), "--stats-json", stats_path, *extra]
+        args = [self.binary, "render", scene, "-o", out, "-q", "--width", str(width), "--height", str(height),
+                "--spp", str(spp), "--stats-json", stats_path, *extra]
+        if backend is not None:  # None: the default command, the backend left to wavepath's choice
+            args += ["--backend", backend]
         if seed is not None:
             args += ["--seed", str(seed)]
         if backend == "reference":

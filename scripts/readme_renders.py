@@ -33,7 +33,8 @@ def sentence(name, scene, stats, commit, load):
     date = datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d")
     nonfinite = stats["nonfinite"]
     return (f"`./build/wavepath render {scene} -o out/{name}.png` ({stats['width']}x{stats['height']}, "
-            f"{stats['spp']} spp, the {stats['backend']} backend on this machine's default OpenCL device) took "
+            f"{stats['spp']} spp, the {stats['backend']} backend{' (--backend auto)' if stats.get('backend_choice') else ''} "
+            f"on this machine's default OpenCL device) took "
             f"{stats['time_s']:.1f} s: {stats['samples_per_s'] / 1e6:.3f} Msamples/s, "
             f"{stats['extension_rays_per_s'] / 1e6:.2f} Mrays/s extension and "
             f"{stats['shadow_rays_per_s'] / 1e6:.2f} Mrays/s shadow rays, "

@@ -8,6 +8,7 @@
 #include "cli/errors.h"
 #include "cli/flag_checks.h"
 #include "megakernel/megakernel_renderer.h"
+#include "opencl/device.h"
 #include "opencl/lanes.h"
 #include "opencl/program_cache.h"
 #include "reference/reference_renderer.h"
@@ -114,21 +115,50 @@ void run_on_megakernel(const Scene& scene, const BackendOptions& options, const 
             !problem.empty())
             throw UsageError(problem);
     run_on_opencl<MegakernelReport>(options, run, [&](MegakernelReport& report) {
-        return make_megakernel_renderer(
+        std::unique_ptr<FilmRenderer> renderer = make_megakernel_renderer(
             scene, {options.device, wants_profile(options), options.film_squares, options.lanes}, progress, &report);
+        if (options.explain) std::cout << report.explain() << std::flush;
+        return renderer;
     });
 }
 
 constexpr std::array<Backend, 3> kBackends{{
-    {"wavefront", "OpenCL wavefront path tracer, the default", run_on_wavefront},
+    {"wavefront", "OpenCL wavefront path tracer", run_on_wavefront},
     {"megakernel", "OpenCL megakernel baseline: one work item traces a whole path", run_on_megakernel},
     {"reference", "scalar C++ path tracer on the CPU threads", run_on_reference},
 }};
 
+constexpr const char* kAuto = "auto";
+
 std::string backend_help() {
-    std::string help = "Renderer:";
-    for (const Backend& backend : kBackends) help += std::string(" ") + backend.name + " (" + backend.description + ")";
+    std::string help = std::string("Renderer: ") + kAuto +
+                       " (the default: the fastest for the device and the scene by the bench's figures, among "
+                       "the backends that take every flag given; --explain and the summary line say which and why)";
+    for (const Backend& backend : kBackends)
+        help += std::string(", ") + backend.name + " (" + backend.description + ")";
     return help;
+}
+
+// --explain's first line: "backend: megakernel (auto: CPU device, no meshes: ...)".
+std::string explain_backend(const BackendOptions& options) {
+    return "backend: " + options.name + " (" + (options.chosen ? explain_choice(*options.chosen) : "--backend") + ")\n";
+}
+
+// For --backend auto, which chooses among the backends that take every flag given.
+const std::vector<std::string> kWavefrontOnly{"wavefront"}, kOpenClOnly{"wavefront", "megakernel"},
+    kReferenceOnly{"reference"}, kEmbreeTracers{"wavefront", "reference"};
+
+void note_limiting_flag(BackendOptions& options, const std::string& flag, const std::vector<std::string>& backends) {
+    std::vector<LimitingFlag>& given = options.limiting_flags;
+    if (std::none_of(given.begin(), given.end(), [&](const LimitingFlag& f) { return f.flag == flag; }))
+        given.push_back({flag, backends});
+}
+
+// `option` given on the command line narrows auto's choice to `backends`.
+CLI::Option* taken_only_by(CLI::Option* option, BackendOptions& options, const std::vector<std::string>& backends) {
+    return option->each([&options, &backends, flag = option->get_name()](const std::string&) {
+        note_limiting_flag(options, flag, backends);
+    });
 }
 
 }  // namespace
@@ -140,13 +170,15 @@ std::vector<std::string> backend_names() {
 }
 
 void add_backend_options(CLI::App& render, BackendOptions& options) {
-    render.add_option("--backend", options.name, backend_help())
-        ->check(CLI::IsMember(backend_names()))
-        ->capture_default_str();
-    render.add_option("--threads", options.threads, "CPU threads for the reference backend (0: all)")
+    std::vector<std::string> names = backend_names();
+    names.insert(names.begin(), kAuto);
+    render.add_option("--backend", options.name, backend_help())->check(CLI::IsMember(names))->capture_default_str();
+    taken_only_by(render.add_option("--threads", options.threads, "CPU threads for the reference backend (0: all)"),
+                  options, kReferenceOnly)
         ->check(integer_in(0, kMaxThreads))
         ->capture_default_str();
-    render.add_option("--precision", options.precision, "Arithmetic of the reference backend")
+    taken_only_by(render.add_option("--precision", options.precision, "Arithmetic of the reference backend"), options,
+                  kReferenceOnly)
         ->check(CLI::IsMember({"float", "double"}))
         ->capture_default_str();
     render
@@ -156,33 +188,55 @@ void add_backend_options(CLI::App& render, BackendOptions& options) {
                     "fastest the backend has: embree for the reference in float; for the wavefront embree on a CPU "
                     "device for scenes with meshes, bvh otherwise (--explain says which and why); bvh for the "
                     "megakernel")
-        ->check(CLI::IsMember({"embree", "bvh"}));
-    render.add_option("--wavefront", options.wavefront, "Paths in flight for the wavefront backend (0: automatic)")
+        ->check(CLI::IsMember({"embree", "bvh"}))
+        ->each([&options](const std::string& intersector) {
+            if (intersector == "embree") note_limiting_flag(options, "--intersector embree", kEmbreeTracers);
+        });
+    taken_only_by(
+        render.add_option("--wavefront", options.wavefront, "Paths in flight for the wavefront backend (0: automatic)"),
+        options, kWavefrontOnly)
         ->check(integer_in(0, kMaxWavefront))
         ->capture_default_str();
     render.add_option("--device", options.device,
-                      "OpenCL device for the wavefront backend: index or name substring (see `wavepath devices`)");
+                      "OpenCL device for the OpenCL backends: index or name substring (see `wavepath devices`)");
     render.add_flag("--explain", options.explain,
-                    "Print the wavefront's feature set, build options, program cache hit or miss and state size");
-    render
-        .add_option("--compaction", options.compaction,
-                    "How the wavefront fills its queues: atomic (pushes aggregated per work group) or scan "
-                    "(stable prefix sum)")
+                    "Print the backend and why it was chosen, then the OpenCL backends' device, build options and "
+                    "program cache hit or miss, and the wavefront's feature set and state size");
+    taken_only_by(render.add_option("--compaction", options.compaction,
+                                    "How the wavefront fills its queues: atomic (pushes aggregated per work group) "
+                                    "or scan (stable prefix sum)"),
+                  options, kWavefrontOnly)
         ->transform(CLI::CheckedTransformer(
             std::map<std::string, Compaction>{{"atomic", Compaction::Atomic}, {"scan", Compaction::Scan}}))
         ->default_str(kDefaultCompaction == Compaction::Scan ? "scan" : "atomic");
-    render
-        .add_option(
-            "--lanes", options.lanes,
-            "Paths per work item in the wavefront's stage kernels and in the megakernel, as vector code: 1, "
-            "4, 8 or 16 (more than 1 needs --compaction scan on the wavefront; 0: the measured default, 8 on CPU "
-            "devices, 1 on others and in the megakernel for meshes, until bench/run.py --series lanes shows "
-            "another count faster; opencl/lanes.cpp)")
+    taken_only_by(render.add_option(
+                      "--lanes", options.lanes,
+                      "Paths per work item in the wavefront's stage kernels and in the megakernel, as vector code: 1, "
+                      "4, 8 or 16 (more than 1 needs --compaction scan on the wavefront; 0: the measured default, 8 on "
+                      "CPU devices, 1 on others and in the megakernel for meshes, until bench/run.py --series lanes "
+                      "shows another count faster; opencl/lanes.cpp)"),
+                  options, kOpenClOnly)
         ->check(CLI::IsMember({0u, 1u, 4u, 8u, 16u}))
         ->capture_default_str();
-    render.add_flag("--profile", options.profile,
-                    "Print the wavefront's per-kernel profile (launches, items, device time, items/s) on stderr");
-    render.add_option("--profile-json", options.profile_json, "Also write the wavefront's profile to this JSON file");
+    taken_only_by(render.add_flag("--profile", options.profile,
+                                  "Print the OpenCL backend's per-kernel profile (launches, items, device time, "
+                                  "items/s) on stderr"),
+                  options, kOpenClOnly);
+    taken_only_by(render.add_option("--profile-json", options.profile_json,
+                                    "Also write the OpenCL backend's profile to this JSON file"),
+                  options, kOpenClOnly);
+}
+
+BackendOptions resolve_backend(const BackendOptions& options, const Scene& scene) {
+    BackendOptions resolved = options;
+    if (options.name != kAuto) return resolved;
+    try {
+        resolved.chosen = choose_backend(situation_of(choose_device(options.device), scene), options.limiting_flags);
+    } catch (const NoBackendTakesTheFlags& error) {
+        throw UsageError(error.what());
+    }
+    resolved.name = resolved.chosen->backend;
+    return resolved;
 }
 
 std::string estimator_name(const BackendOptions& options, const Scene& scene) {
@@ -206,6 +260,7 @@ void run_with_backend(const Scene& scene, const BackendOptions& options, const P
     const auto backend = std::find_if(kBackends.begin(), kBackends.end(),
                                       [&](const Backend& candidate) { return options.name == candidate.name; });
     if (backend == kBackends.end()) throw UsageError("--backend: unknown backend '" + options.name + "'");
+    if (options.explain) std::cout << explain_backend(options) << std::flush;
     backend->run(scene, options, progress, max_items, run);
 }
 

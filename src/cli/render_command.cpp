@@ -121,9 +121,11 @@ void write_output(const RenderCommand& command, const RenderIdentity& identity, 
 // flags were the same, unless mpirun was given one command line per rank).
 void check_every_rank_renders(Ranks& ranks, const LongRunPlan& plan) {
     const RenderIdentity& identity = plan.identity;
+    // The scene and the estimator first, whose differences have messages of their own.
+    enum Fact : std::size_t { kScene, kEstimator, kOthers };
     const std::vector<std::uint64_t> mine{identity.scene,
-                                          identity.settings,
                                           fnv1a64(identity.estimator.data(), identity.estimator.size()),
+                                          identity.settings,
                                           plan.items.begin,
                                           plan.items.end,
                                           std::bit_cast<std::uint64_t>(plan.target_error),
@@ -134,12 +136,16 @@ void check_every_rank_renders(Ranks& ranks, const LongRunPlan& plan) {
     on_every_rank(ranks, [&] {
         for (std::size_t at = mine.size(); at < all.size(); at += mine.size()) {
             const std::string rank = "rank " + std::to_string(at / mine.size());
-            if (all[at] != all[0])
+            if (all[at + kScene] != all[kScene])
                 throw SceneError(rank +
                                  " loaded another scene than rank 0 (their content differs): every machine "
                                  "needs the same scene and mesh files");
-            if (!std::equal(all.begin() + std::ptrdiff_t(at + 1), all.begin() + std::ptrdiff_t(at + mine.size()),
-                            all.begin() + 1))
+            if (all[at + kEstimator] != all[kEstimator])
+                throw UsageError(rank +
+                                 " renders with another estimator than rank 0 (another backend: --backend auto "
+                                 "chooses per kind of device; give --backend)");
+            if (!std::equal(all.begin() + std::ptrdiff_t(at + kOthers), all.begin() + std::ptrdiff_t(at + mine.size()),
+                            all.begin() + kOthers))
                 throw UsageError(rank + " was given other settings than rank 0");
         }
     });
@@ -186,7 +192,7 @@ PreparedRender prepare_render(const RenderCommand& command, Ranks& ranks) {
         if (command.long_run.target_error && !command.long_run.samples.empty())
             throw UsageError("--target-error: needs the whole render, not a --samples range");
         plan.adaptive = adaptive_sampling(command.long_run, scene);
-        prepared.backend = command.backend;
+        prepared.backend = resolve_backend(command.backend, scene);
         prepared.backend.film_squares = command.long_run.target_error.has_value() || plan.adaptive.on();
         plan.items = planned_items(command.long_run.samples, scene);
         plan.identity = render_identity(scene, estimator_name(prepared.backend, scene), plan.adaptive);
@@ -205,10 +211,13 @@ PreparedRender prepare_render(const RenderCommand& command, Ranks& ranks) {
     return prepared;
 }
 
-void report_run(const RenderCommand& command, const Scene& scene, const LongRunPlan& plan,
-                const LongRunResult& result) {
+void report_run(const RenderCommand& command, const PreparedRender& prepared, const LongRunResult& result) {
+    const Scene& scene = prepared.scene;
+    const LongRunPlan& plan = prepared.plan;
     RunSummary summary;
-    summary.backend = command.backend.name;
+    summary.backend = prepared.backend.name;
+    summary.backend_choice = prepared.backend.chosen;
+    summary.estimator = plan.identity.estimator;
     summary.output_path = command.output_path;
     summary.width = scene.camera.width;
     summary.height = scene.camera.height;
@@ -251,7 +260,7 @@ int run_render(const RenderCommand& command) {
     if (!ranks->is_root()) return kExitOk;
 
     write_output(command, plan.identity, result.film);
-    report_run(command, prepared.scene, plan, result);
+    report_run(command, prepared, result);
     return result.reason == StopReason::Interrupted ? kExitInterrupted : kExitOk;
 }
 

@@ -69,6 +69,11 @@ std::string sppm_text(const RunSummary& summary) {
     return text;
 }
 
+std::string backend_text(const RunSummary& summary) {
+    if (!summary.backend_choice) return summary.backend;
+    return summary.backend + " (auto: " + summary.backend_choice->situation + ")";
+}
+
 std::string ranks_text(const RunSummary& summary) {
     const std::size_t ranks = summary.samples_per_rank.size();
     return ranks > 1 ? ", " + std::to_string(ranks) + " ranks" : "";
@@ -84,7 +89,7 @@ std::string format_summary_line(const RunSummary& summary) {
                   s.time_s, per_second(s.samples, s.time_s) * 1e-6, per_second(s.extension_rays, s.time_s) * 1e-6,
                   per_second(s.shadow_rays, s.time_s) * 1e-6, static_cast<unsigned long long>(s.nonfinite));
     return "wavepath: wrote " + summary.output_path + " (" + std::to_string(summary.width) + "x" +
-           std::to_string(summary.height) + ", " + samples_text(summary) + ", " + summary.backend +
+           std::to_string(summary.height) + ", " + samples_text(summary) + ", " + backend_text(summary) +
            ranks_text(summary) + ") " + figures + nonfinite_breakdown(s) + error_text(summary) +
            adaptive_text(summary) + sppm_text(summary);
 }
@@ -93,6 +98,9 @@ nlohmann::json stats_json(const RunSummary& summary) {
     const RenderStats& s = summary.stats;
     return {
         {"backend", summary.backend},
+        {"backend_choice",
+         summary.backend_choice ? nlohmann::json(explain_choice(*summary.backend_choice)) : nlohmann::json(nullptr)},
+        {"estimator", summary.estimator},
         {"width", summary.width},
         {"height", summary.height},
         {"spp", summary.spp},

@@ -3,9 +3,11 @@
 #pragma once
 
 #include <nlohmann/json_fwd.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "cli/backend_choice.h"
 #include "core/render.h"
 
 namespace wp::cli {
@@ -25,7 +27,9 @@ struct RunSummary {
     double mean_radius = 0.0;    // sppm: the pixels' gathering radius, mean over the pixels
     // Work items each rank rendered, in rank order (one entry in one process).
     std::vector<std::uint64_t> samples_per_rank;
-    std::vector<double> busy_s_per_rank;  // seconds each rank spent rendering (not waiting)
+    std::vector<double> busy_s_per_rank;          // seconds each rank spent rendering (not waiting)
+    std::optional<BackendChoice> backend_choice;  // how --backend auto chose `backend`; none when --backend named it
+    std::string estimator;  // the film's estimator (cli/backends.h, estimator_name): it names the intersector
 };
 
 // "wavepath: wrote out.png (512x512, 64 spp, reference) in 12.3 s: 1.36 Msamples/s,
@@ -36,10 +40,12 @@ struct RunSummary {
 // --target-error the last estimate follows: ", estimated relative error 0.0098";
 // with --adaptive: ", adaptive: mean 23.4 spp, 71.2% of pixels stopped early"; with
 // the sppm integrator: ", sppm: 65536 photons, 20417 stored, mean radius 0.0123".
-// On several MPI ranks the backend reads "wavefront, 3 ranks".
+// A backend --backend auto chose reads "megakernel (auto: CPU device, no
+// meshes)"; on several MPI ranks "wavefront, 3 ranks".
 std::string format_summary_line(const RunSummary& summary);
 
-// {"backend","width","height","spp","spp_done_min","spp_done_max","stopped","error_estimate" (or null),
+// {"backend","backend_choice" (explain_choice's words, or
+// null),"estimator","width","height","spp","spp_done_min","spp_done_max","stopped","error_estimate" (or null),
 //  "adaptive" (null, or {"spp_mean","stopped_early"}),
 //  "sppm" (null, or {"photons","photon_rays","photon_deposits","mean_radius"}),
 //  "ranks","samples_per_rank","render_s_per_rank","time_s", "samples","samples_per_s",

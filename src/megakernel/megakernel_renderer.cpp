@@ -63,6 +63,7 @@ class MegakernelFilmRenderer : public FilmRenderer {
         report_.build_options = program_.options;
         report_.cache_hit = program_.cache_hit;
         report_.build_seconds = program_.build_seconds;
+        report_.cache_file = program_.cache_file;
         report_.lanes = lanes_;
     }
 
@@ -129,6 +130,11 @@ class MegakernelFilmRenderer : public FilmRenderer {
 };
 
 }  // namespace
+
+std::string MegakernelReport::explain() const {
+    return "device: " + device + "\n" + explain_build(build_options, cache_hit, build_seconds, cache_file) +
+           "megakernel: " + std::to_string(lanes) + (lanes == 1 ? " path" : " paths") + " per work item\n";
+}
 
 std::unique_ptr<FilmRenderer> make_megakernel_renderer(const Scene& scene, const MegakernelOptions& options,
                                                        const Progress& progress, MegakernelReport* report) {

@@ -27,8 +27,11 @@ struct MegakernelReport {
     std::string build_options;
     bool cache_hit = false;
     double build_seconds = 0.0;
+    std::string cache_file;
     unsigned lanes = 1;     // paths per work item
     RenderProfile profile;  // kernels "megakernel" and "accumulate", when profiling
+
+    std::string explain() const;  // what --explain prints
 };
 
 // Renders on OpenCL; throws DeviceError (no device, kernel build failure).

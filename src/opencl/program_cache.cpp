@@ -160,4 +160,13 @@ BuiltProgram build_program(const cl::Context& context, const DeviceInfo& device,
     return built;
 }
 
+std::string explain_build(const std::string& options, bool cache_hit, double build_seconds,
+                          const std::string& cache_file) {
+    std::ostringstream out;
+    out << "build options: " << options << "\n"
+        << "program: " << (cache_hit ? "cache hit" : "cache miss, compiled") << " in " << build_seconds << " s"
+        << (cache_file.empty() ? " (no cache directory)" : " (" + cache_file + ")") << "\n";
+    return out.str();
+}
+
 }  // namespace wp

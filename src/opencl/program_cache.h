@@ -30,6 +30,11 @@ struct BuiltProgram {
     std::string cache_file;  // empty when the cache directory is unusable
 };
 
+// --explain's lines for a build: "build options: ...", then "program: cache
+// hit in 0.01 s (FILE)" or "program: cache miss, compiled in 41.2 s (FILE)".
+std::string explain_build(const std::string& options, bool cache_hit, double build_seconds,
+                          const std::string& cache_file);
+
 // $WAVEPATH_KERNEL_DIR, else the kernels/ directory of the source tree.
 std::string kernel_directory();
 

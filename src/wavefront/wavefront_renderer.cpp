@@ -122,10 +122,8 @@ std::string WavefrontReport::explain() const {
     std::ostringstream out;
     out << "device: " << device << "\n"
         << "features: " << features << "\n"
-        << "build options: " << build_options << "\n"
-        << "program: " << (cache_hit ? "cache hit" : "cache miss, compiled") << " in " << build_seconds << " s"
-        << (cache_file.empty() ? " (no cache directory)" : " (" + cache_file + ")") << "\n"
-        << "wavefront: " << wavefront << " paths in flight, passes of up to " << pass_capacity << " samples, " << lanes
+        << explain_build(build_options, cache_hit, build_seconds, cache_file) << "wavefront: " << wavefront
+        << " paths in flight, passes of up to " << pass_capacity << " samples, " << lanes
         << (lanes == 1 ? " path" : " paths") << " per work item in the stage kernels\n"
         << "path state: " << state_bytes_per_path << " bytes per path, " << state_bytes_per_path * wavefront / 1024
         << " KiB in all\n";

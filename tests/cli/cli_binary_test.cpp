@@ -216,8 +216,10 @@ TEST_F(CliTest, RenderWritesImageSummaryAndNothingElse) {
         EXPECT_TRUE(lines[i].find("% done, ") != std::string::npos ||
                     lines[i].rfind("wavepath: building the kernels for this scene", 0) == 0)
             << "not a progress line: " << lines[i];
-    EXPECT_EQ(lines.back().rfind("wavepath: wrote " + output_path() + " (8x8, 2 spp, wavefront) in ", 0), 0u)
-        << result.err;
+    // The default backend is auto's choice, named with the situation that decided it.
+    EXPECT_EQ(lines.back().rfind("wavepath: wrote " + output_path() + " (8x8, 2 spp, ", 0), 0u) << result.err;
+    EXPECT_NE(lines.back().find(" (auto: "), std::string::npos) << result.err;
+    EXPECT_NE(lines.back().find(", no meshes)) in "), std::string::npos) << result.err;
     EXPECT_NE(result.err.find("Mrays/s"), std::string::npos) << result.err;
     EXPECT_TRUE(result.out.empty()) << result.out;
 }
@@ -240,7 +242,8 @@ TEST_F(CliTest, StatsJsonHasConsistentFigures) {
     for (const char* key : {"backend", "width", "height", "spp", "time_s", "samples", "samples_per_s", "extension_rays",
                             "shadow_rays", "nonfinite"})
         EXPECT_TRUE(stats.contains(key)) << key;
-    EXPECT_EQ(stats["backend"], "wavefront");  // the default backend
+    EXPECT_TRUE(stats["backend"] == "wavefront" || stats["backend"] == "megakernel") << stats["backend"];
+    EXPECT_EQ(stats["backend_choice"].get<std::string>().rfind("auto: ", 0), 0u);  // the default backend
     EXPECT_EQ(stats["width"], 6);
     EXPECT_EQ(stats["height"], 4);
     EXPECT_EQ(stats["spp"], 3);
@@ -356,12 +359,13 @@ TEST_F(CliTest, ReferenceRendersWithEitherIntersector) {
 // (the test scene has no meshes: the OpenCL BVH by default), and both give
 // the same image.
 TEST_F(CliTest, WavefrontRendersWithEitherIntersectorAndExplainsWhich) {
-    const CommandResult by_default = render(base_scene().dump(), {"--explain", "-q"});
+    const CommandResult by_default = render(base_scene().dump(), {"--backend", "wavefront", "--explain", "-q"});
     ASSERT_EQ(by_default.exit_code, 0) << by_default.err;
     EXPECT_NE(by_default.out.find("intersector: bvh (the OpenCL BVH: without meshes"), std::string::npos)
         << by_default.out;
     const std::vector<float> bvh = read_image(output_path()).rgb;
-    const CommandResult embree = render(base_scene().dump(), {"--intersector", "embree", "--explain", "-q"});
+    const CommandResult embree =
+        render(base_scene().dump(), {"--backend", "wavefront", "--intersector", "embree", "--explain", "-q"});
     ASSERT_EQ(embree.exit_code, 0) << embree.err;
     EXPECT_NE(embree.out.find("intersector: embree (asked for)"), std::string::npos) << embree.out;
     EXPECT_EQ(read_image(output_path()).width, 8);

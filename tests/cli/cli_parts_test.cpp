@@ -175,7 +175,8 @@ TEST(Progress, ConcurrentUpdatesAreSafe) {
 }
 
 RunSummary example_summary() {
-    RunSummary summary{"reference", "out/room.png", 640, 480, 16, 16, 16, "done", -1.0, {}, false, 0.0, 0.0, {}, {}};
+    RunSummary summary{"reference", "out/room.png",    640, 480, 16, 16, 16, "done", -1.0, {}, false, 0.0, 0.0, {}, {},
+                       {},          "reference-embree"};
     summary.stats.time_s = 2.0;
     summary.stats.samples = 640ull * 480 * 16;  // 4915200
     summary.stats.extension_rays = 12'000'000;
@@ -230,9 +231,26 @@ TEST(Summary, SeveralRanksAreNamedWithWhatEachRendered) {
     EXPECT_EQ(stats["render_s_per_rank"], (nlohmann::json{1.5, 1.25, 1.75}));
 }
 
+// A backend that --backend auto chose is named with the situation that
+// decided; --stats-json has the whole explanation.
+TEST(Summary, AutoChoiceIsNamedWithItsSituation) {
+    RunSummary summary = example_summary();
+    summary.backend = "megakernel";
+    summary.backend_choice = BackendChoice{"megakernel", "CPU device, no meshes", "2x the wavefront's"};
+    summary.samples_per_rank = {2457600, 2457600};
+    EXPECT_NE(format_summary_line(summary).find("(640x480, 16 spp, megakernel (auto: CPU device, no meshes), 2 ranks)"),
+              std::string::npos)
+        << format_summary_line(summary);
+    const nlohmann::json stats = stats_json(summary);
+    EXPECT_EQ(stats["backend"], "megakernel");
+    EXPECT_EQ(stats["backend_choice"], "auto: CPU device, no meshes: 2x the wavefront's");
+    EXPECT_TRUE(stats_json(example_summary())["backend_choice"].is_null());
+}
+
 TEST(Summary, StatsJsonHasTheFiguresAndRates) {
     const nlohmann::json stats = stats_json(example_summary());
     EXPECT_EQ(stats["backend"], "reference");
+    EXPECT_EQ(stats["estimator"], "reference-embree");
     EXPECT_EQ(stats["width"], 640);
     EXPECT_EQ(stats["height"], 480);
     EXPECT_EQ(stats["spp"], 16);

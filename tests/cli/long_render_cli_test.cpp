@@ -230,7 +230,8 @@ TEST_F(LongRenderCli, TimeBudgetStopsAtAWholePass) {
     const std::string stats = out_ / "stats.json";
     CommandResult r = run(small_room_render_args(out_ / "out.pfm", 100000, {"--time", "0.001", "--stats-json", stats}));
     ASSERT_EQ(r.exit_code, 0) << r.err;
-    EXPECT_NE(r.err.find("(32x32, 1 of 100000 spp, stopped: time budget, wavefront)"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("(32x32, 1 of 100000 spp, stopped: time budget, wavefront (auto: "), std::string::npos)
+        << r.err;
     const nlohmann::json json = nlohmann::json::parse(read_text(stats));
     EXPECT_EQ(json["stopped"], "time budget");
     EXPECT_EQ(json["spp_done_min"], 1u);

@@ -53,6 +53,19 @@ class MpiCli : public ::testing::Test {
     TempDirectory scratch_{"scratch"}, out_{"out"};
 };
 
+// The default backend (auto) on 2 ranks: each rank chooses for its own
+// device, here the same kind as the one process's, so the image is the
+// one-process render's.
+TEST_F(MpiCli, AutoBackendOnTwoRanksGivesTheOneProcessBits) {
+    const std::string one = out_ / "auto_one.pfm", two = out_ / "auto_two.pfm";
+    ASSERT_EQ(run({"render", kSmallRoomScene, "-o", one, "--spp", "4", "-q"}).exit_code, 0);
+    CommandResult r = run_on(2, {"render", kSmallRoomScene, "-o", two, "--spp", "4"});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_TRUE(same_bytes(two, one));
+    EXPECT_NE(r.err.find(" (auto: "), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find(", 2 ranks) in "), std::string::npos) << r.err;
+}
+
 TEST_F(MpiCli, OneTwoAndThreeRanksGiveTheOneProcessBits) {
     const std::string one = one_process(7);
     EXPECT_FALSE(same_bytes(one_process(6), one));  // the comparison can tell renders apart
@@ -63,7 +76,7 @@ TEST_F(MpiCli, OneTwoAndThreeRanksGiveTheOneProcessBits) {
         ASSERT_EQ(r.exit_code, 0) << r.err;
         EXPECT_TRUE(same_bytes(out, one));
         if (ranks > 1) {
-            EXPECT_NE(r.err.find("(32x32, 7 spp, wavefront, " + std::to_string(ranks) + " ranks)"), std::string::npos)
+            EXPECT_NE(r.err.find(", --wavefront given), " + std::to_string(ranks) + " ranks)"), std::string::npos)
                 << r.err;
         }
         const nlohmann::json json = nlohmann::json::parse(read_text(stats));
@@ -158,7 +171,7 @@ TEST_F(MpiCli, AdaptiveSamplingGivesTheOneProcessBits) {
 }
 
 // Rank 1 runs its own command line (mpirun's MPMD form, `A : B`): a scene
-// it cannot load, or other settings, fail the job before anything is
+// it cannot load, other settings or another estimator fail the job before anything is
 // rendered: one error line naming the rank, its exit code, no output.
 TEST_F(MpiCli, ARankThatCannotStartFailsTheJobWithOneLine) {
     const std::string out = out_ / "out.pfm";
@@ -196,6 +209,19 @@ TEST_F(MpiCli, ARankThatCannotStartFailsTheJobWithOneLine) {
     r = run_on(1, other_spp);
     EXPECT_EQ(r.exit_code, 2) << r.err;
     EXPECT_NE(r.err.find("wavepath: error: rank 1 was given other settings than rank 0"), std::string::npos) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(out));
+
+    // Another estimator: what --backend auto's choices on two kinds of device would give.
+    std::vector<std::string> other_estimator = args;
+    other_estimator.insert(other_estimator.end(), {":", "-n", "1", WAVEPATH_BINARY});
+    const std::vector<std::string> reference = small_room_render_args(out, 4, {"--backend", "reference"});
+    other_estimator.insert(other_estimator.end(), reference.begin(), reference.end());
+    r = run_on(1, other_estimator);
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_NE(r.err.find("wavepath: error: rank 1 renders with another estimator than rank 0 (another backend: "
+                         "--backend auto chooses per kind of device; give --backend)"),
+              std::string::npos)
+        << r.err;
     EXPECT_FALSE(std::filesystem::exists(out));
 }
 
@@ -262,7 +288,8 @@ TEST_F(MpiCli, SigintOnMpirunWritesTheImageOfTheCheckpoint) {
     job.send(SIGINT);
     CommandResult r = job.wait();
     EXPECT_NE(r.exit_code, 0) << r.err;
-    EXPECT_NE(r.err.find("stopped: interrupted, wavefront, 2 ranks"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("stopped: interrupted, wavefront (auto: "), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find(", --wavefront given), 2 ranks)"), std::string::npos) << r.err;
     ASSERT_EQ(run({"merge", checkpoint, "-o", merged, "-q"}).exit_code, 0);
     EXPECT_TRUE(same_bytes(out, merged));
 }

@@ -1,5 +1,5 @@
-// The wavefront through the wavepath executable: the default backend,
-// --explain, --wavefront, --lanes, `wavepath devices`, and device errors.
+// The wavefront through the wavepath executable: --explain, --wavefront, --lanes, `wavepath devices`, and device
+// errors.
 #include <gtest/gtest.h>
 
 #include <array>
@@ -33,14 +33,14 @@ std::string cache_env() {
 
 std::string output_path(const char* name) { return (std::filesystem::temp_directory_path() / name).string(); }
 
-TEST(WavefrontCli, DefaultBackendWithExplain) {
+TEST(WavefrontCli, ExplainSaysWhatWasBuilt) {
     std::string out = output_path("wavepath-wavefront-cli.pfm");
     CommandRun r = run(cache_env(), "render '" WAVEPATH_SOURCE_DIR "/scenes/test/room_small.json' -o '" + out +
-                                        "' --spp 1 --wavefront 256 --explain");
+                                        "' --spp 1 --backend wavefront --wavefront 256 --explain");
     EXPECT_EQ(r.exit_code, 0) << r.output;
     for (const char* text :
-         {"features: spheres quads diffuse mirror glass emitter quad-lights nee", "build options: -cl-std=CL1.2",
-          "-DWP_HAS_GLASS", "program: cache", "wavefront: 256 paths in flight",
+         {"backend: wavefront (--backend)\n", "features: spheres quads diffuse mirror glass emitter quad-lights nee",
+          "build options: -cl-std=CL1.2", "-DWP_HAS_GLASS", "program: cache", "wavefront: 256 paths in flight",
           "paths per work item in the stage kernels", "bytes per path", "spp, wavefront) in "})
         EXPECT_NE(r.output.find(text), std::string::npos) << text << "\n" << r.output;
     EXPECT_TRUE(std::filesystem::exists(out));

@@ -1,5 +1,6 @@
 // Whole-image properties of the wavefront: determinism, independence of the
-// wavefront size, statistical agreement with the reference, analytic scenes.
+// wavefront size, statistical agreement with the reference; analytic scenes
+// on both OpenCL backends (--backend auto, the default, picks one of them).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -9,6 +10,7 @@
 #include <utility>
 #include <vector>
 
+#include "megakernel/megakernel_renderer.h"
 #include "reference/reference_renderer.h"
 #include "support/image_statistics.h"
 #include "support/statistics.h"
@@ -105,6 +107,23 @@ TEST(WavefrontImage, RegionMeansAgreeWithReference) {
         kSeeds * kSppPerSeed, worst_z, largest_relative_se, whole_worst_z, whole_relative_se);
 }
 
+// An OpenCL backend with its default options.
+struct OpenClBackend {
+    const char* name;
+    RenderResult (*render)(const Scene& scene);
+};
+
+class OpenClAnalytic : public ::testing::TestWithParam<OpenClBackend> {
+ protected:
+    RenderResult render(const Scene& scene) const { return GetParam().render(scene); }
+};
+
+INSTANTIATE_TEST_SUITE_P(
+    Backends, OpenClAnalytic,
+    ::testing::Values(OpenClBackend{"wavefront", [](const Scene& s) { return render_wavefront(s, {}, {}); }},
+                      OpenClBackend{"megakernel", [](const Scene& s) { return render_megakernel(s, {}, {}); }}),
+    [](const ::testing::TestParamInfo<OpenClBackend>& info) { return std::string(info.param.name); });
+
 constexpr const char* kEmissiveSphereInterior = R"({
   "camera": {"position": [0, 0, 0], "look_at": [0, 0, -1], "up": [0, 1, 0], "fov_y": 60, "width": 16, "height": 16},
   "render": {"spp": 4, "max_depth": 5, "rr_depth": 100, "seed": 3},
@@ -118,9 +137,9 @@ constexpr const char* kEmissiveSphereInterior = R"({
 // cos * cos_light / distance^2 = 1 / (4 R^2) (both angles of a chord are
 // equal, distance = 2 R cos), so albedo / pi * Le * cos / pdf = rho Le.
 // Every pixel is Le (1 - rho^(d+1)) / (1 - rho), up to float rounding.
-TEST(WavefrontAnalytic, EmissiveSphereInterior) {
+TEST_P(OpenClAnalytic, EmissiveSphereInterior) {
     Scene scene = test::scene_from_json(kEmissiveSphereInterior);
-    RenderResult result = render_wavefront(scene, {}, {});
+    RenderResult result = render(scene);
     const double rho[3] = {0.5, 0.25, 0.75}, le[3] = {1, 2, 0.5};
     int d = scene.render.max_depth;
     for (std::size_t p = 0; p < result.image.rgb.size() / 3; ++p)
@@ -142,9 +161,9 @@ constexpr const char* kSphereUnderBackground = R"({
 // bounce off the sphere escapes it, so a path that hits shows exactly rho * B
 // and one that misses shows B. The centre pixels are all sphere; the corner
 // pixels all background.
-TEST(WavefrontAnalytic, ConvexSphereUnderBackground) {
+TEST_P(OpenClAnalytic, ConvexSphereUnderBackground) {
     Scene scene = test::scene_from_json(kSphereUnderBackground);
-    RenderResult result = render_wavefront(scene, {}, {});
+    RenderResult result = render(scene);
     const double rho[3] = {0.3, 0.5, 0.7}, background[3] = {0.8, 0.6, 0.4};
     auto pixel = [&](int x, int y, int c) { return result.image.rgb[3 * (y * 16 + x) + c]; };
     for (int c = 0; c < 3; ++c) {
@@ -186,9 +205,9 @@ double form_factor_below_centre(double half_size, double height) {
 // 256 pixels is compared within kSigmaTolerance (4.5) standard errors plus
 // 1e-4 for F's variation: false failure about 1e-5 (t with 255 degrees of
 // freedom; fixed seed).
-TEST(WavefrontAnalytic, PlaneUnderQuadLight) {
+TEST_P(OpenClAnalytic, PlaneUnderQuadLight) {
     Scene scene = test::scene_from_json(kPlaneUnderQuadLight);
-    RenderResult result = render_wavefront(scene, {}, {});
+    RenderResult result = render(scene);
     double expected = 0.6 * 5 * form_factor_below_centre(0.5, 1.0);
     for (std::size_t p = 0; p < result.image.rgb.size() / 3; ++p) {
         ASSERT_EQ(result.image.rgb[3 * p + 1], result.image.rgb[3 * p]) << "pixel " << p;

@@ -1,0 +1,327 @@
+#!/usr/bin/env python3
+"""Efficiency of the default command against Mitsuba 3 (issue 21's first target).
+
+Usage: python3 bench/efficiency.py [--binary build/wavepath] [--out bench/results] [--repeats 5]
+                                   [--quiet-load 2.5] [--wait-s 1200] [--scenes room.json,cornell.json,bunny.json]
+
+Efficiency is 1 / (relMSE x time): relMSE against Mitsuba's converged image of the scene (bench/mitsuba_peer.py,
+cached in bench/out/converged-cache as bench/run.py caches them), less that image's own noise, and the render's
+time. Measured per scene at 256x256 for:
+- the default command, `wavepath render scene.json` with nothing but the size, spp and the outputs (and a seed per
+  run: one image's relMSE is itself noisy, so each run renders other samples);
+- each explicit backend (--backend wavefront, megakernel, reference);
+- Mitsuba llvm_ad_rgb with its independent sampler (the peer of the targets) and with each of its other samplers,
+  to name its best for the scene.
+Each repetition renders every configuration once, in turn (interleaved), with the load average taken before each
+render. A configuration's efficiency is 1 / mean over runs of (relMSE x time), with the standard error of that
+mean; its ratio to Mitsuba's is stated with the two errors combined, and also per repetition (min and median).
+Writes efficiency.json and efficiency.md into --out, headed by the commit, date, machine, OpenCL platform and the
+command that reproduces them, and the targets met or not into the generated block of --out's analysis.md.
+--quiet-load waits (up to --wait-s) for the 1-minute load average to fall below it before starting, and the
+results say whether it did.
+"""
+import argparse
+import json
+import math
+import os
+import shlex
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from mitsuba_peer import MitsubaPeer  # noqa: E402
+from run import ROOT, Runner, rel_mse, rel_noise, run_meta, scene_max_depth, spread  # noqa: E402
+
+SIZE = 256
+# spp per run: a second or two each on a quiet 2-core machine (the whole run about 20 minutes on 2 shared
+# cores); powers of two, which every Mitsuba sampler but `orthogonal` (a prime's square: 49 and 25) takes as
+# they are.
+SCENE_SPP = {"room.json": 32, "cornell.json": 32, "bunny.json": 16}
+CONVERGED_SPP = 4096
+BACKENDS = ["wavefront", "megakernel", "reference"]  # the explicit ones, beside the default command; --backend auto ranks them
+MITSUBA_SAMPLERS = ["independent", "stratified", "multijitter", "orthogonal", "ldsampler"]
+PEER = "mitsuba-independent"  # what the targets are stated against
+
+
+def load_average():
+    return os.getloadavg()[0]
+
+
+def wait_for_quiet(threshold, wait_s):
+    """Polls the 1-minute load average each minute until it falls below `threshold` or `wait_s` passes."""
+    start, seen = time.time(), []
+    while True:
+        seen.append(round(load_average(), 2))
+        if seen[-1] < threshold or time.time() - start >= wait_s:
+            return {"threshold": threshold, "waited_s": round(time.time() - start), "loads_seen": seen,
+                    "quiet": seen[-1] < threshold}
+        time.sleep(60)
+
+
+def scene_has_meshes(path):
+    with open(path) as f:
+        return any(shape.get("type") == "mesh" for shape in json.load(f).get("shapes", []))
+
+
+def intersector(estimator):
+    """What traced the rays, as --intersector names it, from the film's estimator (opencl, opencl-embree,
+    reference-embree, reference-float...)."""
+    return "embree" if estimator.endswith("-embree") else "bvh"
+
+
+def configurations():
+    """(label, how): how is ("wavepath", backend or None for the default command) or ("mitsuba", sampler)."""
+    return ([("default", ("wavepath", None))] + [(b, ("wavepath", b)) for b in BACKENDS] +
+            [(f"mitsuba-{s}", ("mitsuba", s)) for s in MITSUBA_SAMPLERS])
+
+
+def measure_scene(runner, peer, scene, spp, repeats, cache):
+    """Every configuration's runs on one scene, interleaved: relMSE (less the truth's noise), time, samples/s
+    and the load average before the run."""
+    path = os.path.join(ROOT, "scenes", scene)
+    truth = peer.converged(path, SIZE, CONVERGED_SPP, scene_max_depth(path), cache)
+    noise = rel_noise(truth.variance, truth.image)
+    runs = {label: [] for label, _ in configurations()}
+    for repetition in range(repeats):
+        for label, (renderer, what) in configurations():
+            load = load_average()
+            if renderer == "mitsuba":
+                r = peer.render(path, SIZE, spp, seed=repetition, sampler=what)
+                backend, traced_by = "mitsuba " + what, None
+            else:
+                r = runner.render(path, what, SIZE, SIZE, spp, image=True, seed=repetition)
+                backend, traced_by = r["backend"], intersector(r["estimator"])
+            relmse = rel_mse(r["image"], truth.image) - noise
+            runs[label].append({"repetition": repetition, "backend": backend, "intersector": traced_by,
+                                "relmse": relmse,
+                                "time_s": r["time_s"], "samples": r["samples"],
+                                "samples_per_s": r["samples_per_s"], "load_average": round(load, 2),
+                                "backend_choice": r.get("backend_choice")})
+    return {"scene": scene, "spp": spp, "meshes": scene_has_meshes(path), "truth_spp": CONVERGED_SPP,
+            "truth_noise_relmse": noise, "truth_file": os.path.basename(truth.file), "runs": runs}
+
+
+def efficiency(runs):
+    """1 / mean(relMSE x time) over the runs, its standard error, and per-run figures."""
+    products = [r["relmse"] * r["time_s"] for r in runs]
+    mean = statistics.mean(products)
+    se = statistics.stdev(products) / math.sqrt(len(products))
+    return {"efficiency": 1.0 / mean, "efficiency_rel_se": se / mean,
+            "relmse_mean": statistics.mean(r["relmse"] for r in runs),
+            "relmse_x_spp": statistics.mean(r["relmse"] * r["samples"] for r in runs) / SIZE ** 2,
+            "time_s": spread([r["time_s"] for r in runs]),
+            "msamples_s": spread([r["samples_per_s"] / 1e6 for r in runs]),
+            "load_average": spread([r["load_average"] for r in runs]),
+            "backends_run": sorted({r["backend"] + (f" with {r['intersector']}" if r["intersector"] else "")
+                                    for r in runs})}
+
+
+def ratio(a_runs, b_runs, a, b):
+    """a's efficiency over b's: of the estimates, and per repetition (the two renders side by side, so the load's
+    drift over the run cancels), with the standard error of the per-repetition ratios' mean."""
+    per_repetition = [(rb["relmse"] * rb["time_s"]) / (ra["relmse"] * ra["time_s"]) for ra, rb in zip(a_runs, b_runs)]
+    return {"ratio": a["efficiency"] / b["efficiency"],
+            "ratio_se": statistics.stdev(per_repetition) / math.sqrt(len(per_repetition)),
+            "per_repetition": spread(per_repetition)}
+
+
+def summarise(scene_runs):
+    """Per scene: each configuration's efficiency and its ratio to Mitsuba's independent sampler; Mitsuba's best
+    sampler; the wavefront's samples/s over the megakernel's; the explicit backends ranked by efficiency, each
+    with its ratio over the next (the ranking --backend auto's table restates, src/cli/backend_choice.cpp)."""
+    runs = scene_runs["runs"]
+    configs = {label: efficiency(r) for label, r in runs.items()}
+    for label, c in configs.items():
+        c["vs_mitsuba"] = ratio(runs[label], runs[PEER], c, configs[PEER])
+    samplers = [f"mitsuba-{s}" for s in MITSUBA_SAMPLERS]
+    best_sampler = max(samplers, key=lambda label: configs[label]["efficiency"])
+    wavefront_over_megakernel = [w["samples_per_s"] / m["samples_per_s"]
+                                 for w, m in zip(runs["wavefront"], runs["megakernel"])]
+    ranked = sorted(BACKENDS, key=lambda b: configs[b]["efficiency"], reverse=True)
+    ranking = [{"backend": b, "intersector": runs[b][0]["intersector"],
+                **({"over_next": ratio(runs[b], runs[n], configs[b], configs[n])} if n else {})}
+               for b, n in zip(ranked, ranked[1:] + [None])]
+    return {"scene": scene_runs["scene"], "spp": scene_runs["spp"], "meshes": scene_runs["meshes"],
+            "truth_spp": scene_runs["truth_spp"], "truth_noise_relmse": scene_runs["truth_noise_relmse"],
+            "truth_file": scene_runs["truth_file"], "configurations": configs,
+            "mitsuba_best_sampler": best_sampler.removeprefix("mitsuba-"),
+            "wavefront_over_megakernel_samples_s": spread(wavefront_over_megakernel), "ranking": ranking}
+
+
+def type_of(type_line):
+    """'CPU' of `wavepath devices`' line 'type: CPU, compute units: 2, ...'."""
+    return type_line.split(":", 1)[1].split(",", 1)[0].strip()
+
+
+def device_type(binary):
+    """The type (CPU, GPU...) `wavepath devices` gives device 0, the one run_meta names."""
+    lines = subprocess.run([binary, "devices"], capture_output=True, text=True).stdout.splitlines()
+    for i, line in enumerate(lines):
+        if line.startswith("[0]"):
+            return next((type_of(l) for l in lines[i + 1:] if l.strip().startswith("type:")), "")
+    return ""
+
+
+def targets(results):
+    """Issue 21's targets read off the run: (text, met) pairs."""
+    lines = []
+    for s in results["scenes"]:
+        c = s["configurations"]
+        d, m = c["default"], c[PEER]
+        speed = d["msamples_s"]["median"] / m["msamples_s"]["median"]
+        accuracy = m["relmse_x_spp"] / d["relmse_x_spp"]
+        v, best = d["vs_mitsuba"], c["mitsuba-" + s["mitsuba_best_sampler"]]
+        short = "" if v["per_repetition"]["median"] >= 1.5 else f", {1.5 / v['per_repetition']['median']:.2f}x short"
+        lines.append((f"{s['scene']}: the default command ({', '.join(d['backends_run'])}) at {v['ratio']:.2f}x "
+                      f"Mitsuba's efficiency (per repetition {v['per_repetition']['min']:.2f}-"
+                      f"{v['per_repetition']['max']:.2f}, median {v['per_repetition']['median']:.2f}; target 1.5x"
+                      f"{short}): "
+                      f"{speed:.2f}x its samples/s (medians) times {accuracy:.2f}x its accuracy per sample "
+                      f"(Mitsuba's relMSE x spp over ours); against Mitsuba's best sampler here, "
+                      f"{s['mitsuba_best_sampler']}, {d['efficiency'] / best['efficiency']:.2f}x",
+                      v["per_repetition"]["median"] >= 1.5))
+    for s in results["scenes"]:
+        if not s["meshes"]:
+            w = s["wavefront_over_megakernel_samples_s"]
+            short = "" if w["median"] >= 0.9 else f", {0.9 / w['median']:.2f}x short"
+            lines.append((f"{s['scene']}: the wavefront at {w['median']:.2f}x the megakernel's samples/s (median per "
+                          f"repetition, {w['min']:.2f}-{w['max']:.2f}; target 0.9x{short})", w["median"] >= 0.9))
+    return lines
+
+
+def markdown(results):
+    m, command = results["meta"], results["command"]
+    quiet = results["quiet"]
+    loads = [r["load_average"] for s in results["raw"] for runs in s["runs"].values() for r in runs]
+    lines = ["# Efficiency against Mitsuba 3 (issue 21)", "",
+             f"Generated by `{command}`; do not edit by hand.", "",
+             f"- commit `{m['commit']}`, {m['date']}, {m['wavepath']} ({m['build_type']} build)",
+             f"- machine: {m['cpu']}, {m['cores']} cores",
+             f"- OpenCL: {m['opencl_platform']}; device {m['opencl_device']} ({results['device_type']})",
+             f"- peer: {m['mitsuba']}; truth: Mitsuba's converged image at {CONVERGED_SPP} spp per scene",
+             f"- load average (1 min) before each render: {min(loads):.2f}-{max(loads):.2f}, median "
+             f"{statistics.median(loads):.2f}; waited {quiet['waited_s']} s for it to fall below "
+             f"{quiet['threshold']} (seen: {', '.join(map(str, quiet['loads_seen']))}): "
+             + ("it did." if quiet["quiet"] else "it did not; measured anyway, interleaved."),
+             f"- {results['repeats']} repetitions; each renders every configuration once, in turn; "
+             f"{results['elapsed_s']} s in all", "", "## Issue 21's targets in this run", ""]
+    lines += [f"- {'met' if met else 'NOT met'}: {text}." for text, met in targets(results)]
+    lines += ["", "## Method", "",
+             "Efficiency = 1 / (relMSE x time), estimated as 1 / mean over the runs of relMSE x time (each run its "
+             "own seed), +- the standard error of that mean, relative. relMSE: mean over pixels and channels of "
+             "(x - r)^2 / (r^2 + 0.01) against the truth r, less the truth's own noise. Time: the render's "
+             "(wavepath's from --stats-json, device setup and kernel build left out; Mitsuba's `mi.render` and "
+             "reading the image back, scene loading left out; each configuration's first render discarded). "
+             "x Mitsuba: efficiency over Mitsuba's with its independent sampler (the target's peer): the ratio of "
+             "the estimates, and per repetition (the two renders side by side) min / median / max with the "
+             "standard error of their mean. relMSE x spp: the variance per "
+             "sample, which speed does not change. `default` is `wavepath render scene.json` with only the "
+             "size, spp, seed and outputs; its backend column is what it ran.", ""]
+    for s in results["scenes"]:
+        lines += [f"## {s['scene']} ({SIZE}x{SIZE}, {s['spp']} spp{', meshes' if s['meshes'] else ''})", "",
+                  "| configuration | ran | efficiency (+- rel. se) | x Mitsuba | x Mitsuba per repetition "
+                  "(min / median / max, +- se) | relMSE | relMSE x spp | time s (min / median) | "
+                  "Msamples/s (min / median) | load |",
+                  "|---|---|---|---|---|---|---|---|---|---|"]
+        for label, c in s["configurations"].items():
+            v, p, load = c["vs_mitsuba"], c["vs_mitsuba"]["per_repetition"], c["load_average"]
+            lines.append(
+                f"| {label} | {', '.join(c['backends_run'])} | {c['efficiency']:.4g} (+-{100 * c['efficiency_rel_se']:.0f}%) | "
+                f"{v['ratio']:.2f} | {p['min']:.2f} / {p['median']:.2f} / {p['max']:.2f} (+-{v['ratio_se']:.2f}) | "
+                f"{c['relmse_mean']:.4g} | {c['relmse_x_spp']:.4g} | {c['time_s']['min']:.3f} / "
+                f"{c['time_s']['median']:.3f} | {c['msamples_s']['min']:.3f} / {c['msamples_s']['median']:.3f} | "
+                f"{load['min']:.1f}-{load['max']:.1f} |")
+        w = s["wavefront_over_megakernel_samples_s"]
+        ranking = ", then ".join(
+            r["backend"] + (f" ({r['over_next']['per_repetition']['median']:.2f}x the next's efficiency, per repetition "
+                            f"{r['over_next']['per_repetition']['min']:.2f}-{r['over_next']['per_repetition']['max']:.2f}"
+                            f", +-{r['over_next']['ratio_se']:.2f})" if "over_next" in r else "")
+            for r in s["ranking"])
+        best = s["configurations"]["mitsuba-" + s["mitsuba_best_sampler"]]
+        lines += ["", f"- Mitsuba's most efficient sampler here: {s['mitsuba_best_sampler']} "
+                      f"({best['vs_mitsuba']['ratio']:.2f}x its independent sampler's efficiency).",
+                  f"- The wavefront's samples/s over the megakernel's, per repetition: {w['min']:.2f} (min), "
+                  f"{w['median']:.2f} (median), {w['max']:.2f} (max).",
+                  f"- The explicit backends by efficiency (the ranking `--backend auto` restates): {ranking}.", ""]
+    return "\n".join(lines)
+
+
+ANALYSIS_BEGIN = "<!-- generated by bench/efficiency.py from efficiency.json: begin -->"
+ANALYSIS_END = "<!-- generated by bench/efficiency.py: end -->"
+
+
+def analysis_block(results):
+    """The run's targets as analysis.md states them, with the run they come from."""
+    m = results["meta"]
+    return "\n".join([f"From [efficiency.md](efficiency.md): commit `{m['commit']}`, {m['date']}, {m['cpu']}, "
+                      f"{results['repeats']} interleaved repetitions.", ""] +
+                     [f"- **{'met' if met else 'NOT met'}**: {text}." for text, met in targets(results)])
+
+
+def write_analysis(results, path):
+    """Replaces the generated block of analysis.md (between its markers) with this run's targets."""
+    with open(path) as f:
+        text = f.read()
+    begin, end = text.find(ANALYSIS_BEGIN), text.find(ANALYSIS_END)
+    if begin < 0 or end < begin:
+        sys.exit(f"efficiency: {path}: no block between '{ANALYSIS_BEGIN}' and '{ANALYSIS_END}' to write")
+    with open(path, "w") as f:
+        f.write(text[:begin + len(ANALYSIS_BEGIN)] + "\n" + analysis_block(results) + "\n" + text[end:])
+
+
+def write_results(results, out):
+    """The runs' summary into `results`, then efficiency.json and efficiency.md into `out`, and the targets into
+    its analysis.md's generated block."""
+    results["scenes"] = [summarise(s) for s in results["raw"]]
+    os.makedirs(out, exist_ok=True)
+    with open(os.path.join(out, "efficiency.json"), "w") as f:
+        json.dump(results, f, indent=1)
+    with open(os.path.join(out, "efficiency.md"), "w") as f:
+        f.write(markdown(results))
+    write_analysis(results, os.path.join(out, "analysis.md"))
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--binary", default=os.path.join(ROOT, "build", "wavepath"))
+    parser.add_argument("--out", default=os.path.join(ROOT, "bench", "results"))
+    parser.add_argument("--cache", default=os.path.join(ROOT, "bench", "out", "converged-cache"),
+                        help="converged Mitsuba images (shared with bench/run.py)")
+    parser.add_argument("--repeats", type=int, default=5)
+    parser.add_argument("--quiet-load", type=float, default=2.5)
+    parser.add_argument("--wait-s", type=float, default=1200)
+    parser.add_argument("--scenes", default=",".join(SCENE_SPP))
+    parser.add_argument("--summarise-again", action="store_true",
+                        help="measure nothing: summarise --out's efficiency.json's runs again into it and "
+                             "efficiency.md (after a change to this script's summary)")
+    args = parser.parse_args()
+    if args.summarise_again:
+        with open(os.path.join(args.out, "efficiency.json")) as f:
+            results = json.load(f)
+        write_results(results, args.out)
+        return
+    command = "python3 bench/efficiency.py" + "".join(
+        f" {flag} {shlex.quote(str(value))}" for flag, value, default in
+        (("--repeats", args.repeats, 5), ("--scenes", args.scenes, ",".join(SCENE_SPP)))
+        if value != default)
+    quiet = wait_for_quiet(args.quiet_load, args.wait_s)
+    binary = os.path.abspath(args.binary)
+    start = time.time()
+    with tempfile.TemporaryDirectory(prefix="wavepath-efficiency-") as scratch:
+        os.environ.setdefault("WAVEPATH_CACHE_DIR", os.path.join(ROOT, "bench", "out", "program-cache"))
+        runner, peer = Runner(binary, scratch), MitsubaPeer()
+        meta = run_meta(binary, peer)
+        raw = [measure_scene(runner, peer, scene, SCENE_SPP[scene], args.repeats, args.cache)
+               for scene in args.scenes.split(",")]
+    results = {"command": command, "meta": meta, "device_type": device_type(binary),
+               "quiet": quiet, "repeats": args.repeats, "size": SIZE, "elapsed_s": round(time.time() - start),
+               "raw": raw}
+    write_results(results, args.out)
+    print(f"efficiency: wrote {args.out}/efficiency.md in {results['elapsed_s']} s")
+
+
+if __name__ == "__main__":
+    main()

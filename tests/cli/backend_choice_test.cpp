@@ -1,0 +1,166 @@
+// --backend auto's table (cli/backend_choice.h): the situations it tells
+// apart, what it says, and its figures against the bench run they cite
+// (bench/results/efficiency.json, written by bench/efficiency.py).
+#include "cli/backend_choice.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <vector>
+
+#include "reference/reference_renderer.h"
+#include "support/temp_directory.h"
+#include "wavefront/intersector_choice.h"
+
+namespace wp::cli {
+namespace {
+
+using nlohmann::json;
+
+// As the table states its ratios: two significant digits.
+std::string two_digits(double value) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.2g", value);
+    return text;
+}
+
+TEST(BackendChoice, SituationOfTheDeviceAndTheScene) {
+    Scene scene;
+    DeviceInfo gpu;
+    gpu.type = "GPU";
+    EXPECT_EQ(describe(situation_of(gpu, scene)), "GPU device, no meshes");
+    scene.meshes.emplace_back();
+    DeviceInfo cpu;
+    cpu.type = "CPU";
+    EXPECT_EQ(describe(situation_of(cpu, scene)), "CPU device, meshes");
+    DeviceInfo accelerator;
+    accelerator.type = "accelerator";
+    EXPECT_EQ(describe(situation_of(accelerator, scene)), "other device, meshes");
+}
+
+const std::vector<LimitingFlag> kProfile{{"--profile", {"wavefront", "megakernel"}}};
+const std::vector<LimitingFlag> kPrecision{{"--precision", {"reference"}}};
+
+// What the table says of `ranked` against the backend after it, on a CPU.
+std::string measured_evidence(const Ranked& ranked, const Ranked& next, const std::string& scenes) {
+    return "with " + std::string(ranked.intersector) + ": " +
+           (ranked.over_next_low == ranked.over_next_high
+                ? two_digits(ranked.over_next_low)
+                : two_digits(ranked.over_next_low) + "-" + two_digits(ranked.over_next_high)) +
+           "x the efficiency of the " + next.backend + " with " + next.intersector + " on " + scenes +
+           " in bench/results/efficiency.md";
+}
+
+// On a CPU the first of the measured ranking, with its figures over the
+// second; elsewhere the wavefront, with why nothing was measured.
+TEST(BackendChoice, PicksAndStatements) {
+    for (const bool meshes : {false, true}) {
+        const ChoiceRule& rule = rule_for({DeviceKind::Cpu, meshes});
+        const BackendChoice cpu = choose_backend({DeviceKind::Cpu, meshes});
+        EXPECT_EQ(cpu.backend, rule.ranking[0].backend);
+        EXPECT_EQ(explain_choice(cpu),
+                  "auto: " + describe({DeviceKind::Cpu, meshes}) + ": " +
+                      measured_evidence(rule.ranking[0], rule.ranking[1], meshes ? "bunny" : "room, cornell"));
+    }
+    const BackendChoice gpu = choose_backend({DeviceKind::Gpu, true});
+    EXPECT_EQ(gpu.backend, "wavefront");
+    EXPECT_EQ(explain_choice(gpu),
+              "auto: GPU device, meshes: not measured on other devices yet: the wavefront, the design meant for GPUs");
+}
+
+// Flags only some backends take pass over the higher-ranked ones that do
+// not: --profile takes the first OpenCL backend of the ranking, saying so
+// when the reference is ranked before it; a flag one backend alone takes
+// picks it; flags no backend takes together are refused.
+TEST(BackendChoice, FlagsNarrowTheRanking) {
+    for (const bool meshes : {false, true}) {
+        const ChoiceRule& rule = rule_for({DeviceKind::Cpu, meshes});
+        const auto opencl = std::find_if(rule.ranking.begin(), rule.ranking.end(), [](const Ranked& ranked) {
+            return std::string(ranked.backend) != "reference";
+        });
+        ASSERT_NE(opencl + 1, rule.ranking.end()) << "the two OpenCL backends are ranked";
+        const BackendChoice profiled = choose_backend({DeviceKind::Cpu, meshes}, kProfile);
+        EXPECT_EQ(profiled.backend, opencl->backend);
+        EXPECT_EQ(profiled.situation, describe({DeviceKind::Cpu, meshes}) + ", --profile given");
+        std::string evidence = measured_evidence(*opencl, *(opencl + 1), meshes ? "bunny" : "room, cornell");
+        if (opencl != rule.ranking.begin()) evidence += "; the reference, ranked first, does not take --profile";
+        EXPECT_EQ(profiled.evidence, evidence);
+    }
+    const BackendChoice precise = choose_backend({DeviceKind::Gpu, false}, kPrecision);
+    EXPECT_EQ(precise.backend, "reference");
+    EXPECT_EQ(explain_choice(precise), "auto: GPU device, no meshes, --precision given: only the reference takes it");
+    std::vector<LimitingFlag> both = kProfile;
+    both.push_back(kPrecision.front());
+    EXPECT_THROW(choose_backend({DeviceKind::Cpu, false}, both), NoBackendTakesTheFlags);
+}
+
+// Each backend is ranked with the intersector it traces with by default in
+// the rule's situation (the wavefront's by the device and the scene's
+// meshes, the reference's in float), so that what auto runs is what the
+// figures measured.
+TEST(BackendChoice, RankedIntersectorsAreTheBackendsDefaults) {
+    for (const ChoiceRule& rule : backend_choice_rules())
+        for (const bool meshes : {false, true}) {
+            if (rule.meshes && *rule.meshes != meshes) continue;
+            DeviceInfo device;
+            device.type = rule.device == DeviceKind::Cpu ? "CPU" : "GPU";
+            FeatureSet features;
+            features.meshes = meshes;
+            const std::map<std::string, Intersector> defaults{
+                {"wavefront", default_intersector(device, features).intersector},
+                {"megakernel", Intersector::Bvh},
+                {"reference", fastest_reference_intersector(false)}};
+            for (const Ranked& ranked : rule.ranking) {
+                SCOPED_TRACE(std::string(ranked.backend) + " on a " + device.type + (meshes ? ", meshes" : ""));
+                EXPECT_EQ(ranked.intersector, intersector_name(defaults.at(ranked.backend)));
+            }
+        }
+}
+
+// Each measured rule holds for every bench scene of its situation: its
+// ranking is the bench's there, each backend's efficiency over the next's
+// is within the range it states (the median over the repetitions, side by
+// side), and it names those scenes; no measured situation falls to a rule
+// without figures.
+TEST(BackendChoice, RulesAgreeWithTheBench) {
+    const json bench = json::parse(test::read_text(WAVEPATH_SOURCE_DIR "/bench/results/efficiency.json"));
+    ASSERT_EQ(bench["device_type"], "CPU") << "the rules below read the bench as a CPU's";
+    for (const json& scene : bench["scenes"])
+        EXPECT_NE(*rule_for({DeviceKind::Cpu, scene["meshes"].get<bool>()}).source, '\0') << scene["scene"];
+    for (const ChoiceRule& rule : backend_choice_rules()) {
+        SCOPED_TRACE(std::string(rule.ranking[0].backend) + " first, for " + rule.scenes);
+        if (*rule.source == '\0') {
+            EXPECT_NE(*rule.unmeasured, '\0');
+            continue;
+        }
+        EXPECT_STREQ(rule.source, "bench/results/efficiency.md");
+        std::string scenes;
+        std::vector<double> low(rule.ranking.size(), 1e300), high(rule.ranking.size(), 0.0);
+        for (const json& scene : bench["scenes"]) {
+            if (&rule_for({DeviceKind::Cpu, scene["meshes"].get<bool>()}) != &rule) continue;
+            const std::string name = scene["scene"];
+            scenes += (scenes.empty() ? "" : ", ") + name.substr(0, name.rfind(".json"));
+            const json& ranking = scene["ranking"];
+            ASSERT_EQ(ranking.size(), rule.ranking.size()) << name;
+            for (std::size_t i = 0; i < ranking.size(); ++i) {
+                EXPECT_EQ(ranking[i]["backend"], rule.ranking[i].backend) << name << ", place " << i;
+                EXPECT_EQ(ranking[i]["intersector"], rule.ranking[i].intersector) << name << ", place " << i;
+                if (i + 1 == ranking.size()) continue;
+                const double ratio = ranking[i]["over_next"]["per_repetition"]["median"];
+                low[i] = std::min(low[i], ratio);
+                high[i] = std::max(high[i], ratio);
+            }
+        }
+        EXPECT_EQ(scenes, rule.scenes);
+        for (std::size_t i = 0; i + 1 < rule.ranking.size(); ++i) {
+            EXPECT_EQ(two_digits(rule.ranking[i].over_next_low), two_digits(low[i])) << rule.ranking[i].backend;
+            EXPECT_EQ(two_digits(rule.ranking[i].over_next_high), two_digits(high[i])) << rule.ranking[i].backend;
+        }
+    }
+}
+
+}  // namespace
+}  // namespace wp::cli
