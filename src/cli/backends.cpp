@@ -146,7 +146,7 @@ std::string explain_backend(const BackendOptions& options) {
 
 // For --backend auto, which chooses among the backends that take every flag given.
 const std::vector<std::string> kWavefrontOnly{"wavefront"}, kOpenClOnly{"wavefront", "megakernel"},
-    kReferenceOnly{"reference"}, kEmbreeTracers{"wavefront", "reference"};
+    kReferenceOnly{"reference"}, kEmbreeTracers{"wavefront", "reference"}, kSppmIntegrators{"wavefront", "reference"};
 
 void note_limiting_flag(BackendOptions& options, const std::string& flag, const std::vector<std::string>& backends) {
     std::vector<LimitingFlag>& given = options.limiting_flags;
@@ -230,8 +230,12 @@ void add_backend_options(CLI::App& render, BackendOptions& options) {
 BackendOptions resolve_backend(const BackendOptions& options, const Scene& scene) {
     BackendOptions resolved = options;
     if (options.name != kAuto) return resolved;
+    // The megakernel traces camera paths only (run_on_megakernel), so the sppm integrator narrows the choice
+    // as a flag would, whether the scene or --integrator asked for it.
+    std::vector<LimitingFlag> flags = options.limiting_flags;
+    if (scene.render.integrator == Integrator::Sppm) flags.push_back({"the sppm integrator", kSppmIntegrators});
     try {
-        resolved.chosen = choose_backend(situation_of(choose_device(options.device), scene), options.limiting_flags);
+        resolved.chosen = choose_backend(situation_of(choose_device(options.device), scene), flags);
     } catch (const NoBackendTakesTheFlags& error) {
         throw UsageError(error.what());
     }

@@ -279,6 +279,21 @@ TEST_F(CliTest, StatsJsonHasSppmFigures) {
     EXPECT_LE(radius, 0.25);  // radii only shrink
 }
 
+// The default backend (auto) never picks the megakernel, which refuses the
+// sppm integrator, though it ranks first for this scene on a CPU device: the
+// integrator narrows the choice as a flag does, and the choice says so.
+TEST_F(CliTest, AutoChoosesABackendThatRunsSppm) {
+    const std::string stats_path = outputs_ / "stats.json";
+    const CommandResult result =
+        render(base_scene().dump(), {"--integrator", "sppm", "--photons", "50", "--stats-json", stats_path});
+    ASSERT_EQ(result.exit_code, 0) << result.err;
+    const json stats = json::parse(read_text(stats_path));
+    EXPECT_TRUE(stats["backend"] == "wavefront" || stats["backend"] == "reference") << stats["backend"];
+    EXPECT_NE(stats["backend_choice"].get<std::string>().find("the sppm integrator given"), std::string::npos)
+        << stats["backend_choice"];
+    EXPECT_EQ(stats["sppm"]["photons"], 100);
+}
+
 TEST_F(CliTest, FlagsOverrideTheScene) {
     ASSERT_EQ(render(base_scene().dump(), {"--width", "5", "--height", "3", "-q"}).exit_code, 0);
     const Image image = read_image(output_path());

@@ -175,8 +175,13 @@ TEST(Progress, ConcurrentUpdatesAreSafe) {
 }
 
 RunSummary example_summary() {
-    RunSummary summary{"reference", "out/room.png",    640, 480, 16, 16, 16, "done", -1.0, {}, false, 0.0, 0.0, {}, {},
-                       {},          "reference-embree"};
+    RunSummary summary;  // by name: the summary's fields grow with the features that report in it
+    summary.backend = "reference";
+    summary.output_path = "out/room.png";
+    summary.width = 640;
+    summary.height = 480;
+    summary.spp = summary.spp_min = summary.spp_max = 16;
+    summary.estimator = "reference-embree";
     summary.stats.time_s = 2.0;
     summary.stats.samples = 640ull * 480 * 16;  // 4915200
     summary.stats.extension_rays = 12'000'000;
