@@ -220,6 +220,7 @@ TEST_F(FilmFileTest, FilmsOfAnotherRenderAreRefused) {
     };
     EXPECT_EQ(mismatch(kIdentity, 5, 3), "");
     EXPECT_EQ(mismatch(kIdentity, 6, 3), "f.wpfilm: a film of 5x3 pixels, this render is 6x3");
+    EXPECT_EQ(mismatch(kIdentity, 5, 4), "f.wpfilm: a film of 5x3 pixels, this render is 5x4");  // each side
     EXPECT_EQ(mismatch({0x1234, 0x5678, "reference-float"}, 5, 3),
               "f.wpfilm: rendered by the opencl estimator, this render uses reference-float");
     EXPECT_EQ(mismatch({0x1235, 0x5678, "opencl"}, 5, 3),
