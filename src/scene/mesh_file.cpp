@@ -55,8 +55,9 @@ class MeshMerger {
             const bool root = node.parent == ImportedNode::kNoParent;
             const glm::dmat4 parent_to_file = root ? glm::dmat4(1.0) : node_to_file[node.parent];
             node_to_file[n] = parent_to_file * to_dmat4(node.transform);
-            selected[n] =
-                (root ? options_.objects.empty() : selected[node.parent]) | select(node.name, !node.meshes.empty());
+            // select() runs for every node: it records the names found and the names offered.
+            const bool named = select(node.name, !node.meshes.empty());
+            selected[n] = named || (root ? options_.objects.empty() : selected[node.parent]);
             if (selected[n]) add_node_meshes(node, node_to_file[n]);
         }
         check_objects_found();
