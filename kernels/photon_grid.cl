@@ -8,7 +8,7 @@
  * WP_GRID_SCAN_BLOCK buckets) and grid_fill writes each visible point into
  * its buckets. The order within a bucket depends on the atomics, which
  * changes nothing: each pixel's gathering is exact whatever the order
- * photons meet it (deposit_photons.cl). Every kernel takes the work item's
+ * photons meet it (shade_photons.cl). Every kernel takes the work item's
  * WP_LANES pixels (device/sppm_pixels.h) or one block. */
 #include "device/parameters.h"
 #include "device/photon_vertex.h"

@@ -27,30 +27,29 @@
 #ifndef WP_INTERFACE_PATH_STATE_H
 #define WP_INTERFACE_PATH_STATE_H
 
-#define WP_PATH_STATE(X)                                                                                           \
-    X(uint, pixel, ALWAYS, "generate", "shade")                                                                    \
-    X(uint, sample, ALWAYS, "generate", "shade")                                                                   \
-    X(uint, pass_item, ALWAYS, "generate", "intersect shade intersect_shadow")                                     \
-    X(uint, depth, ALWAYS, "generate shade emit_photons scatter_photons", "shade deposit_photons scatter_photons") \
-    X(vec3, origin, ALWAYS, "generate shade emit_photons scatter_photons",                                         \
-      "intersect shade intersect_photons deposit_photons scatter_photons")                                         \
-    X(vec3, direction, ALWAYS, "generate shade emit_photons scatter_photons",                                      \
-      "intersect shade intersect_photons deposit_photons scatter_photons")                                         \
-    X(vec3, throughput, ALWAYS, "generate shade emit_photons scatter_photons",                                     \
-      "intersect shade deposit_photons scatter_photons")                                                           \
-    X(vec3, radiance, ALWAYS, "generate shade intersect_shadow", "intersect shade intersect_shadow")               \
-    X(float, hit_t, ALWAYS, "intersect intersect_photons", "shade deposit_photons scatter_photons")                \
-    X(uint, hit_shape, ALWAYS, "intersect intersect_photons", "intersect shade deposit_photons scatter_photons")   \
-    X(uint, specular, SPECULAR, "generate shade", "shade")                                                         \
-    X(vec3, shadow_origin, NEE, "shade", "intersect_shadow")                                                       \
-    X(vec3, shadow_direction, NEE, "shade", "intersect_shadow")                                                    \
-    X(float, shadow_distance, NEE, "shade", "intersect_shadow")                                                    \
-    X(vec3, shadow_radiance, NEE, "shade", "intersect_shadow")                                                     \
-    X(uint, shadow_ends_path, NEE, "shade", "intersect_shadow")                                                    \
-    X(uint, shadow_occluded, HOST_SHADOWS, "intersect_shadow", "intersect_shadow")                                 \
-    X(float, bsdf_pdf, MIS, "shade", "shade")                                                                      \
-    X(float, eta_scale, GLASS, "generate shade", "shade")                                                          \
-    X(uint, photon, SPPM, "emit_photons", "scatter_photons")                                                       \
-    X(vec3, photon_flux, SPPM, "emit_photons", "deposit_photons")
+#define WP_PATH_STATE(X)                                                                                      \
+    X(uint, pixel, ALWAYS, "generate", "shade")                                                               \
+    X(uint, sample, ALWAYS, "generate", "shade")                                                              \
+    X(uint, pass_item, ALWAYS, "generate", "intersect shade intersect_shadow")                                \
+    X(uint, depth, ALWAYS, "generate shade emit_photons shade_photons", "shade shade_photons")                \
+    X(vec3, origin, ALWAYS, "generate shade emit_photons shade_photons",                                      \
+      "intersect shade intersect_photons shade_photons")                                                      \
+    X(vec3, direction, ALWAYS, "generate shade emit_photons shade_photons",                                   \
+      "intersect shade intersect_photons shade_photons")                                                      \
+    X(vec3, throughput, ALWAYS, "generate shade emit_photons shade_photons", "intersect shade shade_photons") \
+    X(vec3, radiance, ALWAYS, "generate shade intersect_shadow", "intersect shade intersect_shadow")          \
+    X(float, hit_t, ALWAYS, "intersect intersect_photons", "shade shade_photons")                             \
+    X(uint, hit_shape, ALWAYS, "intersect intersect_photons", "intersect shade shade_photons")                \
+    X(uint, specular, SPECULAR, "generate shade", "shade")                                                    \
+    X(vec3, shadow_origin, NEE, "shade", "intersect_shadow")                                                  \
+    X(vec3, shadow_direction, NEE, "shade", "intersect_shadow")                                               \
+    X(float, shadow_distance, NEE, "shade", "intersect_shadow")                                               \
+    X(vec3, shadow_radiance, NEE, "shade", "intersect_shadow")                                                \
+    X(uint, shadow_ends_path, NEE, "shade", "intersect_shadow")                                               \
+    X(uint, shadow_occluded, HOST_SHADOWS, "intersect_shadow", "intersect_shadow")                            \
+    X(float, bsdf_pdf, MIS, "shade", "shade")                                                                 \
+    X(float, eta_scale, GLASS, "generate shade", "shade")                                                     \
+    X(uint, photon, SPPM, "emit_photons", "shade_photons")                                                    \
+    X(vec3, photon_flux, SPPM, "emit_photons", "shade_photons")
 
 #endif

@@ -11,11 +11,10 @@
 #define WP_QUEUE_SHADOW 3u /* paths with a shadow ray to trace */
 /* SPPM's photon pass, which has the slots to itself once the camera pass of
  * its iteration has drained (docs/architecture.md, "Photon mapping"). */
-#define WP_QUEUE_PHOTON_FREE 4u    /* slots without a photon */
-#define WP_QUEUE_PHOTON_RAY 5u     /* photons with a ray to trace */
-#define WP_QUEUE_PHOTON_HIT 6u     /* photons whose ray hit a surface */
-#define WP_QUEUE_PHOTON_SCATTER 7u /* photons that scatter at their hit */
-#define WP_QUEUE_COUNT 8u
+#define WP_QUEUE_PHOTON_FREE 4u /* slots without a photon */
+#define WP_QUEUE_PHOTON_RAY 5u  /* photons with a ray to trace */
+#define WP_QUEUE_PHOTON_HIT 6u  /* photons whose ray hit a surface */
+#define WP_QUEUE_COUNT 7u
 /* With scan compaction (-DWP_COMPACT_SCAN) the queues buffer also holds, after the queues, one
  * array of marks (0 or 1 per slot) per queue, from which kernels/compact.cl
  * builds the queue with a prefix sum. */

@@ -36,15 +36,14 @@
 
 #include "interface/queues.h"
 
-#define WP_STAGES(X)                                                                              \
-    X(generate, CAMERA, FREE, WP_PUSHES(RAY), ALWAYS, NO_RAYS)                                    \
-    X(intersect, CAMERA, RAY, WP_PUSHES(HIT, FREE), ALWAYS, CLOSEST_HIT)                          \
-    X(shade, CAMERA, HIT, WP_PUSHES(SHADOW, RAY, FREE), ALWAYS, NO_RAYS)                          \
-    X(intersect_shadow, CAMERA, SHADOW, WP_PUSHES_NOTHING, NEE, ANY_HIT)                          \
-    X(emit_photons, PHOTON, PHOTON_FREE, WP_PUSHES(PHOTON_RAY), SPPM, NO_RAYS)                    \
-    X(intersect_photons, PHOTON, PHOTON_RAY, WP_PUSHES(PHOTON_HIT, PHOTON_FREE), SPPM, NO_RAYS)   \
-    X(deposit_photons, PHOTON, PHOTON_HIT, WP_PUSHES(PHOTON_SCATTER, PHOTON_FREE), SPPM, NO_RAYS) \
-    X(scatter_photons, PHOTON, PHOTON_SCATTER, WP_PUSHES(PHOTON_RAY, PHOTON_FREE), SPPM, NO_RAYS)
+#define WP_STAGES(X)                                                                            \
+    X(generate, CAMERA, FREE, WP_PUSHES(RAY), ALWAYS, NO_RAYS)                                  \
+    X(intersect, CAMERA, RAY, WP_PUSHES(HIT, FREE), ALWAYS, CLOSEST_HIT)                        \
+    X(shade, CAMERA, HIT, WP_PUSHES(SHADOW, RAY, FREE), ALWAYS, NO_RAYS)                        \
+    X(intersect_shadow, CAMERA, SHADOW, WP_PUSHES_NOTHING, NEE, ANY_HIT)                        \
+    X(emit_photons, PHOTON, PHOTON_FREE, WP_PUSHES(PHOTON_RAY), SPPM, NO_RAYS)                  \
+    X(intersect_photons, PHOTON, PHOTON_RAY, WP_PUSHES(PHOTON_HIT, PHOTON_FREE), SPPM, NO_RAYS) \
+    X(shade_photons, PHOTON, PHOTON_HIT, WP_PUSHES(PHOTON_RAY, PHOTON_FREE), SPPM, NO_RAYS)
 
 /* A set of queues as bits 1 << queue, from one to five queue names. */
 #define WP_QUEUE_BIT(queue) (1u << WP_QUEUE_##queue)

@@ -86,15 +86,16 @@ void run_on_wavefront(const Scene& scene, const BackendOptions& options, const P
     if (options.lanes != 0)
         if (std::string problem = lanes_problem(options.lanes, wavefront_lanes(options.compaction)); !problem.empty())
             throw UsageError(problem);
-    WavefrontOptions wavefront{options.device, options.wavefront};
-    wavefront.intersector = wavefront_intersector(options);
+    const WavefrontOptions wavefront{.device = options.device,
+                                     .wavefront = options.wavefront,
+                                     .profile = wants_profile(options),
+                                     .compaction = options.compaction,
+                                     .lanes = options.lanes,
+                                     .film_squares = options.film_squares,
+                                     .intersector = wavefront_intersector(options)};
     if (scene.render.integrator == Integrator::Sppm && wavefront.intersector == Intersector::Embree)
         throw UsageError(
             "--intersector embree: the sppm integrator's photon stages trace on the device; use --intersector bvh");
-    wavefront.profile = wants_profile(options);
-    wavefront.compaction = options.compaction;
-    wavefront.lanes = options.lanes;
-    wavefront.film_squares = options.film_squares;
     run_on_opencl<WavefrontReport>(options, run, [&](WavefrontReport& report) {
         std::unique_ptr<FilmRenderer> renderer =
             make_wavefront_renderer(scene, wavefront, progress, &report, max_items);

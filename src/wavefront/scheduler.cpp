@@ -13,8 +13,7 @@ namespace {
 // slots over the paths it starts, every other one over the rays traced, at
 // most one entry each. The queue bookkeeping around each stage leaves the
 // lengths of this iteration at the end: FREE the paths ended, HIT the hits,
-// SHADOW the shadow rays, RAY the paths continuing next iteration (and, in
-// the photon pass, PHOTON_SCATTER the photons that scatter at their hit).
+// SHADOW the shadow rays, RAY the paths continuing next iteration.
 DeviceCounts run_iteration(Pipeline& p, const std::vector<Stage>& stages, std::uint32_t generated,
                            std::uint32_t traced) {
     for (Stage stage : stages) {
@@ -50,7 +49,6 @@ void drain_pass(Pipeline& pipeline, StageLoop loop, std::uint32_t size, const st
         DeviceCounts counts = run_iteration(pipeline, stages, r.generated, r.traced);
         r.hits = counts[q.hit];
         r.shadow = photons ? 0 : counts[WP_QUEUE_SHADOW];  // 0 without next-event estimation
-        r.scattered = photons ? counts[WP_QUEUE_PHOTON_SCATTER] : 0;
         r.continuing = counts[q.ray];
         r.finished = counts[q.free];
         iterations.push_back(r);

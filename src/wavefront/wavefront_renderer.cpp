@@ -100,8 +100,6 @@ std::uint32_t IterationRecord::taken_from(std::uint32_t queue) const {
             return photons ? traced : 0;
         case WP_QUEUE_PHOTON_HIT:
             return photons ? hits : 0;
-        case WP_QUEUE_PHOTON_SCATTER:
-            return photons ? scattered : 0;
     }
     return 0;
 }

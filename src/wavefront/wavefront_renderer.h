@@ -20,7 +20,7 @@
 namespace wp {
 
 struct WavefrontOptions {
-    std::string device;         // "" (prefer a GPU), an index, or a name substring
+    std::string device = "";    // "" (prefer a GPU), an index, or a name substring
     std::size_t wavefront = 0;  // paths in flight; 0 = chosen from device memory and image size
     bool specialise = true;     // compile only the scene's features (false: every shape and material, for comparison)
     bool profile = false;       // time every kernel (WavefrontReport::profile)
@@ -30,7 +30,7 @@ struct WavefrontOptions {
     // What traces the rays: the OpenCL BVH in the kernels, or Embree on the
     // host (CPU devices only; wavefront/host_trace.h). Unset:
     // default_intersector's choice for the device and the scene (wavefront/intersector_choice.h).
-    std::optional<Intersector> intersector;
+    std::optional<Intersector> intersector = std::nullopt;
 };
 
 // Queue lengths of one iteration of a stage loop, for the profiler: of the
@@ -39,9 +39,8 @@ struct IterationRecord {
     StageLoop loop = StageLoop::CAMERA;
     std::uint32_t generated = 0;   // camera rays started (photons emitted)
     std::uint32_t traced = 0;      // extension rays intersected
-    std::uint32_t hits = 0;        // of those, hits (to shade, deposit_photons)
+    std::uint32_t hits = 0;        // of those, hits (to shade, shade_photons)
     std::uint32_t shadow = 0;      // shadow rays
-    std::uint32_t scattered = 0;   // photon pass: photons scatter_photons takes (hits deposit_photons did not end)
     std::uint32_t continuing = 0;  // paths that scattered on
     std::uint32_t finished = 0;    // paths that ended
 

@@ -30,9 +30,9 @@ Scene small_room(int spp, std::uint32_t seed = 0) {
 TEST(WavefrontImage, BitIdenticalRunToRunAndAcrossWavefrontSizes) {
     Scene scene = small_room(8);
     // 64 paths in flight: many passes and regenerations; 4096: one pass.
-    RenderResult a = render_wavefront(scene, {"", 64}, {});
-    RenderResult b = render_wavefront(scene, {"", 64}, {});
-    RenderResult c = render_wavefront(scene, {"", 4096}, {});
+    RenderResult a = render_wavefront(scene, {.wavefront = 64}, {});
+    RenderResult b = render_wavefront(scene, {.wavefront = 64}, {});
+    RenderResult c = render_wavefront(scene, {.wavefront = 4096}, {});
     EXPECT_EQ(a.image.rgb, b.image.rgb);
     EXPECT_EQ(a.image.rgb, c.image.rgb);
     EXPECT_EQ(a.stats.extension_rays, c.stats.extension_rays);

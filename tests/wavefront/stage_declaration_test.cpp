@@ -24,8 +24,7 @@ const std::map<std::string, std::uint32_t> kQueueByName{{"FREE", WP_QUEUE_FREE},
                                                         {"SHADOW", WP_QUEUE_SHADOW},
                                                         {"PHOTON_FREE", WP_QUEUE_PHOTON_FREE},
                                                         {"PHOTON_RAY", WP_QUEUE_PHOTON_RAY},
-                                                        {"PHOTON_HIT", WP_QUEUE_PHOTON_HIT},
-                                                        {"PHOTON_SCATTER", WP_QUEUE_PHOTON_SCATTER}};
+                                                        {"PHOTON_HIT", WP_QUEUE_PHOTON_HIT}};
 
 std::uint32_t bit(const char* queue) { return 1u << kQueueByName.at(queue); }
 
@@ -107,8 +106,7 @@ TEST(StageDeclaration, IntersectShadowRunsOnlyWithNextEventEstimation) {
     EXPECT_TRUE(iteration_stages(features, StageLoop::PHOTON).empty());
     features.sppm = true;  // the camera pass is path tracing's; the photon pass runs its own loop
     EXPECT_EQ(iteration_stages(features), with_nee);
-    const std::vector<Stage> photons{Stage::emit_photons, Stage::intersect_photons, Stage::deposit_photons,
-                                     Stage::scatter_photons};
+    const std::vector<Stage> photons{Stage::emit_photons, Stage::intersect_photons, Stage::shade_photons};
     EXPECT_EQ(iteration_stages(features, StageLoop::PHOTON), photons);
 }
 
