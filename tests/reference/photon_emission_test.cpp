@@ -57,10 +57,22 @@ constexpr std::uint32_t kPhotons = 1u << 20, kSeed = 7;
 constexpr int kChecks = 16;
 constexpr double kWholeTestAlpha = 1e-3, kCheckAlpha = kWholeTestAlpha / kChecks;
 constexpr int kBins = 8;                   // per axis of every 2D histogram
-constexpr double kSpacing = 10.0;          // light k lies within 5 of x = k kSpacing, whence its photons
+constexpr double kSpacing = 10.0;          // light k lies within kSpacing / 2 of x = k kSpacing
 const glm::dvec3 kBoxSize{0.5, 1.0, 1.5};  // the mesh light: an axis-aligned box of this size
 
 double luminance(const glm::dvec3& c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; }
+
+// The box's faces are numbered 2 axis + (1 at the far side).
+double box_face_area(int face) {
+    const int axis = face / 2;
+    return kBoxSize[(axis + 1) % 3] * kBoxSize[(axis + 2) % 3];
+}
+
+double box_area() {
+    double area = 0.0;
+    for (int face = 0; face < 6; ++face) area += box_face_area(face);
+    return area;
+}
 
 enum class LightShape { Sphere, Quad, Box };
 
@@ -77,7 +89,7 @@ struct TestLight {
     double area() const {
         if (shape == LightShape::Sphere) return 4.0 * std::numbers::pi * radius * radius;
         if (shape == LightShape::Quad) return glm::length(glm::cross(edge1, edge2));
-        return 2.0 * (kBoxSize.x * kBoxSize.y + kBoxSize.y * kBoxSize.z + kBoxSize.x * kBoxSize.z);
+        return box_area();
     }
     glm::dvec3 power() const { return radiance * std::numbers::pi * area() * (two_sided ? 2.0 : 1.0); }
 };
@@ -139,7 +151,7 @@ Scene emission_scene(const std::vector<TestLight>& lights) {
 struct LightPosition {
     double s, t;
     glm::dvec3 normal;
-    int face = 0;  // the box's: 2 axis + (1 at the far side)
+    int face = 0;  // the box's
 };
 
 LightPosition position_on(const TestLight& light, const glm::dvec3& p) {
@@ -176,11 +188,6 @@ LightPosition position_on(const TestLight& light, const glm::dvec3& p) {
     return {q[(axis + 1) % 3], q[(axis + 2) % 3], normal, face};
 }
 
-double box_face_area(int face) {
-    const int axis = face / 2;
-    return kBoxSize[(axis + 1) % 3] * kBoxSize[(axis + 2) % 3];
-}
-
 // (sin^2 theta, phi / 2 pi) of `direction` about the unit `normal`: both
 // uniform on [0, 1] for a cosine-distributed direction, since the share of
 // cos(theta) / pi within theta of the normal is sin^2(theta).
@@ -213,7 +220,7 @@ TEST(PhotonEmission, FollowsPowerAreaCosineAndSideAndCarriesTheEmittedPower) {
         const M::EmittedPhoton photon = reference::emit_photon(reference, reference::PhotonRng<Real>{kSeed, 0, i});
         for (int c = 0; c < 3; ++c) flux[c].add(photon.flux[c]);
         const glm::dvec3 origin(photon.origin), direction(photon.direction);
-        const long k = std::lround(origin.x / kSpacing);
+        const long k = std::lround(origin.x / kSpacing);  // the light the photon left
         if (k < 0 || k >= static_cast<long>(lights.size())) {
             ++outside;
             continue;
@@ -242,7 +249,7 @@ TEST(PhotonEmission, FollowsPowerAreaCosineAndSideAndCarriesTheEmittedPower) {
     for (const TestLight& light : lights) selection.push_back(luminance(light.power()) / luminance(total_power));
     std::vector<double> box_probability;
     for (int face = 0; face < 6; ++face)
-        for (int bin = 0; bin < 9; ++bin) box_probability.push_back(box_face_area(face) / lights[4].area() / 9.0);
+        for (int bin = 0; bin < 9; ++bin) box_probability.push_back(box_face_area(face) / box_area() / 9.0);
 
     EXPECT_EQ(outside, 0u) << "photons that left no light, or from outside its surface";
     EXPECT_EQ(behind_one_sided, 0u) << "photons that left a one-sided light from its back";
