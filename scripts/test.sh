@@ -2,10 +2,10 @@
 # Sets up, builds, and runs the whole test suite through CTest; then builds
 # it again with AddressSanitizer and UndefinedBehaviorSanitizer (clang, in
 # build-asan, a unity build, with the libFuzzer targets) and runs all of it
-# there but five checks that would add nothing: the format check, the
+# there but six checks that would add nothing: the format check, the
 # Python-only converter test, a second run of test_robustness and the Mitsuba
-# oracle with its sensitivity test (docs/bad-input.md, "The sanitizer build":
-# why, and what it costs).
+# oracles (path tracing's with its sensitivity test, and SPPM's)
+# (docs/bad-input.md, "The sanitizer build": why, and what it costs).
 # Usage: bash scripts/test.sh
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -20,4 +20,4 @@ CXX=clang++-15 cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DWAVE
   -DWAVEPATH_BUILD_TESTS=ON -DWAVEPATH_BUILD_BENCH=OFF -DWAVEPATH_MPI=OFF
 cmake --build build-asan -j "$(nproc)"
 ctest --test-dir build-asan --output-on-failure -j "$(nproc)" \
-  -E '^(sources_are_clang_formatted|mitsuba_scene_converter|robustness_figures_match_the_doc|wavepath_agrees_with_mitsuba|mitsuba_oracle_fails_on_lights_3_percent_too_bright)$'
+  -E '^(sources_are_clang_formatted|mitsuba_scene_converter|robustness_figures_match_the_doc|wavepath_agrees_with_mitsuba|mitsuba_oracle_fails_on_lights_3_percent_too_bright|sppm_agrees_with_mitsuba)$'

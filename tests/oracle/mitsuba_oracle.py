@@ -80,13 +80,13 @@ def read_pfm(path):
     return data.reshape(height, width, 3)[::-1].astype(np.float64)
 
 
-def render_wavepath(binary, scene_path, width, height, spp, seeds, scratch):
-    """The images of `seeds` renders, shape (seeds, height, width, 3)."""
+def render_wavepath(binary, scene_path, width, height, spp, seeds, scratch, options=()):
+    """The images of `seeds` renders (with the command-line `options` added), shape (seeds, height, width, 3)."""
     out = os.path.join(scratch, "wavepath.pfm")
     images = []
     for seed in seeds:
         subprocess.run([binary, "render", scene_path, "-o", out, "-q", "--width", str(width), "--height", str(height),
-                        "--spp", str(spp), "--seed", str(seed)], check=True)
+                        "--spp", str(spp), "--seed", str(seed), *options], check=True)
         images.append(read_pfm(out))
     return np.stack(images)
 
@@ -99,6 +99,21 @@ def render_mitsuba(mi, scene_path, width, height, spp, seeds, scratch):
     return np.stack([np.array(mi.render(scene, seed=seed), dtype=np.float64) for seed in seeds])
 
 
+def block_means(image, block):
+    """Per block of BLOCK x BLOCK pixels (row by row, then the whole image, last) and channel: the mean of the
+    (h, w, channels) array `image`, shape (blocks + 1, channels), and each block's pixel count, shape (blocks + 1,)."""
+    h, w = image.shape[:2]
+    means, counts = [], []
+    for y in range(0, h, block):
+        for x in range(0, w, block):
+            part = image[y:y + block, x:x + block]
+            means.append(part.mean(axis=(0, 1)))
+            counts.append(part.shape[0] * part.shape[1])
+    means.append(image.mean(axis=(0, 1)))
+    counts.append(h * w)
+    return np.array(means), np.array(counts)
+
+
 def block_statistics(images, block):
     """Per block (and the whole image, last) and channel: the mean and the variance of that mean.
 
@@ -106,20 +121,9 @@ def block_statistics(images, block):
     the sum of its pixels' variances (each over the seeds, of the seeds' mean)
     over its pixel count squared."""
     seeds = images.shape[0]
-    mean = images.mean(axis=0)
-    variance = images.var(axis=0, ddof=1) / seeds  # of each pixel's mean over the seeds
-    h, w = mean.shape[:2]
-    means, variances = [], []
-    for y in range(0, h, block):
-        for x in range(0, w, block):
-            m, v = mean[y:y + block, x:x + block], variance[y:y + block, x:x + block]
-            n = m.shape[0] * m.shape[1]
-            means.append(m.mean(axis=(0, 1)))
-            variances.append(v.sum(axis=(0, 1)) / (n * n))
-    n = h * w
-    means.append(mean.mean(axis=(0, 1)))
-    variances.append(variance.sum(axis=(0, 1)) / (n * n))
-    return np.array(means), np.array(variances)
+    means, _ = block_means(images.mean(axis=0), block)
+    variance_means, counts = block_means(images.var(axis=0, ddof=1) / seeds, block)  # of each pixel's seed mean
+    return means, variance_means / counts[:, None]
 
 
 def z_scores(a, b, block):
