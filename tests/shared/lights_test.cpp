@@ -23,7 +23,6 @@ namespace {
 
 using wp::test::kSigmaTolerance;
 using wp::test::Vec3;
-constexpr double kPi = std::numbers::pi;
 
 template <class Real>
 class LightPdfs : public ::testing::Test {};
@@ -41,9 +40,9 @@ void expect_integral(const DensityAlong<Real>& density, double expected, const c
     wp::test::RunningMean integral;
     for (std::uint32_t i = 0; i < 400000; ++i) {
         double z = 1.0 - 2.0 * wp::SharedMath<double>::rng_uniform(3u, i, 0u, 0u, 0u);
-        double phi = 2.0 * kPi * wp::SharedMath<double>::rng_uniform(3u, i, 0u, 0u, 1u);
+        double phi = 2.0 * std::numbers::pi * wp::SharedMath<double>::rng_uniform(3u, i, 0u, 0u, 1u);
         double r = std::sqrt(std::max(0.0, 1.0 - z * z));
-        integral.add(4.0 * kPi * density(Vec3<Real>(glm::dvec3(r * std::cos(phi), r * std::sin(phi), z))));
+        integral.add(4.0 * std::numbers::pi * density(Vec3<Real>(glm::dvec3(r * std::cos(phi), r * std::sin(phi), z))));
     }
     EXPECT_NEAR(integral.mean(), expected, kSigmaTolerance * integral.standard_error())
         << label << ": standard error " << integral.standard_error();

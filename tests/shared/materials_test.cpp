@@ -23,7 +23,6 @@ namespace {
 using wp::test::kRoundingTolerance;
 using wp::test::kSigmaTolerance;
 using wp::test::Vec3;
-constexpr double kPi = std::numbers::pi;
 
 template <class Real>
 class Materials : public ::testing::Test {};
@@ -54,9 +53,9 @@ double integrate_over_sphere(const F& f) {
     double sum = 0.0;
     for (int i = 0; i < rings; ++i) {
         double cos_theta = -1.0 + (i + 0.5) * 2.0 / rings;
-        for (int j = 0; j < sectors; ++j) sum += f(basis.at(cos_theta, (j + 0.5) * 2.0 * kPi / sectors));
+        for (int j = 0; j < sectors; ++j) sum += f(basis.at(cos_theta, (j + 0.5) * 2.0 * std::numbers::pi / sectors));
     }
-    return sum * (2.0 / rings) * (2.0 * kPi / sectors);
+    return sum * (2.0 / rings) * (2.0 * std::numbers::pi / sectors);
 }
 
 template <class Real>
@@ -166,7 +165,7 @@ TYPED_TEST(Materials, DiffuseSamplesFollowTheirPdf) {
             integral.add(glm::dot(w, a) * glm::dot(w, a) * glm::dot(w, kNormal) / s.pdf);
             weight.add(s.weight.x);
         }
-        double expected = kPi * (glm::dot(a, a) + glm::dot(a, kNormal) * glm::dot(a, kNormal)) / 4.0;
+        double expected = std::numbers::pi * (glm::dot(a, a) + glm::dot(a, kNormal) * glm::dot(a, kNormal)) / 4.0;
         EXPECT_NEAR(integral.mean(), expected, kSigmaTolerance * integral.standard_error()) << "uniform " << uniform;
         EXPECT_NEAR(weight.mean(), kAlbedo.x, kSigmaTolerance * weight.standard_error() + 1e-6) << uniform;
     }
