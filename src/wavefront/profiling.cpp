@@ -66,4 +66,19 @@ IntersectBound measure_intersect_bound(const cl::Context& context, cl::CommandQu
     return {double(rays) / best_s, std::accumulate(distances.begin(), distances.end(), 0.0)};
 }
 
+CopyBandwidth measure_copy_bandwidth(const cl::Context& context, cl::CommandQueue& queue, std::uint64_t bytes) {
+    const cl::Device device = context.getInfo<CL_CONTEXT_DEVICES>().front();
+    bytes = std::min<std::uint64_t>(bytes, device.getInfo<CL_DEVICE_MAX_MEM_ALLOC_SIZE>()) & ~std::uint64_t(3);
+    cl::Buffer source(context, CL_MEM_READ_ONLY, bytes), destination(context, CL_MEM_WRITE_ONLY, bytes);
+    queue.enqueueFillBuffer(source, std::uint32_t(0x3f800000), 0, bytes);
+    double best_s = std::numeric_limits<double>::infinity();
+    for (int copy = 0; copy <= 3; ++copy) {
+        cl::Event event;
+        queue.enqueueCopyBuffer(source, destination, 0, 0, bytes, nullptr, &event);
+        event.wait();
+        if (copy > 0) best_s = std::min(best_s, event_seconds(event));
+    }
+    return {2.0 * double(bytes) / best_s, bytes};
+}
+
 }  // namespace wp
