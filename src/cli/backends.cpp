@@ -219,10 +219,12 @@ void add_backend_options(CLI::App& render, BackendOptions& options) {
                   options, kOpenClOnly)
         ->check(CLI::IsMember({0u, 1u, 4u, 8u, 16u}))
         ->capture_default_str();
-    taken_only_by(render.add_flag("--profile", options.profile,
-                                  "Print the OpenCL backend's per-kernel profile (launches, items, device time, "
-                                  "items/s) on stderr"),
-                  options, kOpenClOnly);
+    taken_only_by(
+        render.add_flag(
+            "--profile", options.profile,
+            "Print the OpenCL backend's per-kernel profile (launches, items, device time, "
+            "items/s; a wavefront stage's declared bytes/item and GB/s against the copy bandwidth) on stderr"),
+        options, kOpenClOnly);
     taken_only_by(render.add_option("--profile-json", options.profile_json,
                                     "Also write the OpenCL backend's profile to this JSON file"),
                   options, kOpenClOnly);

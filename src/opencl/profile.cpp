@@ -42,6 +42,12 @@ double RenderProfile::kernel_s() const {
     return sum;
 }
 
+double KernelProfile::bytes_per_s() const { return per_second(bytes_per_item * items, device_s); }
+
+double RenderProfile::fraction_of_copy_bandwidth(const KernelProfile& k) const {
+    return copy_bytes_per_s > 0.0 ? k.bytes_per_s() / copy_bytes_per_s : 0.0;
+}
+
 double RenderProfile::fraction_of_intersect_bound(const std::string& name) const {
     auto it = find_kernel(kernels, name);
     if (it == kernels.end() || intersect_bound_rays_per_s <= 0.0) return 0.0;
@@ -53,18 +59,25 @@ std::string format_profile_table(const RenderProfile& p) {
         "wavepath profile (device time from OpenCL events, host time for the embree: rows; share of the render's "
         "wall time)\n";
     char line[256];
-    std::snprintf(line, sizeof line, "  %-24s %9s %13s %11s %13s %7s\n", "kernel", "launches", "items", "device ms",
-                  "Mitems/s", "share");
+    std::snprintf(line, sizeof line, "  %-24s %9s %13s %11s %13s %7s %7s %8s %7s\n", "kernel", "launches", "items",
+                  "device ms", "Mitems/s", "share", "B/item", "GB/s", "of copy");
     out += line;
-    auto row = [&](const char* name, const char* launches, const char* items, double seconds, const char* rate) {
-        std::snprintf(line, sizeof line, "  %-24s %9s %13s %11.2f %13s %6.1f%%\n", name, launches, items, seconds * 1e3,
-                      rate, p.render_s > 0 ? 100.0 * seconds / p.render_s : 0.0);
+    auto row = [&](const char* name, const char* launches, const char* items, double seconds, const char* rate,
+                   const char* bytes = "", const char* bandwidth = "", const char* of_copy = "") {
+        std::snprintf(line, sizeof line, "  %-24s %9s %13s %11.2f %13s %6.1f%% %7s %8s %7s\n", name, launches, items,
+                      seconds * 1e3, rate, p.render_s > 0 ? 100.0 * seconds / p.render_s : 0.0, bytes, bandwidth,
+                      of_copy);
         out += line;
     };
     for (const KernelProfile& k : p.kernels) {
-        char rate[32];
+        char rate[32], bandwidth[32] = "", of_copy[32] = "";
         std::snprintf(rate, sizeof rate, "%.2f", per_second(k.items, k.device_s) * 1e-6);
-        row(k.name.c_str(), std::to_string(k.launches).c_str(), std::to_string(k.items).c_str(), k.device_s, rate);
+        const std::string bytes = k.bytes_per_item ? std::to_string(k.bytes_per_item) : "";
+        if (k.bytes_per_item) std::snprintf(bandwidth, sizeof bandwidth, "%.2f", k.bytes_per_s() * 1e-9);
+        if (k.bytes_per_item && p.copy_bytes_per_s > 0.0)
+            std::snprintf(of_copy, sizeof of_copy, "%.0f%%", 100.0 * p.fraction_of_copy_bandwidth(k));
+        row(k.name.c_str(), std::to_string(k.launches).c_str(), std::to_string(k.items).c_str(), k.device_s, rate,
+            bytes.c_str(), bandwidth, of_copy);
     }
     row("(between kernels)", "", "", p.gaps_s, "");
     row("(host, other)", "", "", std::max(0.0, p.render_s - p.kernel_s() - p.gaps_s), "");
@@ -81,18 +94,31 @@ std::string format_profile_table(const RenderProfile& p) {
                       100.0 * p.fraction_of_intersect_bound("intersect_shadow"));
         out += line;
     }
+    if (p.copy_bytes_per_s > 0.0) {
+        std::snprintf(line, sizeof line,
+                      "  copy bandwidth: %.2f GB/s (bytes read + written; clEnqueueCopyBuffer of %llu MiB, best of "
+                      "3); B/item is the stage's declared path state and queue bytes, an upper bound\n",
+                      p.copy_bytes_per_s * 1e-9, static_cast<unsigned long long>(p.copy_buffer_bytes >> 20));
+        out += line;
+    }
     return out;
 }
 
 nlohmann::json profile_json(const RenderProfile& p) {
     nlohmann::json kernels = nlohmann::json::array();
-    for (const KernelProfile& k : p.kernels)
-        kernels.push_back({{"name", k.name},
-                           {"launches", k.launches},
-                           {"items", k.items},
-                           {"device_s", k.device_s},
-                           {"items_per_s", per_second(k.items, k.device_s)},
-                           {"share", p.render_s > 0 ? k.device_s / p.render_s : 0.0}});
+    for (const KernelProfile& k : p.kernels) {
+        nlohmann::json& row =
+            kernels.emplace_back(nlohmann::json{{"name", k.name},
+                                                {"launches", k.launches},
+                                                {"items", k.items},
+                                                {"device_s", k.device_s},
+                                                {"items_per_s", per_second(k.items, k.device_s)},
+                                                {"share", p.render_s > 0 ? k.device_s / p.render_s : 0.0}});
+        if (k.bytes_per_item == 0) continue;
+        row["bytes_per_item"] = k.bytes_per_item;
+        row["bytes_per_s"] = k.bytes_per_s();
+        if (p.copy_bytes_per_s > 0.0) row["of_copy_bandwidth"] = p.fraction_of_copy_bandwidth(k);
+    }
     nlohmann::json json = {{"render_s", p.render_s},
                            {"kernel_s", p.kernel_s()},
                            {"gaps_s", p.gaps_s},
@@ -106,6 +132,10 @@ nlohmann::json profile_json(const RenderProfile& p) {
         json["intersect_bound_rays_per_s"] = p.intersect_bound_rays_per_s;
         json["of_intersect_bound"] = {{"intersect", p.fraction_of_intersect_bound("intersect")},
                                       {"intersect_shadow", p.fraction_of_intersect_bound("intersect_shadow")}};
+    }
+    if (p.copy_bytes_per_s > 0.0) {
+        json["copy_bytes_per_s"] = p.copy_bytes_per_s;
+        json["copy_buffer_bytes"] = p.copy_buffer_bytes;
     }
     return json;
 }

@@ -190,6 +190,11 @@ IntersectBound Pipeline::measure_intersect_bound(std::uint32_t rays) {
     return wp::measure_intersect_bound(context_, queue_, program_.program, scene_, lanes_, rays);
 }
 
+CopyBandwidth Pipeline::measure_copy_bandwidth(std::uint64_t bytes) {
+    if (!launcher_.profiling()) throw std::logic_error("measure_copy_bandwidth needs a pipeline built with profiling");
+    return wp::measure_copy_bandwidth(context_, queue_, bytes);
+}
+
 std::vector<float> Pipeline::read_pass_radiance() {
     std::vector<float> values(3 * pass_capacity_);
     queue_.enqueueReadBuffer(pass_radiance_, CL_TRUE, 0, sizeof(float) * values.size(), values.data());

@@ -114,6 +114,8 @@ class Pipeline {
     // The roofline (measure_intersect_bound); needs profiling. Not added to
     // profile(), so call it after the render.
     IntersectBound measure_intersect_bound(std::uint32_t rays);
+    // The device's copy bandwidth (wp::measure_copy_bandwidth); needs profiling, and is not added to profile().
+    CopyBandwidth measure_copy_bandwidth(std::uint64_t bytes);
 
     // For stage tests and benchmarks: puts fresh paths (depth 0, throughput 1,
     // no radiance, after a "specular" camera vertex) with these rays into

@@ -9,6 +9,23 @@
 #include "opencl/kernel_arguments.h"
 
 namespace wp {
+namespace {
+
+// The shortest device time of three runs of `enqueue` (which enqueues one
+// command with the event it is given), after one run that is not timed.
+template <class Enqueue>
+double best_of_three_after_one_untimed(Enqueue enqueue) {
+    double best_s = std::numeric_limits<double>::infinity();
+    for (int run = 0; run <= 3; ++run) {
+        cl::Event event;
+        enqueue(event);
+        event.wait();
+        if (run > 0) best_s = std::min(best_s, event_seconds(event));
+    }
+    return best_s;
+}
+
+}  // namespace
 
 RayDepthCounter::RayDepthCounter(const cl::Program& program, const cl::Buffer& queues, const cl::Buffer& counts,
                                  std::size_t capacity, const cl::Buffer& depth)
@@ -52,18 +69,24 @@ IntersectBound measure_intersect_bound(const cl::Context& context, cl::CommandQu
     kernel.setArg(arg::IntersectBound::ray_count, cl_uint(rays));
     kernel.setArg(arg::IntersectBound::hit_t, hit_t);
     std::size_t items = round_up(divide_rounding_up(rays, lanes), WP_GROUP_SIZE);
-    // Launch 0 is not timed: PoCL compiles the kernel for its launch geometry then.
-    double best_s = std::numeric_limits<double>::infinity();
-    for (int launch = 0; launch <= 3; ++launch) {
-        cl::Event event;
+    // The untimed launch: PoCL compiles the kernel for its launch geometry then.
+    const double best_s = best_of_three_after_one_untimed([&](cl::Event& event) {
         queue.enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(items), cl::NDRange(WP_GROUP_SIZE), nullptr,
                                    &event);
-        event.wait();
-        if (launch > 0) best_s = std::min(best_s, event_seconds(event));
-    }
+    });
     std::vector<float> distances(rays);
     queue.enqueueReadBuffer(hit_t, CL_TRUE, 0, sizeof(float) * rays, distances.data());
     return {double(rays) / best_s, std::accumulate(distances.begin(), distances.end(), 0.0)};
+}
+
+CopyBandwidth measure_copy_bandwidth(const cl::Context& context, cl::CommandQueue& queue, std::uint64_t bytes) {
+    const cl::Device device = context.getInfo<CL_CONTEXT_DEVICES>().front();
+    bytes = std::min<std::uint64_t>(bytes, device.getInfo<CL_DEVICE_MAX_MEM_ALLOC_SIZE>()) & ~std::uint64_t(3);
+    cl::Buffer source(context, CL_MEM_READ_ONLY, bytes), destination(context, CL_MEM_WRITE_ONLY, bytes);
+    queue.enqueueFillBuffer(source, std::uint32_t(0x3f800000), 0, bytes);
+    const double best_s = best_of_three_after_one_untimed(
+        [&](cl::Event& event) { queue.enqueueCopyBuffer(source, destination, 0, 0, bytes, nullptr, &event); });
+    return {2.0 * double(bytes) / best_s, bytes};
 }
 
 }  // namespace wp

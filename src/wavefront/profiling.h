@@ -1,6 +1,6 @@
 // What --profile measures of a wavefront render besides kernel times: rays
-// per path depth (kernels/count_depths.cl) and the roofline of the tracing
-// stages (kernels/intersect_bound.cl).
+// per path depth (kernels/count_depths.cl), the roofline of the tracing
+// stages (kernels/intersect_bound.cl) and the device's copy bandwidth.
 #pragma once
 
 #include <CL/opencl.hpp>
@@ -43,5 +43,16 @@ struct IntersectBound {
 // stages' rays/s is measured against. `queue` must be a profiling queue.
 IntersectBound measure_intersect_bound(const cl::Context& context, cl::CommandQueue& queue, const cl::Program& program,
                                        const DeviceScene& scene, unsigned lanes, std::uint32_t rays);
+
+struct CopyBandwidth {
+    double bytes_per_s = 0.0;  // bytes read plus bytes written, over the best of three copies' device time
+    std::uint64_t bytes = 0;   // copied by each
+};
+
+// Copies one device buffer of `bytes` (at most the device's largest
+// allocation) to another, once untimed (the pages are touched then), then
+// three times timed: the bandwidth the stages' declared bytes per second are
+// held against. `queue` must be a profiling queue.
+CopyBandwidth measure_copy_bandwidth(const cl::Context& context, cl::CommandQueue& queue, std::uint64_t bytes);
 
 }  // namespace wp

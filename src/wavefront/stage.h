@@ -67,4 +67,21 @@ inline constexpr const StageDeclaration& declaration(Stage stage) {
 // The stages an iteration of `loop` runs with kernels built for `features`, in order.
 std::vector<Stage> iteration_stages(const FeatureSet& features, StageLoop loop = StageLoop::CAMERA);
 
+// The bytes a stage moves per item (per queue entry it takes), from the
+// declarations alone: the path state fields (kernels/interface/path_state.h)
+// whose buffers exist for `features` and that name the stage among their
+// readers or writers, its queue entry, and one entry for each queue it may
+// push to. An upper bound: a field read or written under a condition, or
+// only in some compilations, counts fully, and so does every push target,
+// though a path takes some of them only instead of others. Scene data,
+// pass radiance and SPPM's per-pixel state are not counted.
+struct StageBytes {
+    std::size_t state_read = 0;
+    std::size_t state_written = 0;
+    std::size_t queue_read = 0;     // the entry the stage takes
+    std::size_t queue_written = 0;  // an entry per push target
+    std::size_t total() const { return state_read + state_written + queue_read + queue_written; }
+};
+StageBytes stage_bytes_per_item(const StageDeclaration& stage, const FeatureSet& features);
+
 }  // namespace wp

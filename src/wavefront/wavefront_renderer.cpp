@@ -24,6 +24,10 @@ constexpr std::size_t kPassesPerWavefront = 16;
 // negligible, and the same for every image size.
 constexpr std::uint32_t kIntersectBoundRays = 1u << 20;
 
+// Bytes of the copy bandwidth's buffers (--profile): more than the last-level
+// caches of the CPUs and GPUs it runs on, so that the copy goes through memory.
+constexpr std::uint64_t kCopyBandwidthBytes = std::uint64_t(256) << 20;
+
 // The scene's features plus every shape, material and light type: what an
 // unspecialised build compiles (lights and background stay as in the scene,
 // since next-event estimation needs at least one light).
@@ -56,9 +60,10 @@ FeatureSet kernel_features(const Scene& scene, const WavefrontOptions& options, 
 // queue summed over the iterations (generate: the free slots it filled);
 // accumulate's, the pass entries it summed; compaction's, the slots its
 // launches went through; compact_scan's, the blocks of slots it summed;
-// count_depths', the rays it counted.
+// count_depths', the rays it counted. A stage kernel's row also gets the
+// bytes per item its declaration gives for the kernels' features.
 void fill_profile(RenderProfile& profile, const std::vector<IterationRecord>& iterations, std::uint64_t samples,
-                  std::size_t wavefront) {
+                  std::size_t wavefront, const FeatureSet& features) {
     for (const char* name : {"compact_count", "compact_write"})
         if (profile.has_kernel(name)) profile.kernel(name).items = profile.kernel(name).launches * wavefront;
     if (profile.has_kernel("compact_scan"))
@@ -76,6 +81,8 @@ void fill_profile(RenderProfile& profile, const std::vector<IterationRecord>& it
             k.items = 0;
             for (const IterationRecord& r : iterations) k.items += r.taken_from(stage.consumes);
         }
+        if (profile.has_kernel(stage.kernel))
+            profile.kernel(stage.kernel).bytes_per_item = stage_bytes_per_item(stage, features).total();
     }
     profile.kernel("accumulate").items = samples;
     profile.iterations = iterations.size();
@@ -184,13 +191,16 @@ class WavefrontFilmRenderer : public FilmRenderer {
         if (!profile_) return;
         WavefrontReport& r = report_;
         r.profile = pipeline_.profile();
-        fill_profile(r.profile, r.iterations, samples_, wavefront_);
+        fill_profile(r.profile, r.iterations, samples_, wavefront_, features_);
         r.profile.render_s = render_seconds;
         r.profile.build_s = r.build_seconds;
         pipeline_.read_rays_by_depth(r.profile);
         // The bound is the kernels' tracing: not what a host-traced render traces with.
         if (!features_.host_traced)
             r.profile.intersect_bound_rays_per_s = pipeline_.measure_intersect_bound(kIntersectBoundRays).rays_per_s;
+        const CopyBandwidth copy = pipeline_.measure_copy_bandwidth(kCopyBandwidthBytes);
+        r.profile.copy_bytes_per_s = copy.bytes_per_s;
+        r.profile.copy_buffer_bytes = copy.bytes;
     }
 
  protected:

@@ -88,5 +88,55 @@ TEST(PathState, FieldsExistOnlyForFeaturesInUse) {
     EXPECT_EQ(PathState::bytes_per_path(glass_mis), total - 4 - 16);  // the shadow verdicts, the photons
 }
 
+// The bytes per item --profile reports for a stage come from the declared
+// readers and writers of the fields whose buffers exist, whole stage names
+// only (intersect is not intersect_shadow nor intersect_photons), plus its
+// queue entry and one entry per push target. The figures below are read off
+// kernels/interface/path_state.h and stages.h by hand.
+TEST(PathState, StageBytesPerItemComeFromTheDeclarations) {
+    FeatureSet diffuse;
+    diffuse.spheres = diffuse.diffuse = true;
+    const StageBytes intersect = stage_bytes_per_item(declaration(Stage::intersect), diffuse);
+    // pass_item, origin, direction, throughput (the background), radiance, hit_shape (host-traced)
+    EXPECT_EQ(intersect.state_read, 4u + 12 + 12 + 12 + 12 + 4);
+    EXPECT_EQ(intersect.state_written, 4u + 4);  // hit_t, hit_shape
+    EXPECT_EQ(intersect.queue_read, 4u);
+    EXPECT_EQ(intersect.queue_written, 2u * 4);  // HIT, FREE
+    EXPECT_EQ(intersect.total(), 56u + 8 + 4 + 8);
+
+    const StageBytes shade = stage_bytes_per_item(declaration(Stage::shade), diffuse);
+    // pixel, sample, pass_item, depth, origin, direction, throughput, radiance, hit_t, hit_shape
+    EXPECT_EQ(shade.state_read, 4u * 4 + 4 * 12 + 4 + 4);
+    EXPECT_EQ(shade.state_written, 4u + 4 * 12);  // depth, origin, direction, throughput, radiance
+    EXPECT_EQ(shade.queue_written, 3u * 4);       // SHADOW, RAY, FREE
+
+    // Fields only some renders have: specular, eta_scale and bsdf_pdf are
+    // read and written by shade, the shadow ray only written.
+    FeatureSet glass_mis = diffuse;
+    glass_mis.glass = glass_mis.nee = glass_mis.mis = true;
+    const StageBytes shade_glass_mis = stage_bytes_per_item(declaration(Stage::shade), glass_mis);
+    EXPECT_EQ(shade_glass_mis.state_read, shade.state_read + 3 * 4);
+    EXPECT_EQ(shade_glass_mis.state_written, shade.state_written + 3 * 4 + (12 + 12 + 4 + 12 + 4));
+
+    const StageBytes shadow = stage_bytes_per_item(declaration(Stage::intersect_shadow), glass_mis);
+    // pass_item, radiance, shadow_origin, shadow_direction, shadow_distance, shadow_radiance, shadow_ends_path
+    EXPECT_EQ(shadow.state_read, 4u + 12 + 12 + 12 + 4 + 12 + 4);
+    EXPECT_EQ(shadow.state_written, 12u);  // radiance
+    EXPECT_EQ(shadow.queue_written, 0u);
+    FeatureSet host_traced = glass_mis;
+    host_traced.host_traced = true;  // the host's verdicts, shadow_occluded
+    const StageBytes shadow_host = stage_bytes_per_item(declaration(Stage::intersect_shadow), host_traced);
+    EXPECT_EQ(shadow_host.state_read, shadow.state_read + 4);
+    EXPECT_EQ(shadow_host.state_written, shadow.state_written + 4);
+
+    FeatureSet sppm = diffuse;
+    sppm.sppm = true;
+    const StageBytes emit = stage_bytes_per_item(declaration(Stage::emit_photons), sppm);
+    EXPECT_EQ(emit.state_read, 0u);
+    // depth, origin, direction, throughput, photon, photon_flux
+    EXPECT_EQ(emit.state_written, 4u + 12 + 12 + 12 + 4 + 12);
+    EXPECT_EQ(emit.queue_written, 4u);  // PHOTON_RAY
+}
+
 }  // namespace
 }  // namespace wp

@@ -17,6 +17,7 @@
 #include "opencl/device.h"
 #include "reference/path_tracer.h"
 #include "reference/reference_renderer.h"
+#include "wavefront/stage.h"
 #include "wavefront/wavefront_renderer.h"
 #include "wavefront_test_support.h"
 
@@ -101,6 +102,22 @@ TEST(Profile, KernelItemsMatchTheRaysTheRenderCounted) {
     EXPECT_LE(p.kernel_s(), p.render_s);
     EXPECT_GT(p.intersect_bound_rays_per_s, 0.0);
     EXPECT_TRUE(std::isfinite(p.intersect_bound_rays_per_s));
+
+    // Each stage's row has its declared bytes for the kernels' features (here
+    // the scene's); the other kernels declare none.
+    for (const StageDeclaration& stage : stage_declarations) {
+        if (!p.has_kernel(stage.kernel)) continue;
+        EXPECT_EQ(p.kernel(stage.kernel).bytes_per_item, stage_bytes_per_item(stage, scene.features()).total())
+            << stage.kernel;
+    }
+    EXPECT_TRUE(p.has_kernel("shade"));
+    EXPECT_EQ(p.kernel("accumulate").bytes_per_item, 0u);
+    EXPECT_EQ(p.kernel("count_depths").bytes_per_item, 0u);
+    // A copy bandwidth from event nanoseconds in bytes/s: between 0.1 GB/s and
+    // 100 TB/s on any device; a wrong unit is off by 10^3 or more.
+    EXPECT_GT(p.copy_bytes_per_s, 1e8);
+    EXPECT_LT(p.copy_bytes_per_s, 1e14);
+    EXPECT_EQ(p.copy_buffer_bytes, std::uint64_t(256) << 20);
 }
 
 // Where the host traces (--intersector embree), its share of a tracing
@@ -249,6 +266,42 @@ TEST(Profile, TableAndJsonReportTheTracingStagesAgainstTheBound) {
     EXPECT_FALSE(profile_json(p).contains("of_intersect_bound"));
 }
 
+// A row with declared bytes shows them, its GB/s (bytes x items / device
+// time) and that as a fraction of the copy bandwidth; a row without shows none.
+TEST(Profile, TableAndJsonReportStageBytesAgainstTheCopyBandwidth) {
+    RenderProfile p;
+    p.kernel("shade") = {"shade", 3, 2'000'000, 0.5, 100};  // 4e8 bytes/s
+    p.kernel("accumulate") = {"accumulate", 1, 1000, 0.01};
+    p.copy_bytes_per_s = 1.6e9;
+    p.copy_buffer_bytes = std::uint64_t(64) << 20;
+    const std::string table = format_profile_table(p);
+    const std::size_t shade = table.find("  shade "), accumulate = table.find("  accumulate ");
+    ASSERT_NE(shade, std::string::npos) << table;
+    ASSERT_NE(accumulate, std::string::npos) << table;
+    const std::string shade_row = table.substr(shade, table.find('\n', shade) - shade);
+    EXPECT_NE(shade_row.find("   100     0.40     25%"), std::string::npos) << shade_row;
+    const std::string accumulate_row = table.substr(accumulate, table.find('\n', accumulate) - accumulate);
+    EXPECT_EQ(accumulate_row.find('%', accumulate_row.find('%') + 1), std::string::npos) << accumulate_row;
+    EXPECT_NE(table.find("  copy bandwidth: 1.60 GB/s (bytes read + written; clEnqueueCopyBuffer of 64 MiB"),
+              std::string::npos)
+        << table;
+
+    nlohmann::json json = profile_json(p);
+    EXPECT_EQ(json["copy_bytes_per_s"], 1.6e9);
+    EXPECT_EQ(json["copy_buffer_bytes"], std::uint64_t(64) << 20);
+    EXPECT_EQ(json["kernels"][0]["bytes_per_item"], 100u);
+    EXPECT_DOUBLE_EQ(json["kernels"][0]["bytes_per_s"].get<double>(), 4e8);
+    EXPECT_DOUBLE_EQ(json["kernels"][0]["of_copy_bandwidth"].get<double>(), 0.25);
+    EXPECT_FALSE(json["kernels"][1].contains("bytes_per_item"));
+    EXPECT_FALSE(json["kernels"][1].contains("of_copy_bandwidth"));
+
+    p.copy_bytes_per_s = 0.0;  // not measured (the megakernel): no fraction, no line
+    EXPECT_EQ(format_profile_table(p).find("copy bandwidth"), std::string::npos);
+    EXPECT_FALSE(profile_json(p).contains("copy_bytes_per_s"));
+    EXPECT_FALSE(profile_json(p)["kernels"][0].contains("of_copy_bandwidth"));
+    EXPECT_TRUE(profile_json(p)["kernels"][0].contains("bytes_per_s"));
+}
+
 // Runs a shell command; returns its stdout and stderr, and its exit status.
 std::string run_shell(const std::string& command, int& exit_code) {
     FILE* pipe = ::popen((command + " 2>&1").c_str(), "r");
@@ -275,8 +328,9 @@ TEST(Profile, CliWritesJsonConsistentWithStatsAndPrintsTable) {
     int exit_code;
     std::string output = run_shell(command, exit_code);
     ASSERT_EQ(exit_code, 0) << output;
-    for (const char* text : {"kernel", "launches", "items", "device ms", "Mitems/s", "intersect_shadow",
-                             "(between kernels)", "extension rays by depth:", "program build"})
+    for (const char* text :
+         {"kernel", "launches", "items", "device ms", "Mitems/s", "intersect_shadow", "(between kernels)",
+          "extension rays by depth:", "program build", "B/item", "GB/s", "of copy", "copy bandwidth:"})
         EXPECT_NE(output.find(text), std::string::npos) << text << "\n" << output;
 
     nlohmann::json profile = read_json(dir / "profile.json"), stats = read_json(dir / "stats.json");
@@ -294,6 +348,15 @@ TEST(Profile, CliWritesJsonConsistentWithStatsAndPrintsTable) {
             << name;
     }
     EXPECT_NEAR(profile["kernel_s"].get<double>(), kernel_s, 1e-12);
+    const double copy = profile["copy_bytes_per_s"].get<double>();
+    EXPECT_GT(copy, 0.0);
+    for (const char* stage : {"generate", "intersect", "shade", "intersect_shadow"}) {
+        const nlohmann::json& k = kernels[stage];
+        const double bytes_per_s = k["bytes_per_s"].get<double>();
+        EXPECT_NEAR(bytes_per_s, k["bytes_per_item"].get<double>() * k["items_per_s"].get<double>(), 1e-9 * bytes_per_s)
+            << stage;
+        EXPECT_NEAR(k["of_copy_bandwidth"].get<double>(), bytes_per_s / copy, 1e-9 * bytes_per_s / copy) << stage;
+    }
     std::uint64_t by_depth = 0;
     for (std::uint64_t n : profile["extension_rays_by_depth"]) by_depth += n;
     EXPECT_EQ(by_depth, stats["extension_rays"].get<std::uint64_t>());
