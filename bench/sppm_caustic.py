@@ -11,9 +11,12 @@ Three scenes at 64x64 on the wavefront backend, each with a caustic REGION:
 - bench/scenes/sppm_caustic.json, a glass sphere on a diffuse floor under a
   small quad light: the region is the floor under the sphere, lit only through
   the glass;
-- scenes/room.json: the region is the glass sphere's caustic on the floor.
-Per scene, renders path tracing at each of its path_spp and SPPM at each of its
-sppm_iterations (with its sppm_flags), interleaved, each --repeats times (seed
+- scenes/room.json: the region is the glass sphere's caustic on the floor;
+  SPPM runs there with its defaults, with 4x the photons per iteration and
+  with a smaller first radius, which tell the photons' noise from the bias of
+  the gathering radius.
+Per scene, renders path tracing at each of its path_spp and SPPM with each of
+its sppm flag sets at each of that set's iterations, interleaved, each --repeats times (seed
 = repetition), and measures relMSE against Mitsuba's converged path-traced image
 (bench/mitsuba_peer.py at the scene's truth_spp, cached in --cache) in the
 region and over the whole image, and the image's mean over the truth's. The
@@ -38,16 +41,18 @@ SIZE = 64
 SCENES = [
     {"name": "caustic_patch", "scene": "bench/scenes/caustic_patch.json", "truth_spp": 65536,
      "region": {"x": (0.0, 1.0), "y": (0.0, 1.0)}, "region_is": "the patch, the whole image",
-     "path_spp": [64, 256, 1024, 4096], "sppm_iterations": [4, 16, 64],
      # The default initial radius comes from the 100-unit slab's extent, far wider than the 0.08-unit patch;
      # one photon per pixel leaves most iterations without a photon on it.
-     "sppm_flags": ["--initial-radius", "0.01", "--photons", "65536"]},
-    {"name": "sppm_caustic", "scene": "bench/scenes/sppm_caustic.json", "truth_spp": 32768,
+     "path_spp": [64, 256, 1024, 4096], "sppm": [(["--initial-radius", "0.01", "--photons", "65536"], [4, 16, 64])]},
+    {"name": "sppm_caustic", "scene": "bench/scenes/sppm_caustic.json", "truth_spp": 131072,
      "region": {"x": (0.25, 0.75), "y": (0.58, 0.82)}, "region_is": "the floor under the sphere",
-     "path_spp": [16, 64, 256, 1024, 4096], "sppm_iterations": [16, 64, 256], "sppm_flags": []},
+     "path_spp": [16, 64, 256, 1024, 4096], "sppm": [([], [16, 64, 256])]},
     {"name": "room", "scene": "scenes/room.json", "truth_spp": 16384,
      "region": {"x": (0.64, 0.88), "y": (0.83, 0.91)}, "region_is": "the glass sphere's caustic on the floor",
-     "path_spp": [16, 64, 256, 1024, 4096], "sppm_iterations": [16, 64, 256], "sppm_flags": []},
+     # Beside the defaults, whether the region's error is the photons' noise (4x the photons) or the
+     # gathering radius's bias (a smaller first radius).
+     "path_spp": [16, 64, 256, 1024, 4096],
+     "sppm": [([], [16, 64, 256]), (["--photons", "16384"], [16, 64]), (["--initial-radius", "0.03"], [16, 64, 256])]},
 ]
 GAIN_TARGET, MEAN_TARGET = 10.0, 0.01
 
@@ -63,9 +68,10 @@ def region_mask(region):
 def configurations():
     for s in SCENES:
         for spp in s["path_spp"]:
-            yield {"scene": s["name"], "integrator": "path", "spp": spp}
-        for iterations in s["sppm_iterations"]:
-            yield {"scene": s["name"], "integrator": "sppm", "spp": iterations}
+            yield {"scene": s["name"], "integrator": "path", "flags": [], "spp": spp}
+        for flags, iterations in s["sppm"]:
+            for n in iterations:
+                yield {"scene": s["name"], "integrator": "sppm", "flags": flags, "spp": n}
 
 
 def truths(peer, cache):
@@ -86,12 +92,11 @@ def truths(peer, cache):
 
 def measure(runner, peer, args):
     truth = truths(peer, args.cache)
-    flags = {s["name"]: s["sppm_flags"] for s in SCENES}
 
     def measure_one(c, seed):
         t = truth[c["scene"]]
-        extra = ["--integrator", c["integrator"], *(flags[c["scene"]] if c["integrator"] == "sppm" else [])]
-        s = runner.render(t["path"], "wavefront", SIZE, SIZE, c["spp"], extra, image=True, seed=seed)
+        s = runner.render(t["path"], "wavefront", SIZE, SIZE, c["spp"], ["--integrator", c["integrator"], *c["flags"]],
+                          image=True, seed=seed)
         image, mask = np.asarray(s["image"], dtype=np.float64), t["mask"]
         return {"time_s": s["time_s"], "relmse_region": rel_mse(image[mask], t["image"][mask]),
                 "relmse_image": rel_mse(image, t["image"]), "mean_ratio": float(image.mean() / t["image"].mean())}
@@ -113,18 +118,21 @@ def measure(runner, peer, args):
                 r["gain_equal_time"] = (equal_time / r["relmse_region_less_truth"]
                                         if equal_time and r["relmse_region_less_truth"] > 0 else None)
     scenes = {s["name"]: {"scene": s["scene"], "truth_spp": s["truth_spp"], "region": s["region"],
-                          "sppm_flags": s["sppm_flags"],
                           **{k: v for k, v in truth[s["name"]].items() if k in ("floor_region", "floor_image",
                                                                                  "mean_se")}} for s in SCENES}
     return {"size": SIZE, "scenes": scenes, "load": load_range(runs), "rows": rows}
 
 
+def flag_words(flags):
+    return f"`{' '.join(flags)}`" if flags else "defaults"
+
+
 def targets(result):
     """Per scene, each SPPM row against the issue's targets: the gain at equal time in the region, and the
     whole image's mean over the truth's."""
-    lines = table(["scene", "SPPM iterations", "time median (s)", "gain at equal time (target >= 10x)",
+    lines = table(["scene", "SPPM flags", "iterations", "time median (s)", "gain at equal time (target >= 10x)",
                    "mean ratio (target within 1%)", "truth mean's standard error"],
-                  [[r["scene"], str(r["spp"]), f"{r['time_s']['median']:.2f}",
+                  [[r["scene"], flag_words(r["flags"]), str(r["spp"]), f"{r['time_s']['median']:.2f}",
                     "outside path tracing's times" if r["gain_equal_time"] is None else
                     f"{r['gain_equal_time']:.1f}x ({'met' if r['gain_equal_time'] >= GAIN_TARGET else 'not met'})",
                     f"{r['mean_ratio']:.4f} ({'met' if abs(r['mean_ratio'] - 1) <= MEAN_TARGET else 'not met'})",
@@ -139,7 +147,7 @@ def markdown(result):
         f"`{s['scene']}` ({spec['name']}: region columns {s['region']['x'][0]:.2f}-{s['region']['x'][1]:.2f}, "
         f"rows {s['region']['y'][0]:.2f}-{s['region']['y'][1]:.2f} from the top, {spec['region_is']}; truth at "
         f"{s['truth_spp']} spp, whose noise adds {s['floor_region']:.3g} to relMSE in the region and "
-        f"{s['floor_image']:.3g} over the image; SPPM flags: {' '.join(s['sppm_flags']) or 'none (the defaults)'})"
+        f"{s['floor_image']:.3g} over the image)"
         for spec in SCENES for s in [scenes[spec["name"]]])
 
     def fmt(x, f):
@@ -156,10 +164,10 @@ def markdown(result):
              "the path-tracing rows; blank outside them) over SPPM's (target: at least 10x). Mean ratio: the "
              "image's mean over the truth's, averaged over the repetitions (target for SPPM: within 1%).", "",
              "## Targets", "", targets(result), "", "## All rows", "",
-             *table(["scene", "integrator", "spp / iterations", "time min (s)", "time median (s)", "relMSE region",
+             *table(["scene", "integrator", "flags", "spp / iterations", "time min (s)", "time median (s)", "relMSE region",
                      "relMSE region less truth", "relMSE image", "relMSE image less truth", "gain at equal time",
                      "mean ratio"],
-                    [[r["scene"], r["integrator"], str(r["spp"]), f"{r['time_s']['min']:.3f}",
+                    [[r["scene"], r["integrator"], flag_words(r["flags"]), str(r["spp"]), f"{r['time_s']['min']:.3f}",
                       f"{r['time_s']['median']:.3f}", f"{r['relmse_region']:.4g}",
                       f"{r['relmse_region_less_truth']:.4g}", f"{r['relmse_image']:.4g}",
                       f"{r['relmse_image_less_truth']:.4g}", fmt(r.get("gain_equal_time"), "{:.2f}x"),

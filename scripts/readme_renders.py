@@ -107,10 +107,10 @@ def equal_time_pair(binary, scratch, commit):
 
 
 def replace_block(text, name, words):
-    pattern = re.compile(rf"(<!-- render:{name} -->\n).*?(\n<!-- /render:{name} -->)", re.S)
+    pattern = re.compile(rf"(<!-- render:{name} -->\n).*?(<!-- /render:{name} -->)", re.S)
     if not pattern.search(text):
         sys.exit(f"readme_renders: README.md has no <!-- render:{name} --> block")
-    return pattern.sub(lambda m: m.group(1) + words + m.group(2), text)
+    return pattern.sub(lambda m: m.group(1) + words + "\n" + m.group(2), text)
 
 
 def main():
