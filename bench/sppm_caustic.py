@@ -154,8 +154,8 @@ def markdown(result):
         return "" if x is None else f.format(x)
     lines = ["# SPPM against path tracing in caustics", "",
              f"{generated_by('sppm_caustic.py', meta, result['load'])} {result['size']}x{result['size']}, wavefront "
-             f"backend, {result['repeats']} interleaved repetitions (seed = repetition); truth: Mitsuba ({meta['mitsuba']}) path tracing at each scene's "
-             f"max depth. Scenes: {described}.", "",
+             f"backend, {result['repeats']} interleaved repetitions (seed = repetition); truth: Mitsuba "
+             f"({meta['mitsuba']}) path tracing at each scene's max depth. Scenes: {described}.", "",
              "Time: min / median of the repetitions (render time, after the kernel build). relMSE: mean over the "
              "repetitions of mean((x - r)^2 / (r^2 + 1e-2)) in the region and over the whole image; 'less truth' "
              "subtracts what the truth's own noise adds to it (its per-value variance over the passes it was "
@@ -164,9 +164,9 @@ def markdown(result):
              "the path-tracing rows; blank outside them) over SPPM's (target: at least 10x). Mean ratio: the "
              "image's mean over the truth's, averaged over the repetitions (target for SPPM: within 1%).", "",
              "## Targets", "", targets(result), "", "## All rows", "",
-             *table(["scene", "integrator", "flags", "spp / iterations", "time min (s)", "time median (s)", "relMSE region",
-                     "relMSE region less truth", "relMSE image", "relMSE image less truth", "gain at equal time",
-                     "mean ratio"],
+             *table(["scene", "integrator", "flags", "spp / iterations", "time min (s)", "time median (s)",
+                     "relMSE region", "relMSE region less truth", "relMSE image", "relMSE image less truth",
+                     "gain at equal time", "mean ratio"],
                     [[r["scene"], r["integrator"], flag_words(r["flags"]), str(r["spp"]), f"{r['time_s']['min']:.3f}",
                       f"{r['time_s']['median']:.3f}", f"{r['relmse_region']:.4g}",
                       f"{r['relmse_region_less_truth']:.4g}", f"{r['relmse_image']:.4g}",
