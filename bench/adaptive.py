@@ -23,7 +23,7 @@ import statistics
 import numpy as np
 
 from run import ROOT, loglog_at, rel_mse, scene_max_depth
-from study import generated_by, interleaved, load_range, run_study, summary, table
+from study import TIME_AND_RELMSE, cell, generated_by, interleaved, load_range, run_study, summary, table
 
 SCENES = ["room.json", "cornell.json"]
 SIZE, TRUTH_SPP = 128, 4096
@@ -82,29 +82,25 @@ def measure(runner, peer, args):
 
 def markdown(result):
     meta, rows = result["meta"], result["rows"]
-
-    def fmt(x, f="{:.3g}"):
-        return "" if x is None else f.format(x)
     lines = ["# Adaptive sampling: efficiency", "",
              f"{generated_by('adaptive.py', meta, result.get('load'))} Wavefront backend, {SIZE}x{SIZE}, "
              f"{result['repeats']} interleaved repetitions (seed = repetition); truth: Mitsuba ({meta['mitsuba']}) "
              f"at {TRUTH_SPP} spp.", "",
-             "Time: min / median of the repetitions (render time, after the kernel build). relMSE: mean over the "
-             "repetitions of mean((x - r)^2 / (r^2 + 1e-2)). Efficiency: 1 / (relMSE x median time). Gain at the "
+             f"{TIME_AND_RELMSE}. Efficiency: 1 / (relMSE x median time). Gain at the "
              f"spp cap: efficiency over the non-adaptive render's at {ADAPTIVE_SPP} spp. Gain at equal time: the "
              "non-adaptive relMSE at the same median time (log-log line through the non-adaptive renders; blank "
              "outside them) over the adaptive one. Gain at equal samples: the non-adaptive relMSE at the adaptive "
              "render's mean spp (log-log line through the non-adaptive spp) over the adaptive one, what placing the "
-             "samples gains before the cost of rounds and checks. Mean ratio: the image's mean over the truth's, averaged over "
-             "the repetitions (adaptive sampling's stopping bias, docs/long-renders.md, shows here).", "",
+             "samples gains before the cost of rounds and checks. Mean ratio: the image's mean over the truth's, "
+             "averaged over the repetitions (adaptive sampling's stopping bias, docs/long-renders.md, shows here).", "",
              *table(["scene", "adaptive", "spp", "mean spp", "stopped early", "time min (s)", "time median (s)",
                      "relMSE", "efficiency", "gain at spp cap", "gain at equal time", "gain at equal samples",
                      "mean ratio"],
                     [[r["scene"], str(r["adaptive"] or "off"), str(r["spp"]), f"{r['spp_mean']:.1f}",
                       f"{100 * r['stopped_early']:.1f}%", f"{r['time_s']['min']:.3f}",
                       f"{r['time_s']['median']:.3f}", f"{r['relmse']:.4g}", f"{r['efficiency']:.4g}",
-                      fmt(r.get("gain_equal_spp_cap"), "{:.2f}x"), fmt(r.get("gain_equal_time"), "{:.2f}x"),
-                      fmt(r.get("gain_equal_samples"), "{:.2f}x"), f"{r['mean_ratio']:.4f}"] for r in rows])]
+                      cell(r.get("gain_equal_spp_cap"), "{:.2f}x"), cell(r.get("gain_equal_time"), "{:.2f}x"),
+                      cell(r.get("gain_equal_samples"), "{:.2f}x"), f"{r['mean_ratio']:.4f}"] for r in rows])]
     return "\n".join(lines) + "\n"
 
 

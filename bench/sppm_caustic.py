@@ -34,7 +34,7 @@ import re
 import numpy as np
 
 from run import ROOT, loglog_at, rel_mse, rel_noise, scene_max_depth
-from study import generated_by, interleaved, load_range, run_study, summary, table
+from study import TIME_AND_RELMSE, cell, generated_by, interleaved, load_range, run_study, summary, table
 
 SIZE = 64
 # region: fractions of the image (columns, rows from the top).
@@ -149,15 +149,11 @@ def markdown(result):
         f"{s['truth_spp']} spp, whose noise adds {s['floor_region']:.3g} to relMSE in the region and "
         f"{s['floor_image']:.3g} over the image)"
         for spec in SCENES for s in [scenes[spec["name"]]])
-
-    def fmt(x, f):
-        return "" if x is None else f.format(x)
     lines = ["# SPPM against path tracing in caustics", "",
              f"{generated_by('sppm_caustic.py', meta, result['load'])} {result['size']}x{result['size']}, wavefront "
              f"backend, {result['repeats']} interleaved repetitions (seed = repetition); truth: Mitsuba "
              f"({meta['mitsuba']}) path tracing at each scene's max depth. Scenes: {described}.", "",
-             "Time: min / median of the repetitions (render time, after the kernel build). relMSE: mean over the "
-             "repetitions of mean((x - r)^2 / (r^2 + 1e-2)) in the region and over the whole image; 'less truth' "
+             f"{TIME_AND_RELMSE} in the region and over the whole image; 'less truth' "
              "subtracts what the truth's own noise adds to it (its per-value variance over the passes it was "
              "rendered in, weighted alike), an estimate of the error against the exact image. Gain at equal time: "
              "path tracing's relMSE in the region less truth at the SPPM row's median time (log-log line through "
@@ -170,7 +166,7 @@ def markdown(result):
                     [[r["scene"], r["integrator"], flag_words(r["flags"]), str(r["spp"]), f"{r['time_s']['min']:.3f}",
                       f"{r['time_s']['median']:.3f}", f"{r['relmse_region']:.4g}",
                       f"{r['relmse_region_less_truth']:.4g}", f"{r['relmse_image']:.4g}",
-                      f"{r['relmse_image_less_truth']:.4g}", fmt(r.get("gain_equal_time"), "{:.2f}x"),
+                      f"{r['relmse_image_less_truth']:.4g}", cell(r.get("gain_equal_time"), "{:.2f}x"),
                       f"{r['mean_ratio']:.4f}"] for r in result["rows"]])]
     return "\n".join(lines) + "\n"
 

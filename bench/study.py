@@ -57,6 +57,16 @@ def generated_by(script, meta, load=None):
             f"{meta['build_type']} build.")
 
 
+# How the studies' tables read their time and relMSE columns; each goes on with what it adds.
+TIME_AND_RELMSE = ("Time: min / median of the repetitions (render time, after the kernel build). relMSE: mean over "
+                   "the repetitions of mean((x - r)^2 / (r^2 + 1e-2))")
+
+
+def cell(value, form):
+    """A table cell: `value` formatted, or blank where there is none."""
+    return "" if value is None else form.format(value)
+
+
 def table(header, rows):
     """A Markdown table's lines: `header` and each row, a list of cells."""
     return ["| " + " | ".join(header) + " |", "|" + "---|" * len(header),
