@@ -146,18 +146,6 @@ def run_meta(binary, peer):
             "mitsuba": peer.describe(), **machine(binary)}
 
 
-def study_arguments(doc):
-    """The flags of a study against Mitsuba's converged images (bench/adaptive.py, bench/sppm_caustic.py)."""
-    parser = argparse.ArgumentParser(description=doc, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("--out", default=os.path.join(ROOT, "bench", "results"))
-    parser.add_argument("--binary", default=os.path.join(ROOT, "build", "wavepath"))
-    parser.add_argument("--cache", default=os.path.join(ROOT, "bench", "out", "converged-cache"))
-    parser.add_argument("--repeats", type=int, default=5)
-    args = parser.parse_args()
-    os.makedirs(args.out, exist_ok=True)
-    return args
-
-
 def spread(values):
     return {"min": min(values), "median": statistics.median(values), "max": max(values)}
 

@@ -1,128 +1,198 @@
 #!/usr/bin/env python3
-"""SPPM against path tracing in a caustic (issue 22; docs/architecture.md, "Photon mapping").
+"""SPPM against path tracing in caustics (issue 22; docs/architecture.md, "Photon mapping").
 
 Usage: python3 bench/sppm_caustic.py [--out bench/results] [--binary build/wavepath] [--cache DIR] [--repeats 5]
 
-bench/scenes/sppm_caustic.json: a glass sphere on a diffuse floor under a small
-quad light (black background), whose caustic and shadow under the sphere are lit
-only through the glass. At 64x64 on the wavefront backend, renders path tracing
-at PT_SPP and SPPM at SPPM_ITERATIONS (one photon per pixel per iteration, the
-default radius and alpha), interleaved, each --repeats times (seed =
-repetition), and measures relMSE against Mitsuba's converged path-traced image
-(bench/mitsuba_peer.py, cached in --cache) in the caustic region (REGION: the
-floor under the sphere) and over the whole image. Writes sppm_caustic.json and
-sppm_caustic.md into --out, headed by the commit, date, machine and OpenCL
-platform: per configuration the time (min, median), the relMSE in the region and
-over the image, and the image mean over the truth's; then, for each SPPM row,
-path tracing's relMSE in the region at the same median time (log-log line
-through the path-tracing rows) over SPPM's: the issue's target is at least 10x.
+Three scenes at 64x64 on the wavefront backend, each with a caustic REGION:
+- bench/scenes/caustic_patch.json, the analytic patch of
+  tests/support/caustic_patch.h (a diffuse patch under a wide glass slab lit by
+  a small quad light), seen at 45 degrees so that it fills the image: the
+  region is the whole image;
+- bench/scenes/sppm_caustic.json, a glass sphere on a diffuse floor under a
+  small quad light: the region is the floor under the sphere, lit only through
+  the glass;
+- scenes/room.json: the region is the glass sphere's caustic on the floor;
+  SPPM runs there with its defaults, with 4x the photons per iteration and
+  with a smaller first radius, which tell the photons' noise from the bias of
+  the gathering radius.
+Per scene, renders path tracing at each of its path_spp and SPPM with each of
+its sppm flag sets at each of that set's iterations, interleaved, each --repeats times (seed
+= repetition), and measures relMSE against Mitsuba's converged path-traced image
+(bench/mitsuba_peer.py at the scene's truth_spp, cached in --cache) in the
+region and over the whole image, and the image's mean over the truth's. The
+truth's own noise adds its variance to every expected squared error; the
+tables give each relMSE less that floor (the truth's per-value variance over
+the passes it was rendered in, weighted as relMSE weighs errors), and the gain
+at equal time is taken from those. Writes sppm_caustic.json and sppm_caustic.md
+into --out, headed by the commit, date, machine, OpenCL platform and load, and
+replaces the block between `<!-- sppm_caustic:begin -->` and
+`<!-- sppm_caustic:end -->` in --out's analysis.md (bench/results') by the targets' rows.
 """
-import json
 import os
-import statistics
-import tempfile
-import time
+import re
 
 import numpy as np
 
-from run import ROOT, Runner, loglog_at, rel_mse, run_meta, spread, study_arguments
-from mitsuba_peer import MitsubaPeer
+from run import ROOT, loglog_at, rel_mse, rel_noise, scene_max_depth
+from study import TIME_AND_RELMSE, cell, generated_by, interleaved, load_range, run_study, summary, table
 
-SCENE = os.path.join(ROOT, "bench", "scenes", "sppm_caustic.json")
-SIZE, TRUTH_SPP, MAX_DEPTH = 64, 8192, 8
-PT_SPP = [16, 64, 256, 1024]
-SPPM_ITERATIONS = [16, 64, 256]
-# The caustic region, as fractions of the image (columns, rows from the top): the floor under the sphere.
-REGION = {"x": (0.25, 0.75), "y": (0.58, 0.82)}
+SIZE = 64
+# region: fractions of the image (columns, rows from the top).
+SCENES = [
+    {"name": "caustic_patch", "scene": "bench/scenes/caustic_patch.json", "truth_spp": 65536,
+     "region": {"x": (0.0, 1.0), "y": (0.0, 1.0)}, "region_is": "the patch, the whole image",
+     # The default initial radius comes from the 100-unit slab's extent, far wider than the 0.08-unit patch;
+     # one photon per pixel leaves most iterations without a photon on it.
+     "path_spp": [64, 256, 1024, 4096], "sppm": [(["--initial-radius", "0.01", "--photons", "65536"], [4, 16, 64])]},
+    {"name": "sppm_caustic", "scene": "bench/scenes/sppm_caustic.json", "truth_spp": 131072,
+     "region": {"x": (0.25, 0.75), "y": (0.58, 0.82)}, "region_is": "the floor under the sphere",
+     "path_spp": [16, 64, 256, 1024, 4096], "sppm": [([], [16, 64, 256])]},
+    {"name": "room", "scene": "scenes/room.json", "truth_spp": 16384,
+     "region": {"x": (0.64, 0.88), "y": (0.83, 0.91)}, "region_is": "the glass sphere's caustic on the floor",
+     # Beside the defaults, whether the region's error is the photons' noise (4x the photons) or the
+     # gathering radius's bias (a smaller first radius).
+     "path_spp": [16, 64, 256, 1024, 4096],
+     "sppm": [([], [16, 64, 256]), (["--photons", "16384"], [16, 64]), (["--initial-radius", "0.03"], [16, 64, 256])]},
+]
+GAIN_TARGET, MEAN_TARGET = 10.0, 0.01
 
 
-def region_mask():
-    rows = np.arange(SIZE)[::-1]  # PFM rows run bottom-up; REGION counts from the top
+def region_mask(region):
+    rows = np.arange(SIZE)[::-1]  # PFM rows run bottom-up; regions count from the top
     cols = np.arange(SIZE)
-    in_rows = (rows >= REGION["y"][0] * SIZE) & (rows < REGION["y"][1] * SIZE)
-    in_cols = (cols >= REGION["x"][0] * SIZE) & (cols < REGION["x"][1] * SIZE)
-    mask = np.outer(in_rows, in_cols)
-    return np.repeat(mask.reshape(-1), 3)  # every channel of a pixel
+    in_rows = (rows >= region["y"][0] * SIZE) & (rows < region["y"][1] * SIZE)
+    in_cols = (cols >= region["x"][0] * SIZE) & (cols < region["x"][1] * SIZE)
+    return np.repeat(np.outer(in_rows, in_cols).reshape(-1), 3)  # every channel of a pixel
 
 
 def configurations():
-    for spp in PT_SPP:
-        yield {"integrator": "path", "spp": spp}
-    for iterations in SPPM_ITERATIONS:
-        yield {"integrator": "sppm", "spp": iterations}
+    for s in SCENES:
+        for spp in s["path_spp"]:
+            yield {"scene": s["name"], "integrator": "path", "flags": [], "spp": spp}
+        for flags, iterations in s["sppm"]:
+            for n in iterations:
+                yield {"scene": s["name"], "integrator": "sppm", "flags": flags, "spp": n}
 
 
-def measure(runner, truth, repeats):
-    mask = region_mask()
-    runs = {i: [] for i, _ in enumerate(configurations())}
-    for seed in range(repeats):  # interleaved: every configuration once per repetition
-        for i, c in enumerate(configurations()):
-            s = runner.render(SCENE, "wavefront", SIZE, SIZE, c["spp"], ["--integrator", c["integrator"]],
-                              image=True, seed=seed)
-            image = np.asarray(s["image"], dtype=np.float64)
-            runs[i].append({"time_s": s["time_s"], "relmse_region": rel_mse(image[mask], truth[mask]),
-                            "relmse_image": rel_mse(image, truth), "mean_ratio": float(image.mean() / truth.mean())})
+def truths(peer, cache):
+    """Per scene: the converged image, its region mask, the relMSE floors its noise adds (region, image) and
+    the relative standard error of its mean (pixels independent, a pixel's channels not)."""
+    out = {}
+    for s in SCENES:
+        path = os.path.join(ROOT, s["scene"])
+        converged = peer.converged(path, SIZE, s["truth_spp"], scene_max_depth(path), cache)
+        image, mask = np.asarray(converged.image, dtype=np.float64), region_mask(s["region"])
+        out[s["name"]] = {"path": path, "image": image, "mask": mask,
+                          "floor_region": rel_noise(converged.variance[mask], image[mask]),
+                          "floor_image": rel_noise(converged.variance, image),
+                          "mean_se": float(np.sqrt(np.sum(converged.pixel_variance)) / converged.pixel_variance.size
+                                           / image.mean())}
+    return out
+
+
+def measure(runner, peer, args):
+    truth = truths(peer, args.cache)
+
+    def measure_one(c, seed):
+        t = truth[c["scene"]]
+        s = runner.render(t["path"], "wavefront", SIZE, SIZE, c["spp"], ["--integrator", c["integrator"], *c["flags"]],
+                          image=True, seed=seed)
+        image, mask = np.asarray(s["image"], dtype=np.float64), t["mask"]
+        return {"time_s": s["time_s"], "relmse_region": rel_mse(image[mask], t["image"][mask]),
+                "relmse_image": rel_mse(image, t["image"]), "mean_ratio": float(image.mean() / t["image"].mean())}
+
+    configs = list(configurations())
+    runs = interleaved(configs, args.repeats, measure_one)
     rows = []
-    for i, c in enumerate(configurations()):
-        r = runs[i]
-        rows.append({**c, "time_s": spread([x["time_s"] for x in r]),
-                     "relmse_region": statistics.mean(x["relmse_region"] for x in r),
-                     "relmse_image": statistics.mean(x["relmse_image"] for x in r),
-                     "mean_ratio": statistics.mean(x["mean_ratio"] for x in r)})
-    path_line = sorted((r["time_s"]["median"], r["relmse_region"]) for r in rows if r["integrator"] == "path")
-    for r in rows:
-        if r["integrator"] == "sppm":
-            equal_time = loglog_at(path_line, r["time_s"]["median"])
-            r["gain_equal_time"] = equal_time / r["relmse_region"] if equal_time else None
-    return rows
+    for c, r in zip(configs, runs):
+        row = summary(c, r, ["relmse_region", "relmse_image", "mean_ratio"])
+        row["relmse_region_less_truth"] = row["relmse_region"] - truth[c["scene"]]["floor_region"]
+        row["relmse_image_less_truth"] = row["relmse_image"] - truth[c["scene"]]["floor_image"]
+        rows.append(row)
+    for s in SCENES:
+        path_line = sorted((r["time_s"]["median"], r["relmse_region_less_truth"]) for r in rows
+                           if r["scene"] == s["name"] and r["integrator"] == "path")
+        for r in rows:
+            if r["scene"] == s["name"] and r["integrator"] == "sppm":
+                equal_time = loglog_at(path_line, r["time_s"]["median"])
+                r["gain_equal_time"] = (equal_time / r["relmse_region_less_truth"]
+                                        if equal_time and r["relmse_region_less_truth"] > 0 else None)
+    scenes = {s["name"]: {"scene": s["scene"], "truth_spp": s["truth_spp"], "region": s["region"],
+                          **{k: v for k, v in truth[s["name"]].items() if k in ("floor_region", "floor_image",
+                                                                                 "mean_se")}} for s in SCENES}
+    return {"size": SIZE, "scenes": scenes, "load": load_range(runs), "rows": rows}
 
 
-def markdown(meta, rows, repeats, truth_floor):
-    lines = ["# SPPM against path tracing in a caustic", "",
-             f"Generated by `python3 bench/sppm_caustic.py` at commit {meta['commit']}, {meta['date']}, on "
-             f"{meta['cpu']} ({meta['cores']} cores), OpenCL {meta['opencl_platform']} / {meta['opencl_device']}, "
-             f"{meta['build_type']} build. `bench/scenes/sppm_caustic.json` at {SIZE}x{SIZE}, wavefront backend, "
-             f"{repeats} interleaved repetitions (seed = repetition); truth: Mitsuba ({meta['mitsuba']}) path "
-             f"tracing at {TRUTH_SPP} spp, max depth {MAX_DEPTH}.", "",
-             "Time: min / median of the repetitions (render time, after the kernel build). relMSE: mean over the "
-             "repetitions of mean((x - r)^2 / (r^2 + 1e-2)), in the caustic region (columns "
-             f"{REGION['x'][0]:.2f}-{REGION['x'][1]:.2f}, rows {REGION['y'][0]:.2f}-{REGION['y'][1]:.2f} of the "
-             "image from the top: the floor under the sphere, lit only through the glass) and over the whole image. "
-             "Gain at equal time: path tracing's relMSE in the region at the SPPM row's median time (log-log line "
-             "through the path-tracing rows; blank outside them) over SPPM's (target: at least 10x). Mean ratio: "
-             "the image's mean over the truth's (target for SPPM: within 1%). The truth's own noise adds about "
-             f"{truth_floor:.2g} to every relMSE in the region.", "",
-             "| integrator | spp / iterations | time min (s) | time median (s) | relMSE region | relMSE image | "
-             "gain at equal time | mean ratio |",
-             "|---|---|---|---|---|---|---|---|"]
-    for r in rows:
-        gain = r.get("gain_equal_time")
-        lines.append(f"| {r['integrator']} | {r['spp']} | {r['time_s']['min']:.3f} | {r['time_s']['median']:.3f} | "
-                     f"{r['relmse_region']:.4g} | {r['relmse_image']:.4g} | "
-                     f"{'' if gain is None else f'{gain:.2f}x'} | {r['mean_ratio']:.4f} |")
+def flag_words(flags):
+    return f"`{' '.join(flags)}`" if flags else "defaults"
+
+
+def targets(result):
+    """Per scene, each SPPM row against the issue's targets: the gain at equal time in the region, and the
+    whole image's mean over the truth's."""
+    lines = table(["scene", "SPPM flags", "iterations", "time median (s)", "gain at equal time (target >= 10x)",
+                   "mean ratio (target within 1%)", "truth mean's standard error"],
+                  [[r["scene"], flag_words(r["flags"]), str(r["spp"]), f"{r['time_s']['median']:.2f}",
+                    "outside path tracing's times" if r["gain_equal_time"] is None else
+                    f"{r['gain_equal_time']:.1f}x ({'met' if r['gain_equal_time'] >= GAIN_TARGET else 'not met'})",
+                    f"{r['mean_ratio']:.4f} ({'met' if abs(r['mean_ratio'] - 1) <= MEAN_TARGET else 'not met'})",
+                    f"{100 * result['scenes'][r['scene']]['mean_se']:.2f}%"]
+                   for r in result["rows"] if r["integrator"] == "sppm"])
+    return "\n".join(lines)
+
+
+def markdown(result):
+    meta, scenes = result["meta"], result["scenes"]
+    described = "; ".join(
+        f"`{s['scene']}` ({spec['name']}: region columns {s['region']['x'][0]:.2f}-{s['region']['x'][1]:.2f}, "
+        f"rows {s['region']['y'][0]:.2f}-{s['region']['y'][1]:.2f} from the top, {spec['region_is']}; truth at "
+        f"{s['truth_spp']} spp, whose noise adds {s['floor_region']:.3g} to relMSE in the region and "
+        f"{s['floor_image']:.3g} over the image)"
+        for spec in SCENES for s in [scenes[spec["name"]]])
+    lines = ["# SPPM against path tracing in caustics", "",
+             f"{generated_by('sppm_caustic.py', meta, result['load'])} {result['size']}x{result['size']}, wavefront "
+             f"backend, {result['repeats']} interleaved repetitions (seed = repetition); truth: Mitsuba "
+             f"({meta['mitsuba']}) path tracing at each scene's max depth. Scenes: {described}.", "",
+             f"{TIME_AND_RELMSE} in the region and over the whole image; 'less truth' "
+             "subtracts what the truth's own noise adds to it (its per-value variance over the passes it was "
+             "rendered in, weighted alike), an estimate of the error against the exact image. Gain at equal time: "
+             "path tracing's relMSE in the region less truth at the SPPM row's median time (log-log line through "
+             "the path-tracing rows; blank outside them) over SPPM's (target: at least 10x). Mean ratio: the "
+             "image's mean over the truth's, averaged over the repetitions (target for SPPM: within 1%).", "",
+             "## Targets", "", targets(result), "", "## All rows", "",
+             *table(["scene", "integrator", "flags", "spp / iterations", "time min (s)", "time median (s)",
+                     "relMSE region", "relMSE region less truth", "relMSE image", "relMSE image less truth",
+                     "gain at equal time", "mean ratio"],
+                    [[r["scene"], r["integrator"], flag_words(r["flags"]), str(r["spp"]), f"{r['time_s']['min']:.3f}",
+                      f"{r['time_s']['median']:.3f}", f"{r['relmse_region']:.4g}",
+                      f"{r['relmse_region_less_truth']:.4g}", f"{r['relmse_image']:.4g}",
+                      f"{r['relmse_image_less_truth']:.4g}", cell(r.get("gain_equal_time"), "{:.2f}x"),
+                      f"{r['mean_ratio']:.4f}"] for r in result["rows"]])]
     return "\n".join(lines) + "\n"
 
 
+def update_analysis(result, out):
+    """analysis.md's generated block in --out (bench/results'), when there is one: the targets' table and
+    where it comes from."""
+    analysis = os.path.join(out, "analysis.md")
+    if not os.path.exists(analysis):
+        return
+    with open(analysis) as f:
+        text = f.read()
+    pattern = re.compile(r"(<!-- sppm_caustic:begin -->\n).*?(<!-- sppm_caustic:end -->)", re.S)
+    if not pattern.search(text):
+        raise SystemExit(f"sppm_caustic: {analysis} has no <!-- sppm_caustic:begin --> block")
+    meta = result["meta"]
+    words = (f"From `python3 bench/sppm_caustic.py` at commit {meta['commit']}, {meta['date']} "
+             f"(bench/results/sppm_caustic.md, {result['repeats']} interleaved repetitions, load average "
+             f"{result['load']['min']:.1f}-{result['load']['max']:.1f}):\n\n{targets(result)}\n")
+    with open(analysis, "w") as f:
+        f.write(pattern.sub(lambda m: m.group(1) + words + m.group(2), text))
+
+
 def main():
-    args = study_arguments(__doc__)
-    start = time.time()
-    with tempfile.TemporaryDirectory(prefix="wavepath-sppm-") as scratch:
-        os.environ.setdefault("WAVEPATH_CACHE_DIR", os.path.join(scratch, "program-cache"))
-        binary = os.path.abspath(args.binary)
-        peer = MitsubaPeer()
-        meta = run_meta(binary, peer)
-        converged = peer.converged(SCENE, SIZE, TRUTH_SPP, MAX_DEPTH, args.cache)
-        mask = region_mask()
-        truth = np.asarray(converged.image, dtype=np.float64)
-        truth_floor = float(np.mean(converged.variance[mask] / (truth[mask] ** 2 + 1e-2)))
-        rows = measure(Runner(binary, scratch), truth, args.repeats)
-    result = {"meta": meta, "repeats": args.repeats, "region": REGION, "truth_spp": TRUTH_SPP,
-              "truth_floor_region": truth_floor, "rows": rows, "elapsed_s": time.time() - start}
-    with open(os.path.join(args.out, "sppm_caustic.json"), "w") as f:
-        json.dump(result, f, indent=1)
-    with open(os.path.join(args.out, "sppm_caustic.md"), "w") as f:
-        f.write(markdown(meta, rows, args.repeats, truth_floor))
-    print(f"bench: wrote {args.out}/sppm_caustic.md in {result['elapsed_s']:.0f} s")
+    result, args = run_study(__doc__, "sppm_caustic", measure, markdown)
+    update_analysis(result, args.out)
 
 
 if __name__ == "__main__":
