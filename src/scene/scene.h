@@ -48,7 +48,7 @@ struct RenderSettings {
     bool mis = true;  // with nee: light samples and BSDF-sampled emitter hits combined by the power heuristic
     Hemisphere hemisphere = Hemisphere::Cosine;
     Integrator integrator = Integrator::Path;
-    SppmSettings sppm;  // with Integrator::Sppm
+    SppmSettings sppm = {};  // with Integrator::Sppm
 };
 
 enum class MaterialType { Diffuse, Mirror, Glass, Emitter };

@@ -299,7 +299,7 @@ TEST(Overrides, ReplaceOnlyWhatIsGiven) {
     Scene scene;
     scene.camera.width = 32;
     scene.camera.height = 24;
-    scene.render = RenderSettings{16, 8, 3, 5};
+    scene.render = RenderSettings{.spp = 16, .max_depth = 8, .rr_depth = 3, .seed = 5};
     RenderOverrides overrides;
     overrides.spp = 2;
     overrides.height = 10;
