@@ -62,8 +62,8 @@ def described(stats):
     if sppm:
         rates += (f" (camera passes), {sppm['photon_rays'] / stats['time_s'] / 1e6:.2f} Mrays/s photon rays, "
                   f"a mean final radius of {sppm['mean_radius']:.3g}")
-    where = (f"on {stats['threads']} host threads" + (", tracing with Embree" if stats["estimator"].endswith("embree") else "")
-             if stats["backend"] == "reference"
+    embree = ", tracing with Embree" if stats["estimator"].endswith("embree") else ""
+    where = (f"on {stats['threads']} host threads{embree}" if stats["backend"] == "reference"
              else "on this machine's default OpenCL device")
     return (f"`{stats['command']}` ({stats['width']}x{stats['height']}, {work}, the {stats['backend']} backend"
             f"{' (--backend auto)' if stats.get('backend_choice') else ''} {where}) took {stats['time_s']:.1f} s: "
