@@ -11,10 +11,8 @@ const char* backend_name(LaneProgram::Backend backend) {
 
 unsigned default_lanes(const LaneProgram& program, const DeviceInfo& device) {
     // A GPU runs work items in SIMD already; on a CPU a work item's vector
-    // code is the only SIMD PoCL gives (kernels/shared/prelude.h). The
-    // kernels also compile 4 and 16 lanes (--lanes); the defaults stay at the
-    // 8 measured (bench/results/defaults.md) until bench/run.py --series lanes
-    // shows another count faster.
+    // code is the only SIMD PoCL gives (kernels/shared/prelude.h). The counts
+    // are bench/run.py --series lanes' (bench/results/lanes.md).
     if (device.type != "CPU") return 1;
     switch (program.backend) {
         case LaneProgram::Backend::Wavefront:
@@ -26,8 +24,11 @@ unsigned default_lanes(const LaneProgram& program, const DeviceInfo& device) {
             // Not for meshes: a lane's BVH traversal diverges from the
             // others' at every node, and a work item waits for its longest
             // path, so whole paths of 8 such lanes ran slower than one lane
-            // (bench/results/analysis.md, "Lanes with meshes").
-            return program.meshes ? 1 : 8;
+            // (bench/results/analysis.md, "Lanes with meshes"). Without
+            // meshes, as many lanes as the device's preferred float vector
+            // holds, 16 on AVX-512, measured faster than 8 there.
+            if (program.meshes) return 1;
+            return device.preferred_float_vector_width >= 16 ? 16 : 8;
     }
     return 1;
 }

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "megakernel/megakernel_renderer.h"
+#include "opencl/device.h"
 #include "reference/reference_renderer.h"
 #include "support/image_statistics.h"
 #include "support/path_agreement.h"
@@ -35,10 +36,15 @@ TEST(Megakernel, OneSampleMatchesReferencePathForPathWithEveryLaneCount) {
     }
 }
 
-TEST(Megakernel, UsesEightLanesOnCpus) {
+// Without meshes on a CPU: as many lanes as the preferred float vector
+// holds where that is 16 (AVX-512), else 8 (bench/results/lanes_megakernel.md).
+TEST(Megakernel, UsesTheVectorWidthsLanesOnCpus) {
+    const DeviceInfo device = choose_device("");
+    ASSERT_EQ(device.type, "CPU") << "PoCL's devices are CPUs";
     MegakernelReport report;
     render_megakernel(test::small_room(8, 1), {}, {}, &report);
-    EXPECT_EQ(report.lanes, 8u) << "PoCL's devices are CPUs";
+    EXPECT_EQ(report.lanes, device.preferred_float_vector_width >= 16 ? 16u : 8u)
+        << "preferred float vector width " << device.preferred_float_vector_width;
 }
 
 // Both OpenCL backends run the same float code per vertex and accumulate each
