@@ -175,12 +175,15 @@ TEST_F(MpiCli, AdaptiveSamplingGivesTheOneProcessBits) {
 // rendered: one error line naming the rank, its exit code, no output.
 TEST_F(MpiCli, ARankThatCannotStartFailsTheJobWithOneLine) {
     const std::string out = out_ / "out.pfm";
-    std::vector<std::string> args = small_room_render_args(out, 4);
-    const std::vector<std::string> missing{":", "-n",    "1", WAVEPATH_BINARY, "render", out_ / "missing.json", "-o",
-                                           out, "--spp", "4", "--wavefront",   "64"};
-    std::vector<std::string> with_missing = args;
-    with_missing.insert(with_missing.end(), missing.begin(), missing.end());
-    CommandResult r = run_on(1, with_missing);
+    // Rank 0 renders the small room; after mpirun's `:`, one more rank runs wavepath with `rank1`.
+    auto with_rank1 = [&](const std::vector<std::string>& rank1) {
+        std::vector<std::string> command = small_room_render_args(out, 4);
+        command.insert(command.end(), {":", "-n", "1", WAVEPATH_BINARY});
+        command.insert(command.end(), rank1.begin(), rank1.end());
+        return command;
+    };
+    CommandResult r =
+        run_on(1, with_rank1({"render", out_ / "missing.json", "-o", out, "--spp", "4", "--wavefront", "64"}));
     EXPECT_EQ(r.exit_code, 3) << r.err;
     EXPECT_NE(r.err.find("wavepath: error: rank 1: "), std::string::npos) << r.err;
     EXPECT_NE(r.err.find("missing.json"), std::string::npos) << r.err;
@@ -190,10 +193,7 @@ TEST_F(MpiCli, ARankThatCannotStartFailsTheJobWithOneLine) {
     std::string scene = read_text(kSmallRoomScene);
     scene.replace(scene.find("[14, 14, 14]"), 12, "[15, 14, 14]");
     write_text(brighter, scene);
-    std::vector<std::string> other_scene = args;
-    other_scene.insert(other_scene.end(), {":", "-n", "1", WAVEPATH_BINARY, "render", brighter, "-o", out, "--spp", "4",
-                                           "--wavefront", "64"});
-    r = run_on(1, other_scene);
+    r = run_on(1, with_rank1({"render", brighter, "-o", out, "--spp", "4", "--wavefront", "64"}));
     EXPECT_EQ(r.exit_code, 3) << r.err;
     EXPECT_NE(r.err.find("wavepath: error: rank 1 loaded another scene than rank 0 (their content differs): every "
                          "machine needs the same scene and mesh files"),
@@ -202,21 +202,13 @@ TEST_F(MpiCli, ARankThatCannotStartFailsTheJobWithOneLine) {
     EXPECT_FALSE(std::filesystem::exists(out));
 
     // Another spp: not part of the render's identity (the seed is), but of the plan.
-    std::vector<std::string> other_spp = args;
-    other_spp.insert(other_spp.end(), {":", "-n", "1", WAVEPATH_BINARY});
-    const std::vector<std::string> five = small_room_render_args(out, 5);
-    other_spp.insert(other_spp.end(), five.begin(), five.end());
-    r = run_on(1, other_spp);
+    r = run_on(1, with_rank1(small_room_render_args(out, 5)));
     EXPECT_EQ(r.exit_code, 2) << r.err;
     EXPECT_NE(r.err.find("wavepath: error: rank 1 was given other settings than rank 0"), std::string::npos) << r.err;
     EXPECT_FALSE(std::filesystem::exists(out));
 
     // Another estimator: what --backend auto's choices on two kinds of device would give.
-    std::vector<std::string> other_estimator = args;
-    other_estimator.insert(other_estimator.end(), {":", "-n", "1", WAVEPATH_BINARY});
-    const std::vector<std::string> reference = small_room_render_args(out, 4, {"--backend", "reference"});
-    other_estimator.insert(other_estimator.end(), reference.begin(), reference.end());
-    r = run_on(1, other_estimator);
+    r = run_on(1, with_rank1(small_room_render_args(out, 4, {"--backend", "reference"})));
     EXPECT_EQ(r.exit_code, 2) << r.err;
     EXPECT_NE(r.err.find("wavepath: error: rank 1 renders with another estimator than rank 0 (another backend: "
                          "--backend auto chooses per kind of device; give --backend)"),
