@@ -9,6 +9,7 @@ cached in bench/out/converged-cache as bench/run.py caches them), less that imag
 time. Measured per scene at 256x256 for:
 - the default command, `wavepath render scene.json` with nothing but the size, spp and the outputs (and a seed per
   run: one image's relMSE is itself noisy, so each run renders other samples);
+- the default command with --sampler independent (what its Sobol' points give, like for like);
 - each explicit backend (--backend wavefront, megakernel, reference);
 - Mitsuba llvm_ad_rgb with its independent sampler (the peer of the targets) and with each of its other samplers,
   to name its best for the scene.
@@ -44,6 +45,7 @@ CONVERGED_SPP = 4096
 BACKENDS = ["wavefront", "megakernel", "reference"]  # the explicit ones, beside the default command; --backend auto ranks them
 MITSUBA_SAMPLERS = ["independent", "stratified", "multijitter", "orthogonal", "ldsampler"]
 PEER = "mitsuba-independent"  # what the targets are stated against
+INDEPENDENT = "default-independent"  # the default command with --sampler independent: what the Sobol' points give
 
 
 def load_average():
@@ -73,9 +75,11 @@ def intersector(estimator):
 
 
 def configurations():
-    """(label, how): how is ("wavepath", backend or None for the default command) or ("mitsuba", sampler)."""
-    return ([("default", ("wavepath", None))] + [(b, ("wavepath", b)) for b in BACKENDS] +
-            [(f"mitsuba-{s}", ("mitsuba", s)) for s in MITSUBA_SAMPLERS])
+    """(label, how): how is ("wavepath", backend or None for the default command, flags) or ("mitsuba", sampler,
+    flags)."""
+    return ([("default", ("wavepath", None, [])), (INDEPENDENT, ("wavepath", None, ["--sampler", "independent"]))] +
+            [(b, ("wavepath", b, [])) for b in BACKENDS] +
+            [(f"mitsuba-{s}", ("mitsuba", s, [])) for s in MITSUBA_SAMPLERS])
 
 
 def measure_scene(runner, peer, scene, spp, repeats, cache):
@@ -86,13 +90,13 @@ def measure_scene(runner, peer, scene, spp, repeats, cache):
     noise = rel_noise(truth.variance, truth.image)
     runs = {label: [] for label, _ in configurations()}
     for repetition in range(repeats):
-        for label, (renderer, what) in configurations():
+        for label, (renderer, what, flags) in configurations():
             load = load_average()
             if renderer == "mitsuba":
                 r = peer.render(path, SIZE, spp, seed=repetition, sampler=what)
                 backend, traced_by = "mitsuba " + what, None
             else:
-                r = runner.render(path, what, SIZE, SIZE, spp, image=True, seed=repetition)
+                r = runner.render(path, what, SIZE, SIZE, spp, extra=flags, image=True, seed=repetition)
                 backend, traced_by = r["backend"], intersector(r["estimator"])
             relmse = rel_mse(r["image"], truth.image) - noise
             runs[label].append({"repetition": repetition, "backend": backend, "intersector": traced_by,
@@ -146,11 +150,16 @@ def summarise(scene_runs):
                for b, n in zip(ranked, ranked[1:] + [None])]
     pairs = {f"{b}/{n}": ratio(runs[b], runs[n], configs[b], configs[n]) for b in BACKENDS for n in BACKENDS
              if b != n}
+    sobol = {"efficiency": ratio(runs["default"], runs[INDEPENDENT], configs["default"], configs[INDEPENDENT]),
+             "accuracy_per_sample": configs[INDEPENDENT]["relmse_x_spp"] / configs["default"]["relmse_x_spp"],
+             "samples_s": spread([d["samples_per_s"] / i["samples_per_s"]
+                                  for d, i in zip(runs["default"], runs[INDEPENDENT])])}
     return {"scene": scene_runs["scene"], "spp": scene_runs["spp"], "meshes": scene_runs["meshes"],
             "truth_spp": scene_runs["truth_spp"], "truth_noise_relmse": scene_runs["truth_noise_relmse"],
             "truth_file": scene_runs["truth_file"], "configurations": configs,
             "mitsuba_best_sampler": best_sampler.removeprefix("mitsuba-"),
             "wavefront_over_megakernel_samples_s": spread(wavefront_over_megakernel), "ranking": ranking,
+            "sobol_over_independent": sobol,
             "backend_pairs": pairs}
 
 
@@ -271,7 +280,15 @@ def markdown(results):
                             f", +-{r['over_next']['ratio_se']:.2f})" if "over_next" in r else "")
             for r in s["ranking"])
         best = s["configurations"]["mitsuba-" + s["mitsuba_best_sampler"]]
-        lines += ["", f"- Mitsuba's most efficient sampler here: {s['mitsuba_best_sampler']} "
+        g = s["sobol_over_independent"]
+        lines += ["", f"- The default command's Sobol' sampler over its independent numbers (`--sampler independent`): "
+                      f"{g['efficiency']['ratio']:.2f}x the efficiency (per repetition "
+                      f"{g['efficiency']['per_repetition']['min']:.2f} / {g['efficiency']['per_repetition']['median']:.2f}"
+                      f" / {g['efficiency']['per_repetition']['max']:.2f}): {g['accuracy_per_sample']:.2f}x the "
+                      f"accuracy per sample (relMSE x spp, independent's over Sobol's) at "
+                      f"{g['samples_s']['median']:.2f}x the samples/s (per repetition {g['samples_s']['min']:.2f}-"
+                      f"{g['samples_s']['max']:.2f}).",
+                  f"- Mitsuba's most efficient sampler here: {s['mitsuba_best_sampler']} "
                       f"({best['vs_mitsuba']['ratio']:.2f}x its independent sampler's efficiency).",
                   f"- The wavefront's samples/s over the megakernel's, per repetition: {w['min']:.2f} (min), "
                   f"{w['median']:.2f} (median), {w['max']:.2f} (max).",

@@ -60,7 +60,8 @@ def main():
         films = {
             "other_settings": render(binary, scratch, "other_settings", "--seed", "1"),
             "other_size": render(binary, scratch, "other_size", height=8),
-            "other_estimator": render(binary, scratch, "other_estimator", "--backend", "reference"),
+            "other_estimator": render(binary, scratch, "other_estimator", "--backend", "reference",
+                                      "--intersector", "bvh"),
             "more_samples": render(binary, scratch, "more_samples", spp=3),
             "not_from_the_start": render(binary, scratch, "not_from_the_start", "--samples", "1:2"),
         }
@@ -98,7 +99,8 @@ def main():
         "backwards_range": (resign(backwards), "corrupted header (work items 10 to 5)"),
         "other_scene": (films["other_scene"], "rendered from another scene (its content differs)"),
         "other_settings": (films["other_settings"], "rendered with other settings (max_depth, rr_depth, seed, nee, mis, "
-                                                    "hemisphere or adaptive sampling differ)"),
+                                                    "hemisphere, sampler, adaptive sampling or the "
+                                                    "integrator and its settings differ)"),
         "other_size": (films["other_size"], "a film of 4x8 pixels, this render is 4x4"),
         "other_estimator": (films["other_estimator"], "rendered by the reference-float estimator, this render uses "
                                                       "opencl"),

@@ -11,8 +11,8 @@ wavepath code agreeing with itself. The mapping (docs/mitsuba.md):
   pixel, as wavepath's film does), RGB float;
 - render: `path` integrator with Mitsuba's `max_depth` = ours + 1 (Mitsuba
   counts path segments, we count scattering events), `rr_depth` = ours + 1;
-  `independent` sampler. `nee`, `mis` and `hemisphere` choose wavepath's estimator,
-  not the image, and have no counterpart;
+  `independent` sampler. `nee`, `mis`, `hemisphere` and `sampler` choose
+  wavepath's estimator, not the image, and have no counterpart;
 - diffuse: `twosided` `diffuse`; mirror: `twosided` `conductor` of material
   `none` (reflectance 1) scaled by `specular_reflectance`; glass: `dielectric`
   with `int_ior` = ior and `ext_ior` 1 (the outside is the normal's side in
@@ -66,7 +66,7 @@ class MitsubaSceneError(Exception):
 # so that a feature added to wavepath is never silently dropped from Mitsuba's image.
 TOP_KEYS = {"camera", "render", "background", "materials", "shapes"}
 CAMERA_KEYS = {"position", "look_at", "up", "fov_y", "width", "height"}
-RENDER_KEYS = {"spp", "max_depth", "rr_depth", "seed", "nee", "mis", "hemisphere"}
+RENDER_KEYS = {"spp", "max_depth", "rr_depth", "seed", "nee", "mis", "hemisphere", "sampler"}
 MATERIAL_KEYS = {
     "diffuse": {"type", "albedo", "emission", "two_sided"},
     "mirror": {"type", "reflectance"},

@@ -14,6 +14,7 @@
 #include "shared/materials/bsdf.h"
 #include "shared/prelude.h"
 #include "shared/rng.h"
+#include "shared/sampler.h"
 #include "shared/triangle.h"
 #ifdef WP_HAS_DIFFUSE
 #include "shared/direct_light.h"
@@ -54,6 +55,11 @@
 #else
 #define WP_USES_SHADING_NORMALS 0
 #endif
+#ifdef WP_INDEPENDENT_SAMPLER
+#define WP_USES_SOBOL 0
+#else
+#define WP_USES_SOBOL 1
+#endif
 #ifdef WP_UNIFORM_HEMISPHERE
 #define WP_USES_UNIFORM_HEMISPHERE 1
 #else
@@ -62,8 +68,8 @@
 
 /* The camera ray direction of sample s of pixel px. */
 WP_FN vec3 camera_ray_direction(__global const SceneHeader *scene, lane_uint px, lane_uint s) {
-    return pixel_ray_direction(scene, px, rng_uniform(scene->seed, px, s, 0u, DIM_FILM_X),
-                               rng_uniform(scene->seed, px, s, 0u, DIM_FILM_Y));
+    CameraPair film = camera_pair(scene->seed, px, s, 0u, DIM_FILM_X, WP_USES_SOBOL);
+    return pixel_ray_direction(scene, px, film.u, film.v);
 }
 
 #ifdef WP_MIS
@@ -251,14 +257,15 @@ WP_FN LightPoint sample_light_shape(WP_SCENE_PARAMS, lane_uint light, vec3 x, re
 WP_FN lane_int sample_direct_light(WP_SCENE_PARAMS, lane_uint pixel, lane_uint sample, lane_uint bounce, vec3 x,
                                    real x_error, vec3 nf, vec3 ns, vec3 throughput, vec3 albedo, DirectLight *direct) {
     uint seed = scene->seed;
-    lane_uint light = select_light(light_cdf, LIGHT_COUNT, rng_uniform(seed, pixel, sample, bounce, DIM_LIGHT_SELECT));
+    lane_uint light = select_light(light_cdf, LIGHT_COUNT,
+                                   camera_uniform(seed, pixel, sample, bounce, DIM_LIGHT_SELECT, WP_USES_SOBOL));
 #ifdef WP_HAS_MESH_LIGHTS
-    real u_triangle = rng_uniform(seed, pixel, sample, bounce, DIM_LIGHT_TRIANGLE);
+    real u_triangle = camera_uniform(seed, pixel, sample, bounce, DIM_LIGHT_TRIANGLE, WP_USES_SOBOL);
 #else
     real u_triangle = REAL(0.0);
 #endif
-    LightPoint p = sample_light_shape(WP_SCENE_ARGS, light, x, rng_uniform(seed, pixel, sample, bounce, DIM_LIGHT_U),
-                                      rng_uniform(seed, pixel, sample, bounce, DIM_LIGHT_V), u_triangle);
+    CameraPair point = camera_pair(seed, pixel, sample, bounce, DIM_LIGHT_U, WP_USES_SOBOL);
+    LightPoint p = sample_light_shape(WP_SCENE_ARGS, light, x, point.u, point.v, u_triangle);
     Material emitter = material_at(materials, p.material);
     *direct = diffuse_direct_light(x, x_error, nf, ns, throughput, albedo, p.sample, p.magnitude,
                                    light_selection_pmf(light_cdf, light), emitter.emission, emitter.two_sided,
@@ -286,11 +293,12 @@ WP_FN BsdfRandom camera_bsdf_random(uint seed, lane_uint px, lane_uint s, lane_u
     BsdfRandom random;
     random.lobe = random.u = random.v = REAL(0.0);
 #ifdef WP_HAS_GLASS
-    random.lobe = rng_uniform(seed, px, s, bounce, DIM_BSDF_LOBE);
+    random.lobe = camera_uniform(seed, px, s, bounce, DIM_BSDF_LOBE, WP_USES_SOBOL);
 #endif
 #ifdef WP_HAS_DIFFUSE
-    random.u = rng_uniform(seed, px, s, bounce, DIM_BSDF_U);
-    random.v = rng_uniform(seed, px, s, bounce, DIM_BSDF_V);
+    CameraPair direction = camera_pair(seed, px, s, bounce, DIM_BSDF_U, WP_USES_SOBOL);
+    random.u = direction.u;
+    random.v = direction.v;
 #endif
     return random;
 }
@@ -356,7 +364,7 @@ WP_FN PathStep step_from_vertex(Vertex v, vec3 d, vec3 throughput, real eta_scal
     step.eta_scale = eta_scale * step.scattered.eta_squared;
     RouletteOutcome roulette =
         russian_roulette(v3_mul(throughput, step.scattered.weight), step.eta_scale, bounce + 1u >= rr_depth,
-                         rng_uniform(seed, px, s, bounce, DIM_ROULETTE));
+                         camera_uniform(seed, px, s, bounce, DIM_ROULETTE, WP_USES_SOBOL));
     step.throughput = roulette.throughput;
     lane_uint nonfinite = 0u;
     lane_int finite = throughput_is_finite(step.throughput, &nonfinite);

@@ -4,23 +4,28 @@
  * wavefront kernels retrace the reference's paths exactly.
  *
  * The hash is pcg4d (Jarzynski and Olano, "Hash Functions for GPU Rendering",
- * JCGT 2020), a 4-lane PCG variant with good avalanche on correlated inputs. */
+ * JCGT 2020), a 4-lane PCG variant with good avalanche on correlated inputs.
+ * Photons draw these numbers; camera samples draw them through
+ * shared/sampler.h, which makes their 2-D integrals' pairs Sobol' points. */
 #ifndef WP_SHARED_RNG_H
 #define WP_SHARED_RNG_H
 
 #include "shared/prelude.h"
 
-/* Sample dimensions consumed at each bounce. */
+/* Sample dimensions consumed at each bounce. A camera sample draws the
+ * first DIM_SOBOL_PAIRS pairs, 2k and 2k + 1, as 2-D Sobol' points and the
+ * rest as independent numbers (shared/sampler.h). */
 #define DIM_FILM_X 0u /* pixel jitter, bounce 0 only */
 #define DIM_FILM_Y 1u
-#define DIM_LIGHT_SELECT 2u /* which light next-event estimation samples */
-#define DIM_LIGHT_U 3u      /* point on that light */
-#define DIM_LIGHT_V 4u
-#define DIM_BSDF_LOBE 5u /* reflect or refract at glass */
-#define DIM_BSDF_U 6u    /* scattered direction */
-#define DIM_BSDF_V 7u
-#define DIM_ROULETTE 8u
-#define DIM_LIGHT_TRIANGLE 9u /* which triangle of a mesh light */
+#define DIM_LIGHT_U 2u /* point on the light next-event estimation samples */
+#define DIM_LIGHT_V 3u
+#define DIM_BSDF_U 4u /* scattered direction */
+#define DIM_BSDF_V 5u
+#define DIM_SOBOL_PAIRS 3u
+#define DIM_LIGHT_SELECT 6u   /* which light */
+#define DIM_LIGHT_TRIANGLE 7u /* which triangle of a mesh light */
+#define DIM_BSDF_LOBE 8u      /* reflect or refract at glass */
+#define DIM_ROULETTE 9u
 /* A photon's (SPPM, shared/photons.h): keyed by (photon, iteration) where a
  * camera sample is by (pixel, sample), with dimensions of their own, so that
  * photon k and pixel k of one iteration never share a number. Emission at
@@ -74,8 +79,11 @@ WP_FN lane_uint rng_bits(uint seed, lane_uint pixel, lane_uint sample, lane_uint
 
 /* Uniform in [0, 1) with 24 bits: exactly representable in float, so the
  * float and double builds draw identical numbers. */
+WP_FN real uniform_from_bits(lane_uint bits) { return TO_REAL(bits >> 8u) * REAL(5.9604644775390625e-8); }
+
+/* rng_bits as a uniform number. */
 WP_FN real rng_uniform(uint seed, lane_uint pixel, lane_uint sample, lane_uint bounce, uint dimension) {
-    return TO_REAL(rng_bits(seed, pixel, sample, bounce, dimension) >> 8u) * REAL(5.9604644775390625e-8);
+    return uniform_from_bits(rng_bits(seed, pixel, sample, bounce, dimension));
 }
 
 /* The random number of photon `photon` of SPPM iteration `iteration` (a

@@ -21,6 +21,7 @@
 #include "shared/photons.h"
 #include "shared/prelude.h"
 #include "shared/rng.h"
+#include "shared/sampler.h"
 #include "shared/sampling.h"
 #include "shared/sppm.h"
 #include "shared/triangle.h"

@@ -81,6 +81,11 @@ void add_render_options(CLI::App& render, RenderCommand& command) {
         .add_option("--hemisphere", o.hemisphere,
                     "Diffuse sampling: cosine or uniform hemisphere (overrides render.hemisphere)")
         ->check(CLI::IsMember({"cosine", "uniform"}));
+    render
+        .add_option("--sampler", o.sampler,
+                    "A camera sample's numbers: sobol (Owen-scrambled Sobol' points for each vertex's pixel, light "
+                    "and BSDF samples: less noise per sample) or independent (overrides render.sampler)")
+        ->check(CLI::IsMember({"sobol", "independent"}));
 
     render
         .add_option("--integrator", o.integrator,
@@ -143,6 +148,8 @@ void apply_overrides(const RenderOverrides& overrides, Scene& scene) {
     if (overrides.mis) scene.render.mis = *overrides.mis == "on";
     if (overrides.hemisphere)
         scene.render.hemisphere = *overrides.hemisphere == "uniform" ? Hemisphere::Uniform : Hemisphere::Cosine;
+    if (overrides.sampler)
+        scene.render.sampler = *overrides.sampler == "independent" ? Sampler::Independent : Sampler::Sobol;
     if (overrides.width) scene.camera.width = *overrides.width;
     if (overrides.height) scene.camera.height = *overrides.height;
     if (overrides.integrator)

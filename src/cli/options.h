@@ -17,6 +17,7 @@ struct RenderOverrides {
     std::optional<int> spp, width, height, max_depth, rr_depth;
     std::optional<std::int64_t> seed;                 // wide enough to reject out-of-range values with a clear message
     std::optional<std::string> nee, mis, hemisphere;  // "on"/"off", "on"/"off", "cosine"/"uniform"
+    std::optional<std::string> sampler;               // "sobol"/"independent"
     std::optional<std::string> integrator;            // "path"/"sppm"
     std::optional<std::int64_t> photons;              // sppm: photons per iteration
     std::optional<double> initial_radius, alpha;      // sppm

@@ -277,8 +277,8 @@ void check_film_matches(const std::string& path, const FilmFile& file, const Ren
     if (file.identity.scene != identity.scene) refuse(path, "rendered from another scene (its content differs)");
     if (file.identity.settings != identity.settings)
         refuse(path,
-               "rendered with other settings (max_depth, rr_depth, seed, nee, mis, hemisphere, adaptive "
-               "sampling or the integrator and its settings differ)");
+               "rendered with other settings (max_depth, rr_depth, seed, nee, mis, hemisphere, sampler, "
+               "adaptive sampling or the integrator and its settings differ)");
 }
 
 }  // namespace wp

@@ -68,7 +68,7 @@ std::uint64_t scene_hash(const Scene& scene) {
 std::uint64_t settings_hash(const Scene& scene, const AdaptiveSampling& adaptive) {
     const RenderSettings& r = scene.render;
     Hasher h;
-    h.add(r.max_depth).add(r.rr_depth).add(r.seed).add(r.nee).add(r.mis).add(r.hemisphere);
+    h.add(r.max_depth).add(r.rr_depth).add(r.seed).add(r.nee).add(r.mis).add(r.hemisphere).add(r.sampler);
     if (adaptive.on()) h.add(adaptive.threshold).add(adaptive.min_spp);
     if (r.integrator == Integrator::Sppm)
         h.add(r.integrator).add(sppm_photons(scene)).add(sppm_initial_radius(scene)).add(r.sppm.alpha);

@@ -17,7 +17,7 @@ struct RenderIdentity {
     // shapes and mesh triangles as loaded (not of the file's text: formatting
     // and key order do not matter, but any number that changes the image does).
     std::uint64_t scene = 0;
-    // FNV-1a 64 of max_depth, rr_depth, seed, nee, mis and hemisphere, with
+    // FNV-1a 64 of max_depth, rr_depth, seed, nee, mis, hemisphere and sampler, with
     // adaptive sampling its threshold and minimum samples, and with the sppm
     // integrator its photons per iteration, initial radius and alpha. Not spp: a
     // film's sums over its first N work items are the same for any spp, so a

@@ -37,11 +37,12 @@ std::vector<std::pair<const char*, const char*>> features_in_use(const FeatureSe
 
 }  // namespace
 
-std::string kernel_build_options(const FeatureSet& features, Hemisphere hemisphere) {
+std::string kernel_build_options(const FeatureSet& features, const RenderSettings& render) {
     std::string options;
     for (const auto& [name, macro] : features_in_use(features))
         if (macro) options += std::string(" -D") + macro;
-    if (hemisphere == Hemisphere::Uniform) options += " -DWP_UNIFORM_HEMISPHERE";
+    if (render.hemisphere == Hemisphere::Uniform) options += " -DWP_UNIFORM_HEMISPHERE";
+    if (render.sampler == Sampler::Independent) options += " -DWP_INDEPENDENT_SAMPLER";
     return options.empty() ? options : options.substr(1);
 }
 
@@ -59,7 +60,7 @@ std::string shape_count_options(const Scene& scene) {
 
 std::string program_build_options(const Scene& scene, const FeatureSet& kernel_features, bool film_squares,
                                   const std::string& backend_options, unsigned lanes) {
-    return kernel_build_options(kernel_features, scene.render.hemisphere) + film_build_options(film_squares) +
+    return kernel_build_options(kernel_features, scene.render) + film_build_options(film_squares) +
            shape_count_options(scene) + backend_options + " -DWP_LANES=" + std::to_string(lanes);
 }
 

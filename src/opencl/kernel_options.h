@@ -10,10 +10,11 @@ namespace wp {
 
 // "-DWP_HAS_SPHERES -DWP_HAS_DIFFUSE ...", one option per shape, material
 // and light kind in use, -DWP_NEE when next-event estimation runs (without
-// it emission counts at every hit) and -DWP_UNIFORM_HEMISPHERE for uniform
-// diffuse sampling. Never fast-math options: the kernels must agree with the
+// it emission counts at every hit), -DWP_UNIFORM_HEMISPHERE for uniform
+// diffuse sampling and -DWP_INDEPENDENT_SAMPLER for render.sampler
+// "independent". Never fast-math options: the kernels must agree with the
 // reference.
-std::string kernel_build_options(const FeatureSet& features, Hemisphere hemisphere);
+std::string kernel_build_options(const FeatureSet& features, const RenderSettings& render);
 
 // Shapes and lights of each kind per type a kernel unrolls its loops over.
 inline constexpr std::size_t kMaxUnrolledCount = 32;

@@ -2,7 +2,7 @@
 // at a time, as a plain loop over the path in scalar code over ReferenceScene<Real>. Every formula
 // at a vertex is the shared code's (kernels/shared: materials/, lights.h, estimator.h,
 // direct_light.h, camera.h), which the kernels call too; this file reaches the scene's data and
-// decides the path's course. Every random number comes from rng_uniform(seed, pixel, sample,
+// decides the path's course. Every random number comes from camera_uniform(seed, pixel, sample,
 // bounce, dimension), so a sample's path depends on nothing but those five numbers.
 //
 // Choices the wavefront kernels must repeat to retrace these paths exactly:
@@ -51,10 +51,21 @@ void add_finite(Vec3<Real>& radiance, const Vec3<Real>& term, NonfiniteStage sta
 template <class Real>
 struct SampleRng {
     std::uint32_t seed, pixel, sample;
+    bool sobol;  // render.sampler
     Real operator()(std::uint32_t bounce, std::uint32_t dimension) const {
-        return SharedMath<Real>::rng_uniform(seed, pixel, sample, bounce, dimension);
+        return SharedMath<Real>::camera_uniform(seed, pixel, sample, bounce, dimension, sobol);
+    }
+    // Both numbers of the Sobol' pair whose first dimension is `first_dimension`.
+    typename SharedMath<Real>::CameraPair pair(std::uint32_t bounce, std::uint32_t first_dimension) const {
+        return SharedMath<Real>::camera_pair(seed, pixel, sample, bounce, first_dimension, sobol);
     }
 };
+
+// The random numbers of sample `sample` of pixel `pixel`, as the scene's render settings draw them.
+template <class Real>
+SampleRng<Real> sample_rng(const ReferenceScene<Real>& scene, std::uint32_t pixel, std::uint32_t sample) {
+    return {scene.render.seed, pixel, sample, scene.render.sampler == Sampler::Sobol};
+}
 
 template <class Real>
 struct Ray {
@@ -261,8 +272,8 @@ Vec3<Real> sample_direct_light(const ReferenceScene<Real>& scene, const Vec3<Rea
     using M = SharedMath<Real>;
     auto light_count = static_cast<std::uint32_t>(scene.lights.size());
     std::uint32_t index = M::select_light(scene.light_cdf.data(), light_count, rng(bounce, DIM_LIGHT_SELECT));
-    LightPoint<Real> p = sample_light(scene, scene.lights[index], x, rng(bounce, DIM_LIGHT_U), rng(bounce, DIM_LIGHT_V),
-                                      rng(bounce, DIM_LIGHT_TRIANGLE));
+    typename M::CameraPair point = rng.pair(bounce, DIM_LIGHT_U);
+    LightPoint<Real> p = sample_light(scene, scene.lights[index], x, point.u, point.v, rng(bounce, DIM_LIGHT_TRIANGLE));
     const auto& emitter = scene.materials[p.material];
     typename M::DirectLight direct =
         M::diffuse_direct_light(x, x_error, nf, ns, throughput, albedo, p.sample, p.magnitude,
@@ -275,10 +286,19 @@ Vec3<Real> sample_direct_light(const ReferenceScene<Real>& scene, const Vec3<Rea
     return direct.contribution;
 }
 
-// The random numbers of a camera path's BSDF sample at `bounce`.
+// The random numbers of a camera path's BSDF sample at `bounce`, drawn for
+// the material that uses them (a diffuse direction, a glass lobe), 0 else.
 template <class Real>
-typename SharedMath<Real>::BsdfRandom camera_bsdf_random(const SampleRng<Real>& rng, std::uint32_t bounce) {
-    return {rng(bounce, DIM_BSDF_LOBE), rng(bounce, DIM_BSDF_U), rng(bounce, DIM_BSDF_V)};
+typename SharedMath<Real>::BsdfRandom camera_bsdf_random(const SampleRng<Real>& rng, std::uint32_t bounce,
+                                                         MaterialType material) {
+    typename SharedMath<Real>::BsdfRandom random{Real(0), Real(0), Real(0)};
+    if (material == MaterialType::Glass) random.lobe = rng(bounce, DIM_BSDF_LOBE);
+    if (material == MaterialType::Diffuse) {
+        typename SharedMath<Real>::CameraPair direction = rng.pair(bounce, DIM_BSDF_U);
+        random.u = direction.u;
+        random.v = direction.v;
+    }
+    return random;
 }
 
 // Samples the material at a surface point reached along direction d, on the
@@ -362,7 +382,7 @@ Vec3<Real> trace_path(const ReferenceScene<Real>& scene, Ray<Real> ray, const Sa
             if (!M::camera_pass_bounces_from_visible_point(scene.nee, scene.mis)) break;
         }
         typename M::BsdfSample next = scatter(scene, material, ray.direction, front, nf, ns,
-                                              camera_bsdf_random(rng, bounce), WP_TRANSPORT_RADIANCE);
+                                              camera_bsdf_random(rng, bounce, material.type), WP_TRANSPORT_RADIANCE);
         if (!next.valid) break;
         throughput *= next.weight;
         ray = {M::offset_ray_origin(surface.point, next.leave_side, surface.error), next.direction};
@@ -388,8 +408,8 @@ template <class Real>
 Ray<Real> camera_ray(const ReferenceScene<Real>& scene, int px, int py, const SampleRng<Real>& rng) {
     using M = SharedMath<Real>;
     const auto& c = scene.camera;
-    return {c.position, M::pixel_direction(c.frame, Real(px), Real(py), Real(c.width), Real(c.height),
-                                           rng(0, DIM_FILM_X), rng(0, DIM_FILM_Y))};
+    typename M::CameraPair film = rng.pair(0, DIM_FILM_X);
+    return {c.position, M::pixel_direction(c.frame, Real(px), Real(py), Real(c.width), Real(c.height), film.u, film.v)};
 }
 
 // Radiance of one camera sample (finite: every addition was checked); with
@@ -398,7 +418,7 @@ template <class Real>
 Vec3<Real> trace_camera_sample(const ReferenceScene<Real>& scene, int px, int py, int sample, RayCounts& counts,
                                VisiblePoint<Real>* visible = nullptr) {
     auto pixel = static_cast<std::uint32_t>(py * scene.camera.width + px);
-    SampleRng<Real> rng{scene.render.seed, pixel, static_cast<std::uint32_t>(sample)};
+    SampleRng<Real> rng = sample_rng(scene, pixel, static_cast<std::uint32_t>(sample));
     return trace_path(scene, camera_ray(scene, px, py, rng), rng, counts, visible);
 }
 

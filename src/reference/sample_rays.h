@@ -20,7 +20,7 @@ inline SampleRays sample_rays(const ReferenceScene<float>& scene) {
     const auto& camera = scene.camera;
     for (int py = 0; py < camera.height; ++py) {
         for (int px = 0; px < camera.width; ++px) {
-            SampleRng<float> rng{scene.render.seed, std::uint32_t(py * camera.width + px), 0u};
+            SampleRng<float> rng = sample_rng(scene, std::uint32_t(py * camera.width + px), 0u);
             Ray<float> ray = camera_ray(scene, px, py, rng);
             rays.camera.push_back(ray);
             ShapeHit<float> hit = closest_hit(scene, ray);

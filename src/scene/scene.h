@@ -29,6 +29,10 @@ struct Camera {
 // estimator unbiased either way; cosine has the lower variance).
 enum class Hemisphere { Cosine, Uniform };
 
+// What a camera sample's numbers are: Owen-scrambled Sobol' points for each
+// vertex's 2-D integrals (kernels/shared/sampler.h), or independent numbers.
+enum class Sampler { Sobol, Independent };
+
 // What estimates each pixel: path tracing, or stochastic progressive photon
 // mapping (docs/architecture.md, "Photon mapping"), whose iterations `spp` counts.
 enum class Integrator { Path, Sppm };
@@ -47,6 +51,7 @@ struct RenderSettings {
     bool nee = true;  // next-event estimation; off: emission is counted at every hit (pure BSDF sampling)
     bool mis = true;  // with nee: light samples and BSDF-sampled emitter hits combined by the power heuristic
     Hemisphere hemisphere = Hemisphere::Cosine;
+    Sampler sampler = Sampler::Sobol;
     Integrator integrator = Integrator::Path;
     SppmSettings sppm = {};  // with Integrator::Sppm
 };

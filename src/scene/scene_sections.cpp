@@ -321,6 +321,13 @@ Hemisphere read_hemisphere(const JsonField& field) {
     field.fail("unknown hemisphere sampling " + nlohmann::json(name).dump() + " (expected \"cosine\" or \"uniform\")");
 }
 
+Sampler read_sampler(const JsonField& field) {
+    std::string name = field.string();
+    if (name == "sobol") return Sampler::Sobol;
+    if (name == "independent") return Sampler::Independent;
+    field.fail("unknown sampler " + nlohmann::json(name).dump() + " (expected \"sobol\" or \"independent\")");
+}
+
 Integrator read_integrator(const JsonField& field) {
     std::string name = field.string();
     if (name == "path") return Integrator::Path;
@@ -345,8 +352,8 @@ SppmSettings read_sppm(const JsonField& field, Integrator integrator) {
 }
 
 RenderSettings read_render(const JsonField& field) {
-    field.allow_only_keys({"spp", "max_depth", "rr_depth", "seed", "nee", "mis", "hemisphere", "integrator", "photons",
-                           "initial_radius", "alpha"});
+    field.allow_only_keys({"spp", "max_depth", "rr_depth", "seed", "nee", "mis", "hemisphere", "sampler", "integrator",
+                           "photons", "initial_radius", "alpha"});
     RenderSettings render;
     read_optional_integer(field, "spp", 1, kMaxSpp, render.spp);
     read_optional_integer(field, "max_depth", 0, kMaxDepthLimit, render.max_depth);
@@ -356,6 +363,7 @@ RenderSettings read_render(const JsonField& field) {
     if (std::optional<JsonField> mis = field.optional_member("mis")) render.mis = mis->boolean();
     if (std::optional<JsonField> hemisphere = field.optional_member("hemisphere"))
         render.hemisphere = read_hemisphere(*hemisphere);
+    if (std::optional<JsonField> sampler = field.optional_member("sampler")) render.sampler = read_sampler(*sampler);
     if (std::optional<JsonField> integrator = field.optional_member("integrator"))
         render.integrator = read_integrator(*integrator);
     render.sppm = read_sppm(field, render.integrator);

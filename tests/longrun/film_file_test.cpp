@@ -226,8 +226,8 @@ TEST_F(FilmFileTest, FilmsOfAnotherRenderAreRefused) {
     EXPECT_EQ(mismatch({0x1235, 0x5678, "opencl"}, 5, 3),
               "f.wpfilm: rendered from another scene (its content differs)");
     EXPECT_EQ(mismatch({0x1234, 0x5679, "opencl"}, 5, 3),
-              "f.wpfilm: rendered with other settings (max_depth, rr_depth, seed, nee, mis, hemisphere, adaptive "
-              "sampling or the integrator and its settings differ)");
+              "f.wpfilm: rendered with other settings (max_depth, rr_depth, seed, nee, mis, hemisphere, sampler, "
+              "adaptive sampling or the integrator and its settings differ)");
 }
 
 TEST(RenderIdentity, EverySettingThatChangesTheImageChangesIt) {

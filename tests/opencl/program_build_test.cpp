@@ -56,7 +56,7 @@ FeatureSet diffuse_spheres() {
 
 BuiltProgram build_wavefront(const DeviceInfo& device, const FeatureSet& features) {
     cl::Context context(device.device);
-    return build_program(context, device, wavefront_kernel_files(), kernel_build_options(features, Hemisphere::Cosine));
+    return build_program(context, device, wavefront_kernel_files(), kernel_build_options(features, RenderSettings{}));
 }
 
 TEST(Devices, ListedWithTheirProperties) {
@@ -219,7 +219,10 @@ TEST(KernelOptions, ArchitectureDocListsEveryMacroTheyEmit) {
     // The literals are what the functions emit: every macro of a build with many features is among them.
     FeatureSet many = diffuse_spheres();
     many.quads = many.glass = many.quad_lights = many.nee = many.mis = true;
-    const std::string options = kernel_build_options(many, Hemisphere::Uniform);
+    RenderSettings uniform_independent;
+    uniform_independent.hemisphere = Hemisphere::Uniform;
+    uniform_independent.sampler = Sampler::Independent;
+    const std::string options = kernel_build_options(many, uniform_independent);
     const std::set<std::string> used = names(options, std::regex(R"(-D(WP_[A-Z0-9_]+))"));
     EXPECT_FALSE(used.empty()) << options;
     for (const std::string& name : used) EXPECT_EQ(emitted.count(name), 1u) << name;
@@ -234,7 +237,7 @@ TEST(ProgramBuild, SceneWithoutGlassBuildsWithoutDielectricCode) {
     ScopedEnv cache_env("WAVEPATH_CACHE_DIR", cache.path.string());
     FeatureSet no_glass = diffuse_spheres();
     no_glass.mirror = true;
-    std::string options = kernel_build_options(no_glass, Hemisphere::Cosine);
+    std::string options = kernel_build_options(no_glass, RenderSettings{});
     EXPECT_EQ(options.find("GLASS"), std::string::npos) << options;
     DeviceInfo device = choose_device("");
     EXPECT_NO_THROW(build_wavefront(device, no_glass));

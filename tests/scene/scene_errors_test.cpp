@@ -54,8 +54,8 @@ const PatchCase kPatchCases[] = {
     {"UnknownCameraKey", R"({"camera": {"fovy": 40}})",
      "camera.fovy: unknown key (expected one of: position, look_at, up, fov_y, width, height)"},
     {"UnknownRenderKey", R"({"render": {"samples": 4}})",
-     "render.samples: unknown key (expected one of: spp, max_depth, rr_depth, seed, nee, mis, hemisphere, integrator, "
-     "photons, initial_radius, alpha)"},
+     "render.samples: unknown key (expected one of: spp, max_depth, rr_depth, seed, nee, mis, hemisphere, sampler, "
+     "integrator, photons, initial_radius, alpha)"},
     {"UnknownDiffuseKey", R"({"materials": {"white": {"colour": [1, 1, 1]}}})",
      "materials.white.colour: unknown key (expected one of: type, albedo, emission, two_sided)"},
     {"UnknownMirrorKey",
@@ -207,6 +207,8 @@ const PatchCase kPatchCases[] = {
     {"UnknownHemisphere", R"({"render": {"hemisphere": "cos"}})",
      "render.hemisphere: unknown hemisphere sampling \"cos\" (expected \"cosine\" or \"uniform\")"},
     {"HemisphereAsNumber", R"({"render": {"hemisphere": 1}})", "render.hemisphere: must be a string, got number"},
+    {"UnknownSampler", R"({"render": {"sampler": "halton"}})",
+     "render.sampler: unknown sampler \"halton\" (expected \"sobol\" or \"independent\")"},
 };
 
 class PatchedScene : public testing::TestWithParam<PatchCase> {};

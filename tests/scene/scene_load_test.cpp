@@ -96,6 +96,7 @@ TEST(SceneLoad, DefaultsApply) {
     EXPECT_EQ(scene.render.seed, 0u);
     EXPECT_TRUE(scene.render.nee);
     EXPECT_EQ(scene.render.hemisphere, wp::Hemisphere::Cosine);
+    EXPECT_EQ(scene.render.sampler, wp::Sampler::Sobol);
     expect_vec3_eq(scene.background, glm::dvec3(0.0));
     expect_vec3_eq(scene.camera.up, {0.0, 1.0, 0.0});
     EXPECT_TRUE(scene.materials.empty());
@@ -109,7 +110,7 @@ TEST(SceneLoad, ExplicitSettingsAtTheirLimits) {
         "camera": {"position": [0, 0, 0], "look_at": [0, 0, -1], "up": [1, 0, 0], "fov_y": 179.5,
                    "width": 16384, "height": 8192},
         "render": {"spp": 1048576, "max_depth": 100000, "rr_depth": 2147483647, "seed": 4294967295,
-                   "nee": false, "hemisphere": "uniform"},
+                   "nee": false, "hemisphere": "uniform", "sampler": "independent"},
         "background": [0.25, 0.5, 1e12]})",
                                       "limits.json");
     EXPECT_EQ(scene.camera.width, 16384);
@@ -122,6 +123,7 @@ TEST(SceneLoad, ExplicitSettingsAtTheirLimits) {
     EXPECT_EQ(scene.render.seed, 4294967295u);
     EXPECT_FALSE(scene.render.nee);
     EXPECT_EQ(scene.render.hemisphere, wp::Hemisphere::Uniform);
+    EXPECT_EQ(scene.render.sampler, wp::Sampler::Independent);
     expect_vec3_eq(scene.background, {0.25, 0.5, 1e12});
 }
 

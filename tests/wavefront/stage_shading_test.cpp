@@ -57,7 +57,7 @@ TEST(ShadeStage, LightSampleMatchesReference) {
         reference::Ray<float> ray{rays[i].origin, rays[i].direction};
         auto surface = reference::surface_at(ref, ray, reference::closest_hit(ref, ray));
         vec3 nf = glm::dot(ray.direction, surface.normal) < 0 ? surface.normal : -surface.normal;
-        reference::SampleRng<float> rng{scene.render.seed, 0u, std::uint32_t(100 + i)};
+        reference::SampleRng<float> rng = reference::sample_rng(ref, 0u, std::uint32_t(100 + i));
         reference::RayCounts counts;
         vec3 expected = reference::sample_direct_light(ref, surface.point, surface.error, nf, nf, vec3(1),
                                                        ref.materials[surface.material].albedo, rng, 0u, counts);
@@ -111,9 +111,10 @@ TEST(ShadeStage, GlassSplitFollowsFresnelAndMatchesReference) {
             bool entering = glm::dot(ray.direction, surface.normal) < 0;
             vec3 nf = entering ? surface.normal : -surface.normal;
             fresnel = M::fresnel_dielectric(-glm::dot(ray.direction, nf), entering ? 1.5f : 1 / 1.5f);
-            reference::SampleRng<float> rng{scene.render.seed, 0u, std::uint32_t(i)};
+            reference::SampleRng<float> rng = reference::sample_rng(ref, 0u, std::uint32_t(i));
             auto next = reference::scatter(ref, ref.materials[0], ray.direction, entering, nf, nf,
-                                           reference::camera_bsdf_random(rng, 0u), WP_TRANSPORT_RADIANCE);
+                                           reference::camera_bsdf_random(rng, 0u, ref.materials[0].type),
+                                           WP_TRANSPORT_RADIANCE);
             vec3 got(dir[0][i], dir[1][i], dir[2][i]);
             ASSERT_NEAR(glm::length(got - next.direction), 0.0f, 1e-6f) << "path " << i;
             ASSERT_NEAR(weight[i], next.weight.x, 1e-6f) << "path " << i;
