@@ -12,7 +12,7 @@
  * integrands (a pixel's area, a light's, a diffuse lobe) falls faster than
  * 1/sqrt(n). The choices (which light, which triangle, the glass lobe, the
  * roulette) take rng_uniform's numbers: as Sobol' pairs they gained little
- * and cost more (bench/results/analysis.md, "Sampler").
+ * and cost more (bench/results/analysis.md, "The default command against Mitsuba 3").
  *
  * Two scrambles, both hashes of (seed, pixel, bounce, pair) and so the same
  * for every sample of a pixel:

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <string_view>
 
 namespace wp::cli {
 
@@ -13,13 +14,13 @@ namespace {
 constexpr std::array<ChoiceRule, 3> kRules{{
     {DeviceKind::Cpu,
      false,
-     {{{"megakernel", "bvh", 1.1, 1.4}, {"wavefront", "bvh", 1.7, 2.6}, {"reference", "embree", 0.0, 0.0}}},
+     {{{"megakernel", "bvh", 1.3, 1.7}, {"wavefront", "bvh", 1.7, 2.6}, {"reference", "embree", 0.0, 0.0}}},
      "room, cornell",
      "bench/results/efficiency.md",
      ""},
     {DeviceKind::Cpu,
      true,
-     {{{"reference", "embree", 1.0, 1.0}, {"wavefront", "embree", 1.2, 1.2}, {"megakernel", "bvh", 0.0, 0.0}}},
+     {{{"wavefront", "embree", 1.0, 1.0}, {"reference", "embree", 1.1, 1.1}, {"megakernel", "bvh", 0.0, 0.0}}},
      "bunny",
      "bench/results/efficiency.md",
      ""},
@@ -35,12 +36,15 @@ bool covers(const ChoiceRule& rule, const Situation& situation) {
     return (!rule.device || *rule.device == situation.device) && (!rule.meshes || *rule.meshes == situation.meshes);
 }
 
-bool takes(const LimitingFlag& flag, const char* backend) {
-    return std::find(flag.backends.begin(), flag.backends.end(), backend) != flag.backends.end();
+bool takes(const LimitingFlag& flag, const Ranked& ranked) {
+    auto among = [&](const std::vector<std::string>& backends) {
+        return std::find(backends.begin(), backends.end(), ranked.backend) != backends.end();
+    };
+    return among(flag.backends) && (std::string_view(ranked.intersector) == "bvh" || !among(flag.bvh_only));
 }
 
-bool takes_all(const std::vector<LimitingFlag>& flags, const char* backend) {
-    return std::all_of(flags.begin(), flags.end(), [&](const LimitingFlag& flag) { return takes(flag, backend); });
+bool takes_all(const std::vector<LimitingFlag>& flags, const Ranked& ranked) {
+    return std::all_of(flags.begin(), flags.end(), [&](const LimitingFlag& flag) { return takes(flag, ranked); });
 }
 
 std::string joined(const std::vector<LimitingFlag>& flags) {
@@ -68,15 +72,16 @@ std::string measured(const ChoiceRule& rule, const Ranked& ranked, const Ranked&
 // Why the backend at `at` in the rule's ranking was chosen under `flags`.
 std::string evidence(const ChoiceRule& rule, std::size_t at, const std::vector<LimitingFlag>& flags) {
     const auto taken = std::count_if(rule.ranking.begin(), rule.ranking.end(),
-                                     [&](const Ranked& ranked) { return takes_all(flags, ranked.backend); });
+                                     [&](const Ranked& ranked) { return takes_all(flags, ranked); });
     if (taken == 1)
-        return "only the " + std::string(rule.ranking[at].backend) + " takes " +
-               (flags.size() == 1 ? "it" : "them all");
+        return "only the " + std::string(rule.ranking[at].backend) + " with " + rule.ranking[at].intersector +
+               " takes " + (flags.size() == 1 ? "it" : "them all");
     // More than one takes the flags, so one is ranked after the pick.
     std::string text =
         *rule.source == '\0' ? std::string(rule.unmeasured) : measured(rule, rule.ranking[at], rule.ranking[at + 1]);
     if (at > 0)
-        text += std::string("; the ") + rule.ranking[0].backend + ", ranked first, does not take " + joined(flags);
+        text += std::string("; the ") + rule.ranking[0].backend + " with " + rule.ranking[0].intersector +
+                ", ranked first, does not take " + joined(flags);
     return text;
 }
 
@@ -109,7 +114,7 @@ const ChoiceRule& rule_for(const Situation& situation) {
 BackendChoice choose_backend(const Situation& situation, const std::vector<LimitingFlag>& flags) {
     const ChoiceRule& rule = rule_for(situation);
     const auto pick = std::find_if(rule.ranking.begin(), rule.ranking.end(),
-                                   [&](const Ranked& ranked) { return takes_all(flags, ranked.backend); });
+                                   [&](const Ranked& ranked) { return takes_all(flags, ranked); });
     if (pick == rule.ranking.end())
         throw NoBackendTakesTheFlags(joined(flags) + ": no backend takes all of these together");
     const std::string given = flags.empty() ? "" : ", " + joined(flags) + " given";

@@ -67,6 +67,10 @@ const ChoiceRule& rule_for(const Situation& situation);
 struct LimitingFlag {
     std::string flag;
     std::vector<std::string> backends;
+    // Of `backends`, those that take the flag only tracing with our BVH (the
+    // wavefront's sppm integrator): where one is ranked with Embree, its
+    // figures do not hold under the flag, so it does not take it there.
+    std::vector<std::string> bvh_only = {};
 };
 
 struct BackendChoice {

@@ -213,9 +213,10 @@ void add_backend_options(CLI::App& render, BackendOptions& options) {
     taken_only_by(render.add_option(
                       "--lanes", options.lanes,
                       "Paths per work item in the wavefront's stage kernels and in the megakernel, as vector code: 1, "
-                      "4, 8 or 16 (more than 1 needs --compaction scan on the wavefront; 0: the measured default, 8 on "
-                      "CPU devices, 1 on others and in the megakernel for meshes, until bench/run.py --series lanes "
-                      "shows another count faster; opencl/lanes.cpp)"),
+                      "4, 8 or 16 (more than 1 needs --compaction scan on the wavefront; 0: the measured default: 8 "
+                      "on CPU devices, 16 in the megakernel without meshes where the preferred float vector holds 16, "
+                      "1 on others and in the megakernel for meshes; bench/run.py --series lanes measures them; "
+                      "opencl/lanes.cpp)"),
                   options, kOpenClOnly)
         ->check(CLI::IsMember({0u, 1u, 4u, 8u, 16u}))
         ->capture_default_str();
@@ -234,9 +235,11 @@ BackendOptions resolve_backend(const BackendOptions& options, const Scene& scene
     BackendOptions resolved = options;
     if (options.name != kAuto) return resolved;
     // The megakernel traces camera paths only (run_on_megakernel), so the sppm integrator narrows the choice
-    // as a flag would, whether the scene or --integrator asked for it.
+    // as a flag would, whether the scene or --integrator asked for it; the wavefront runs it with our BVH
+    // only (its host tracing is refused), so not where it is ranked with Embree.
     std::vector<LimitingFlag> flags = options.limiting_flags;
-    if (scene.render.integrator == Integrator::Sppm) flags.push_back({"the sppm integrator", kSppmIntegrators});
+    if (scene.render.integrator == Integrator::Sppm)
+        flags.push_back({"the sppm integrator", kSppmIntegrators, {"wavefront"}});
     try {
         resolved.chosen = choose_backend(situation_of(choose_device(options.device), scene), flags);
     } catch (const NoBackendTakesTheFlags& error) {

@@ -95,9 +95,10 @@ TEST_F(AutoBackendCli, ExplicitBackendAndFlagsSomeBackendsTakeAreHonoured) {
 
     const CommandResult flags = render_room(out_ / "b.pfm", 1, {"--compaction", "atomic", "--lanes", "1", "--explain"});
     ASSERT_EQ(flags.exit_code, 0) << flags.err;
-    EXPECT_EQ(first_line(flags.out),
-              "backend: wavefront (auto: CPU device, no meshes, --compaction, --lanes given: only the wavefront takes "
-              "them all)");
+    EXPECT_EQ(
+        first_line(flags.out),
+        "backend: wavefront (auto: CPU device, no meshes, --compaction, --lanes given: only the wavefront with bvh "
+        "takes them all)");
     EXPECT_NE(flags.err.find(", wavefront (auto: CPU device, no meshes, --compaction, --lanes given)) in "),
               std::string::npos)
         << flags.err;
@@ -106,6 +107,22 @@ TEST_F(AutoBackendCli, ExplicitBackendAndFlagsSomeBackendsTakeAreHonoured) {
     EXPECT_EQ(none.exit_code, 2) << none.err;
     EXPECT_EQ(none.err, "wavepath: error: --precision, --profile: no backend takes all of these together\n");
     EXPECT_FALSE(std::filesystem::exists(out_ / "c.pfm"));
+}
+
+// The sppm integrator on a scene with meshes: the wavefront is ranked there
+// with Embree, which its SPPM does not trace with, so auto runs what the
+// table's figures hold for, the reference with Embree (as choose_backend says
+// under the sppm integrator's limits).
+TEST_F(AutoBackendCli, SppmOnMeshesRunsAsTheTableRanks) {
+    const std::string stats = out_ / "stats.json";
+    const CommandResult r = run({"render", mesh_scene(), "-o", out_ / "out.pfm", "--integrator", "sppm", "--photons",
+                                 "64", "--explain", "--stats-json", stats});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const cli::BackendChoice choice = cli::choose_backend(
+        {cli::DeviceKind::Cpu, true}, {{"the sppm integrator", {"wavefront", "reference"}, {"wavefront"}}});
+    EXPECT_EQ(choice.backend, "reference");
+    EXPECT_EQ(first_line(r.out), "backend: reference (" + cli::explain_choice(choice) + ")") << r.out;
+    EXPECT_EQ(json::parse(read_text(stats))["estimator"], "reference-embree");
 }
 
 // --profile-json on the mesh scene, whose first pick may be one without

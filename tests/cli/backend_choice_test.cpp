@@ -86,15 +86,40 @@ TEST(BackendChoice, FlagsNarrowTheRanking) {
         EXPECT_EQ(profiled.backend, opencl->backend);
         EXPECT_EQ(profiled.situation, describe({DeviceKind::Cpu, meshes}) + ", --profile given");
         std::string evidence = measured_evidence(*opencl, *(opencl + 1), meshes ? "bunny" : "room, cornell");
-        if (opencl != rule.ranking.begin()) evidence += "; the reference, ranked first, does not take --profile";
+        if (opencl != rule.ranking.begin())
+            evidence += "; the reference with " + std::string(rule.ranking[0].intersector) +
+                        ", ranked first, does not take --profile";
         EXPECT_EQ(profiled.evidence, evidence);
     }
     const BackendChoice precise = choose_backend({DeviceKind::Gpu, false}, kPrecision);
     EXPECT_EQ(precise.backend, "reference");
-    EXPECT_EQ(explain_choice(precise), "auto: GPU device, no meshes, --precision given: only the reference takes it");
+    EXPECT_EQ(explain_choice(precise),
+              "auto: GPU device, no meshes, --precision given: only the reference with embree takes it");
     std::vector<LimitingFlag> both = kProfile;
     both.push_back(kPrecision.front());
     EXPECT_THROW(choose_backend({DeviceKind::Cpu, false}, both), NoBackendTakesTheFlags);
+}
+
+// The sppm integrator runs on the wavefront with our BVH only: where the
+// wavefront is ranked with Embree (its figures then do not hold) the choice
+// passes it over for the next backend that runs SPPM, and says why.
+TEST(BackendChoice, TheSppmIntegratorPassesOverTheWavefrontRankedWithEmbree) {
+    const std::vector<LimitingFlag> sppm{{"the sppm integrator", {"wavefront", "reference"}, {"wavefront"}}};
+    for (const bool meshes : {false, true}) {
+        const ChoiceRule& rule = rule_for({DeviceKind::Cpu, meshes});
+        const auto runs_sppm = [](const Ranked& ranked) {
+            const std::string backend = ranked.backend;
+            return backend == "reference" || (backend == "wavefront" && std::string(ranked.intersector) == "bvh");
+        };
+        const auto expected = std::find_if(rule.ranking.begin(), rule.ranking.end(), runs_sppm);
+        ASSERT_NE(expected, rule.ranking.end());
+        const BackendChoice choice = choose_backend({DeviceKind::Cpu, meshes}, sppm);
+        EXPECT_EQ(choice.backend, expected->backend) << "meshes " << meshes;
+    }
+    // With meshes the wavefront is ranked with Embree (bench/results/efficiency.md) and the megakernel runs no
+    // SPPM: the reference is the one left.
+    EXPECT_EQ(explain_choice(choose_backend({DeviceKind::Cpu, true}, sppm)),
+              "auto: CPU device, meshes, the sppm integrator given: only the reference with embree takes it");
 }
 
 // Each backend is ranked with the intersector it traces with by default in
