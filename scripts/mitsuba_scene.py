@@ -10,7 +10,8 @@ wavepath code agreeing with itself. The mapping (docs/mitsuba.md):
   `hdrfilm` with a `box` filter (one pixel wide: each sample lands in its own
   pixel, as wavepath's film does), RGB float;
 - render: `path` integrator with Mitsuba's `max_depth` = ours + 1 (Mitsuba
-  counts path segments, we count scattering events), `rr_depth` = ours + 1;
+  counts path segments, we count scattering events), `rr_depth` = ours (both
+  play the roulette first at the rr_depth-th surface hit);
   `independent` sampler. `nee`, `mis`, `hemisphere` and `sampler` choose
   wavepath's estimator, not the image, and have no counterpart;
 - diffuse: `twosided` `diffuse`; mirror: `twosided` `conductor` of material
@@ -182,9 +183,12 @@ class Converter:
 
     def integrator(self, render):
         # Mitsuba counts path segments (1: emitters seen directly), wavepath scattering events (0: the same).
-        # rr_depth changes the variance only; Mitsuba stores it as a 32-bit int.
+        # rr_depth counts the same in both: Mitsuba plays the roulette at a hit once its segment count (that hit's
+        # included) reaches rr_depth, wavepath once its bounce index plus one does (tests/oracle/
+        # roulette_variance_test.py checks it by the variance). It changes the variance only; Mitsuba stores it
+        # as a 32-bit int.
         return {"type": "path", "max_depth": render["max_depth"] + 1,
-                "rr_depth": min(render["rr_depth"] + 1, render["max_depth"] + 2)}
+                "rr_depth": min(render["rr_depth"], render["max_depth"] + 2)}
 
     def sensor(self, camera, render):
         return {

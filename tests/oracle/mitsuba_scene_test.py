@@ -68,7 +68,7 @@ class ConverterTest(unittest.TestCase):
     # Settings, camera and film.
     def test_depths_count_segments_in_mitsuba(self):
         out = self.convert(render={"max_depth": 5, "rr_depth": 2})
-        self.assertEqual(out["integrator"], {"type": "path", "max_depth": 6, "rr_depth": 3})
+        self.assertEqual(out["integrator"], {"type": "path", "max_depth": 6, "rr_depth": 2})
         self.assertEqual(self.convert()["integrator"]["max_depth"], 9)  # the default max_depth 8
 
     def test_huge_rr_depth_fits_mitsubas_int(self):
