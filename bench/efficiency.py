@@ -37,10 +37,12 @@ from mitsuba_peer import MitsubaPeer  # noqa: E402
 from run import ROOT, Runner, rel_mse, rel_noise, run_meta, scene_max_depth, spread  # noqa: E402
 
 SIZE = 256
-# spp per run: a second or two each on a quiet 2-core machine (the whole run about 20 minutes on 2 shared
-# cores); powers of two, which every Mitsuba sampler but `orthogonal` (a prime's square: 49 and 25) takes as
-# they are.
-SCENE_SPP = {"room.json": 32, "cornell.json": 32, "bunny.json": 16}
+# spp per run: a second or two each on a quiet 2-core machine (the whole run about half an hour on 2 shared
+# cores); powers of four, which every Mitsuba sampler but `orthogonal` (a prime's square) takes as they are:
+# `stratified` and `ldsampler` round other counts up to a power of four (32 to 36 and to 64), and a scrambled
+# net's error per sample falls with the sample count, so samplers compared at different counts are not like
+# for like. Each scene's table says what every configuration took.
+SCENE_SPP = {"room.json": 64, "cornell.json": 64, "bunny.json": 16}
 CONVERGED_SPP = 4096
 BACKENDS = ["wavefront", "megakernel", "reference"]  # the explicit ones, beside the default command; --backend auto ranks them
 MITSUBA_SAMPLERS = ["independent", "stratified", "multijitter", "orthogonal", "ldsampler"]
@@ -116,6 +118,7 @@ def efficiency(runs):
     return {"efficiency": 1.0 / mean, "efficiency_rel_se": se / mean,
             "relmse_mean": statistics.mean(r["relmse"] for r in runs),
             "relmse_x_spp": statistics.mean(r["relmse"] * r["samples"] for r in runs) / SIZE ** 2,
+            "spp_taken": sorted({round(r["samples"] / SIZE ** 2) for r in runs}),
             "time_s": spread([r["time_s"] for r in runs]),
             "msamples_s": spread([r["samples_per_s"] / 1e6 for r in runs]),
             "load_average": spread([r["load_average"] for r in runs]),
@@ -281,7 +284,12 @@ def markdown(results):
             for r in s["ranking"])
         best = s["configurations"]["mitsuba-" + s["mitsuba_best_sampler"]]
         g = s["sobol_over_independent"]
-        lines += ["", f"- The default command's Sobol' sampler over its independent numbers (`--sampler independent`): "
+        asked = [label for label, c in s["configurations"].items() if c["spp_taken"] == [s["spp"]]]
+        others = [f"{label} {', '.join(map(str, c['spp_taken']))}" for label, c in s["configurations"].items()
+                  if c["spp_taken"] != [s["spp"]]]
+        lines += ["", f"- Samples per pixel taken: {s['spp']} by {len(asked)} of the {len(s['configurations'])} "
+                      f"configurations" + (f"; {', '.join(others)}." if others else ", every one.")]
+        lines += [f"- The default command's Sobol' sampler over its independent numbers (`--sampler independent`): "
                       f"{g['efficiency']['ratio']:.2f}x the efficiency (per repetition "
                       f"{g['efficiency']['per_repetition']['min']:.2f} / {g['efficiency']['per_repetition']['median']:.2f}"
                       f" / {g['efficiency']['per_repetition']['max']:.2f}): {g['accuracy_per_sample']:.2f}x the "
