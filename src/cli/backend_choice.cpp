@@ -14,13 +14,13 @@ namespace {
 constexpr std::array<ChoiceRule, 3> kRules{{
     {DeviceKind::Cpu,
      false,
-     {{{"megakernel", "bvh", 1.3, 1.7}, {"wavefront", "bvh", 1.7, 2.6}, {"reference", "embree", 0.0, 0.0}}},
+     {{{"megakernel", "bvh", 1.2, 1.7}, {"wavefront", "bvh", 1.6, 2.7}, {"reference", "embree", 0.0, 0.0}}},
      "room, cornell",
      "bench/results/efficiency.md",
      ""},
     {DeviceKind::Cpu,
      true,
-     {{{"wavefront", "embree", 1.0, 1.0}, {"reference", "embree", 1.1, 1.1}, {"megakernel", "bvh", 0.0, 0.0}}},
+     {{{"reference", "embree", 1.1, 1.1}, {"wavefront", "embree", 1.2, 1.2}, {"megakernel", "bvh", 0.0, 0.0}}},
      "bunny",
      "bench/results/efficiency.md",
      ""},
@@ -112,7 +112,11 @@ const ChoiceRule& rule_for(const Situation& situation) {
 }
 
 BackendChoice choose_backend(const Situation& situation, const std::vector<LimitingFlag>& flags) {
-    const ChoiceRule& rule = rule_for(situation);
+    return choose_backend(rule_for(situation), situation, flags);
+}
+
+BackendChoice choose_backend(const ChoiceRule& rule, const Situation& situation,
+                             const std::vector<LimitingFlag>& flags) {
     const auto pick = std::find_if(rule.ranking.begin(), rule.ranking.end(),
                                    [&](const Ranked& ranked) { return takes_all(flags, ranked); });
     if (pick == rule.ranking.end())

@@ -89,6 +89,10 @@ class NoBackendTakesTheFlags : public std::invalid_argument {
 // in `flags`, and why. Throws NoBackendTakesTheFlags.
 BackendChoice choose_backend(const Situation& situation, const std::vector<LimitingFlag>& flags = {});
 
+// The same choice by `rule`'s ranking (rule_for's, above), which covers `situation`.
+BackendChoice choose_backend(const ChoiceRule& rule, const Situation& situation,
+                             const std::vector<LimitingFlag>& flags = {});
+
 // "auto: CPU device, no meshes: 1.9-2.1x ...".
 std::string explain_choice(const BackendChoice& choice);
 

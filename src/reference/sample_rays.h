@@ -27,7 +27,8 @@ inline SampleRays sample_rays(const ReferenceScene<float>& scene) {
             if (!hit.found()) continue;
             SurfacePoint<float> x = surface_at(scene, ray, hit);
             M::vec3 nf = glm::dot(ray.direction, x.normal) < 0.0f ? x.normal : -x.normal;
-            M::vec3 local = M::sample_cosine_hemisphere(rng(0, DIM_BSDF_U), rng(0, DIM_BSDF_V));
+            M::CameraPair bounce = rng.pair(0, DIM_BSDF_U);
+            M::vec3 local = M::sample_cosine_hemisphere(bounce.u, bounce.v);
             rays.bounce.push_back(
                 {M::offset_ray_origin(x.point, nf, x.error), M::frame_to_world(M::frame_from_normal(nf), local)});
         }
