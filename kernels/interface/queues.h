@@ -46,6 +46,13 @@
 #define WP_PROFILE_SHADOW_BY_DEPTH (WP_COUNTS_SIZE + WP_PROFILE_DEPTHS)
 #define WP_COUNTS_PROFILED_SIZE (WP_COUNTS_SIZE + 2u * WP_PROFILE_DEPTHS)
 
+/* Paths each lane of the megakernel traces one after another, each started
+ * as soon as the one before ends: a work item's lanes run until the last of
+ * their paths ends, so with one path each half of them idle on average (the
+ * room's and the cornell box's path lengths); with several, fewer. One lane
+ * (GPUs, meshes) traces one. */
+#define WP_MEGAKERNEL_PATHS_PER_LANE(lanes) ((lanes) > 1 ? 8u : 1u)
+
 /* Work-group size of the stage kernels (the aggregated queue push uses local memory). */
 #define WP_GROUP_SIZE 64
 
