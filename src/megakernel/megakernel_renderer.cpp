@@ -86,7 +86,8 @@ class MegakernelFilmRenderer : public FilmRenderer {
             auto size = static_cast<std::uint32_t>(std::min(kPassSize, items.end - start));
             megakernel_.setArg(arg::Megakernel::pass_start, cl_ulong(start));
             megakernel_.setArg(arg::Megakernel::pass_size, cl_uint(size));
-            launcher_.launch(megakernel_, "megakernel", launch_size(divide_rounding_up(size, lanes_ * WP_MEGAKERNEL_PATHS_PER_LANE(lanes_))));
+            launcher_.launch(megakernel_, "megakernel",
+                             launch_size(divide_rounding_up(size, lanes_ * WP_MEGAKERNEL_PATHS_PER_LANE(lanes_))));
             film_.accumulate(launcher_, start, size, pass_radiance_);
             // 32-bit device counters: read and cleared every pass.
             std::vector<std::uint32_t> figures(WP_COUNTS_SIZE);
