@@ -25,21 +25,23 @@ __kernel void accumulate(WP_PARAMETERS(WP_ACCUMULATE_PARAMETERS)) {
     if (index >= round_pixel_count) return;
     uint px = round_pixels[index];
     uint first = (uint)((index + round_pixel_count - pass_start % round_pixel_count) % round_pixel_count);
-    for (uint c = 0; c < 3u; ++c) {
-        film_sum sum = load_film_sum(film, 3u * px + c);
+    film_sum sum[3];
+    for (uint c = 0; c < 3u; ++c) sum[c] = load_film_sum(film, 3u * px + c);
 #ifdef WP_FILM_SQUARES
-        film_sum squares = load_film_sum(film, 3u * (pixel_count + px) + c);
+    film_sum squares[3];
+    for (uint c = 0; c < 3u; ++c) squares[c] = load_film_sum(film, 3u * (pixel_count + px) + c);
 #endif
-        for (uint item = first; item < pass_size; item += round_pixel_count) {
+    for (uint item = first; item < pass_size; item += round_pixel_count) {
+        for (uint c = 0; c < 3u; ++c) {
             float value = pass_radiance[3u * item + c];
-            sum = film_sum_add(sum, film_sum_from_float(value));
+            sum[c] = film_sum_add(sum[c], film_sum_from_float(value));
 #ifdef WP_FILM_SQUARES
-            squares = film_sum_add(squares, film_sum_from_float_squared(value));
+            squares[c] = film_sum_add(squares[c], film_sum_from_float_squared(value));
 #endif
         }
-        store_film_sum(film, 3u * px + c, sum);
-#ifdef WP_FILM_SQUARES
-        store_film_sum(film, 3u * (pixel_count + px) + c, squares);
-#endif
     }
+    for (uint c = 0; c < 3u; ++c) store_film_sum(film, 3u * px + c, sum[c]);
+#ifdef WP_FILM_SQUARES
+    for (uint c = 0; c < 3u; ++c) store_film_sum(film, 3u * (pixel_count + px) + c, squares[c]);
+#endif
 }

@@ -25,8 +25,10 @@ typedef uint film_word;
 #define WP_FILM_WORDS_POINTER volatile __global film_word *
 #define WP_FILM_CONST_WORDS_POINTER __global const film_word *
 #define WP_ATOMIC_ADD_WORD(p, v) atomic_add((p), (v))
+#define WP_FILM_LEADING_ZEROS(m) ((int)clz(m))
 #else
 #include <atomic>
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -37,6 +39,7 @@ typedef std::uint32_t film_word;
 #define WP_FILM_WORDS_POINTER film_word *
 #define WP_FILM_CONST_WORDS_POINTER const film_word *
 #define WP_ATOMIC_ADD_WORD(p, v) std::atomic_ref<film_word>(*(p)).fetch_add(v)
+#define WP_FILM_LEADING_ZEROS(m) std::countl_zero(m)
 inline std::uint32_t wp_float_bits(float x) {
     std::uint32_t bits;
     std::memcpy(&bits, &x, sizeof bits);
@@ -71,37 +74,37 @@ WP_FILM_FN film_sum film_sum_add(film_sum a, film_sum b) {
     return a;
 }
 
-WP_FILM_FN film_sum film_sum_negate(film_sum a) {
-    film_limb carry = 1;
+/* -a where negative is set, a where not: selects, not a branch, so that
+ * accumulate.cl's loop over pixels vectorises. */
+WP_FILM_FN film_sum film_sum_negate_if(film_sum a, int negative) {
+    film_limb flip = negative ? ~(film_limb)0 : 0;
+    film_limb carry = negative ? 1 : 0;
     for (int i = 0; i < WP_FILM_LIMBS; ++i) {
-        a.limb[i] = ~a.limb[i] + carry;
-        carry = carry && a.limb[i] == 0 ? 1 : 0;
+        a.limb[i] = (a.limb[i] ^ flip) + carry;
+        carry = carry & (a.limb[i] == 0 ? 1 : 0); /* ~a + 1 carries on only past a zero limb */
     }
     return a;
 }
 
-WP_FILM_FN int film_bit_length(film_limb m) {
-    int bits = 0;
-    while (m != 0) {
-        m >>= 1;
-        ++bits;
-    }
-    return bits;
-}
+WP_FILM_FN film_sum film_sum_negate(film_sum a) { return film_sum_negate_if(a, 1); }
 
-/* (negative ? -1 : 1) * m * 2^exponent, m < 2^53, in fixed point. */
+/* Both clz and std::countl_zero give 64 for 0: one instruction, where a
+ * loop over the bits cost accumulate most of its time. */
+WP_FILM_FN int film_bit_length(film_limb m) { return 64 - WP_FILM_LEADING_ZEROS(m); }
+
+/* (negative ? -1 : 1) * m * 2^exponent, m < 2^53, in fixed point. A value
+ * of at least 2^-100 (every float sum's term but the tiniest) lands in two
+ * adjacent limbs, placed by selects rather than an indexed store. */
 WP_FILM_FN film_sum film_sum_from_scaled(film_limb m, int exponent, int negative) {
+    int clamped = m != 0 && film_bit_length(m) + exponent > WP_FILM_CLAMP_BITS;
+    int shift = clamped ? WP_FILM_CLAMP_BITS + WP_FILM_FRACTION_BITS : exponent + WP_FILM_FRACTION_BITS;
     film_sum s = film_sum_zero();
-    int shift = exponent + WP_FILM_FRACTION_BITS;
-    if (m == 0) return s;
-    if (film_bit_length(m) + exponent > WP_FILM_CLAMP_BITS) {
-        m = 1;
-        shift = WP_FILM_CLAMP_BITS + WP_FILM_FRACTION_BITS;
-    }
+    if (clamped) m = 1;
     if (shift >= 0) {
-        int word = shift / 64, bit = shift % 64;
-        s.limb[word] = m << bit;
-        if (bit != 0 && word + 1 < WP_FILM_LIMBS) s.limb[word + 1] = m >> (64 - bit);
+        int word = shift >> 6, bit = shift & 63;
+        film_limb low = m << bit;
+        film_limb high = (m >> 1) >> (63 - bit); /* m >> (64 - bit), and 0 for bit 0 */
+        for (int i = 0; i < WP_FILM_LIMBS; ++i) s.limb[i] = i == word ? low : (i == word + 1 ? high : 0);
     } else if (-shift < 54) { /* m < 2^53: a right shift of 54 or more leaves less than a half */
         int r = -shift;
         film_limb quotient = m >> r;
