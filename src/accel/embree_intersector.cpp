@@ -360,6 +360,11 @@ struct EmbreeIntersector::Impl {
     ShapeList<TriangleShape> triangle_list{&triangles};
     bool has_embree_shapes = false;  // any triangle or quad
     float search_slack = 0.0f;       // 2^-16 of the largest coordinate: Lane::search_slack
+    // EmbreeMode::Verified's reach: an origin with a coordinate beyond 4
+    // times the scene's largest is traced exactly, for Embree's rounding
+    // grows with the origin's coordinates (about 2^-24 of them) and the
+    // margin does not (2^-18 of the scene's: 16 times the rounding at 4).
+    float verified_reach = 0.0f;
     RTCDevice device = nullptr;
     RTCScene verified = nullptr;  // EmbreeMode::Verified: enlarged triangles
     RTCScene exact = nullptr;     // user geometry: EmbreeMode::Exact, and Verified's retraced rays
@@ -377,6 +382,7 @@ struct EmbreeIntersector::Impl {
         for (const M::MeshTriangle& t : mesh_triangles) triangles.push_back({t});
         has_embree_shapes = !triangles.empty() || !quads.empty();
         search_slack = float(0x1p-16 * coordinate_magnitude());
+        verified_reach = float(4.0 * coordinate_magnitude());
         device = rtcNewDevice(("threads=" + std::to_string(options.threads)).c_str());
         if (!device) throw std::runtime_error("Embree: cannot create a device");
         try {
@@ -487,6 +493,10 @@ struct EmbreeIntersector::Impl {
     // Lanes the spheres and planes leave to Embree.
     bool needs_embree(const Lane& lane) const { return has_embree_shapes && lane.traceable && !lane.occluded; }
 
+    bool verifiable(const Lane& lane) const {
+        return options.mode == EmbreeMode::Verified && M::max_abs(lane.origin) <= verified_reach;
+    }
+
     // ---- closest hit ----
 
     void closest_exact(Lane& lane) const {
@@ -540,23 +550,20 @@ struct EmbreeIntersector::Impl {
         closest_exact(lane);
     }
 
-    void closest(Lane& lane) const {
-        if (options.mode == EmbreeMode::Exact) return closest_exact(lane);
-        RTCIntersectContext context;
-        rtcInitIntersectContext(&context);
-        settle(lane, find(lane, context));
-    }
+    void closest(Lane& lane) const { closest(&lane, 1); }
 
     void closest(Lane* lanes, std::size_t n) const {
-        if (options.mode == EmbreeMode::Exact) {
-            for (std::size_t k = 0; k < n; ++k) closest_exact(lanes[k]);
-            return;
-        }
         RTCIntersectContext context;
         rtcInitIntersectContext(&context);
         FoundShape found[kChunk];
-        for (std::size_t k = 0; k < n; ++k) found[k] = find(lanes[k], context);
-        for (std::size_t k = 0; k < n; ++k) settle(lanes[k], found[k]);
+        for (std::size_t k = 0; k < n; ++k)
+            if (verifiable(lanes[k])) found[k] = find(lanes[k], context);
+        for (std::size_t k = 0; k < n; ++k) {
+            if (verifiable(lanes[k]))
+                settle(lanes[k], found[k]);
+            else
+                closest_exact(lanes[k]);
+        }
     }
 
     // ---- any hit ----
@@ -564,7 +571,7 @@ struct EmbreeIntersector::Impl {
     void occluded(Lane& lane) const {
         lane.occluded = any_of(spheres, lane) || any_of(planes, lane);
         if (!needs_embree(lane)) return;
-        if (options.mode == EmbreeMode::Exact) {
+        if (!verifiable(lane)) {
             with_triangle_ray(lane);  // every callback needs it
             return occluded_in(exact, lane);
         }
