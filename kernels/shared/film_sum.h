@@ -74,19 +74,14 @@ WP_FILM_FN film_sum film_sum_add(film_sum a, film_sum b) {
     return a;
 }
 
-/* -a where negative is set, a where not: selects, not a branch, so that
- * accumulate.cl's loop over pixels vectorises. */
-WP_FILM_FN film_sum film_sum_negate_if(film_sum a, int negative) {
-    film_limb flip = negative ? ~(film_limb)0 : 0;
-    film_limb carry = negative ? 1 : 0;
+WP_FILM_FN film_sum film_sum_negate(film_sum a) {
+    film_limb carry = 1;
     for (int i = 0; i < WP_FILM_LIMBS; ++i) {
-        a.limb[i] = (a.limb[i] ^ flip) + carry;
-        carry = carry & (a.limb[i] == 0 ? 1 : 0); /* ~a + 1 carries on only past a zero limb */
+        a.limb[i] = ~a.limb[i] + carry;
+        carry = carry && a.limb[i] == 0 ? 1 : 0;
     }
     return a;
 }
-
-WP_FILM_FN film_sum film_sum_negate(film_sum a) { return film_sum_negate_if(a, 1); }
 
 /* Both clz and std::countl_zero give 64 for 0: one instruction, where a
  * loop over the bits cost accumulate most of its time. */
