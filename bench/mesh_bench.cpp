@@ -359,6 +359,9 @@ class StageTracer {
         }
         pipeline_.write_field("shadow_distance", segment);
         pipeline_.write_field("depth", std::vector<std::uint32_t>(n, 0u));
+        // Written, not left as the buffer's first contents: a path that the
+        // stage takes as ended keeps its radiance, which reads as occluded.
+        pipeline_.write_field("shadow_ends_path", std::vector<std::uint32_t>(n, 0u));
         pipeline_.begin_pass(0, std::uint32_t(n));
         pipeline_.queues().set_queue(WP_QUEUE_FREE, {});
         pipeline_.queues().set_queue(WP_QUEUE_SHADOW, slots);
