@@ -45,6 +45,10 @@ SIZE = 256
 SCENE_SPP = {"room.json": 64, "cornell.json": 64, "bunny.json": 16}
 CONVERGED_SPP = 4096
 BACKENDS = ["wavefront", "megakernel", "reference"]  # the explicit ones, beside the default command; --backend auto ranks them
+# Who --backend auto ranks first where two backends tie (neither leads in every repetition): the wavefront, which
+# takes every flag, then the megakernel; the reference, the independent renderer the others are checked against,
+# last.
+TIE_ORDER = ["wavefront", "megakernel", "reference"]
 MITSUBA_SAMPLERS = ["independent", "stratified", "multijitter", "orthogonal", "ldsampler"]
 PEER = "mitsuba-independent"  # what the targets are stated against
 INDEPENDENT = "default-independent"  # the default command with --sampler independent: what the Sobol' points give
@@ -130,9 +134,12 @@ def ratio(a_runs, b_runs, a, b):
     """a's efficiency over b's: of the estimates, and per repetition (the two renders side by side, so the load's
     drift over the run cancels), with the standard error of the per-repetition ratios' mean."""
     per_repetition = [(rb["relmse"] * rb["time_s"]) / (ra["relmse"] * ra["time_s"]) for ra, rb in zip(a_runs, b_runs)]
+    logs = [math.log(r) for r in per_repetition]
     return {"ratio": a["efficiency"] / b["efficiency"],
             "ratio_se": statistics.stdev(per_repetition) / math.sqrt(len(per_repetition)),
-            "per_repetition": spread(per_repetition)}
+            "per_repetition": spread(per_repetition),
+            "repetitions": len(logs), "log_mean": statistics.mean(logs),
+            "log_se": statistics.stdev(logs) / math.sqrt(len(logs))}
 
 
 def summarise(scene_runs):
@@ -166,11 +173,41 @@ def summarise(scene_runs):
             "backend_pairs": pairs}
 
 
+# Student's t at 97.5% (one-sided) by degrees of freedom, for a lead's lower bound; beyond the table, the normal's.
+T_975 = {1: 12.71, 2: 4.303, 3: 3.182, 4: 2.776, 5: 2.571, 6: 2.447, 7: 2.365, 8: 2.306, 9: 2.262}
+
+
+def clear_lead(b, n, scenes):
+    """b's efficiency over n's above 1 at 97.5% confidence in every scene: the lower bound of a one-sided t interval
+    on the mean over repetitions of the log of the ratio, side by side, is above 0. Where the two tie, one scene
+    passes with chance 2.5%; a repetition disturbed by the machine's load widens the interval rather than decides."""
+    def passes(pair):
+        t = T_975.get(pair["repetitions"] - 1, 1.96)
+        return pair["log_mean"] - t * pair["log_se"] > 0.0
+    return all(passes(s["backend_pairs"][f"{b}/{n}"]) for s in scenes)
+
+
+def tie_ordered(ranked, scenes):
+    """`ranked` with each tie settled by TIE_ORDER: a backend stays ahead of the one after it, where TIE_ORDER puts
+    that one first, only with a clear lead over it (clear_lead)."""
+    ranked = list(ranked)
+    swapped = True
+    while swapped:  # each swap puts a pair in TIE_ORDER's order, so this ends
+        swapped = False
+        for i, (b, n) in enumerate(zip(ranked, ranked[1:])):
+            if TIE_ORDER.index(n) < TIE_ORDER.index(b) and not clear_lead(b, n, scenes):
+                ranked[i], ranked[i + 1] = n, b
+                swapped = True
+    return ranked
+
+
 def situations(scenes):
     """The ranking `--backend auto` restates, per situation (scenes with meshes or without): the explicit
     backends by the geometric mean over the situation's scenes of their efficiency over Mitsuba's (so that
     no one scene's scale weighs more), each with the range over those scenes of its per-repetition median
-    efficiency over the next's. Where scenes disagree (a range across 1) the order is the mean's."""
+    efficiency over the next's. Where scenes disagree (a range across 1) the order is the mean's, but for ties:
+    a backend ranks ahead of one that TIE_ORDER puts first only where it leads it in every repetition of every
+    scene (clear_lead)."""
     result = []
     for meshes in sorted({s["meshes"] for s in scenes}):
         members = [s for s in scenes if s["meshes"] == meshes]
@@ -179,7 +216,7 @@ def situations(scenes):
             return math.exp(statistics.mean(math.log(s["configurations"][backend]["vs_mitsuba"]["ratio"])
                                             for s in members))
 
-        ranked = sorted(BACKENDS, key=mean_over_mitsuba, reverse=True)
+        ranked = tie_ordered(sorted(BACKENDS, key=mean_over_mitsuba, reverse=True), members)
         ranking = []
         for b, n in zip(ranked, ranked[1:] + [None]):
             entry = {"backend": b, "intersector": next(r["intersector"] for r in members[0]["ranking"]
@@ -188,6 +225,7 @@ def situations(scenes):
             if n:
                 medians = [s["backend_pairs"][f"{b}/{n}"]["per_repetition"]["median"] for s in members]
                 entry["over_next_per_scene_median"] = {"low": min(medians), "high": max(medians)}
+                entry["clear_lead_over_next"] = clear_lead(b, n, members)
             ranking.append(entry)
         result.append({"meshes": meshes, "scenes": [s["scene"] for s in members], "ranking": ranking})
     return result
@@ -304,12 +342,16 @@ def markdown(results):
     lines += ["## The ranking `--backend auto` restates", "",
               "Per situation, the explicit backends by the geometric mean over its scenes of their efficiency over "
               "Mitsuba's, each with the range over those scenes of its per-repetition median efficiency over the "
-              "next's (src/cli/backend_choice.cpp restates it; a range across 1 is a tie between the scenes).", ""]
+              "next's (src/cli/backend_choice.cpp restates it; a range across 1 is a tie between the scenes). Where "
+              "a backend's lead over the next is not clear (its lower bound at 97.5% confidence, from the spread "
+              f"over repetitions, not above 1 in every scene), the two tie and the order is {', '.join(TIE_ORDER)}'s.",
+              ""]
     for sit in results["situations"]:
         order = ", then ".join(
             f"{r['backend']} with {r['intersector']} ({r['over_mitsuba_geometric_mean']:.2f}x Mitsuba"
             + (f"; {r['over_next_per_scene_median']['low']:.2f}-{r['over_next_per_scene_median']['high']:.2f}x the "
-               "next's" if "over_next_per_scene_median" in r else "") + ")"
+               "next's" + ("" if r["clear_lead_over_next"] else ", a tie")
+               if "over_next_per_scene_median" in r else "") + ")"
             for r in sit["ranking"])
         lines.append(f"- {'with' if sit['meshes'] else 'without'} meshes ({', '.join(sit['scenes'])}): {order}.")
     return "\n".join(lines) + "\n"

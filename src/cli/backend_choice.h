@@ -39,11 +39,13 @@ std::string describe(const Situation& situation);
 // (its default in the situation, which the bench ran: "embree" or "bvh"),
 // and its efficiency over the next one's: the lowest and highest, over the
 // rule's scenes, of the median over the bench's repetitions (0: not
-// measured).
+// measured), and whether that lead is clear at the bench's confidence. Where
+// it is not, the two tie and the bench's order for ties ranks them.
 struct Ranked {
     const char* backend;
     const char* intersector;
     double over_next_low, over_next_high;
+    bool clear_lead;
 };
 
 // One row of the table: the situations it covers (unset: any), every
