@@ -13,8 +13,8 @@ accuracy studies, and renders the converged images that relMSE and bias are
 measured against (cached in --out/converged-cache under a key of the scene's
 content, the settings and the renderer's version). --quick shrinks every study
 to a few minutes (CI runs it, with --check: exit 1 when relMSE does not fall
-as about 1/spp, an image's mean strays from the truth's, or a ratio is not
-finite). The meshes series runs bench/mesh_bench (cmake --build build --target
+as about 1/spp, an image's mean strays from the truth's, a ratio is not
+finite, or mesh_bench's tracers of our own tests find different hits). The meshes series runs bench/mesh_bench (cmake --build build --target
 mesh_bench) and writes meshes.json, meshes.csv and meshes.md besides; the
 estimators series (not run by default) compares MIS, NEE and roulette settings
 per scene at equal spp and writes estimators.csv and estimators.md; the lanes
@@ -867,9 +867,16 @@ def accuracy_markdown(acc):
     return lines
 
 
+# mesh_bench's agreement pairs whose tracers both report our own tests' hits (our BVH in OpenCL and in C++, and
+# the Embree intersector in either mode, which recomputes every distance with our tests): no ray may differ.
+EXACT_PAIRS = {"opencl_stage vs scalar_cpp", "scalar_cpp vs embree_stage", "scalar_cpp vs ours_verified",
+               "scalar_cpp vs ours_exact"}
+
+
 def check(results):
     """What a broken renderer would fail (bench_quick --check): relMSE falling with spp at about 1/spp,
-    every image's mean agreeing with the independent truth, and finite ratios. Returns the failures."""
+    every image's mean agreeing with the independent truth, finite ratios, and mesh_bench's tracers of our own
+    tests finding the same hits (EXACT_PAIRS). Returns the failures."""
     failures = []
     rows = results.get("accuracy", {}).get("rows", [])
     for scene in sorted({r["scene"] for r in rows}):
@@ -885,6 +892,11 @@ def check(results):
         if r["study"] != "max_depth" and abs(r["mean_z"]) > 5:
             failures.append(f"{r['scene']} {r['study']} {r['backend']} spp {r['spp']}: image mean {r['mean_ratio']:.4f}"
                             f" of the truth's, z = {r['mean_z']:.1f}")
+    for name in ("meshes", "embree"):  # mesh_bench's tracers that compute our tests' hits: the same rays, the same hits
+        for r in results.get(name, {}).get("agreement", []):
+            if r["pair"] in EXACT_PAIRS and r["differ_fraction"] > 0:
+                failures.append(f"mesh_bench {r['rays']} {r['query']} hits: {r['pair']} differ on "
+                                f"{100 * r['differ_fraction']:.4f}% of the rays")
     values = [r[k] for r in results.get("throughput", []) for k in r if k.startswith("ratio_")]
     values += [r["efficiency"] for r in rows] + [r["vs_mitsuba_equal_spp"] for r in results.get("accuracy", {}).get("peer", [])]
     failures += [f"ratio or efficiency {v} is not finite and positive" for v in values
