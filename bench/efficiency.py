@@ -45,7 +45,7 @@ SIZE = 256
 SCENE_SPP = {"room.json": 64, "cornell.json": 64, "bunny.json": 16}
 CONVERGED_SPP = 4096
 BACKENDS = ["wavefront", "megakernel", "reference"]  # the explicit ones, beside the default command; --backend auto ranks them
-# Who --backend auto ranks first where two backends tie (neither leads in every repetition): the wavefront, which
+# Who --backend auto ranks first where two backends tie (neither has a clear lead, clear_lead): the wavefront, which
 # takes every flag, then the megakernel; the reference, the independent renderer the others are checked against,
 # last.
 TIE_ORDER = ["wavefront", "megakernel", "reference"]
@@ -206,8 +206,7 @@ def situations(scenes):
     backends by the geometric mean over the situation's scenes of their efficiency over Mitsuba's (so that
     no one scene's scale weighs more), each with the range over those scenes of its per-repetition median
     efficiency over the next's. Where scenes disagree (a range across 1) the order is the mean's, but for ties:
-    a backend ranks ahead of one that TIE_ORDER puts first only where it leads it in every repetition of every
-    scene (clear_lead)."""
+    a backend ranks ahead of one that TIE_ORDER puts first only with a clear lead over it (clear_lead)."""
     result = []
     for meshes in sorted({s["meshes"] for s in scenes}):
         members = [s for s in scenes if s["meshes"] == meshes]

@@ -14,7 +14,8 @@ measured against (cached in --out/converged-cache under a key of the scene's
 content, the settings and the renderer's version). --quick shrinks every study
 to a few minutes (CI runs it, with --check: exit 1 when relMSE does not fall
 as about 1/spp, an image's mean strays from the truth's, a ratio is not
-finite, or mesh_bench's tracers of our own tests find different hits). The meshes series runs bench/mesh_bench (cmake --build build --target
+finite, or mesh_bench's tracers of our own tests find different hits). The
+meshes series runs bench/mesh_bench (cmake --build build --target
 mesh_bench) and writes meshes.json, meshes.csv and meshes.md besides; the
 estimators series (not run by default) compares MIS, NEE and roulette settings
 per scene at equal spp and writes estimators.csv and estimators.md; the lanes
