@@ -146,10 +146,13 @@ WP_FN ChildEntries child_entries(const BvhNode *node, BoxRay ray, real limit) {
 
 WP_FN vec3 triangle_vertex(WP_GLOBAL const real_element *p) { return make_vec3((real)p[0], (real)p[1], (real)p[2]); }
 
+WP_FN TriangleEdges mesh_triangle_edges(WP_GLOBAL const MeshTriangle *triangle, TriangleRay ray, vec3 origin) {
+    return ray_triangle_edges(ray, triangle_vertex(triangle->p0), triangle_vertex(triangle->p1),
+                              triangle_vertex(triangle->p2), origin);
+}
+
 WP_FN real mesh_triangle_t(WP_GLOBAL const MeshTriangle *triangle, TriangleRay ray, vec3 origin, real t_max) {
-    return triangle_distance(ray_triangle_edges(ray, triangle_vertex(triangle->p0), triangle_vertex(triangle->p1),
-                                                triangle_vertex(triangle->p2), origin),
-                             t_max);
+    return triangle_distance(mesh_triangle_edges(triangle, ray, origin), t_max);
 }
 
 /* The closest triangle the ray meets before t_max: its distance (t_max when

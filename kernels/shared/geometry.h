@@ -17,6 +17,8 @@ WP_FN real intersect_sphere(vec3 center, real radius, vec3 origin, vec3 directio
     real b = -v3_dot(f, direction);
     vec3 closest = v3_add_scaled(f, b, direction); /* centre to the ray's closest point */
     real discriminant = radius * radius - v3_dot(closest, closest);
+    lane_int misses = discriminant < REAL(0.0);
+    if (!lanes_any(!misses)) return WP_INFINITY; /* most rays: no root to take */
     real c = v3_dot(f, f) - radius * radius;
     real q = b + copysign(safe_sqrt(discriminant), b);
     real t0 = q != REAL(0.0) ? c / q : REAL(0.0);
@@ -26,7 +28,7 @@ WP_FN real intersect_sphere(vec3 center, real radius, vec3 origin, vec3 directio
     real t = (t_near > REAL(0.0) && t_near < t_max) ? t_near
              : (t_far > REAL(0.0) && t_far < t_max) ? t_far
                                                     : WP_INFINITY;
-    return discriminant < REAL(0.0) ? WP_INFINITY : t;
+    return misses ? WP_INFINITY : t;
 }
 
 /* Infinite plane through `point` with (not necessarily unit) `normal`. A ray

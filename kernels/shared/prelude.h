@@ -16,7 +16,8 @@
  *     functions below, never with operators (vec3 is a struct of three
  *     `real`s, not float3);
  *   - code that must also run with many lanes chooses with `c ? a : b`, never
- *     with `if` on a value, and combines conditions with && and ||;
+ *     with `if` on a value (but on lanes_any of one, to skip work no lane
+ *     needs), and combines conditions with && and ||;
  *   - only sqrt, fabs, fmin, fmax, floor and copysign on scalars are assumed
  *     to exist on both sides (no sin or cos: see cos_sin_turns);
  *   - floating constants are written REAL(1.0) (always with a decimal point);
@@ -106,10 +107,8 @@ WP_OVERLOAD WP_LANE_FN lane_uint gather(__global const uint *p, lane_uint index)
 #undef WP_GATHER_LANE
 #endif
 
-/* Whether a condition holds in any lane (a loop runs while some lane needs it),
- * and the lanes' counts added up. */
+/* The lanes' counts added up; lanes_any (below, with one lane) for several lanes. */
 #if WP_LANES == 1
-WP_FN int lanes_any(lane_int condition) { return condition != 0; }
 WP_FN uint lanes_sum(lane_uint x) { return x; }
 #else
 WP_FN int lanes_any(lane_int condition) { return any(condition); }
@@ -140,6 +139,13 @@ static T gather(const T *p, uint index) {
 #define REAL(x) (static_cast<real>(x))
 #define WP_REAL_MAX real_max
 #define WP_UNIT_ROUNDOFF unit_roundoff
+#endif
+
+/* Whether a condition holds in any lane (one lane here, in C++ or a kernel
+ * of one lane): a loop runs while some lane needs it, and work no lane needs
+ * is skipped. */
+#if !defined(__OPENCL_C_VERSION__) || WP_LANES == 1
+WP_FN int lanes_any(lane_int condition) { return condition != 0; }
 #endif
 
 #define WP_PI REAL(3.14159265358979323846)

@@ -88,6 +88,21 @@ RTCBounds widened_box(const vec3& lower, const vec3& upper) {
 
 using Corners = std::array<glm::dvec3, 3>;
 
+// Our test's verdict on a shape Embree offered a shadow ray (EmbreeMode::Verified).
+enum class Verdict {
+    Occludes,  // a hit before the ray's t_max
+    Beyond,    // a hit at t_max or beyond only (the light at the end of a shadow ray)
+    Missed,    // no hit at any distance: the ray passed through the enlarged shape's margin
+};
+
+// The verdict from a shape's distance within a given t_max, asked at most
+// twice: before the ray's t_max, then at any distance.
+template <class DistanceWithin>
+Verdict verdict_from(const DistanceWithin& distance_within, float t_max) {
+    if (distance_within(t_max) < t_max) return Verdict::Occludes;
+    return distance_within(M::real_max) < M::real_max ? Verdict::Beyond : Verdict::Missed;
+}
+
 struct SphereShape {
     static constexpr std::uint32_t kind = WP_SHAPE_SPHERE;
     vec3 center;
@@ -108,8 +123,12 @@ struct QuadShape {
         2;  // as Embree's triangles: (c, c + e1, c + e1 + e2), (c, c + e1 + e2, c + e2)
     vec3 corner, edge1, edge2;
     M::QuadPlane plane;  // quad_plane(edge1, edge2), once
-    float t(const Lane& ray) const {
-        return M::intersect_quad_plane(corner, edge1, edge2, plane, ray.origin, ray.direction, ray.t_max);
+    float t(const Lane& ray) const { return t_within(ray, ray.t_max); }
+    Verdict verdict(const Lane& ray) const {
+        return verdict_from([&](float t_max) { return t_within(ray, t_max); }, ray.t_max);
+    }
+    float t_within(const Lane& ray, float t_max) const {
+        return M::intersect_quad_plane(corner, edge1, edge2, plane, ray.origin, ray.direction, t_max);
     }
     RTCBounds box() const {
         vec3 far = corner + edge1 + edge2, a = corner + edge1, b = corner + edge2;
@@ -126,8 +145,13 @@ struct TriangleShape {
     static constexpr std::uint32_t kind = WP_SHAPE_TRIANGLE;
     static constexpr unsigned triangles = 1;
     M::MeshTriangle triangle;
-    // Needs with_triangle_ray(ray).
+    // These need with_triangle_ray(ray).
     float t(const Lane& ray) const { return M::mesh_triangle_t(&triangle, ray.triangle_ray, ray.origin, ray.t_max); }
+    // mesh_triangle_t's two steps, the edges computed once for both distances.
+    Verdict verdict(const Lane& ray) const {
+        M::TriangleEdges edges = M::mesh_triangle_edges(&triangle, ray.triangle_ray, ray.origin);
+        return verdict_from([&](float t_max) { return M::triangle_distance(edges, t_max); }, ray.t_max);
+    }
     RTCBounds box() const {
         vec3 p0 = M::triangle_vertex(triangle.p0), p1 = M::triangle_vertex(triangle.p1),
              p2 = M::triangle_vertex(triangle.p2);
@@ -205,6 +229,7 @@ struct ShapeList {
         return {(*shapes)[primitive].t(lane), shape_id(Shape::kind, primitive)};
     }
     bool hits(const Lane& lane, unsigned primitive) const { return (*shapes)[primitive].t(lane) < lane.t_max; }
+    Verdict verdict(const Lane& lane, unsigned shape) const { return (*shapes)[shape].verdict(lane); }
     RTCBounds box(unsigned primitive) const { return (*shapes)[primitive].box(); }
 };
 
@@ -248,14 +273,16 @@ void verified_occlusion_filter(const RTCFilterFunctionNArguments* args) {
     const auto& shapes = *static_cast<const Shapes*>(args->geometryUserPtr);
     Lane& lane = QueryContext::of(args->context);
     with_triangle_ray(lane);  // here, not for every ray: most shadow rays meet no shape
-    const unsigned shape = Shapes::shape_of(RTCHitN_primID(args->hit, args->N, 0));
-    if (shapes.hits(lane, shape)) {
-        lane.occluded = true;
-        return;
+    switch (shapes.verdict(lane, Shapes::shape_of(RTCHitN_primID(args->hit, args->N, 0)))) {
+        case Verdict::Occludes:
+            lane.occluded = true;
+            return;
+        case Verdict::Missed:
+            lane.declined = true;
+            break;
+        case Verdict::Beyond:
+            break;
     }
-    Lane unbounded = lane;
-    unbounded.t_max = M::real_max;
-    if (!shapes.hits(unbounded, shape)) lane.declined = true;
     args->valid[0] = 0;
 }
 
