@@ -21,7 +21,8 @@ estimators series (not run by default) compares MIS, NEE and roulette settings
 per scene at equal spp and writes estimators.csv and estimators.md; the lanes
 series (not run by default) measures samples/s per --lanes count for both
 OpenCL backends and writes lanes.json and lanes.md (--lanes-short: at 128x128
-and a sixth of the spp).
+and a sixth of the spp; --lanes-megakernel and --lanes-wavefront: 8 against 16
+lanes at 256x256 for that backend's default, into lanes_<backend>.*).
 """
 import argparse
 import array
@@ -984,6 +985,10 @@ def main():
     parser.add_argument("--lanes-megakernel", action="store_true",
                         help="the lanes series for the megakernel's default without meshes only: 8 and 16 lanes on "
                              "room and cornell at 256x256, 32 spp (lanes_megakernel.md; about 5 minutes on 2 cores)")
+    parser.add_argument("--lanes-wavefront", action="store_true",
+                        help="the lanes series for the wavefront's default only: 8 and 16 lanes on room and cornell "
+                             "at 256x256, 32 spp, and the bunny at 8 spp (lanes_wavefront.md; about 5 minutes on 2 "
+                             "cores)")
     args = parser.parse_args()
     series = args.series.split(",")
     unknown = set(series) - {"throughput", "scaling", "accuracy", "meshes", "estimators", "embree", "lanes"}
@@ -1016,10 +1021,14 @@ def main():
     if args.lanes_short:
         cfg.update({"lanes_scenes": {"room.json": 32, "cornell.json": 32, "bunny.json": 8}, "lanes_size": 128,
                     "lanes_flag": " --lanes-short"})
+    def eight_against_sixteen(backend, scenes):
+        # The question a default's choice between 8 and 16 lanes asks, at full size.
+        cfg.update({"lanes_scenes": scenes, "lanes_size": 256, "lanes_backends": [backend], "lanes_counts": [8, 16],
+                    "lanes_flag": f" --lanes-{backend}", "lanes_file": f"lanes_{backend}"})
     if args.lanes_megakernel:
-        cfg.update({"lanes_scenes": {"room.json": 32, "cornell.json": 32}, "lanes_size": 256,
-                    "lanes_backends": ["megakernel"], "lanes_counts": [8, 16], "lanes_flag": " --lanes-megakernel",
-                    "lanes_file": "lanes_megakernel"})
+        eight_against_sixteen("megakernel", {"room.json": 32, "cornell.json": 32})
+    if args.lanes_wavefront:
+        eight_against_sixteen("wavefront", {"room.json": 32, "cornell.json": 32, "bunny.json": 8})
     os.makedirs(args.out, exist_ok=True)
     start = time.time()
     with tempfile.TemporaryDirectory(prefix="wavepath-bench-") as scratch:
