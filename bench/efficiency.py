@@ -369,7 +369,11 @@ def analysis_block(results):
 
 
 def write_analysis(results, path):
-    """Replaces the generated block of analysis.md (between its markers) with this run's targets."""
+    """Replaces the generated block of analysis.md (between its markers) with this run's targets; an --out
+    without an analysis.md (a scratch run) has none to replace."""
+    if not os.path.exists(path):
+        print(f"efficiency: no {path}: the targets are in efficiency.md alone", file=sys.stderr)
+        return
     with open(path) as f:
         text = f.read()
     begin, end = text.find(ANALYSIS_BEGIN), text.find(ANALYSIS_END)
