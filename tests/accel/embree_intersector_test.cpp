@@ -571,5 +571,32 @@ TEST(EmbreeIntersector, VerifiedModeTracesRaysFromFarAwayExactly) {
     EXPECT_GT(hits, 45000u);
 }
 
+// One triangle, a light: shadow rays end just short of points inside it, as
+// the renderer's do (kernels/shared/offset.h), so Embree's search, which
+// reaches a little beyond t_max, offers it to the verified mode's any-hit
+// filter on every ray. Our test puts it at t_max or beyond: no occluder, and
+// no sign that the ray passed through an enlarged triangle's margin, so no
+// ray is traced again (taking that sign for a miss once retraced them all).
+TEST(EmbreeIntersector, VerifiedModeTracesShadowRaysThatReachTheirLightOnce) {
+    const M::MeshTriangle light{{-1.0f, 0.0f, -1.0f}, {1.0f, 0.0f, -1.0f}, {0.0f, 0.0f, 1.0f}, 0u, 0u};
+    EmbreeIntersector verified(Scene{}, {light}, {EmbreeMode::Verified});
+    std::mt19937 random(29);
+    // Origins within the verified mode's reach (4 times the scene's largest coordinate, 1 here).
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f), across(-3.5f, 3.5f), above(0.5f, 3.5f);
+    const vec3 p0(-1.0f, 0.0f, -1.0f), p1(1.0f, 0.0f, -1.0f), p2(0.0f, 0.0f, 1.0f);
+    const int rays = 20000;
+    for (int r = 0; r < rays; ++r) {
+        const float a = 0.1f + 0.8f * unit(random), b = (0.9f - a) * unit(random);  // inside, off the edges
+        const vec3 target = p0 + a * (p1 - p0) + b * (p2 - p0);
+        const vec3 origin(across(random), above(random), across(random));
+        const vec3 direction = glm::normalize(target - origin);
+        const float t_max = glm::length(target - origin) * (1.0f - 1e-5f);
+        const std::string label = "ray " + std::to_string(r);
+        ASSERT_GE(verified.closest(origin, direction, M::real_max).t, t_max) << label << ": the light lies beyond";
+        ASSERT_FALSE(verified.occluded(origin, direction, t_max)) << label;
+    }
+    EXPECT_EQ(verified.retraced_rays(), 0u) << "of " << rays << " shadow rays";
+}
+
 }  // namespace
 }  // namespace wp
