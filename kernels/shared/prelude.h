@@ -107,7 +107,7 @@ WP_OVERLOAD WP_LANE_FN lane_uint gather(__global const uint *p, lane_uint index)
 #undef WP_GATHER_LANE
 #endif
 
-/* The lanes' counts added up; lanes_any (below, with one lane) for several lanes. */
+/* The lanes' counts added up, and lanes_any (below) for several lanes. */
 #if WP_LANES == 1
 WP_FN uint lanes_sum(lane_uint x) { return x; }
 #else
@@ -141,9 +141,9 @@ static T gather(const T *p, uint index) {
 #define WP_UNIT_ROUNDOFF unit_roundoff
 #endif
 
-/* Whether a condition holds in any lane (one lane here, in C++ or a kernel
- * of one lane): a loop runs while some lane needs it, and work no lane needs
- * is skipped. */
+/* Whether a condition holds in any lane: a loop runs while some lane needs
+ * it, and work no lane needs is skipped. Here for one lane (C++, and kernels
+ * of one lane); for several, above. */
 #if !defined(__OPENCL_C_VERSION__) || WP_LANES == 1
 WP_FN int lanes_any(lane_int condition) { return condition != 0; }
 #endif

@@ -583,7 +583,7 @@ TEST(EmbreeIntersector, VerifiedModeTracesShadowRaysThatReachTheirLightOnce) {
     std::mt19937 random(29);
     // Origins within the verified mode's reach (4 times the scene's largest coordinate, 1 here).
     std::uniform_real_distribution<float> unit(0.0f, 1.0f), across(-3.5f, 3.5f), above(0.5f, 3.5f);
-    const vec3 p0(-1.0f, 0.0f, -1.0f), p1(1.0f, 0.0f, -1.0f), p2(0.0f, 0.0f, 1.0f);
+    const vec3 p0 = M::triangle_vertex(light.p0), p1 = M::triangle_vertex(light.p1), p2 = M::triangle_vertex(light.p2);
     const int rays = 20000;
     for (int r = 0; r < rays; ++r) {
         const float a = 0.1f + 0.8f * unit(random), b = (0.9f - a) * unit(random);  // inside, off the edges
