@@ -381,6 +381,7 @@ class StageTracer {
     static FeatureSet features(const Scene& scene, bool host_traced) {
         FeatureSet f = scene.features();
         f.host_traced = host_traced;
+        f.shadow_stage = true;  // intersect_shadow, run alone
         return f;
     }
     void split(const std::vector<Ray>& rays, std::vector<float> (&o)[3], std::vector<float> (&d)[3]) const {

@@ -89,11 +89,9 @@ WP_FN lane_int trace_bounce(WP_SCENE_PARAMS, lane_int alive, CameraPath *path, l
     lane_int casts_shadow =
         vertex_light_sample(WP_SCENE_ARGS, alive, v, path->pixel, path->sample, path->depth, path->throughput, &direct);
     *shadow_rays += casts_shadow ? (lane_uint)1u : (lane_uint)0u;
-    lane_int lit = casts_shadow;
-    if (lanes_any(casts_shadow))
-        lit = casts_shadow &&
-              !any_hit(WP_SCENE_ARGS, direct.shadow.origin, direct.shadow.direction, direct.shadow.distance);
-    path->radiance = add_finite(path->radiance, only_where(lit, direct.contribution), &dropped[1]);
+    path->radiance =
+        add_light_sample(path->radiance, shadow_ray_reaches_light(WP_SCENE_ARGS, casts_shadow, direct.shadow),
+                         direct.contribution, &dropped[1]);
 #endif
     PathStep step = step_from_vertex(v, path->direction, path->throughput, path->eta_scale, scene->seed, path->pixel,
                                      path->sample, path->depth, scene->rr_depth);

@@ -1,17 +1,18 @@
 /* Stage 3: everything a path does at its hit, WP_LANES paths per work item
  * (device/lanes.h), in the order of a vertex (device/path_vertex.h, as the
- * megakernel): the emission it sees (at depth 0 or after a specular bounce; at
- * every hit without next-event estimation; after a diffuse bounce, weighted
- * by multiple importance sampling against the light sample), the max_depth
- * cap and emitter materials (which end the path), the light sample of
- * next-event estimation at a diffuse vertex (its shadow ray goes to
- * intersect_shadow with its would-be contribution), then BSDF sampling, the
- * throughput and Russian roulette. The path state is read once and written
- * once. A path that ends here with a shadow ray to trace is finished by
- * intersect_shadow, which adds the light sample after the emission, as the
- * megakernel does. SPPM's camera pass (-DWP_SPPM): the first diffuse vertex
- * is the pixel's visible point, stored for the photon pass; the path bounces
- * on from it only where an emission it may see there still counts
+ * megakernel): the emission it sees (at depth 0 or after a specular bounce;
+ * at every hit without next-event estimation; after a diffuse bounce,
+ * weighted by multiple importance sampling against the light sample), the
+ * max_depth cap and emitter materials (which end the path), the light
+ * sample of next-event estimation at a diffuse vertex, then BSDF sampling,
+ * the throughput and Russian roulette. The path state is read once and
+ * written once. The light sample's shadow ray is traced here (on CPUs that
+ * trace on the device) or goes to intersect_shadow with its would-be
+ * contribution (WP_SHADOW_STAGE, interface/stages.h), which then adds it
+ * after the emission, as the megakernel does, and finishes a path that ends
+ * here. SPPM's camera pass (-DWP_SPPM): the first diffuse vertex is the
+ * pixel's visible point, stored for the photon pass; the path bounces on
+ * from it only where an emission it may see there still counts
  * (camera_pass_bounces_from_visible_point), and the hit after it ends the
  * path once its emission counted. */
 #include "device/guards.h"
@@ -59,13 +60,22 @@ __kernel __attribute__((reqd_work_group_size(WP_GROUP_SIZE, 1, 1))) void shade(W
 #endif
 
     lane_int casts_shadow = 0;
+    lane_int shadow_pending = 0; /* the light sample waits for intersect_shadow, which finishes the path */
 #if defined(WP_NEE) && defined(WP_HAS_DIFFUSE)
     DirectLight direct;
     casts_shadow = vertex_light_sample(WP_SCENE_ARGS, scatters, v, px, s, bounce, throughput, &direct);
+#ifdef WP_SHADOW_STAGE
+    shadow_pending = casts_shadow;
     PATH_WRITE(shadow_origin, lanes, casts_shadow, direct.shadow.origin);
     PATH_WRITE(shadow_direction, lanes, casts_shadow, direct.shadow.direction);
     PATH_WRITE(shadow_distance, lanes, casts_shadow, direct.shadow.distance);
     PATH_WRITE(shadow_radiance, lanes, casts_shadow, direct.contribution);
+#else
+    lane_uint dropped_direct = 0u;
+    radiance = add_light_sample(radiance, shadow_ray_reaches_light(WP_SCENE_ARGS, casts_shadow, direct.shadow),
+                                direct.contribution, &dropped_direct);
+    count_nonfinite(slot_nonfinite, WP_COUNTER_NONFINITE_DIRECT, lanes, dropped_direct);
+#endif
 #endif
 
     lane_int bounces = scatters; /* BSDF sampling and roulette decide whether it goes on */
@@ -98,12 +108,12 @@ __kernel __attribute__((reqd_work_group_size(WP_GROUP_SIZE, 1, 1))) void shade(W
 #ifdef WP_HAS_GLASS
     PATH_WRITE(eta_scale, lanes, continues, step.eta_scale);
 #endif
-#ifdef WP_NEE
-    PATH_WRITE(shadow_ends_path, lanes, casts_shadow, ends ? (lane_uint)1u : (lane_uint)0u);
+#if defined(WP_NEE) && defined(WP_SHADOW_STAGE)
+    PATH_WRITE(shadow_ends_path, lanes, shadow_pending, ends ? (lane_uint)1u : (lane_uint)0u);
 #endif
-    PATH_WRITE(radiance, lanes, continues || casts_shadow, radiance);
-    finish_paths(pass_radiance, PATH_READ(pass_item, lanes), ends && !casts_shadow, radiance);
-    STAGE_PUSH(SHADOW, lanes, casts_shadow);
+    PATH_WRITE(radiance, lanes, continues || shadow_pending, radiance);
+    finish_paths(pass_radiance, PATH_READ(pass_item, lanes), ends && !shadow_pending, radiance);
+    STAGE_PUSH(SHADOW, lanes, casts_shadow); /* traced by intersect_shadow, or only counted */
     STAGE_PUSH(RAY, lanes, continues);
     STAGE_PUSH(FREE, lanes, ends);
 }

@@ -1,7 +1,8 @@
 /* What a program is compiled for. The host passes the scene's features as
  * build options (src/opencl/kernel_options.cpp): WP_HAS_<kind> for each
  * shape, material and light kind in use, WP_NEE when next-event estimation
- * runs, WP_HOST_TRACED when the host traces the stages' rays
+ * runs, WP_HOST_TRACED when the host traces the stages' rays,
+ * WP_SHADOW_STAGE when the shadow rays go to their own stage
  * (interface/stages.h), and, for small scenes, each kind's count as a constant. Code for what
  * the scene lacks is compiled out. This header derives the rest. */
 #ifndef WP_DEVICE_FEATURES_H
@@ -33,6 +34,11 @@
 #define WP_IF_MIS(...) __VA_ARGS__
 #else
 #define WP_IF_MIS(...)
+#endif
+#if defined(WP_NEE) && defined(WP_SHADOW_STAGE)
+#define WP_IF_SHADOW_STAGE(...) __VA_ARGS__
+#else
+#define WP_IF_SHADOW_STAGE(...)
 #endif
 #if defined(WP_NEE) && defined(WP_HOST_TRACED)
 #define WP_IF_HOST_SHADOWS(...) __VA_ARGS__

@@ -36,6 +36,7 @@
 #include "device/lane_memory.h"
 #include "device/light_ranges.h"
 #include "device/parameters.h"
+#include "device/scene_hits.h"
 #include "device/surface.h"
 
 /* The build's choices as the values the shared functions take (the reference
@@ -284,7 +285,25 @@ WP_FN lane_int vertex_light_sample(WP_SCENE_PARAMS, lane_int continues, Vertex v
                                throughput, v.material.albedo, direct);
 }
 #endif
+
+/* Where a light sample's shadow ray, cast where `casts`, reaches its light:
+ * nothing hit before its distance (traced here, on the device). */
+WP_FN lane_int shadow_ray_reaches_light(WP_SCENE_PARAMS, lane_int casts, ShadowRay shadow) {
+    lane_int lit = casts;
+    if (lanes_any(casts)) lit = casts && !any_hit(WP_SCENE_ARGS, shadow.origin, shadow.direction, shadow.distance);
+    return lit;
+}
 #endif
+
+/* The path's radiance with a light sample's contribution added where its
+ * shadow ray reached the light (`lit`); a non-finite sum is dropped and
+ * counted in *dropped (add_finite). */
+WP_FN vec3 add_light_sample(vec3 radiance, lane_int lit, vec3 contribution, lane_uint *dropped) {
+    lane_uint not_finite = 0u;
+    vec3 sum = add_finite(radiance, contribution, &not_finite);
+    *dropped += lit ? not_finite : (lane_uint)0u;
+    return v3_select(lit, sum, radiance);
+}
 
 /* The random numbers of a BSDF sample, of the material kinds compiled in:
  * at bounce `bounce` of camera sample s of pixel px, and of photon `photon`

@@ -17,6 +17,9 @@
  *   NEE      next-event estimation runs (render.nee on and a light in the scene);
  *   MIS      NEE runs at diffuse vertices with multiple importance sampling
  *            (render.mis on);
+ *   SHADOW_STAGE  NEE runs and its shadow rays go to intersect_shadow
+ *            (where the host traces them, and on GPUs; otherwise shade
+ *            traces them itself: interface/stages.h);
  *   HOST_SHADOWS  NEE runs and the host traces the stages' rays
  *            (--intersector embree, interface/stages.h): the shadow rays'
  *            verdicts, which the host writes before intersect_shadow runs;
@@ -41,11 +44,11 @@
     X(float, hit_t, ALWAYS, "intersect intersect_photons", "shade shade_photons")                             \
     X(uint, hit_shape, ALWAYS, "intersect intersect_photons", "intersect shade shade_photons")                \
     X(uint, specular, SPECULAR, "generate shade", "shade")                                                    \
-    X(vec3, shadow_origin, NEE, "shade", "intersect_shadow")                                                  \
-    X(vec3, shadow_direction, NEE, "shade", "intersect_shadow")                                               \
-    X(float, shadow_distance, NEE, "shade", "intersect_shadow")                                               \
-    X(vec3, shadow_radiance, NEE, "shade", "intersect_shadow")                                                \
-    X(uint, shadow_ends_path, NEE, "shade", "intersect_shadow")                                               \
+    X(vec3, shadow_origin, SHADOW_STAGE, "shade", "intersect_shadow")                                         \
+    X(vec3, shadow_direction, SHADOW_STAGE, "shade", "intersect_shadow")                                      \
+    X(float, shadow_distance, SHADOW_STAGE, "shade", "intersect_shadow")                                      \
+    X(vec3, shadow_radiance, SHADOW_STAGE, "shade", "intersect_shadow")                                       \
+    X(uint, shadow_ends_path, SHADOW_STAGE, "shade", "intersect_shadow")                                      \
     X(uint, shadow_occluded, HOST_SHADOWS, "intersect_shadow", "intersect_shadow")                            \
     X(float, bsdf_pdf, MIS, "shade", "shade")                                                                 \
     X(float, eta_scale, GLASS, "generate shade", "shade")                                                     \

@@ -19,9 +19,11 @@
  *   consumes   a queue of interface/queues.h, by name (WP_QUEUE_<name>);
  *   pushes to  WP_PUSHES(queue, ...), the queues it may push to, or
  *              WP_PUSHES_NOTHING;
- *   runs when  a path state feature (interface/path_state.h): ALWAYS, NEE
- *              for a stage that only next-event estimation needs, SPPM for
- *              one that only the sppm integrator needs;
+ *   runs when  a path state feature (interface/path_state.h): ALWAYS,
+ *              SHADOW_STAGE for the stage of next-event estimation's
+ *              shadow rays (which shade traces itself where the device
+ *              traces on a CPU: see below), SPPM for one that only the sppm
+ *              integrator needs;
  *   traces     the rays of the paths it consumes: CLOSEST_HIT (their
  *              extension rays, into hit_t and hit_shape), ANY_HIT (their
  *              shadow rays, blocked or not) or NO_RAYS. Where the host
@@ -30,7 +32,14 @@
  *              with WP_HOST_TRACED, reads the results and does the rest.
  *              The photon stages trace on the device (sppm takes the BVH),
  *              so intersect_photons, which traces closest hits, is NO_RAYS
- *              here: there is nothing for the host to trace before it. */
+ *              here: there is nothing for the host to trace before it.
+ *
+ * Shadow rays: on a CPU device that traces them itself, shade traces its
+ * vertices' shadow rays at once (one kernel fewer, the shadow rays' state
+ * neither written nor read again; measured in docs/architecture.md, "Shadow
+ * rays") and pushes them to SHADOW only to count them (--profile's
+ * rays by depth, the summary's shadow rays); no stage consumes them. Where
+ * the host traces them, and on GPUs, intersect_shadow does (SHADOW_STAGE). */
 #ifndef WP_INTERFACE_STAGES_H
 #define WP_INTERFACE_STAGES_H
 
@@ -40,7 +49,7 @@
     X(generate, CAMERA, FREE, WP_PUSHES(RAY), ALWAYS, NO_RAYS)                                  \
     X(intersect, CAMERA, RAY, WP_PUSHES(HIT, FREE), ALWAYS, CLOSEST_HIT)                        \
     X(shade, CAMERA, HIT, WP_PUSHES(SHADOW, RAY, FREE), ALWAYS, NO_RAYS)                        \
-    X(intersect_shadow, CAMERA, SHADOW, WP_PUSHES_NOTHING, NEE, ANY_HIT)                        \
+    X(intersect_shadow, CAMERA, SHADOW, WP_PUSHES_NOTHING, SHADOW_STAGE, ANY_HIT)               \
     X(emit_photons, PHOTON, PHOTON_FREE, WP_PUSHES(PHOTON_RAY), SPPM, NO_RAYS)                  \
     X(intersect_photons, PHOTON, PHOTON_RAY, WP_PUSHES(PHOTON_HIT, PHOTON_FREE), SPPM, NO_RAYS) \
     X(shade_photons, PHOTON, PHOTON_HIT, WP_PUSHES(PHOTON_RAY, PHOTON_FREE), SPPM, NO_RAYS)

@@ -31,6 +31,7 @@ std::vector<std::pair<const char*, const char*>> features_in_use(const FeatureSe
     add(f.nee, "nee", "WP_NEE");
     add(f.mis, "mis", "WP_MIS");
     add(f.host_traced, "host-traced", "WP_HOST_TRACED");
+    add(f.nee && f.shadow_stage, "shadow-stage", "WP_SHADOW_STAGE");
     add(f.sppm, "sppm", "WP_SPPM");
     return in_use;
 }

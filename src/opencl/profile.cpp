@@ -89,10 +89,15 @@ std::string format_profile_table(const RenderProfile& p) {
     if (p.intersect_bound_rays_per_s > 0.0) {
         std::snprintf(line, sizeof line,
                       "  intersect bound (ray-primitive tests only, no state traffic): %.1f Mrays/s; intersect at "
-                      "%.0f%% of it, intersect_shadow at %.0f%% (any hit: cheaper tests, same bound)\n",
-                      p.intersect_bound_rays_per_s * 1e-6, 100.0 * p.fraction_of_intersect_bound("intersect"),
-                      100.0 * p.fraction_of_intersect_bound("intersect_shadow"));
+                      "%.0f%% of it",
+                      p.intersect_bound_rays_per_s * 1e-6, 100.0 * p.fraction_of_intersect_bound("intersect"));
         out += line;
+        if (p.has_kernel("intersect_shadow")) {  // not where shade traces the shadow rays
+            std::snprintf(line, sizeof line, ", intersect_shadow at %.0f%% (any hit: cheaper tests, same bound)",
+                          100.0 * p.fraction_of_intersect_bound("intersect_shadow"));
+            out += line;
+        }
+        out += "\n";
     }
     if (p.copy_bytes_per_s > 0.0) {
         std::snprintf(line, sizeof line,
@@ -130,8 +135,9 @@ nlohmann::json profile_json(const RenderProfile& p) {
                            {"shadow_rays_by_depth", p.shadow_rays_by_depth}};
     if (p.intersect_bound_rays_per_s > 0.0) {
         json["intersect_bound_rays_per_s"] = p.intersect_bound_rays_per_s;
-        json["of_intersect_bound"] = {{"intersect", p.fraction_of_intersect_bound("intersect")},
-                                      {"intersect_shadow", p.fraction_of_intersect_bound("intersect_shadow")}};
+        json["of_intersect_bound"] = {{"intersect", p.fraction_of_intersect_bound("intersect")}};
+        if (p.has_kernel("intersect_shadow"))
+            json["of_intersect_bound"]["intersect_shadow"] = p.fraction_of_intersect_bound("intersect_shadow");
     }
     if (p.copy_bytes_per_s > 0.0) {
         json["copy_bytes_per_s"] = p.copy_bytes_per_s;

@@ -122,6 +122,11 @@ struct FeatureSet {
     // Not the scene's: the wavefront's kernels read the rays' hits, which the
     // host traced (--intersector embree, kernels/interface/stages.h).
     bool host_traced = false;
+    // Not the scene's either: next-event estimation's shadow rays go through
+    // the SHADOW queue to their own stage, intersect_shadow (where the host
+    // traces them, and on GPUs), rather than being traced in shade
+    // (docs/architecture.md, "Shadow rays").
+    bool shadow_stage = false;
 };
 
 struct Scene {

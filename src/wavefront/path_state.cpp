@@ -38,6 +38,8 @@ bool path_feature_compiled(PathFeature feature, const FeatureSet& features) {
             return features.nee;
         case PathFeature::MIS:
             return features.mis;
+        case PathFeature::SHADOW_STAGE:
+            return features.nee && features.shadow_stage;
         case PathFeature::HOST_SHADOWS:
             return features.nee && features.host_traced;
         case PathFeature::SPPM:
@@ -52,6 +54,7 @@ std::string path_state_table_markdown() {
                                           "glass",
                                           "nee (next-event estimation runs)",
                                           "mis (next-event estimation with multiple importance sampling)",
+                                          "nee with the shadow rays traced in their own stage (intersect_shadow)",
                                           "nee with the shadow rays traced on the host (--intersector embree)",
                                           "sppm (the sppm integrator)"};
     std::ostringstream table;

@@ -11,7 +11,7 @@
 
 namespace wp {
 
-enum class PathFeature { ALWAYS, SPECULAR, GLASS, NEE, MIS, HOST_SHADOWS, SPPM };
+enum class PathFeature { ALWAYS, SPECULAR, GLASS, NEE, MIS, SHADOW_STAGE, HOST_SHADOWS, SPPM };
 
 struct PathStateField {
     const char* type;

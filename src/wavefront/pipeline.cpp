@@ -57,7 +57,8 @@ Pipeline::Pipeline(const Scene& scene, const SceneLayout& layout, const DeviceIn
               plan_queues(std::vector<std::vector<Stage>>{iteration_, photon_iteration_}), kernel_features.host_traced),
       film_(context_, queue_, program_.program, scene.camera.width, scene.camera.height, options.film_squares),
       pass_radiance_(context_, CL_MEM_READ_WRITE, sizeof(float) * 3 * pass_capacity),
-      slot_nonfinite_(context_, CL_MEM_READ_WRITE, sizeof(std::uint32_t) * WP_NONFINITE_STAGE_COUNT * capacity) {
+      slot_nonfinite_(context_, CL_MEM_READ_WRITE, sizeof(std::uint32_t) * WP_NONFINITE_STAGE_COUNT * capacity),
+      shade_traces_shadows_(kernel_features.nee && !kernel_features.shadow_stage) {
     if (kernel_features.sppm) {
         photons_per_iteration_ = scene.lights.empty() ? 0 : static_cast<std::uint32_t>(sppm_photons(scene));
         sppm_.emplace(context_, queue_, program_.program, scene_, queues_.counts(),
@@ -114,6 +115,12 @@ void Pipeline::run(Stage stage, std::size_t entries) {
                                 host_trace_->trace(queue_, queues_, state_, capacity_, stage));
     launcher_.launch(stages_[static_cast<std::size_t>(stage)], declaration(stage).kernel,
                      divide_rounding_up(entries, lanes_));
+}
+
+void Pipeline::finish_stage(Stage stage, std::size_t entries) {
+    queues_.finish_stage(launcher_, stage);
+    if (ray_depths_ && shade_traces_shadows_ && stage == Stage::shade && entries > 0)
+        ray_depths_->count_shadow_rays(launcher_, entries);
 }
 
 void Pipeline::start_paths(const std::vector<glm::vec3>& origins, const std::vector<glm::vec3>& directions,

@@ -93,8 +93,11 @@ class Pipeline {
     // a tracing stage's queue first (waiting for the device), its time the
     // profile's host_trace_row. Nothing when `entries` is 0.
     void run(Stage stage, std::size_t entries);
-    // The queue bookkeeping once `stage` has run (QueueSet::finish_stage).
-    void finish_stage(Stage stage) { queues_.finish_stage(launcher_, stage); }
+    // The queue bookkeeping once `stage` has run over `entries`
+    // (QueueSet::finish_stage); with profiling, where shade traces the
+    // shadow rays itself, their count by depth from the SHADOW queue it
+    // leaves (kernels/interface/stages.h).
+    void finish_stage(Stage stage, std::size_t entries);
     // Waits for the queue; with profiling, adds the finished kernels' times to profile().
     DeviceCounts read_counts();
     // The non-finite values the stages dropped since the last call, by stage.
@@ -167,6 +170,7 @@ class Pipeline {
     std::uint64_t pass_start_ = 0;
     std::uint32_t pass_size_ = 0;
     std::uint32_t photons_per_iteration_ = 0;
+    bool shade_traces_shadows_;  // next-event estimation without a shadow stage
 };
 
 // The kernel files of the program, in build order: the stages' (kernels/<stage>.cl), then the others.

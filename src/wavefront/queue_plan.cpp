@@ -42,10 +42,15 @@ QueuePlan plan_queues(const std::vector<Stage>& iteration) {
             }
         }
     }
-    for (std::size_t at = 0; at < n; ++at)
-        for (std::uint32_t queue = 0; queue < WP_QUEUE_COUNT; ++queue)
-            if (pushes_to(iteration[at], queue) && complete_after(iteration, at, queue))
-                of(plan, iteration[at]).compacted_after |= 1u << queue;
+    for (std::size_t at = 0; at < n; ++at) {
+        StageBookkeeping& stage = of(plan, iteration[at]);
+        stage.marks_cleared_after |= 1u << declaration(iteration[at]).consumes;
+        for (std::uint32_t queue = 0; queue < WP_QUEUE_COUNT; ++queue) {
+            if (!pushes_to(iteration[at], queue) || !complete_after(iteration, at, queue)) continue;
+            stage.compacted_after |= 1u << queue;
+            if (after_consumer(iteration, queue) == 0) stage.marks_cleared_after |= 1u << queue;
+        }
+    }
     return plan;
 }
 

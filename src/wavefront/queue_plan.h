@@ -23,6 +23,11 @@ struct StageBookkeeping {
     // before their consumer runs. So a queue is built once it is complete,
     // and every length is current when the iteration ends.
     std::uint32_t compacted_after = 0;
+    // Scan compaction, after the stage: the marks cleared, those of the queue
+    // it consumes (taken), and of the queues it completes that no stage of the
+    // iteration consumes (SHADOW where shade traces the shadow rays itself:
+    // built only to be counted), once built.
+    std::uint32_t marks_cleared_after = 0;
 };
 
 // Indexed by Stage; a stage that is not in the iteration has nothing to do.

@@ -46,9 +46,10 @@ void QueueSet::start_stage(Stage stage) {
 
 void QueueSet::finish_stage(KernelLauncher& launcher, Stage stage) {
     if (!scan_) return;
-    clear_marks(declaration(stage).consumes);
-    if (std::uint32_t completed = plan_[static_cast<std::size_t>(stage)].compacted_after)
-        scan_->compact(launcher, completed);
+    const StageBookkeeping& plan = plan_[static_cast<std::size_t>(stage)];
+    if (plan.compacted_after) scan_->compact(launcher, plan.compacted_after);
+    for (std::uint32_t queue = 0; queue < WP_QUEUE_COUNT; ++queue)
+        if (plan.marks_cleared_after >> queue & 1u) clear_marks(queue);
 }
 
 void QueueSet::empty_outputs(Stage stage) {

@@ -19,8 +19,10 @@ DeviceCounts run_iteration(Pipeline& p, const std::vector<Stage>& stages, std::u
     for (Stage stage : stages) {
         p.start_stage(stage);
         const std::uint32_t consumes = declaration(stage).consumes;
-        p.run(stage, consumes == WP_QUEUE_FREE || consumes == WP_QUEUE_PHOTON_FREE ? generated : traced);
-        p.finish_stage(stage);
+        const std::uint32_t entries =
+            consumes == WP_QUEUE_FREE || consumes == WP_QUEUE_PHOTON_FREE ? generated : traced;
+        p.run(stage, entries);
+        p.finish_stage(stage, entries);
     }
     return p.read_counts();
 }

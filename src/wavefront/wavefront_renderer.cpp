@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <sstream>
+#include <stdexcept>
 
 #include "opencl/device.h"
 #include "opencl/film.h"
@@ -49,10 +50,15 @@ IntersectorChoice choose_intersector(const WavefrontOptions& options, const Devi
     return {*options.intersector, "asked for"};
 }
 
-// The kernels' features: the scene's (or every shape's), and whether the host traces.
-FeatureSet kernel_features(const Scene& scene, const WavefrontOptions& options, Intersector intersector) {
+// The kernels' features: the scene's (or every shape's), whether the host
+// traces, and whether the shadow rays have a stage of their own.
+FeatureSet kernel_features(const Scene& scene, const WavefrontOptions& options, Intersector intersector,
+                           const DeviceInfo& device) {
     FeatureSet f = options.specialise ? scene.features() : every_shape_and_material(scene.features());
     f.host_traced = intersector == Intersector::Embree;
+    f.shadow_stage = options.shadow_stage.value_or(f.host_traced || device.type != "CPU");
+    if (f.host_traced && !f.shadow_stage)
+        throw std::invalid_argument("shadow rays the host traces need their own stage (intersect_shadow)");
     return f;
 }
 
@@ -145,10 +151,10 @@ class WavefrontFilmRenderer : public FilmRenderer {
                           WavefrontReport* report, std::uint64_t max_items)
         : device_(choose_device(options.device)),
           intersector_(choose_intersector(options, device_, scene.features())),
-          features_(kernel_features(scene, options, intersector_.intersector)),
+          features_(kernel_features(scene, options, intersector_.intersector, device_)),
           wavefront_(options.wavefront
                          ? options.wavefront
-                         : default_wavefront_size(max_items, PathState::bytes_per_path(scene.features()), device_)),
+                         : default_wavefront_size(max_items, PathState::bytes_per_path(features_), device_)),
           pipeline_(scene, device_, wavefront_, std::min<std::uint64_t>(max_items, kPassesPerWavefront * wavefront_),
                     features_, {options.profile, options.compaction, options.lanes, progress, options.film_squares}),
           profile_(options.profile),

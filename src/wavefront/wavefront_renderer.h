@@ -31,6 +31,11 @@ struct WavefrontOptions {
     // host (CPU devices only; wavefront/host_trace.h). Unset:
     // default_intersector's choice for the device and the scene (wavefront/intersector_choice.h).
     std::optional<Intersector> intersector = std::nullopt;
+    // Whether next-event estimation's shadow rays go to a stage of their own
+    // (intersect_shadow) or shade traces them. Unset: their own stage where
+    // the host traces them (which needs it) and on GPUs, shade on CPUs
+    // (kernels/interface/stages.h, docs/architecture.md "Shadow rays").
+    std::optional<bool> shadow_stage = std::nullopt;
 };
 
 // Queue lengths of one iteration of a stage loop, for the profiler: of the

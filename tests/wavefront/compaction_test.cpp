@@ -40,7 +40,7 @@ std::pair<std::vector<std::uint32_t>, std::vector<std::uint32_t>> hits_after_int
     test::start_paths(pipeline, rays);
     pipeline.queues().set_queue(WP_QUEUE_RAY, queued);
     pipeline.run(Stage::intersect, queued.size());
-    pipeline.finish_stage(Stage::intersect);
+    pipeline.finish_stage(Stage::intersect, queued.size());
     std::vector<std::uint32_t> shape = pipeline.read_field<std::uint32_t>("hit_shape"), expected;
     for (std::uint32_t slot : queued)
         if (shape[slot] != WP_NO_HIT) expected.push_back(slot);

@@ -68,12 +68,16 @@ TEST(PathState, FieldsExistOnlyForFeaturesInUse) {
     with_glass.glass = true;
     FeatureSet diffuse_nee = diffuse_only, glass_mis = with_glass;
     diffuse_nee.nee = glass_mis.nee = glass_mis.mis = true;
+    diffuse_nee.shadow_stage = glass_mis.shadow_stage = true;
     FeatureSet diffuse_mis = diffuse_nee;
     diffuse_mis.mis = true;
     std::size_t base = PathState::bytes_per_path(diffuse_only);
     EXPECT_EQ(PathState::bytes_per_path(with_glass), base + 4 + 4);        // specular flag, eta_scale
     EXPECT_EQ(PathState::bytes_per_path(diffuse_nee), base + 11 * 4);      // shadow ray, contribution, ends path
     EXPECT_EQ(PathState::bytes_per_path(diffuse_mis), base + 11 * 4 + 4);  // and the bounce's density
+    FeatureSet shadows_in_shade = diffuse_mis;
+    shadows_in_shade.shadow_stage = false;  // shade traces them: no shadow ray kept
+    EXPECT_EQ(PathState::bytes_per_path(shadows_in_shade), base + 4);
     FeatureSet glass_mis_host_traced = glass_mis, diffuse_host_traced = diffuse_only;
     glass_mis_host_traced.host_traced = diffuse_host_traced.host_traced = true;
     EXPECT_EQ(PathState::bytes_per_path(diffuse_host_traced), base);  // no shadow rays: nothing more
@@ -113,7 +117,7 @@ TEST(PathState, StageBytesPerItemComeFromTheDeclarations) {
     // Fields only some renders have: specular, eta_scale and bsdf_pdf are
     // read and written by shade, the shadow ray only written.
     FeatureSet glass_mis = diffuse;
-    glass_mis.glass = glass_mis.nee = glass_mis.mis = true;
+    glass_mis.glass = glass_mis.nee = glass_mis.mis = glass_mis.shadow_stage = true;
     const StageBytes shade_glass_mis = stage_bytes_per_item(declaration(Stage::shade), glass_mis);
     EXPECT_EQ(shade_glass_mis.state_read, shade.state_read + 3 * 4);
     EXPECT_EQ(shade_glass_mis.state_written, shade.state_written + 3 * 4 + (12 + 12 + 4 + 12 + 4));

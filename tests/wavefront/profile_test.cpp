@@ -29,12 +29,13 @@ std::uint64_t sum(const std::vector<std::uint64_t>& values) {
 }
 
 // A profiled wavefront render of scenes/test/room_small.json at size x size,
-// 1 spp, max_depth `max_depth`, `wavefront` paths in flight (0: automatic).
+// 1 spp, max_depth `max_depth`, `wavefront` paths in flight (0: automatic),
+// the shadow rays traced by shade or by their own stage.
 struct ProfiledRender {
     RenderResult result;
     WavefrontReport report;
 };
-ProfiledRender profiled_small_room(int size, int max_depth, std::size_t wavefront = 0) {
+ProfiledRender profiled_small_room(int size, int max_depth, std::size_t wavefront = 0, bool shadow_stage = false) {
     Scene scene = test::scene_from_file("scenes/test/room_small.json");
     scene.camera.width = scene.camera.height = size;
     scene.render.spp = 1;
@@ -42,6 +43,7 @@ ProfiledRender profiled_small_room(int size, int max_depth, std::size_t wavefron
     WavefrontOptions options;
     options.wavefront = wavefront;
     options.profile = true;
+    options.shadow_stage = shadow_stage;
     ProfiledRender rendered;
     rendered.result = render_wavefront(scene, options, {}, &rendered.report);
     return rendered;
@@ -52,8 +54,10 @@ ProfiledRender profiled_small_room(int size, int max_depth, std::size_t wavefron
 // the items): the scalar reference renderer's rays for the same scene
 // (the same random numbers, so the same paths; ImageAgreement checks the
 // paths themselves), the count_depths kernel's histograms (counted on the
-// device from the queues' contents), and the scene's pixels x spp.
-TEST(Profile, KernelItemsMatchTheRaysTheRenderCounted) {
+// device from the queues' contents), and the scene's pixels x spp. With the
+// shadow rays traced by their own stage, or by shade (no intersect_shadow
+// row; they are counted after shade).
+void expect_kernel_items_match_the_rays_the_render_counted(bool shadow_stage) {
     Scene scene = test::scene_from_file("scenes/test/room_small.json");
     scene.camera.width = scene.camera.height = 32;
     scene.render.spp = 2;
@@ -61,6 +65,7 @@ TEST(Profile, KernelItemsMatchTheRaysTheRenderCounted) {
     WavefrontOptions options;
     options.wavefront = 512;  // several passes and a regenerating wavefront
     options.profile = true;
+    options.shadow_stage = shadow_stage;
     WavefrontReport report;
     RenderResult result = render_wavefront(scene, options, {}, &report);
     RenderProfile& p = report.profile;
@@ -68,7 +73,9 @@ TEST(Profile, KernelItemsMatchTheRaysTheRenderCounted) {
     ASSERT_EQ(reference.stats.samples, samples);
 
     EXPECT_EQ(p.kernel("intersect").items, reference.stats.extension_rays);
-    EXPECT_EQ(p.kernel("intersect_shadow").items, reference.stats.shadow_rays);
+    EXPECT_EQ(result.stats.shadow_rays, reference.stats.shadow_rays);
+    EXPECT_EQ(p.has_kernel("intersect_shadow"), shadow_stage);
+    if (shadow_stage) EXPECT_EQ(p.kernel("intersect_shadow").items, reference.stats.shadow_rays);
     EXPECT_EQ(p.kernel("accumulate").items, samples);
     EXPECT_EQ(p.kernel("generate").items, samples);  // every camera ray took one free slot
     // Every hit is shaded.
@@ -83,6 +90,7 @@ TEST(Profile, KernelItemsMatchTheRaysTheRenderCounted) {
         EXPECT_LE(p.extension_rays_by_depth[d], p.extension_rays_by_depth[d - 1]) << "depth " << d;
 
     for (const char* stage : {"generate", "intersect", "shade", "intersect_shadow"}) {
+        if (!p.has_kernel(stage)) continue;
         EXPECT_GT(p.kernel(stage).device_s, 0.0) << stage;
         if (std::string(stage) != "generate") {
             EXPECT_EQ(p.kernel(stage).launches, p.iterations) << stage;
@@ -104,10 +112,12 @@ TEST(Profile, KernelItemsMatchTheRaysTheRenderCounted) {
     EXPECT_TRUE(std::isfinite(p.intersect_bound_rays_per_s));
 
     // Each stage's row has its declared bytes for the kernels' features (here
-    // the scene's); the other kernels declare none.
+    // the scene's, with or without the shadow stage); the other kernels declare none.
+    FeatureSet kernel_features = scene.features();
+    kernel_features.shadow_stage = shadow_stage;
     for (const StageDeclaration& stage : stage_declarations) {
         if (!p.has_kernel(stage.kernel)) continue;
-        EXPECT_EQ(p.kernel(stage.kernel).bytes_per_item, stage_bytes_per_item(stage, scene.features()).total())
+        EXPECT_EQ(p.kernel(stage.kernel).bytes_per_item, stage_bytes_per_item(stage, kernel_features).total())
             << stage.kernel;
     }
     EXPECT_TRUE(p.has_kernel("shade"));
@@ -118,6 +128,14 @@ TEST(Profile, KernelItemsMatchTheRaysTheRenderCounted) {
     EXPECT_GT(p.copy_bytes_per_s, 1e8);
     EXPECT_LT(p.copy_bytes_per_s, 1e14);
     EXPECT_EQ(p.copy_buffer_bytes, std::uint64_t(256) << 20);
+}
+
+TEST(Profile, KernelItemsMatchTheRaysTheRenderCountedWithShadowRaysTracedInShade) {
+    expect_kernel_items_match_the_rays_the_render_counted(false);
+}
+
+TEST(Profile, KernelItemsMatchTheRaysTheRenderCountedWithAShadowStage) {
+    expect_kernel_items_match_the_rays_the_render_counted(true);
 }
 
 // Where the host traces (--intersector embree), its share of a tracing
@@ -174,23 +192,27 @@ TEST(Profile, SppmProfilesThePhotonStagesAndTheGrid) {
 
 // A shadow ray is counted at the depth of the vertex that cast it, although
 // shade has moved its path's depth on by then: with max_depth 1 every light
-// sample is cast at the camera ray's hit, depth 0.
+// sample is cast at the camera ray's hit, depth 0; whether shade traces the
+// shadow rays or their own stage does.
 TEST(Profile, ShadowRaysAreCountedAtTheDepthOfTheirVertex) {
-    ProfiledRender rendered = profiled_small_room(16, 1);
-    const std::vector<std::uint64_t>& shadow = rendered.report.profile.shadow_rays_by_depth;
-    ASSERT_FALSE(shadow.empty());
-    EXPECT_GT(shadow[0], 0u);
-    EXPECT_EQ(shadow[0], rendered.result.stats.shadow_rays);
-    EXPECT_EQ(sum(shadow), shadow[0]);
+    for (bool shadow_stage : {false, true}) {
+        SCOPED_TRACE(shadow_stage ? "a shadow stage" : "traced in shade");
+        ProfiledRender rendered = profiled_small_room(16, 1, 0, shadow_stage);
+        const std::vector<std::uint64_t>& shadow = rendered.report.profile.shadow_rays_by_depth;
+        ASSERT_FALSE(shadow.empty());
+        EXPECT_GT(shadow[0], 0u);
+        EXPECT_EQ(shadow[0], rendered.result.stats.shadow_rays);
+        EXPECT_EQ(sum(shadow), shadow[0]);
+    }
 }
 
 // docs/architecture.md's count of the kernels an iteration launches (at most:
-// scan compaction and next-event estimation, as here) is what one iteration
-// launches: every path of this render ends at its first hit (max_depth 0),
-// so it is one pass of one iteration, and its profile counts every launch
-// but the pass's accumulate.
+// scan compaction and next-event estimation with a shadow stage, as here) is
+// what one iteration launches: every path of this render ends at its first
+// hit (max_depth 0), so it is one pass of one iteration, and its profile
+// counts every launch but the pass's accumulate.
 TEST(Profile, ArchitectureDocCountsTheKernelsOfAnIteration) {
-    WavefrontReport report = profiled_small_room(8, 0, 64).report;
+    WavefrontReport report = profiled_small_room(8, 0, 64, true).report;
     ASSERT_EQ(report.iterations.size(), 1u);
     std::uint64_t launches = 0;
     for (const KernelProfile& k : report.profile.kernels)
@@ -260,6 +282,12 @@ TEST(Profile, TableAndJsonReportTheTracingStagesAgainstTheBound) {
     EXPECT_EQ(json["of_intersect_bound"]["intersect"], 0.5);
     EXPECT_EQ(json["of_intersect_bound"]["intersect_shadow"], 0.25);
 
+    p.kernels.erase(std::find_if(p.kernels.begin(), p.kernels.end(),
+                                 [](const KernelProfile& k) { return k.name == "intersect_shadow"; }));
+    // Shade traced the shadow rays: intersect alone.
+    EXPECT_NE(format_profile_table(p).find("; intersect at 50% of it\n"), std::string::npos) << format_profile_table(p);
+    EXPECT_FALSE(profile_json(p)["of_intersect_bound"].contains("intersect_shadow"));
+
     p.intersect_bound_rays_per_s = 0.0;  // not measured (the megakernel): not reported
     EXPECT_EQ(format_profile_table(p).find("intersect bound"), std::string::npos);
     EXPECT_FALSE(profile_json(p).contains("intersect_bound_rays_per_s"));
@@ -328,16 +356,16 @@ TEST(Profile, CliWritesJsonConsistentWithStatsAndPrintsTable) {
     int exit_code;
     std::string output = run_shell(command, exit_code);
     ASSERT_EQ(exit_code, 0) << output;
-    for (const char* text :
-         {"kernel", "launches", "items", "device ms", "Mitems/s", "intersect_shadow", "(between kernels)",
-          "extension rays by depth:", "program build", "B/item", "GB/s", "of copy", "copy bandwidth:"})
+    for (const char* text : {"kernel", "launches", "items", "device ms", "Mitems/s", "shade", "(between kernels)",
+                             "extension rays by depth:", "shadow rays by depth:", "program build", "B/item", "GB/s",
+                             "of copy", "copy bandwidth:"})
         EXPECT_NE(output.find(text), std::string::npos) << text << "\n" << output;
 
     nlohmann::json profile = read_json(dir / "profile.json"), stats = read_json(dir / "stats.json");
     std::map<std::string, nlohmann::json> kernels;
     for (const nlohmann::json& k : profile["kernels"]) kernels[k["name"]] = k;
     EXPECT_EQ(kernels["intersect"]["items"], stats["extension_rays"]);
-    EXPECT_EQ(kernels["intersect_shadow"]["items"], stats["shadow_rays"]);
+    EXPECT_EQ(kernels.count("intersect_shadow"), 0u);  // a CPU device: shade traces the shadow rays
     EXPECT_EQ(kernels["accumulate"]["items"], stats["samples"]);
     EXPECT_EQ(profile["render_s"], stats["time_s"]);
     double kernel_s = 0.0;
@@ -350,36 +378,38 @@ TEST(Profile, CliWritesJsonConsistentWithStatsAndPrintsTable) {
     EXPECT_NEAR(profile["kernel_s"].get<double>(), kernel_s, 1e-12);
     const double copy = profile["copy_bytes_per_s"].get<double>();
     EXPECT_GT(copy, 0.0);
-    for (const char* stage : {"generate", "intersect", "shade", "intersect_shadow"}) {
+    for (const char* stage : {"generate", "intersect", "shade"}) {
         const nlohmann::json& k = kernels[stage];
         const double bytes_per_s = k["bytes_per_s"].get<double>();
         EXPECT_NEAR(bytes_per_s, k["bytes_per_item"].get<double>() * k["items_per_s"].get<double>(), 1e-9 * bytes_per_s)
             << stage;
         EXPECT_NEAR(k["of_copy_bandwidth"].get<double>(), bytes_per_s / copy, 1e-9 * bytes_per_s / copy) << stage;
     }
-    std::uint64_t by_depth = 0;
+    std::uint64_t by_depth = 0, shadow_by_depth = 0;
     for (std::uint64_t n : profile["extension_rays_by_depth"]) by_depth += n;
+    for (std::uint64_t n : profile["shadow_rays_by_depth"]) shadow_by_depth += n;
     EXPECT_EQ(by_depth, stats["extension_rays"].get<std::uint64_t>());
+    EXPECT_EQ(shadow_by_depth, stats["shadow_rays"].get<std::uint64_t>());
+    EXPECT_GT(shadow_by_depth, 0u);
 
-    // The bound, and each tracing stage's rays/s as a fraction of it, printed as in the JSON.
+    // The bound, and the tracing stage's rays/s as a fraction of it, printed as in the JSON.
     double bound = profile["intersect_bound_rays_per_s"].get<double>();
     EXPECT_GT(bound, 0.0);
     EXPECT_TRUE(std::isfinite(bound));
-    double printed_mrays, printed_intersect, printed_shadow;
+    double printed_mrays, printed_intersect;
     std::size_t line = output.find("intersect bound");
     ASSERT_NE(line, std::string::npos) << output;
     ASSERT_EQ(std::sscanf(output.c_str() + line,
                           "intersect bound (ray-primitive tests only, no state traffic): %lf Mrays/s; intersect at "
-                          "%lf%% of it, intersect_shadow at %lf%%",
-                          &printed_mrays, &printed_intersect, &printed_shadow),
-              3)
+                          "%lf%% of it",
+                          &printed_mrays, &printed_intersect),
+              2)
         << output;
     EXPECT_NEAR(printed_mrays, bound * 1e-6, 0.05 + 1e-9);  // printed with one decimal
-    for (auto [name, printed] : {std::pair{"intersect", printed_intersect}, {"intersect_shadow", printed_shadow}}) {
-        double fraction = profile["of_intersect_bound"][name].get<double>();
-        EXPECT_NEAR(fraction, kernels[name]["items_per_s"].get<double>() / bound, 1e-9 * fraction) << name;
-        EXPECT_NEAR(printed, 100.0 * fraction, 0.5 + 1e-9) << name;  // printed as a whole percentage
-    }
+    double fraction = profile["of_intersect_bound"]["intersect"].get<double>();
+    EXPECT_NEAR(fraction, kernels["intersect"]["items_per_s"].get<double>() / bound, 1e-9 * fraction);
+    EXPECT_NEAR(printed_intersect, 100.0 * fraction, 0.5 + 1e-9);  // printed as a whole percentage
+    EXPECT_FALSE(profile["of_intersect_bound"].contains("intersect_shadow"));
     std::filesystem::remove_all(dir);
 }
 

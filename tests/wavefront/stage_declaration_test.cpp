@@ -95,12 +95,16 @@ TEST(StageDeclaration, KernelCheckFindsAStageWithoutKernelAndAPushNeverMade) {
     EXPECT_EQ(kernel_file_problem(intersect), "kernel intersect pushes to FREE HIT, declared FREE HIT SHADOW");
 }
 
-TEST(StageDeclaration, IntersectShadowRunsOnlyWithNextEventEstimation) {
+TEST(StageDeclaration, IntersectShadowRunsOnlyWhereShadowRaysHaveTheirOwnStage) {
     FeatureSet features;
     features.spheres = features.diffuse = true;
-    const std::vector<Stage> without_nee{Stage::generate, Stage::intersect, Stage::shade};
-    EXPECT_EQ(iteration_stages(features), without_nee);
+    const std::vector<Stage> without_shadow_stage{Stage::generate, Stage::intersect, Stage::shade};
+    features.shadow_stage = true;
+    EXPECT_EQ(iteration_stages(features), without_shadow_stage);  // no next-event estimation
     features.nee = true;
+    features.shadow_stage = false;
+    EXPECT_EQ(iteration_stages(features), without_shadow_stage);  // shade traces them
+    features.shadow_stage = true;
     const std::vector<Stage> with_nee{Stage::generate, Stage::intersect, Stage::shade, Stage::intersect_shadow};
     EXPECT_EQ(iteration_stages(features), with_nee);
     EXPECT_TRUE(iteration_stages(features, StageLoop::PHOTON).empty());
@@ -132,19 +136,25 @@ TEST(StageDeclaration, TracingStagesReadTheHostsResultsWhereItTraces) {
 // The bookkeeping derived from the declaration (and docs/architecture.md
 // describes): scan compaction builds RAY after generate, HIT after
 // intersect, and SHADOW, RAY and FREE after shade (nothing after
-// intersect_shadow); atomic pushes empty FREE and HIT before intersect,
-// SHADOW and RAY before shade.
+// intersect_shadow), and clears the marks of each stage's input after it,
+// and those of SHADOW after shade where no stage takes it (shade traced the
+// shadow rays, or there are none); atomic pushes empty FREE and HIT before
+// intersect, SHADOW and RAY before shade.
 TEST(StageDeclaration, QueueBookkeepingFollowsFromTheDeclaration) {
-    for (bool nee : {true, false}) {
-        SCOPED_TRACE(nee ? "with next-event estimation" : "without");
+    for (bool shadow_stage : {true, false}) {
+        SCOPED_TRACE(shadow_stage ? "with a shadow stage" : "shade traces the shadow rays, or there are none");
         FeatureSet features;
-        features.nee = nee;
+        features.nee = features.shadow_stage = shadow_stage;
         QueuePlan plan = plan_queues(iteration_stages(features));
         auto of = [&](Stage stage) { return plan[static_cast<std::size_t>(stage)]; };
         EXPECT_EQ(queue_names(of(Stage::generate).compacted_after), "RAY");
         EXPECT_EQ(queue_names(of(Stage::intersect).compacted_after), "HIT");
         EXPECT_EQ(queue_names(of(Stage::shade).compacted_after), "FREE RAY SHADOW");
         EXPECT_EQ(queue_names(of(Stage::intersect_shadow).compacted_after), "");
+        EXPECT_EQ(queue_names(of(Stage::generate).marks_cleared_after), "FREE");
+        EXPECT_EQ(queue_names(of(Stage::intersect).marks_cleared_after), "RAY");
+        EXPECT_EQ(queue_names(of(Stage::shade).marks_cleared_after), shadow_stage ? "HIT" : "HIT SHADOW");
+        EXPECT_EQ(queue_names(of(Stage::intersect_shadow).marks_cleared_after), shadow_stage ? "SHADOW" : "");
         EXPECT_EQ(queue_names(of(Stage::generate).counts_cleared_before), "");
         EXPECT_EQ(queue_names(of(Stage::intersect).counts_cleared_before), "FREE HIT");
         EXPECT_EQ(queue_names(of(Stage::shade).counts_cleared_before), "RAY SHADOW");

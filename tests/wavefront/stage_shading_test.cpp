@@ -1,5 +1,6 @@
-// shade (its light sample, with intersect_shadow, and its BSDF sample)
-// against the reference's matching functions, on hand-built paths.
+// shade (its light sample, its shadow ray traced by shade itself or by
+// intersect_shadow, and its BSDF sample) against the reference's matching
+// functions, on hand-built paths.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -33,8 +34,9 @@ constexpr const char* kLitPlane = R"({
 
 // Next-event estimation: light selection, the point on the light, the
 // geometry terms (cosines, distance, solid-angle pdf), the shadow ray and its
-// occlusion by the small sphere, per path against reference sample_direct_light.
-TEST(ShadeStage, LightSampleMatchesReference) {
+// occlusion by the small sphere, per path against reference
+// sample_direct_light; the shadow ray traced by intersect_shadow (shadow_stage) or by shade.
+void expect_light_sample_matches_reference(bool shadow_stage) {
     Scene scene = test::scene_from_json(kLitPlane);
     reference::ReferenceScene<float> ref(scene);
     constexpr int kPaths = 2048;
@@ -43,12 +45,14 @@ TEST(ShadeStage, LightSampleMatchesReference) {
         float u = (i % 64) / 63.0f, v = (i / 64) / 31.0f;
         rays.push_back({vec3(0), glm::normalize(vec3(-1 + 2 * u, -1, -2.5f - 1.5f * v))});
     }
-    Pipeline pipeline(scene, choose_device(""), kPaths, kPaths, scene.features());
+    FeatureSet features = scene.features();
+    features.shadow_stage = shadow_stage;
+    Pipeline pipeline(scene, choose_device(""), kPaths, kPaths, features);
     test::start_paths(pipeline, rays, 100);
     ASSERT_EQ(intersect_started_paths(pipeline).size(), std::size_t(kPaths));
     pipeline.run_alone(Stage::shade);
     EXPECT_EQ(pipeline.queues().read_queue(WP_QUEUE_RAY).size(), std::size_t(kPaths));  // max_depth 4, rr_depth 8
-    pipeline.run_alone(Stage::intersect_shadow);
+    if (shadow_stage) pipeline.run_alone(Stage::intersect_shadow);
     std::vector<float> radiance[3] = {pipeline.read_field<float>("radiance", 0),
                                       pipeline.read_field<float>("radiance", 1),
                                       pipeline.read_field<float>("radiance", 2)};
@@ -68,6 +72,10 @@ TEST(ShadeStage, LightSampleMatchesReference) {
     EXPECT_GT(lit, kPaths / 2);
     EXPECT_GT(shadowed, 20);  // the sphere's shadow is part of the fan
 }
+
+TEST(ShadeStage, LightSampleTracedInShadeMatchesReference) { expect_light_sample_matches_reference(false); }
+
+TEST(ShadeStage, LightSampleTracedByIntersectShadowMatchesReference) { expect_light_sample_matches_reference(true); }
 
 constexpr const char* kGlassSphere = R"({
   "camera": {"position": [0, 0, 0], "look_at": [0, 0, -1], "up": [0, 1, 0], "fov_y": 40, "width": 8, "height": 8},
