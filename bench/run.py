@@ -190,7 +190,8 @@ def throughput(runner, peer, cfg):
         rows.append({"scene": scene, "backend": "wavefront-profile", "profile": profile,
                      "intersect_bound_mrays_s": profile["intersect_bound_rays_per_s"] / 1e6,
                      "intersect_of_bound": of_bound["intersect"],
-                     "intersect_shadow_of_bound": of_bound["intersect_shadow"]})
+                     # absent where shade traces the shadow rays (no intersect_shadow stage)
+                     "intersect_shadow_of_bound": of_bound.get("intersect_shadow")})
     return rows
 
 
@@ -954,10 +955,11 @@ def summary(results, plots):
               "|---|---|---|---|---|---|"]
     for r in results["throughput"]:
         if "intersect_bound_mrays_s" in r:
-            bound = r["intersect_bound_mrays_s"]
+            bound, shadow = r["intersect_bound_mrays_s"], r.get("intersect_shadow_of_bound")
+            shadow_cells = (f"{shadow * bound:.2f} | {100 * shadow:.0f}%" if shadow is not None
+                            else "- (traced in shade) | -")
             lines.append(f"| {r['scene']} | {bound:.2f} | {r['intersect_of_bound'] * bound:.2f} | "
-                         f"{100 * r['intersect_of_bound']:.0f}% | {r['intersect_shadow_of_bound'] * bound:.2f} | "
-                         f"{100 * r['intersect_shadow_of_bound']:.0f}% |")
+                         f"{100 * r['intersect_of_bound']:.0f}% | {shadow_cells} |")
     lines += ["", "## Scaling (room)", "", "| study | paths / size | backend | Msamples/s |", "|---|---|---|---|"]
     for r in results["scaling"]:
         lines.append(f"| {r['study']} | {r.get('paths', r.get('size'))} | {r.get('backend', 'wavefront')} | "
