@@ -1,5 +1,5 @@
 /* --profile only: rays per path depth. Counts the depths of the paths in one
- * queue (RAY before intersect, SHADOW before intersect_shadow) into a
+ * queue (RAY before intersect, SHADOW once shade has filled it) into a
  * histogram in `counts` (the last bin takes every deeper ray). A ray's depth
  * is its path's `depth` less `depth_after_vertex`: 0 for an extension ray, 1
  * for a shadow ray, since shade has counted the ray's vertex already. A kernel of

@@ -57,8 +57,7 @@ Pipeline::Pipeline(const Scene& scene, const SceneLayout& layout, const DeviceIn
               plan_queues(std::vector<std::vector<Stage>>{iteration_, photon_iteration_}), kernel_features.host_traced),
       film_(context_, queue_, program_.program, scene.camera.width, scene.camera.height, options.film_squares),
       pass_radiance_(context_, CL_MEM_READ_WRITE, sizeof(float) * 3 * pass_capacity),
-      slot_nonfinite_(context_, CL_MEM_READ_WRITE, sizeof(std::uint32_t) * WP_NONFINITE_STAGE_COUNT * capacity),
-      shade_traces_shadows_(kernel_features.nee && !kernel_features.shadow_stage) {
+      slot_nonfinite_(context_, CL_MEM_READ_WRITE, sizeof(std::uint32_t) * WP_NONFINITE_STAGE_COUNT * capacity) {
     if (kernel_features.sppm) {
         photons_per_iteration_ = scene.lights.empty() ? 0 : static_cast<std::uint32_t>(sppm_photons(scene));
         sppm_.emplace(context_, queue_, program_.program, scene_, queues_.counts(),
@@ -78,7 +77,8 @@ Pipeline::Pipeline(const Scene& scene, const SceneLayout& layout, const DeviceIn
     }
     bind_round();
     if (options.profile)
-        ray_depths_.emplace(program_.program, queues_.queues(), queues_.counts(), capacity, state_.field("depth"));
+        ray_depths_.emplace(program_.program, queues_.queues(), queues_.counts(), capacity, state_.field("depth"),
+                            kernel_features.nee);
     if (kernel_features.host_traced) host_trace_.emplace(scene, layout.triangles);
     queue_.enqueueFillBuffer(slot_nonfinite_, std::uint32_t(0), 0, slot_nonfinite_.getInfo<CL_MEM_SIZE>());
 }
@@ -109,7 +109,6 @@ std::uint32_t Pipeline::photon_deposits() { return queues_.read_counts()[WP_COUN
 void Pipeline::run(Stage stage, std::size_t entries) {
     if (entries == 0) return;
     if (ray_depths_ && stage == Stage::intersect) ray_depths_->count_extension_rays(launcher_, entries);
-    if (ray_depths_ && stage == Stage::intersect_shadow) ray_depths_->count_shadow_rays(launcher_, entries);
     if (host_trace_ && declaration(stage).traces != StageTrace::NO_RAYS)
         launcher_.add_host_time(host_trace_row(declaration(stage)),
                                 host_trace_->trace(queue_, queues_, state_, capacity_, stage));
@@ -119,8 +118,7 @@ void Pipeline::run(Stage stage, std::size_t entries) {
 
 void Pipeline::finish_stage(Stage stage, std::size_t entries) {
     queues_.finish_stage(launcher_, stage);
-    if (ray_depths_ && shade_traces_shadows_ && stage == Stage::shade && entries > 0)
-        ray_depths_->count_shadow_rays(launcher_, entries);
+    if (ray_depths_ && stage == Stage::shade && entries > 0) ray_depths_->count_shadow_rays(launcher_, entries);
 }
 
 void Pipeline::start_paths(const std::vector<glm::vec3>& origins, const std::vector<glm::vec3>& directions,

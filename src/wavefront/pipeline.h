@@ -89,14 +89,14 @@ class Pipeline {
     // on the device, so the host never waits between stages; positions past
     // it compute and write nothing, but cost as much as live ones, so a
     // nearly drained pass launches only what it can hold); with profiling,
-    // the count of its rays by depth first. Where the host traces, it traces
+    // intersect's extension rays counted by depth first. Where the host traces, it traces
     // a tracing stage's queue first (waiting for the device), its time the
     // profile's host_trace_row. Nothing when `entries` is 0.
     void run(Stage stage, std::size_t entries);
     // The queue bookkeeping once `stage` has run over `entries`
-    // (QueueSet::finish_stage); with profiling, where shade traces the
-    // shadow rays itself, their count by depth from the SHADOW queue it
-    // leaves (kernels/interface/stages.h).
+    // (QueueSet::finish_stage); with profiling, after shade, the count of
+    // the shadow rays by depth from the SHADOW queue it leaves, whichever
+    // stage traces them (kernels/interface/stages.h).
     void finish_stage(Stage stage, std::size_t entries);
     // Waits for the queue; with profiling, adds the finished kernels' times to profile().
     DeviceCounts read_counts();
@@ -170,7 +170,6 @@ class Pipeline {
     std::uint64_t pass_start_ = 0;
     std::uint32_t pass_size_ = 0;
     std::uint32_t photons_per_iteration_ = 0;
-    bool shade_traces_shadows_;  // next-event estimation without a shadow stage
 };
 
 // The kernel files of the program, in build order: the stages' (kernels/<stage>.cl), then the others.

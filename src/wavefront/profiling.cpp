@@ -28,8 +28,8 @@ double best_of_three_after_one_untimed(Enqueue enqueue) {
 }  // namespace
 
 RayDepthCounter::RayDepthCounter(const cl::Program& program, const cl::Buffer& queues, const cl::Buffer& counts,
-                                 std::size_t capacity, const cl::Buffer& depth)
-    : kernel_(program, "count_depths"), counts_(counts) {
+                                 std::size_t capacity, const cl::Buffer& depth, bool shadow_rays)
+    : kernel_(program, "count_depths"), counts_(counts), shadow_rays_(shadow_rays) {
     kernel_.setArg(arg::CountDepths::queues, queues);
     kernel_.setArg(arg::CountDepths::counts, counts);
     kernel_.setArg(arg::CountDepths::capacity, cl_uint(capacity));
@@ -42,7 +42,7 @@ void RayDepthCounter::count_extension_rays(KernelLauncher& launcher, std::size_t
 
 // shade has counted the shadow ray's vertex in its path's depth already.
 void RayDepthCounter::count_shadow_rays(KernelLauncher& launcher, std::size_t entries) {
-    count(launcher, WP_QUEUE_SHADOW, WP_PROFILE_SHADOW_BY_DEPTH, 1, entries);
+    if (shadow_rays_) count(launcher, WP_QUEUE_SHADOW, WP_PROFILE_SHADOW_BY_DEPTH, 1, entries);
 }
 
 void RayDepthCounter::count(KernelLauncher& launcher, std::uint32_t queue, std::uint32_t histogram_offset,

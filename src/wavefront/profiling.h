@@ -15,11 +15,12 @@ namespace wp {
 // Counts the depths of the paths in a queue into a histogram among the counters.
 class RayDepthCounter {
  public:
+    // shadow_rays: next-event estimation runs (else there are none to count).
     RayDepthCounter(const cl::Program& program, const cl::Buffer& queues, const cl::Buffer& counts,
-                    std::size_t capacity, const cl::Buffer& depth);
+                    std::size_t capacity, const cl::Buffer& depth, bool shadow_rays);
     // Counts the extension rays (the RAY queue, before intersect) or the
-    // shadow rays (SHADOW, before intersect_shadow) of at most `entries`
-    // entries into their histogram among the counters.
+    // shadow rays (SHADOW, complete after shade, whichever stage traces
+    // them) of at most `entries` entries into their histogram among the counters.
     void count_extension_rays(KernelLauncher& launcher, std::size_t entries);
     void count_shadow_rays(KernelLauncher& launcher, std::size_t entries);
     // Extension and shadow rays per depth, counted so far.
@@ -31,6 +32,7 @@ class RayDepthCounter {
 
     cl::Kernel kernel_;
     cl::Buffer counts_;
+    bool shadow_rays_;
 };
 
 struct IntersectBound {
