@@ -16,11 +16,6 @@
 #include "device/surface.h"
 #include "interface/queues.h"
 
-/* t where `where` holds, else nothing: a term added only in some lanes. */
-WP_FN vec3 only_where(lane_int where, vec3 term) {
-    return v3_select(where, term, make_vec3(REAL(0.0), REAL(0.0), REAL(0.0)));
-}
-
 /* The path a lane traces: its sample and where the path stands. */
 typedef struct {
     lane_uint pixel, sample, depth;
@@ -73,16 +68,10 @@ WP_FN lane_int trace_bounce(WP_SCENE_PARAMS, lane_int alive, CameraPath *path, l
     *extension_rays += alive ? (lane_uint)1u : (lane_uint)0u;
     Hit hit = closest_hit(WP_SCENE_ARGS, path->origin, path->direction);
     lane_int missed = alive && hit.shape == WP_NO_HIT;
-#ifdef WP_HAS_BACKGROUND
-    path->radiance =
-        add_finite(path->radiance,
-                   only_where(missed, background_seen(path->throughput, uniform_vec3(scene->background))), &dropped[0]);
-#endif
     alive = alive && !missed;
     Vertex v = vertex_at(WP_SCENE_ARGS, hit.shape, path->origin, path->direction, hit.t);
-    vec3 emitted =
-        hit_emission(WP_SCENE_ARGS, hit.shape, path->origin, v, path->after_specular, path->bsdf_pdf, path->throughput);
-    path->radiance = add_finite(path->radiance, only_where(alive, emitted), &dropped[0]);
+    path->radiance = add_radiance_seen(WP_SCENE_ARGS, path->radiance, missed, alive, hit.shape, path->origin, v,
+                                       path->after_specular, path->bsdf_pdf, path->throughput, &dropped[0]);
     alive = alive && !vertex_ends_path(v, path->depth, scene->max_depth);
 #if defined(WP_NEE) && defined(WP_HAS_DIFFUSE)
     DirectLight direct;

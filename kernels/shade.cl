@@ -1,6 +1,7 @@
-/* Stage 3: everything a path does at its hit, WP_LANES paths per work item
- * (device/lanes.h), in the order of a vertex (device/path_vertex.h, as the
- * megakernel): the emission it sees (at depth 0 or after a specular bounce;
+/* Stage 3: everything a path does where its ray ended, WP_LANES paths per
+ * work item (device/lanes.h), in the order of a vertex
+ * (device/path_vertex.h, as the megakernel): a miss takes the background and
+ * ends; at a hit, the emission it sees (at depth 0 or after a specular bounce;
  * at every hit without next-event estimation; after a diffuse bounce,
  * weighted by multiple importance sampling against the light sample), the
  * max_depth cap and emitter materials (which end the path), the light
@@ -48,13 +49,13 @@ __kernel __attribute__((reqd_work_group_size(WP_GROUP_SIZE, 1, 1))) void shade(W
     real eta_scale = REAL(1.0);
 #endif
     Vertex v = vertex_at(WP_SCENE_ARGS, shape, origin, d, PATH_READ(hit_t, lanes));
+    lane_int missed = lanes.active && shape == WP_NO_HIT, hit = lanes.active && !missed;
 
     lane_uint dropped = 0u;
-    vec3 radiance =
-        add_finite(PATH_READ(radiance, lanes),
-                   hit_emission(WP_SCENE_ARGS, shape, origin, v, after_specular, bsdf_pdf, throughput), &dropped);
+    vec3 radiance = add_radiance_seen(WP_SCENE_ARGS, PATH_READ(radiance, lanes), missed, hit, shape, origin, v,
+                                      after_specular, bsdf_pdf, throughput, &dropped);
     count_nonfinite(slot_nonfinite, WP_COUNTER_NONFINITE_EMISSION, lanes, dropped);
-    lane_int scatters = lanes.active && !vertex_ends_path(v, bounce, scene->max_depth);
+    lane_int scatters = hit && !vertex_ends_path(v, bounce, scene->max_depth);
 #ifdef WP_SPPM
     scatters = scatters && after_specular; /* the hit after the visible point ends the path */
 #endif

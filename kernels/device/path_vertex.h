@@ -145,6 +145,26 @@ WP_FN vec3 hit_emission(WP_SCENE_PARAMS, lane_uint shape, vec3 origin, Vertex v,
     return emission_seen(v.material.emission, v.material.two_sided, v.front, weight, throughput);
 }
 
+/* t where `where` holds, else nothing: a term added only in some lanes. */
+WP_FN vec3 only_where(lane_int where, vec3 term) {
+    return v3_select(where, term, make_vec3(REAL(0.0), REAL(0.0), REAL(0.0)));
+}
+
+/* `radiance` plus what a path of throughput `throughput` sees where its ray
+ * from `origin` ends: the background where it `missed`, the emission at
+ * vertex v (hit_emission) where it `hit`. A non-finite term is dropped and
+ * counted in *dropped. */
+WP_FN vec3 add_radiance_seen(WP_SCENE_PARAMS, vec3 radiance, lane_int missed, lane_int hit, lane_uint shape,
+                             vec3 origin, Vertex v, lane_int after_specular, real bsdf_pdf, vec3 throughput,
+                             lane_uint *dropped) {
+#ifdef WP_HAS_BACKGROUND
+    radiance =
+        add_finite(radiance, only_where(missed, background_seen(throughput, uniform_vec3(scene->background))), dropped);
+#endif
+    vec3 emitted = hit_emission(WP_SCENE_ARGS, shape, origin, v, after_specular, bsdf_pdf, throughput);
+    return add_finite(radiance, only_where(hit, emitted), dropped);
+}
+
 /* Whether the path ends at vertex v once its emission is counted: the depth
  * cap (a vertex at depth max_depth adds its emission and no more) or an
  * emitter material, which reflects nothing. */

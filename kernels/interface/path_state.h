@@ -33,16 +33,16 @@
 #define WP_PATH_STATE(X)                                                                                      \
     X(uint, pixel, ALWAYS, "generate", "shade")                                                               \
     X(uint, sample, ALWAYS, "generate", "shade")                                                              \
-    X(uint, pass_item, ALWAYS, "generate", "intersect shade intersect_shadow")                                \
+    X(uint, pass_item, ALWAYS, "generate", "shade intersect_shadow")                                \
     X(uint, depth, ALWAYS, "generate shade emit_photons shade_photons", "shade shade_photons")                \
     X(vec3, origin, ALWAYS, "generate shade emit_photons shade_photons",                                      \
       "intersect shade intersect_photons shade_photons")                                                      \
     X(vec3, direction, ALWAYS, "generate shade emit_photons shade_photons",                                   \
       "intersect shade intersect_photons shade_photons")                                                      \
-    X(vec3, throughput, ALWAYS, "generate shade emit_photons shade_photons", "intersect shade shade_photons") \
-    X(vec3, radiance, ALWAYS, "generate shade intersect_shadow", "intersect shade intersect_shadow")          \
+    X(vec3, throughput, ALWAYS, "generate shade emit_photons shade_photons", "shade shade_photons") \
+    X(vec3, radiance, ALWAYS, "generate shade intersect_shadow", "shade intersect_shadow")          \
     X(float, hit_t, ALWAYS, "intersect intersect_photons", "shade shade_photons")                             \
-    X(uint, hit_shape, ALWAYS, "intersect intersect_photons", "intersect shade shade_photons")                \
+    X(uint, hit_shape, ALWAYS, "intersect intersect_photons", "shade shade_photons")                \
     X(uint, specular, SPECULAR, "generate shade", "shade")                                                    \
     X(vec3, shadow_origin, SHADOW_STAGE, "shade", "intersect_shadow")                                         \
     X(vec3, shadow_direction, SHADOW_STAGE, "shade", "intersect_shadow")                                      \

@@ -6,7 +6,7 @@
 #define WP_INTERFACE_QUEUES_H
 
 #define WP_QUEUE_FREE 0u   /* slots without a path */
-#define WP_QUEUE_HIT 1u    /* paths whose extension ray hit a surface */
+#define WP_QUEUE_HIT 1u    /* paths whose extension ray was traced: a hit, or a miss (hit_shape WP_NO_HIT) */
 #define WP_QUEUE_RAY 2u    /* paths with an extension ray to trace */
 #define WP_QUEUE_SHADOW 3u /* paths with a shadow ray to trace */
 /* SPPM's photon pass, which has the slots to itself once the camera pass of

@@ -47,7 +47,7 @@
 
 #define WP_STAGES(X)                                                                            \
     X(generate, CAMERA, FREE, WP_PUSHES(RAY), ALWAYS, NO_RAYS)                                  \
-    X(intersect, CAMERA, RAY, WP_PUSHES(HIT, FREE), ALWAYS, CLOSEST_HIT)                        \
+    X(intersect, CAMERA, RAY, WP_PUSHES(HIT), ALWAYS, CLOSEST_HIT)                              \
     X(shade, CAMERA, HIT, WP_PUSHES(SHADOW, RAY, FREE), ALWAYS, NO_RAYS)                        \
     X(intersect_shadow, CAMERA, SHADOW, WP_PUSHES_NOTHING, SHADOW_STAGE, ANY_HIT)               \
     X(emit_photons, PHOTON, PHOTON_FREE, WP_PUSHES(PHOTON_RAY), SPPM, NO_RAYS)                  \

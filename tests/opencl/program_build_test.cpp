@@ -180,8 +180,8 @@ EditedBuild build_edited_copy(const std::string& file, const std::string& from, 
 // build at the push.
 TEST(ProgramBuild, PushToAQueueTheStageDoesNotDeclareFailsToCompile) {
     EditedBuild built =
-        build_edited_copy("intersect.cl", "STAGE_PUSH(HIT, lanes, hit_something)",
-                          "STAGE_PUSH(SHADOW, lanes, hit_something)", "intersect.cl", "STAGE_PUSH(SHADOW");
+        build_edited_copy("intersect.cl", "STAGE_PUSH(HIT, lanes, lanes.active)",
+                          "STAGE_PUSH(SHADOW, lanes, lanes.active)", "intersect.cl", "STAGE_PUSH(SHADOW");
     EXPECT_NE(built.error.find(built.expected_location), std::string::npos) << built.error;
     EXPECT_NE(built.error.find("a push to SHADOW, which the stage's declaration"), std::string::npos) << built.error;
 }

@@ -24,9 +24,16 @@ constexpr const char* kScene = R"({
 
 constexpr std::uint32_t kCapacity = 4096;  // 16 compaction blocks
 
-// Runs intersect on `queued` (in that order) and returns (HIT queue, the slots whose ray hit).
-std::pair<std::vector<std::uint32_t>, std::vector<std::uint32_t>> hits_after_intersect(
-    Compaction compaction, const std::vector<std::uint32_t>& queued) {
+// What shade leaves in two queues it pushes to, and what they should hold.
+struct QueuesAfterShade {
+    std::vector<std::uint32_t> free, expected_free;  // the paths that ended: here, those whose ray missed
+    std::vector<std::uint32_t> ray, expected_ray;    // the paths that go on: those whose ray hit the sphere
+};
+
+// Runs intersect and shade on `queued` (in that order); the expected queues
+// in ascending order. The sphere is diffuse and the paths at depth 0, before
+// roulette, so every hit goes on and every miss ends.
+QueuesAfterShade queues_after_shade(Compaction compaction, const std::vector<std::uint32_t>& queued) {
     Scene scene = test::scene_from_json(kScene);
     PipelineOptions options;
     options.compaction = compaction;
@@ -39,16 +46,19 @@ std::pair<std::vector<std::uint32_t>, std::vector<std::uint32_t>> hits_after_int
         r = test::TestRay{glm::vec3(0.0f), glm::normalize(glm::vec3(coordinate(random), coordinate(random), -1.0f))};
     test::start_paths(pipeline, rays);
     pipeline.queues().set_queue(WP_QUEUE_RAY, queued);
-    pipeline.run(Stage::intersect, queued.size());
-    pipeline.finish_stage(Stage::intersect, queued.size());
-    std::vector<std::uint32_t> shape = pipeline.read_field<std::uint32_t>("hit_shape"), expected;
-    for (std::uint32_t slot : queued)
-        if (shape[slot] != WP_NO_HIT) expected.push_back(slot);
-    std::sort(expected.begin(), expected.end());
-    return {pipeline.queues().read_queue(WP_QUEUE_HIT), expected};
+    pipeline.run_alone(Stage::intersect);
+    pipeline.run_alone(Stage::shade);
+    QueuesAfterShade q;
+    std::vector<std::uint32_t> shape = pipeline.read_field<std::uint32_t>("hit_shape");
+    for (std::uint32_t slot : queued) (shape[slot] == WP_NO_HIT ? q.expected_free : q.expected_ray).push_back(slot);
+    std::sort(q.expected_free.begin(), q.expected_free.end());
+    std::sort(q.expected_ray.begin(), q.expected_ray.end());
+    q.free = pipeline.queues().read_queue(WP_QUEUE_FREE);
+    q.ray = pipeline.queues().read_queue(WP_QUEUE_RAY);
+    return q;
 }
 
-// 3000 of the 4096 slots, shuffled: the queue holds exactly the queued slots that hit.
+// 3000 of the 4096 slots, shuffled.
 std::vector<std::uint32_t> shuffled_subset() {
     std::vector<std::uint32_t> slots(kCapacity);
     for (std::uint32_t i = 0; i < kCapacity; ++i) slots[i] = i;
@@ -59,16 +69,19 @@ std::vector<std::uint32_t> shuffled_subset() {
 }
 
 TEST(Compaction, PrefixSumKeepsExactlyTheLivePathsInAscendingOrder) {
-    auto [queue, expected] = hits_after_intersect(Compaction::Scan, shuffled_subset());
-    EXPECT_GT(expected.size(), 300u);
-    EXPECT_LT(expected.size(), 2700u);  // both outcomes occur
-    EXPECT_EQ(queue, expected);         // the same slots, in ascending order
+    QueuesAfterShade q = queues_after_shade(Compaction::Scan, shuffled_subset());
+    EXPECT_GT(q.expected_ray.size(), 300u);
+    EXPECT_GT(q.expected_free.size(), 300u);  // both outcomes occur
+    EXPECT_EQ(q.ray, q.expected_ray);         // the same slots, in ascending order
+    EXPECT_EQ(q.free, q.expected_free);
 }
 
 TEST(Compaction, AtomicPushKeepsExactlyTheLivePaths) {
-    auto [queue, expected] = hits_after_intersect(Compaction::Atomic, shuffled_subset());
-    std::sort(queue.begin(), queue.end());  // its order is not stable
-    EXPECT_EQ(queue, expected);
+    QueuesAfterShade q = queues_after_shade(Compaction::Atomic, shuffled_subset());
+    std::sort(q.ray.begin(), q.ray.end());  // their order is not stable
+    std::sort(q.free.begin(), q.free.end());
+    EXPECT_EQ(q.ray, q.expected_ray);
+    EXPECT_EQ(q.free, q.expected_free);
 }
 
 // The image does not depend on how the queues are filled (nor on their order).

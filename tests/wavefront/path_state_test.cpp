@@ -101,12 +101,12 @@ TEST(PathState, StageBytesPerItemComeFromTheDeclarations) {
     FeatureSet diffuse;
     diffuse.spheres = diffuse.diffuse = true;
     const StageBytes intersect = stage_bytes_per_item(declaration(Stage::intersect), diffuse);
-    // pass_item, origin, direction, throughput (the background), radiance, hit_shape (host-traced)
-    EXPECT_EQ(intersect.state_read, 4u + 12 + 12 + 12 + 12 + 4);
+    // origin, direction
+    EXPECT_EQ(intersect.state_read, 12u + 12);
     EXPECT_EQ(intersect.state_written, 4u + 4);  // hit_t, hit_shape
     EXPECT_EQ(intersect.queue_read, 4u);
-    EXPECT_EQ(intersect.queue_written, 2u * 4);  // HIT, FREE
-    EXPECT_EQ(intersect.total(), 56u + 8 + 4 + 8);
+    EXPECT_EQ(intersect.queue_written, 4u);  // HIT
+    EXPECT_EQ(intersect.total(), 24u + 8 + 4 + 4);
 
     const StageBytes shade = stage_bytes_per_item(declaration(Stage::shade), diffuse);
     // pixel, sample, pass_item, depth, origin, direction, throughput, radiance, hit_t, hit_shape

@@ -92,7 +92,7 @@ TEST(StageDeclaration, KernelCheckFindsAStageWithoutKernelAndAPushNeverMade) {
     EXPECT_EQ(kernel_file_problem(without_kernel), "no kernels/shade_indirect.cl");
     StageDeclaration intersect = declaration(Stage::intersect);
     intersect.pushes |= bit("SHADOW");
-    EXPECT_EQ(kernel_file_problem(intersect), "kernel intersect pushes to FREE HIT, declared FREE HIT SHADOW");
+    EXPECT_EQ(kernel_file_problem(intersect), "kernel intersect pushes to HIT, declared HIT SHADOW");
 }
 
 TEST(StageDeclaration, IntersectShadowRunsOnlyWhereShadowRaysHaveTheirOwnStage) {
@@ -114,19 +114,26 @@ TEST(StageDeclaration, IntersectShadowRunsOnlyWhereShadowRaysHaveTheirOwnStage) 
     EXPECT_EQ(iteration_stages(features, StageLoop::PHOTON), photons);
 }
 
-// Where the host traces (--intersector embree), a stage that traces reads
-// what the host wrote for it: its kernel has a WP_HOST_TRACED branch that
-// reads one of those fields; no other kernel has such a branch.
+// Where the host traces (--intersector embree), a stage that traces leaves
+// the tracing to it: its kernel has a WP_HOST_TRACED branch, and no other
+// kernel has one. What the host writes for it is read, by its kernel or by
+// that of a stage it pushes to (intersect's hits by shade).
 TEST(StageDeclaration, TracingStagesReadTheHostsResultsWhereItTraces) {
+    auto source_of = [](const StageDeclaration& stage) {
+        return test::read_text(test::kKernelDirectory / (std::string(stage.kernel) + ".cl"));
+    };
     for (const StageDeclaration& stage : stage_declarations) {
-        const std::string source = test::read_text(test::kKernelDirectory / (std::string(stage.kernel) + ".cl"));
-        EXPECT_EQ(source.find("#ifdef WP_HOST_TRACED") != std::string::npos, stage.traces != StageTrace::NO_RAYS)
+        const std::string source = source_of(stage);
+        EXPECT_EQ(source.find("WP_HOST_TRACED") != std::string::npos, stage.traces != StageTrace::NO_RAYS)
             << stage.kernel;
         const std::vector<std::string> written = host_trace_fields(stage.traces).writes;
         EXPECT_EQ(written.empty(), stage.traces == StageTrace::NO_RAYS) << stage.kernel;
         if (stage.traces == StageTrace::NO_RAYS) continue;
+        std::string readers = source;
+        for (const StageDeclaration& next : stage_declarations)
+            if (stage.pushes >> next.consumes & 1u) readers += source_of(next);
         EXPECT_TRUE(std::any_of(written.begin(), written.end(), [&](const std::string& field) {
-            return source.find("PATH_READ(" + field) != std::string::npos;
+            return readers.find("PATH_READ(" + field) != std::string::npos;
         })) << stage.kernel;
     }
     EXPECT_EQ(declaration(Stage::intersect).traces, StageTrace::CLOSEST_HIT);
@@ -138,8 +145,8 @@ TEST(StageDeclaration, TracingStagesReadTheHostsResultsWhereItTraces) {
 // intersect, and SHADOW, RAY and FREE after shade (nothing after
 // intersect_shadow), and clears the marks of each stage's input after it,
 // and those of SHADOW after shade where no stage takes it (shade traced the
-// shadow rays, or there are none); atomic pushes empty FREE and HIT before
-// intersect, SHADOW and RAY before shade.
+// shadow rays, or there are none); atomic pushes empty HIT before
+// intersect, FREE, SHADOW and RAY before shade.
 TEST(StageDeclaration, QueueBookkeepingFollowsFromTheDeclaration) {
     for (bool shadow_stage : {true, false}) {
         SCOPED_TRACE(shadow_stage ? "with a shadow stage" : "shade traces the shadow rays, or there are none");
@@ -156,8 +163,8 @@ TEST(StageDeclaration, QueueBookkeepingFollowsFromTheDeclaration) {
         EXPECT_EQ(queue_names(of(Stage::shade).marks_cleared_after), shadow_stage ? "HIT" : "HIT SHADOW");
         EXPECT_EQ(queue_names(of(Stage::intersect_shadow).marks_cleared_after), shadow_stage ? "SHADOW" : "");
         EXPECT_EQ(queue_names(of(Stage::generate).counts_cleared_before), "");
-        EXPECT_EQ(queue_names(of(Stage::intersect).counts_cleared_before), "FREE HIT");
-        EXPECT_EQ(queue_names(of(Stage::shade).counts_cleared_before), "RAY SHADOW");
+        EXPECT_EQ(queue_names(of(Stage::intersect).counts_cleared_before), "HIT");
+        EXPECT_EQ(queue_names(of(Stage::shade).counts_cleared_before), "FREE RAY SHADOW");
         EXPECT_EQ(queue_names(of(Stage::intersect_shadow).counts_cleared_before), "");
     }
 }
