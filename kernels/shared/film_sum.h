@@ -19,7 +19,10 @@
 #ifdef __OPENCL_C_VERSION__
 typedef ulong film_limb;
 typedef uint film_word;
-#define WP_FILM_FN static inline
+/* Inlined and unrolled: PoCL 3.1 otherwise kept a sum's limbs in memory,
+ * and every add paid a store-to-load round trip (accumulate.cl). */
+#define WP_FILM_FN static inline __attribute__((always_inline))
+#define WP_FILM_UNROLL _Pragma("unroll")
 #define WP_FLOAT_BITS(x) as_uint(x)
 #define WP_FILM_LDEXPF(x, e) ldexp((x), (e))
 #define WP_FILM_WORDS_POINTER volatile __global film_word *
@@ -35,6 +38,7 @@ typedef uint film_word;
 typedef std::uint64_t film_limb;
 typedef std::uint32_t film_word;
 #define WP_FILM_FN inline
+#define WP_FILM_UNROLL
 #define WP_FILM_LDEXPF(x, e) std::ldexp((x), (e))
 #define WP_FILM_WORDS_POINTER film_word *
 #define WP_FILM_CONST_WORDS_POINTER const film_word *
@@ -58,13 +62,13 @@ typedef struct {
 
 WP_FILM_FN film_sum film_sum_zero(void) {
     film_sum s;
-    for (int i = 0; i < WP_FILM_LIMBS; ++i) s.limb[i] = 0;
+    WP_FILM_UNROLL for (int i = 0; i < WP_FILM_LIMBS; ++i) s.limb[i] = 0;
     return s;
 }
 
 WP_FILM_FN film_sum film_sum_add(film_sum a, film_sum b) {
     film_limb carry = 0;
-    for (int i = 0; i < WP_FILM_LIMBS; ++i) {
+    WP_FILM_UNROLL for (int i = 0; i < WP_FILM_LIMBS; ++i) {
         film_limb partial = a.limb[i] + b.limb[i];
         film_limb next_carry = partial < a.limb[i] ? 1 : 0;
         a.limb[i] = partial + carry;
@@ -76,7 +80,7 @@ WP_FILM_FN film_sum film_sum_add(film_sum a, film_sum b) {
 
 WP_FILM_FN film_sum film_sum_negate(film_sum a) {
     film_limb carry = 1;
-    for (int i = 0; i < WP_FILM_LIMBS; ++i) {
+    WP_FILM_UNROLL for (int i = 0; i < WP_FILM_LIMBS; ++i) {
         a.limb[i] = ~a.limb[i] + carry;
         carry = carry && a.limb[i] == 0 ? 1 : 0;
     }
@@ -99,7 +103,7 @@ WP_FILM_FN film_sum film_sum_from_scaled(film_limb m, int exponent, int negative
         int word = shift >> 6, bit = shift & 63;
         film_limb low = m << bit;
         film_limb high = (m >> 1) >> (63 - bit); /* m >> (64 - bit), and 0 for bit 0 */
-        for (int i = 0; i < WP_FILM_LIMBS; ++i) s.limb[i] = i == word ? low : (i == word + 1 ? high : 0);
+        WP_FILM_UNROLL for (int i = 0; i < WP_FILM_LIMBS; ++i) s.limb[i] = i == word ? low : (i == word + 1 ? high : 0);
     } else if (-shift < 54) { /* m < 2^53: a right shift of 54 or more leaves less than a half */
         int r = -shift;
         film_limb quotient = m >> r;
@@ -161,7 +165,8 @@ WP_FILM_FN void film_words_add(WP_FILM_WORDS_POINTER words, film_sum value) {
 /* The sum the words hold, once no add is under way. */
 WP_FILM_FN film_sum film_sum_from_words(WP_FILM_CONST_WORDS_POINTER words) {
     film_sum s;
-    for (int i = 0; i < WP_FILM_LIMBS; ++i) s.limb[i] = ((film_limb)words[2 * i + 1] << 32) | words[2 * i];
+    WP_FILM_UNROLL for (int i = 0; i < WP_FILM_LIMBS; ++i) s.limb[i] =
+        ((film_limb)words[2 * i + 1] << 32) | words[2 * i];
     return s;
 }
 
