@@ -42,16 +42,26 @@ __kernel void compact_scan(WP_PARAMETERS(WP_COMPACT_SCAN_PARAMETERS)) {
     counts[q] = sum;
 }
 
+/* Each block's marked slots, gathered first in private memory without a
+ * branch (the entry after the last marked one is overwritten or left
+ * unused), then copied to the queue. With `if (marks[slot])` the branch
+ * went wrong about as often as a mark was set: compact_write took ten times
+ * compact_count, which reads the same marks, and 2.3x its time now (cornell
+ * 256x256 32 spp on PoCL, --profile: 62-70 ms, now 27-28 ms). */
 __kernel void compact_write(WP_PARAMETERS(WP_COMPACT_WRITE_PARAMETERS)) {
     uint block = get_global_id(0), blocks = compact_blocks(capacity);
     if (block >= blocks) return;
-    uint end = min(capacity, (block + 1u) * WP_COMPACT_BLOCK);
+    uint start = block * WP_COMPACT_BLOCK, end = min(capacity, start + WP_COMPACT_BLOCK);
+    uint marked[WP_COMPACT_BLOCK + 1u];
     for (uint q = 0u; q < WP_QUEUE_COUNT; ++q) {
         __global const uint *marks = queue_marks(queues, capacity, queue_mask, q);
         if (!marks) continue;
-        __global uint *queue = queues + q * capacity;
-        uint at = block_counts[q * blocks + block];
-        for (uint slot = block * WP_COMPACT_BLOCK; slot < end; ++slot)
-            if (marks[slot]) queue[at++] = slot;
+        uint n = 0u;
+        for (uint slot = start; slot < end; ++slot) {
+            marked[n] = slot;
+            n += marks[slot];
+        }
+        __global uint *queue = queues + q * capacity + block_counts[q * blocks + block];
+        for (uint i = 0u; i < n; ++i) queue[i] = marked[i];
     }
 }
