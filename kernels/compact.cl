@@ -45,9 +45,10 @@ __kernel void compact_scan(WP_PARAMETERS(WP_COMPACT_SCAN_PARAMETERS)) {
 /* Each block's marked slots, gathered first in private memory without a
  * branch (the entry after the last marked one is overwritten or left
  * unused), then copied to the queue. With `if (marks[slot])` the branch
- * went wrong about as often as a mark was set: compact_write took ten times
- * compact_count, which reads the same marks, and 2.3x its time now (cornell
- * 256x256 32 spp on PoCL, --profile: 62-70 ms, now 27-28 ms). */
+ * went wrong about as often as a mark was set, and compact_write took ten
+ * times as long as compact_count, which reads the same marks (cornell
+ * 256x256 32 spp on PoCL, --profile: 62-70 ms with the branch, 27-28
+ * without). */
 __kernel void compact_write(WP_PARAMETERS(WP_COMPACT_WRITE_PARAMETERS)) {
     uint block = get_global_id(0), blocks = compact_blocks(capacity);
     if (block >= blocks) return;
