@@ -145,7 +145,7 @@ WP_FN vec3 hit_emission(WP_SCENE_PARAMS, lane_uint shape, vec3 origin, Vertex v,
     return emission_seen(v.material.emission, v.material.two_sided, v.front, weight, throughput);
 }
 
-/* t where `where` holds, else nothing: a term added only in some lanes. */
+/* `term` where `where` holds, else nothing: a term added only in some lanes. */
 WP_FN vec3 only_where(lane_int where, vec3 term) {
     return v3_select(where, term, make_vec3(REAL(0.0), REAL(0.0), REAL(0.0)));
 }
