@@ -3,7 +3,8 @@
  * turn each queue's marks into the queue, in ascending slot order, so the
  * next stage reads the path state in memory order. Each work item handles
  * one block of WP_COMPACT_BLOCK consecutive slots; no atomics, no barriers.
- * queue_mask selects the queues (bit q for queue q). */
+ * queue_mask selects the queues (bit q for queue q); compact_write clears
+ * the marks of those that clear_mask selects too, once read. */
 #include "device/parameters.h"
 #include "interface/kernel_parameters.h"
 #include "interface/queues.h"
@@ -55,13 +56,15 @@ __kernel void compact_write(WP_PARAMETERS(WP_COMPACT_WRITE_PARAMETERS)) {
     uint start = block * WP_COMPACT_BLOCK, end = min(capacity, start + WP_COMPACT_BLOCK);
     uint marked[WP_COMPACT_BLOCK + 1u];
     for (uint q = 0u; q < WP_QUEUE_COUNT; ++q) {
-        __global const uint *marks = queue_marks(queues, capacity, queue_mask, q);
-        if (!marks) continue;
+        if (!(queue_mask & (1u << q))) continue;
+        __global uint *marks = queues + WP_QUEUE_MARKS(q) * capacity;
         uint n = 0u;
         for (uint slot = start; slot < end; ++slot) {
             marked[n] = slot;
             n += marks[slot];
         }
+        if (clear_mask & (1u << q))
+            for (uint slot = start; slot < end; ++slot) marks[slot] = 0u;
         __global uint *queue = queues + q * capacity + block_counts[q * blocks + block];
         for (uint i = 0u; i < n; ++i) queue[i] = marked[i];
     }

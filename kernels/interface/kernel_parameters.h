@@ -94,6 +94,7 @@
     FIRST(__global uint *, queues)               \
     NEXT(uint, capacity)                         \
     NEXT(uint, queue_mask)                       \
+    NEXT(uint, clear_mask)                       \
     NEXT(__global const uint *, block_counts)
 
 #define WP_COUNT_DEPTHS_PARAMETERS(FIRST, NEXT) \

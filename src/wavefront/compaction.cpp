@@ -29,10 +29,11 @@ ScanCompaction::ScanCompaction(const cl::Context& context, const cl::Program& pr
     write_.setArg(arg::CompactWrite::block_counts, block_counts_);
 }
 
-void ScanCompaction::compact(KernelLauncher& launcher, std::uint32_t queue_mask) {
+void ScanCompaction::compact(KernelLauncher& launcher, std::uint32_t queue_mask, std::uint32_t clear_mask) {
     count_.setArg(arg::CompactCount::queue_mask, cl_uint(queue_mask));
     scan_.setArg(arg::CompactScan::queue_mask, cl_uint(queue_mask));
     write_.setArg(arg::CompactWrite::queue_mask, cl_uint(queue_mask));
+    write_.setArg(arg::CompactWrite::clear_mask, cl_uint(clear_mask));
     launcher.launch(count_, "compact_count", blocks_, 0);
     launcher.launch(scan_, "compact_scan", WP_QUEUE_COUNT, 0);
     launcher.launch(write_, "compact_write", blocks_, 0);

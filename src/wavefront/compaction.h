@@ -32,8 +32,9 @@ class ScanCompaction {
  public:
     ScanCompaction(const cl::Context& context, const cl::Program& program, const cl::Buffer& queues,
                    const cl::Buffer& counts, std::size_t capacity);
-    // Rebuilds queue q (and sets its length) for every bit q of queue_mask.
-    void compact(KernelLauncher& launcher, std::uint32_t queue_mask);
+    // Rebuilds queue q (and sets its length) for every bit q of queue_mask,
+    // and clears its marks where clear_mask has bit q too.
+    void compact(KernelLauncher& launcher, std::uint32_t queue_mask, std::uint32_t clear_mask = 0);
 
  private:
     std::size_t blocks_;

@@ -26,6 +26,18 @@ bool complete_after(const std::vector<Stage>& iteration, std::size_t at, std::ui
     return true;
 }
 
+// Whether the queue built after position `at` is built for the last time
+// before its consumer: going round the loop from `at`, the consumer comes
+// before any stage that pushes to it (or no stage does either).
+bool last_build_before_consumer(const std::vector<Stage>& iteration, std::size_t at, std::uint32_t queue) {
+    for (std::size_t step = 1; step < iteration.size(); ++step) {
+        Stage later = iteration[(at + step) % iteration.size()];
+        if (declaration(later).consumes == queue) return true;
+        if (pushes_to(later, queue)) return false;
+    }
+    return true;
+}
+
 }  // namespace
 
 QueuePlan plan_queues(const std::vector<Stage>& iteration) {
@@ -44,11 +56,10 @@ QueuePlan plan_queues(const std::vector<Stage>& iteration) {
     }
     for (std::size_t at = 0; at < n; ++at) {
         StageBookkeeping& stage = of(plan, iteration[at]);
-        stage.marks_cleared_after |= 1u << declaration(iteration[at]).consumes;
         for (std::uint32_t queue = 0; queue < WP_QUEUE_COUNT; ++queue) {
             if (!pushes_to(iteration[at], queue) || !complete_after(iteration, at, queue)) continue;
             stage.compacted_after |= 1u << queue;
-            if (after_consumer(iteration, queue) == 0) stage.marks_cleared_after |= 1u << queue;
+            if (last_build_before_consumer(iteration, at, queue)) stage.marks_cleared_after |= 1u << queue;
         }
     }
     return plan;

@@ -23,10 +23,14 @@ struct StageBookkeeping {
     // before their consumer runs. So a queue is built once it is complete,
     // and every length is current when the iteration ends.
     std::uint32_t compacted_after = 0;
-    // Scan compaction, after the stage: the marks cleared, those of the queue
-    // it consumes (taken), and of the queues it completes that no stage of the
-    // iteration consumes (SHADOW where shade traces the shadow rays itself:
-    // built only to be counted), once built.
+    // Scan compaction, after the stage: the queues whose marks that
+    // compaction clears as it reads them, those it builds for the last time
+    // before their consumer takes them: no stage pushes to them in between,
+    // round the loop of iterations (RAY is built after shade, for the
+    // iteration's count, and again after generate, which clears it). A queue
+    // no stage of the iteration consumes (SHADOW where shade traces the
+    // shadow rays itself: built only to be counted) is cleared where built.
+    // So clearing marks costs no command of its own.
     std::uint32_t marks_cleared_after = 0;
 };
 

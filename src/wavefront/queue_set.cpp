@@ -47,9 +47,7 @@ void QueueSet::start_stage(Stage stage) {
 void QueueSet::finish_stage(KernelLauncher& launcher, Stage stage) {
     if (!scan_) return;
     const StageBookkeeping& plan = plan_[static_cast<std::size_t>(stage)];
-    if (plan.compacted_after) scan_->compact(launcher, plan.compacted_after);
-    for (std::uint32_t queue = 0; queue < WP_QUEUE_COUNT; ++queue)
-        if (plan.marks_cleared_after >> queue & 1u) clear_marks(queue);
+    if (plan.compacted_after) scan_->compact(launcher, plan.compacted_after, plan.marks_cleared_after);
 }
 
 void QueueSet::empty_outputs(Stage stage) {

@@ -143,9 +143,9 @@ TEST(StageDeclaration, TracingStagesReadTheHostsResultsWhereItTraces) {
 // The bookkeeping derived from the declaration (and docs/architecture.md
 // describes): scan compaction builds RAY after generate, HIT after
 // intersect, and SHADOW, RAY and FREE after shade (nothing after
-// intersect_shadow), and clears the marks of each stage's input after it,
-// and those of SHADOW after shade where no stage takes it (shade traced the
-// shadow rays, or there are none); atomic pushes empty HIT before
+// intersect_shadow), clearing a queue's marks where it is built for the last
+// time before its consumer (SHADOW after shade whether intersect_shadow
+// takes it or no stage does); atomic pushes empty HIT before
 // intersect, FREE, SHADOW and RAY before shade.
 TEST(StageDeclaration, QueueBookkeepingFollowsFromTheDeclaration) {
     for (bool shadow_stage : {true, false}) {
@@ -158,10 +158,10 @@ TEST(StageDeclaration, QueueBookkeepingFollowsFromTheDeclaration) {
         EXPECT_EQ(queue_names(of(Stage::intersect).compacted_after), "HIT");
         EXPECT_EQ(queue_names(of(Stage::shade).compacted_after), "FREE RAY SHADOW");
         EXPECT_EQ(queue_names(of(Stage::intersect_shadow).compacted_after), "");
-        EXPECT_EQ(queue_names(of(Stage::generate).marks_cleared_after), "FREE");
-        EXPECT_EQ(queue_names(of(Stage::intersect).marks_cleared_after), "RAY");
-        EXPECT_EQ(queue_names(of(Stage::shade).marks_cleared_after), shadow_stage ? "HIT" : "HIT SHADOW");
-        EXPECT_EQ(queue_names(of(Stage::intersect_shadow).marks_cleared_after), shadow_stage ? "SHADOW" : "");
+        EXPECT_EQ(queue_names(of(Stage::generate).marks_cleared_after), "RAY");
+        EXPECT_EQ(queue_names(of(Stage::intersect).marks_cleared_after), "HIT");
+        EXPECT_EQ(queue_names(of(Stage::shade).marks_cleared_after), "FREE SHADOW");  // not RAY: generate adds to it
+        EXPECT_EQ(queue_names(of(Stage::intersect_shadow).marks_cleared_after), "");
         EXPECT_EQ(queue_names(of(Stage::generate).counts_cleared_before), "");
         EXPECT_EQ(queue_names(of(Stage::intersect).counts_cleared_before), "HIT");
         EXPECT_EQ(queue_names(of(Stage::shade).counts_cleared_before), "FREE RAY SHADOW");
