@@ -11,18 +11,17 @@
 
 static inline uint compact_blocks(uint capacity) { return (capacity + WP_COMPACT_BLOCK - 1u) / WP_COMPACT_BLOCK; }
 
-/* The marks of queue q, or 0 when queue_mask leaves it out. */
-static inline __global const uint *queue_marks(__global const uint *queues, uint capacity, uint queue_mask, uint q) {
-    return (queue_mask & (1u << q)) ? queues + WP_QUEUE_MARKS(q) * capacity : 0;
-}
+/* Whether `mask` selects queue q, and where q's marks start in the queues buffer. */
+static inline int selects(uint mask, uint q) { return (mask >> q) & 1u; }
+static inline uint marks_start(uint capacity, uint q) { return WP_QUEUE_MARKS(q) * capacity; }
 
 __kernel void compact_count(WP_PARAMETERS(WP_COMPACT_COUNT_PARAMETERS)) {
     uint block = get_global_id(0), blocks = compact_blocks(capacity);
     if (block >= blocks) return;
     uint end = min(capacity, (block + 1u) * WP_COMPACT_BLOCK);
     for (uint q = 0u; q < WP_QUEUE_COUNT; ++q) {
-        __global const uint *marks = queue_marks(queues, capacity, queue_mask, q);
-        if (!marks) continue;
+        if (!selects(queue_mask, q)) continue;
+        __global const uint *marks = queues + marks_start(capacity, q);
         uint n = 0u;
         for (uint slot = block * WP_COMPACT_BLOCK; slot < end; ++slot) n += marks[slot];
         block_counts[q * blocks + block] = n;
@@ -33,7 +32,7 @@ __kernel void compact_count(WP_PARAMETERS(WP_COMPACT_COUNT_PARAMETERS)) {
  * prefix sum), and the total the queue's length. */
 __kernel void compact_scan(WP_PARAMETERS(WP_COMPACT_SCAN_PARAMETERS)) {
     uint q = get_global_id(0), blocks = compact_blocks(capacity);
-    if (q >= WP_QUEUE_COUNT || !(queue_mask & (1u << q))) return;
+    if (q >= WP_QUEUE_COUNT || !selects(queue_mask, q)) return;
     uint sum = 0u;
     for (uint block = 0u; block < blocks; ++block) {
         uint n = block_counts[q * blocks + block];
@@ -56,14 +55,14 @@ __kernel void compact_write(WP_PARAMETERS(WP_COMPACT_WRITE_PARAMETERS)) {
     uint start = block * WP_COMPACT_BLOCK, end = min(capacity, start + WP_COMPACT_BLOCK);
     uint marked[WP_COMPACT_BLOCK + 1u];
     for (uint q = 0u; q < WP_QUEUE_COUNT; ++q) {
-        if (!(queue_mask & (1u << q))) continue;
-        __global uint *marks = queues + WP_QUEUE_MARKS(q) * capacity;
+        if (!selects(queue_mask, q)) continue;
+        __global uint *marks = queues + marks_start(capacity, q);
         uint n = 0u;
         for (uint slot = start; slot < end; ++slot) {
             marked[n] = slot;
             n += marks[slot];
         }
-        if (clear_mask & (1u << q))
+        if (selects(clear_mask, q))
             for (uint slot = start; slot < end; ++slot) marks[slot] = 0u;
         __global uint *queue = queues + q * capacity + block_counts[q * blocks + block];
         for (uint i = 0u; i < n; ++i) queue[i] = marked[i];
