@@ -800,6 +800,15 @@ WavefrontOptions traced_by_bvh() {
     return options;
 }
 
+// A profiled render's options: intersect and shade apart, so that the
+// tracing stage's time is its own (the default on a CPU launches them as
+// one kernel, intersect_and_shade).
+WavefrontOptions profiled_apart(WavefrontOptions options) {
+    options.profile = true;
+    options.intersect_and_shade = false;
+    return options;
+}
+
 // The fields of every whole-frame row: image size, samples, repetitions and samples/s.
 json frame_fields(int size, int spp, int repeats, const std::vector<double>& samples_per_s) {
     return {{"width", size},
@@ -869,9 +878,9 @@ json lanes_figures(const Scene& shipped, int size, int spp, int repeats) {
             WavefrontOptions options = traced_by_bvh();
             options.lanes = lanes[k];
             RenderResult plain = render_wavefront(scene, options, Progress{});
-            options.profile = true;  // a render of its own: profiling adds count_depths and waits on events
+            // a render of its own: profiling adds count_depths and waits on events
             WavefrontReport report;
-            render_wavefront(scene, options, Progress{}, &report);
+            render_wavefront(scene, profiled_apart(options), Progress{}, &report);
             image[k] = plain.image.rgb;
             if (report.lanes != lanes[k]) throw std::logic_error("the pipeline ran other lanes than asked");
             if (r < 0) continue;
@@ -925,14 +934,13 @@ json short_list_figures(int size, int spp, int repeats) {
     }
     std::printf(
         "\n## e. Short list or BVH: %dx%d, %d spp, %d interleaved repetitions (after one warm-up render each); "
-        "intersect stages' device time per ray from a profiled render of its own\n\n",
+        "intersect stages' device time per ray from a profiled render of its own (intersect and shade apart)\n\n",
         size, size, spp, repeats);
     std::vector<std::vector<double>> sps(variants.size()), closest_ns(variants.size()), any_ns(variants.size());
     for (int r = -1; r < repeats; ++r) {
         for (std::size_t k = 0; k < variants.size(); ++k) {
             RenderStats plain = render_wavefront(variants[k].loaded, traced_by_bvh(), Progress{}).stats;
-            WavefrontOptions profiled = traced_by_bvh();
-            profiled.profile = true;
+            WavefrontOptions profiled = profiled_apart(traced_by_bvh());
             WavefrontReport report;
             RenderStats stats = render_wavefront(variants[k].loaded, profiled, Progress{}, &report).stats;
             if (r < 0) continue;
@@ -1091,7 +1099,8 @@ json wavefront_intersector_figures(const DeviceInfo& device, int size, int spp, 
     }
     std::printf(
         "\n## g. The wavefront with each intersector: %dx%d, %d spp, %d interleaved repetitions (after one warm-up "
-        "render each), default options but --intersector; the tracing stages from a profiled render of its own\n\n",
+        "render each), default options but --intersector; the tracing stages from a profiled render of its own "
+        "(intersect and shade apart)\n\n",
         size, size, spp, repeats);
     // [scene][intersector]
     std::vector<std::array<std::vector<double>, 2>> sps(scenes.size());
@@ -1103,9 +1112,8 @@ json wavefront_intersector_figures(const DeviceInfo& device, int size, int spp, 
                 options.device = std::to_string(device.index);
                 options.intersector = kinds[i];
                 RenderStats plain = render_wavefront(scenes[k], options, Progress{}).stats;
-                options.profile = true;
                 WavefrontReport report;
-                render_wavefront(scenes[k], options, Progress{}, &report);
+                render_wavefront(scenes[k], profiled_apart(options), Progress{}, &report);
                 if (r < 0) continue;
                 sps[k][i].push_back(double(plain.samples) / plain.time_s);
                 closest[k][i].push_back(stage_seconds(report.profile, Stage::intersect));

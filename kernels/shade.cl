@@ -1,120 +1,18 @@
-/* Stage 3: everything a path does where its ray ended, WP_LANES paths per
- * work item (device/lanes.h), in the order of a vertex
- * (device/path_vertex.h, as the megakernel): a miss takes the background and
- * ends; at a hit, the emission it sees (at depth 0 or after a specular bounce;
- * at every hit without next-event estimation; after a diffuse bounce,
- * weighted by multiple importance sampling against the light sample), the
- * max_depth cap and emitter materials (which end the path), the light
- * sample of next-event estimation at a diffuse vertex, then BSDF sampling,
- * the throughput and Russian roulette. The path state is read once and
- * written once. The light sample's shadow ray is traced here (on CPUs that
- * trace on the device) or goes to intersect_shadow with its would-be
- * contribution (WP_SHADOW_STAGE, interface/stages.h), which then adds it
- * after the emission, as the megakernel does, and finishes a path that ends
- * here. SPPM's camera pass (-DWP_SPPM): the first diffuse vertex is the
- * pixel's visible point, stored for the photon pass; the path bounces on
- * from it only where an emission it may see there still counts
- * (camera_pass_bounces_from_visible_point), and the hit after it ends the
- * path once its emission counted. */
-#include "device/guards.h"
-#include "device/lanes.h"
-#include "device/parameters.h"
-#include "device/path_queues.h"
-#include "device/path_vertex.h"
-#include "device/sppm_pixels.h"
-#include "device/surface.h"
-#include "shared/sppm.h"
+/* Stage 3, where the hits have a stage of their own (without
+ * WP_INTERSECT_AND_SHADE: on GPUs, and with atomic compaction;
+ * interface/stages.h): everything a path does where its ray ended, WP_LANES
+ * paths per work item, at the hits intersect traced or the host did
+ * (device/shade_hits.h). */
+#include "device/shade_hits.h"
 
 __kernel __attribute__((reqd_work_group_size(WP_GROUP_SIZE, 1, 1))) void shade(WP_STAGE_PARAMS) {
     STAGE_QUEUES(shade, HIT, WP_PUSHES(SHADOW, RAY, FREE));
+#ifndef WP_INTERSECT_AND_SHADE
     __local uint group_count, group_base; /* queue_push's scratch (atomic compaction) */
     Lanes lanes = queue_lanes(queues, counts, capacity, stage_consumes);
-    lane_uint shape = PATH_READ(hit_shape, lanes);
-    vec3 origin = PATH_READ(origin, lanes), d = PATH_READ(direction, lanes);
-    lane_uint px = PATH_READ(pixel, lanes), s = PATH_READ(sample, lanes), bounce = PATH_READ(depth, lanes);
-    vec3 throughput = PATH_READ(throughput, lanes);
-#ifdef WP_HAS_SPECULAR
-    lane_int after_specular = PATH_READ(specular, lanes) != 0u;
-#else
-    lane_int after_specular = bounce == 0u;
+    ShadedPaths next = shade_hits(WP_STAGE_ARGS, lanes, hits_in_path_state(state_hit_t, state_hit_shape, lanes));
+    STAGE_PUSH(SHADOW, lanes, next.casts_shadow); /* traced by intersect_shadow, or only counted */
+    STAGE_PUSH(RAY, lanes, next.continues);
+    STAGE_PUSH(FREE, lanes, next.ends);
 #endif
-#ifdef WP_MIS
-    real bsdf_pdf = PATH_READ(bsdf_pdf, lanes);
-#else
-    real bsdf_pdf = REAL(0.0);
-#endif
-#ifdef WP_HAS_GLASS
-    real eta_scale = PATH_READ(eta_scale, lanes);
-#else
-    real eta_scale = REAL(1.0);
-#endif
-    Vertex v = vertex_at(WP_SCENE_ARGS, shape, origin, d, PATH_READ(hit_t, lanes));
-    lane_int missed = lanes.active && shape == WP_NO_HIT, hit = lanes.active && !missed;
-
-    lane_uint dropped = 0u;
-    vec3 radiance = add_radiance_seen(WP_SCENE_ARGS, PATH_READ(radiance, lanes), missed, hit, shape, origin, v,
-                                      after_specular, bsdf_pdf, throughput, &dropped);
-    count_nonfinite(slot_nonfinite, WP_COUNTER_NONFINITE_EMISSION, lanes, dropped);
-    lane_int scatters = hit && !vertex_ends_path(v, bounce, scene->max_depth);
-#ifdef WP_SPPM
-    scatters = scatters && after_specular; /* the hit after the visible point ends the path */
-#endif
-
-    lane_int casts_shadow = 0;
-    lane_int shadow_pending = 0; /* the light sample waits for intersect_shadow, which finishes the path */
-#if defined(WP_NEE) && defined(WP_HAS_DIFFUSE)
-    DirectLight direct;
-    casts_shadow = vertex_light_sample(WP_SCENE_ARGS, scatters, v, px, s, bounce, throughput, &direct);
-#ifdef WP_SHADOW_STAGE
-    shadow_pending = casts_shadow;
-    PATH_WRITE(shadow_origin, lanes, casts_shadow, direct.shadow.origin);
-    PATH_WRITE(shadow_direction, lanes, casts_shadow, direct.shadow.direction);
-    PATH_WRITE(shadow_distance, lanes, casts_shadow, direct.shadow.distance);
-    PATH_WRITE(shadow_radiance, lanes, casts_shadow, direct.contribution);
-#else
-    lane_uint dropped_direct = 0u;
-    radiance = add_light_sample(radiance, shadow_ray_reaches_light(WP_SCENE_ARGS, casts_shadow, direct.shadow),
-                                direct.contribution, &dropped_direct);
-    count_nonfinite(slot_nonfinite, WP_COUNTER_NONFINITE_DIRECT, lanes, dropped_direct);
-#endif
-#endif
-
-    lane_int bounces = scatters; /* BSDF sampling and roulette decide whether it goes on */
-#if defined(WP_SPPM) && defined(WP_HAS_DIFFUSE)
-    /* SPPM's camera pass: the pixel's visible point */
-    lane_int visible = scatters && v.material.type == WP_MATERIAL_DIFFUSE;
-    Lanes pixels = pixel_lanes(px, visible, scene_pixel_count(scene));
-    SPPM_WRITE(visible_point, pixels, visible, v.surface.point);
-    SPPM_WRITE(visible_normal, pixels, visible, v.ns);
-    SPPM_WRITE(visible_geometric_normal, pixels, visible, v.nf);
-    SPPM_WRITE(visible_weight, pixels, visible, v3_mul(throughput, v.material.albedo));
-    SPPM_WRITE(visible_depth, pixels, visible, bounce);
-    bounces = scatters && (!visible || camera_pass_bounces_from_visible_point(WP_USES_NEE, WP_USES_MIS));
-#endif
-
-    PathStep step = step_from_vertex(v, d, throughput, eta_scale, scene->seed, px, s, bounce, scene->rr_depth);
-    count_nonfinite(slot_nonfinite, WP_COUNTER_NONFINITE_SCATTER, lanes, bounces ? step.nonfinite : (lane_uint)0u);
-    lane_int continues = bounces && step.continues, ends = lanes.active && !continues;
-    PATH_WRITE(origin, lanes, continues, step.origin);
-    PATH_WRITE(direction, lanes, continues, step.scattered.direction);
-    PATH_WRITE(throughput, lanes, continues, step.throughput);
-    /* every shaded path, so that count_depths finds a shadow ray's vertex at depth - 1 */
-    PATH_WRITE(depth, lanes, lanes.active, bounce + 1u);
-#ifdef WP_HAS_SPECULAR
-    PATH_WRITE(specular, lanes, continues, step.scattered.specular);
-#endif
-#ifdef WP_MIS
-    PATH_WRITE(bsdf_pdf, lanes, continues, step.scattered.pdf);
-#endif
-#ifdef WP_HAS_GLASS
-    PATH_WRITE(eta_scale, lanes, continues, step.eta_scale);
-#endif
-#if defined(WP_NEE) && defined(WP_SHADOW_STAGE)
-    PATH_WRITE(shadow_ends_path, lanes, shadow_pending, ends ? (lane_uint)1u : (lane_uint)0u);
-#endif
-    PATH_WRITE(radiance, lanes, continues || shadow_pending, radiance);
-    finish_paths(pass_radiance, PATH_READ(pass_item, lanes), ends && !shadow_pending, radiance);
-    STAGE_PUSH(SHADOW, lanes, casts_shadow); /* traced by intersect_shadow, or only counted */
-    STAGE_PUSH(RAY, lanes, continues);
-    STAGE_PUSH(FREE, lanes, ends);
 }

@@ -2,9 +2,11 @@
  * build options (src/opencl/kernel_options.cpp): WP_HAS_<kind> for each
  * shape, material and light kind in use, WP_NEE when next-event estimation
  * runs, WP_HOST_TRACED when the host traces the stages' rays,
- * WP_SHADOW_STAGE when the shadow rays go to their own stage
- * (interface/stages.h), and, for small scenes, each kind's count as a constant. Code for what
- * the scene lacks is compiled out. This header derives the rest. */
+ * WP_SHADOW_STAGE when the shadow rays go to their own stage,
+ * WP_INTERSECT_AND_SHADE when one kernel traces and shades
+ * (interface/stages.h), and, for small scenes, each kind's count as a
+ * constant. Code for what the scene lacks is compiled out. This header
+ * derives the rest. */
 #ifndef WP_DEVICE_FEATURES_H
 #define WP_DEVICE_FEATURES_H
 

@@ -1,7 +1,8 @@
 /* Kernel parameter lists from their declarations (interface/kernel_parameters.h
  * and, for the stage kernels, the path state, interface/path_state.h):
  * WP_PARAMETERS(list) is a kernel's or function's parameter list, and
- * WP_SCENE_PARAMS / WP_SCENE_ARGS pass the scene's buffers on to functions. */
+ * WP_SCENE_PARAMS / WP_SCENE_ARGS pass the scene's buffers on to functions,
+ * WP_STAGE_PARAMS / WP_STAGE_ARGS a stage kernel's parameters. */
 #ifndef WP_DEVICE_PARAMETERS_H
 #define WP_DEVICE_PARAMETERS_H
 
@@ -45,6 +46,11 @@ typedef struct {
     WP_IF_SPPM(, __global WP_STATE_ELEMENT_##type *restrict state_##name)
 #define WP_STAGE_PARAMS \
     WP_PARAMETERS(WP_STAGE_PARAMETERS) WP_PATH_STATE(WP_PATH_STATE_PARAM) WP_SPPM_STATE(WP_SPPM_STATE_PARAM)
+#define WP_PATH_STATE_ARG(type, name, feature, writers, readers) WP_IF_##feature(, state_##name)
+#define WP_SPPM_STATE_ARG(type, name, size, writers, readers) WP_IF_SPPM(, state_##name)
+#define WP_STAGE_ARGS                                        \
+    WP_STAGE_PARAMETERS(WP_ARGUMENT_FIRST, WP_ARGUMENT_NEXT) \
+    WP_PATH_STATE(WP_PATH_STATE_ARG) WP_SPPM_STATE(WP_SPPM_STATE_ARG)
 #define WP_SPPM_PARAMS WP_PARAMETERS(WP_SPPM_KERNEL_PARAMETERS) WP_SPPM_STATE(WP_SPPM_STATE_PARAM)
 
 #endif

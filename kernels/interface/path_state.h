@@ -20,6 +20,8 @@
  *   SHADOW_STAGE  NEE runs and its shadow rays go to intersect_shadow
  *            (where the host traces them, and on GPUs; otherwise shade
  *            traces them itself: interface/stages.h);
+ *   HIT_STAGE, INTERSECT_AND_SHADE  (stages only, interface/stages.h) intersect
+ *            and shade run apart, or as one kernel;
  *   HOST_SHADOWS  NEE runs and the host traces the stages' rays
  *            (--intersector embree, interface/stages.h): the shadow rays'
  *            verdicts, which the host writes before intersect_shadow runs;
@@ -30,29 +32,34 @@
 #ifndef WP_INTERFACE_PATH_STATE_H
 #define WP_INTERFACE_PATH_STATE_H
 
-#define WP_PATH_STATE(X)                                                                            \
-    X(uint, pixel, ALWAYS, "generate", "shade")                                                     \
-    X(uint, sample, ALWAYS, "generate", "shade")                                                    \
-    X(uint, pass_item, ALWAYS, "generate", "shade intersect_shadow")                                \
-    X(uint, depth, ALWAYS, "generate shade emit_photons shade_photons", "shade shade_photons")      \
-    X(vec3, origin, ALWAYS, "generate shade emit_photons shade_photons",                            \
-      "intersect shade intersect_photons shade_photons")                                            \
-    X(vec3, direction, ALWAYS, "generate shade emit_photons shade_photons",                         \
-      "intersect shade intersect_photons shade_photons")                                            \
-    X(vec3, throughput, ALWAYS, "generate shade emit_photons shade_photons", "shade shade_photons") \
-    X(vec3, radiance, ALWAYS, "generate shade intersect_shadow", "shade intersect_shadow")          \
-    X(float, hit_t, ALWAYS, "intersect intersect_photons", "shade shade_photons")                   \
-    X(uint, hit_shape, ALWAYS, "intersect intersect_photons", "shade shade_photons")                \
-    X(uint, specular, SPECULAR, "generate shade", "shade")                                          \
-    X(vec3, shadow_origin, SHADOW_STAGE, "shade", "intersect_shadow")                               \
-    X(vec3, shadow_direction, SHADOW_STAGE, "shade", "intersect_shadow")                            \
-    X(float, shadow_distance, SHADOW_STAGE, "shade", "intersect_shadow")                            \
-    X(vec3, shadow_radiance, SHADOW_STAGE, "shade", "intersect_shadow")                             \
-    X(uint, shadow_ends_path, SHADOW_STAGE, "shade", "intersect_shadow")                            \
-    X(uint, shadow_occluded, HOST_SHADOWS, "intersect_shadow", "intersect_shadow")                  \
-    X(float, bsdf_pdf, MIS, "shade", "shade")                                                       \
-    X(float, eta_scale, GLASS, "generate shade", "shade")                                           \
-    X(uint, photon, SPPM, "emit_photons", "shade_photons")                                          \
+#define WP_PATH_STATE(X)                                                                           \
+    X(uint, pixel, ALWAYS, "generate", "shade intersect_and_shade")                                \
+    X(uint, sample, ALWAYS, "generate", "shade intersect_and_shade")                               \
+    X(uint, pass_item, ALWAYS, "generate", "shade intersect_and_shade intersect_shadow")           \
+    X(uint, depth, ALWAYS, "generate shade intersect_and_shade emit_photons shade_photons",        \
+      "shade intersect_and_shade shade_photons")                                                   \
+    X(vec3, origin, ALWAYS, "generate shade intersect_and_shade emit_photons shade_photons",       \
+      "intersect shade intersect_and_shade intersect_photons shade_photons")                       \
+    X(vec3, direction, ALWAYS, "generate shade intersect_and_shade emit_photons shade_photons",    \
+      "intersect shade intersect_and_shade intersect_photons shade_photons")                       \
+    X(vec3, throughput, ALWAYS, "generate shade intersect_and_shade emit_photons shade_photons",   \
+      "shade intersect_and_shade shade_photons")                                                   \
+    X(vec3, radiance, ALWAYS, "generate shade intersect_and_shade intersect_shadow",               \
+      "shade intersect_and_shade intersect_shadow")                                                \
+    X(float, hit_t, ALWAYS, "intersect intersect_and_shade intersect_photons",                     \
+      "shade intersect_and_shade shade_photons")                                                   \
+    X(uint, hit_shape, ALWAYS, "intersect intersect_and_shade intersect_photons",                  \
+      "shade intersect_and_shade shade_photons")                                                   \
+    X(uint, specular, SPECULAR, "generate shade intersect_and_shade", "shade intersect_and_shade") \
+    X(vec3, shadow_origin, SHADOW_STAGE, "shade intersect_and_shade", "intersect_shadow")          \
+    X(vec3, shadow_direction, SHADOW_STAGE, "shade intersect_and_shade", "intersect_shadow")       \
+    X(float, shadow_distance, SHADOW_STAGE, "shade intersect_and_shade", "intersect_shadow")       \
+    X(vec3, shadow_radiance, SHADOW_STAGE, "shade intersect_and_shade", "intersect_shadow")        \
+    X(uint, shadow_ends_path, SHADOW_STAGE, "shade intersect_and_shade", "intersect_shadow")       \
+    X(uint, shadow_occluded, HOST_SHADOWS, "intersect_shadow", "intersect_shadow")                 \
+    X(float, bsdf_pdf, MIS, "shade intersect_and_shade", "shade intersect_and_shade")              \
+    X(float, eta_scale, GLASS, "generate shade intersect_and_shade", "shade intersect_and_shade")  \
+    X(uint, photon, SPPM, "emit_photons", "shade_photons")                                         \
     X(vec3, photon_flux, SPPM, "emit_photons", "shade_photons")
 
 #endif

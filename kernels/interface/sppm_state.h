@@ -24,21 +24,21 @@
 #ifndef WP_INTERFACE_SPPM_STATE_H
 #define WP_INTERFACE_SPPM_STATE_H
 
-#define WP_SPPM_STATE(X)                                                                  \
-    X(vec3, visible_point, PIXELS, "shade", "shade_photons photon_grid")                  \
-    X(vec3, visible_normal, PIXELS, "shade", "shade_photons")                             \
-    X(vec3, visible_geometric_normal, PIXELS, "shade", "shade_photons")                   \
-    X(vec3, visible_weight, PIXELS, "shade", "shade_photons")                             \
-    X(uint, visible_depth, PIXELS, "shade", "shade_photons photon_grid")                  \
-    X(float, sppm_count, PIXELS, "sppm_update", "sppm_update")                            \
-    X(float, sppm_radius, PIXELS, "sppm_update", "shade_photons photon_grid sppm_update") \
-    X(vec3, sppm_flux, PIXELS, "sppm_update", "sppm_update")                              \
-    X(uint, iteration_photons, PIXELS, "shade_photons", "sppm_update")                    \
-    X(uint, iteration_flux, DEPOSITS, "shade_photons", "sppm_update")                     \
-    X(float, grid_frame, FRAME, "photon_grid", "shade_photons photon_grid")               \
-    X(uint, grid_counts, BUCKETS, "photon_grid", "photon_grid")                           \
-    X(uint, grid_block_sums, BLOCKS, "photon_grid", "photon_grid")                        \
-    X(uint, grid_starts, BUCKETS, "photon_grid", "shade_photons photon_grid")             \
+#define WP_SPPM_STATE(X)                                                                     \
+    X(vec3, visible_point, PIXELS, "shade intersect_and_shade", "shade_photons photon_grid") \
+    X(vec3, visible_normal, PIXELS, "shade intersect_and_shade", "shade_photons")            \
+    X(vec3, visible_geometric_normal, PIXELS, "shade intersect_and_shade", "shade_photons")  \
+    X(vec3, visible_weight, PIXELS, "shade intersect_and_shade", "shade_photons")            \
+    X(uint, visible_depth, PIXELS, "shade intersect_and_shade", "shade_photons photon_grid") \
+    X(float, sppm_count, PIXELS, "sppm_update", "sppm_update")                               \
+    X(float, sppm_radius, PIXELS, "sppm_update", "shade_photons photon_grid sppm_update")    \
+    X(vec3, sppm_flux, PIXELS, "sppm_update", "sppm_update")                                 \
+    X(uint, iteration_photons, PIXELS, "shade_photons", "sppm_update")                       \
+    X(uint, iteration_flux, DEPOSITS, "shade_photons", "sppm_update")                        \
+    X(float, grid_frame, FRAME, "photon_grid", "shade_photons photon_grid")                  \
+    X(uint, grid_counts, BUCKETS, "photon_grid", "photon_grid")                              \
+    X(uint, grid_block_sums, BLOCKS, "photon_grid", "photon_grid")                           \
+    X(uint, grid_starts, BUCKETS, "photon_grid", "shade_photons photon_grid")                \
     X(uint, grid_entries, ENTRIES, "photon_grid", "shade_photons")
 
 /* Buckets per block of the counting sort's prefix sum (photon_grid.cl). */

@@ -22,8 +22,9 @@
  *   runs when  a path state feature (interface/path_state.h): ALWAYS,
  *              SHADOW_STAGE for the stage of next-event estimation's
  *              shadow rays (which shade traces itself where the device
- *              traces on a CPU: see below), SPPM for one that only the sppm
- *              integrator needs;
+ *              traces on a CPU: see below), HIT_STAGE for intersect and
+ *              shade apart and INTERSECT_AND_SHADE for them as one
+ *              kernel (see below), SPPM for one that only the sppm integrator needs;
  *   traces     the rays of the paths it consumes: CLOSEST_HIT (their
  *              extension rays, into hit_t and hit_shape), ANY_HIT (their
  *              shadow rays, blocked or not) or NO_RAYS. Where the host
@@ -39,19 +40,29 @@
  * neither written nor read again; measured in docs/architecture.md, "Shadow
  * rays") and pushes them to SHADOW only to count them (--profile's
  * rays by depth, the summary's shadow rays); no stage consumes them. Where
- * the host traces them, and on GPUs, intersect_shadow does (SHADOW_STAGE). */
+ * the host traces them, and on GPUs, intersect_shadow does (SHADOW_STAGE).
+ *
+ * Hits: on a CPU device, intersect_and_shade traces each extension ray and
+ * shades its hit in one kernel (INTERSECT_AND_SHADE): the hits stay in registers, with
+ * no launch, compaction or hit_t/hit_shape traffic between the two
+ * (docs/architecture.md, "Intersect and shade as one kernel"). It pushes the
+ * paths that go on to RAY, the queue it takes, which only scan compaction
+ * can build while the stage reads it, so with atomic compaction, and on
+ * GPUs, intersect and shade run apart, the hits going through HIT
+ * (HIT_STAGE). Two stages consume RAY, never in one program. */
 #ifndef WP_INTERFACE_STAGES_H
 #define WP_INTERFACE_STAGES_H
 
 #include "interface/queues.h"
 
-#define WP_STAGES(X)                                                                            \
-    X(generate, CAMERA, FREE, WP_PUSHES(RAY), ALWAYS, NO_RAYS)                                  \
-    X(intersect, CAMERA, RAY, WP_PUSHES(HIT), ALWAYS, CLOSEST_HIT)                              \
-    X(shade, CAMERA, HIT, WP_PUSHES(SHADOW, RAY, FREE), ALWAYS, NO_RAYS)                        \
-    X(intersect_shadow, CAMERA, SHADOW, WP_PUSHES_NOTHING, SHADOW_STAGE, ANY_HIT)               \
-    X(emit_photons, PHOTON, PHOTON_FREE, WP_PUSHES(PHOTON_RAY), SPPM, NO_RAYS)                  \
-    X(intersect_photons, PHOTON, PHOTON_RAY, WP_PUSHES(PHOTON_HIT, PHOTON_FREE), SPPM, NO_RAYS) \
+#define WP_STAGES(X)                                                                                    \
+    X(generate, CAMERA, FREE, WP_PUSHES(RAY), ALWAYS, NO_RAYS)                                          \
+    X(intersect, CAMERA, RAY, WP_PUSHES(HIT), HIT_STAGE, CLOSEST_HIT)                                   \
+    X(shade, CAMERA, HIT, WP_PUSHES(SHADOW, RAY, FREE), HIT_STAGE, NO_RAYS)                             \
+    X(intersect_and_shade, CAMERA, RAY, WP_PUSHES(SHADOW, RAY, FREE), INTERSECT_AND_SHADE, CLOSEST_HIT) \
+    X(intersect_shadow, CAMERA, SHADOW, WP_PUSHES_NOTHING, SHADOW_STAGE, ANY_HIT)                       \
+    X(emit_photons, PHOTON, PHOTON_FREE, WP_PUSHES(PHOTON_RAY), SPPM, NO_RAYS)                          \
+    X(intersect_photons, PHOTON, PHOTON_RAY, WP_PUSHES(PHOTON_HIT, PHOTON_FREE), SPPM, NO_RAYS)         \
     X(shade_photons, PHOTON, PHOTON_HIT, WP_PUSHES(PHOTON_RAY, PHOTON_FREE), SPPM, NO_RAYS)
 
 /* A set of queues as bits 1 << queue, from one to five queue names. */

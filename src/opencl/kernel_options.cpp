@@ -32,6 +32,7 @@ std::vector<std::pair<const char*, const char*>> features_in_use(const FeatureSe
     add(f.mis, "mis", "WP_MIS");
     add(f.host_traced, "host-traced", "WP_HOST_TRACED");
     add(f.nee && f.shadow_stage, "shadow-stage", "WP_SHADOW_STAGE");
+    add(f.intersect_and_shade, "intersect-and-shade", "WP_INTERSECT_AND_SHADE");
     add(f.sppm, "sppm", "WP_SPPM");
     return in_use;
 }

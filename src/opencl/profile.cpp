@@ -20,6 +20,16 @@ std::string depth_list(const std::vector<std::uint64_t>& by_depth) {
     return text.empty() ? "-" : text;
 }
 
+// The tracing stages' kernels, set against the intersect bound where they
+// ran, with what sets each apart from the bound's tests.
+struct TracingKernel {
+    const char* name;
+    const char* note;
+};
+constexpr TracingKernel kTracingKernels[] = {{"intersect", ""},
+                                             {"intersect_and_shade", " (shading too)"},
+                                             {"intersect_shadow", " (any hit: cheaper tests, same bound)"}};
+
 template <class Kernels>
 auto find_kernel(Kernels& kernels, const std::string& name) {
     return std::find_if(kernels.begin(), kernels.end(), [&](const KernelProfile& k) { return k.name == name; });
@@ -87,15 +97,16 @@ std::string format_profile_table(const RenderProfile& p) {
     out += "  extension rays by depth: " + depth_list(p.extension_rays_by_depth) + "\n";
     out += "  shadow rays by depth:    " + depth_list(p.shadow_rays_by_depth) + "\n";
     if (p.intersect_bound_rays_per_s > 0.0) {
-        std::snprintf(line, sizeof line,
-                      "  intersect bound (ray-primitive tests only, no state traffic): %.1f Mrays/s; intersect at "
-                      "%.0f%% of it",
-                      p.intersect_bound_rays_per_s * 1e-6, 100.0 * p.fraction_of_intersect_bound("intersect"));
+        std::snprintf(line, sizeof line, "  intersect bound (ray-primitive tests only, no state traffic): %.1f Mrays/s",
+                      p.intersect_bound_rays_per_s * 1e-6);
         out += line;
-        if (p.has_kernel("intersect_shadow")) {  // not where shade traces the shadow rays
-            std::snprintf(line, sizeof line, ", intersect_shadow at %.0f%% (any hit: cheaper tests, same bound)",
-                          100.0 * p.fraction_of_intersect_bound("intersect_shadow"));
+        const char* separator = "; ";
+        for (const TracingKernel& k : kTracingKernels) {
+            if (!p.has_kernel(k.name)) continue;
+            std::snprintf(line, sizeof line, "%s%s at %.0f%%%s%s", separator, k.name,
+                          100.0 * p.fraction_of_intersect_bound(k.name), *separator == ';' ? " of it" : "", k.note);
             out += line;
+            separator = ", ";
         }
         out += "\n";
     }
@@ -135,9 +146,9 @@ nlohmann::json profile_json(const RenderProfile& p) {
                            {"shadow_rays_by_depth", p.shadow_rays_by_depth}};
     if (p.intersect_bound_rays_per_s > 0.0) {
         json["intersect_bound_rays_per_s"] = p.intersect_bound_rays_per_s;
-        json["of_intersect_bound"] = {{"intersect", p.fraction_of_intersect_bound("intersect")}};
-        if (p.has_kernel("intersect_shadow"))
-            json["of_intersect_bound"]["intersect_shadow"] = p.fraction_of_intersect_bound("intersect_shadow");
+        json["of_intersect_bound"] = nlohmann::json::object();
+        for (const TracingKernel& k : kTracingKernels)
+            if (p.has_kernel(k.name)) json["of_intersect_bound"][k.name] = p.fraction_of_intersect_bound(k.name);
     }
     if (p.copy_bytes_per_s > 0.0) {
         json["copy_bytes_per_s"] = p.copy_bytes_per_s;

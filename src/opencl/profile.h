@@ -57,7 +57,8 @@ std::string format_profile_table(const RenderProfile& profile);
 // {"render_s","kernel_s","gaps_s","host_other_s","build_s","iterations",
 //  "kernels":[{"name","launches","items","device_s","items_per_s","share"}],
 //  "extension_rays_by_depth":[...], "shadow_rays_by_depth":[...]}, and when the bound was measured
-//  "intersect_bound_rays_per_s" and "of_intersect_bound":{"intersect","intersect_shadow"} (fractions);
+//  "intersect_bound_rays_per_s" and "of_intersect_bound":{"intersect","intersect_and_shade","intersect_shadow"}
+//  (fractions, of the kernels that ran);
 //  a kernel with declared bytes also has "bytes_per_item" and "bytes_per_s", and, when the copy
 //  bandwidth was measured, "of_copy_bandwidth" (a fraction); the profile then has "copy_bytes_per_s"
 //  and "copy_buffer_bytes"

@@ -127,6 +127,11 @@ struct FeatureSet {
     // traces them, and on GPUs), rather than being traced in shade
     // (docs/architecture.md, "Shadow rays").
     bool shadow_stage = false;
+    // Nor this: one kernel, intersect_and_shade, traces the extension rays
+    // and shades their hits, which then need no HIT queue (on CPU devices
+    // with scan compaction; docs/architecture.md, "Intersect and shade as one
+    // kernel"), rather than intersect and shade apart.
+    bool intersect_and_shade = false;
 };
 
 struct Scene {

@@ -42,6 +42,10 @@ bool path_feature_compiled(PathFeature feature, const FeatureSet& features) {
             return features.nee && features.shadow_stage;
         case PathFeature::HOST_SHADOWS:
             return features.nee && features.host_traced;
+        case PathFeature::HIT_STAGE:
+            return !features.intersect_and_shade;
+        case PathFeature::INTERSECT_AND_SHADE:
+            return features.intersect_and_shade;
         case PathFeature::SPPM:
             return features.sppm;
     }
@@ -56,6 +60,8 @@ std::string path_state_table_markdown() {
                                           "mis (next-event estimation with multiple importance sampling)",
                                           "nee with the shadow rays traced in their own stage (intersect_shadow)",
                                           "nee with the shadow rays traced on the host (--intersector embree)",
+                                          "intersect and shade apart",
+                                          "intersect and shade as one kernel",
                                           "sppm (the sppm integrator)"};
     std::ostringstream table;
     table << "| field | type | bytes/path | exists when | written by | read by |\n"

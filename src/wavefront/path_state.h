@@ -11,7 +11,20 @@
 
 namespace wp {
 
-enum class PathFeature { ALWAYS, SPECULAR, GLASS, NEE, MIS, SHADOW_STAGE, HOST_SHADOWS, SPPM };
+// A field's or a stage's condition (kernels/interface/path_state.h); HIT_STAGE
+// and INTERSECT_AND_SHADE are stages' only (kernels/interface/stages.h).
+enum class PathFeature {
+    ALWAYS,
+    SPECULAR,
+    GLASS,
+    NEE,
+    MIS,
+    SHADOW_STAGE,
+    HOST_SHADOWS,
+    HIT_STAGE,
+    INTERSECT_AND_SHADE,
+    SPPM
+};
 
 struct PathStateField {
     const char* type;

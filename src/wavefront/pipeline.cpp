@@ -108,7 +108,8 @@ std::uint32_t Pipeline::photon_deposits() { return queues_.read_counts()[WP_COUN
 
 void Pipeline::run(Stage stage, std::size_t entries) {
     if (entries == 0) return;
-    if (ray_depths_ && stage == Stage::intersect) ray_depths_->count_extension_rays(launcher_, entries);
+    if (ray_depths_ && declaration(stage).consumes == WP_QUEUE_RAY)
+        ray_depths_->count_extension_rays(launcher_, entries);
     if (host_trace_ && declaration(stage).traces != StageTrace::NO_RAYS)
         launcher_.add_host_time(host_trace_row(declaration(stage)),
                                 host_trace_->trace(queue_, queues_, state_, capacity_, stage));
@@ -118,7 +119,8 @@ void Pipeline::run(Stage stage, std::size_t entries) {
 
 void Pipeline::finish_stage(Stage stage, std::size_t entries) {
     queues_.finish_stage(launcher_, stage);
-    if (ray_depths_ && stage == Stage::shade && entries > 0) ray_depths_->count_shadow_rays(launcher_, entries);
+    if (ray_depths_ && declaration(stage).pushes >> WP_QUEUE_SHADOW & 1u && entries > 0)
+        ray_depths_->count_shadow_rays(launcher_, entries);
 }
 
 void Pipeline::start_paths(const std::vector<glm::vec3>& origins, const std::vector<glm::vec3>& directions,

@@ -52,7 +52,7 @@ void QueueSet::finish_stage(KernelLauncher& launcher, Stage stage) {
 
 void QueueSet::empty_outputs(Stage stage) {
     const std::uint32_t pushes = declaration(stage).pushes;
-    clear_counts(pushes);
+    clear_counts(pushes & ~(1u << declaration(stage).consumes));
     for (std::uint32_t queue = 0; scan_ && queue < WP_QUEUE_COUNT; ++queue)
         if (pushes >> queue & 1u) clear_marks(queue);
 }

@@ -48,7 +48,8 @@ class QueueSet {
     DeviceCounts read_counts();
 
     // For stage tests: running one stage alone, empty the queues it fills
-    // before, and make them readable after.
+    // before (the one it also takes, intersect_and_shade's RAY, keeps its
+    // length: only its marks are cleared), and make them readable after.
     void empty_outputs(Stage stage);
     void compact_outputs(KernelLauncher& launcher, Stage stage);
     // For stage tests: set a queue's slots and length, read a queue.

@@ -44,20 +44,31 @@ inline constexpr std::array stage_declarations{WP_STAGES(WP_STAGE_DECLARATION)};
 inline constexpr std::size_t kStageCount = stage_declarations.size();
 
 // What the host's queue bookkeeping (wavefront/queue_plan.h) relies on: one
-// consumer per queue, and no stage pushing to the queue it is reading.
+// consumer per queue in a program (two stages may consume one queue where
+// they are never compiled together), and no stage pushing to the queue it
+// is reading but intersect_and_shade, which runs only with scan compaction
+// (its kernel does not compile otherwise, and the wavefront never asks for
+// it then): compaction builds the queue again after the stage, from marks
+// the stage does not read.
+constexpr bool never_in_one_program(PathFeature a, PathFeature b) {
+    return (a == PathFeature::HIT_STAGE && b == PathFeature::INTERSECT_AND_SHADE) ||
+           (a == PathFeature::INTERSECT_AND_SHADE && b == PathFeature::HIT_STAGE);
+}
 constexpr bool every_queue_has_at_most_one_consumer() {
     for (std::size_t a = 0; a < kStageCount; ++a)
         for (std::size_t b = a + 1; b < kStageCount; ++b)
-            if (stage_declarations[a].consumes == stage_declarations[b].consumes) return false;
+            if (stage_declarations[a].consumes == stage_declarations[b].consumes &&
+                !never_in_one_program(stage_declarations[a].runs_when, stage_declarations[b].runs_when))
+                return false;
     return true;
 }
-constexpr bool no_stage_pushes_to_the_queue_it_consumes() {
+constexpr bool only_scan_compacted_stages_push_to_the_queue_they_consume() {
     for (const auto& stage : stage_declarations)
-        if (stage.pushes >> stage.consumes & 1u) return false;
+        if (stage.pushes >> stage.consumes & 1u && stage.runs_when != PathFeature::INTERSECT_AND_SHADE) return false;
     return true;
 }
 static_assert(every_queue_has_at_most_one_consumer(), "kernels/interface/stages.h: two stages consume one queue");
-static_assert(no_stage_pushes_to_the_queue_it_consumes(),
+static_assert(only_scan_compacted_stages_push_to_the_queue_they_consume(),
               "kernels/interface/stages.h: a stage pushes to the queue it consumes");
 
 inline constexpr const StageDeclaration& declaration(Stage stage) {

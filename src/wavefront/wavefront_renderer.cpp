@@ -51,7 +51,8 @@ IntersectorChoice choose_intersector(const WavefrontOptions& options, const Devi
 }
 
 // The kernels' features: the scene's (or every shape's), whether the host
-// traces, and whether the shadow rays have a stage of their own.
+// traces, whether the shadow rays have a stage of their own, and whether one
+// kernel traces and shades.
 FeatureSet kernel_features(const Scene& scene, const WavefrontOptions& options, Intersector intersector,
                            const DeviceInfo& device) {
     FeatureSet f = options.specialise ? scene.features() : every_shape_and_material(scene.features());
@@ -59,6 +60,10 @@ FeatureSet kernel_features(const Scene& scene, const WavefrontOptions& options, 
     f.shadow_stage = options.shadow_stage.value_or(f.host_traced || device.type != "CPU");
     if (f.host_traced && !f.shadow_stage)
         throw std::invalid_argument("shadow rays the host traces need their own stage (intersect_shadow)");
+    const bool scan = options.compaction == Compaction::Scan;
+    f.intersect_and_shade = options.intersect_and_shade.value_or(scan && device.type == "CPU");
+    if (f.intersect_and_shade && !scan)
+        throw std::invalid_argument("intersect_and_shade pushes to the queue it takes, which needs --compaction scan");
     return f;
 }
 

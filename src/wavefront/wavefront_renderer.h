@@ -36,6 +36,12 @@ struct WavefrontOptions {
     // the host traces them (which needs it) and on GPUs, shade on CPUs
     // (kernels/interface/stages.h, docs/architecture.md "Shadow rays").
     std::optional<bool> shadow_stage = std::nullopt;
+    // Whether one kernel traces the extension rays and shades their hits
+    // (intersect_and_shade) or intersect and shade run apart. Unset: one
+    // kernel on CPUs with scan compaction (which it needs), apart otherwise
+    // (kernels/interface/stages.h, docs/architecture.md "Intersect and shade
+    // as one kernel").
+    std::optional<bool> intersect_and_shade = std::nullopt;
 };
 
 // Queue lengths of one iteration of a stage loop, for the profiler: of the

@@ -143,7 +143,7 @@ TEST_F(AutoBackendCli, ProfileTakesAnOpenClBackend) {
               0u);
     std::map<std::string, json> kernels;
     for (const json& k : profile["kernels"]) kernels[k["name"]] = k;
-    EXPECT_EQ(kernels.count(backend == "megakernel" ? "megakernel" : "intersect"), 1u) << profile.dump();
+    EXPECT_EQ(kernels.count(backend == "megakernel" ? "megakernel" : "intersect_and_shade"), 1u) << profile.dump();
     EXPECT_EQ(kernels["accumulate"]["items"], figures["samples"]);
     EXPECT_EQ(figures["samples"], 2u * 8 * 8);
     EXPECT_EQ(profile["render_s"], figures["time_s"]);

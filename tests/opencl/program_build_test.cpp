@@ -139,7 +139,7 @@ TEST(ProgramBuild, BrokenKernelNamesFileAndLine) {
     ScopedEnv cache_env("WAVEPATH_CACHE_DIR", cache.path.string());
     fs::path dir = copy_kernels(kernels.path / "kernels");
     ScopedEnv kernel_env("WAVEPATH_KERNEL_DIR", dir.string());
-    replace_in_file(dir / "shade.cl", "bounce + 1u);", "bounce + undeclared_thing);");
+    replace_in_file(dir / "shade.cl", "next.continues);", "next.undeclared_thing);");
     int line = line_of(dir / "shade.cl", "undeclared_thing");
     try {
         build_wavefront(choose_device(""), diffuse_spheres());
@@ -189,9 +189,9 @@ TEST(ProgramBuild, PushToAQueueTheStageDoesNotDeclareFailsToCompile) {
 // And a declaration changed without its kernel fails the build at the
 // kernel's first line, which states its queues.
 TEST(ProgramBuild, StageOpeningWithOtherQueuesThanItsDeclarationFailsToCompile) {
-    EditedBuild built =
-        build_edited_copy("interface/stages.h", "X(shade, CAMERA, HIT, WP_PUSHES(SHADOW, RAY, FREE), ALWAYS, NO_RAYS)",
-                          "X(shade, CAMERA, HIT, WP_PUSHES(RAY, FREE), ALWAYS, NO_RAYS)", "shade.cl", "STAGE_QUEUES");
+    EditedBuild built = build_edited_copy(
+        "interface/stages.h", "X(shade, CAMERA, HIT, WP_PUSHES(SHADOW, RAY, FREE), HIT_STAGE, NO_RAYS)",
+        "X(shade, CAMERA, HIT, WP_PUSHES(RAY, FREE), HIT_STAGE, NO_RAYS)", "shade.cl", "STAGE_QUEUES");
     EXPECT_NE(built.error.find(built.expected_location), std::string::npos) << built.error;
     EXPECT_NE(built.error.find("the queues of shade differ from its declaration"), std::string::npos) << built.error;
 }

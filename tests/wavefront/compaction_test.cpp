@@ -1,5 +1,7 @@
 // Queue compaction: both ways of filling a queue keep exactly the live paths;
-// the prefix-sum compaction also keeps them in ascending slot order.
+// the prefix-sum compaction also keeps them in ascending slot order, and
+// builds the queue a stage pushes to while reading it (intersect_and_shade's
+// RAY) as it builds any other.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -30,15 +32,30 @@ struct QueuesAfterShade {
     std::vector<std::uint32_t> ray, expected_ray;    // the paths that go on: those whose ray hit the sphere
 };
 
-// Runs intersect and shade on `queued` (in that order); the expected queues
-// in ascending order. The sphere is diffuse and the paths at depth 0, before
-// roulette, so every hit goes on and every miss ends.
-QueuesAfterShade queues_after_shade(Compaction compaction, const std::vector<std::uint32_t>& queued) {
+// Whether a ray from the origin along unit `direction` hits kScene's sphere:
+// its closest approach to the centre is inside the radius, and ahead.
+bool hits_the_sphere(glm::vec3 direction) {
+    const glm::vec3 centre(0.0f, 0.0f, -3.0f);
+    const float along = glm::dot(centre, direction);
+    return along > 0.0f && glm::dot(centre, centre) - along * along < 1.5f * 1.5f;
+}
+
+// How shade runs: after intersect, each a stage of its own, or in one kernel with it.
+enum class Shading { AfterIntersect, IntersectAndShade };
+
+// Runs intersect and shade on `queued` (in that order, or as one kernel);
+// the expected queues in ascending order, from the rays and the sphere. The
+// sphere is diffuse and the paths at depth 0, before roulette, so every hit
+// goes on and every miss ends.
+QueuesAfterShade queues_after_shade(Compaction compaction, const std::vector<std::uint32_t>& queued,
+                                    Shading shading = Shading::AfterIntersect) {
     Scene scene = test::scene_from_json(kScene);
     PipelineOptions options;
     options.compaction = compaction;
     options.lanes = 1;
-    Pipeline pipeline(scene, choose_device(""), kCapacity, kCapacity, scene.features(), options);
+    FeatureSet features = scene.features();
+    features.intersect_and_shade = shading == Shading::IntersectAndShade;
+    Pipeline pipeline(scene, choose_device(""), kCapacity, kCapacity, features, options);
     std::mt19937 random(7);
     std::uniform_real_distribution<float> coordinate(-1.0f, 1.0f);
     std::vector<test::TestRay> rays(kCapacity);
@@ -46,11 +63,15 @@ QueuesAfterShade queues_after_shade(Compaction compaction, const std::vector<std
         r = test::TestRay{glm::vec3(0.0f), glm::normalize(glm::vec3(coordinate(random), coordinate(random), -1.0f))};
     test::start_paths(pipeline, rays);
     pipeline.queues().set_queue(WP_QUEUE_RAY, queued);
-    pipeline.run_alone(Stage::intersect);
-    pipeline.run_alone(Stage::shade);
+    if (shading == Shading::IntersectAndShade) {
+        pipeline.run_alone(Stage::intersect_and_shade);
+    } else {
+        pipeline.run_alone(Stage::intersect);
+        pipeline.run_alone(Stage::shade);
+    }
     QueuesAfterShade q;
-    std::vector<std::uint32_t> shape = pipeline.read_field<std::uint32_t>("hit_shape");
-    for (std::uint32_t slot : queued) (shape[slot] == WP_NO_HIT ? q.expected_free : q.expected_ray).push_back(slot);
+    for (std::uint32_t slot : queued)
+        (hits_the_sphere(rays[slot].direction) ? q.expected_ray : q.expected_free).push_back(slot);
     std::sort(q.expected_free.begin(), q.expected_free.end());
     std::sort(q.expected_ray.begin(), q.expected_ray.end());
     q.free = pipeline.queues().read_queue(WP_QUEUE_FREE);
@@ -73,6 +94,15 @@ TEST(Compaction, PrefixSumKeepsExactlyTheLivePathsInAscendingOrder) {
     EXPECT_GT(q.expected_ray.size(), 300u);
     EXPECT_GT(q.expected_free.size(), 300u);  // both outcomes occur
     EXPECT_EQ(q.ray, q.expected_ray);         // the same slots, in ascending order
+    EXPECT_EQ(q.free, q.expected_free);
+}
+
+// RAY is both the queue intersect_and_shade takes and one it pushes to.
+TEST(Compaction, PrefixSumBuildsTheQueueAStageTakesAndPushesTo) {
+    QueuesAfterShade q = queues_after_shade(Compaction::Scan, shuffled_subset(), Shading::IntersectAndShade);
+    EXPECT_GT(q.expected_ray.size(), 300u);
+    EXPECT_GT(q.expected_free.size(), 300u);
+    EXPECT_EQ(q.ray, q.expected_ray);
     EXPECT_EQ(q.free, q.expected_free);
 }
 

@@ -11,6 +11,7 @@
 #include <map>
 #include <nlohmann/json.hpp>
 #include <numeric>
+#include <optional>
 #include <regex>
 #include <string>
 
@@ -35,7 +36,8 @@ struct ProfiledRender {
     RenderResult result;
     WavefrontReport report;
 };
-ProfiledRender profiled_small_room(int size, int max_depth, std::size_t wavefront = 0, bool shadow_stage = false) {
+ProfiledRender profiled_small_room(int size, int max_depth, std::size_t wavefront = 0, bool shadow_stage = false,
+                                   std::optional<bool> intersect_and_shade = std::nullopt) {
     Scene scene = test::scene_from_file("scenes/test/room_small.json");
     scene.camera.width = scene.camera.height = size;
     scene.render.spp = 1;
@@ -44,6 +46,7 @@ ProfiledRender profiled_small_room(int size, int max_depth, std::size_t wavefron
     options.wavefront = wavefront;
     options.profile = true;
     options.shadow_stage = shadow_stage;
+    options.intersect_and_shade = intersect_and_shade;
     ProfiledRender rendered;
     rendered.result = render_wavefront(scene, options, {}, &rendered.report);
     return rendered;
@@ -56,8 +59,9 @@ ProfiledRender profiled_small_room(int size, int max_depth, std::size_t wavefron
 // paths themselves), the count_depths kernel's histograms (counted on the
 // device from the queues' contents), and the scene's pixels x spp. With the
 // shadow rays traced by their own stage, or by shade (no intersect_shadow
-// row; they are counted after shade).
-void expect_kernel_items_match_the_rays_the_render_counted(bool shadow_stage) {
+// row; they are counted after shade); with intersect and shade as one
+// kernel (a CPU's default) or apart.
+void expect_kernel_items_match_the_rays_the_render_counted(bool shadow_stage, bool intersect_and_shade = true) {
     Scene scene = test::scene_from_file("scenes/test/room_small.json");
     scene.camera.width = scene.camera.height = 32;
     scene.render.spp = 2;
@@ -66,20 +70,28 @@ void expect_kernel_items_match_the_rays_the_render_counted(bool shadow_stage) {
     options.wavefront = 512;  // several passes and a regenerating wavefront
     options.profile = true;
     options.shadow_stage = shadow_stage;
+    options.intersect_and_shade = intersect_and_shade;
     WavefrontReport report;
     RenderResult result = render_wavefront(scene, options, {}, &report);
     RenderProfile& p = report.profile;
+    const char* tracing = intersect_and_shade ? "intersect_and_shade" : "intersect";  // the extension rays' stage
     RenderResult reference = render_reference(scene, ReferenceOptions{2, false});
     ASSERT_EQ(reference.stats.samples, samples);
 
-    EXPECT_EQ(p.kernel("intersect").items, reference.stats.extension_rays);
+    EXPECT_EQ(p.kernel(tracing).items, reference.stats.extension_rays);
+    EXPECT_EQ(p.has_kernel("intersect"), !intersect_and_shade);
+    EXPECT_EQ(p.has_kernel("shade"), !intersect_and_shade);
     EXPECT_EQ(result.stats.shadow_rays, reference.stats.shadow_rays);
     EXPECT_EQ(p.has_kernel("intersect_shadow"), shadow_stage);
-    if (shadow_stage) EXPECT_EQ(p.kernel("intersect_shadow").items, reference.stats.shadow_rays);
+    if (shadow_stage) {
+        EXPECT_EQ(p.kernel("intersect_shadow").items, reference.stats.shadow_rays);
+    }
     EXPECT_EQ(p.kernel("accumulate").items, samples);
     EXPECT_EQ(p.kernel("generate").items, samples);  // every camera ray took one free slot
-    // Every hit is shaded.
-    EXPECT_LE(p.kernel("shade").items, p.kernel("intersect").items);
+    // Every ray is shaded, a miss too.
+    if (!intersect_and_shade) {
+        EXPECT_EQ(p.kernel("shade").items, p.kernel("intersect").items);
+    }
 
     // The kernels' own per-depth counts add up to the reference's rays; depth 0 is the camera rays.
     EXPECT_EQ(sum(p.extension_rays_by_depth), reference.stats.extension_rays);
@@ -89,7 +101,7 @@ void expect_kernel_items_match_the_rays_the_render_counted(bool shadow_stage) {
     for (std::size_t d = 1; d < p.extension_rays_by_depth.size(); ++d)
         EXPECT_LE(p.extension_rays_by_depth[d], p.extension_rays_by_depth[d - 1]) << "depth " << d;
 
-    for (const char* stage : {"generate", "intersect", "shade", "intersect_shadow"}) {
+    for (const char* stage : {"generate", "intersect", "shade", "intersect_and_shade", "intersect_shadow"}) {
         if (!p.has_kernel(stage)) continue;
         EXPECT_GT(p.kernel(stage).device_s, 0.0) << stage;
         if (std::string(stage) != "generate") {
@@ -115,12 +127,13 @@ void expect_kernel_items_match_the_rays_the_render_counted(bool shadow_stage) {
     // the scene's, with or without the shadow stage); the other kernels declare none.
     FeatureSet kernel_features = scene.features();
     kernel_features.shadow_stage = shadow_stage;
+    kernel_features.intersect_and_shade = intersect_and_shade;
     for (const StageDeclaration& stage : stage_declarations) {
         if (!p.has_kernel(stage.kernel)) continue;
         EXPECT_EQ(p.kernel(stage.kernel).bytes_per_item, stage_bytes_per_item(stage, kernel_features).total())
             << stage.kernel;
     }
-    EXPECT_TRUE(p.has_kernel("shade"));
+    EXPECT_GT(p.kernel(intersect_and_shade ? "intersect_and_shade" : "shade").bytes_per_item, 0u);
     EXPECT_EQ(p.kernel("accumulate").bytes_per_item, 0u);
     EXPECT_EQ(p.kernel("count_depths").bytes_per_item, 0u);
     // A copy bandwidth from event nanoseconds in bytes/s: between 0.1 GB/s and
@@ -138,11 +151,16 @@ TEST(Profile, KernelItemsMatchTheRaysTheRenderCountedWithAShadowStage) {
     expect_kernel_items_match_the_rays_the_render_counted(true);
 }
 
+TEST(Profile, KernelItemsMatchTheRaysTheRenderCountedWithIntersectAndShadeApart) {
+    expect_kernel_items_match_the_rays_the_render_counted(true, false);
+}
+
 // Where the host traces (--intersector embree), its share of a tracing
 // stage is a row of its own, "embree:<stage>", launched as often as the
 // stage's kernel over the same rays; its time is the host's, taken out of
 // the device's idle time between kernels (else counted twice); and no
-// intersect bound is measured (the bound is the kernels' tracing).
+// intersect bound is measured (the bound is the kernels' tracing). The
+// extension rays' stage is intersect_and_shade, a CPU's default.
 TEST(Profile, HostTracedStagesHaveRowsOfTheirOwn) {
     Scene scene = test::scene_from_file("scenes/cornell_mesh.json");
     scene.camera.width = scene.camera.height = 32;
@@ -153,14 +171,15 @@ TEST(Profile, HostTracedStagesHaveRowsOfTheirOwn) {
     WavefrontReport report;
     RenderResult result = render_wavefront(scene, options, {}, &report);
     RenderProfile& p = report.profile;
-    for (const char* stage : {"intersect", "intersect_shadow"}) {
+    EXPECT_FALSE(p.has_kernel("intersect"));
+    for (const char* stage : {"intersect_and_shade", "intersect_shadow"}) {
         const std::string row = std::string("embree:") + stage;
         ASSERT_TRUE(p.has_kernel(row)) << row;
         EXPECT_EQ(p.kernel(row).launches, p.kernel(stage).launches) << row;
         EXPECT_EQ(p.kernel(row).items, p.kernel(stage).items) << row;
         EXPECT_GT(p.kernel(row).device_s, 0.0) << row;
     }
-    EXPECT_EQ(p.kernel("embree:intersect").items, result.stats.extension_rays);
+    EXPECT_EQ(p.kernel("embree:intersect_and_shade").items, result.stats.extension_rays);
     EXPECT_EQ(p.kernel("embree:intersect_shadow").items, result.stats.shadow_rays);
     EXPECT_LE(p.kernel_s() + p.gaps_s, 1.05 * p.render_s);
     EXPECT_EQ(p.intersect_bound_rays_per_s, 0.0);
@@ -207,12 +226,13 @@ TEST(Profile, ShadowRaysAreCountedAtTheDepthOfTheirVertex) {
 }
 
 // docs/architecture.md's count of the kernels an iteration launches (at most:
-// scan compaction and next-event estimation with a shadow stage, as here) is
+// scan compaction, next-event estimation with a shadow stage, and intersect
+// and shade apart, as here) is
 // what one iteration launches: every path of this render ends at its first
 // hit (max_depth 0), so it is one pass of one iteration, and its profile
 // counts every launch but the pass's accumulate.
 TEST(Profile, ArchitectureDocCountsTheKernelsOfAnIteration) {
-    WavefrontReport report = profiled_small_room(8, 0, 64, true).report;
+    WavefrontReport report = profiled_small_room(8, 0, 64, true, false).report;
     ASSERT_EQ(report.iterations.size(), 1u);
     std::uint64_t launches = 0;
     for (const KernelProfile& k : report.profile.kernels)
@@ -287,6 +307,12 @@ TEST(Profile, TableAndJsonReportTheTracingStagesAgainstTheBound) {
     // Shade traced the shadow rays: intersect alone.
     EXPECT_NE(format_profile_table(p).find("; intersect at 50% of it\n"), std::string::npos) << format_profile_table(p);
     EXPECT_FALSE(profile_json(p)["of_intersect_bound"].contains("intersect_shadow"));
+
+    p.kernels.front().name = "intersect_and_shade";  // a CPU's one kernel for intersect and shade
+    EXPECT_NE(format_profile_table(p).find("; intersect_and_shade at 50% of it (shading too)\n"), std::string::npos)
+        << format_profile_table(p);
+    EXPECT_EQ(profile_json(p)["of_intersect_bound"]["intersect_and_shade"], 0.5);
+    EXPECT_FALSE(profile_json(p)["of_intersect_bound"].contains("intersect"));
 
     p.intersect_bound_rays_per_s = 0.0;  // not measured (the megakernel): not reported
     EXPECT_EQ(format_profile_table(p).find("intersect bound"), std::string::npos);
@@ -364,8 +390,8 @@ TEST(Profile, CliWritesJsonConsistentWithStatsAndPrintsTable) {
     nlohmann::json profile = read_json(dir / "profile.json"), stats = read_json(dir / "stats.json");
     std::map<std::string, nlohmann::json> kernels;
     for (const nlohmann::json& k : profile["kernels"]) kernels[k["name"]] = k;
-    EXPECT_EQ(kernels["intersect"]["items"], stats["extension_rays"]);
-    EXPECT_EQ(kernels.count("intersect_shadow"), 0u);  // a CPU device: shade traces the shadow rays
+    EXPECT_EQ(kernels["intersect_and_shade"]["items"], stats["extension_rays"]);  // a CPU device: one kernel
+    EXPECT_EQ(kernels.count("intersect_shadow"), 0u);                             // and it traces the shadow rays
     EXPECT_EQ(kernels["accumulate"]["items"], stats["samples"]);
     EXPECT_EQ(profile["render_s"], stats["time_s"]);
     double kernel_s = 0.0;
@@ -378,7 +404,7 @@ TEST(Profile, CliWritesJsonConsistentWithStatsAndPrintsTable) {
     EXPECT_NEAR(profile["kernel_s"].get<double>(), kernel_s, 1e-12);
     const double copy = profile["copy_bytes_per_s"].get<double>();
     EXPECT_GT(copy, 0.0);
-    for (const char* stage : {"generate", "intersect", "shade"}) {
+    for (const char* stage : {"generate", "intersect_and_shade"}) {
         const nlohmann::json& k = kernels[stage];
         const double bytes_per_s = k["bytes_per_s"].get<double>();
         EXPECT_NEAR(bytes_per_s, k["bytes_per_item"].get<double>() * k["items_per_s"].get<double>(), 1e-9 * bytes_per_s)
@@ -400,14 +426,14 @@ TEST(Profile, CliWritesJsonConsistentWithStatsAndPrintsTable) {
     std::size_t line = output.find("intersect bound");
     ASSERT_NE(line, std::string::npos) << output;
     ASSERT_EQ(std::sscanf(output.c_str() + line,
-                          "intersect bound (ray-primitive tests only, no state traffic): %lf Mrays/s; intersect at "
-                          "%lf%% of it",
+                          "intersect bound (ray-primitive tests only, no state traffic): %lf Mrays/s; "
+                          "intersect_and_shade at %lf%% of it",
                           &printed_mrays, &printed_intersect),
               2)
         << output;
     EXPECT_NEAR(printed_mrays, bound * 1e-6, 0.05 + 1e-9);  // printed with one decimal
-    double fraction = profile["of_intersect_bound"]["intersect"].get<double>();
-    EXPECT_NEAR(fraction, kernels["intersect"]["items_per_s"].get<double>() / bound, 1e-9 * fraction);
+    double fraction = profile["of_intersect_bound"]["intersect_and_shade"].get<double>();
+    EXPECT_NEAR(fraction, kernels["intersect_and_shade"]["items_per_s"].get<double>() / bound, 1e-9 * fraction);
     EXPECT_NEAR(printed_intersect, 100.0 * fraction, 0.5 + 1e-9);  // printed as a whole percentage
     EXPECT_FALSE(profile["of_intersect_bound"].contains("intersect_shadow"));
     std::filesystem::remove_all(dir);

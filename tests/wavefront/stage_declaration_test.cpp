@@ -114,6 +114,19 @@ TEST(StageDeclaration, IntersectShadowRunsOnlyWhereShadowRaysHaveTheirOwnStage) 
     EXPECT_EQ(iteration_stages(features, StageLoop::PHOTON), photons);
 }
 
+// intersect_and_shade takes intersect's and shade's places, whether or not
+// the shadow rays have their own stage.
+TEST(StageDeclaration, IntersectAndShadeReplacesIntersectThenShade) {
+    FeatureSet features;
+    features.spheres = features.diffuse = features.nee = true;
+    features.intersect_and_shade = true;
+    const std::vector<Stage> in_shade{Stage::generate, Stage::intersect_and_shade};
+    EXPECT_EQ(iteration_stages(features), in_shade);
+    features.shadow_stage = true;
+    const std::vector<Stage> own_stage{Stage::generate, Stage::intersect_and_shade, Stage::intersect_shadow};
+    EXPECT_EQ(iteration_stages(features), own_stage);
+}
+
 // Where the host traces (--intersector embree), a stage that traces leaves
 // the tracing to it: its kernel has a WP_HOST_TRACED branch, and no other
 // kernel has one. What the host writes for it is read, by its kernel or by
@@ -122,6 +135,9 @@ TEST(StageDeclaration, TracingStagesReadTheHostsResultsWhereItTraces) {
     auto source_of = [](const StageDeclaration& stage) {
         return test::read_text(test::kKernelDirectory / (std::string(stage.kernel) + ".cl"));
     };
+    auto code_of = [](const StageDeclaration& stage) {  // with the kernel headers it includes
+        return test::kernel_code_with_includes(std::string(stage.kernel) + ".cl");
+    };
     for (const StageDeclaration& stage : stage_declarations) {
         const std::string source = source_of(stage);
         EXPECT_EQ(source.find("WP_HOST_TRACED") != std::string::npos, stage.traces != StageTrace::NO_RAYS)
@@ -129,14 +145,15 @@ TEST(StageDeclaration, TracingStagesReadTheHostsResultsWhereItTraces) {
         const std::vector<std::string> written = host_trace_fields(stage.traces).writes;
         EXPECT_EQ(written.empty(), stage.traces == StageTrace::NO_RAYS) << stage.kernel;
         if (stage.traces == StageTrace::NO_RAYS) continue;
-        std::string readers = source;
+        std::string readers = code_of(stage);
         for (const StageDeclaration& next : stage_declarations)
-            if (stage.pushes >> next.consumes & 1u) readers += source_of(next);
+            if (stage.pushes >> next.consumes & 1u) readers += code_of(next);
         EXPECT_TRUE(std::any_of(written.begin(), written.end(), [&](const std::string& field) {
             return readers.find("PATH_READ(" + field) != std::string::npos;
         })) << stage.kernel;
     }
     EXPECT_EQ(declaration(Stage::intersect).traces, StageTrace::CLOSEST_HIT);
+    EXPECT_EQ(declaration(Stage::intersect_and_shade).traces, StageTrace::CLOSEST_HIT);
     EXPECT_EQ(declaration(Stage::intersect_shadow).traces, StageTrace::ANY_HIT);
 }
 
@@ -167,6 +184,23 @@ TEST(StageDeclaration, QueueBookkeepingFollowsFromTheDeclaration) {
         EXPECT_EQ(queue_names(of(Stage::shade).counts_cleared_before), "FREE RAY SHADOW");
         EXPECT_EQ(queue_names(of(Stage::intersect_shadow).counts_cleared_before), "");
     }
+}
+
+// intersect_and_shade takes RAY and pushes to it: scan compaction builds RAY
+// after it (for the iteration's count) without clearing its marks, which
+// generate adds to, and clears them after generate, where RAY is built for
+// the last time before the stage reads it.
+TEST(StageDeclaration, QueueBookkeepingOfIntersectAndShade) {
+    FeatureSet features;
+    features.nee = features.intersect_and_shade = true;
+    QueuePlan plan = plan_queues(iteration_stages(features));
+    auto of = [&](Stage stage) { return plan[static_cast<std::size_t>(stage)]; };
+    EXPECT_EQ(queue_names(of(Stage::generate).compacted_after), "RAY");
+    EXPECT_EQ(queue_names(of(Stage::generate).marks_cleared_after), "RAY");
+    EXPECT_EQ(queue_names(of(Stage::intersect_and_shade).compacted_after), "FREE RAY SHADOW");
+    EXPECT_EQ(queue_names(of(Stage::intersect_and_shade).marks_cleared_after), "FREE SHADOW");
+    EXPECT_EQ(queue_names(of(Stage::intersect).compacted_after), "");  // not in the iteration
+    EXPECT_EQ(queue_names(of(Stage::shade).compacted_after), "");
 }
 
 // docs/architecture.md's table of stages ("Stages and queues") has a row per
