@@ -100,13 +100,13 @@ std::string format_profile_table(const RenderProfile& p) {
         std::snprintf(line, sizeof line, "  intersect bound (ray-primitive tests only, no state traffic): %.1f Mrays/s",
                       p.intersect_bound_rays_per_s * 1e-6);
         out += line;
-        const char* separator = "; ";
+        bool first = true;  // "; intersect at 90% of it, intersect_shadow at 80% (...)"
         for (const TracingKernel& k : kTracingKernels) {
             if (!p.has_kernel(k.name)) continue;
-            std::snprintf(line, sizeof line, "%s%s at %.0f%%%s%s", separator, k.name,
-                          100.0 * p.fraction_of_intersect_bound(k.name), *separator == ';' ? " of it" : "", k.note);
+            std::snprintf(line, sizeof line, "%s%s at %.0f%%%s%s", first ? "; " : ", ", k.name,
+                          100.0 * p.fraction_of_intersect_bound(k.name), first ? " of it" : "", k.note);
             out += line;
-            separator = ", ";
+            first = false;
         }
         out += "\n";
     }
