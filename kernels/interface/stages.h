@@ -24,7 +24,8 @@
  *              shadow rays (which shade traces itself where the device
  *              traces on a CPU: see below), HIT_STAGE for intersect and
  *              shade apart and INTERSECT_AND_SHADE for them as one
- *              kernel (see below), SPPM for one that only the sppm integrator needs;
+ *              kernel (see below), SPPM for one that only the sppm
+ *              integrator needs;
  *   traces     the rays of the paths it consumes: CLOSEST_HIT (their
  *              extension rays, into hit_t and hit_shape), ANY_HIT (their
  *              shadow rays, blocked or not) or NO_RAYS. Where the host
@@ -43,12 +44,12 @@
  * the host traces them, and on GPUs, intersect_shadow does (SHADOW_STAGE).
  *
  * Hits: on a CPU device, intersect_and_shade traces each extension ray and
- * shades its hit in one kernel (INTERSECT_AND_SHADE): the hits stay in registers, with
- * no launch, compaction or hit_t/hit_shape traffic between the two
- * (docs/architecture.md, "Intersect and shade as one kernel"). It pushes the
- * paths that go on to RAY, the queue it takes, which only scan compaction
- * can build while the stage reads it, so with atomic compaction, and on
- * GPUs, intersect and shade run apart, the hits going through HIT
+ * shades its hit in one kernel (INTERSECT_AND_SHADE): the hits stay in
+ * registers, with no launch, compaction or hit_t/hit_shape traffic between
+ * the two (docs/architecture.md, "Intersect and shade as one kernel"). It
+ * pushes the paths that go on to RAY, the queue it takes, which only scan
+ * compaction can build while the stage reads it, so with atomic compaction,
+ * and on GPUs, intersect and shade run apart, the hits going through HIT
  * (HIT_STAGE). Two stages consume RAY, never in one program. */
 #ifndef WP_INTERFACE_STAGES_H
 #define WP_INTERFACE_STAGES_H

@@ -89,14 +89,16 @@ class Pipeline {
     // on the device, so the host never waits between stages; positions past
     // it compute and write nothing, but cost as much as live ones, so a
     // nearly drained pass launches only what it can hold); with profiling,
-    // the extension rays of the stage taking RAY counted by depth first. Where the host traces, it traces
-    // a tracing stage's queue first (waiting for the device), its time the
-    // profile's host_trace_row. Nothing when `entries` is 0.
+    // the rays of the stage that takes RAY counted by depth first. Where the
+    // host traces, it traces a tracing stage's queue first (waiting for the
+    // device), its time the profile's host_trace_row. Nothing when `entries`
+    // is 0.
     void run(Stage stage, std::size_t entries);
     // The queue bookkeeping once `stage` has run over `entries`
-    // (QueueSet::finish_stage); with profiling, after the stage that shades (pushes to SHADOW), the count of
-    // the shadow rays by depth from the SHADOW queue it leaves, whichever
-    // stage traces them (kernels/interface/stages.h).
+    // (QueueSet::finish_stage); with profiling, after the stage that shades
+    // (pushes to SHADOW), the count of the shadow rays by depth from the
+    // SHADOW queue it leaves, whichever stage traces them
+    // (kernels/interface/stages.h).
     void finish_stage(Stage stage, std::size_t entries);
     // Waits for the queue; with profiling, adds the finished kernels' times to profile().
     DeviceCounts read_counts();

@@ -44,8 +44,9 @@ QueuePlan plan_queues(const std::vector<Stage>& iteration) {
     QueuePlan plan{};
     const std::size_t n = iteration.size();
     for (std::uint32_t queue = 0; queue < WP_QUEUE_COUNT; ++queue) {
-        // From the consumer on, round the loop of iterations (a stage never
-        // pushes to the queue it consumes, wavefront/stage.h).
+        // From the consumer on, round the loop of iterations (for atomic
+        // compaction, under which no stage pushes to the queue it consumes,
+        // wavefront/stage.h).
         for (std::size_t step = 0, start = after_consumer(iteration, queue); step < n; ++step) {
             Stage stage = iteration[(start + step) % n];
             if (pushes_to(stage, queue)) {

@@ -26,8 +26,9 @@ struct StageBookkeeping {
     // Scan compaction, after the stage: the queues whose marks that
     // compaction clears as it reads them, those it builds for the last time
     // before their consumer takes them: no stage pushes to them in between,
-    // round the loop of iterations (RAY is built after shade, for the
-    // iteration's count, and again after generate, which clears it). A queue
+    // round the loop of iterations (RAY is built after shade or
+    // intersect_and_shade, for the iteration's count, and again after
+    // generate, which clears it). A queue
     // no stage of the iteration consumes (SHADOW where shade traces the
     // shadow rays itself: built only to be counted) is cleared where built.
     // So clearing marks costs no command of its own.

@@ -12,7 +12,8 @@ namespace {
 // iterations then cost what their few paths do): the stage that takes free
 // slots over the paths it starts, every other one over the rays traced, at
 // most one entry each. The queue bookkeeping around each stage leaves the
-// lengths of this iteration at the end: FREE the paths ended, HIT the rays traced,
+// lengths of this iteration at the end: FREE the paths ended, HIT the rays traced
+// (none where intersect_and_shade shades them at once),
 // SHADOW the shadow rays, RAY the paths continuing next iteration.
 DeviceCounts run_iteration(Pipeline& p, const std::vector<Stage>& stages, std::uint32_t generated,
                            std::uint32_t traced) {

@@ -50,7 +50,7 @@ struct IterationRecord {
     StageLoop loop = StageLoop::CAMERA;
     std::uint32_t generated = 0;   // camera rays started (photons emitted)
     std::uint32_t traced = 0;      // extension rays intersected
-    std::uint32_t hits = 0;        // of those, hits (to shade, shade_photons)
+    std::uint32_t hits = 0;        // of those, hits (to shade, shade_photons; 0 with intersect_and_shade)
     std::uint32_t shadow = 0;      // shadow rays
     std::uint32_t continuing = 0;  // paths that scattered on
     std::uint32_t finished = 0;    // paths that ended
