@@ -187,11 +187,12 @@ def throughput(runner, peer, cfg):
             rows.append({"scene": scene, "backend": f"wavefront/{other}", "runs": len(ratios),
                          **{f"ratio_{k}": v for k, v in spread(ratios).items()}})
         of_bound = profile["of_intersect_bound"]
+        # the stage that traces the extension rays: intersect, or intersect_and_shade (which shades too)
+        closest_hit_stage = "intersect" if "intersect" in of_bound else "intersect_and_shade"
         rows.append({"scene": scene, "backend": "wavefront-profile", "profile": profile,
                      "intersect_bound_mrays_s": profile["intersect_bound_rays_per_s"] / 1e6,
-                     # the stage that traces the extension rays: intersect, or intersect_and_shade (which shades too)
-                     "closest_hit_stage": "intersect" if "intersect" in of_bound else "intersect_and_shade",
-                     "intersect_of_bound": of_bound.get("intersect", of_bound.get("intersect_and_shade")),
+                     "closest_hit_stage": closest_hit_stage,
+                     "intersect_of_bound": of_bound[closest_hit_stage],
                      # absent where shade traces the shadow rays (no intersect_shadow stage)
                      "intersect_shadow_of_bound": of_bound.get("intersect_shadow")})
     return rows

@@ -17,25 +17,27 @@ std::size_t after_consumer(const std::vector<Stage>& iteration, std::uint32_t qu
     return consumer == iteration.end() ? 0 : std::size_t(consumer - iteration.begin()) + 1;
 }
 
-// Whether no stage after position `at` pushes to `queue` before its consumer runs.
-bool complete_after(const std::vector<Stage>& iteration, std::size_t at, std::uint32_t queue) {
-    for (std::size_t later = at + 1; later < iteration.size(); ++later) {
-        if (declaration(iteration[later]).consumes == queue) return true;
-        if (pushes_to(iteration[later], queue)) return false;
-    }
-    return true;
-}
-
-// Whether the queue built after position `at` is built for the last time
-// before its consumer: going round the loop from `at`, the consumer comes
-// before any stage that pushes to it (or no stage does either).
-bool last_build_before_consumer(const std::vector<Stage>& iteration, std::size_t at, std::uint32_t queue) {
-    for (std::size_t step = 1; step < iteration.size(); ++step) {
+// Whether, walking `steps` stages on from position `at` (round the loop of
+// iterations), `queue`'s consumer comes before any stage that pushes to it,
+// or neither comes.
+bool consumer_comes_first(const std::vector<Stage>& iteration, std::size_t at, std::uint32_t queue, std::size_t steps) {
+    for (std::size_t step = 1; step <= steps; ++step) {
         Stage later = iteration[(at + step) % iteration.size()];
         if (declaration(later).consumes == queue) return true;
         if (pushes_to(later, queue)) return false;
     }
     return true;
+}
+
+// Whether no later stage of the iteration pushes to `queue` before its consumer runs.
+bool complete_after(const std::vector<Stage>& iteration, std::size_t at, std::uint32_t queue) {
+    return consumer_comes_first(iteration, at, queue, iteration.size() - 1 - at);
+}
+
+// Whether the queue built after position `at` is built for the last time
+// before its consumer: round the loop, no stage pushes to it first.
+bool last_build_before_consumer(const std::vector<Stage>& iteration, std::size_t at, std::uint32_t queue) {
+    return consumer_comes_first(iteration, at, queue, iteration.size() - 1);
 }
 
 }  // namespace
