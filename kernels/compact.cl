@@ -3,8 +3,11 @@
  * turn each queue's marks into the queue, in ascending slot order, so the
  * next stage reads the path state in memory order. Each work item handles
  * one block of WP_COMPACT_BLOCK consecutive slots; no atomics, no barriers.
- * queue_mask selects the queues (bit q for queue q); compact_write clears
- * the marks of those that clear_mask selects too, once read. */
+ * compact_count and compact_scan count the queues their queue_mask selects
+ * (bit q for queue q), compact_write builds those its own queue_mask
+ * selects: a queue read only for its length (src/wavefront/queue_plan.h,
+ * counted_after) is counted and never written. Each kernel clears, once
+ * read, the marks of the queues its clear_mask selects. */
 #include "device/parameters.h"
 #include "interface/kernel_parameters.h"
 #include "interface/queues.h"
@@ -21,9 +24,11 @@ __kernel void compact_count(WP_PARAMETERS(WP_COMPACT_COUNT_PARAMETERS)) {
     uint end = min(capacity, (block + 1u) * WP_COMPACT_BLOCK);
     for (uint q = 0u; q < WP_QUEUE_COUNT; ++q) {
         if (!selects(queue_mask, q)) continue;
-        __global const uint *marks = queues + marks_start(capacity, q);
+        __global uint *marks = queues + marks_start(capacity, q);
         uint n = 0u;
         for (uint slot = block * WP_COMPACT_BLOCK; slot < end; ++slot) n += marks[slot];
+        if (selects(clear_mask, q))
+            for (uint slot = block * WP_COMPACT_BLOCK; slot < end; ++slot) marks[slot] = 0u;
         block_counts[q * blocks + block] = n;
     }
 }

@@ -79,9 +79,10 @@
     NEXT(__global ulong *, film)
 
 #define WP_COMPACT_COUNT_PARAMETERS(FIRST, NEXT) \
-    FIRST(__global const uint *, queues)         \
+    FIRST(__global uint *, queues)               \
     NEXT(uint, capacity)                         \
     NEXT(uint, queue_mask)                       \
+    NEXT(uint, clear_mask)                       \
     NEXT(__global uint *, block_counts)
 
 #define WP_COMPACT_SCAN_PARAMETERS(FIRST, NEXT) \

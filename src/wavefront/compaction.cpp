@@ -29,14 +29,16 @@ ScanCompaction::ScanCompaction(const cl::Context& context, const cl::Program& pr
     write_.setArg(arg::CompactWrite::block_counts, block_counts_);
 }
 
-void ScanCompaction::compact(KernelLauncher& launcher, std::uint32_t queue_mask, std::uint32_t clear_mask) {
-    count_.setArg(arg::CompactCount::queue_mask, cl_uint(queue_mask));
-    scan_.setArg(arg::CompactScan::queue_mask, cl_uint(queue_mask));
-    write_.setArg(arg::CompactWrite::queue_mask, cl_uint(queue_mask));
-    write_.setArg(arg::CompactWrite::clear_mask, cl_uint(clear_mask));
+void ScanCompaction::compact(KernelLauncher& launcher, const CompactionMasks& masks) {
+    const std::uint32_t lengths = masks.built | masks.counted, counted_only = masks.counted & ~masks.built;
+    count_.setArg(arg::CompactCount::queue_mask, cl_uint(lengths));
+    count_.setArg(arg::CompactCount::clear_mask, cl_uint(masks.cleared & counted_only));  // compact_write skips them
+    scan_.setArg(arg::CompactScan::queue_mask, cl_uint(lengths));
+    write_.setArg(arg::CompactWrite::queue_mask, cl_uint(masks.built));
+    write_.setArg(arg::CompactWrite::clear_mask, cl_uint(masks.cleared & masks.built));
     launcher.launch(count_, "compact_count", blocks_, 0);
     launcher.launch(scan_, "compact_scan", WP_QUEUE_COUNT, 0);
-    launcher.launch(write_, "compact_write", blocks_, 0);
+    if (masks.built) launcher.launch(write_, "compact_write", blocks_, 0);
 }
 
 }  // namespace wp

@@ -26,15 +26,19 @@ std::string compaction_build_option(Compaction compaction);
 // The stage kernels' program as resolve_lanes sees it (opencl/lanes.h).
 LaneProgram wavefront_lanes(Compaction compaction);
 
-// The three kernels of kernels/compact.cl over one queues buffer: each queue
-// selected by a mask is rebuilt from its marks, in ascending slot order.
+// What one compaction does to each queue, as bits 1 << queue.
+struct CompactionMasks {
+    std::uint32_t built = 0;    // rebuilt from its marks, in ascending slot order, and its length set
+    std::uint32_t counted = 0;  // only its length set
+    std::uint32_t cleared = 0;  // of those, the marks cleared once read
+};
+
+// The three kernels of kernels/compact.cl over one queues buffer.
 class ScanCompaction {
  public:
     ScanCompaction(const cl::Context& context, const cl::Program& program, const cl::Buffer& queues,
                    const cl::Buffer& counts, std::size_t capacity);
-    // Rebuilds queue q (and sets its length) for every bit q of queue_mask,
-    // and clears its marks where clear_mask has bit q too.
-    void compact(KernelLauncher& launcher, std::uint32_t queue_mask, std::uint32_t clear_mask = 0);
+    void compact(KernelLauncher& launcher, const CompactionMasks& masks);
 
  private:
     std::size_t blocks_;

@@ -54,7 +54,9 @@ Pipeline::Pipeline(const Scene& scene, const SceneLayout& layout, const DeviceIn
       scene_(context_, layout),
       state_(context_, capacity, kernel_features),
       queues_(context_, queue_, program_.program, capacity, options.compaction,
-              plan_queues(std::vector<std::vector<Stage>>{iteration_, photon_iteration_}), kernel_features.host_traced),
+              plan_queues(std::vector<std::vector<Stage>>{iteration_, photon_iteration_},
+                          options.profile ? RayDepthCounter::kQueuesRead : 0u),
+              kernel_features.host_traced),
       film_(context_, queue_, program_.program, scene.camera.width, scene.camera.height, options.film_squares),
       pass_radiance_(context_, CL_MEM_READ_WRITE, sizeof(float) * 3 * pass_capacity),
       slot_nonfinite_(context_, CL_MEM_READ_WRITE, sizeof(std::uint32_t) * WP_NONFINITE_STAGE_COUNT * capacity) {

@@ -6,6 +6,7 @@
 #include <CL/opencl.hpp>
 #include <cstdint>
 
+#include "interface/queues.h"
 #include "opencl/launcher.h"
 #include "opencl/profile.h"
 #include "opencl/scene_upload.h"
@@ -23,6 +24,10 @@ class RayDepthCounter {
     // them) of at most `entries` entries into their histogram among the counters.
     void count_extension_rays(KernelLauncher& launcher, std::size_t entries);
     void count_shadow_rays(KernelLauncher& launcher, std::size_t entries);
+    // The queues whose entries it reads besides their consumer (bits 1 <<
+    // queue): SHADOW, which where no stage consumes it is otherwise only
+    // counted (wavefront/queue_plan.h). RAY it reads before its consumer.
+    static constexpr std::uint32_t kQueuesRead = 1u << WP_QUEUE_SHADOW;
     // Extension and shadow rays per depth, counted so far.
     void read(cl::CommandQueue& queue, RenderProfile& profile) const;
 

@@ -34,15 +34,15 @@ bool complete_after(const std::vector<Stage>& iteration, std::size_t at, std::ui
     return consumer_comes_first(iteration, at, queue, iteration.size() - 1 - at);
 }
 
-// Whether the queue built after position `at` is built for the last time
-// before its consumer: round the loop, no stage pushes to it first.
+// Whether the queue built or counted after position `at` is so for the last
+// time before its consumer: round the loop, no stage pushes to it first.
 bool last_build_before_consumer(const std::vector<Stage>& iteration, std::size_t at, std::uint32_t queue) {
     return consumer_comes_first(iteration, at, queue, iteration.size() - 1);
 }
 
 }  // namespace
 
-QueuePlan plan_queues(const std::vector<Stage>& iteration) {
+QueuePlan plan_queues(const std::vector<Stage>& iteration, std::uint32_t entries_read) {
     QueuePlan plan{};
     const std::size_t n = iteration.size();
     for (std::uint32_t queue = 0; queue < WP_QUEUE_COUNT; ++queue) {
@@ -61,17 +61,20 @@ QueuePlan plan_queues(const std::vector<Stage>& iteration) {
         StageBookkeeping& stage = of(plan, iteration[at]);
         for (std::uint32_t queue = 0; queue < WP_QUEUE_COUNT; ++queue) {
             if (!pushes_to(iteration[at], queue) || !complete_after(iteration, at, queue)) continue;
-            stage.compacted_after |= 1u << queue;
-            if (last_build_before_consumer(iteration, at, queue)) stage.marks_cleared_after |= 1u << queue;
+            const bool last = last_build_before_consumer(iteration, at, queue);
+            const bool consumed = after_consumer(iteration, queue) != 0;
+            const bool read = (last && consumed) || (entries_read >> queue & 1u);
+            (read ? stage.built_after : stage.counted_after) |= 1u << queue;
+            if (last) stage.marks_cleared_after |= 1u << queue;
         }
     }
     return plan;
 }
 
-QueuePlan plan_queues(const std::vector<std::vector<Stage>>& loops) {
+QueuePlan plan_queues(const std::vector<std::vector<Stage>>& loops, std::uint32_t entries_read) {
     QueuePlan plan{};
     for (const std::vector<Stage>& loop : loops) {
-        const QueuePlan of_loop = plan_queues(loop);
+        const QueuePlan of_loop = plan_queues(loop, entries_read);
         for (Stage stage : loop) plan[static_cast<std::size_t>(stage)] = of_loop[static_cast<std::size_t>(stage)];
     }
     return plan;

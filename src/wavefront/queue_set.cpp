@@ -47,7 +47,8 @@ void QueueSet::start_stage(Stage stage) {
 void QueueSet::finish_stage(KernelLauncher& launcher, Stage stage) {
     if (!scan_) return;
     const StageBookkeeping& plan = plan_[static_cast<std::size_t>(stage)];
-    if (plan.compacted_after) scan_->compact(launcher, plan.compacted_after, plan.marks_cleared_after);
+    if (plan.built_after | plan.counted_after)
+        scan_->compact(launcher, {plan.built_after, plan.counted_after, plan.marks_cleared_after});
 }
 
 void QueueSet::empty_outputs(Stage stage) {
@@ -58,7 +59,7 @@ void QueueSet::empty_outputs(Stage stage) {
 }
 
 void QueueSet::compact_outputs(KernelLauncher& launcher, Stage stage) {
-    if (scan_) scan_->compact(launcher, declaration(stage).pushes);
+    if (scan_) scan_->compact(launcher, {.built = declaration(stage).pushes});
 }
 
 void QueueSet::clear_marks(std::uint32_t queue) {

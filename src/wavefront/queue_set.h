@@ -40,8 +40,8 @@ class QueueSet {
     void set_issued(std::uint32_t issued);
     // The bookkeeping around a stage of the iteration (wavefront/queue_plan.h).
     // Before it, atomic: empties the queues it is the first to refill. After
-    // it, scan: builds the queues it completed, clearing the marks of those
-    // built for the last time before their consumer.
+    // it, scan: builds or counts the queues it completed, clearing the marks
+    // of those built or counted for the last time before their consumer.
     void start_stage(Stage stage);
     void finish_stage(KernelLauncher& launcher, Stage stage);
     // Waits for the queue and reads the lengths and counters.

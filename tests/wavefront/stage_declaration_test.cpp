@@ -159,11 +159,13 @@ TEST(StageDeclaration, TracingStagesReadTheHostsResultsWhereItTraces) {
 
 // The bookkeeping derived from the declaration (and docs/architecture.md
 // describes): scan compaction builds RAY after generate, HIT after
-// intersect, and SHADOW, RAY and FREE after shade (nothing after
-// intersect_shadow), clearing a queue's marks where it is built for the last
-// time before its consumer (SHADOW after shade whether intersect_shadow
-// takes it or no stage does); atomic pushes empty HIT before
-// intersect, FREE, SHADOW and RAY before shade.
+// intersect, and FREE after shade, with SHADOW where intersect_shadow takes
+// it; it only counts RAY after shade (generate adds to it before intersect
+// reads it) and SHADOW where no stage takes it; nothing after
+// intersect_shadow. It clears a queue's marks where it is built or counted
+// for the last time before its consumer (SHADOW after shade whether
+// intersect_shadow takes it or no stage does). Atomic pushes empty HIT
+// before intersect, FREE, SHADOW and RAY before shade.
 TEST(StageDeclaration, QueueBookkeepingFollowsFromTheDeclaration) {
     for (bool shadow_stage : {true, false}) {
         SCOPED_TRACE(shadow_stage ? "with a shadow stage" : "shade traces the shadow rays, or there are none");
@@ -171,10 +173,14 @@ TEST(StageDeclaration, QueueBookkeepingFollowsFromTheDeclaration) {
         features.nee = features.shadow_stage = shadow_stage;
         QueuePlan plan = plan_queues(iteration_stages(features));
         auto of = [&](Stage stage) { return plan[static_cast<std::size_t>(stage)]; };
-        EXPECT_EQ(queue_names(of(Stage::generate).compacted_after), "RAY");
-        EXPECT_EQ(queue_names(of(Stage::intersect).compacted_after), "HIT");
-        EXPECT_EQ(queue_names(of(Stage::shade).compacted_after), "FREE RAY SHADOW");
-        EXPECT_EQ(queue_names(of(Stage::intersect_shadow).compacted_after), "");
+        EXPECT_EQ(queue_names(of(Stage::generate).built_after), "RAY");
+        EXPECT_EQ(queue_names(of(Stage::intersect).built_after), "HIT");
+        EXPECT_EQ(queue_names(of(Stage::shade).built_after), shadow_stage ? "FREE SHADOW" : "FREE");
+        EXPECT_EQ(queue_names(of(Stage::intersect_shadow).built_after), "");
+        EXPECT_EQ(queue_names(of(Stage::generate).counted_after), "");
+        EXPECT_EQ(queue_names(of(Stage::intersect).counted_after), "");
+        EXPECT_EQ(queue_names(of(Stage::shade).counted_after), shadow_stage ? "RAY" : "RAY SHADOW");
+        EXPECT_EQ(queue_names(of(Stage::intersect_shadow).counted_after), "");
         EXPECT_EQ(queue_names(of(Stage::generate).marks_cleared_after), "RAY");
         EXPECT_EQ(queue_names(of(Stage::intersect).marks_cleared_after), "HIT");
         EXPECT_EQ(queue_names(of(Stage::shade).marks_cleared_after), "FREE SHADOW");  // not RAY: generate adds to it
@@ -186,21 +192,35 @@ TEST(StageDeclaration, QueueBookkeepingFollowsFromTheDeclaration) {
     }
 }
 
-// intersect_and_shade takes RAY and pushes to it: scan compaction builds RAY
+// What --profile's rays by depth reads (SHADOW's entries) is built even where
+// no stage consumes it; the rest of the plan is as without it.
+TEST(StageDeclaration, QueuesReadByTheProfileAreBuilt) {
+    FeatureSet features;
+    features.nee = true;
+    QueuePlan plan = plan_queues(iteration_stages(features), 1u << WP_QUEUE_SHADOW);
+    auto of = [&](Stage stage) { return plan[static_cast<std::size_t>(stage)]; };
+    EXPECT_EQ(queue_names(of(Stage::shade).built_after), "FREE SHADOW");
+    EXPECT_EQ(queue_names(of(Stage::shade).counted_after), "RAY");
+    EXPECT_EQ(queue_names(of(Stage::shade).marks_cleared_after), "FREE SHADOW");
+    EXPECT_EQ(queue_names(of(Stage::generate).built_after), "RAY");
+}
+
+// intersect_and_shade takes RAY and pushes to it: scan compaction counts RAY
 // after it (for the iteration's count) without clearing its marks, which
-// generate adds to, and clears them after generate, where RAY is built for
-// the last time before the stage reads it.
+// generate adds to, and builds it after generate, clearing the marks there,
+// where RAY is built for the last time before the stage reads it.
 TEST(StageDeclaration, QueueBookkeepingOfIntersectAndShade) {
     FeatureSet features;
     features.nee = features.intersect_and_shade = true;
     QueuePlan plan = plan_queues(iteration_stages(features));
     auto of = [&](Stage stage) { return plan[static_cast<std::size_t>(stage)]; };
-    EXPECT_EQ(queue_names(of(Stage::generate).compacted_after), "RAY");
+    EXPECT_EQ(queue_names(of(Stage::generate).built_after), "RAY");
     EXPECT_EQ(queue_names(of(Stage::generate).marks_cleared_after), "RAY");
-    EXPECT_EQ(queue_names(of(Stage::intersect_and_shade).compacted_after), "FREE RAY SHADOW");
+    EXPECT_EQ(queue_names(of(Stage::intersect_and_shade).built_after), "FREE");
+    EXPECT_EQ(queue_names(of(Stage::intersect_and_shade).counted_after), "RAY SHADOW");
     EXPECT_EQ(queue_names(of(Stage::intersect_and_shade).marks_cleared_after), "FREE SHADOW");
-    EXPECT_EQ(queue_names(of(Stage::intersect).compacted_after), "");  // not in the iteration
-    EXPECT_EQ(queue_names(of(Stage::shade).compacted_after), "");
+    EXPECT_EQ(queue_names(of(Stage::intersect).built_after), "");  // not in the iteration
+    EXPECT_EQ(queue_names(of(Stage::shade).built_after), "");
 }
 
 // docs/architecture.md's table of stages ("Stages and queues") has a row per
