@@ -84,7 +84,9 @@ void run_on_opencl(const BackendOptions& options, const FilmRun& run, Make make)
 void run_on_wavefront(const Scene& scene, const BackendOptions& options, const Progress& progress,
                       std::uint64_t max_items, const FilmRun& run) {
     if (options.lanes != 0)
-        if (std::string problem = lanes_problem(options.lanes, wavefront_lanes(options.compaction)); !problem.empty())
+        if (std::string problem =
+                lanes_problem(options.lanes, wavefront_lanes(options.compaction, scene.features().meshes));
+            !problem.empty())
             throw UsageError(problem);
     const WavefrontOptions wavefront{.device = options.device,
                                      .wavefront = options.wavefront,

@@ -9,26 +9,30 @@ const char* backend_name(LaneProgram::Backend backend) {
     return backend == LaneProgram::Backend::Wavefront ? "wavefront" : "megakernel";
 }
 
+// As many lanes as the device's preferred float vector holds, 16 on AVX-512, else 8.
+unsigned vector_lanes(const DeviceInfo& device) { return device.preferred_float_vector_width >= 16 ? 16 : 8; }
+
 unsigned default_lanes(const LaneProgram& program, const DeviceInfo& device) {
     // A GPU runs work items in SIMD already; on a CPU a work item's vector
     // code is the only SIMD PoCL gives (kernels/shared/prelude.h). The counts
-    // are bench/run.py --series lanes' (bench/results/lanes.md).
+    // are bench/run.py --series lanes' (bench/results/lanes*.md).
     if (device.type != "CPU") return 1;
     switch (program.backend) {
         case LaneProgram::Backend::Wavefront:
-            // Atomic pushes are per work item. Meshes get 8 lanes too: the
-            // stages that trace lose less than the others gain
-            // (docs/architecture.md, "Meshes and their BVH").
-            return program.scan_compaction ? 8 : 1;
+            // Atomic pushes are per work item. Meshes get 8 lanes: the stages
+            // that trace lose less than the others gain (docs/architecture.md,
+            // "Meshes and their BVH"), and 16 measured slower than 8 on the
+            // bunny. Without meshes, vector_lanes: 16 measured faster than 8
+            // on AVX-512 since one kernel traces and shades (lanes_wavefront.md).
+            if (!program.scan_compaction) return 1;
+            return program.meshes ? 8 : vector_lanes(device);
         case LaneProgram::Backend::Megakernel:
             // Not for meshes: a lane's BVH traversal diverges from the
             // others' at every node, and a work item waits for its longest
             // path, so whole paths of 8 such lanes ran slower than one lane
             // (bench/results/analysis.md, "Lanes with meshes"). Without
-            // meshes, as many lanes as the device's preferred float vector
-            // holds, 16 on AVX-512, measured faster than 8 there.
-            if (program.meshes) return 1;
-            return device.preferred_float_vector_width >= 16 ? 16 : 8;
+            // meshes, vector_lanes: 16 measured faster than 8 on AVX-512.
+            return program.meshes ? 1 : vector_lanes(device);
     }
     return 1;
 }

@@ -15,9 +15,11 @@ struct LaneProgram {
     enum class Backend { Wavefront, Megakernel };
     Backend backend;
     bool scan_compaction = false;  // the wavefront's: its queues filled by scans, not atomic pushes
-    bool meshes = false;           // the megakernel's: the scene has triangle meshes
+    bool meshes = false;           // the scene has triangle meshes
 
-    static LaneProgram wavefront(bool scan_compaction) { return {Backend::Wavefront, scan_compaction, false}; }
+    static LaneProgram wavefront(bool scan_compaction, bool meshes) {
+        return {Backend::Wavefront, scan_compaction, meshes};
+    }
     static LaneProgram megakernel(bool meshes) { return {Backend::Megakernel, false, meshes}; }
 };
 

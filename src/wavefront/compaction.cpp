@@ -9,7 +9,9 @@ std::string compaction_build_option(Compaction compaction) {
     return compaction == Compaction::Scan ? " -DWP_COMPACT_SCAN" : "";
 }
 
-LaneProgram wavefront_lanes(Compaction compaction) { return LaneProgram::wavefront(compaction == Compaction::Scan); }
+LaneProgram wavefront_lanes(Compaction compaction, bool meshes) {
+    return LaneProgram::wavefront(compaction == Compaction::Scan, meshes);
+}
 
 ScanCompaction::ScanCompaction(const cl::Context& context, const cl::Program& program, const cl::Buffer& queues,
                                const cl::Buffer& counts, std::size_t capacity)

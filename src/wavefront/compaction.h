@@ -23,8 +23,8 @@ inline constexpr Compaction kDefaultCompaction = Compaction::Scan;
 // " -DWP_COMPACT_SCAN" for scan compaction, "" for atomic.
 std::string compaction_build_option(Compaction compaction);
 
-// The stage kernels' program as resolve_lanes sees it (opencl/lanes.h).
-LaneProgram wavefront_lanes(Compaction compaction);
+// The stage kernels' program as resolve_lanes sees it (opencl/lanes.h), for a scene with or without meshes.
+LaneProgram wavefront_lanes(Compaction compaction, bool meshes);
 
 // What one compaction does to each queue, as bits 1 << queue.
 struct CompactionMasks {

@@ -41,7 +41,7 @@ Pipeline::Pipeline(const Scene& scene, const SceneLayout& layout, const DeviceIn
                    std::size_t pass_capacity, const FeatureSet& kernel_features, const PipelineOptions& options)
     : capacity_(capacity),
       pass_capacity_(pass_capacity),
-      lanes_(resolve_lanes(options.lanes, wavefront_lanes(options.compaction), device)),
+      lanes_(resolve_lanes(options.lanes, wavefront_lanes(options.compaction, scene.features().meshes), device)),
       iteration_(iteration_stages(kernel_features, StageLoop::CAMERA)),
       photon_iteration_(iteration_stages(kernel_features, StageLoop::PHOTON)),
       context_(device.device),
