@@ -36,7 +36,7 @@ bool complete_after(const std::vector<Stage>& iteration, std::size_t at, std::ui
 
 // Whether the queue built or counted after position `at` is so for the last
 // time before its consumer: round the loop, no stage pushes to it first.
-bool last_build_before_consumer(const std::vector<Stage>& iteration, std::size_t at, std::uint32_t queue) {
+bool last_compaction_before_consumer(const std::vector<Stage>& iteration, std::size_t at, std::uint32_t queue) {
     return consumer_comes_first(iteration, at, queue, iteration.size() - 1);
 }
 
@@ -61,7 +61,7 @@ QueuePlan plan_queues(const std::vector<Stage>& iteration, std::uint32_t entries
         StageBookkeeping& stage = of(plan, iteration[at]);
         for (std::uint32_t queue = 0; queue < WP_QUEUE_COUNT; ++queue) {
             if (!pushes_to(iteration[at], queue) || !complete_after(iteration, at, queue)) continue;
-            const bool last = last_build_before_consumer(iteration, at, queue);
+            const bool last = last_compaction_before_consumer(iteration, at, queue);
             const bool consumed = after_consumer(iteration, queue) != 0;
             const bool read = (last && consumed) || (entries_read >> queue & 1u);
             (read ? stage.built_after : stage.counted_after) |= 1u << queue;
