@@ -1,7 +1,7 @@
 // Queue compaction: both ways of filling a queue keep exactly the live paths;
-// the prefix-sum compaction also keeps them in ascending slot order, and
-// builds the queue a stage pushes to while reading it (intersect_and_shade's
-// RAY) as it builds any other.
+// the prefix-sum compaction also keeps them in ascending slot order, builds
+// the queue a stage pushes to while reading it (intersect_and_shade's RAY)
+// as it builds any other, and only counts the queues read for their length.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -9,6 +9,8 @@
 #include <glm/geometric.hpp>
 #include <random>
 
+#include "opencl/program_cache.h"
+#include "wavefront/compaction.h"
 #include "wavefront/wavefront_renderer.h"
 #include "wavefront_test_support.h"
 
@@ -104,6 +106,61 @@ TEST(Compaction, PrefixSumBuildsTheQueueAStageTakesAndPushesTo) {
     EXPECT_GT(q.expected_free.size(), 300u);
     EXPECT_EQ(q.ray, q.expected_ray);
     EXPECT_EQ(q.free, q.expected_free);
+}
+
+// ScanCompaction on marks set at random over 1000 slots (three whole blocks
+// and a part): FREE and RAY built, SHADOW only counted, the marks of FREE and
+// SHADOW cleared. A built queue holds its marked slots in ascending order; a
+// counted one gets their number as its length and keeps the entries it
+// held; only the cleared queues' marks go to 0.
+TEST(Compaction, PrefixSumOnlyCountsTheQueuesItCounts) {
+    constexpr std::uint32_t capacity = 1000;
+    constexpr std::uint32_t kUntouched = 0xdeadbeefu;
+    std::vector<std::uint32_t> buffer(2 * WP_QUEUE_COUNT * capacity, kUntouched);
+    std::mt19937 random(5);
+    std::vector<std::vector<std::uint32_t>> marked(WP_QUEUE_COUNT);
+    for (std::uint32_t queue : {WP_QUEUE_FREE, WP_QUEUE_RAY, WP_QUEUE_SHADOW})
+        for (std::uint32_t slot = 0; slot < capacity; ++slot) {
+            const std::uint32_t mark = random() % 3 == 0 ? 1u : 0u;
+            buffer[WP_QUEUE_MARKS(queue) * capacity + slot] = mark;
+            if (mark) marked[queue].push_back(slot);
+        }
+    DeviceInfo device = choose_device("");
+    cl::Context context(device.device);
+    cl::CommandQueue queue(context, device.device);
+    KernelLauncher launcher(queue, false);
+    BuiltProgram program = build_program(context, device, {"compact.cl"}, compaction_build_option(Compaction::Scan));
+    cl::Buffer queues(context, CL_MEM_READ_WRITE | CL_MEM_COPY_HOST_PTR, sizeof(std::uint32_t) * buffer.size(),
+                      buffer.data());
+    std::vector<std::uint32_t> lengths(WP_COUNTS_SIZE, kUntouched);
+    cl::Buffer counts(context, CL_MEM_READ_WRITE | CL_MEM_COPY_HOST_PTR, sizeof(std::uint32_t) * lengths.size(),
+                      lengths.data());
+    ScanCompaction scan(context, program.program, queues, counts, capacity);
+    const std::uint32_t free = 1u << WP_QUEUE_FREE, ray = 1u << WP_QUEUE_RAY, shadow = 1u << WP_QUEUE_SHADOW;
+    scan.compact(launcher, {.built = free | ray, .counted = shadow, .cleared = free | shadow});
+    queue.enqueueReadBuffer(queues, CL_TRUE, 0, sizeof(std::uint32_t) * buffer.size(), buffer.data());
+    queue.enqueueReadBuffer(counts, CL_TRUE, 0, sizeof(std::uint32_t) * lengths.size(), lengths.data());
+    auto entries = [&](std::uint32_t q, std::size_t n) {
+        return std::vector<std::uint32_t>(buffer.begin() + q * capacity, buffer.begin() + q * capacity + n);
+    };
+    auto marks = [&](std::uint32_t q) {
+        const auto first = buffer.begin() + WP_QUEUE_MARKS(q) * capacity;
+        return std::vector<std::uint32_t>(first, first + capacity);
+    };
+    for (std::uint32_t q : {WP_QUEUE_FREE, WP_QUEUE_RAY, WP_QUEUE_SHADOW}) {
+        SCOPED_TRACE("queue " + std::to_string(q));
+        EXPECT_GT(marked[q].size(), 250u);
+        EXPECT_EQ(lengths[q], marked[q].size());
+    }
+    EXPECT_EQ(entries(WP_QUEUE_FREE, marked[WP_QUEUE_FREE].size()), marked[WP_QUEUE_FREE]);
+    EXPECT_EQ(entries(WP_QUEUE_RAY, marked[WP_QUEUE_RAY].size()), marked[WP_QUEUE_RAY]);
+    EXPECT_EQ(entries(WP_QUEUE_SHADOW, capacity), std::vector<std::uint32_t>(capacity, kUntouched));
+    EXPECT_EQ(marks(WP_QUEUE_FREE), std::vector<std::uint32_t>(capacity, 0u));
+    EXPECT_EQ(marks(WP_QUEUE_SHADOW), std::vector<std::uint32_t>(capacity, 0u));
+    std::vector<std::uint32_t> ray_marks(capacity, 0u);  // kept: generate adds to them
+    for (std::uint32_t slot : marked[WP_QUEUE_RAY]) ray_marks[slot] = 1u;
+    EXPECT_EQ(marks(WP_QUEUE_RAY), ray_marks);
+    EXPECT_EQ(lengths[WP_QUEUE_HIT], kUntouched);  // not selected
 }
 
 TEST(Compaction, AtomicPushKeepsExactlyTheLivePaths) {
