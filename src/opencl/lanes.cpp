@@ -21,9 +21,10 @@ unsigned default_lanes(const LaneProgram& program, const DeviceInfo& device) {
         case LaneProgram::Backend::Wavefront:
             // Atomic pushes are per work item. Meshes get 8 lanes: the stages
             // that trace lose less than the others gain (docs/architecture.md,
-            // "Meshes and their BVH"), and 16 measured slower than 8 on the
-            // bunny. Without meshes, vector_lanes: 16 measured faster than 8
-            // on AVX-512 since one kernel traces and shades (lanes_wavefront.md).
+            // "Meshes and their BVH"), and 16 measured no faster than 8 on
+            // the bunny. Without meshes, vector_lanes: 16 measured faster than
+            // 8 on AVX-512 since one kernel traces and shades
+            // (lanes_wavefront.md).
             if (!program.scan_compaction) return 1;
             return program.meshes ? 8 : vector_lanes(device);
         case LaneProgram::Backend::Megakernel:

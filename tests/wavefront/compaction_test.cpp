@@ -2,6 +2,8 @@
 // the prefix-sum compaction also keeps them in ascending slot order, builds
 // the queue a stage pushes to while reading it (intersect_and_shade's RAY)
 // as it builds any other, and only counts the queues read for their length.
+#include "wavefront/compaction.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -10,7 +12,6 @@
 #include <random>
 
 #include "opencl/program_cache.h"
-#include "wavefront/compaction.h"
 #include "wavefront/wavefront_renderer.h"
 #include "wavefront_test_support.h"
 
