@@ -157,6 +157,17 @@ TEST(StageDeclaration, TracingStagesReadTheHostsResultsWhereItTraces) {
     EXPECT_EQ(declaration(Stage::intersect_shadow).traces, StageTrace::ANY_HIT);
 }
 
+// The queue bookkeeping of the iteration `features` run (plan_queues),
+// looked up by stage: of(Stage::shade).built_after.
+struct PlannedIteration {
+    QueuePlan plan;
+    const StageBookkeeping& operator()(Stage stage) const { return plan[static_cast<std::size_t>(stage)]; }
+};
+
+PlannedIteration planned(const FeatureSet& features, std::uint32_t entries_read = 0) {
+    return {plan_queues(iteration_stages(features), entries_read)};
+}
+
 // The bookkeeping derived from the declaration (and docs/architecture.md
 // describes): scan compaction builds RAY after generate, HIT after
 // intersect, and FREE after shade, with SHADOW where intersect_shadow takes
@@ -171,8 +182,7 @@ TEST(StageDeclaration, QueueBookkeepingFollowsFromTheDeclaration) {
         SCOPED_TRACE(shadow_stage ? "with a shadow stage" : "shade traces the shadow rays, or there are none");
         FeatureSet features;
         features.nee = features.shadow_stage = shadow_stage;
-        QueuePlan plan = plan_queues(iteration_stages(features));
-        auto of = [&](Stage stage) { return plan[static_cast<std::size_t>(stage)]; };
+        const PlannedIteration of = planned(features);
         EXPECT_EQ(queue_names(of(Stage::generate).built_after), "RAY");
         EXPECT_EQ(queue_names(of(Stage::intersect).built_after), "HIT");
         EXPECT_EQ(queue_names(of(Stage::shade).built_after), shadow_stage ? "FREE SHADOW" : "FREE");
@@ -197,8 +207,7 @@ TEST(StageDeclaration, QueueBookkeepingFollowsFromTheDeclaration) {
 TEST(StageDeclaration, QueuesReadByTheProfileAreBuilt) {
     FeatureSet features;
     features.nee = true;
-    QueuePlan plan = plan_queues(iteration_stages(features), 1u << WP_QUEUE_SHADOW);
-    auto of = [&](Stage stage) { return plan[static_cast<std::size_t>(stage)]; };
+    const PlannedIteration of = planned(features, 1u << WP_QUEUE_SHADOW);
     EXPECT_EQ(queue_names(of(Stage::shade).built_after), "FREE SHADOW");
     EXPECT_EQ(queue_names(of(Stage::shade).counted_after), "RAY");
     EXPECT_EQ(queue_names(of(Stage::shade).marks_cleared_after), "FREE SHADOW");
@@ -212,8 +221,7 @@ TEST(StageDeclaration, QueuesReadByTheProfileAreBuilt) {
 TEST(StageDeclaration, QueueBookkeepingOfIntersectAndShade) {
     FeatureSet features;
     features.nee = features.intersect_and_shade = true;
-    QueuePlan plan = plan_queues(iteration_stages(features));
-    auto of = [&](Stage stage) { return plan[static_cast<std::size_t>(stage)]; };
+    const PlannedIteration of = planned(features);
     EXPECT_EQ(queue_names(of(Stage::generate).built_after), "RAY");
     EXPECT_EQ(queue_names(of(Stage::generate).marks_cleared_after), "RAY");
     EXPECT_EQ(queue_names(of(Stage::intersect_and_shade).built_after), "FREE");
