@@ -597,7 +597,8 @@ def wavefront_embree_markdown(m):
               f"the intersector, {wf[0]['repeats']} interleaved repetitions after one warm-up render each: samples/s "
               "of unprofiled renders. The tracing stages' Mrays/s from a profiled render of its own (intersect and "
               "shade apart): rays over the stage's time, with Embree the host's trace (map, Embree, unmap) plus the kernel's rest; host alone: "
-              "the host's trace only.", ""]
+              "the host's trace only. \"traced in shade\": no intersect_shadow stage ran, for `shade` traces its shadow rays "
+              "itself there (our BVH on a CPU device).", ""]
     lines += markdown_table(["scene", "intersector", "Msamples/s min", "median", "of bvh (medians)",
                              "intersect Mrays/s", "host alone", "intersect_shadow Mrays/s", "host alone"],
                             [[r["scene"], r["intersector"], f"{r['msamples_s_min']:.4f}",
@@ -605,7 +606,8 @@ def wavefront_embree_markdown(m):
                               f"{r['intersect_mrays_s_median']:.2f}",
                               f"{r['intersect_host_mrays_s_median']:.2f}" if "intersect_host_mrays_s_median" in r
                               else "-",
-                              f"{r['intersect_shadow_mrays_s_median']:.2f}",
+                              f"{r['intersect_shadow_mrays_s_median']:.2f}"
+                              if r.get("intersect_shadow_mrays_s_median") is not None else "traced in shade",
                               f"{r['intersect_shadow_host_mrays_s_median']:.2f}"
                               if "intersect_shadow_host_mrays_s_median" in r else "-"] for r in wf])
     return "\n".join(lines) + "\n"
