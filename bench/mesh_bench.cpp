@@ -1139,10 +1139,10 @@ json wavefront_intersector_figures(const DeviceInfo& device, int size, int spp, 
             double ratio = median(sps[k][i]) / median(sps[k][0]);
             std::vector<double> stage_closest = rate(closest[k][i], false), stage_any = rate(any[k][i], false);
             const bool shadow_in_shade = traced_in_shade(any[k][i]);
-            std::string shadow = shadow_in_shade ? "in shade" : std::to_string(median(stage_any) / 1e6);
+            char shadow[32] = "in shade";
+            if (!shadow_in_shade) std::snprintf(shadow, sizeof shadow, "%.2f", median(stage_any) / 1e6);
             std::printf("%-13s %-12s %16.4f %10.4f %11.2fx %22.2f %22s\n", names[k], intersector_name(kinds[i]).c_str(),
-                        minimum(sps[k][i]) / 1e6, median(sps[k][i]) / 1e6, ratio, median(stage_closest) / 1e6,
-                        shadow.c_str());
+                        minimum(sps[k][i]) / 1e6, median(sps[k][i]) / 1e6, ratio, median(stage_closest) / 1e6, shadow);
             json row = frame_fields(size, spp, repeats, sps[k][i]);
             row.update({{"scene", names[k]},
                         {"intersector", intersector_name(kinds[i])},

@@ -14,7 +14,7 @@ namespace {
 constexpr std::array<ChoiceRule, 3> kRules{{
     {DeviceKind::Cpu,
      false,
-     {{{"wavefront", "bvh", 0.96, 1.0, false},
+     {{{"wavefront", "bvh", 1.03, 1.03, false},
        {"megakernel", "bvh", 3.0, 3.1, true},
        {"reference", "embree", 0.0, 0.0, false}}},
      "room, cornell",
