@@ -31,14 +31,17 @@
 //  g. The wavefront with --intersector bvh and embree on the bunny,
 //     cornell_mesh and the room (no meshes): samples/s, and the tracing
 //     stages' rays/s (the host's trace and the kernel's rest).
+//  h. Embree's own rtcIntersect1 and rtcIntersect16 on camera rays with 16
+//     samples per pixel, a pixel's samples adjacent (Mitsuba's layout), and
+//     their diffuse bounces: in that order, shuffled, and in packets of 16.
 //
 // The traced scene is scenes/bunny.json with its two spheres left out and
 // each wall quad as two triangles, so that both tracers see exactly the same
 // geometry (Embree has no quad of ours and no sphere of ours).
 //
-// Usage: mesh_bench [--quick] [--json FILE] [--scene FILE] [--device CHOICE] [--repeats N] [--sections abcdefg]
+// Usage: mesh_bench [--quick] [--json FILE] [--scene FILE] [--device CHOICE] [--repeats N] [--sections abcdefgh]
 //                   [--baseline-kernels DIR]
-// --sections: which of a-g to run; --baseline-kernels: b also times the
+// --sections: which of a-h to run; --baseline-kernels: b also times the
 // stages built from DIR (another commit's kernels/), interleaved, as
 // opencl_baseline, and counts the rays where its hits differ from ours.
 #include <embree3/rtcore.h>
@@ -56,6 +59,7 @@
 #include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <random>
 #include <stdexcept>
 #include <string>
 #include <thread>
@@ -459,6 +463,40 @@ class EmbreeTracer {
                 if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) continue;
                 out.t[i] = rh.ray.tfar;
                 out.tri[i] = rh.hit.primID;
+            }
+        });
+        return seconds_since(start);
+    }
+
+    // rtcIntersect16 on consecutive rays, 16 at a time (the last packet's missing lanes invalid).
+    double closest_packets(const std::vector<Ray>& rays, ClosestResult& out) {
+        out.t.assign(rays.size(), std::numeric_limits<float>::infinity());
+        out.tri.assign(rays.size(), kNone);
+        const std::size_t packets = (rays.size() + 15) / 16;
+        auto start = Clock::now();
+        split_threads(packets, [&](std::size_t begin, std::size_t end) {
+            RTCIntersectContext context;
+            rtcInitIntersectContext(&context);
+            for (std::size_t p = begin; p < end; ++p) {
+                RTCRayHit16 rh;
+                alignas(64) int valid[16];
+                for (std::size_t k = 0; k < 16; ++k) {
+                    const std::size_t i = 16 * p + k;
+                    valid[k] = i < rays.size() ? -1 : 0;
+                    const Ray& ray = rays[std::min(i, rays.size() - 1)];
+                    rh.ray.org_x[k] = ray.origin.x, rh.ray.org_y[k] = ray.origin.y, rh.ray.org_z[k] = ray.origin.z;
+                    rh.ray.dir_x[k] = ray.direction.x, rh.ray.dir_y[k] = ray.direction.y;
+                    rh.ray.dir_z[k] = ray.direction.z;
+                    rh.ray.tnear[k] = 0.0f, rh.ray.tfar[k] = std::numeric_limits<float>::infinity();
+                    rh.ray.time[k] = 0.0f, rh.ray.mask[k] = ~0u, rh.ray.id[k] = 0, rh.ray.flags[k] = 0;
+                    rh.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
+                }
+                rtcIntersect16(valid, scene_, &context, &rh);
+                for (std::size_t k = 0; k < 16 && 16 * p + k < rays.size(); ++k) {
+                    if (rh.hit.geomID[k] == RTC_INVALID_GEOMETRY_ID) continue;
+                    out.t[16 * p + k] = rh.ray.tfar[k];
+                    out.tri[16 * p + k] = rh.hit.primID[k];
+                }
             }
         });
         return seconds_since(start);
@@ -1159,6 +1197,60 @@ json wavefront_intersector_figures(const DeviceInfo& device, int size, int spp, 
     return rows;
 }
 
+// ---- h. Packets of a pixel's samples (bench/results/analysis.md, "Where issue 21 stops") ----
+
+// The traced scene's camera rays, `spp` per pixel, each pixel's samples
+// adjacent as Mitsuba's wavefront lays them out, and their diffuse bounces
+// (reference/sample_rays.h), traced by Embree on its own triangles
+// (rtcIntersect1 and rtcIntersect16, not robust, on kThreads threads): one ray
+// at a time in that order, one at a time shuffled (as a queue of unrelated
+// paths holds them), and in packets of 16 consecutive rays (a pixel's samples
+// for camera rays; bounces only from samples that hit). Also the rays whose hit
+// differs between packets and one at a time (the same triangle and t
+// otherwise), which a packet's make-up would then decide.
+json pixel_packet_figures(Scene traced, int size, std::uint32_t spp, int repeats) {
+    traced.camera.width = traced.camera.height = size;
+    reference::ReferenceScene<float> scene(traced);
+    reference::SampleRays rays = reference::sample_rays(scene, spp);
+    EmbreeTracer embree(scene.triangles, false);
+    std::printf(
+        "\n## h. Packets of a pixel's samples: %dx%d, %u samples per pixel adjacent, Embree's own triangles on %u "
+        "threads, %d interleaved repetitions\n\n",
+        size, size, spp, kThreads, repeats);
+    std::printf("%-8s %-22s %14s %14s %12s %14s\n", "rays", "traced", "Mrays/s best", "median", "of in order",
+                "hits differ");
+    json rows = json::array();
+    for (auto [name, set] : {std::pair{"camera", &rays.camera}, std::pair{"bounce", &rays.bounce}}) {
+        std::vector<Ray> shuffled = *set;
+        std::shuffle(shuffled.begin(), shuffled.end(), std::mt19937(7));
+        const char* ways[] = {"one at a time, in order", "one at a time, shuffled", "packets of 16, in order"};
+        std::vector<double> seconds[3];
+        ClosestResult single, packets, unused;
+        for (int r = -1; r < repeats; ++r) {
+            double s[3] = {embree.closest(*set, single), embree.closest(shuffled, unused),
+                           embree.closest_packets(*set, packets)};
+            if (r >= 0)
+                for (int w = 0; w < 3; ++w) seconds[w].push_back(s[w]);
+        }
+        const Agreement differ = compare(packets, single);
+        const double count = double(set->size());
+        for (int w = 0; w < 3; ++w) {
+            const double best = count / minimum(seconds[w]) / 1e6, med = count / median(seconds[w]) / 1e6;
+            const double of_order = median(seconds[0]) / median(seconds[w]);
+            const std::size_t differing = w == 2 ? set->size() - differ.bit_identical : 0;
+            std::printf("%-8s %-22s %14.2f %14.2f %11.2fx %14zu\n", name, ways[w], best, med, of_order, differing);
+            rows.push_back({{"rays", name},
+                            {"traced", ways[w]},
+                            {"count", set->size()},
+                            {"mrays_s_best", best},
+                            {"mrays_s_median", med},
+                            {"of_in_order_median", of_order},
+                            {"hits_differing_from_one_at_a_time", differing}});
+        }
+    }
+    return rows;
+}
+
 int run(int argc, char** argv) {
     bool quick = false;
     std::string json_path, scene_path = WAVEPATH_SOURCE_DIR "/scenes/bunny.json", device_choice, sections = "abcdef",
@@ -1186,7 +1278,7 @@ int run(int argc, char** argv) {
             baseline_kernels = value();
         } else {
             std::cerr << "usage: mesh_bench [--quick] [--json FILE] [--scene FILE] [--device CHOICE] [--repeats N] "
-                         "[--sections abcdefg] [--baseline-kernels DIR]\n";
+                         "[--sections abcdefgh] [--baseline-kernels DIR]\n";
             return 2;
         }
     }
@@ -1225,6 +1317,9 @@ int run(int argc, char** argv) {
     if (wanted('g'))
         results["wavefront"] = quick ? wavefront_intersector_figures(device, 64, 1, 3)
                                      : wavefront_intersector_figures(device, 256, 16, repeats);
+    if (wanted('h'))
+        results["pixel_packets"] =
+            quick ? pixel_packet_figures(traced, 32, 16, 1) : pixel_packet_figures(traced, 128, 16, repeats);
     results["meta"]["load_average_end"] = load_average();
     if (!json_path.empty()) {
         std::ofstream out(json_path);
