@@ -529,9 +529,9 @@ def meshes(mesh_bench, flags, out):
 
 
 def wavefront_embree(mesh_bench, flags, out):
-    """bench/mesh_bench sections b, f and g: the Embree intersector beside our BVH and Embree, and behind the
-    wavefront's stages."""
-    return run_mesh_bench(mesh_bench, flags, out, "wavefront_embree", "bfg")
+    """bench/mesh_bench sections b, f, g and h: the Embree intersector beside our BVH and Embree, behind the
+    wavefront's stages, and what Embree's packets of a pixel's samples would give."""
+    return run_mesh_bench(mesh_bench, flags, out, "wavefront_embree", "bfgh")
 
 
 def embree_targets(m):
@@ -610,6 +610,18 @@ def wavefront_embree_markdown(m):
                               if r.get("intersect_shadow_mrays_s_median") is not None else "traced in shade",
                               f"{r['intersect_shadow_host_mrays_s_median']:.2f}"
                               if "intersect_shadow_host_mrays_s_median" in r else "-"] for r in wf])
+    packets = m["pixel_packets"]
+    lines += ["", "## h. Packets of a pixel's samples", "",
+              "Camera rays with a pixel's samples adjacent (as Mitsuba's wavefront lays them out), "
+              f"{packets[0]['count']:,} of them, and their diffuse bounces, traced by Embree on its own triangles "
+              "(not robust, 2 threads): one ray at a time in that order, one at a time shuffled (as a queue of "
+              "unrelated paths holds them), and in packets of 16 consecutive rays (rtcIntersect16). Hits differing: "
+              "rays whose triangle or distance in packets is not what the ray alone finds.", ""]
+    lines += markdown_table(["rays", "traced", "count", "Mrays/s best", "median", "of in order (medians)",
+                             "hits differing"],
+                            [[r["rays"], r["traced"], f"{r['count']:,}", f"{r['mrays_s_best']:.2f}",
+                              f"{r['mrays_s_median']:.2f}", f"{r['of_in_order_median']:.2f}x",
+                              r["hits_differing_from_one_at_a_time"]] for r in packets])
     return "\n".join(lines) + "\n"
 
 
