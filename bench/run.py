@@ -616,12 +616,12 @@ def wavefront_embree_markdown(m):
               f"{packets[0]['count']:,} of them, and their diffuse bounces, traced by Embree on its own triangles "
               "(not robust, 2 threads): one ray at a time in that order, one at a time shuffled (as a queue of "
               "unrelated paths holds them), and in packets of 16 consecutive rays (rtcIntersect16). Hits differing: "
-              "rays whose triangle or distance in packets is not what the ray alone finds.", ""]
+              "rays whose triangle or distance is not what the first row finds for them.", ""]
     lines += markdown_table(["rays", "traced", "count", "Mrays/s best", "median", "of in order (medians)",
                              "hits differing"],
                             [[r["rays"], r["traced"], f"{r['count']:,}", f"{r['mrays_s_best']:.2f}",
                               f"{r['mrays_s_median']:.2f}", f"{r['of_in_order_median']:.2f}x",
-                              r["hits_differing_from_one_at_a_time"]] for r in packets])
+                              r.get("hits_differing_from_in_order", "-")] for r in packets])
     return "\n".join(lines) + "\n"
 
 
