@@ -1186,8 +1186,7 @@ json wavefront_intersector_figures(const DeviceInfo& device, int size, int spp, 
             row.update({{"scene", names[k]},
                         {"intersector", intersector_name(kinds[i])},
                         {"of_bvh_median", ratio},
-                        {"intersect_mrays_s_median", median(stage_closest) / 1e6},
-                        {"shadow_rays_traced_in_shade", shadow_in_shade}});
+                        {"intersect_mrays_s_median", median(stage_closest) / 1e6}});
             if (!shadow_in_shade) row["intersect_shadow_mrays_s_median"] = median(stage_any) / 1e6;
             if (kinds[i] == Intersector::Embree)
                 row.update({{"intersect_host_mrays_s_median", median(rate(closest[k][i], true)) / 1e6},
@@ -1199,6 +1198,13 @@ json wavefront_intersector_figures(const DeviceInfo& device, int size, int spp, 
 }
 
 // ---- h. Packets of a pixel's samples (bench/results/analysis.md, "Where issue 21 stops") ----
+
+// The hits of rays traced in `order` (hits[i] is ray order[i]'s) put back in the rays' own order.
+ClosestResult unpermuted(const ClosestResult& hits, const std::vector<std::size_t>& order) {
+    ClosestResult out = hits;
+    for (std::size_t i = 0; i < order.size(); ++i) out.t[order[i]] = hits.t[i], out.tri[order[i]] = hits.tri[i];
+    return out;
+}
 
 // The traced scene's camera rays, `spp` per pixel, each pixel's samples
 // adjacent as Mitsuba's wavefront lays them out, and their diffuse bounces
@@ -1237,9 +1243,7 @@ json pixel_packet_figures(Scene traced, int size, std::uint32_t spp, int repeats
             if (r >= 0)
                 for (int w = 0; w < 3; ++w) seconds[w].push_back(s[w]);
         }
-        ClosestResult unshuffled = shuffled_hits;  // each ray's hit in the rays' own order
-        for (std::size_t i = 0; i < order.size(); ++i)
-            unshuffled.t[order[i]] = shuffled_hits.t[i], unshuffled.tri[order[i]] = shuffled_hits.tri[i];
+        const ClosestResult unshuffled = unpermuted(shuffled_hits, order);
         const ClosestResult* against_single[3] = {nullptr, &unshuffled, &packets};
         const double count = double(set->size());
         for (int w = 0; w < 3; ++w) {
