@@ -23,6 +23,7 @@
 #include "shared/rng.h"
 #include "shared/sampler.h"
 #include "shared/sampling.h"
+#include "shared/special_functions.h"
 #include "shared/sppm.h"
 #include "shared/triangle.h"
 
