@@ -26,6 +26,12 @@ WP_FN vec3 frame_to_world(Frame frame, vec3 local_direction) {
                   v3_scale(frame.normal, local_direction.z));
 }
 
+/* The inverse of frame_to_world: a world direction's coordinates in the frame. */
+WP_FN vec3 frame_to_local(Frame frame, vec3 world_direction) {
+    return make_vec3(v3_dot(world_direction, frame.tangent), v3_dot(world_direction, frame.bitangent),
+                     v3_dot(world_direction, frame.normal));
+}
+
 typedef struct {
     real cos_value, sin_value;
 } CosSin;

@@ -74,15 +74,16 @@ WP_FN real wp_log(real x) {
     real e = REAL(0.0);
     /* Down into [1, 2) from above, dividing by 2^64, 2^32, ..., 2 where m is
      * at least that; then up into [1, 2) from below, multiplying by 2^j where
-     * m < 2^(1 - j). Each step is exact. */
+     * m < 2^(1 - j). Each step is exact; each loop runs only where some lane
+     * needs it (the samplers take logarithms of numbers below 1). */
     real_element step = REAL(64.0), scale = WP_TWO_TO_64;
-    for (int j = 0; j < 7; ++j, step *= REAL(0.5), scale = sqrt(scale)) {
+    for (int j = 0; j < 7 && lanes_any(m >= REAL(2.0)); ++j, step *= REAL(0.5), scale = sqrt(scale)) {
         lane_int big = m >= scale;
         m = big ? m / scale : m;
         e = big ? e + step : e;
     }
     step = REAL(64.0), scale = WP_TWO_TO_64;
-    for (int j = 0; j < 7; ++j, step *= REAL(0.5), scale = sqrt(scale)) {
+    for (int j = 0; j < 7 && lanes_any(m < REAL(1.0)); ++j, step *= REAL(0.5), scale = sqrt(scale)) {
         lane_int small = m < REAL(2.0) / scale;
         m = small ? m * scale : m;
         e = small ? e - step : e;

@@ -1,7 +1,9 @@
-// Dielectric Fresnel, reflection and refraction (kernels/shared/fresnel.h).
+// Dielectric and conductor Fresnel, reflection and refraction
+// (kernels/shared/fresnel.h).
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <complex>
 #include <limits>
 
 #include "core/shared_math.h"
@@ -141,6 +143,85 @@ TYPED_TEST(Fresnel, RefractionObeysSnellOrReportsTotalInternalReflection) {
                         4 * kRoundingTolerance<R> * eta);                            // n1 sin_i = n2 sin_t
             EXPECT_NEAR(glm::dot(t, glm::cross(d, n)), 0.0, kRoundingTolerance<R>);  // plane of incidence
         }
+    }
+}
+
+// The conductor's reflectance from the complex amplitudes, written
+// independently of the code under test: with the complex index
+// n = eta + i k and n cos_t = sqrt(n^2 - sin_i^2),
+// r_s = (cos_i - n cos_t) / (cos_i + n cos_t),
+// r_p = (n^2 cos_i - n cos_t) / (n^2 cos_i + n cos_t), R = (|r_s|^2 + |r_p|^2) / 2.
+double textbook_conductor_fresnel(double cos_i, double eta, double k) {
+    const std::complex<double> n(eta, k);
+    const std::complex<double> n_cos_t = std::sqrt(n * n - (1.0 - cos_i * cos_i));
+    const std::complex<double> r_s = (cos_i - n_cos_t) / (cos_i + n_cos_t);
+    const std::complex<double> r_p = (n * n * cos_i - n_cos_t) / (n * n * cos_i + n_cos_t);
+    return 0.5 * (std::norm(r_s) + std::norm(r_p));
+}
+
+// Complex indices of real metals (Mitsuba 3's RGB Au and Cu, green) and of
+// made-up ones.
+const std::pair<double, double> kComplexIors[] = {{0.2, 3.0}, {0.143, 3.983}, {0.924, 2.453}, {1.5, 0.5}, {3.0, 0.2}};
+
+TYPED_TEST(Fresnel, ConductorAtNormalIncidenceIsTheTextbookRatio) {
+    using R = TypeParam;
+    for (auto [eta, k] : kComplexIors) {
+        const double expected = ((eta - 1) * (eta - 1) + k * k) / ((eta + 1) * (eta + 1) + k * k);
+        EXPECT_NEAR(wp::SharedMath<R>::fresnel_conductor_channel(R(1), R(eta), R(k)), expected, kRoundingTolerance<R>)
+            << "eta " << eta << " k " << k;
+    }
+}
+
+TYPED_TEST(Fresnel, ConductorMatchesTheComplexAmplitudesAtAllAngles) {
+    using R = TypeParam;
+    for (auto [eta, k] : kComplexIors) {
+        for (double cos_i = 1.0; cos_i >= 0.0; cos_i -= 1.0 / 64.0) {
+            EXPECT_NEAR(wp::SharedMath<R>::fresnel_conductor_channel(R(cos_i), R(eta), R(k)),
+                        textbook_conductor_fresnel(cos_i, eta, k), 4 * kRoundingTolerance<R>)
+                << "eta " << eta << " k " << k << " cos_i " << cos_i;
+        }
+    }
+}
+
+// Without absorption the conductor is a dielectric: the same reflectance,
+// total internal reflection included (eta < 1).
+TYPED_TEST(Fresnel, ConductorWithoutAbsorptionIsTheDielectric) {
+    using R = TypeParam;
+    for (double eta : kIors) {
+        for (double cos_i = 1.0; cos_i > 0.0; cos_i -= 1.0 / 64.0) {
+            EXPECT_NEAR(wp::SharedMath<R>::fresnel_conductor_channel(R(cos_i), R(eta), R(0)),
+                        wp::SharedMath<R>::fresnel_dielectric(R(cos_i), R(eta)),
+                        20 * kRoundingTolerance<R> / std::max(cos_i, 1e-2))
+                << "eta " << eta << " cos_i " << cos_i;
+        }
+    }
+}
+
+TYPED_TEST(Fresnel, ConductorReflectsEverythingAtGrazingIncidence) {
+    using R = TypeParam;
+    for (auto [eta, k] : kComplexIors) {
+        EXPECT_NEAR(wp::SharedMath<R>::fresnel_conductor_channel(R(0), R(eta), R(k)), 1.0, kRoundingTolerance<R>);
+        EXPECT_GT(wp::SharedMath<R>::fresnel_conductor_channel(R(0.01), R(eta), R(k)),
+                  wp::SharedMath<R>::fresnel_conductor_channel(R(0.5), R(eta), R(k)));
+    }
+}
+
+// eta = 0, k = 1 (Mitsuba's material "none") is a perfect mirror: exactly 1.
+TYPED_TEST(Fresnel, ConductorOfIndexIIsAPerfectMirror) {
+    using R = TypeParam;
+    for (double cos_i = 1.0; cos_i >= 0.0; cos_i -= 1.0 / 128.0) {
+        EXPECT_EQ(wp::SharedMath<R>::fresnel_conductor_channel(R(cos_i), R(0), R(1)), R(1)) << cos_i;
+    }
+}
+
+// Each colour channel gets its own eta and k.
+TYPED_TEST(Fresnel, ConductorTakesEachChannelsIndex) {
+    using R = TypeParam;
+    using M = wp::SharedMath<R>;
+    const Vec3<R> eta(R(0.2), R(0.924), R(1.5)), k(R(3.0), R(2.453), R(0.5));
+    const Vec3<R> reflectance = M::fresnel_conductor(R(0.6), eta, k);
+    for (int c = 0; c < 3; ++c) {
+        EXPECT_NEAR(reflectance[c], textbook_conductor_fresnel(0.6, eta[c], k[c]), 4 * kRoundingTolerance<R>) << c;
     }
 }
 
