@@ -73,7 +73,7 @@ WP_FN lane_int trace_bounce(WP_SCENE_PARAMS, lane_int alive, CameraPath *path, l
     path->radiance = add_radiance_seen(WP_SCENE_ARGS, path->radiance, missed, alive, hit.shape, path->origin, v,
                                        path->after_specular, path->bsdf_pdf, path->throughput, &dropped[0]);
     alive = alive && !vertex_ends_path(v, path->depth, scene->max_depth);
-#if defined(WP_NEE) && defined(WP_HAS_DIFFUSE)
+#if defined(WP_NEE) && defined(WP_HAS_NON_SPECULAR)
     DirectLight direct;
     lane_int casts_shadow =
         vertex_light_sample(WP_SCENE_ARGS, alive, v, path->pixel, path->sample, path->depth, path->throughput, &direct);

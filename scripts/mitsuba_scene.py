@@ -15,7 +15,9 @@ wavepath code agreeing with itself. The mapping (docs/mitsuba.md):
   `independent` sampler. `nee`, `mis`, `hemisphere` and `sampler` choose
   wavepath's estimator, not the image, and have no counterpart;
 - diffuse: `twosided` `diffuse`; mirror: `twosided` `conductor` of material
-  `none` (reflectance 1) scaled by `specular_reflectance`; glass: `dielectric`
+  `none` (reflectance 1) scaled by `specular_reflectance`; conductor and
+  roughconductor: `twosided` around Mitsuba's plugin of the same name and
+  parameters (wavepath's materials are two-sided); glass: `dielectric`
   with `int_ior` = ior and `ext_ior` 1 (the outside is the normal's side in
   both); emitter: black `diffuse`; emission: a one-sided `area` emitter on the
   shape, a two-sided one as a second, flipped copy of the shape just behind it
@@ -73,6 +75,9 @@ MATERIAL_KEYS = {
     "mirror": {"type", "reflectance"},
     "glass": {"type", "ior"},
     "emitter": {"type", "radiance", "two_sided"},
+    "conductor": {"type", "material", "eta", "k", "specular_reflectance"},
+    "roughconductor": {"type", "material", "eta", "k", "specular_reflectance", "distribution", "alpha", "alpha_u",
+                       "alpha_v"},
 }
 SHAPE_KEYS = {
     "sphere": {"type", "material", "center", "radius"},
@@ -337,6 +342,15 @@ def bsdf(material):
                 "bsdf": {"type": "conductor", "material": "none", "specular_reflectance": rgb(material["reflectance"])}}
     if kind == "glass":
         return {"type": "dielectric", "int_ior": float(material["ior"]), "ext_ior": 1.0}
+    if kind in ("conductor", "roughconductor"):
+        # The same names and parameters: wavepath's materials are Mitsuba's, two-sided.
+        plugin = {"type": kind}
+        for key, value in material.items():
+            if key in ("eta", "k", "specular_reflectance"):
+                plugin[key] = rgb([value] * 3 if isinstance(value, (int, float)) else value)
+            elif key != "type":
+                plugin[key] = value
+        return {"type": "twosided", "bsdf": plugin}
     return {"type": "diffuse", "reflectance": rgb([0, 0, 0])}  # an emitter reflects nothing
 
 

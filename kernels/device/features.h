@@ -10,8 +10,19 @@
 #ifndef WP_DEVICE_FEATURES_H
 #define WP_DEVICE_FEATURES_H
 
-#if defined(WP_HAS_MIRROR) || defined(WP_HAS_GLASS)
+/* A material with a delta lobe: paths carry whether their last bounce was one. */
+#if defined(WP_HAS_MIRROR) || defined(WP_HAS_GLASS) || defined(WP_HAS_CONDUCTOR)
 #define WP_HAS_SPECULAR
+#endif
+/* A material with a lobe of finite density: next-event estimation and
+ * multiple importance sampling run at its vertices, and its BSDF sample
+ * takes a pair of random numbers. */
+#if defined(WP_HAS_DIFFUSE) || defined(WP_HAS_ROUGH_CONDUCTOR)
+#define WP_HAS_NON_SPECULAR
+#endif
+/* The complex index and reflectance factor of conductor and roughconductor. */
+#if defined(WP_HAS_CONDUCTOR) || defined(WP_HAS_ROUGH_CONDUCTOR)
+#define WP_HAS_CONDUCTORS
 #endif
 
 /* WP_IF_<feature>(...) keeps its arguments only when the path state

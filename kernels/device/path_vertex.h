@@ -9,6 +9,7 @@
 #ifndef WP_DEVICE_PATH_VERTEX_H
 #define WP_DEVICE_PATH_VERTEX_H
 
+#include "device/features.h"
 #include "shared/estimator.h"
 #include "shared/lights.h"
 #include "shared/materials/bsdf.h"
@@ -16,12 +17,20 @@
 #include "shared/rng.h"
 #include "shared/sampler.h"
 #include "shared/triangle.h"
-#ifdef WP_HAS_DIFFUSE
+#ifdef WP_HAS_NON_SPECULAR
 #include "shared/direct_light.h"
+#endif
+#ifdef WP_HAS_DIFFUSE
 #include "shared/materials/diffuse.h"
 #endif
 #ifdef WP_HAS_MIRROR
 #include "shared/materials/mirror.h" /* (and shared/fresnel.h, before the poison below) */
+#endif
+#ifdef WP_HAS_CONDUCTOR
+#include "shared/materials/conductor.h"
+#endif
+#ifdef WP_HAS_ROUGH_CONDUCTOR
+#include "shared/materials/roughconductor.h"
 #endif
 #ifndef WP_HAS_GLASS
 /* Without glass the dielectric code must not be compiled in: any use is a build error. */
@@ -31,7 +40,6 @@
 #include "shared/materials/glass.h"
 #endif
 #include "device/camera.h"
-#include "device/features.h"
 #include "device/guards.h"
 #include "device/lane_memory.h"
 #include "device/light_ranges.h"
@@ -271,12 +279,57 @@ WP_FN LightPoint sample_light_shape(WP_SCENE_PARAMS, lane_uint light, vec3 x, re
     return p;
 }
 
+#ifdef WP_HAS_NON_SPECULAR
+/* The path's throughput times f, and the density of BSDF sampling, for the
+ * direction wi from vertex v: next-event estimation's two numbers from the
+ * material. Every non-specular kind in the scene is evaluated and each lane
+ * keeps its own material's (0 at a specular one, which samples no light). */
+typedef struct {
+    vec3 throughput_f;
+    real pdf;
+} BsdfValue;
+
+WP_FN BsdfValue vertex_bsdf_value(Vertex v, vec3 wi, vec3 throughput) {
+    Material m = v.material;
+    BsdfValue b;
+    b.throughput_f = make_vec3(REAL(0.0), REAL(0.0), REAL(0.0));
+    b.pdf = REAL(0.0);
 #ifdef WP_HAS_DIFFUSE
-/* Samples one light for the diffuse vertex (x, nf, ns) of albedo `albedo`
- * on a path of throughput `throughput` into *direct (diffuse_direct_light);
- * returns where it carries light. */
-WP_FN lane_int sample_direct_light(WP_SCENE_PARAMS, lane_uint pixel, lane_uint sample, lane_uint bounce, vec3 x,
-                                   real x_error, vec3 nf, vec3 ns, vec3 throughput, vec3 albedo, DirectLight *direct) {
+    {
+        lane_int is_diffuse = m.type == WP_MATERIAL_DIFFUSE;
+        /* the albedo before 1 / pi (diffuse_eval), in the order the estimator has always rounded it */
+        b.throughput_f = v3_select(is_diffuse, diffuse_eval(v3_mul(throughput, m.albedo), v.ns, wi), b.throughput_f);
+        b.pdf = is_diffuse ? diffuse_pdf(v.ns, wi, WP_USES_UNIFORM_HEMISPHERE) : b.pdf;
+    }
+#endif
+#ifdef WP_HAS_ROUGH_CONDUCTOR
+    {
+        lane_int is_rough = m.type == WP_MATERIAL_ROUGH_CONDUCTOR;
+        vec3 f = roughconductor_eval(m.microfacet, m.eta, m.k, m.specular_reflectance, v.ns, v.wo, wi);
+        b.throughput_f = v3_select(is_rough, v3_mul(throughput, f), b.throughput_f);
+        b.pdf = is_rough ? roughconductor_pdf(m.microfacet, v.ns, v.wo, wi) : b.pdf;
+    }
+#endif
+    return b;
+}
+
+/* Whether vertex v's material has a lobe of finite density (next-event
+ * estimation samples a light there). */
+WP_FN lane_int vertex_is_non_specular(Vertex v) {
+    lane_int non_specular = 0;
+#ifdef WP_HAS_DIFFUSE
+    non_specular = non_specular || v.material.type == WP_MATERIAL_DIFFUSE;
+#endif
+#ifdef WP_HAS_ROUGH_CONDUCTOR
+    non_specular = non_specular || v.material.type == WP_MATERIAL_ROUGH_CONDUCTOR;
+#endif
+    return non_specular;
+}
+
+/* Samples one light for vertex v on a path of throughput `throughput` into
+ * *direct (direct_light); returns where it carries light. */
+WP_FN lane_int sample_direct_light(WP_SCENE_PARAMS, lane_uint pixel, lane_uint sample, lane_uint bounce, Vertex v,
+                                   vec3 throughput, DirectLight *direct) {
     uint seed = scene->seed;
     lane_uint light = select_light(light_cdf, LIGHT_COUNT,
                                    camera_uniform(seed, pixel, sample, bounce, DIM_LIGHT_SELECT, WP_USES_SOBOL));
@@ -286,23 +339,24 @@ WP_FN lane_int sample_direct_light(WP_SCENE_PARAMS, lane_uint pixel, lane_uint s
     real u_triangle = REAL(0.0);
 #endif
     CameraPair point = camera_pair(seed, pixel, sample, bounce, DIM_LIGHT_U, WP_USES_SOBOL);
-    LightPoint p = sample_light_shape(WP_SCENE_ARGS, light, x, point.u, point.v, u_triangle);
+    LightPoint p = sample_light_shape(WP_SCENE_ARGS, light, v.surface.point, point.u, point.v, u_triangle);
     Material emitter = material_at(materials, p.material);
-    *direct = diffuse_direct_light(x, x_error, nf, ns, throughput, albedo, p.sample, p.magnitude,
-                                   light_selection_pmf(light_cdf, light), emitter.emission, emitter.two_sided,
-                                   WP_USES_UNIFORM_HEMISPHERE, WP_USES_MIS, WP_USES_SHADING_NORMALS);
+    vec3 wi = direct_light_direction(p.sample, v.surface.point);
+    BsdfValue bsdf = vertex_bsdf_value(v, wi, throughput);
+    *direct = direct_light(v.surface.point, v.surface.error, v.nf, v.ns, wi, bsdf.throughput_f, bsdf.pdf, p.sample,
+                           p.magnitude, light_selection_pmf(light_cdf, light), emitter.emission, emitter.two_sided,
+                           WP_USES_MIS, WP_USES_SHADING_NORMALS);
     return direct->carries;
 }
 
 /* The light sample of next-event estimation at vertex v, where the path
  * `continues` past its emission (vertex_ends_path) and the material is
- * diffuse: returns where it has a shadow ray to trace, its contribution in
- * *direct. */
+ * non-specular: returns where it has a shadow ray to trace, its
+ * contribution in *direct. */
 WP_FN lane_int vertex_light_sample(WP_SCENE_PARAMS, lane_int continues, Vertex v, lane_uint pixel, lane_uint sample,
                                    lane_uint bounce, vec3 throughput, DirectLight *direct) {
-    return continues && v.material.type == WP_MATERIAL_DIFFUSE &&
-           sample_direct_light(WP_SCENE_ARGS, pixel, sample, bounce, v.surface.point, v.surface.error, v.nf, v.ns,
-                               throughput, v.material.albedo, direct);
+    return continues && vertex_is_non_specular(v) &&
+           sample_direct_light(WP_SCENE_ARGS, pixel, sample, bounce, v, throughput, direct);
 }
 #endif
 
@@ -334,7 +388,7 @@ WP_FN BsdfRandom camera_bsdf_random(uint seed, lane_uint px, lane_uint s, lane_u
 #ifdef WP_HAS_GLASS
     random.lobe = camera_uniform(seed, px, s, bounce, DIM_BSDF_LOBE, WP_USES_SOBOL);
 #endif
-#ifdef WP_HAS_DIFFUSE
+#ifdef WP_HAS_NON_SPECULAR
     CameraPair direction = camera_pair(seed, px, s, bounce, DIM_BSDF_U, WP_USES_SOBOL);
     random.u = direction.u;
     random.v = direction.v;
@@ -348,7 +402,7 @@ WP_FN BsdfRandom photon_bsdf_random(uint seed, uint iteration, lane_uint photon,
 #ifdef WP_HAS_GLASS
     random.lobe = photon_uniform(seed, iteration, photon, bounce, DIM_PHOTON_BSDF_LOBE);
 #endif
-#ifdef WP_HAS_DIFFUSE
+#ifdef WP_HAS_NON_SPECULAR
     random.u = photon_uniform(seed, iteration, photon, bounce, DIM_PHOTON_BSDF_U);
     random.v = photon_uniform(seed, iteration, photon, bounce, DIM_PHOTON_BSDF_V);
 #endif
@@ -376,6 +430,17 @@ WP_FN BsdfSample scatter_vertex(Vertex v, vec3 d, BsdfRandom random, uint transp
     scattered = select_bsdf_sample(
         m.type == WP_MATERIAL_GLASS,
         glass_sample(m.ior, v.front, wo, v.nf, v.ns, random.lobe, transport, WP_USES_SHADING_NORMALS), scattered);
+#endif
+#ifdef WP_HAS_CONDUCTOR
+    scattered = select_bsdf_sample(
+        m.type == WP_MATERIAL_CONDUCTOR,
+        conductor_sample(m.eta, m.k, m.specular_reflectance, wo, v.nf, v.ns, WP_USES_SHADING_NORMALS), scattered);
+#endif
+#ifdef WP_HAS_ROUGH_CONDUCTOR
+    scattered = select_bsdf_sample(m.type == WP_MATERIAL_ROUGH_CONDUCTOR,
+                                   roughconductor_sample(m.microfacet, m.eta, m.k, m.specular_reflectance, v.nf, v.ns,
+                                                         wo, random.u, random.v, WP_USES_SHADING_NORMALS),
+                                   scattered);
 #endif
     return scattered;
 }

@@ -83,7 +83,7 @@ WP_FN ShadedPaths shade_hits(WP_STAGE_PARAMS, Lanes lanes, Hit traced) {
 
     lane_int casts_shadow = 0;
     lane_int shadow_pending = 0; /* the light sample waits for intersect_shadow, which finishes the path */
-#if defined(WP_NEE) && defined(WP_HAS_DIFFUSE)
+#if defined(WP_NEE) && defined(WP_HAS_NON_SPECULAR)
     DirectLight direct;
     casts_shadow = vertex_light_sample(WP_SCENE_ARGS, scatters, v, px, s, bounce, throughput, &direct);
 #ifdef WP_SHADOW_STAGE

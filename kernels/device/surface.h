@@ -8,6 +8,9 @@
 #include "device/parameters.h"
 #include "shared/hit_point.h"
 #include "shared/materials/bsdf.h"
+#ifdef WP_HAS_ROUGH_CONDUCTOR
+#include "shared/materials/microfacet.h"
+#endif
 #include "shared/prelude.h"
 
 typedef struct {
@@ -107,6 +110,12 @@ typedef struct {
 #ifdef WP_HAS_GLASS
     real ior;
 #endif
+#ifdef WP_HAS_CONDUCTORS
+    vec3 eta, k, specular_reflectance;
+#endif
+#ifdef WP_HAS_ROUGH_CONDUCTOR
+    Microfacet microfacet;
+#endif
 } Material;
 
 WP_FN Material material_at(__global const DeviceMaterial *materials, lane_uint index) {
@@ -123,6 +132,16 @@ WP_FN Material material_at(__global const DeviceMaterial *materials, lane_uint i
 #ifdef WP_HAS_GLASS
     m.ior = SCENE_FIELD(materials, index, ior);
 #endif
+#ifdef WP_HAS_CONDUCTORS
+    m.eta = SCENE_FIELD(materials, index, eta);
+    m.k = SCENE_FIELD(materials, index, k);
+    m.specular_reflectance = SCENE_FIELD(materials, index, specular_reflectance);
+#endif
+#ifdef WP_HAS_ROUGH_CONDUCTOR
+    m.microfacet.distribution = SCENE_FIELD(materials, index, distribution);
+    m.microfacet.alpha_u = SCENE_FIELD(materials, index, alpha_u);
+    m.microfacet.alpha_v = SCENE_FIELD(materials, index, alpha_v);
+#endif
     return m;
 }
 
@@ -130,6 +149,7 @@ WP_FN Material material_at(__global const DeviceMaterial *materials, lane_uint i
 typedef struct {
     Surface surface;
     Material material;
+    vec3 wo;        /* back along the ray: -direction */
     lane_int front; /* the ray met the side the geometric normal points to */
     vec3 nf;        /* the geometric normal on the ray's side: where spawned rays start */
     vec3 ns;        /* the shading normal on the same side: what BSDFs and cosines use */
@@ -139,6 +159,7 @@ WP_FN Vertex vertex_at(WP_SCENE_PARAMS, lane_uint shape, vec3 origin, vec3 direc
     Vertex v;
     v.surface = surface_at(WP_SCENE_ARGS, shape, origin, direction, t);
     v.material = material_at(materials, v.surface.material);
+    v.wo = v3_neg(direction);
     FacingNormals facing = normals_facing(direction, v.surface.normal, v.surface.shading);
     v.front = facing.front;
     v.nf = facing.nf;

@@ -21,6 +21,8 @@
 #define WP_MATERIAL_MIRROR 1u
 #define WP_MATERIAL_GLASS 2u
 #define WP_MATERIAL_EMITTER 3u
+#define WP_MATERIAL_CONDUCTOR 4u
+#define WP_MATERIAL_ROUGH_CONDUCTOR 5u
 
 typedef struct {
     float camera_right[3], camera_up[3], camera_forward[3];
@@ -58,6 +60,13 @@ typedef struct {
     float ior;            /* glass */
     uint type;            /* WP_MATERIAL_* */
     uint two_sided;       /* emission on both sides */
+    /* conductor and roughconductor: the complex index eta + i k, and the
+     * reflection's factor */
+    float eta[3], k[3], specular_reflectance[3];
+    /* roughconductor: WP_MICROFACET_* (shared/materials/microfacet.h) and
+     * the roughness along the shading frame's tangents */
+    uint distribution;
+    float alpha_u, alpha_v;
 } DeviceMaterial;
 
 typedef struct {

@@ -23,6 +23,8 @@ std::vector<std::pair<const char*, const char*>> features_in_use(const FeatureSe
     add(f.diffuse, "diffuse", "WP_HAS_DIFFUSE");
     add(f.mirror, "mirror", "WP_HAS_MIRROR");
     add(f.glass, "glass", "WP_HAS_GLASS");
+    add(f.conductor, "conductor", "WP_HAS_CONDUCTOR");
+    add(f.rough_conductor, "roughconductor", "WP_HAS_ROUGH_CONDUCTOR");
     add(f.emitter_material, "emitter", nullptr);
     add(f.sphere_lights, "sphere-lights", "WP_HAS_SPHERE_LIGHTS");
     add(f.quad_lights, "quad-lights", "WP_HAS_QUAD_LIGHTS");

@@ -16,7 +16,7 @@ static_assert(sizeof(SceneHeader) == 27 * 4, "SceneHeader must match its OpenCL 
 static_assert(sizeof(DeviceSphere) == 5 * 4, "DeviceSphere must match its OpenCL C layout");
 static_assert(sizeof(DevicePlane) == 7 * 4, "DevicePlane must match its OpenCL C layout");
 static_assert(sizeof(DeviceQuad) == 16 * 4, "DeviceQuad must match its OpenCL C layout");
-static_assert(sizeof(DeviceMaterial) == 12 * 4, "DeviceMaterial must match its OpenCL C layout");
+static_assert(sizeof(DeviceMaterial) == 24 * 4, "DeviceMaterial must match its OpenCL C layout");
 static_assert(sizeof(DeviceLight) == 4 * 4, "DeviceLight must match its OpenCL C layout");
 static_assert(sizeof(SharedMath<float>::MeshTriangle) == 11 * 4, "MeshTriangle must match its OpenCL C layout");
 static_assert(sizeof(SharedMath<float>::BvhNode) == 64, "BvhNode must match its OpenCL C layout");
@@ -67,8 +67,16 @@ std::uint32_t material_type(MaterialType type) {
             return WP_MATERIAL_GLASS;
         case MaterialType::Emitter:
             return WP_MATERIAL_EMITTER;
+        case MaterialType::Conductor:
+            return WP_MATERIAL_CONDUCTOR;
+        case MaterialType::RoughConductor:
+            return WP_MATERIAL_ROUGH_CONDUCTOR;
     }
     return WP_MATERIAL_DIFFUSE;
+}
+
+std::uint32_t microfacet_distribution(Microfacet distribution) {
+    return distribution == Microfacet::GGX ? WP_MICROFACET_GGX : WP_MICROFACET_BECKMANN;
 }
 
 template <class T>
@@ -135,6 +143,12 @@ SceneLayout flatten_scene(const Scene& scene) {
         d.ior = static_cast<float>(m.ior);
         d.type = material_type(m.type);
         d.two_sided = m.two_sided ? 1u : 0u;
+        put(d.eta, m.eta);
+        put(d.k, m.k);
+        put(d.specular_reflectance, m.specular_reflectance);
+        d.distribution = microfacet_distribution(m.distribution);
+        d.alpha_u = static_cast<float>(m.alpha_u);
+        d.alpha_v = static_cast<float>(m.alpha_v);
         layout.materials.push_back(d);
     }
     MeshLightTriangles mesh_lights = mesh_light_triangles(scene);

@@ -260,25 +260,56 @@ Real light_pdf_at_hit(const ReferenceScene<Real>& scene, const ShapeHit<Real>& h
     return Real(0);
 }
 
-// Next-event estimation at a diffuse point x (with error bound x_error) with
-// front-facing geometric and shading normals nf and ns, albedo `albedo`, on
-// a path of throughput `throughput`: one light chosen by the power CDF, one
-// point on it, one shadow ray. Returns the radiance the sample adds.
+// Whether `material` has a lobe of finite density, where next-event estimation samples a light.
+inline bool is_non_specular(MaterialType material) {
+    return material == MaterialType::Diffuse || material == MaterialType::RoughConductor;
+}
+
+// The path's throughput times f, and the density of BSDF sampling, for the
+// direction wi at a non-specular material (the kernels' vertex_bsdf_value),
+// seen from wo with shading normal ns.
+template <class Real>
+struct BsdfValue {
+    Vec3<Real> throughput_f;
+    Real pdf;
+};
+
+template <class Real>
+BsdfValue<Real> bsdf_value(const ReferenceScene<Real>& scene,
+                           const typename ReferenceScene<Real>::SurfaceMaterial& material, const Vec3<Real>& ns,
+                           const Vec3<Real>& wo, const Vec3<Real>& wi, const Vec3<Real>& throughput) {
+    using M = SharedMath<Real>;
+    if (material.type == MaterialType::RoughConductor) {
+        return {throughput * M::roughconductor_eval(material.microfacet, material.eta, material.k,
+                                                    material.specular_reflectance, ns, wo, wi),
+                M::roughconductor_pdf(material.microfacet, ns, wo, wi)};
+    }
+    return {M::diffuse_eval(throughput * material.albedo, ns, wi), M::diffuse_pdf(ns, wi, scene.uniform_hemisphere)};
+}
+
+// Next-event estimation at a point x (with error bound x_error) of a
+// non-specular `material` with front-facing geometric and shading normals
+// nf and ns, reached from wo, on a path of throughput `throughput`: one
+// light chosen by the power CDF, one point on it, one shadow ray. Returns
+// the radiance the sample adds.
 template <class Real>
 Vec3<Real> sample_direct_light(const ReferenceScene<Real>& scene, const Vec3<Real>& x, Real x_error,
-                               const Vec3<Real>& nf, const Vec3<Real>& ns, const Vec3<Real>& throughput,
-                               const Vec3<Real>& albedo, const SampleRng<Real>& rng, std::uint32_t bounce,
-                               RayCounts& counts) {
+                               const Vec3<Real>& nf, const Vec3<Real>& ns, const Vec3<Real>& wo,
+                               const Vec3<Real>& throughput,
+                               const typename ReferenceScene<Real>::SurfaceMaterial& material,
+                               const SampleRng<Real>& rng, std::uint32_t bounce, RayCounts& counts) {
     using M = SharedMath<Real>;
     auto light_count = static_cast<std::uint32_t>(scene.lights.size());
     std::uint32_t index = M::select_light(scene.light_cdf.data(), light_count, rng(bounce, DIM_LIGHT_SELECT));
     typename M::CameraPair point = rng.pair(bounce, DIM_LIGHT_U);
     LightPoint<Real> p = sample_light(scene, scene.lights[index], x, point.u, point.v, rng(bounce, DIM_LIGHT_TRIANGLE));
     const auto& emitter = scene.materials[p.material];
+    Vec3<Real> wi = M::direct_light_direction(p.sample, x);
+    BsdfValue<Real> bsdf = bsdf_value(scene, material, ns, wo, wi, throughput);
     typename M::DirectLight direct =
-        M::diffuse_direct_light(x, x_error, nf, ns, throughput, albedo, p.sample, p.magnitude,
-                                M::light_selection_pmf(scene.light_cdf.data(), index), emitter.emission,
-                                emitter.two_sided, scene.uniform_hemisphere, scene.mis, scene.shading_normals);
+        M::direct_light(x, x_error, nf, ns, wi, bsdf.throughput_f, bsdf.pdf, p.sample, p.magnitude,
+                        M::light_selection_pmf(scene.light_cdf.data(), index), emitter.emission, emitter.two_sided,
+                        scene.mis, scene.shading_normals);
     if (!direct.carries) return Vec3<Real>(Real(0));
     ++counts.shadow;
     const auto& shadow = direct.shadow;
@@ -287,13 +318,13 @@ Vec3<Real> sample_direct_light(const ReferenceScene<Real>& scene, const Vec3<Rea
 }
 
 // The random numbers of a camera path's BSDF sample at `bounce`, drawn for
-// the material that uses them (a diffuse direction, a glass lobe), 0 else.
+// the material that uses them (a non-specular direction, a glass lobe), 0 else.
 template <class Real>
 typename SharedMath<Real>::BsdfRandom camera_bsdf_random(const SampleRng<Real>& rng, std::uint32_t bounce,
                                                          MaterialType material) {
     typename SharedMath<Real>::BsdfRandom random{Real(0), Real(0), Real(0)};
     if (material == MaterialType::Glass) random.lobe = rng(bounce, DIM_BSDF_LOBE);
-    if (material == MaterialType::Diffuse) {
+    if (is_non_specular(material)) {
         typename SharedMath<Real>::CameraPair direction = rng.pair(bounce, DIM_BSDF_U);
         random.u = direction.u;
         random.v = direction.v;
@@ -317,6 +348,13 @@ typename SharedMath<Real>::BsdfSample scatter(const ReferenceScene<Real>& scene,
             return M::mirror_sample(material.reflectance, -d, nf, ns, scene.shading_normals);
         case MaterialType::Glass:
             return M::glass_sample(material.ior, front, -d, nf, ns, random.lobe, transport, scene.shading_normals);
+        case MaterialType::Conductor:
+            return M::conductor_sample(material.eta, material.k, material.specular_reflectance, -d, nf, ns,
+                                       scene.shading_normals);
+        case MaterialType::RoughConductor:
+            return M::roughconductor_sample(material.microfacet, material.eta, material.k,
+                                            material.specular_reflectance, nf, ns, -d, random.u, random.v,
+                                            scene.shading_normals);
         default:  // diffuse
             return M::diffuse_sample(material.albedo, nf, ns, random.u, random.v, scene.uniform_hemisphere,
                                      scene.shading_normals);
@@ -371,10 +409,10 @@ Vec3<Real> trace_path(const ReferenceScene<Real>& scene, Ray<Real> ray, const Sa
         if (visible && visible->found()) break;  // the hit after the visible point
 
         auto bounce = static_cast<std::uint32_t>(depth);
-        if (material.type == MaterialType::Diffuse && scene.nee) {
+        if (is_non_specular(material.type) && scene.nee) {
             add_finite<Real>(radiance,
-                             sample_direct_light(scene, surface.point, surface.error, nf, ns, throughput,
-                                                 material.albedo, rng, bounce, counts),
+                             sample_direct_light(scene, surface.point, surface.error, nf, ns, -ray.direction,
+                                                 throughput, material, rng, bounce, counts),
                              NonfiniteStage::direct, counts);
         }
         if (visible && material.type == MaterialType::Diffuse) {

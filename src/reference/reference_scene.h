@@ -40,11 +40,13 @@ struct ReferenceScene {
     };
     struct SurfaceMaterial {
         MaterialType type;
-        vec3 albedo;       // diffuse
-        vec3 reflectance;  // mirror
-        vec3 emission;     // diffuse (optional) and emitter
-        Real ior;          // glass
-        bool two_sided;    // emission on both sides
+        vec3 albedo;                        // diffuse
+        vec3 reflectance;                   // mirror
+        vec3 emission;                      // diffuse (optional) and emitter
+        Real ior;                           // glass
+        bool two_sided;                     // emission on both sides
+        vec3 eta, k, specular_reflectance;  // conductor and roughconductor
+        typename M::Microfacet microfacet;  // roughconductor
     };
     struct LightRef {
         ShapeType shape;                               // Sphere, Quad or Mesh
@@ -90,8 +92,10 @@ struct ReferenceScene {
           background(scene.background) {
         camera = convert_camera(scene.camera);
         for (const Material& m : scene.materials) {
-            materials.push_back(
-                {m.type, vec3(m.albedo), vec3(m.reflectance), vec3(m.emission), Real(m.ior), m.two_sided});
+            std::uint32_t distribution = m.distribution == Microfacet::GGX ? WP_MICROFACET_GGX : WP_MICROFACET_BECKMANN;
+            materials.push_back({m.type, vec3(m.albedo), vec3(m.reflectance), vec3(m.emission), Real(m.ior),
+                                 m.two_sided, vec3(m.eta), vec3(m.k), vec3(m.specular_reflectance),
+                                 typename M::Microfacet{distribution, Real(m.alpha_u), Real(m.alpha_v)}});
         }
         for (const Sphere& s : scene.spheres) spheres.push_back({vec3(s.center), Real(s.radius), s.material});
         for (const Plane& p : scene.planes) planes.push_back({vec3(p.point), vec3(p.normal), p.material});

@@ -50,6 +50,8 @@ FeatureSet Scene::features() const {
         f.mirror |= m.type == MaterialType::Mirror;
         f.glass |= m.type == MaterialType::Glass;
         f.emitter_material |= m.type == MaterialType::Emitter;
+        f.conductor |= m.type == MaterialType::Conductor;
+        f.rough_conductor |= m.type == MaterialType::RoughConductor;
     }
     for (const Light& light : lights) {
         f.sphere_lights |= light.shape == ShapeType::Sphere;
@@ -58,15 +60,23 @@ FeatureSet Scene::features() const {
     }
     f.background = background.x > 0.0 || background.y > 0.0 || background.z > 0.0;
     f.nee = render.nee && !lights.empty();
-    f.mis = f.nee && f.diffuse && render.mis;
+    f.mis = f.nee && f.non_specular() && render.mis;
     f.sppm = render.integrator == Integrator::Sppm;
     return f;
 }
 
 std::string sppm_problem(const Scene& scene) {
-    if (scene.render.integrator != Integrator::Sppm || !scene.features().background) return "";
-    return "sppm takes its light from emitting shapes, and the background is not black: it would light paths no "
-           "photon takes (make the background black or render with the path integrator)";
+    if (scene.render.integrator != Integrator::Sppm) return "";
+    FeatureSet f = scene.features();
+    if (f.background) {
+        return "sppm takes its light from emitting shapes, and the background is not black: it would light paths no "
+               "photon takes (make the background black or render with the path integrator)";
+    }
+    if (f.rough_conductor) {
+        return "sppm gathers photons on diffuse surfaces only, and its camera paths would end at a roughconductor "
+               "(render with the path integrator)";
+    }
+    return "";
 }
 
 std::uint64_t sppm_photons(const Scene& scene) {

@@ -56,7 +56,13 @@ struct RenderSettings {
     SppmSettings sppm = {};  // with Integrator::Sppm
 };
 
-enum class MaterialType { Diffuse, Mirror, Glass, Emitter };
+// The material kinds (docs/scene-format.md, "materials"). Conductor and
+// RoughConductor are Mitsuba 3's `conductor` and `roughconductor`, with its
+// parameter names.
+enum class MaterialType { Diffuse, Mirror, Glass, Emitter, Conductor, RoughConductor };
+
+// The microfacet distributions of the rough materials (kernels/shared/materials/microfacet.h).
+enum class Microfacet { Beckmann, GGX };
 
 struct Material {
     std::string name;
@@ -66,6 +72,15 @@ struct Material {
     double ior = 1.5;             // glass
     glm::dvec3 emission{0.0};     // diffuse (optional) and emitter
     bool two_sided = false;       // emission on both sides
+    // conductor and roughconductor: the complex index of refraction eta + i k
+    // per channel (eta 0, k 1 reflects everything: Mitsuba's material "none"),
+    // and a factor on the reflection
+    glm::dvec3 eta{0.0}, k{1.0};
+    glm::dvec3 specular_reflectance{1.0};
+    // roughconductor: the microfacet distribution and its roughness along
+    // the shading frame's two tangents (equal where isotropic)
+    Microfacet distribution = Microfacet::Beckmann;
+    double alpha_u = 0.1, alpha_v = 0.1;
     bool emits() const;
 };
 
@@ -113,11 +128,12 @@ struct Light {
 struct FeatureSet {
     bool spheres = false, planes = false, quads = false, meshes = false;
     bool diffuse = false, mirror = false, glass = false, emitter_material = false;
+    bool conductor = false, rough_conductor = false;
     bool shading_normals = false;  // a mesh shades with its vertex normals
     bool sphere_lights = false, quad_lights = false, mesh_lights = false;
     bool background = false;  // a non-black background
     bool nee = false;         // next-event estimation runs: render.nee is on and the scene has a light
-    bool mis = false;         // nee runs at diffuse vertices and render.mis is on
+    bool mis = false;         // nee runs at non-specular vertices and render.mis is on
     bool sppm = false;        // the integrator is sppm: visible points and photons
     // Not the scene's: the wavefront's kernels read the rays' hits, which the
     // host traced (--intersector embree, kernels/interface/stages.h).
@@ -132,6 +148,11 @@ struct FeatureSet {
     // with scan compaction; docs/architecture.md, "Intersect and shade as one
     // kernel"), rather than intersect and shade apart.
     bool intersect_and_shade = false;
+
+    // A material with a delta lobe: paths carry whether their last bounce was one.
+    bool specular() const { return mirror || glass || conductor; }
+    // A material with a lobe of finite density: next-event estimation runs at its vertices.
+    bool non_specular() const { return diffuse || rough_conductor; }
 };
 
 struct Scene {

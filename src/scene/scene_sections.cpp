@@ -10,6 +10,7 @@
 #include <limits>
 #include <string>
 
+#include "scene/conductors.h"
 #include "scene/limits.h"
 #include "scene/mesh_file.h"
 
@@ -97,6 +98,86 @@ void read_glass(const JsonField& field, Material& material) {
     material.ior = read_positive(field.member("ior"));
 }
 
+// A colour or index given per channel: a number (every channel) or an array of 3, each in [min, max].
+glm::dvec3 read_rgb(const JsonField& field, double min, double max) {
+    if (!field.is_number()) return field.vec3_in(min, max);
+    double value = field.number();
+    if (!(value >= min && value <= max)) {
+        field.fail("must be in [" + format_number(min) + ", " + format_number(max) + "], got " + format_number(value));
+    }
+    return glm::dvec3(value);
+}
+
+// A conductor's complex index eta + i k: `eta` and `k` (both), or a named
+// `material` (Mitsuba's names; "none", the default, reflects everything).
+void read_conductor_index(const JsonField& field, Material& material) {
+    std::optional<JsonField> name = field.optional_member("material");
+    std::optional<JsonField> eta = field.optional_member("eta"), k = field.optional_member("k");
+    if (eta || k) {
+        if (name) name->fail("give either material or eta and k, not both");
+        if (!eta) k->fail("needs eta beside it");
+        if (!k) eta->fail("needs k beside it");
+        material.eta = read_rgb(*eta, 0.0, kMaxSceneMagnitude);
+        material.k = read_rgb(*k, 0.0, kMaxSceneMagnitude);
+        return;
+    }
+    std::string metal = name ? name->string() : "none";
+    std::optional<ComplexIndex> index = named_conductor(metal);
+    if (!index)
+        name->fail("unknown conductor " + nlohmann::json(metal).dump() + " (known: " + named_conductors() + ")");
+    material.eta = index->eta;
+    material.k = index->k;
+}
+
+void read_conductor(const JsonField& field, Material& material) {
+    field.allow_only_keys({"type", "material", "eta", "k", "specular_reflectance"});
+    read_conductor_index(field, material);
+    if (auto specular = field.optional_member("specular_reflectance")) {
+        material.specular_reflectance = read_rgb(*specular, 0.0, 1.0);
+    }
+}
+
+// A microfacet roughness: finite and at least kMinRoughness, below which
+// float's D overflows (docs/scene-format.md; a smooth surface is a conductor).
+double read_roughness(const JsonField& field) {
+    double alpha = field.number();
+    if (!(alpha >= kMinRoughness)) {
+        field.fail("must be >= " + format_number(kMinRoughness) + ", got " + format_number(alpha) +
+                   " (a smooth surface is a conductor)");
+    }
+    return alpha;
+}
+
+void read_rough_conductor(const JsonField& field, Material& material) {
+    field.allow_only_keys(
+        {"type", "material", "eta", "k", "specular_reflectance", "distribution", "alpha", "alpha_u", "alpha_v"});
+    read_conductor_index(field, material);
+    if (auto specular = field.optional_member("specular_reflectance")) {
+        material.specular_reflectance = read_rgb(*specular, 0.0, 1.0);
+    }
+    if (auto distribution = field.optional_member("distribution")) {
+        std::string name = distribution->string();
+        if (name == "beckmann") {
+            material.distribution = Microfacet::Beckmann;
+        } else if (name == "ggx") {
+            material.distribution = Microfacet::GGX;
+        } else {
+            distribution->fail("unknown distribution " + nlohmann::json(name).dump() + " (expected beckmann or ggx)");
+        }
+    }
+    std::optional<JsonField> alpha = field.optional_member("alpha");
+    std::optional<JsonField> alpha_u = field.optional_member("alpha_u"), alpha_v = field.optional_member("alpha_v");
+    if (alpha_u || alpha_v) {
+        if (alpha) alpha->fail("give either alpha or alpha_u and alpha_v, not both");
+        if (!alpha_u) alpha_v->fail("needs alpha_u beside it");
+        if (!alpha_v) alpha_u->fail("needs alpha_v beside it");
+        material.alpha_u = read_roughness(*alpha_u);
+        material.alpha_v = read_roughness(*alpha_v);
+    } else if (alpha) {
+        material.alpha_u = material.alpha_v = read_roughness(*alpha);
+    }
+}
+
 void read_emitter(const JsonField& field, Material& material) {
     field.allow_only_keys({"type", "radiance", "two_sided"});
     material.emission = read_radiance(field.member("radiance"));
@@ -120,9 +201,15 @@ Material read_material(const std::string& name, const JsonField& field) {
     } else if (type == "emitter") {
         material.type = MaterialType::Emitter;
         read_emitter(field, material);
+    } else if (type == "conductor") {
+        material.type = MaterialType::Conductor;
+        read_conductor(field, material);
+    } else if (type == "roughconductor") {
+        material.type = MaterialType::RoughConductor;
+        read_rough_conductor(field, material);
     } else {
         type_field.fail("unknown material type " + nlohmann::json(type).dump() +
-                        " (expected one of: diffuse, mirror, glass, emitter)");
+                        " (expected one of: diffuse, mirror, glass, emitter, conductor, roughconductor)");
     }
     return material;
 }

@@ -31,7 +31,7 @@ bool path_feature_compiled(PathFeature feature, const FeatureSet& features) {
         case PathFeature::ALWAYS:
             return true;
         case PathFeature::SPECULAR:
-            return features.mirror || features.glass;
+            return features.specular();
         case PathFeature::GLASS:
             return features.glass;
         case PathFeature::NEE:
@@ -54,7 +54,7 @@ bool path_feature_compiled(PathFeature feature, const FeatureSet& features) {
 
 std::string path_state_table_markdown() {
     static const char* feature_names[] = {"always",
-                                          "specular (mirror or glass)",
+                                          "specular (mirror, glass or conductor)",
                                           "glass",
                                           "nee (next-event estimation runs)",
                                           "mis (next-event estimation with multiple importance sampling)",

@@ -46,6 +46,8 @@ struct PatchCase {
 #define SPHERE_AT_ORIGIN R"("type": "sphere", "center": [0, 0, 0], "radius": 1)"
 #define FLOOR_PLANE R"("type": "plane", "point": [0, 0, 0])"
 #define UNIT_QUAD R"("type": "quad", "corner": [0, 2, 0])"
+// The conductor names the scene format knows (scene/conductors.cpp), as the error lists them.
+#define WP_TEST_CONDUCTOR_NAMES "none"
 
 const PatchCase kPatchCases[] = {
     // unknown keys, at every level
@@ -165,7 +167,7 @@ const PatchCase kPatchCases[] = {
     {"NoMaterialsDefined", R"({"materials": null})",
      R"(shapes[0].material: undefined material "white" (defined: none))"},
     {"UnknownMaterialType", R"({"materials": {"white": {"type": "metal"}}})",
-     R"(materials.white.type: unknown material type "metal" (expected one of: diffuse, mirror, glass, emitter))"},
+     R"(materials.white.type: unknown material type "metal" (expected one of: diffuse, mirror, glass, emitter, conductor, roughconductor))"},
     {"UnknownShapeType", R"({"shapes": [{"type": "box", "material": "white"}]})",
      R"(shapes[0].type: unknown shape type "box" (expected one of: sphere, plane, quad, mesh))"},
     {"NegativeAlbedo", R"({"materials": {"white": {"albedo": [0.5, -0.1, 0.5]}}})",
@@ -183,6 +185,27 @@ const PatchCase kPatchCases[] = {
     {"ZeroIor", R"({"materials": {"g": {"type": "glass", "ior": 0}}})", "materials.g.ior: must be > 0, got 0"},
     {"NegativeIor", R"({"materials": {"g": {"type": "glass", "ior": -1.5}}})",
      "materials.g.ior: must be > 0, got -1.5"},
+    {"ZeroRoughness", R"({"materials": {"m": {"type": "roughconductor", "alpha": 0}}})",
+     "materials.m.alpha: must be >= 1e-04, got 0 (a smooth surface is a conductor)"},
+    {"RoughnessBelowLimit", R"({"materials": {"m": {"type": "roughconductor", "alpha_u": 0.1, "alpha_v": 5e-5}}})",
+     "materials.m.alpha_v: must be >= 1e-04, got 5e-05 (a smooth surface is a conductor)"},
+    {"HugeRoughness", R"({"materials": {"m": {"type": "roughconductor", "alpha": 1e300}}})",
+     "materials.m.alpha: magnitude must be <= 1e+12, got 1e+300"},
+    {"AlphaAndAlphaU", R"({"materials": {"m": {"type": "roughconductor", "alpha": 0.1, "alpha_u": 0.2}}})",
+     "materials.m.alpha: give either alpha or alpha_u and alpha_v, not both"},
+    {"AlphaUAlone", R"({"materials": {"m": {"type": "roughconductor", "alpha_u": 0.2}}})",
+     "materials.m.alpha_u: needs alpha_v beside it"},
+    {"UnknownDistribution", R"({"materials": {"m": {"type": "roughconductor", "distribution": "phong"}}})",
+     R"(materials.m.distribution: unknown distribution "phong" (expected beckmann or ggx))"},
+    {"UnknownConductor", R"({"materials": {"m": {"type": "conductor", "material": "Unobtainium"}}})",
+     R"(materials.m.material: unknown conductor "Unobtainium" (known: )" WP_TEST_CONDUCTOR_NAMES ")"},
+    {"EtaWithoutK", R"({"materials": {"m": {"type": "conductor", "eta": 1.5}}})", "materials.m.eta: needs k beside it"},
+    {"NamedConductorAndEta", R"({"materials": {"m": {"type": "conductor", "material": "Au", "eta": 1, "k": 1}}})",
+     "materials.m.material: give either material or eta and k, not both"},
+    {"NegativeK", R"({"materials": {"m": {"type": "conductor", "eta": 1, "k": [3, -1, 3]}}})",
+     "materials.m.k[1]: must be >= 0, got -1"},
+    {"SpecularReflectanceAboveOne", R"({"materials": {"m": {"type": "conductor", "specular_reflectance": 1.5}}})",
+     "materials.m.specular_reflectance: must be in [0, 1], got 1.5"},
     {"NegativeBackground", R"({"background": [0, 0, -1]})", "background[2]: must be >= 0, got -1"},
     {"EmitterPlane", R"({"shapes": [{)" FLOOR_PLANE R"(, "normal": [0, 1, 0], "material": "lamp"}]})",
      R"(shapes[0].material: "lamp" emits light, but a plane cannot be a light (infinite area))"},

@@ -197,8 +197,10 @@ struct DiffusePointUnderALight {
     // One light sample and one BSDF sample (the latter only with mis).
     double estimate(std::uint32_t i, int mis) const {
         auto u = [&](std::uint32_t dimension) { return M::rng_uniform(9u, i, 0u, 0u, dimension); };
-        auto direct = M::diffuse_direct_light(x, Real(0), n, n, Vec3<Real>(1), albedo, sample(u(0), u(1)), magnitude,
-                                              Real(1), emission, 0, 0, mis, 0);
+        typename M::LightSample ls = sample(u(0), u(1));
+        Vec3<Real> wi = M::direct_light_direction(ls, x);
+        auto direct = M::direct_light(x, Real(0), n, n, wi, M::diffuse_eval(albedo, n, wi), M::diffuse_pdf(n, wi, 0),
+                                      ls, magnitude, Real(1), emission, 0, mis, 0);
         double total = direct.carries ? double(direct.contribution.x) : 0.0;
         if (mis) {
             auto s = M::diffuse_sample(albedo, n, n, u(2), u(3), 0, 0);
