@@ -19,6 +19,7 @@
 #include "shared/materials/microfacet.h"
 #include "shared/materials/mirror.h"
 #include "shared/materials/roughconductor.h"
+#include "shared/materials/roughdielectric.h"
 #include "shared/offset.h"
 #include "shared/photon_grid.h"
 #include "shared/photons.h"

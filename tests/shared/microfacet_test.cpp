@@ -36,20 +36,6 @@ std::vector<MicrofacetParameters> distributions() {
     return all;
 }
 
-template <class Real>
-typename wp::SharedMath<Real>::Microfacet shared(const MicrofacetParameters& m) {
-    typename wp::SharedMath<Real>::Microfacet result;
-    result.distribution = m.beckmann ? WP_MICROFACET_BECKMANN : WP_MICROFACET_GGX;
-    result.alpha_u = Real(m.alpha_u);
-    result.alpha_v = Real(m.alpha_v);
-    return result;
-}
-
-std::string name(const MicrofacetParameters& m) {
-    return std::string(m.beckmann ? "beckmann" : "ggx") + " alpha " + std::to_string(m.alpha_u) + ", " +
-           std::to_string(m.alpha_v);
-}
-
 // Incident directions: cos theta 0.9, 0.5 and 0.1, at an azimuth between the
 // axes of the anisotropic roughness.
 const double kCosines[] = {0.9, 0.5, 0.1};
@@ -67,13 +53,14 @@ TYPED_TEST(Microfacets, DistributionMatchesTheReference) {
                 // Beckmann's exponent, -r2, carries its rounding into D: a relative error of r2
                 // roundings; and wp_exp's polynomial is float-accurate by design (2e-10 in double).
                 const double r2 = std::pow(h.x / h.z / m.alpha_u, 2) + std::pow(h.y / h.z / m.alpha_v, 2);
-                EXPECT_NEAR(M::microfacet_D(shared<R>(m), Vec3<R>(h)) / expected, 1.0,
+                EXPECT_NEAR(M::microfacet_D(wp::test::shared_microfacet<R>(m), Vec3<R>(h)) / expected, 1.0,
                             (wp::test::kRoundingTolerance<R> + 1e-9) * (1.0 + r2))
-                    << name(m) << " cos " << cos_theta << " phi " << phi;
+                    << wp::test::describe(m) << " cos " << cos_theta << " phi " << phi;
             }
         }
-        EXPECT_EQ(M::microfacet_D(shared<R>(m), Vec3<R>(0, 0.6, -0.8)), R(0)) << "below the surface";
-        EXPECT_EQ(M::microfacet_D(shared<R>(m), Vec3<R>(1, 0, 0)), R(0)) << "in the surface";
+        EXPECT_EQ(M::microfacet_D(wp::test::shared_microfacet<R>(m), Vec3<R>(0, 0.6, -0.8)), R(0))
+            << "below the surface";
+        EXPECT_EQ(M::microfacet_D(wp::test::shared_microfacet<R>(m), Vec3<R>(1, 0, 0)), R(0)) << "in the surface";
     }
 }
 
@@ -84,9 +71,9 @@ TYPED_TEST(Microfacets, DistributionIsNormalised) {
     using M = wp::SharedMath<R>;
     for (const MicrofacetParameters& m : distributions()) {
         const double total = wp::test::integrate_over_normals(std::sqrt(m.alpha_u * m.alpha_v), [&](glm::dvec3 h) {
-            return double(M::microfacet_D(shared<R>(m), Vec3<R>(h))) * h.z;
+            return double(M::microfacet_D(wp::test::shared_microfacet<R>(m), Vec3<R>(h))) * h.z;
         });
-        EXPECT_NEAR(total, 1.0, 2e-5) << name(m);
+        EXPECT_NEAR(total, 1.0, 2e-5) << wp::test::describe(m);
     }
 }
 
@@ -98,12 +85,13 @@ TYPED_TEST(Microfacets, MaskingMatchesTheReference) {
         for (double cos_theta : {1.0, 0.9, 0.5, 0.2, 0.05}) {
             for (double phi : {0.0, 0.7, 1.57, 3.0}) {
                 const glm::dvec3 w = wp::test::local_direction(cos_theta, phi);
-                EXPECT_NEAR(M::microfacet_G1(shared<R>(m), Vec3<R>(w), Vec3<R>(h)), wp::test::reference_G1(m, w, h),
-                            1e-6)
-                    << name(m) << " cos " << cos_theta << " phi " << phi;
+                EXPECT_NEAR(M::microfacet_G1(wp::test::shared_microfacet<R>(m), Vec3<R>(w), Vec3<R>(h)),
+                            wp::test::reference_G1(m, w, h), 1e-6)
+                    << wp::test::describe(m) << " cos " << cos_theta << " phi " << phi;
             }
         }
-        EXPECT_EQ(M::microfacet_G1(shared<R>(m), Vec3<R>(0, 0, 1), Vec3<R>(h)), R(1)) << "normal incidence";
+        EXPECT_EQ(M::microfacet_G1(wp::test::shared_microfacet<R>(m), Vec3<R>(0, 0, 1), Vec3<R>(h)), R(1))
+            << "normal incidence";
     }
 }
 
@@ -116,11 +104,15 @@ TYPED_TEST(Microfacets, MaskingHidesBackFacingMicrofacets) {
     const glm::dvec3 facing_away = glm::normalize(glm::dvec3(-0.8, 0.0, 0.3));  // w.h < 0 < w.z
     const glm::dvec3 facing = glm::normalize(glm::dvec3(0.8, 0.0, 0.6));        // below.h > 0 > below.z
     for (const MicrofacetParameters& m : distributions()) {
-        EXPECT_EQ(M::microfacet_G1(shared<R>(m), Vec3<R>(w), Vec3<R>(facing_away)), R(0)) << name(m);
-        EXPECT_EQ(M::microfacet_G1(shared<R>(m), Vec3<R>(below), Vec3<R>(facing)), R(0)) << name(m);
-        EXPECT_GT(M::microfacet_G1(shared<R>(m), Vec3<R>(w), Vec3<R>(facing)), R(0)) << name(m);
+        EXPECT_EQ(M::microfacet_G1(wp::test::shared_microfacet<R>(m), Vec3<R>(w), Vec3<R>(facing_away)), R(0))
+            << wp::test::describe(m);
+        EXPECT_EQ(M::microfacet_G1(wp::test::shared_microfacet<R>(m), Vec3<R>(below), Vec3<R>(facing)), R(0))
+            << wp::test::describe(m);
+        EXPECT_GT(M::microfacet_G1(wp::test::shared_microfacet<R>(m), Vec3<R>(w), Vec3<R>(facing)), R(0))
+            << wp::test::describe(m);
         // From below, a microfacet's back is what a direction sees (a refraction's masking).
-        EXPECT_GT(M::microfacet_G1(shared<R>(m), Vec3<R>(below), Vec3<R>(facing_away)), R(0)) << name(m);
+        EXPECT_GT(M::microfacet_G1(wp::test::shared_microfacet<R>(m), Vec3<R>(below), Vec3<R>(facing_away)), R(0))
+            << wp::test::describe(m);
     }
 }
 
@@ -134,9 +126,9 @@ TYPED_TEST(Microfacets, VisibleNormalDensityIntegratesToOne) {
         for (double cos_theta : kCosines) {
             const glm::dvec3 wo = wp::test::local_direction(cos_theta, kAzimuth);
             const double total = wp::test::integrate_over_normals(std::sqrt(m.alpha_u * m.alpha_v), [&](glm::dvec3 h) {
-                return double(M::microfacet_pdf_visible(shared<R>(m), Vec3<R>(wo), Vec3<R>(h)));
+                return double(M::microfacet_pdf_visible(wp::test::shared_microfacet<R>(m), Vec3<R>(wo), Vec3<R>(h)));
             });
-            EXPECT_NEAR(total, 1.0, 2e-5) << name(m) << " cos " << cos_theta;
+            EXPECT_NEAR(total, 1.0, 2e-5) << wp::test::describe(m) << " cos " << cos_theta;
         }
     }
 }

@@ -1,13 +1,17 @@
 // The microfacet distributions written independently of the shared code
 // (kernels/shared/materials/microfacet.h), in double with std::exp and
 // std::erf, and a quadrature over the microfacet normals fine where they
-// crowd: the references of the microfacet and rough material tests.
+// crowd: the references of the microfacet and rough material tests; and
+// their parameters as the shared code takes them.
 #pragma once
 
 #include <cmath>
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 #include <numbers>
+#include <string>
+
+#include "core/shared_math.h"
 
 namespace wp::test {
 
@@ -15,6 +19,21 @@ struct MicrofacetParameters {
     bool beckmann;
     double alpha_u, alpha_v;
 };
+
+// The shared code's Microfacet of these parameters.
+template <class Real>
+typename SharedMath<Real>::Microfacet shared_microfacet(const MicrofacetParameters& m) {
+    typename SharedMath<Real>::Microfacet result;
+    result.distribution = m.beckmann ? WP_MICROFACET_BECKMANN : WP_MICROFACET_GGX;
+    result.alpha_u = Real(m.alpha_u);
+    result.alpha_v = Real(m.alpha_v);
+    return result;
+}
+
+inline std::string describe(const MicrofacetParameters& m) {
+    return std::string(m.beckmann ? "beckmann" : "ggx") + " alpha " + std::to_string(m.alpha_u) + ", " +
+           std::to_string(m.alpha_v);
+}
 
 // D(h) per unit projected area (Walter et al. 2007, eqs. 25 and 33; the
 // anisotropic forms of Heitz 2014, section 5.4), written as functions of the
