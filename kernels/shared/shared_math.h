@@ -20,6 +20,7 @@
 #include "shared/materials/mirror.h"
 #include "shared/materials/roughconductor.h"
 #include "shared/materials/roughdielectric.h"
+#include "shared/materials/thindielectric.h"
 #include "shared/offset.h"
 #include "shared/photon_grid.h"
 #include "shared/photons.h"
