@@ -46,10 +46,10 @@ WP_FN real roughconductor_pdf(Microfacet m, vec3 ns, vec3 wo, vec3 wi) {
 
 /* wo mirrored about a normal drawn from those visible from wo (u, v). Its
  * weight f wi.z / pdf reduces to specular_reflectance F(wo.h) G1(wi, h): D,
- * G1(wo, h) and the cosines cancel (Heitz 2018, "Sampling the GGX
- * Distribution of Visible Normals", section 2). Where the reflection leaves
- * below the shading normal (or wo arrives from behind it), f is 0: the sample
- * is invalid, with weight and pdf 0 and the direction ns. */
+ * G1(wo, h) and the cosines cancel (as in Mitsuba 3's roughconductor with
+ * visible-normal sampling). Where the reflection leaves below the shading
+ * normal (or wo arrives from behind it), f is 0: the sample is invalid, with
+ * weight and pdf 0 and the direction ns. */
 WP_FN BsdfSample roughconductor_sample(Microfacet m, vec3 eta, vec3 k, vec3 specular_reflectance, vec3 nf, vec3 ns,
                                        vec3 wo, real u, real v, int shading_normals) {
     Frame frame = frame_from_normal(ns);
