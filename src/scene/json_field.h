@@ -34,6 +34,7 @@ class JsonField {
     // For values that may take more than one form.
     bool is_number() const { return value_.is_number(); }
     bool is_array() const { return value_.is_array(); }
+    bool is_string() const { return value_.is_string(); }
 
     // Objects. `allow_only_keys` also checks that this is an object.
     void allow_only_keys(std::initializer_list<std::string_view> keys) const;

@@ -10,9 +10,9 @@
 #include <limits>
 #include <string>
 
-#include "scene/conductors.h"
 #include "scene/limits.h"
 #include "scene/mesh_file.h"
+#include "scene/named_media.h"
 
 namespace wp {
 namespace {
@@ -93,9 +93,20 @@ void read_mirror(const JsonField& field, Material& material) {
     material.reflectance = read_reflectivity(field.member("reflectance"));
 }
 
+// An index of refraction: a number > 0 or a name of Mitsuba's ("bk7", "water", ...).
+double read_ior(const JsonField& field) {
+    if (field.is_number()) return read_positive(field);
+    if (!field.is_string()) field.fail_type("a number or a name");
+    std::string name = field.string();
+    std::optional<double> ior = named_ior(name);
+    if (!ior)
+        field.fail("unknown index of refraction " + nlohmann::json(name).dump() + " (known: " + named_ior_list() + ")");
+    return *ior;
+}
+
 void read_glass(const JsonField& field, Material& material) {
     field.allow_only_keys({"type", "ior"});
-    material.ior = read_positive(field.member("ior"));
+    material.ior = read_ior(field.member("ior"));
 }
 
 // A colour or index given per channel: a number (every channel) or an array of 3, each in [min, max].
@@ -122,9 +133,9 @@ void read_conductor_index(const JsonField& field, Material& material) {
         return;
     }
     std::string metal = name ? name->string() : "none";
-    std::optional<ComplexIndex> index = named_conductor(metal);
+    std::optional<ComplexIor> index = named_conductor(metal);
     if (!index)
-        name->fail("unknown conductor " + nlohmann::json(metal).dump() + " (known: " + named_conductors() + ")");
+        name->fail("unknown conductor " + nlohmann::json(metal).dump() + " (known: " + named_conductor_list() + ")");
     material.eta = index->eta;
     material.k = index->k;
 }

@@ -256,6 +256,20 @@ TEST(RenderIdentity, EverySettingThatChangesTheImageChangesIt) {
     EXPECT_TRUE(scene_changed([](Scene& s) { s.camera.width += 1; }));
     EXPECT_TRUE(scene_changed([](Scene& s) { s.camera.fov_y_degrees += 1e-9; }));
     EXPECT_TRUE(scene_changed([](Scene& s) { s.materials[0].albedo.x += 1e-9; }));
+    // A rough conductor's every parameter.
+    auto parameter_changed = [&](auto change) {
+        Scene a = base;
+        a.materials[0].type = MaterialType::RoughConductor;
+        Scene b = a;
+        change(b.materials[0]);
+        return render_identity(a, "opencl").scene != render_identity(b, "opencl").scene;
+    };
+    EXPECT_TRUE(parameter_changed([](Material& m) { m.eta.z += 1e-9; }));
+    EXPECT_TRUE(parameter_changed([](Material& m) { m.k.x += 1e-9; }));
+    EXPECT_TRUE(parameter_changed([](Material& m) { m.specular_reflectance.y -= 1e-9; }));
+    EXPECT_TRUE(parameter_changed([](Material& m) { m.distribution = Microfacet::GGX; }));
+    EXPECT_TRUE(parameter_changed([](Material& m) { m.alpha_u += 1e-9; }));
+    EXPECT_TRUE(parameter_changed([](Material& m) { m.alpha_v += 1e-9; }));
     EXPECT_TRUE(scene_changed([](Scene& s) { s.quads.at(0).edge1.z += 1e-9; }));
     EXPECT_TRUE(scene_changed([](Scene& s) { s.background.y += 1e-9; }));
     // A mesh as loaded: one vertex, one normal, one triangle's corners, its material, and a mesh more.

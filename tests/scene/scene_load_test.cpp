@@ -9,6 +9,7 @@
 #include <sstream>
 #include <string>
 
+#include "scene/named_media.h"
 #include "scene/scene.h"
 
 namespace {
@@ -165,6 +166,43 @@ TEST(SceneLoad, MaterialsAreReadAndResolved) {
     EXPECT_EQ(scene.quads[0].material, material_named(scene, "lamp"));
     EXPECT_EQ(scene.quads[1].material, material_named(scene, "glow"));
     EXPECT_EQ(scene.lights.size(), 2u);  // the emitter and the glowing diffuse quad
+}
+
+TEST(SceneLoad, ConductorsAndNamedMediaAreRead) {
+    wp::Scene scene = wp::parse_scene(R"({
+        "camera": {"position": [0, 0, 0], "look_at": [0, 0, -1], "fov_y": 45, "width": 8, "height": 8},
+        "materials": {
+            "copper": {"type": "roughconductor", "material": "Cu", "distribution": "ggx", "alpha": 0.25},
+            "brushed": {"type": "roughconductor", "eta": 1.5, "k": [3, 2, 1], "alpha_u": 0.05, "alpha_v": 0.4,
+                        "specular_reflectance": [0.9, 0.8, 0.7]},
+            "mirror": {"type": "conductor"},
+            "crown": {"type": "glass", "ior": "bk7"}
+        },
+        "shapes": [{"type": "sphere", "center": [0, 0, -5], "radius": 1, "material": "copper"}]})",
+                                      "conductors.json");
+    const wp::Material& copper = scene.materials[material_named(scene, "copper")];
+    EXPECT_EQ(copper.type, wp::MaterialType::RoughConductor);
+    expect_vec3_eq(copper.eta, wp::named_conductor("Cu")->eta);
+    expect_vec3_eq(copper.k, wp::named_conductor("Cu")->k);
+    EXPECT_EQ(copper.distribution, wp::Microfacet::GGX);
+    EXPECT_EQ(copper.alpha_u, 0.25);
+    EXPECT_EQ(copper.alpha_v, 0.25);
+    expect_vec3_eq(copper.specular_reflectance, {1.0, 1.0, 1.0});
+    const wp::Material& brushed = scene.materials[material_named(scene, "brushed")];
+    expect_vec3_eq(brushed.eta, {1.5, 1.5, 1.5});
+    expect_vec3_eq(brushed.k, {3.0, 2.0, 1.0});
+    EXPECT_EQ(brushed.distribution, wp::Microfacet::Beckmann);  // Mitsuba's default
+    EXPECT_EQ(brushed.alpha_u, 0.05);
+    EXPECT_EQ(brushed.alpha_v, 0.4);
+    expect_vec3_eq(brushed.specular_reflectance, {0.9, 0.8, 0.7});
+    const wp::Material& mirror = scene.materials[material_named(scene, "mirror")];
+    EXPECT_EQ(mirror.type, wp::MaterialType::Conductor);
+    expect_vec3_eq(mirror.eta, {0.0, 0.0, 0.0});  // "none", the default: Fresnel reflectance 1
+    expect_vec3_eq(mirror.k, {1.0, 1.0, 1.0});
+    EXPECT_EQ(scene.materials[material_named(scene, "crown")].ior, *wp::named_ior("bk7"));
+    EXPECT_TRUE(scene.features().rough_conductor);
+    EXPECT_TRUE(scene.features().conductor);
+    EXPECT_TRUE(scene.features().non_specular());
 }
 
 TEST(SceneLoad, PositionsAreRebasedToTheCamera) {
