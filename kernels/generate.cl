@@ -31,7 +31,7 @@ __kernel __attribute__((reqd_work_group_size(WP_GROUP_SIZE, 1, 1))) void generat
 #ifdef WP_HAS_SPECULAR
     PATH_WRITE(specular, lanes, started, (lane_uint)1u);
 #endif
-#ifdef WP_HAS_GLASS
+#ifdef WP_HAS_REFRACTION
     PATH_WRITE(eta_scale, lanes, started, (real)REAL(1.0));
 #endif
     STAGE_PUSH(RAY, lanes, started);

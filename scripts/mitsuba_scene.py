@@ -17,7 +17,8 @@ wavepath code agreeing with itself. The mapping (docs/mitsuba.md):
 - diffuse: `twosided` `diffuse`; mirror: `twosided` `conductor` of material
   `none` (reflectance 1) scaled by `specular_reflectance`; conductor and
   roughconductor: `twosided` around Mitsuba's plugin of the same name and
-  parameters (wavepath's materials are two-sided); glass: `dielectric`
+  parameters (wavepath's materials are two-sided); dielectric, roughdielectric
+  and thindielectric: Mitsuba's plugin of the same name; glass: `dielectric`
   with `int_ior` = ior and `ext_ior` 1 (the outside is the normal's side in
   both); emitter: black `diffuse`; emission: a one-sided `area` emitter on the
   shape, a two-sided one as a second, flipped copy of the shape just behind it
@@ -78,6 +79,9 @@ MATERIAL_KEYS = {
     "conductor": {"type", "material", "eta", "k", "specular_reflectance"},
     "roughconductor": {"type", "material", "eta", "k", "specular_reflectance", "distribution", "alpha", "alpha_u",
                        "alpha_v"},
+    "dielectric": {"type", "int_ior", "ext_ior"},
+    "roughdielectric": {"type", "int_ior", "ext_ior", "distribution", "alpha", "alpha_u", "alpha_v"},
+    "thindielectric": {"type", "int_ior", "ext_ior"},
 }
 SHAPE_KEYS = {
     "sphere": {"type", "material", "center", "radius"},
@@ -351,6 +355,9 @@ def bsdf(material):
             elif key != "type":
                 plugin[key] = value
         return {"type": "twosided", "bsdf": plugin}
+    if kind in ("dielectric", "roughdielectric", "thindielectric"):
+        # The same names and parameters; a dielectric has two sides of its own (inside and outside).
+        return dict(material)
     return {"type": "diffuse", "reflectance": rgb([0, 0, 0])}  # an emitter reflects nothing
 
 

@@ -11,18 +11,32 @@
 #define WP_DEVICE_FEATURES_H
 
 /* A material with a delta lobe: paths carry whether their last bounce was one. */
-#if defined(WP_HAS_MIRROR) || defined(WP_HAS_GLASS) || defined(WP_HAS_CONDUCTOR)
+#if defined(WP_HAS_MIRROR) || defined(WP_HAS_GLASS) || defined(WP_HAS_CONDUCTOR) || defined(WP_HAS_THIN_DIELECTRIC)
 #define WP_HAS_SPECULAR
 #endif
 /* A material with a lobe of finite density: next-event estimation and
  * multiple importance sampling run at its vertices, and its BSDF sample
  * takes a pair of random numbers. */
-#if defined(WP_HAS_DIFFUSE) || defined(WP_HAS_ROUGH_CONDUCTOR)
+#if defined(WP_HAS_DIFFUSE) || defined(WP_HAS_ROUGH_CONDUCTOR) || defined(WP_HAS_ROUGH_DIELECTRIC)
 #define WP_HAS_NON_SPECULAR
 #endif
 /* The complex index and reflectance factor of conductor and roughconductor. */
 #if defined(WP_HAS_CONDUCTOR) || defined(WP_HAS_ROUGH_CONDUCTOR)
 #define WP_HAS_CONDUCTORS
+#endif
+/* A dielectric interface: an index of refraction, a random choice between
+ * reflection and transmission, and the dielectric Fresnel code. */
+#if defined(WP_HAS_GLASS) || defined(WP_HAS_ROUGH_DIELECTRIC) || defined(WP_HAS_THIN_DIELECTRIC)
+#define WP_HAS_DIELECTRICS
+#endif
+/* A refraction into another medium, which scales radiance by 1 / eta^2:
+ * paths carry the product of eta^2 for the roulette (eta_scale). */
+#if defined(WP_HAS_GLASS) || defined(WP_HAS_ROUGH_DIELECTRIC)
+#define WP_HAS_REFRACTION
+#endif
+/* A microfacet distribution's parameters. */
+#if defined(WP_HAS_ROUGH_CONDUCTOR) || defined(WP_HAS_ROUGH_DIELECTRIC)
+#define WP_HAS_MICROFACET
 #endif
 
 /* WP_IF_<feature>(...) keeps its arguments only when the path state
@@ -33,10 +47,10 @@
 #else
 #define WP_IF_SPECULAR(...)
 #endif
-#ifdef WP_HAS_GLASS
-#define WP_IF_GLASS(...) __VA_ARGS__
+#ifdef WP_HAS_REFRACTION
+#define WP_IF_REFRACTION(...) __VA_ARGS__
 #else
-#define WP_IF_GLASS(...)
+#define WP_IF_REFRACTION(...)
 #endif
 #ifdef WP_NEE
 #define WP_IF_NEE(...) __VA_ARGS__

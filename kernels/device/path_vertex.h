@@ -32,12 +32,18 @@
 #ifdef WP_HAS_ROUGH_CONDUCTOR
 #include "shared/materials/roughconductor.h"
 #endif
-#ifndef WP_HAS_GLASS
-/* Without glass the dielectric code must not be compiled in: any use is a build error. */
+#ifndef WP_HAS_DIELECTRICS
+/* Without a dielectric the dielectric code must not be compiled in: any use is a build error. */
 #pragma GCC poison fresnel_dielectric refract_direction
 #endif
 #ifdef WP_HAS_GLASS
 #include "shared/materials/glass.h"
+#endif
+#ifdef WP_HAS_ROUGH_DIELECTRIC
+#include "shared/materials/roughdielectric.h"
+#endif
+#ifdef WP_HAS_THIN_DIELECTRIC
+#include "shared/materials/thindielectric.h"
 #endif
 #include "device/camera.h"
 #include "device/guards.h"
@@ -310,7 +316,25 @@ WP_FN BsdfValue vertex_bsdf_value(Vertex v, vec3 wi, vec3 throughput) {
         b.pdf = is_rough ? roughconductor_pdf(m.microfacet, v.ns, v.wo, wi) : b.pdf;
     }
 #endif
+#ifdef WP_HAS_ROUGH_DIELECTRIC
+    {
+        lane_int is_rough = m.type == WP_MATERIAL_ROUGH_DIELECTRIC;
+        vec3 f = roughdielectric_eval(m.microfacet, m.ior, v.front, v.ns, v.wo, wi, WP_TRANSPORT_RADIANCE);
+        b.throughput_f = v3_select(is_rough, v3_mul(throughput, f), b.throughput_f);
+        b.pdf = is_rough ? roughdielectric_pdf(m.microfacet, m.ior, v.front, v.ns, v.wo, wi) : b.pdf;
+    }
+#endif
     return b;
+}
+
+/* Whether vertex v's material transmits light through a lobe of finite
+ * density: next-event estimation then samples lights on both sides. */
+WP_FN lane_int vertex_transmits(Vertex v) {
+#ifdef WP_HAS_ROUGH_DIELECTRIC
+    return v.material.type == WP_MATERIAL_ROUGH_DIELECTRIC;
+#else
+    return 0;
+#endif
 }
 
 /* Whether vertex v's material has a lobe of finite density (next-event
@@ -323,6 +347,7 @@ WP_FN lane_int vertex_is_non_specular(Vertex v) {
 #ifdef WP_HAS_ROUGH_CONDUCTOR
     non_specular = non_specular || v.material.type == WP_MATERIAL_ROUGH_CONDUCTOR;
 #endif
+    non_specular = non_specular || vertex_transmits(v);
     return non_specular;
 }
 
@@ -343,9 +368,9 @@ WP_FN lane_int sample_direct_light(WP_SCENE_PARAMS, lane_uint pixel, lane_uint s
     Material emitter = material_at(materials, p.material);
     vec3 wi = direct_light_direction(p.sample, v.surface.point);
     BsdfValue bsdf = vertex_bsdf_value(v, wi, throughput);
-    *direct = direct_light(v.surface.point, v.surface.error, v.nf, v.ns, wi, bsdf.throughput_f, bsdf.pdf, p.sample,
-                           p.magnitude, light_selection_pmf(light_cdf, light), emitter.emission, emitter.two_sided,
-                           WP_USES_MIS, WP_USES_SHADING_NORMALS);
+    *direct = direct_light(v.surface.point, v.surface.error, v.nf, v.ns, vertex_transmits(v), wi, bsdf.throughput_f,
+                           bsdf.pdf, p.sample, p.magnitude, light_selection_pmf(light_cdf, light), emitter.emission,
+                           emitter.two_sided, WP_USES_MIS, WP_USES_SHADING_NORMALS);
     return direct->carries;
 }
 
@@ -385,7 +410,7 @@ WP_FN vec3 add_light_sample(vec3 radiance, lane_int lit, vec3 contribution, lane
 WP_FN BsdfRandom camera_bsdf_random(uint seed, lane_uint px, lane_uint s, lane_uint bounce) {
     BsdfRandom random;
     random.lobe = random.u = random.v = REAL(0.0);
-#ifdef WP_HAS_GLASS
+#ifdef WP_HAS_DIELECTRICS
     random.lobe = camera_uniform(seed, px, s, bounce, DIM_BSDF_LOBE, WP_USES_SOBOL);
 #endif
 #ifdef WP_HAS_NON_SPECULAR
@@ -399,7 +424,7 @@ WP_FN BsdfRandom camera_bsdf_random(uint seed, lane_uint px, lane_uint s, lane_u
 WP_FN BsdfRandom photon_bsdf_random(uint seed, uint iteration, lane_uint photon, lane_uint bounce) {
     BsdfRandom random;
     random.lobe = random.u = random.v = REAL(0.0);
-#ifdef WP_HAS_GLASS
+#ifdef WP_HAS_DIELECTRICS
     random.lobe = photon_uniform(seed, iteration, photon, bounce, DIM_PHOTON_BSDF_LOBE);
 #endif
 #ifdef WP_HAS_NON_SPECULAR
@@ -435,6 +460,17 @@ WP_FN BsdfSample scatter_vertex(Vertex v, vec3 d, BsdfRandom random, uint transp
     scattered = select_bsdf_sample(
         m.type == WP_MATERIAL_CONDUCTOR,
         conductor_sample(m.eta, m.k, m.specular_reflectance, wo, v.nf, v.ns, WP_USES_SHADING_NORMALS), scattered);
+#endif
+#ifdef WP_HAS_ROUGH_DIELECTRIC
+    scattered = select_bsdf_sample(m.type == WP_MATERIAL_ROUGH_DIELECTRIC,
+                                   roughdielectric_sample(m.microfacet, m.ior, v.front, v.nf, v.ns, wo, random,
+                                                          transport, WP_USES_SHADING_NORMALS),
+                                   scattered);
+#endif
+#ifdef WP_HAS_THIN_DIELECTRIC
+    scattered = select_bsdf_sample(m.type == WP_MATERIAL_THIN_DIELECTRIC,
+                                   thindielectric_sample(m.ior, wo, v.nf, v.ns, random.lobe, WP_USES_SHADING_NORMALS),
+                                   scattered);
 #endif
 #ifdef WP_HAS_ROUGH_CONDUCTOR
     scattered = select_bsdf_sample(m.type == WP_MATERIAL_ROUGH_CONDUCTOR,

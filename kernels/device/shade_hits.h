@@ -64,7 +64,7 @@ WP_FN ShadedPaths shade_hits(WP_STAGE_PARAMS, Lanes lanes, Hit traced) {
 #else
     real bsdf_pdf = REAL(0.0);
 #endif
-#ifdef WP_HAS_GLASS
+#ifdef WP_HAS_REFRACTION
     real eta_scale = PATH_READ(eta_scale, lanes);
 #else
     real eta_scale = REAL(1.0);
@@ -127,7 +127,7 @@ WP_FN ShadedPaths shade_hits(WP_STAGE_PARAMS, Lanes lanes, Hit traced) {
 #ifdef WP_MIS
     PATH_WRITE(bsdf_pdf, lanes, continues, step.scattered.pdf);
 #endif
-#ifdef WP_HAS_GLASS
+#ifdef WP_HAS_REFRACTION
     PATH_WRITE(eta_scale, lanes, continues, step.eta_scale);
 #endif
 #if defined(WP_NEE) && defined(WP_SHADOW_STAGE)

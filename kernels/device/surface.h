@@ -8,7 +8,7 @@
 #include "device/parameters.h"
 #include "shared/hit_point.h"
 #include "shared/materials/bsdf.h"
-#ifdef WP_HAS_ROUGH_CONDUCTOR
+#ifdef WP_HAS_MICROFACET
 #include "shared/materials/microfacet.h"
 #endif
 #include "shared/prelude.h"
@@ -107,13 +107,13 @@ typedef struct {
 #ifdef WP_HAS_MIRROR
     vec3 reflectance;
 #endif
-#ifdef WP_HAS_GLASS
+#ifdef WP_HAS_DIELECTRICS
     real ior;
 #endif
 #ifdef WP_HAS_CONDUCTORS
     vec3 eta, k, specular_reflectance;
 #endif
-#ifdef WP_HAS_ROUGH_CONDUCTOR
+#ifdef WP_HAS_MICROFACET
     Microfacet microfacet;
 #endif
 } Material;
@@ -129,7 +129,7 @@ WP_FN Material material_at(__global const DeviceMaterial *materials, lane_uint i
 #ifdef WP_HAS_MIRROR
     m.reflectance = SCENE_FIELD(materials, index, reflectance);
 #endif
-#ifdef WP_HAS_GLASS
+#ifdef WP_HAS_DIELECTRICS
     m.ior = SCENE_FIELD(materials, index, ior);
 #endif
 #ifdef WP_HAS_CONDUCTORS
@@ -137,7 +137,7 @@ WP_FN Material material_at(__global const DeviceMaterial *materials, lane_uint i
     m.k = SCENE_FIELD(materials, index, k);
     m.specular_reflectance = SCENE_FIELD(materials, index, specular_reflectance);
 #endif
-#ifdef WP_HAS_ROUGH_CONDUCTOR
+#ifdef WP_HAS_MICROFACET
     m.microfacet.distribution = SCENE_FIELD(materials, index, distribution);
     m.microfacet.alpha_u = SCENE_FIELD(materials, index, alpha_u);
     m.microfacet.alpha_v = SCENE_FIELD(materials, index, alpha_v);

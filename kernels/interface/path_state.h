@@ -11,9 +11,9 @@
  * X(type, name, feature, written by, read by), type uint, float or vec3,
  * where feature says when the buffer exists:
  *   ALWAYS   every scene;
- *   SPECULAR the scene has a mirror or glass material (otherwise every
- *            bounce is diffuse and "previous vertex specular" is depth == 0);
- *   GLASS    the scene has a glass material (refractions scale radiance);
+ *   SPECULAR the scene has a material with a delta lobe (otherwise no
+ *            bounce is specular and "previous vertex specular" is depth == 0);
+ *   REFRACTION the scene has glass or a rough dielectric (refractions scale radiance);
  *   NEE      next-event estimation runs (render.nee on and a light in the scene);
  *   MIS      NEE runs at diffuse vertices with multiple importance sampling
  *            (render.mis on);
@@ -32,34 +32,34 @@
 #ifndef WP_INTERFACE_PATH_STATE_H
 #define WP_INTERFACE_PATH_STATE_H
 
-#define WP_PATH_STATE(X)                                                                           \
-    X(uint, pixel, ALWAYS, "generate", "shade intersect_and_shade")                                \
-    X(uint, sample, ALWAYS, "generate", "shade intersect_and_shade")                               \
-    X(uint, pass_item, ALWAYS, "generate", "shade intersect_and_shade intersect_shadow")           \
-    X(uint, depth, ALWAYS, "generate shade intersect_and_shade emit_photons shade_photons",        \
-      "shade intersect_and_shade shade_photons")                                                   \
-    X(vec3, origin, ALWAYS, "generate shade intersect_and_shade emit_photons shade_photons",       \
-      "intersect shade intersect_and_shade intersect_photons shade_photons")                       \
-    X(vec3, direction, ALWAYS, "generate shade intersect_and_shade emit_photons shade_photons",    \
-      "intersect shade intersect_and_shade intersect_photons shade_photons")                       \
-    X(vec3, throughput, ALWAYS, "generate shade intersect_and_shade emit_photons shade_photons",   \
-      "shade intersect_and_shade shade_photons")                                                   \
-    X(vec3, radiance, ALWAYS, "generate shade intersect_and_shade intersect_shadow",               \
-      "shade intersect_and_shade intersect_shadow")                                                \
-    X(float, hit_t, ALWAYS, "intersect intersect_and_shade intersect_photons",                     \
-      "shade intersect_and_shade shade_photons")                                                   \
-    X(uint, hit_shape, ALWAYS, "intersect intersect_and_shade intersect_photons",                  \
-      "shade intersect_and_shade shade_photons")                                                   \
-    X(uint, specular, SPECULAR, "generate shade intersect_and_shade", "shade intersect_and_shade") \
-    X(vec3, shadow_origin, SHADOW_STAGE, "shade intersect_and_shade", "intersect_shadow")          \
-    X(vec3, shadow_direction, SHADOW_STAGE, "shade intersect_and_shade", "intersect_shadow")       \
-    X(float, shadow_distance, SHADOW_STAGE, "shade intersect_and_shade", "intersect_shadow")       \
-    X(vec3, shadow_radiance, SHADOW_STAGE, "shade intersect_and_shade", "intersect_shadow")        \
-    X(uint, shadow_ends_path, SHADOW_STAGE, "shade intersect_and_shade", "intersect_shadow")       \
-    X(uint, shadow_occluded, HOST_SHADOWS, "intersect_shadow", "intersect_shadow")                 \
-    X(float, bsdf_pdf, MIS, "shade intersect_and_shade", "shade intersect_and_shade")              \
-    X(float, eta_scale, GLASS, "generate shade intersect_and_shade", "shade intersect_and_shade")  \
-    X(uint, photon, SPPM, "emit_photons", "shade_photons")                                         \
+#define WP_PATH_STATE(X)                                                                               \
+    X(uint, pixel, ALWAYS, "generate", "shade intersect_and_shade")                                    \
+    X(uint, sample, ALWAYS, "generate", "shade intersect_and_shade")                                   \
+    X(uint, pass_item, ALWAYS, "generate", "shade intersect_and_shade intersect_shadow")               \
+    X(uint, depth, ALWAYS, "generate shade intersect_and_shade emit_photons shade_photons",            \
+      "shade intersect_and_shade shade_photons")                                                       \
+    X(vec3, origin, ALWAYS, "generate shade intersect_and_shade emit_photons shade_photons",           \
+      "intersect shade intersect_and_shade intersect_photons shade_photons")                           \
+    X(vec3, direction, ALWAYS, "generate shade intersect_and_shade emit_photons shade_photons",        \
+      "intersect shade intersect_and_shade intersect_photons shade_photons")                           \
+    X(vec3, throughput, ALWAYS, "generate shade intersect_and_shade emit_photons shade_photons",       \
+      "shade intersect_and_shade shade_photons")                                                       \
+    X(vec3, radiance, ALWAYS, "generate shade intersect_and_shade intersect_shadow",                   \
+      "shade intersect_and_shade intersect_shadow")                                                    \
+    X(float, hit_t, ALWAYS, "intersect intersect_and_shade intersect_photons",                         \
+      "shade intersect_and_shade shade_photons")                                                       \
+    X(uint, hit_shape, ALWAYS, "intersect intersect_and_shade intersect_photons",                      \
+      "shade intersect_and_shade shade_photons")                                                       \
+    X(uint, specular, SPECULAR, "generate shade intersect_and_shade", "shade intersect_and_shade")     \
+    X(vec3, shadow_origin, SHADOW_STAGE, "shade intersect_and_shade", "intersect_shadow")              \
+    X(vec3, shadow_direction, SHADOW_STAGE, "shade intersect_and_shade", "intersect_shadow")           \
+    X(float, shadow_distance, SHADOW_STAGE, "shade intersect_and_shade", "intersect_shadow")           \
+    X(vec3, shadow_radiance, SHADOW_STAGE, "shade intersect_and_shade", "intersect_shadow")            \
+    X(uint, shadow_ends_path, SHADOW_STAGE, "shade intersect_and_shade", "intersect_shadow")           \
+    X(uint, shadow_occluded, HOST_SHADOWS, "intersect_shadow", "intersect_shadow")                     \
+    X(float, bsdf_pdf, MIS, "shade intersect_and_shade", "shade intersect_and_shade")                  \
+    X(float, eta_scale, REFRACTION, "generate shade intersect_and_shade", "shade intersect_and_shade") \
+    X(uint, photon, SPPM, "emit_photons", "shade_photons")                                             \
     X(vec3, photon_flux, SPPM, "emit_photons", "shade_photons")
 
 #endif

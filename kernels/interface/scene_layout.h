@@ -23,6 +23,8 @@
 #define WP_MATERIAL_EMITTER 3u
 #define WP_MATERIAL_CONDUCTOR 4u
 #define WP_MATERIAL_ROUGH_CONDUCTOR 5u
+#define WP_MATERIAL_ROUGH_DIELECTRIC 6u
+#define WP_MATERIAL_THIN_DIELECTRIC 7u
 
 typedef struct {
     float camera_right[3], camera_up[3], camera_forward[3];
@@ -57,13 +59,13 @@ typedef struct {
     float albedo[3];      /* diffuse */
     float reflectance[3]; /* mirror */
     float emission[3];    /* diffuse (optional) and emitter */
-    float ior;            /* glass */
+    float ior;            /* glass, roughdielectric, thindielectric: inside over outside */
     uint type;            /* WP_MATERIAL_* */
     uint two_sided;       /* emission on both sides */
     /* conductor and roughconductor: the complex index eta + i k, and the
      * reflection's factor */
     float eta[3], k[3], specular_reflectance[3];
-    /* roughconductor: WP_MICROFACET_* (shared/materials/microfacet.h) and
+    /* roughconductor, roughdielectric: WP_MICROFACET_* (shared/materials/microfacet.h) and
      * the roughness along the shading frame's tangents */
     uint distribution;
     float alpha_u, alpha_v;

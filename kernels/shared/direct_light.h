@@ -20,22 +20,27 @@ typedef struct {
 WP_FN vec3 direct_light_direction(LightSample ls, vec3 x) { return v3_normalize(v3_sub(ls.point, x)); }
 
 /* The light sample at the vertex x (error bound x_error, normals nf and ns
- * on the path's side): the point `ls` on a light of magnitude
+ * on the path's side) of a material that reflects only or, where
+ * `transmits`, also transmits (then a light behind the surface counts, seen
+ * and reached from the other side): the point `ls` on a light of magnitude
  * `light_magnitude` (offset.h), in direction wi (direct_light_direction),
  * chosen with probability `selection_pmf`, whose material has `emission` and
  * is `two_sided`. `throughput_f` is the path's throughput times the
  * material's f for wi, `bsdf_pdf` the density with which BSDF sampling
  * would have chosen wi (the other strategy of multiple importance sampling). */
-WP_FN DirectLight direct_light(vec3 x, real x_error, vec3 nf, vec3 ns, vec3 wi, vec3 throughput_f, real bsdf_pdf,
-                               LightSample ls, real light_magnitude, real selection_pmf, vec3 emission,
+WP_FN DirectLight direct_light(vec3 x, real x_error, vec3 nf, vec3 ns, lane_int transmits, vec3 wi, vec3 throughput_f,
+                               real bsdf_pdf, LightSample ls, real light_magnitude, real selection_pmf, vec3 emission,
                                lane_int two_sided, int mis, int shading_normals) {
+    lane_int behind = transmits && v3_dot(wi, nf) < REAL(0.0);
+    vec3 side_nf = v3_select(behind, v3_neg(nf), nf), side_ns = v3_select(behind, v3_neg(ns), ns);
     lane_int faces_vertex = light_faces(ls.normal, ls.point, x);
     real light_pdf = light_sample_pdf(selection_pmf, ls.pdf_solid_angle);
     real weight = light_sample_weight(light_pdf, bsdf_pdf, mis);
     DirectLight direct;
-    direct.shadow = shadow_ray(x, x_error, nf, ls.point, ls.normal, faces_vertex, light_magnitude);
-    direct.contribution = light_sample_contribution(throughput_f, emission, v3_dot(wi, ns), light_pdf, weight);
-    direct.carries = light_sample_carries(ls.pdf_solid_angle, wi, nf, ns, two_sided, faces_vertex, shading_normals);
+    direct.shadow = shadow_ray(x, x_error, side_nf, ls.point, ls.normal, faces_vertex, light_magnitude);
+    direct.contribution = light_sample_contribution(throughput_f, emission, v3_dot(wi, side_ns), light_pdf, weight);
+    direct.carries =
+        light_sample_carries(ls.pdf_solid_angle, wi, side_nf, side_ns, two_sided, faces_vertex, shading_normals);
     return direct;
 }
 

@@ -41,10 +41,13 @@ class Hasher {
 
 void add_material(Hasher& h, const Material& m) {
     h.add(m.type).add(m.albedo).add(m.reflectance).add(m.ior).add(m.emission).add(m.two_sided);
-    // The conductors' parameters, theirs alone: the other materials hash as
-    // they did before conductors, so their checkpoints stay valid.
+    // The newer materials' parameters, theirs alone: the older materials
+    // hash as they did before, so their checkpoints stay valid.
     if (m.type == MaterialType::Conductor || m.type == MaterialType::RoughConductor) {
-        h.add(m.eta).add(m.k).add(m.specular_reflectance).add(m.distribution).add(m.alpha_u).add(m.alpha_v);
+        h.add(m.eta).add(m.k).add(m.specular_reflectance);
+    }
+    if (m.type == MaterialType::RoughConductor || m.type == MaterialType::RoughDielectric) {
+        h.add(m.distribution).add(m.alpha_u).add(m.alpha_v);
     }
 }
 

@@ -71,6 +71,10 @@ std::uint32_t material_type(MaterialType type) {
             return WP_MATERIAL_CONDUCTOR;
         case MaterialType::RoughConductor:
             return WP_MATERIAL_ROUGH_CONDUCTOR;
+        case MaterialType::RoughDielectric:
+            return WP_MATERIAL_ROUGH_DIELECTRIC;
+        case MaterialType::ThinDielectric:
+            return WP_MATERIAL_THIN_DIELECTRIC;
     }
     return WP_MATERIAL_DIFFUSE;
 }

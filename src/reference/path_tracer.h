@@ -260,14 +260,24 @@ Real light_pdf_at_hit(const ReferenceScene<Real>& scene, const ShapeHit<Real>& h
     return Real(0);
 }
 
+// Whether `material` transmits through a lobe of finite density (next-event
+// estimation samples lights on both sides).
+inline bool transmits(MaterialType material) { return material == MaterialType::RoughDielectric; }
+
 // Whether `material` has a lobe of finite density, where next-event estimation samples a light.
 inline bool is_non_specular(MaterialType material) {
-    return material == MaterialType::Diffuse || material == MaterialType::RoughConductor;
+    return material == MaterialType::Diffuse || material == MaterialType::RoughConductor || transmits(material);
+}
+
+// Whether `material` chooses between reflection and transmission with a random number.
+inline bool is_dielectric(MaterialType material) {
+    return material == MaterialType::Glass || material == MaterialType::RoughDielectric ||
+           material == MaterialType::ThinDielectric;
 }
 
 // The path's throughput times f, and the density of BSDF sampling, for the
 // direction wi at a non-specular material (the kernels' vertex_bsdf_value),
-// seen from wo with shading normal ns.
+// seen from wo with shading normal ns, on the `front` of the surface or its back.
 template <class Real>
 struct BsdfValue {
     Vec3<Real> throughput_f;
@@ -276,9 +286,15 @@ struct BsdfValue {
 
 template <class Real>
 BsdfValue<Real> bsdf_value(const ReferenceScene<Real>& scene,
-                           const typename ReferenceScene<Real>::SurfaceMaterial& material, const Vec3<Real>& ns,
-                           const Vec3<Real>& wo, const Vec3<Real>& wi, const Vec3<Real>& throughput) {
+                           const typename ReferenceScene<Real>::SurfaceMaterial& material, bool front,
+                           const Vec3<Real>& ns, const Vec3<Real>& wo, const Vec3<Real>& wi,
+                           const Vec3<Real>& throughput) {
     using M = SharedMath<Real>;
+    if (material.type == MaterialType::RoughDielectric) {
+        return {throughput * M::roughdielectric_eval(material.microfacet, material.ior, front, ns, wo, wi,
+                                                     WP_TRANSPORT_RADIANCE),
+                M::roughdielectric_pdf(material.microfacet, material.ior, front, ns, wo, wi)};
+    }
     if (material.type == MaterialType::RoughConductor) {
         return {throughput * M::roughconductor_eval(material.microfacet, material.eta, material.k,
                                                     material.specular_reflectance, ns, wo, wi),
@@ -288,13 +304,14 @@ BsdfValue<Real> bsdf_value(const ReferenceScene<Real>& scene,
 }
 
 // Next-event estimation at a point x (with error bound x_error) of a
-// non-specular `material` with front-facing geometric and shading normals
-// nf and ns, reached from wo, on a path of throughput `throughput`: one
+// non-specular `material` with geometric and shading normals nf and ns
+// turned to wo, reached from wo on the `front` of the surface or its back,
+// on a path of throughput `throughput`: one
 // light chosen by the power CDF, one point on it, one shadow ray. Returns
 // the radiance the sample adds.
 template <class Real>
 Vec3<Real> sample_direct_light(const ReferenceScene<Real>& scene, const Vec3<Real>& x, Real x_error,
-                               const Vec3<Real>& nf, const Vec3<Real>& ns, const Vec3<Real>& wo,
+                               const Vec3<Real>& nf, const Vec3<Real>& ns, bool front, const Vec3<Real>& wo,
                                const Vec3<Real>& throughput,
                                const typename ReferenceScene<Real>::SurfaceMaterial& material,
                                const SampleRng<Real>& rng, std::uint32_t bounce, RayCounts& counts) {
@@ -305,11 +322,11 @@ Vec3<Real> sample_direct_light(const ReferenceScene<Real>& scene, const Vec3<Rea
     LightPoint<Real> p = sample_light(scene, scene.lights[index], x, point.u, point.v, rng(bounce, DIM_LIGHT_TRIANGLE));
     const auto& emitter = scene.materials[p.material];
     Vec3<Real> wi = M::direct_light_direction(p.sample, x);
-    BsdfValue<Real> bsdf = bsdf_value(scene, material, ns, wo, wi, throughput);
+    BsdfValue<Real> bsdf = bsdf_value(scene, material, front, ns, wo, wi, throughput);
     typename M::DirectLight direct =
-        M::direct_light(x, x_error, nf, ns, wi, bsdf.throughput_f, bsdf.pdf, p.sample, p.magnitude,
-                        M::light_selection_pmf(scene.light_cdf.data(), index), emitter.emission, emitter.two_sided,
-                        scene.mis, scene.shading_normals);
+        M::direct_light(x, x_error, nf, ns, transmits(material.type), wi, bsdf.throughput_f, bsdf.pdf, p.sample,
+                        p.magnitude, M::light_selection_pmf(scene.light_cdf.data(), index), emitter.emission,
+                        emitter.two_sided, scene.mis, scene.shading_normals);
     if (!direct.carries) return Vec3<Real>(Real(0));
     ++counts.shadow;
     const auto& shadow = direct.shadow;
@@ -323,7 +340,7 @@ template <class Real>
 typename SharedMath<Real>::BsdfRandom camera_bsdf_random(const SampleRng<Real>& rng, std::uint32_t bounce,
                                                          MaterialType material) {
     typename SharedMath<Real>::BsdfRandom random{Real(0), Real(0), Real(0)};
-    if (material == MaterialType::Glass) random.lobe = rng(bounce, DIM_BSDF_LOBE);
+    if (is_dielectric(material)) random.lobe = rng(bounce, DIM_BSDF_LOBE);
     if (is_non_specular(material)) {
         typename SharedMath<Real>::CameraPair direction = rng.pair(bounce, DIM_BSDF_U);
         random.u = direction.u;
@@ -351,6 +368,11 @@ typename SharedMath<Real>::BsdfSample scatter(const ReferenceScene<Real>& scene,
         case MaterialType::Conductor:
             return M::conductor_sample(material.eta, material.k, material.specular_reflectance, -d, nf, ns,
                                        scene.shading_normals);
+        case MaterialType::RoughDielectric:
+            return M::roughdielectric_sample(material.microfacet, material.ior, front, nf, ns, -d, random, transport,
+                                             scene.shading_normals);
+        case MaterialType::ThinDielectric:
+            return M::thindielectric_sample(material.ior, -d, nf, ns, random.lobe, scene.shading_normals);
         case MaterialType::RoughConductor:
             return M::roughconductor_sample(material.microfacet, material.eta, material.k,
                                             material.specular_reflectance, nf, ns, -d, random.u, random.v,
@@ -411,7 +433,7 @@ Vec3<Real> trace_path(const ReferenceScene<Real>& scene, Ray<Real> ray, const Sa
         auto bounce = static_cast<std::uint32_t>(depth);
         if (is_non_specular(material.type) && scene.nee) {
             add_finite<Real>(radiance,
-                             sample_direct_light(scene, surface.point, surface.error, nf, ns, -ray.direction,
+                             sample_direct_light(scene, surface.point, surface.error, nf, ns, front, -ray.direction,
                                                  throughput, material, rng, bounce, counts),
                              NonfiniteStage::direct, counts);
         }

@@ -52,6 +52,8 @@ FeatureSet Scene::features() const {
         f.emitter_material |= m.type == MaterialType::Emitter;
         f.conductor |= m.type == MaterialType::Conductor;
         f.rough_conductor |= m.type == MaterialType::RoughConductor;
+        f.rough_dielectric |= m.type == MaterialType::RoughDielectric;
+        f.thin_dielectric |= m.type == MaterialType::ThinDielectric;
     }
     for (const Light& light : lights) {
         f.sphere_lights |= light.shape == ShapeType::Sphere;
@@ -72,9 +74,9 @@ std::string sppm_problem(const Scene& scene) {
         return "sppm takes its light from emitting shapes, and the background is not black: it would light paths no "
                "photon takes (make the background black or render with the path integrator)";
     }
-    if (f.rough_conductor) {
-        return "sppm gathers photons on diffuse surfaces only, and its camera paths would end at a roughconductor "
-               "(render with the path integrator)";
+    if (f.rough_conductor || f.rough_dielectric) {
+        return std::string("sppm gathers photons on diffuse surfaces only, and its camera paths would end at a ") +
+               (f.rough_conductor ? "roughconductor" : "roughdielectric") + " (render with the path integrator)";
     }
     return "";
 }

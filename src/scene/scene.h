@@ -59,7 +59,7 @@ struct RenderSettings {
 // The material kinds (docs/scene-format.md, "materials"). Conductor and
 // RoughConductor are Mitsuba 3's `conductor` and `roughconductor`, with its
 // parameter names.
-enum class MaterialType { Diffuse, Mirror, Glass, Emitter, Conductor, RoughConductor };
+enum class MaterialType { Diffuse, Mirror, Glass, Emitter, Conductor, RoughConductor, RoughDielectric, ThinDielectric };
 
 // The microfacet distributions of the rough materials (kernels/shared/materials/microfacet.h).
 enum class Microfacet { Beckmann, GGX };
@@ -69,7 +69,7 @@ struct Material {
     MaterialType type = MaterialType::Diffuse;
     glm::dvec3 albedo{0.0};       // diffuse
     glm::dvec3 reflectance{0.0};  // mirror
-    double ior = 1.5;             // glass
+    double ior = 1.5;             // glass, roughdielectric and thindielectric: inside over outside
     glm::dvec3 emission{0.0};     // diffuse (optional) and emitter
     bool two_sided = false;       // emission on both sides
     // conductor and roughconductor: the complex index of refraction eta + i k
@@ -77,7 +77,7 @@ struct Material {
     // and a factor on the reflection
     glm::dvec3 eta{0.0}, k{1.0};
     glm::dvec3 specular_reflectance{1.0};
-    // roughconductor: the microfacet distribution and its roughness along
+    // roughconductor and roughdielectric: the microfacet distribution and its roughness along
     // the shading frame's two tangents (equal where isotropic)
     Microfacet distribution = Microfacet::Beckmann;
     double alpha_u = 0.1, alpha_v = 0.1;
@@ -128,7 +128,7 @@ struct Light {
 struct FeatureSet {
     bool spheres = false, planes = false, quads = false, meshes = false;
     bool diffuse = false, mirror = false, glass = false, emitter_material = false;
-    bool conductor = false, rough_conductor = false;
+    bool conductor = false, rough_conductor = false, rough_dielectric = false, thin_dielectric = false;
     bool shading_normals = false;  // a mesh shades with its vertex normals
     bool sphere_lights = false, quad_lights = false, mesh_lights = false;
     bool background = false;  // a non-black background
@@ -150,9 +150,11 @@ struct FeatureSet {
     bool intersect_and_shade = false;
 
     // A material with a delta lobe: paths carry whether their last bounce was one.
-    bool specular() const { return mirror || glass || conductor; }
+    bool specular() const { return mirror || glass || conductor || thin_dielectric; }
     // A material with a lobe of finite density: next-event estimation runs at its vertices.
-    bool non_specular() const { return diffuse || rough_conductor; }
+    bool non_specular() const { return diffuse || rough_conductor || rough_dielectric; }
+    // A refraction into another medium: paths carry eta^2 for the roulette.
+    bool refraction() const { return glass || rough_dielectric; }
 };
 
 struct Scene {

@@ -140,12 +140,17 @@ void read_conductor_index(const JsonField& field, Material& material) {
     material.k = index->k;
 }
 
+// A conductor's index and `specular_reflectance` (the caller checks the keys).
 void read_conductor(const JsonField& field, Material& material) {
-    field.allow_only_keys({"type", "material", "eta", "k", "specular_reflectance"});
     read_conductor_index(field, material);
     if (auto specular = field.optional_member("specular_reflectance")) {
         material.specular_reflectance = read_rgb(*specular, 0.0, 1.0);
     }
+}
+
+void read_smooth_conductor(const JsonField& field, Material& material) {
+    field.allow_only_keys({"type", "material", "eta", "k", "specular_reflectance"});
+    read_conductor(field, material);
 }
 
 // A microfacet roughness: finite and at least kMinRoughness, below which
@@ -159,13 +164,9 @@ double read_roughness(const JsonField& field) {
     return alpha;
 }
 
-void read_rough_conductor(const JsonField& field, Material& material) {
-    field.allow_only_keys(
-        {"type", "material", "eta", "k", "specular_reflectance", "distribution", "alpha", "alpha_u", "alpha_v"});
-    read_conductor_index(field, material);
-    if (auto specular = field.optional_member("specular_reflectance")) {
-        material.specular_reflectance = read_rgb(*specular, 0.0, 1.0);
-    }
+// A microfacet distribution: `distribution` (Mitsuba's default Beckmann)
+// and `alpha` or `alpha_u` and `alpha_v` (default 0.1).
+void read_microfacet(const JsonField& field, Material& material) {
     if (auto distribution = field.optional_member("distribution")) {
         std::string name = distribution->string();
         if (name == "beckmann") {
@@ -187,6 +188,33 @@ void read_rough_conductor(const JsonField& field, Material& material) {
     } else if (alpha) {
         material.alpha_u = material.alpha_v = read_roughness(*alpha);
     }
+}
+
+void read_rough_conductor(const JsonField& field, Material& material) {
+    field.allow_only_keys(
+        {"type", "material", "eta", "k", "specular_reflectance", "distribution", "alpha", "alpha_u", "alpha_v"});
+    read_conductor(field, material);
+    read_microfacet(field, material);
+}
+
+// A dielectric interface's `int_ior` over `ext_ior`, each a number or a name
+// of Mitsuba's, with Mitsuba's defaults: bk7 inside, air outside.
+double read_relative_ior(const JsonField& field) {
+    std::optional<JsonField> inside = field.optional_member("int_ior"), outside = field.optional_member("ext_ior");
+    double int_ior = inside ? read_ior(*inside) : *named_ior("bk7");
+    double ext_ior = outside ? read_ior(*outside) : *named_ior("air");
+    return int_ior / ext_ior;
+}
+
+void read_dielectric(const JsonField& field, Material& material) {
+    field.allow_only_keys({"type", "int_ior", "ext_ior"});
+    material.ior = read_relative_ior(field);
+}
+
+void read_rough_dielectric(const JsonField& field, Material& material) {
+    field.allow_only_keys({"type", "int_ior", "ext_ior", "distribution", "alpha", "alpha_u", "alpha_v"});
+    material.ior = read_relative_ior(field);
+    read_microfacet(field, material);
 }
 
 void read_emitter(const JsonField& field, Material& material) {
@@ -214,13 +242,23 @@ Material read_material(const std::string& name, const JsonField& field) {
         read_emitter(field, material);
     } else if (type == "conductor") {
         material.type = MaterialType::Conductor;
-        read_conductor(field, material);
+        read_smooth_conductor(field, material);
     } else if (type == "roughconductor") {
         material.type = MaterialType::RoughConductor;
         read_rough_conductor(field, material);
+    } else if (type == "dielectric") {
+        material.type = MaterialType::Glass;
+        read_dielectric(field, material);
+    } else if (type == "roughdielectric") {
+        material.type = MaterialType::RoughDielectric;
+        read_rough_dielectric(field, material);
+    } else if (type == "thindielectric") {
+        material.type = MaterialType::ThinDielectric;
+        read_dielectric(field, material);
     } else {
         type_field.fail("unknown material type " + nlohmann::json(type).dump() +
-                        " (expected one of: diffuse, mirror, glass, emitter, conductor, roughconductor)");
+                        " (expected one of: diffuse, mirror, glass, emitter, conductor, roughconductor, dielectric, "
+                        "roughdielectric, thindielectric)");
     }
     return material;
 }

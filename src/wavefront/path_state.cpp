@@ -32,8 +32,8 @@ bool path_feature_compiled(PathFeature feature, const FeatureSet& features) {
             return true;
         case PathFeature::SPECULAR:
             return features.specular();
-        case PathFeature::GLASS:
-            return features.glass;
+        case PathFeature::REFRACTION:
+            return features.refraction();
         case PathFeature::NEE:
             return features.nee;
         case PathFeature::MIS:
@@ -54,8 +54,8 @@ bool path_feature_compiled(PathFeature feature, const FeatureSet& features) {
 
 std::string path_state_table_markdown() {
     static const char* feature_names[] = {"always",
-                                          "specular (mirror, glass or conductor)",
-                                          "glass",
+                                          "specular (a material with a delta lobe)",
+                                          "refraction (glass or roughdielectric)",
                                           "nee (next-event estimation runs)",
                                           "mis (next-event estimation with multiple importance sampling)",
                                           "nee with the shadow rays traced in their own stage (intersect_shadow)",

@@ -16,7 +16,7 @@ namespace wp {
 enum class PathFeature {
     ALWAYS,
     SPECULAR,
-    GLASS,
+    REFRACTION,
     NEE,
     MIS,
     SHADOW_STAGE,

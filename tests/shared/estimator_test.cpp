@@ -199,7 +199,7 @@ struct DiffusePointUnderALight {
         auto u = [&](std::uint32_t dimension) { return M::rng_uniform(9u, i, 0u, 0u, dimension); };
         typename M::LightSample ls = sample(u(0), u(1));
         Vec3<Real> wi = M::direct_light_direction(ls, x);
-        auto direct = M::direct_light(x, Real(0), n, n, wi, M::diffuse_eval(albedo, n, wi), M::diffuse_pdf(n, wi, 0),
+        auto direct = M::direct_light(x, Real(0), n, n, 0, wi, M::diffuse_eval(albedo, n, wi), M::diffuse_pdf(n, wi, 0),
                                       ls, magnitude, Real(1), emission, 0, mis, 0);
         double total = direct.carries ? double(direct.contribution.x) : 0.0;
         if (mis) {

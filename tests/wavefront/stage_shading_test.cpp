@@ -63,7 +63,8 @@ void expect_light_sample_matches_reference(bool shadow_stage) {
         vec3 nf = glm::dot(ray.direction, surface.normal) < 0 ? surface.normal : -surface.normal;
         reference::SampleRng<float> rng = reference::sample_rng(ref, 0u, std::uint32_t(100 + i));
         reference::RayCounts counts;
-        vec3 expected = reference::sample_direct_light(ref, surface.point, surface.error, nf, nf, -ray.direction,
+        bool front = glm::dot(ray.direction, surface.normal) < 0;
+        vec3 expected = reference::sample_direct_light(ref, surface.point, surface.error, nf, nf, front, -ray.direction,
                                                        vec3(1), ref.materials[surface.material], rng, 0u, counts);
         for (int c = 0; c < 3; ++c)
             ASSERT_NEAR(radiance[c][i], expected[c], 1e-6f * expected[c]) << "path " << i << " channel " << c;
