@@ -34,5 +34,8 @@ __kernel __attribute__((reqd_work_group_size(WP_GROUP_SIZE, 1, 1))) void generat
 #ifdef WP_HAS_REFRACTION
     PATH_WRITE(eta_scale, lanes, started, (real)REAL(1.0));
 #endif
+#ifdef WP_SPPM
+    PATH_WRITE(travelled, lanes, started, (real)REAL(0.0));
+#endif
     STAGE_PUSH(RAY, lanes, started);
 }

@@ -14,7 +14,9 @@
  * (WP_SHADOW_STAGE, interface/stages.h), which then adds it after the
  * emission, as the megakernel does, and finishes a path that ends here.
  * SPPM's camera pass (-DWP_SPPM): the first diffuse vertex is the pixel's
- * visible point, stored for the photon pass; the path bounces on from it
+ * visible point, stored for the photon pass (the pixel's first one also
+ * sets its radius from the distance the path travelled to it,
+ * sppm_first_radius); the path bounces on from it
  * only where an emission it may see there still counts
  * (camera_pass_bounces_from_visible_point), and the hit after it ends the
  * path once its emission counted. */
@@ -78,7 +80,8 @@ WP_FN ShadedPaths shade_hits(WP_STAGE_PARAMS, Lanes lanes, Hit traced) {
     count_nonfinite(slot_nonfinite, WP_COUNTER_NONFINITE_EMISSION, lanes, dropped);
     lane_int scatters = hit && !vertex_ends_path(v, bounce, scene->max_depth);
 #ifdef WP_SPPM
-    scatters = scatters && after_specular; /* the hit after the visible point ends the path */
+    scatters = scatters && after_specular;                   /* the hit after the visible point ends the path */
+    real travelled = PATH_READ(travelled, lanes) + traced.t; /* from the camera, through mirrors and glass */
 #endif
 
     lane_int casts_shadow = 0;
@@ -110,6 +113,11 @@ WP_FN ShadedPaths shade_hits(WP_STAGE_PARAMS, Lanes lanes, Hit traced) {
     SPPM_WRITE(visible_geometric_normal, pixels, visible, v.nf);
     SPPM_WRITE(visible_weight, pixels, visible, v3_mul(throughput, v.material.albedo));
     SPPM_WRITE(visible_depth, pixels, visible, bounce);
+    /* the pixel's first visible point sets its radius (0 until then) */
+    lane_int first = visible && SPPM_READ(sppm_radius, pixels) == REAL(0.0);
+    real footprint = sppm_footprint(scene->sppm_pixel_spread, travelled);
+    SPPM_WRITE(sppm_footprint, pixels, first, footprint);
+    SPPM_WRITE(sppm_radius, pixels, first, sppm_first_radius(scene->sppm_radius, footprint));
     bounces = scatters && (!visible || camera_pass_bounces_from_visible_point(WP_USES_NEE, WP_USES_MIS));
 #endif
 
@@ -129,6 +137,9 @@ WP_FN ShadedPaths shade_hits(WP_STAGE_PARAMS, Lanes lanes, Hit traced) {
 #endif
 #ifdef WP_HAS_REFRACTION
     PATH_WRITE(eta_scale, lanes, continues, step.eta_scale);
+#endif
+#ifdef WP_SPPM
+    PATH_WRITE(travelled, lanes, continues, travelled);
 #endif
 #if defined(WP_NEE) && defined(WP_SHADOW_STAGE)
     PATH_WRITE(shadow_ends_path, lanes, shadow_pending, ends ? (lane_uint)1u : (lane_uint)0u);

@@ -28,7 +28,8 @@
  *   SPPM     the integrator is sppm: a slot holds a camera path, or in the
  *            photon pass a photon (interface/stages.h), whose ray and hit
  *            take the same fields (origin, direction, throughput, depth,
- *            hit_t, hit_shape). */
+ *            hit_t, hit_shape); a camera path keeps the distance it has
+ *            travelled, for its pixel's footprint (sppm_footprint). */
 #ifndef WP_INTERFACE_PATH_STATE_H
 #define WP_INTERFACE_PATH_STATE_H
 
@@ -59,6 +60,7 @@
     X(uint, shadow_occluded, HOST_SHADOWS, "intersect_shadow", "intersect_shadow")                     \
     X(float, bsdf_pdf, MIS, "shade intersect_and_shade", "shade intersect_and_shade")                  \
     X(float, eta_scale, REFRACTION, "generate shade intersect_and_shade", "shade intersect_and_shade") \
+    X(float, travelled, SPPM, "generate shade intersect_and_shade", "shade intersect_and_shade")       \
     X(uint, photon, SPPM, "emit_photons", "shade_photons")                                             \
     X(vec3, photon_flux, SPPM, "emit_photons", "shade_photons")
 

@@ -32,9 +32,10 @@ typedef struct {
     float background[3];
     uint width, height, spp, max_depth, rr_depth, seed;
     uint sphere_count, plane_count, quad_count, light_count;
-    uint photons;      /* sppm: photons per iteration */
-    float sppm_alpha;  /* sppm: the fraction of new photons a pixel keeps (shared/sppm.h) */
-    float sppm_radius; /* sppm: every pixel's initial radius */
+    uint photons;            /* sppm: photons per iteration */
+    float sppm_alpha;        /* sppm: the fraction of new photons a pixel keeps (shared/sppm.h) */
+    float sppm_radius;       /* sppm: every pixel's first radius; 0: from its footprint (sppm_first_radius) */
+    float sppm_pixel_spread; /* sppm: the pixel's angle, the camera ray cone's spread (sppm_footprint) */
 } SceneHeader;
 
 typedef struct {

@@ -1,7 +1,9 @@
 /* SPPM's state beside the path state (docs/architecture.md, "Photon
  * mapping"), declared once: per pixel its visible point of the iteration,
- * its progressive estimate and what the iteration's photons brought it, and
- * the grid over the visible points. Every entry is one device buffer
+ * its progressive estimate (its radius is 0 until its first visible point
+ * sets it and its footprint there: sppm_first_radius, shared/sppm.h) and
+ * what the iteration's photons brought it, and the grid over the visible
+ * points. Every entry is one device buffer
  * (structure of arrays; a vec3 entry holds three planes of `size` floats),
  * which exists only with the sppm integrator. The list expands into the
  * host's buffers (src/wavefront/sppm_state.cpp), the parameters of the
@@ -11,7 +13,8 @@
  *
  * X(type, name, size, written by, read by): type uint, float or vec3; the
  * kernel files (kernels/<file>.cl) that write and read it, through
- * SPPM_WRITE and SPPM_READ (device/sppm_pixels.h) or SPPM_ARRAY; size:
+ * SPPM_WRITE and SPPM_READ (device/sppm_pixels.h) or SPPM_ARRAY ("host":
+ * read by the host only, for the summary); size:
  *   PIXELS    one per pixel;
  *   DEPOSITS  WP_FILM_WORDS per pixel and channel: the photon flux of the
  *             iteration, summed exactly by film_words_add (shared/film_sum.h);
@@ -31,7 +34,9 @@
     X(vec3, visible_weight, PIXELS, "shade intersect_and_shade", "shade_photons")            \
     X(uint, visible_depth, PIXELS, "shade intersect_and_shade", "shade_photons photon_grid") \
     X(float, sppm_count, PIXELS, "sppm_update", "sppm_update")                               \
-    X(float, sppm_radius, PIXELS, "sppm_update", "shade_photons photon_grid sppm_update")    \
+    X(float, sppm_radius, PIXELS, "shade intersect_and_shade sppm_update",                   \
+      "shade intersect_and_shade shade_photons photon_grid sppm_update")                     \
+    X(float, sppm_footprint, PIXELS, "shade intersect_and_shade", "host")                    \
     X(vec3, sppm_flux, PIXELS, "sppm_update", "sppm_update")                                 \
     X(uint, iteration_photons, PIXELS, "shade_photons", "sppm_update")                       \
     X(uint, iteration_flux, DEPOSITS, "shade_photons", "sppm_update")                        \

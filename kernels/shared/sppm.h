@@ -54,6 +54,38 @@ WP_FN vec3 photon_deposit(vec3 weight, vec3 nf, vec3 ns, vec3 direction, vec3 po
     return v3_select(arrives, deposit, make_vec3(REAL(0.0), REAL(0.0), REAL(0.0)));
 }
 
+/* Each pixel's first gathering radius, from its footprint: the width of
+ * the camera ray's cone where it meets the pixel's visible point (a ray
+ * cone, as in Amanatides 1984 and Akenine-Moller et al. 2019). The cone
+ * spreads by `pixel_spread` (the pixel's angle at the image's centre,
+ * 2 tan(fov_y / 2) / height: sppm_pixel_spread, src/scene/scene.cpp) per
+ * unit of the `distance` the camera path travelled to the point, summed over
+ * every mirror and glass bounce before it. The bound through specular
+ * bounces: exact through flat mirrors; through flat glass with parallel
+ * faces (a window, a slab) at most the path length, since inside the glass
+ * the cone spreads at most 1/eta as fast and leaves it as it came; a curved
+ * mirror or lens changes the spread by its curvature, which the path length
+ * does not follow (behind a convex mirror or a diverging lens the footprint
+ * is wider, behind a focusing one narrower, down to the focus). The width is
+ * taken across the ray: off the image's centre a pixel's angle is a little
+ * smaller (cos^2 of the angle off the axis), and on a surface seen at a
+ * grazing angle the footprint is longer along the view (1 / cos). So the
+ * radius follows the pixel's size and the distance, and depends on neither
+ * the scene's extent nor its units. */
+#define WP_SPPM_FOOTPRINTS REAL(2.0) /* the first radius, in footprints */
+
+/* The footprint of a pixel whose cone spreads by `pixel_spread` per unit of
+ * distance at the visible point `distance` away along the camera path. */
+WP_FN real sppm_footprint(real pixel_spread, real distance) { return pixel_spread * distance; }
+
+/* The radius a pixel takes at its first visible point: `override_radius`
+ * where set (> 0: render.sppm.radius, --initial-radius), otherwise
+ * WP_SPPM_FOOTPRINTS footprints. Until a pixel has had a visible point its
+ * radius is 0 (unset): it gathers nothing. */
+WP_FN real sppm_first_radius(real override_radius, real footprint) {
+    return override_radius > REAL(0.0) ? override_radius : WP_SPPM_FOOTPRINTS * footprint;
+}
+
 /* A pixel's progressive estimate: N (`count`, the photons it has kept),
  * the radius r and tau (`flux`, the flux gathered within it). */
 typedef struct {

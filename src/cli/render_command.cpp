@@ -89,13 +89,6 @@ AdaptiveSampling adaptive_sampling(const LongRunFlags& flags, const Scene& scene
     return {*flags.adaptive, adaptive_min_spp(std::uint64_t(scene.render.spp))};
 }
 
-// SPPM: the pixels' gathering radius, mean over the pixels.
-double mean_radius(const PhotonEstimate& photons) {
-    double sum = 0.0;
-    for (double r : photons.radius) sum += r;
-    return photons.radius.empty() ? 0.0 : sum / double(photons.radius.size());
-}
-
 // The mean samples per pixel and the fraction of pixels with fewer than `spp`.
 void summarise_samples(const Film& film, int spp, RunSummary& summary) {
     const std::vector<std::uint64_t> counts = film.sample_counts();
@@ -230,11 +223,13 @@ void report_run(const RenderCommand& command, const PreparedRender& prepared, co
     summary.adaptive = plan.adaptive.on();
     if (summary.adaptive) summarise_samples(result.film, scene.render.spp, summary);
     summary.sppm = !result.film.photons.empty();
-    if (summary.sppm) summary.mean_radius = mean_radius(result.film.photons);
+    if (summary.sppm) summary.radii = sppm_radii(result.film.photons);
     summary.samples_per_rank = result.samples_per_rank;
     summary.busy_s_per_rank = result.busy_s_per_rank;
     if (!command.stats_json_path.empty()) write_stats_json(summary, command.stats_json_path);
     if (!command.quiet) std::cerr << format_summary_line(summary) << std::endl;
+    // Even with --quiet, as errors: the image is not what the defaults promise.
+    if (const std::string warning = sppm_warning(summary); !warning.empty()) std::cerr << warning << std::endl;
 }
 
 }  // namespace

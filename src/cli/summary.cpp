@@ -62,10 +62,12 @@ std::string adaptive_text(const RunSummary& summary) {
 
 std::string sppm_text(const RunSummary& summary) {
     if (!summary.sppm) return "";
-    char text[128];
-    std::snprintf(text, sizeof text, ", sppm: %llu photons, %llu stored, mean radius %.4g",
+    char text[192];
+    std::snprintf(text, sizeof text,
+                  ", sppm: %llu photons, %llu stored, mean radius %.4g, %.3g footprints (mean footprint %.4g)",
                   static_cast<unsigned long long>(summary.stats.photons),
-                  static_cast<unsigned long long>(summary.stats.photon_deposits), summary.mean_radius);
+                  static_cast<unsigned long long>(summary.stats.photon_deposits), summary.radii.mean_radius,
+                  summary.radii.radius_in_footprints, summary.radii.mean_footprint);
     return text;
 }
 
@@ -94,6 +96,18 @@ std::string format_summary_line(const RunSummary& summary) {
            adaptive_text(summary) + sppm_text(summary);
 }
 
+std::string sppm_warning(const RunSummary& summary) {
+    const SppmRadii& r = summary.radii;
+    if (!summary.sppm || r.pixels == 0 || !(r.radius_in_footprints > kSppmBlurredFootprints)) return "";
+    char text[320];
+    std::snprintf(text, sizeof text,
+                  "wavepath: warning: sppm: the gathering radii are still %.3g pixel footprints (mean radius %.4g, "
+                  "footprint %.4g): photon light is blurred over about %.0f pixels; render more iterations or give a "
+                  "smaller --initial-radius",
+                  r.radius_in_footprints, r.mean_radius, r.mean_footprint, 2.0 * r.radius_in_footprints);
+    return text;
+}
+
 nlohmann::json stats_json(const RunSummary& summary) {
     const RenderStats& s = summary.stats;
     return {
@@ -114,7 +128,9 @@ nlohmann::json stats_json(const RunSummary& summary) {
         {"sppm", summary.sppm ? nlohmann::json{{"photons", s.photons},
                                                {"photon_rays", s.photon_rays},
                                                {"photon_deposits", s.photon_deposits},
-                                               {"mean_radius", summary.mean_radius}}
+                                               {"mean_radius", summary.radii.mean_radius},
+                                               {"mean_footprint", summary.radii.mean_footprint},
+                                               {"radius_in_footprints", summary.radii.radius_in_footprints}}
                               : nlohmann::json(nullptr)},
         {"ranks", std::max<std::size_t>(summary.samples_per_rank.size(), 1)},
         {"samples_per_rank",

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "cli/backend_choice.h"
+#include "core/film.h"
 #include "core/render.h"
 
 namespace wp::cli {
@@ -24,7 +25,7 @@ struct RunSummary {
     double spp_mean = 0.0;       // samples per pixel, mean over the pixels
     double stopped_early = 0.0;  // fraction of pixels with fewer samples than asked for
     bool sppm = false;           // the sppm integrator: the photons' figures are reported
-    double mean_radius = 0.0;    // sppm: the pixels' gathering radius, mean over the pixels
+    SppmRadii radii;             // sppm: the pixels' gathering radii against their footprints
     // Work items each rank rendered, in rank order (one entry in one process).
     std::vector<std::uint64_t> samples_per_rank;
     std::vector<double> busy_s_per_rank;          // seconds each rank spent rendering (not waiting)
@@ -39,7 +40,9 @@ struct RunSummary {
 // have: "(512x512, 12-13 of 64 spp, stopped: time budget, wavefront)"; with
 // --target-error the last estimate follows: ", estimated relative error 0.0098";
 // with --adaptive: ", adaptive: mean 23.4 spp, 71.2% of pixels stopped early"; with
-// the sppm integrator: ", sppm: 65536 photons, 20417 stored, mean radius 0.0123".
+// the sppm integrator: ", sppm: 65536 photons, 20417 stored, mean radius 0.0123,
+// 1.62 footprints (mean footprint 0.00761)": the mean of each pixel's radius
+// over its footprint (sppm_radii, core/film.h).
 // A backend --backend auto chose reads "megakernel (auto: CPU device, no
 // meshes)"; on several MPI ranks "wavefront, 3 ranks".
 std::string format_summary_line(const RunSummary& summary);
@@ -47,11 +50,24 @@ std::string format_summary_line(const RunSummary& summary);
 // {"backend","backend_choice" (explain_choice's words, or
 // null),"estimator","width","height","spp","spp_done_min","spp_done_max","stopped","error_estimate" (or null),
 //  "adaptive" (null, or {"spp_mean","stopped_early"}),
-//  "sppm" (null, or {"photons","photon_rays","photon_deposits","mean_radius"}),
+//  "sppm" (null, or {"photons","photon_rays","photon_deposits","mean_radius","mean_footprint",
+//  "radius_in_footprints"}),
 //  "ranks","samples_per_rank","render_s_per_rank","time_s", "samples","samples_per_s",
 //  "extension_rays","extension_rays_per_s","shadow_rays","shadow_rays_per_s","nonfinite",
 //  "nonfinite_by_stage": {"emission","direct","scatter"}}
 nlohmann::json stats_json(const RunSummary& summary);
+
+// SPPM's radii are still blurring the image when each pixel's radius is, in
+// the mean, more than this many footprints (its first radius by default is
+// 2, WP_SPPM_FOOTPRINTS; only a larger --initial-radius starts above this).
+inline constexpr double kSppmBlurredFootprints = 4.0;
+
+// One warning line where a render with the sppm integrator stopped with its
+// radii above kSppmBlurredFootprints footprints: "wavepath: warning: sppm:
+// the gathering radii are still 9.8 pixel footprints (mean radius 0.0745,
+// footprint 0.0076): photon light is blurred over about 20 pixels; render more
+// iterations or give a smaller --initial-radius". "" otherwise.
+std::string sppm_warning(const RunSummary& summary);
 
 // Writes stats_json atomically; throws OutputError.
 void write_stats_json(const RunSummary& summary, const std::string& path);

@@ -25,13 +25,31 @@ std::uint64_t samples_of_pixel(const ItemRange& items, std::uint64_t pixels, std
     return items_below(items.end, pixels, pixel) - items_below(items.begin, pixels, pixel);
 }
 
-PhotonEstimate PhotonEstimate::start(std::uint64_t pixels, std::uint64_t photons_per_iteration, double radius) {
+PhotonEstimate PhotonEstimate::start(std::uint64_t pixels, std::uint64_t photons_per_iteration) {
     PhotonEstimate estimate;
     estimate.photons_per_iteration = photons_per_iteration;
     estimate.count.assign(pixels, 0.0);
-    estimate.radius.assign(pixels, radius);
+    estimate.radius.assign(pixels, 0.0);
+    estimate.footprint.assign(pixels, 0.0);
     estimate.flux.assign(kFilmChannels * pixels, 0.0);
     return estimate;
+}
+
+SppmRadii sppm_radii(const PhotonEstimate& photons) {
+    SppmRadii radii;
+    for (std::size_t p = 0; p < photons.footprint.size(); ++p) {
+        if (!(photons.footprint[p] > 0.0)) continue;
+        ++radii.pixels;
+        radii.mean_radius += photons.radius[p];
+        radii.mean_footprint += photons.footprint[p];
+        radii.radius_in_footprints += photons.radius[p] / photons.footprint[p];
+    }
+    if (radii.pixels > 0) {
+        radii.mean_radius /= double(radii.pixels);
+        radii.mean_footprint /= double(radii.pixels);
+        radii.radius_in_footprints /= double(radii.pixels);
+    }
+    return radii;
 }
 
 Film Film::empty(int width, int height, std::uint64_t at, bool with_squares) {

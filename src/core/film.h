@@ -32,17 +32,30 @@ inline constexpr int kFilmChannels = 3;
 // (docs/architecture.md, "Photon mapping"), beside the film's sums of the
 // camera passes' emission and direct light: per pixel the photon count N,
 // the radius r and the flux tau (kFilmChannels), as the float backends keep
-// them (doubles hold their floats exactly). Empty for path tracing.
+// them (doubles hold their floats exactly), and the pixel's footprint at its
+// first visible point, which set its radius (sppm_first_radius,
+// kernels/shared/sppm.h). A pixel that has had no visible point yet has
+// radius and footprint 0 (and no photon). Empty for path tracing.
 struct PhotonEstimate {
-    std::uint64_t photons_per_iteration = 0;  // 0: none (path tracing)
-    std::vector<double> count, radius;        // per pixel
-    std::vector<double> flux;                 // kFilmChannels per pixel
+    std::uint64_t photons_per_iteration = 0;       // 0: none (path tracing)
+    std::vector<double> count, radius, footprint;  // per pixel
+    std::vector<double> flux;                      // kFilmChannels per pixel
 
-    // Every pixel at radius `radius`, no photon yet.
-    static PhotonEstimate start(std::uint64_t pixels, std::uint64_t photons_per_iteration, double radius);
+    // Every pixel without a visible point yet (radius 0), no photon.
+    static PhotonEstimate start(std::uint64_t pixels, std::uint64_t photons_per_iteration);
     bool empty() const { return photons_per_iteration == 0; }
     bool operator==(const PhotonEstimate&) const = default;
 };
+
+// SPPM's radii at the end of a render, over the pixels that have had a
+// visible point (footprint > 0): the mean radius, the mean footprint and
+// the mean of each pixel's radius over its footprint (2 at the start by
+// default, WP_SPPM_FOOTPRINTS; shrinking as the photons come).
+struct SppmRadii {
+    std::uint64_t pixels = 0;  // with a footprint
+    double mean_radius = 0.0, mean_footprint = 0.0, radius_in_footprints = 0.0;
+};
+SppmRadii sppm_radii(const PhotonEstimate& photons);
 
 struct Film {
     int width = 0, height = 0;

@@ -94,7 +94,7 @@ std::vector<char> encode(const FilmFile& file) {
     if (!film.photons.empty()) {
         const PhotonEstimate& photons = film.photons;
         w.put(photons.photons_per_iteration);
-        for (const std::vector<double>* values : {&photons.count, &photons.radius, &photons.flux})
+        for (const std::vector<double>* values : {&photons.count, &photons.radius, &photons.footprint, &photons.flux})
             w.put_bytes(values->data(), sizeof(double) * values->size());
     }
     w.put(fnv1a64(w.bytes().data(), w.bytes().size()));
@@ -153,22 +153,32 @@ void check_round(const std::string& path, const Film& film) {
         refuse(path, "corrupted adaptive round (work items to " + std::to_string(film.items.end) + ")");
 }
 
-// The bytes of a photon estimate of `pixels` pixels.
-std::uint64_t photon_estimate_bytes(std::uint64_t pixels) {
-    return sizeof(std::uint64_t) + sizeof(double) * pixels * (2 + kFilmChannels);
+// The bytes of a photon estimate of `pixels` pixels in a file of `version`
+// (the footprints from version 4 on).
+std::uint64_t photon_estimate_bytes(std::uint64_t pixels, std::uint32_t version) {
+    return sizeof(std::uint64_t) + sizeof(double) * pixels * ((version >= 4 ? 3 : 2) + kFilmChannels);
 }
 
 // A photon estimate as read (after the checksum): photons a render may emit,
-// counts and flux finite and not negative, radii finite and positive.
-void check_photons(const std::string& path, const PhotonEstimate& photons) {
+// counts, radii, footprints and flux finite and not negative, and a pixel of
+// radius 0 (no visible point yet) without photons. Version 3 had every
+// radius positive from the start.
+void check_photons(const std::string& path, const PhotonEstimate& photons, std::uint32_t version) {
     if (photons.photons_per_iteration < 1 || photons.photons_per_iteration > std::uint64_t(kMaxPhotons))
         refuse(path, "corrupted photon estimate (" + std::to_string(photons.photons_per_iteration) +
                          " photons per iteration)");
     auto all = [](const std::vector<double>& values, auto ok) { return std::all_of(values.begin(), values.end(), ok); };
     auto finite_and_not_negative = [](double x) { return std::isfinite(x) && x >= 0.0; };
+    auto radius_ok = [&](double r) { return std::isfinite(r) && (version >= 4 ? r >= 0.0 : r > 0.0); };
     if (!all(photons.count, finite_and_not_negative) || !all(photons.flux, finite_and_not_negative) ||
-        !all(photons.radius, [](double r) { return std::isfinite(r) && r > 0.0; }))
-        refuse(path, "corrupted photon estimate (a count, radius or flux out of range)");
+        !all(photons.footprint, finite_and_not_negative) || !all(photons.radius, radius_ok))
+        refuse(path, "corrupted photon estimate (a count, radius, footprint or flux out of range)");
+    for (std::size_t p = 0; p < photons.radius.size(); ++p)
+        if (photons.radius[p] == 0.0 &&
+            (photons.count[p] != 0.0 || photons.footprint[p] != 0.0 || photons.flux[kFilmChannels * p] != 0.0 ||
+             photons.flux[kFilmChannels * p + 1] != 0.0 || photons.flux[kFilmChannels * p + 2] != 0.0))
+            refuse(path, "corrupted photon estimate (pixel " + std::to_string(p) +
+                             " has photons or a footprint but no radius)");
 }
 
 }  // namespace
@@ -225,7 +235,7 @@ FilmFile parse_film_file(const std::vector<char>& bytes, const std::string& path
     const std::uint64_t sums = std::uint64_t(kFilmChannels) * pixels * (squares ? 2 : 1);
     const std::uint64_t sums_end = kHeaderBytes + sizeof(film_sum) * sums;
     const std::uint64_t expected = sums_end + (in_round ? round_table_bytes(bytes, sums_end, pixels) : 0) +
-                                   (photons ? photon_estimate_bytes(pixels) : 0) + kChecksumBytes;
+                                   (photons ? photon_estimate_bytes(pixels, version) : 0) + kChecksumBytes;
     if (bytes.size() < expected)
         refuse(path, "truncated (" + std::to_string(bytes.size()) + " bytes of " + std::to_string(expected) + ")");
     if (bytes.size() > expected)
@@ -257,10 +267,12 @@ FilmFile parse_film_file(const std::vector<char>& bytes, const std::string& path
         check_round(path, film);
     }
     if (photons) {
-        film.photons = PhotonEstimate::start(pixels, r.get<std::uint64_t>(), 0.0);
-        for (std::vector<double>* values : {&film.photons.count, &film.photons.radius, &film.photons.flux})
-            r.get_bytes(values->data(), sizeof(double) * values->size());
-        check_photons(path, film.photons);
+        film.photons = PhotonEstimate::start(pixels, r.get<std::uint64_t>());
+        for (std::vector<double>* values :
+             {&film.photons.count, &film.photons.radius, &film.photons.footprint, &film.photons.flux})
+            if (values != &film.photons.footprint || version >= 4)
+                r.get_bytes(values->data(), sizeof(double) * values->size());
+        check_photons(path, film.photons, version);
     }
     return file;
 }

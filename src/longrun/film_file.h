@@ -10,8 +10,9 @@
 //   round if flagged (bit 1: its pixel count n (u32), its n pixels (u32,
 //   ascending) and every pixel's samples before it (u32)), SPPM's photon
 //   estimate if flagged (bit 2: photons per iteration (u64), then per pixel
-//   the photon counts N, the radii r (f64 each) and the flux tau (3 f64 per
-//   pixel)), and last the FNV-1a 64 checksum (u64) of every byte before it.
+//   the photon counts N, the radii r, from version 4 on the footprints (f64
+//   each) and the flux tau (3 f64 per pixel)), and last the FNV-1a 64
+//   checksum (u64) of every byte before it.
 // The film's range (and round) says everything else: pixel p holds the
 // samples s with first <= s * pixels + p < end, so the next work item of a
 // checkpoint is its end, and each pixel's sample count follows from the
@@ -28,8 +29,10 @@
 namespace wp {
 
 // Version 2 added the adaptive round (flag bit 1), version 3 SPPM's photon
-// estimate (flag bit 2); earlier versions are read too.
-inline constexpr std::uint32_t kFilmFileVersion = 3;
+// estimate (flag bit 2), version 4 the pixels' footprints to it (a radius is
+// 0 until the pixel's first visible point sets it); earlier versions are
+// read too (a version 3 estimate with footprints 0: unknown).
+inline constexpr std::uint32_t kFilmFileVersion = 4;
 inline constexpr const char* kFilmFileExtension = ".wpfilm";
 
 // A film file that cannot be used: unreadable, not a film file, truncated,

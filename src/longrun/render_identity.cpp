@@ -2,6 +2,8 @@
 
 #include <type_traits>
 
+#include "core/shared_math.h"
+
 namespace wp {
 
 std::uint64_t fnv1a64(const void* data, std::size_t size, std::uint64_t hash) {
@@ -71,15 +73,22 @@ std::uint64_t scene_hash(const Scene& scene) {
 
 // Adaptive sampling and SPPM are hashed only when on, so that films without
 // them keep the hash they had before they existed. SPPM's photons per
-// iteration and initial radius as they resolve (their defaults depend on the
-// image and the scene).
+// iteration as they resolve, and its first radii's rule: the override (0:
+// none) and the footprints a pixel's first radius spans without one
+// (sppm_first_radius; the footprint itself follows from the camera, which
+// the scene's hash holds). A film made under an earlier default (version 3:
+// one radius for every pixel, from the scene's extent) hashes otherwise.
 std::uint64_t settings_hash(const Scene& scene, const AdaptiveSampling& adaptive) {
     const RenderSettings& r = scene.render;
     Hasher h;
     h.add(r.max_depth).add(r.rr_depth).add(r.seed).add(r.nee).add(r.mis).add(r.hemisphere).add(r.sampler);
     if (adaptive.on()) h.add(adaptive.threshold).add(adaptive.min_spp);
     if (r.integrator == Integrator::Sppm)
-        h.add(r.integrator).add(sppm_photons(scene)).add(sppm_initial_radius(scene)).add(r.sppm.alpha);
+        h.add(r.integrator)
+            .add(sppm_photons(scene))
+            .add(r.sppm.radius)
+            .add(SharedMath<double>::sppm_first_radius(0.0, 1.0))
+            .add(r.sppm.alpha);
     return h.value();
 }
 

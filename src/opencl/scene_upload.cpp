@@ -12,7 +12,7 @@ namespace wp {
 namespace {
 using namespace device_layout;
 
-static_assert(sizeof(SceneHeader) == 27 * 4, "SceneHeader must match its OpenCL C layout");
+static_assert(sizeof(SceneHeader) == 28 * 4, "SceneHeader must match its OpenCL C layout");
 static_assert(sizeof(DeviceSphere) == 5 * 4, "DeviceSphere must match its OpenCL C layout");
 static_assert(sizeof(DevicePlane) == 7 * 4, "DevicePlane must match its OpenCL C layout");
 static_assert(sizeof(DeviceQuad) == 16 * 4, "DeviceQuad must match its OpenCL C layout");
@@ -52,7 +52,8 @@ SceneHeader make_header(const Scene& scene) {
     if (scene.render.integrator == Integrator::Sppm) {
         h.photons = static_cast<std::uint32_t>(sppm_photons(scene));
         h.sppm_alpha = static_cast<float>(scene.render.sppm.alpha);
-        h.sppm_radius = static_cast<float>(sppm_initial_radius(scene));
+        h.sppm_radius = static_cast<float>(scene.render.sppm.radius);
+        h.sppm_pixel_spread = static_cast<float>(sppm_pixel_spread(scene));
     }
     return h;
 }

@@ -390,6 +390,7 @@ struct VisiblePoint {
     Vec3<Real> point{0}, nf{0}, ns{0};  // the normals on the camera's side
     Vec3<Real> weight{0};               // the path's throughput times the albedo
     std::uint32_t depth = WP_NO_VISIBLE_POINT;
+    Real distance = 0;  // the path's length from the camera (sppm_footprint)
     bool found() const { return depth != WP_NO_VISIBLE_POINT; }
 };
 
@@ -408,6 +409,7 @@ Vec3<Real> trace_path(const ReferenceScene<Real>& scene, Ray<Real> ray, const Sa
     bool specular = true;  // the previous vertex was specular, or is the camera
     Real bsdf_pdf = 0;     // of the last diffuse bounce's direction
     Real eta_scale = 1;    // eta^2 over the refractions so far (roulette_survival)
+    Real travelled = 0;    // from the camera, through mirrors and glass (SPPM's footprint)
     for (int depth = 0;;) {
         ++counts.extension;
         ShapeHit<Real> hit = closest_hit(scene, ray);
@@ -416,6 +418,7 @@ Vec3<Real> trace_path(const ReferenceScene<Real>& scene, Ray<Real> ray, const Sa
                              counts);
             break;
         }
+        travelled += hit.t;
         SurfacePoint<Real> surface = surface_at(scene, ray, hit);
         const auto& material = scene.materials[surface.material];
         typename M::FacingNormals facing = M::normals_facing(ray.direction, surface.normal, surface.shading);
@@ -438,7 +441,7 @@ Vec3<Real> trace_path(const ReferenceScene<Real>& scene, Ray<Real> ray, const Sa
                              NonfiniteStage::direct, counts);
         }
         if (visible && material.type == MaterialType::Diffuse) {
-            *visible = {surface.point, nf, ns, throughput * material.albedo, bounce};
+            *visible = {surface.point, nf, ns, throughput * material.albedo, bounce, travelled};
             if (!M::camera_pass_bounces_from_visible_point(scene.nee, scene.mis)) break;
         }
         typename M::BsdfSample next = scatter(scene, material, ray.direction, front, nf, ns,

@@ -37,12 +37,15 @@ class ReferenceSppmRenderer : public FilmRenderer {
           pixels_(std::uint64_t(source.camera.width) * std::uint64_t(source.camera.height)),
           photons_(sppm_photons(source)),
           alpha_(Real(source.render.sppm.alpha)),
+          radius_override_(Real(source.render.sppm.radius)),
+          pixel_spread_(Real(sppm_pixel_spread(source))),
           threads_(reference::worker_count(options.threads, pixels_)),
           counts_(threads_),
           film_(Film::empty(source.camera.width, source.camera.height, 0, false)),
           visible_(pixels_),
           count_(pixels_, Real(0)),
-          radius_(pixels_, Real(sppm_initial_radius(source))),
+          radius_(pixels_, Real(0)),
+          footprint_(pixels_, Real(0)),
           flux_(pixels_, vec3(Real(0))),
           photon_counts_(pixels_),
           photon_flux_(pixels_ * kFilmChannels * WP_FILM_WORDS) {
@@ -69,10 +72,11 @@ class ReferenceSppmRenderer : public FilmRenderer {
     Film read_film(const ItemRange& items) override {
         Film film = film_;
         film.items = items;
-        film.photons = PhotonEstimate::start(pixels_, photons_, 0.0);
+        film.photons = PhotonEstimate::start(pixels_, photons_);
         for (std::uint64_t p = 0; p < pixels_; ++p) {
             film.photons.count[p] = double(count_[p]);
             film.photons.radius[p] = double(radius_[p]);
+            film.photons.footprint[p] = double(footprint_[p]);
             for (int c = 0; c < kFilmChannels; ++c) film.photons.flux[kFilmChannels * p + c] = double(flux_[p][c]);
         }
         return film;
@@ -87,6 +91,7 @@ class ReferenceSppmRenderer : public FilmRenderer {
         for (std::uint64_t p = 0; p < pixels_; ++p) {
             count_[p] = Real(film.photons.count[p]);
             radius_[p] = Real(film.photons.radius[p]);
+            footprint_[p] = Real(film.photons.footprint[p]);
             for (int c = 0; c < kFilmChannels; ++c) flux_[p][c] = Real(film.photons.flux[kFilmChannels * p + c]);
         }
     }
@@ -114,13 +119,18 @@ class ReferenceSppmRenderer : public FilmRenderer {
     }
 
     // Each pixel's camera sample `iteration`: its emission and direct light
-    // into the film, and its visible point.
+    // into the film, and its visible point; the pixel's first visible point
+    // sets its radius (sppm_first_radius).
     void camera_pass(std::uint32_t iteration) {
         for_each_index(threads_, pixels_, [&](std::uint64_t p, int thread) {
             visible_[p] = {};
             const int px = int(p % std::uint64_t(width_)), py = int(p / std::uint64_t(width_));
             reference::Vec3<Real> radiance =
                 reference::trace_camera_sample(scene_, px, py, int(iteration), counts_[thread], &visible_[p]);
+            if (visible_[p].found() && radius_[p] == Real(0)) {
+                footprint_[p] = M::sppm_footprint(pixel_spread_, visible_[p].distance);
+                radius_[p] = M::sppm_first_radius(radius_override_, footprint_[p]);
+            }
             for (int c = 0; c < kFilmChannels; ++c) {
                 film_sum& sum = film_.sums[kFilmChannels * p + c];
                 sum = film_sum_add(sum, reference::film_value(radiance[c]));
@@ -207,11 +217,14 @@ class ReferenceSppmRenderer : public FilmRenderer {
     int width_;
     std::uint64_t pixels_, photons_;
     Real alpha_;
+    Real radius_override_;  // render.sppm.radius (0: none)
+    Real pixel_spread_;     // sppm_pixel_spread
     int threads_;
     std::vector<reference::RayCounts> counts_;  // one per thread
     Film film_;                                 // the camera passes' sums
     std::vector<reference::VisiblePoint<Real>> visible_;
-    std::vector<Real> count_, radius_;          // N, r
+    std::vector<Real> count_, radius_;          // N, r (0 before the pixel's first visible point)
+    std::vector<Real> footprint_;               // at the pixel's first visible point
     std::vector<vec3> flux_;                    // tau
     std::vector<std::uint32_t> photon_counts_;  // M of the iteration
     std::vector<film_word> photon_flux_;        // Phi of the iteration, WP_FILM_WORDS per pixel and channel

@@ -82,29 +82,11 @@ std::string sppm_problem(const Scene& scene) {
 }
 
 std::uint64_t sppm_photons(const Scene& scene) {
-    if (scene.render.sppm.photons != 0) return scene.render.sppm.photons;
-    return std::uint64_t(scene.camera.width) * std::uint64_t(scene.camera.height);
+    return scene.render.sppm.photons != 0 ? scene.render.sppm.photons : kSppmDefaultPhotons;
 }
 
-double sppm_initial_radius(const Scene& scene) {
-    if (scene.render.sppm.radius > 0.0) return scene.render.sppm.radius;
-    glm::dvec3 low = scene.camera.position, high = scene.camera.position;
-    auto include = [&](const glm::dvec3& p) {
-        low = glm::min(low, p);
-        high = glm::max(high, p);
-    };
-    for (const Sphere& s : scene.spheres) {
-        include(s.center - glm::dvec3(s.radius));
-        include(s.center + glm::dvec3(s.radius));
-    }
-    for (const Quad& q : scene.quads)
-        for (const glm::dvec3& p : {q.corner, q.corner + q.edge1, q.corner + q.edge2, q.corner + q.edge1 + q.edge2})
-            include(p);
-    for (const Mesh& mesh : scene.meshes)
-        for (const glm::dvec3& p : mesh.positions) include(p);
-    double extent = glm::length(high - low);
-    if (!(extent > 0.0)) extent = 1.0;  // the camera alone, or planes only
-    return 2.0 * extent * 2.0 * scene.camera.tan_half_fov_y() / double(scene.camera.height);
+double sppm_pixel_spread(const Scene& scene) {
+    return 2.0 * scene.camera.tan_half_fov_y() / double(scene.camera.height);
 }
 
 void build_light_table(Scene& scene) {

@@ -38,8 +38,8 @@ enum class Sampler { Sobol, Independent };
 enum class Integrator { Path, Sppm };
 
 struct SppmSettings {
-    std::uint32_t photons = 0;  // photons per iteration; 0: one per pixel
-    double radius = 0.0;        // initial radius of every pixel's visible point; 0: sppm_default_radius
+    std::uint32_t photons = 0;  // photons per iteration; 0: kSppmDefaultPhotons
+    double radius = 0.0;        // every pixel's first radius; 0: from its footprint (sppm_first_radius, shared/sppm.h)
     double alpha = 2.0 / 3.0;   // the fraction of new photons a pixel keeps as its radius shrinks
 };
 
@@ -186,16 +186,24 @@ class SceneError : public std::runtime_error {
 // would light paths no photon takes.
 std::string sppm_problem(const Scene& scene);
 
-// The photons per iteration: render.sppm.photons, or one per pixel.
+// The photons per iteration by default: the CPU's default wavefront
+// (default_wavefront_size, src/wavefront/wavefront_renderer.cpp), whose
+// paths in flight the photon pass then fills. A constant, not the device's
+// wavefront: the photons are part of the estimate (which photon goes where,
+// when the radii shrink), so a device-dependent count would render another
+// image on another device. A GPU holds 2^20 paths in flight: --photons
+// 1048576 fills it (docs/scene-format.md, bench/sppm_caustic.py).
+inline constexpr std::uint64_t kSppmDefaultPhotons = std::uint64_t(1) << 16;
+
+// The photons per iteration: render.sppm.photons, or kSppmDefaultPhotons.
 std::uint64_t sppm_photons(const Scene& scene);
 
-// The initial radius: render.sppm.radius, or by default twice the footprint
-// of a pixel, 2 tan(fov_y / 2) / height, at the distance of the scene's
-// extent D, the diagonal of the box around the camera and every bounded
-// shape (planes are not): a surface seen from D, lit evenly, then gathers
-// about 4 pi photons per pixel and iteration at one photon per pixel
-// (docs/scene-format.md).
-double sppm_initial_radius(const Scene& scene);
+// The angle of a pixel at the image's centre, 2 tan(fov_y / 2) / height:
+// how fast the camera ray's cone widens with distance (sppm_footprint,
+// kernels/shared/sppm.h). Each pixel's first radius is WP_SPPM_FOOTPRINTS
+// times its cone's width at its first visible point (sppm_first_radius), or
+// render.sppm.radius where that is set.
+double sppm_pixel_spread(const Scene& scene);
 
 // A mesh triangle's area, and a mesh's (in double).
 double triangle_area(const Mesh& mesh, const glm::uvec3& triangle);

@@ -24,8 +24,7 @@ cl::Kernel sppm_kernel(const cl::Program& program, const char* name, const Devic
 }  // namespace
 
 SppmPass::SppmPass(const cl::Context& context, cl::CommandQueue& queue, const cl::Program& program,
-                   const DeviceScene& scene, const cl::Buffer& counts, std::uint64_t pixels, unsigned lanes,
-                   float initial_radius)
+                   const DeviceScene& scene, const cl::Buffer& counts, std::uint64_t pixels, unsigned lanes)
     : queue_(queue),
       state_(context, pixels),
       lanes_(lanes),
@@ -38,7 +37,8 @@ SppmPass::SppmPass(const cl::Context& context, cl::CommandQueue& queue, const cl
       update_(sppm_kernel(program, "sppm_update", scene, counts, state_)) {
     auto pixel_bytes = [&](std::size_t element) { return element * state_.elements(SppmSize::PIXELS); };
     queue_.enqueueFillBuffer(state_.field("sppm_count"), 0.0f, 0, pixel_bytes(sizeof(float)));
-    queue_.enqueueFillBuffer(state_.field("sppm_radius"), initial_radius, 0, pixel_bytes(sizeof(float)));
+    queue_.enqueueFillBuffer(state_.field("sppm_radius"), 0.0f, 0, pixel_bytes(sizeof(float)));
+    queue_.enqueueFillBuffer(state_.field("sppm_footprint"), 0.0f, 0, pixel_bytes(sizeof(float)));
     queue_.enqueueFillBuffer(state_.field("sppm_flux"), 0.0f, 0, pixel_bytes(3 * sizeof(float)));
 }
 
@@ -75,14 +75,16 @@ void SppmPass::update(KernelLauncher& launcher) { launch_over_pixels(launcher, u
 
 PhotonEstimate SppmPass::read(std::uint64_t photons_per_iteration) {
     const std::uint64_t pixels = state_.pixels();
-    std::vector<float> count(pixels), radius(pixels), flux(3 * pixels);
+    std::vector<float> count(pixels), radius(pixels), footprint(pixels), flux(3 * pixels);
     queue_.enqueueReadBuffer(state_.field("sppm_count"), CL_TRUE, 0, sizeof(float) * pixels, count.data());
     queue_.enqueueReadBuffer(state_.field("sppm_radius"), CL_TRUE, 0, sizeof(float) * pixels, radius.data());
+    queue_.enqueueReadBuffer(state_.field("sppm_footprint"), CL_TRUE, 0, sizeof(float) * pixels, footprint.data());
     queue_.enqueueReadBuffer(state_.field("sppm_flux"), CL_TRUE, 0, sizeof(float) * flux.size(), flux.data());
-    PhotonEstimate estimate = PhotonEstimate::start(pixels, photons_per_iteration, 0.0);
+    PhotonEstimate estimate = PhotonEstimate::start(pixels, photons_per_iteration);
     for (std::uint64_t p = 0; p < pixels; ++p) {
         estimate.count[p] = count[p];
         estimate.radius[p] = radius[p];
+        estimate.footprint[p] = footprint[p];
         for (std::uint64_t c = 0; c < 3; ++c) estimate.flux[3 * p + c] = flux[c * pixels + p];  // three planes
     }
     return estimate;
@@ -91,14 +93,16 @@ PhotonEstimate SppmPass::read(std::uint64_t photons_per_iteration) {
 void SppmPass::load(const PhotonEstimate& estimate) {
     const std::uint64_t pixels = state_.pixels();
     if (estimate.count.size() != pixels) throw std::invalid_argument("SppmPass::load: an estimate of another size");
-    std::vector<float> count(pixels), radius(pixels), flux(3 * pixels);
+    std::vector<float> count(pixels), radius(pixels), footprint(pixels), flux(3 * pixels);
     for (std::uint64_t p = 0; p < pixels; ++p) {
         count[p] = static_cast<float>(estimate.count[p]);
         radius[p] = static_cast<float>(estimate.radius[p]);
+        footprint[p] = static_cast<float>(estimate.footprint[p]);
         for (std::uint64_t c = 0; c < 3; ++c) flux[c * pixels + p] = static_cast<float>(estimate.flux[3 * p + c]);
     }
     queue_.enqueueWriteBuffer(state_.field("sppm_count"), CL_TRUE, 0, sizeof(float) * pixels, count.data());
     queue_.enqueueWriteBuffer(state_.field("sppm_radius"), CL_TRUE, 0, sizeof(float) * pixels, radius.data());
+    queue_.enqueueWriteBuffer(state_.field("sppm_footprint"), CL_TRUE, 0, sizeof(float) * pixels, footprint.data());
     queue_.enqueueWriteBuffer(state_.field("sppm_flux"), CL_TRUE, 0, sizeof(float) * flux.size(), flux.data());
 }
 

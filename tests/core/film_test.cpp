@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <numbers>
 #include <random>
 
 namespace wp {
@@ -200,6 +201,33 @@ TEST(Film, AddSumsAddsAnyRangesAndKeepsItsOwn) {
     EXPECT_EQ(film_sum_to_double(a.squares[0]), 4.0);
     EXPECT_THROW(a.add_sums(Film::empty(1, 2, 0, true)), std::invalid_argument);
     EXPECT_THROW(a.add_sums(Film::empty(2, 1, 0, false)), std::invalid_argument);
+}
+
+// SPPM's image from a hand-built photon estimate: 3 pixels, 4 iterations
+// (items 0..12), 1,000 photons emitted per iteration, so 4,000 in all. A
+// pixel's value is its camera passes' mean plus tau / (4,000 pi r^2): every
+// photon emitted stands for its flux over the disc, whether or not it came
+// near (Hachisuka and Jensen 2009, eq. 8). Pixel 0: r = 1/2, tau = (1500,
+// 3000, 750) pi, so tau / (1000 pi) = (1.5, 3, 0.75) on top of Ld = (0.5,
+// 0.25, 0); pixel 1 has had no visible point (r = 0): Ld alone; pixel 2:
+// r = 1/4, tau = 50 pi, so 50 / 250 = 0.2, no Ld. Dividing by the photons
+// plus one, or the iterations plus one, or by r for r^2, misses these by
+// far more than the float rounding allowed.
+TEST(Film, SppmImageIsTheFluxOverThePhotonsEmittedAndTheDisc) {
+    const double pi = std::numbers::pi;
+    Film film = Film::empty(3, 1, 0, false);
+    film.items.end = 12;
+    const double ld[3][3] = {{0.5, 0.25, 0.0}, {1.0, 2.0, 0.125}, {0.0, 0.0, 0.0}};
+    for (int p = 0; p < 3; ++p)
+        for (int c = 0; c < 3; ++c) film.sums[3 * p + c] = film_sum_from_double(4.0 * ld[p][c]);
+    film.photons = PhotonEstimate::start(3, 1000);
+    film.photons.count = {40.0, 0.0, 3.0};
+    film.photons.radius = {0.5, 0.0, 0.25};
+    film.photons.footprint = {0.25, 0.0, 0.5};  // the footprint takes no part in the image
+    film.photons.flux = {1500 * pi, 3000 * pi, 750 * pi, 0.0, 0.0, 0.0, 50 * pi, 50 * pi, 0.0};
+    const Image image = film.image();
+    const std::vector<float> expected{2.0f, 3.25f, 0.75f, 1.0f, 2.0f, 0.125f, 0.2f, 0.2f, 0.0f};
+    for (std::size_t i = 0; i < expected.size(); ++i) EXPECT_FLOAT_EQ(image.rgb[i], expected[i]) << i;
 }
 
 }  // namespace

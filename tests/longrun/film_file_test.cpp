@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
@@ -65,21 +66,63 @@ TEST_F(FilmFileTest, ReadsBackWhatWasWritten) {
     EXPECT_EQ(dir_.entries(), std::vector<std::string>{"film.wpfilm"});  // no temporary left
 }
 
-// SPPM's photon estimate (flag bit 2) reads back exactly; one with a
-// radius of 0 is refused as corrupted.
-TEST_F(FilmFileTest, SppmPhotonEstimatesReadBackAndBadOnesAreRefused) {
+// SPPM's photon estimate (flag bit 2) reads back exactly, footprints
+// included, and a pixel without a visible point yet (radius and footprint
+// 0, no photon) with it; a negative radius, or photons at a pixel of radius
+// 0, are refused as corrupted.
+Film film_with_photons() {
     Film film = example_film(false);
-    film.photons = PhotonEstimate::start(15, 4096, 0.125);
+    film.photons = PhotonEstimate::start(15, 4096);
     for (std::size_t p = 0; p < 15; ++p) {
+        if (p == 11) continue;  // no visible point yet
         film.photons.count[p] = double(p) * 0.5f;
         film.photons.radius[p] = 0.125 - double(p) * 1e-3f;
+        film.photons.footprint[p] = 0.0625 - double(p) * 1e-3f;
         for (int c = 0; c < 3; ++c) film.photons.flux[3 * p + c] = double(p + c) * 0.3f;
     }
+    return film;
+}
+
+TEST_F(FilmFileTest, SppmPhotonEstimatesReadBackAndBadOnesAreRefused) {
+    Film film = film_with_photons();
     write_film_file(path_, {kIdentity, film});
     EXPECT_EQ(read_film_file(path_).film.photons, film.photons);
+    film.photons.radius[7] = -0.125;
+    write_film_file(path_, {kIdentity, film});
+    EXPECT_EQ(read_error(path_),
+              path_ + ": corrupted photon estimate (a count, radius, footprint or flux out of range)");
     film.photons.radius[7] = 0.0;
     write_film_file(path_, {kIdentity, film});
-    EXPECT_EQ(read_error(path_), path_ + ": corrupted photon estimate (a count, radius or flux out of range)");
+    EXPECT_EQ(read_error(path_),
+              path_ + ": corrupted photon estimate (pixel 7 has photons or a footprint but no radius)");
+}
+
+// A version 3 film (before the footprints) still reads, its footprints 0
+// (unknown), and there a radius of 0 is refused, as version 3 did.
+TEST_F(FilmFileTest, Version3PhotonEstimatesStillRead) {
+    Film film = film_with_photons();
+    film.photons.radius[11] = 0.25;  // version 3 gave every pixel its radius from the start
+    write_film_file(path_, {kIdentity, film});
+    auto as_version_3 = [&] {  // the footprints' 15 doubles out, after the counts' and the radii's
+        std::vector<char> bytes = file_bytes(path_);
+        bytes[8] = 3;
+        const std::size_t footprints = bytes.size() - 8 - 8 * 15 * (3 + 1);
+        bytes.erase(bytes.begin() + std::ptrdiff_t(footprints), bytes.begin() + std::ptrdiff_t(footprints + 8 * 15));
+        bytes.resize(bytes.size() - 8);
+        const std::uint64_t checksum = fnv1a64(bytes.data(), bytes.size());
+        bytes.insert(bytes.end(), reinterpret_cast<const char*>(&checksum),
+                     reinterpret_cast<const char*>(&checksum) + 8);
+        write_bytes(path_, bytes);
+    };
+    as_version_3();
+    PhotonEstimate expected = film.photons;
+    std::fill(expected.footprint.begin(), expected.footprint.end(), 0.0);
+    EXPECT_EQ(read_film_file(path_).film.photons, expected);
+    film.photons.radius[11] = 0.0;
+    write_film_file(path_, {kIdentity, film});
+    as_version_3();
+    EXPECT_EQ(read_error(path_),
+              path_ + ": corrupted photon estimate (a count, radius, footprint or flux out of range)");
 }
 
 // The estimator field holds 16 bytes: a name of all 16 reads back whole (it
@@ -128,9 +171,9 @@ TEST_F(FilmFileTest, CorruptedBytesFailTheChecksum) {
 TEST_F(FilmFileTest, NewerVersionsAndOtherFilesAreRefused) {
     write_film_file(path_, {kIdentity, example_film(false)});
     std::vector<char> bytes = file_bytes(path_);
-    bytes[8] = 4;  // the version's low byte
+    bytes[8] = 5;  // the version's low byte
     write_bytes(path_, bytes);
-    EXPECT_EQ(read_error(path_), path_ + ": film format version 4 is newer than this wavepath reads (3)");
+    EXPECT_EQ(read_error(path_), path_ + ": film format version 5 is newer than this wavepath reads (4)");
     test::write_text(path_, "P3\n1 1\n255\n0 0 0\n");
     EXPECT_EQ(read_error(path_), path_ + ": not a wavepath film file (no WPFILM signature)");
     EXPECT_EQ(read_error(dir_ / "missing.wpfilm"), dir_ / "missing.wpfilm" + ": cannot read the film file");

@@ -11,6 +11,8 @@
 // 1,500 photons, takes well under a second.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "longrun/film_file.h"
 #include "longrun/render_identity.h"
 #include "reference/reference_renderer.h"
@@ -92,6 +94,34 @@ TEST_F(SppmWavefront, SameBitsAsTheReferenceInFloat) {
     EXPECT_EQ(reference.image.rgb, whole_->image.rgb);
     EXPECT_EQ(reference.stats.photon_rays, whole_->stats.photon_rays);
     EXPECT_EQ(reference.stats.photon_deposits, whole_->stats.photon_deposits);
+}
+
+// Each pixel's radius is 0 until its first visible point sets it from the
+// distance its camera path travelled (sppm_first_radius): the radii, the
+// footprints and the estimate are the same bits in the reference, here after
+// one iteration and after three, by which time pixels whose first path left
+// by the glass sphere's reflection (no visible point) have had one since,
+// and pixels that see only the sky still have none.
+TEST_F(SppmWavefront, SameRadiiAndFootprintsAsTheReference) {
+    const std::uint64_t pixels = 16 * 16;
+    std::unique_ptr<FilmRenderer> wavefront = make_wavefront_renderer(*scene_, options_with(8, 0), {});
+    std::unique_ptr<FilmRenderer> reference = make_reference_renderer(*scene_, {.threads = 2});
+    auto unset = [](const PhotonEstimate& photons) {
+        return std::count(photons.radius.begin(), photons.radius.end(), 0.0);
+    };
+    wavefront->render({0, pixels}, {});
+    reference->render({0, pixels}, {});
+    const PhotonEstimate first = reference->film().photons;
+    EXPECT_EQ(wavefront->film().photons, first);
+    wavefront->render({pixels, 3 * pixels}, {});
+    reference->render({pixels, 3 * pixels}, {});
+    const PhotonEstimate third = reference->film().photons;
+    EXPECT_EQ(wavefront->film().photons, third);
+    EXPECT_GT(unset(third), 0);
+    EXPECT_LT(unset(third), unset(first));
+    for (std::uint64_t p = 0; p < pixels; ++p)  // no override: two footprints, shrunk where photons came
+        if (third.radius[p] > 0.0 && third.count[p] == 0.0)
+            EXPECT_EQ(third.radius[p], double(2.0f * float(third.footprint[p]))) << p;
 }
 
 // Iteration 1 rendered, written to a film file, read back into a new

@@ -59,10 +59,15 @@ struct CausticPatch {
 };
 
 // The scene, with the block's render settings (max_depth 3 + 2K keeps the
-// round trips k <= K, and no path of other kind but the left-out ones).
-inline Scene caustic_patch_scene(const RenderBlock& block, const CausticPatch& c) {
-    const glm::dvec3 camera(0.0, CausticPatch::kCameraHeight, CausticPatch::kCameraHeight);
-    Scene scene = empty_scene(block, -camera, 0.01);
+// round trips k <= K, and no path of other kind but the left-out ones), seen
+// from `camera` (below the slab) through a field of view of `fov_y` degrees
+// about the patch's centre: by default the view above, 45 degrees from the
+// patch's normal.
+inline Scene caustic_patch_scene(const RenderBlock& block, const CausticPatch& c,
+                                 const glm::dvec3& camera = glm::dvec3(0.0, CausticPatch::kCameraHeight,
+                                                                       CausticPatch::kCameraHeight),
+                                 double fov_y = 0.01) {
+    Scene scene = empty_scene(block, -camera, fov_y);
     auto at = [&](double x, double y, double z) { return glm::dvec3(x, y, z) - camera; };
     const double p = CausticPatch::kPatchHalf, w = CausticPatch::kSlabHalf, a = CausticPatch::kLightHalf;
     int patch = add_material(scene, diffuse(glm::dvec3(c.albedo)));
@@ -158,6 +163,21 @@ inline double caustic_patch_irradiance(const CausticPatch& c, double x, double z
 // The patch's radiance at (x, 0, z), rho / pi E.
 inline double caustic_patch_radiance(const CausticPatch& c, double x, double z, int max_round_trips) {
     return c.albedo / std::numbers::pi * caustic_patch_irradiance(c, x, z, max_round_trips);
+}
+
+// The mean radiance over the square |x|, |z| <= half of the patch: what a
+// camera looking straight down at it, its view covering that square, sees
+// in the image's mean (a plane parallel to the film maps onto it affinely,
+// so pixels jittered uniformly sample the square uniformly). The radiance
+// is smooth over the patch and even in x and z (the light is centred over
+// it): a 6-point Gauss-Legendre rule on [0, half] per axis.
+inline double caustic_patch_square_mean(const CausticPatch& c, double half, int max_round_trips) {
+    static const std::vector<std::array<double, 2>> rule = gauss_legendre(6);
+    double sum = 0.0;
+    for (const auto& [u, wu] : rule)
+        for (const auto& [v, wv] : rule)
+            sum += wu * wv * caustic_patch_radiance(c, 0.5 * half * (1.0 + u), 0.5 * half * (1.0 + v), max_round_trips);
+    return sum / 4.0;  // the weights sum to 2 per axis
 }
 
 }  // namespace wp::test

@@ -83,13 +83,14 @@ TEST(PathState, FieldsExistOnlyForFeaturesInUse) {
     EXPECT_EQ(PathState::bytes_per_path(diffuse_host_traced), base);  // no shadow rays: nothing more
     FeatureSet sppm = glass_mis;
     sppm.sppm = true;
-    EXPECT_EQ(PathState::bytes_per_path(sppm), PathState::bytes_per_path(glass_mis) + 4 + 12);  // photon, its flux
+    // the camera path's distance travelled, the photon and its flux
+    EXPECT_EQ(PathState::bytes_per_path(sppm), PathState::bytes_per_path(glass_mis) + 4 + 4 + 12);
     FeatureSet everything = glass_mis_host_traced;
     everything.sppm = true;
     std::size_t total = 0;
     for (const PathStateField& f : path_state_fields()) total += f.bytes;
     EXPECT_EQ(PathState::bytes_per_path(everything), total);
-    EXPECT_EQ(PathState::bytes_per_path(glass_mis), total - 4 - 16);  // the shadow verdicts, the photons
+    EXPECT_EQ(PathState::bytes_per_path(glass_mis), total - 4 - 20);  // the shadow verdicts, sppm's fields
 }
 
 // The bytes per item --profile reports for a stage come from the declared
