@@ -87,7 +87,7 @@ def main():
         "truncated": (good[:-100], f"truncated ({size - 100} bytes of {size})"),
         "bytes_after_the_checksum": (good + b"tail\n", "corrupted (5 bytes after the checksum)"),
         "checksum_mismatch": (bytes(flipped), "corrupted (checksum mismatch)"),
-        "newer_version": (with_u32(good, VERSION, 4), "film format version 4 is newer than this wavepath reads (3)"),
+        "newer_version": (with_u32(good, VERSION, 5), "film format version 5 is newer than this wavepath reads (4)"),
         "version_zero": (with_u32(good, VERSION, 0), "film format version 0 does not exist"),
         "unknown_flags": (with_u32(good, FLAGS, 8), "unknown flags 8"),
         "squares_flagged_but_absent": (with_u32(good, FLAGS, 1),

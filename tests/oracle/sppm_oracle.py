@@ -49,6 +49,17 @@ device.) So a block fails when
 
     |mean_wavepath - mean_mitsuba| > t_crit(dof) * sqrt(se_wavepath^2 + se_mitsuba^2) + BIAS * mean_mitsuba.
 
+At wavepath's default radius (`--initial-radius 0`: each pixel's two
+footprints, 0.2 on the mean at 32 x 32, four times r0 here; issue 39) the
+bias at the two blocks of the wall-floor corner exceeds the allowance:
+-1.28% +- 0.13% (block 4) and -1.60% +- 0.15% (block 7), 1.22 and 1.46
+times their tolerance, every other block within 0.68 and the whole image
+-0.45% +- 0.18% (at 15787d6, 2026-12-05, 24 renders, the defaults
+otherwise). An allowance wide enough for those would no longer see the 5%
+flux error below, so the oracle keeps r0 = 0.05 (half a footprint on the
+mean), where it measures the photons' transport rather than the blur of
+the first radius.
+
 What it detects: with the photons' flux 5% too high (a temporary change of
 emit_photon's flux in kernels/shared/photons.h, by hand at eb074b1), the
 default run failed 5 of its 17 tests: the two caustic blocks under the
@@ -178,7 +189,8 @@ def main():
     parser.add_argument("--seeds", type=int, default=24, help="SPPM renders")
     parser.add_argument("--iterations", type=int, default=64, help="SPPM iterations per render")
     parser.add_argument("--photons", type=int, default=16384, help="SPPM photons per iteration")
-    parser.add_argument("--initial-radius", type=float, default=0.05, help="SPPM's r0, in scene units")
+    parser.add_argument("--initial-radius", type=float, default=0.05,
+                        help="SPPM's r0, in scene units (0: wavepath's default, two footprints per pixel)")
     parser.add_argument("--mitsuba-spp", type=int, default=8192)
     parser.add_argument("--mitsuba-seeds", type=int, default=8)
     parser.add_argument("--alpha", type=float, default=1e-3, help="false-failure rate of the whole run")
@@ -191,7 +203,7 @@ def main():
     tests = (SIZE // BLOCK) ** 2 + 1
     print(f"sppm_oracle: {os.path.relpath(SCENE, ROOT)} with its light x {LIGHT_SCALE} wide at the same power, "
           f"{SIZE}x{SIZE}; wavepath sppm {args.seeds} renders x {args.iterations} iterations x {args.photons} "
-          f"photons, r0 {args.initial_radius}; Mitsuba path {args.mitsuba_seeds} seeds x {args.mitsuba_spp} spp; "
+          f"photons, r0 {args.initial_radius or 'two footprints per pixel'}; Mitsuba path {args.mitsuba_seeds} seeds x {args.mitsuba_spp} spp; "
           f"{tests} tests (blocks of {BLOCK}^2 and the whole image), false-failure rate <= {args.alpha:g} "
           f"(Bonferroni), bias allowance {100 * BIAS:g}% of the block mean", flush=True)
     with tempfile.TemporaryDirectory(prefix="wavepath-sppm-oracle-") as scratch:
@@ -199,7 +211,8 @@ def main():
         start = time.time()
         ours = mitsuba_oracle.render_wavepath(
             args.binary, scene, SIZE, SIZE, args.iterations, range(FIRST_SEED, FIRST_SEED + args.seeds), scratch,
-            ["--integrator", "sppm", "--photons", str(args.photons), "--initial-radius", str(args.initial_radius)])
+            ["--integrator", "sppm", "--photons", str(args.photons)]
+            + (["--initial-radius", str(args.initial_radius)] if args.initial_radius > 0 else []))
         middle = time.time()
         theirs = mitsuba_oracle.render_mitsuba(mi, scene, SIZE, SIZE, args.mitsuba_spp,
                                                list(range(FIRST_SEED, FIRST_SEED + args.mitsuba_seeds)), scratch)
