@@ -280,6 +280,32 @@ TEST_F(CliTest, StatsJsonHasSppmFigures) {
     const double radius = stats["sppm"]["mean_radius"];
     EXPECT_GT(radius, 0.0);
     EXPECT_LE(radius, 0.25);  // radii only shrink
+    const double footprint = stats["sppm"]["mean_footprint"], footprints = stats["sppm"]["radius_in_footprints"];
+    EXPECT_GT(footprint, 0.0);
+    EXPECT_GT(footprints, 0.0);
+    EXPECT_EQ(result.err.find("warning"), std::string::npos) << result.err;  // 0.25 is below 4 footprints here
+}
+
+// The radii against the footprints (issue 39): at the defaults each pixel
+// starts at two footprints and shrinks, so no warning; a first radius far
+// above them leaves the render blurred, which one line on stderr says, with
+// --quiet too.
+TEST_F(CliTest, SppmWarnsWhenItsRadiiEndFarAboveTheFootprints) {
+    const std::string stats_path = outputs_ / "stats.json";
+    const CommandResult defaults = render(base_scene().dump(), {"--backend", "reference", "--integrator", "sppm",
+                                                                "--photons", "5000", "--stats-json", stats_path});
+    ASSERT_EQ(defaults.exit_code, 0) << defaults.err;
+    const double footprints = json::parse(read_text(stats_path))["sppm"]["radius_in_footprints"];
+    EXPECT_GT(footprints, 0.0);
+    EXPECT_LE(footprints, 2.0 * (1.0 + 1e-6));
+    EXPECT_EQ(defaults.err.find("warning"), std::string::npos) << defaults.err;
+    const CommandResult blurred = render(base_scene().dump(), {"--backend", "reference", "--integrator", "sppm",
+                                                               "--photons", "5000", "--initial-radius", "100", "-q"});
+    ASSERT_EQ(blurred.exit_code, 0) << blurred.err;
+    EXPECT_EQ(blurred.err.rfind("wavepath: warning: sppm: the gathering radii are still ", 0), 0u) << blurred.err;
+    EXPECT_NE(blurred.err.find("render more iterations or give a smaller --initial-radius\n"), std::string::npos)
+        << blurred.err;
+    EXPECT_EQ(std::count(blurred.err.begin(), blurred.err.end(), '\n'), 1) << blurred.err;
 }
 
 // The default backend (auto) never picks the megakernel, which refuses the
