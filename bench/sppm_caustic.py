@@ -12,9 +12,13 @@ Three scenes at 64x64 on the wavefront backend, each with a caustic REGION:
   small quad light: the region is the floor under the sphere, lit only through
   the glass;
 - scenes/room.json: the region is the glass sphere's caustic on the floor;
-  SPPM runs there with its defaults, with 4x the photons per iteration and
-  with a smaller first radius, which tell the photons' noise from the bias of
-  the gathering radius.
+  SPPM runs there with its defaults, with the former default of one photon
+  per pixel and with a smaller first radius, which tells the photons' noise
+  from the bias of the gathering radius.
+SPPM's defaults (issue 39): each pixel's first radius two footprints at its
+first visible point, 65,536 photons per iteration; each scene also runs at
+4,096 photons per iteration (one per pixel, the former default) over about
+the same photons in all, which measures the choice of the photon count.
 Per scene, renders path tracing at each of its path_spp and SPPM with each of
 its sppm flag sets at each of that set's iterations, interleaved, each --repeats times (seed
 = repetition), and measures relMSE against Mitsuba's converged path-traced image
@@ -41,18 +45,18 @@ SIZE = 64
 SCENES = [
     {"name": "caustic_patch", "scene": "bench/scenes/caustic_patch.json", "truth_spp": 65536,
      "region": {"x": (0.0, 1.0), "y": (0.0, 1.0)}, "region_is": "the patch, the whole image",
-     # The default initial radius comes from the 100-unit slab's extent, far wider than the 0.08-unit patch;
-     # one photon per pixel leaves most iterations without a photon on it.
-     "path_spp": [64, 256, 1024, 4096], "sppm": [(["--initial-radius", "0.01", "--photons", "65536"], [4, 16, 64])]},
+     # The defaults (issue 39: each pixel's first radius from its footprint, 65,536 photons per iteration),
+     # beside the former default photon count, one per pixel (4,096 at 64x64), at about the same photons in all.
+     "path_spp": [64, 256, 1024, 4096], "sppm": [([], [4, 16, 64]), (["--photons", "4096"], [64, 256, 1024])]},
     {"name": "sppm_caustic", "scene": "bench/scenes/sppm_caustic.json", "truth_spp": 131072,
      "region": {"x": (0.25, 0.75), "y": (0.58, 0.82)}, "region_is": "the floor under the sphere",
-     "path_spp": [16, 64, 256, 1024, 4096], "sppm": [([], [16, 64, 256])]},
+     "path_spp": [16, 64, 256, 1024, 4096], "sppm": [([], [4, 16, 64]), (["--photons", "4096"], [16, 64, 256])]},
     {"name": "room", "scene": "scenes/room.json", "truth_spp": 16384,
      "region": {"x": (0.64, 0.88), "y": (0.83, 0.91)}, "region_is": "the glass sphere's caustic on the floor",
-     # Beside the defaults, whether the region's error is the photons' noise (4x the photons) or the
-     # gathering radius's bias (a smaller first radius).
+     # Beside the defaults, the former default photon count (one per pixel) and whether the region's error is
+     # the gathering radius's bias (a smaller first radius, 0.03 against two footprints, 0.22 on the mean).
      "path_spp": [16, 64, 256, 1024, 4096],
-     "sppm": [([], [16, 64, 256]), (["--photons", "16384"], [16, 64]), (["--initial-radius", "0.03"], [16, 64, 256])]},
+     "sppm": [([], [4, 16, 64]), (["--photons", "4096"], [16, 64, 256]), (["--initial-radius", "0.03"], [4, 16, 64])]},
 ]
 GAIN_TARGET, MEAN_TARGET = 10.0, 0.01
 
