@@ -217,6 +217,11 @@ std::vector<double> cumulative_distribution(const std::vector<double>& weights);
 // and meshes (in that order). The loader calls it; tests that build scenes in code call it too.
 void build_light_table(Scene& scene);
 
+// What every loader does after reading a scene: rebases all positions to the
+// camera (Scene::world_offset keeps the camera's position in the file's
+// coordinates) and builds the light table.
+void finish_scene(Scene& scene);
+
 // Mesh files are imported under `mesh_import` (import/import_limits.h).
 Scene load_scene(const std::string& path, const MeshImportLimits& mesh_import = {});
 Scene parse_scene(const std::string& json_text, const std::string& source_name,

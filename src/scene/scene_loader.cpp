@@ -40,6 +40,11 @@ std::string read_text_file(const std::string& path) {
 
 }  // namespace
 
+void finish_scene(Scene& scene) {
+    rebase_to_camera(scene);
+    build_light_table(scene);
+}
+
 Scene parse_scene(const std::string& json_text, const std::string& source_name, const MeshImportLimits& mesh_import) {
     const nlohmann::json document = parse_json_strictly(json_text, source_name);
     const JsonField root = root_field(document, source_name);
@@ -55,8 +60,7 @@ Scene parse_scene(const std::string& json_text, const std::string& source_name, 
     if (auto materials = root.optional_member("materials")) scene.materials = read_materials(*materials);
     if (auto shapes = root.optional_member("shapes")) read_shapes(*shapes, scene, mesh_import);
 
-    rebase_to_camera(scene);
-    build_light_table(scene);
+    finish_scene(scene);
     if (const std::string problem = sppm_problem(scene); !problem.empty())
         root.member("render").member("integrator").fail(problem);
     return scene;

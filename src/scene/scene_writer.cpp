@@ -1,0 +1,138 @@
+#include "scene/scene_writer.h"
+
+#include <bit>
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+
+#include "core/atomic_file.h"
+
+namespace wp {
+namespace {
+
+namespace fs = std::filesystem;
+
+nlohmann::json vec3(const glm::dvec3& v) { return {v.x, v.y, v.z}; }
+
+nlohmann::json material_json(const Material& m) {
+    nlohmann::json j;
+    switch (m.type) {
+        case MaterialType::Diffuse:
+            j = {{"type", "diffuse"}, {"albedo", vec3(m.albedo)}};
+            if (m.emits()) j["emission"] = vec3(m.emission);
+            break;
+        case MaterialType::Mirror:
+            j = {{"type", "mirror"}, {"reflectance", vec3(m.reflectance)}};
+            break;
+        case MaterialType::Glass:
+            j = {{"type", "glass"}, {"ior", m.ior}};
+            break;
+        case MaterialType::Emitter:
+            j = {{"type", "emitter"}, {"radiance", vec3(m.emission)}};
+            break;
+    }
+    if (m.two_sided) j["two_sided"] = true;
+    return j;
+}
+
+nlohmann::json matrix_json(const glm::dmat4& m) {
+    nlohmann::json rows = nlohmann::json::array();
+    for (int row = 0; row < 4; ++row) rows.push_back({m[0][row], m[1][row], m[2][row], m[3][row]});
+    return rows;
+}
+
+void append_le(std::string& out, std::uint32_t value) {
+    for (int i = 0; i < 4; ++i) out += char((value >> (8 * i)) & 0xff);
+}
+
+}  // namespace
+
+SceneJson scene_json(const MitsubaScene& read, const fs::path& json_path) {
+    const Scene& scene = read.scene;
+    SceneJson out;
+    nlohmann::json& j = out.json;
+    const Camera& c = scene.camera;
+    j["camera"] = {{"position", vec3(c.position)}, {"look_at", vec3(c.look_at)}, {"up", vec3(c.up)},
+                   {"fov_y", c.fov_y_degrees},     {"width", c.width},           {"height", c.height}};
+    const RenderSettings& r = scene.render;
+    j["render"] = {{"spp", r.spp}, {"max_depth", r.max_depth}, {"rr_depth", r.rr_depth}, {"seed", r.seed}};
+    j["background"] = vec3(scene.background);
+    j["materials"] = nlohmann::json::object();
+    for (const Material& m : scene.materials) j["materials"][m.name] = material_json(m);
+    nlohmann::json& shapes = j["shapes"] = nlohmann::json::array();
+    const auto material = [&](int index) { return scene.materials[std::size_t(index)].name; };
+    for (const Sphere& s : scene.spheres)
+        shapes.push_back(
+            {{"type", "sphere"}, {"center", vec3(s.center)}, {"radius", s.radius}, {"material", material(s.material)}});
+    for (const Quad& q : scene.quads)
+        shapes.push_back({{"type", "quad"},
+                          {"corner", vec3(q.corner)},
+                          {"edge1", vec3(q.edge1)},
+                          {"edge2", vec3(q.edge2)},
+                          {"material", material(q.material)}});
+    const fs::path folder = fs::absolute(json_path).parent_path();
+    for (std::size_t i = 0; i < scene.meshes.size(); ++i) {
+        const MeshOrigin& origin = read.meshes[i];
+        nlohmann::json mesh = {{"type", "mesh"}, {"material", material(scene.meshes[i].material)}};
+        if (origin.as_file) {
+            const fs::path file = fs::absolute(origin.file).lexically_normal();
+            const fs::path relative = file.lexically_relative(folder);
+            mesh["file"] = (relative.empty() ? file : relative).generic_string();
+        } else {
+            const fs::path file = json_path.parent_path() /
+                                  (json_path.stem().string() + "_mesh" + std::to_string(out.meshes.size()) + ".ply");
+            out.meshes.push_back({file, &origin.local});
+            mesh["file"] = file.filename().string();
+        }
+        if (origin.to_world != glm::dmat4(1.0)) mesh["transform"] = {{"matrix", matrix_json(origin.to_world)}};
+        if (origin.face_normals) mesh["face_normals"] = true;
+        shapes.push_back(mesh);
+    }
+    return out;
+}
+
+void write_ply(const fs::path& path, const ImportedMesh& mesh) {
+    std::string bytes = "ply\nformat binary_little_endian 1.0\nelement vertex " +
+                        std::to_string(mesh.positions.size()) +
+                        "\nproperty float x\nproperty float y\nproperty float z\n";
+    if (mesh.has_normals) bytes += "property float nx\nproperty float ny\nproperty float nz\n";
+    bytes += "element face " + std::to_string(mesh.triangles.size()) +
+             "\nproperty list uchar int vertex_indices\nend_header\n";
+    for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
+        for (int k = 0; k < 3; ++k) append_le(bytes, std::bit_cast<std::uint32_t>(mesh.positions[v][k]));
+        if (mesh.has_normals)
+            for (int k = 0; k < 3; ++k) append_le(bytes, std::bit_cast<std::uint32_t>(mesh.normals[v][k]));
+    }
+    for (const glm::uvec3& t : mesh.triangles) {
+        bytes += char(3);
+        for (int k = 0; k < 3; ++k) append_le(bytes, t[k]);
+    }
+    std::ofstream file(path, std::ios::binary);
+    file.write(bytes.data(), std::streamsize(bytes.size()));
+    file.close();
+    if (!file) throw OutputError(path.string() + ": cannot write: " + std::strerror(errno));
+}
+
+void write_scene_json(const MitsubaScene& scene, const fs::path& json_path) {
+    check_writable_destination(json_path);
+    const SceneJson out = scene_json(scene, json_path);
+    std::vector<fs::path> written;
+    try {
+        for (const MeshFileToWrite& mesh : out.meshes) {
+            write_atomically(mesh.path, [&](const fs::path& temporary) { write_ply(temporary, *mesh.mesh); });
+            written.push_back(mesh.path);
+        }
+        write_atomically(json_path, [&](const fs::path& temporary) {
+            std::ofstream file(temporary);
+            file << out.json.dump(1) << "\n";
+            file.close();
+            if (!file) throw OutputError(json_path.string() + ": cannot write: " + std::strerror(errno));
+        });
+    } catch (...) {
+        std::error_code ignored;
+        for (const fs::path& path : written) fs::remove(path, ignored);
+        throw;
+    }
+}
+
+}  // namespace wp

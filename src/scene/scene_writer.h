@@ -1,0 +1,40 @@
+// Writes a scene read from Mitsuba XML as wavepath JSON (docs/scene-format.md;
+// `wavepath convert`): the JSON loader then makes the same Scene of it.
+#pragma once
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "scene/mitsuba_xml.h"
+
+namespace wp {
+
+// A mesh the JSON refers to that must be written beside it.
+struct MeshFileToWrite {
+    std::filesystem::path path;
+    const ImportedMesh* mesh = nullptr;
+};
+
+struct SceneJson {
+    nlohmann::json json;
+    std::vector<MeshFileToWrite> meshes;
+};
+
+// The JSON of `scene` (before finish_scene: in the file's coordinates), to be
+// written to `json_path`. Meshes that came from an OBJ or PLY file as the
+// JSON loader reads them refer to that file (relative to the JSON's folder)
+// with their transform; every other mesh (cube, disk, serialized, a file
+// whose winding or normals the scene changes) is a binary PLY beside the
+// JSON, "<stem>_mesh<N>.ply", in its own coordinates under the same transform.
+SceneJson scene_json(const MitsubaScene& scene, const std::filesystem::path& json_path);
+
+// A binary little-endian PLY of float positions (and normals), int triangles.
+void write_ply(const std::filesystem::path& path, const ImportedMesh& mesh);
+
+// Writes the JSON and its meshes, each atomically; on failure nothing of them stays behind.
+// Throws OutputError.
+void write_scene_json(const MitsubaScene& scene, const std::filesystem::path& json_path);
+
+}  // namespace wp

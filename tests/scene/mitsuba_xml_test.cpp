@@ -1,0 +1,514 @@
+// The Mitsuba 3 XML reader (scene/mitsuba_xml.h; docs/scene-format.md,
+// "Mitsuba XML"): each element's mapping onto the Scene, exactly, and the
+// one-line errors with file and line. That the mappings render as Mitsuba
+// does is tests/oracle/mitsuba_xml_oracle.py's.
+#include "scene/mitsuba_xml.h"
+
+#include <gtest/gtest.h>
+#include <zlib.h>
+
+#include <cmath>
+#include <cstring>
+#include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
+#include <numbers>
+#include <string>
+
+#include "import/mesh_file_error.h"
+#include "scene/limits.h"
+#include "scene/scene_writer.h"
+#include "scene/serialized_mesh.h"
+#include "support/temp_directory.h"
+
+namespace wp::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+// A sensor of the given film size looking down -z from the origin.
+std::string sensor(int width = 8, int height = 8, const std::string& extra = "") {
+    return R"(<sensor type="perspective"><transform name="to_world"><lookat origin="0, 0, 0" target="0, 0, -1" up="0, 1, 0"/></transform>)" +
+           extra + R"(<film type="hdrfilm"><integer name="width" value=")" + std::to_string(width) +
+           R"("/><integer name="height" value=")" + std::to_string(height) +
+           R"("/><rfilter type="box"/></film></sensor>)";
+}
+
+std::string scene_of(const std::string& body) { return "<scene version=\"3.0.0\">\n" + body + "\n</scene>\n"; }
+
+class MitsubaXml : public ::testing::Test {
+ protected:
+    std::string write(const std::string& name, const std::string& text) const {
+        const fs::path path = dir_.path() / name;
+        fs::create_directories(path.parent_path());
+        write_text(path, text);
+        return path.string();
+    }
+    MitsubaScene read(const std::string& body, const XmlDefines& defines = {}) const {
+        return read_mitsuba_scene(write("scene.xml", scene_of(body)), defines);
+    }
+    // The error, without "<dir>/".
+    std::string error_of(const std::string& body, const XmlDefines& defines = {}) const {
+        try {
+            read(body, defines);
+        } catch (const SceneError& error) {
+            std::string message = error.what();
+            const std::string prefix = dir_.path().string() + "/";
+            for (std::size_t at = message.find(prefix); at != std::string::npos; at = message.find(prefix))
+                message.erase(at, prefix.size());
+            return message;
+        }
+        return "(no error)";
+    }
+    TempDirectory dir_{"xml"};
+};
+
+void expect_near(const glm::dvec3& a, const glm::dvec3& b, double tolerance = 1e-12) {
+    EXPECT_NEAR(a.x, b.x, tolerance);
+    EXPECT_NEAR(a.y, b.y, tolerance);
+    EXPECT_NEAR(a.z, b.z, tolerance);
+}
+
+glm::dvec3 quad_normal(const Quad& q) { return glm::normalize(glm::cross(q.edge1, q.edge2)); }
+
+// ---- camera, film, sampler, integrator ----
+
+TEST_F(MitsubaXml, CameraLooksAlongToWorldsZWithItsY) {
+    const Scene scene = read(R"(<sensor type="perspective">
+        <float name="fov" value="60"/>
+        <transform name="to_world"><lookat origin="1, 2, 3" target="1, 2, 0" up="0, 1, 0"/></transform>
+        <film type="hdrfilm"><integer name="width" value="40"/><integer name="height" value="20"/></film>
+    </sensor>)")
+                            .scene;
+    expect_near(scene.camera.position, {1, 2, 3});
+    expect_near(glm::normalize(scene.camera.look_at - scene.camera.position), {0, 0, -1});
+    expect_near(scene.camera.up, {0, 1, 0});
+    EXPECT_EQ(scene.camera.width, 40);
+    EXPECT_EQ(scene.camera.height, 20);
+}
+
+TEST_F(MitsubaXml, FovAxesAsMitsubasParseFov) {
+    const double t = std::tan(glm::radians(30.0));  // fov 60, aspect 2 (40 x 20)
+    const std::pair<const char*, double> cases[] = {
+        {"x", 2.0 * std::atan(t / 2.0)},
+        {"y", glm::radians(60.0)},
+        {"diagonal", 2.0 * std::atan(t / std::sqrt(5.0))},
+        {"smaller", glm::radians(60.0)},  // the height, in a wide image
+        {"larger", 2.0 * std::atan(t / 2.0)},
+        {"X", 2.0 * std::atan(t / 2.0)},  // Mitsuba lowers the case
+    };
+    for (const auto& [axis, fov_y] : cases) {
+        SCOPED_TRACE(axis);
+        const Scene scene = read(sensor(40, 20,
+                                        R"(<float name="fov" value="60"/><string name="fov_axis" value=")" +
+                                            std::string(axis) + R"("/>)"))
+                                .scene;
+        EXPECT_NEAR(glm::radians(scene.camera.fov_y_degrees), fov_y, 1e-12);
+    }
+    // A square film: smaller is x, larger is y (Mitsuba compares aspect > 1).
+    EXPECT_NEAR(read(sensor(8, 8, R"(<float name="fov" value="50"/><string name="fov_axis" value="larger"/>)"))
+                    .scene.camera.fov_y_degrees,
+                50.0, 1e-12);
+}
+
+TEST_F(MitsubaXml, MitsubasDefaultsWithoutFilmSamplerIntegratorOrFov) {
+    const MitsubaScene read_scene = read(R"(<sensor type="perspective"/>)");
+    const Scene& scene = read_scene.scene;
+    EXPECT_EQ(scene.camera.width, 768);
+    EXPECT_EQ(scene.camera.height, 576);
+    EXPECT_EQ(scene.render.spp, 4);
+    EXPECT_EQ(scene.render.max_depth, kMaxDepthLimit);  // Mitsuba's -1, unbounded
+    EXPECT_EQ(scene.render.rr_depth, 5);
+    // 50 mm on 35 mm film, the diagonal: Mitsuba's x_fov 38.1848 at 4:3 (its print of the default camera).
+    const double x_fov = 2.0 * std::atan(std::tan(glm::radians(scene.camera.fov_y_degrees) / 2.0) * 768.0 / 576.0);
+    EXPECT_NEAR(glm::degrees(x_fov), 38.1848, 1e-4);
+    // No rfilter: Mitsuba's gaussian, which wavepath renders as box, with one warning.
+    ASSERT_EQ(read_scene.warnings.size(), 1u);
+}
+
+TEST_F(MitsubaXml, PathIntegratorDepthsCountSegmentsThere) {
+    const auto depths = [&](const std::string& integrator) {
+        const Scene scene = read(integrator + sensor()).scene;
+        return std::pair(scene.render.max_depth, scene.render.rr_depth);
+    };
+    EXPECT_EQ(depths(R"(<integrator type="path"><integer name="max_depth" value="1"/></integrator>)"), std::pair(0, 5));
+    EXPECT_EQ(depths(R"(<integrator type="path"><integer name="max_depth" value="6"/>)"
+                     R"(<integer name="rr_depth" value="3"/></integrator>)"),
+              std::pair(5, 3));
+    EXPECT_EQ(depths(R"(<integrator type="path"><integer name="max_depth" value="-1"/></integrator>)"),
+              std::pair(kMaxDepthLimit, 5));
+}
+
+TEST_F(MitsubaXml, SamplerCountAndSeed) {
+    const Scene scene = read(sensor(8, 8,
+                                    R"(<sampler type="multijitter"><integer name="sample_count" value="64"/>)"
+                                    R"(<integer name="seed" value="7"/></sampler>)"))
+                            .scene;
+    EXPECT_EQ(scene.render.spp, 64);
+    EXPECT_EQ(scene.render.seed, 7u);
+}
+
+// ---- transforms ----
+
+TEST_F(MitsubaXml, TransformStepsApplyInDocumentOrder) {
+    const auto corner = [&](const std::string& steps) {
+        const Scene scene =
+            read(sensor() + R"(<shape type="rectangle"><transform name="to_world">)" + steps + "</transform></shape>")
+                .scene;
+        return scene.quads.at(0).corner;  // to_world of (-1, -1, 0)
+    };
+    expect_near(corner(R"(<translate x="1"/><scale value="2"/>)"), {0, -2, 0});
+    expect_near(corner(R"(<scale value="2"/><translate x="1"/>)"), {-1, -2, 0});
+    expect_near(corner(R"(<translate value="1, 2, 3"/>)"), {0, 1, 3});
+    expect_near(corner(R"(<scale x="2" z="5"/>)"), {-2, -1, 0});
+    expect_near(corner(R"(<rotate z="1" angle="90"/>)"), {1, -1, 0});  // counter-clockwise about +z
+    expect_near(corner(R"(<matrix value="1 0 0 10  0 1 0 20  0 0 1 30  0 0 0 1"/>)"), {9, 19, 30});
+    expect_near(corner(R"(<matrix value="0 -1 0  1 0 0  0 0 1"/>)"), {1, -1, 0});
+    // lookat: the local z axis along target - origin, local x = up x z.
+    expect_near(corner(R"(<lookat origin="0, 0, 0" target="1, 0, 0" up="0, 1, 0"/>)"), {0, -1, 1});
+}
+
+TEST_F(MitsubaXml, RotationAxisIsNotNormalizedAsInMitsuba) {
+    // Mitsuba 3.9.1: ScalarTransform4d().rotate([2, 0, 0], 90) = [[4, 0, 0], [0, 0, -2], [0, 2, 0]].
+    const Quad q = read(sensor() + R"(<shape type="rectangle"><transform name="to_world">)"
+                                   R"(<rotate x="2" angle="90"/></transform></shape>)")
+                       .scene.quads.at(0);
+    expect_near(q.corner, {-4, 0, -2});
+}
+
+TEST_F(MitsubaXml, RectangleFacesToWorldsNormalOfZ) {
+    const auto normal = [&](const std::string& flip, const std::string& steps) {
+        return quad_normal(read(sensor() + R"(<shape type="rectangle">)" + flip + R"(<transform name="to_world">)" +
+                                steps + "</transform></shape>")
+                               .scene.quads.at(0));
+    };
+    const std::string flip = R"(<boolean name="flip_normals" value="true"/>)";
+    expect_near(normal("", ""), {0, 0, 1});
+    expect_near(normal(flip, ""), {0, 0, -1});
+    expect_near(normal("", R"(<scale z="-1"/>)"), {0, 0, -1});  // the inverse transpose of the mirror
+    expect_near(normal("", R"(<scale x="-1"/>)"), {0, 0, 1});
+    expect_near(normal(flip, R"(<scale x="-1"/>)"), {0, 0, -1});
+}
+
+// Whether every triangle of a mesh around `centre` faces away from it.
+int outward_triangles(const Mesh& mesh, const glm::dvec3& centre) {
+    int outward = 0;
+    for (const glm::uvec3& t : mesh.triangles) {
+        const glm::dvec3 n =
+            glm::cross(mesh.positions[t.y] - mesh.positions[t.x], mesh.positions[t.z] - mesh.positions[t.x]);
+        outward += glm::dot(n, mesh.positions[t.x] - centre) > 0.0 ? 1 : 0;
+    }
+    return outward;
+}
+
+TEST_F(MitsubaXml, CubeFacesOutUnlessItsTransformedCornersWindTheOtherWay) {
+    const auto outward = [&](const std::string& inside) {
+        const Scene scene = read(sensor() + R"(<shape type="cube">)" + inside + "</shape>").scene;
+        EXPECT_EQ(scene.meshes.at(0).triangles.size(), 12u);
+        EXPECT_TRUE(scene.meshes.at(0).normals.empty());
+        return outward_triangles(scene.meshes.at(0), {5, 0, 0});
+    };
+    const std::string mirror = R"(<transform name="to_world"><scale x="-1"/><translate x="5"/></transform>)";
+    const std::string move = R"(<transform name="to_world"><translate x="5"/></transform>)";
+    const std::string flip = R"(<boolean name="flip_normals" value="true"/>)";
+    EXPECT_EQ(outward(move), 12);
+    EXPECT_EQ(outward(move + flip), 0);
+    EXPECT_EQ(outward(mirror), 0);  // Mitsuba's meshes: the front follows the transformed corners
+    EXPECT_EQ(outward(mirror + flip), 12);
+}
+
+TEST_F(MitsubaXml, DiskIsAFineFanFacingZ) {
+    const Scene scene = read(sensor() + R"(<shape type="disk"><transform name="to_world"><scale value="2"/>)"
+                                        R"(</transform></shape>)")
+                            .scene;
+    const Mesh& disk = scene.meshes.at(0);
+    EXPECT_EQ(disk.triangles.size(), std::size_t(512));
+    EXPECT_NEAR(mesh_area(disk) / (4.0 * std::numbers::pi), 1.0, 3e-5);
+    for (const glm::uvec3& t : disk.triangles)
+        EXPECT_GT(glm::cross(disk.positions[t.y] - disk.positions[t.x], disk.positions[t.z] - disk.positions[t.x]).z,
+                  0.0);
+}
+
+TEST_F(MitsubaXml, SphereFromCenterRadiusAndToWorld) {
+    const Scene scene = read(sensor() + R"(
+        <shape type="sphere"><point name="center" value="1, 2, 3"/><float name="radius" value="0.5"/></shape>
+        <shape type="sphere"><transform name="to_world"><scale value="2"/><translate y="1"/></transform>
+            <point name="center" x="1" y="0" z="0"/></shape>)")
+                            .scene;
+    expect_near(scene.spheres.at(0).center, {1, 2, 3});
+    EXPECT_EQ(scene.spheres.at(0).radius, 0.5);
+    expect_near(scene.spheres.at(1).center, {2, 1, 0});  // to_world * translate(center) * scale(radius)
+    EXPECT_EQ(scene.spheres.at(1).radius, 2.0);
+    EXPECT_EQ(error_of(sensor() + R"(
+        <shape type="sphere"><transform name="to_world"><scale x="2"/></transform></shape>)"),
+              "scene.xml:3: shape \"sphere\": transform \"to_world\": a sphere's may not scale unevenly or shear");
+}
+
+// ---- materials and emitters ----
+
+TEST_F(MitsubaXml, BsdfsAsMaterials) {
+    const Scene scene = read(sensor() + R"(
+        <bsdf type="diffuse" id="red"><rgb name="reflectance" value="0.5, 0.1, 0.1"/></bsdf>
+        <shape type="sphere"><bsdf type="twosided"><ref id="red"/></bsdf></shape>
+        <shape type="sphere"/>
+        <shape type="sphere"><bsdf type="dielectric"><string name="int_ior" value="Diamond"/>
+            <float name="ext_ior" value="1.5"/></bsdf></shape>
+        <shape type="sphere"><bsdf type="dielectric"/></shape>
+        <shape type="sphere"><emitter type="area"><rgb name="radiance" value="3"/></emitter></shape>
+        <shape type="sphere"><bsdf type="dielectric"/><emitter type="area"><rgb name="radiance" value="2"/></emitter></shape>
+        <shape type="sphere"><bsdf type="diffuse"><spectrum name="reflectance" value="0.25"/></bsdf></shape>
+        <emitter type="constant"><rgb name="radiance" value="0.1, 0.2, 0.3"/></emitter>)")
+                            .scene;
+    const auto material = [&](int sphere) {
+        return scene.materials.at(std::size_t(scene.spheres.at(std::size_t(sphere)).material));
+    };
+    EXPECT_EQ(material(0).type, MaterialType::Diffuse);
+    expect_near(material(0).albedo, {0.5, 0.1, 0.1});
+    expect_near(material(1).albedo, glm::dvec3(0.5));  // Mitsuba's default BSDF
+    EXPECT_EQ(material(2).type, MaterialType::Glass);
+    EXPECT_NEAR(material(2).ior, 2.419 / 1.5, 1e-12);
+    EXPECT_NEAR(material(3).ior, 1.5046 / 1.000277, 1e-12);  // bk7 in air
+    expect_near(material(4).albedo, glm::dvec3(0.0));        // the default BSDF of an emitter is black
+    expect_near(material(4).emission, glm::dvec3(3.0));
+    EXPECT_FALSE(material(4).two_sided);
+    EXPECT_EQ(material(5).type, MaterialType::Emitter);  // a dielectric that emits: the emission only
+    expect_near(material(6).albedo, glm::dvec3(0.25));
+    expect_near(scene.background, {0.1, 0.2, 0.3});
+}
+
+// ---- $defaults, -D, includes, references ----
+
+TEST_F(MitsubaXml, DefaultsAndDefinesSubstituteInDocumentOrder) {
+    const std::string body =
+        R"(<default name="spp" value="8"/><default name="s" value="2"/>)" +
+        sensor(8, 8, R"(<sampler type="independent"><integer name="sample_count" value="$spp$s"/></sampler>)");
+    EXPECT_EQ(read(body).scene.render.spp, 82);
+    EXPECT_EQ(read(body, {{"spp", "3"}}).scene.render.spp, 32);  // -D wins over <default>
+    EXPECT_EQ(error_of(body, {{"sp", "1"}}),
+              "scene.xml: -D sp: the scene has no $sp (an unused definition is an "
+              "error, as in Mitsuba)");
+    EXPECT_EQ(
+        error_of(sensor(8, 8, R"(<sampler type="independent"><integer name="sample_count" value="$n"/></sampler>)")),
+        "scene.xml:2: undefined parameter $n (define it with <default> or -D n=...)");
+    // "\$" is a dollar sign.
+    EXPECT_EQ(read(sensor() + R"(<bsdf type="diffuse" id="a\$b"/><shape type="sphere"><ref id="a\$b"/></shape>)")
+                  .scene.materials.at(0)
+                  .name,
+              "a$b");
+}
+
+TEST_F(MitsubaXml, IncludesAreRelativeToTheIncludingFile) {
+    write(
+        "parts/a.xml",
+        scene_of(
+            R"(<include filename="b.xml"/><bsdf type="diffuse" id="x"><float name="reflectance" value="0.2"/></bsdf>)"));
+    write("parts/b.xml", scene_of(R"(<bsdf type="diffuse" id="y"><float name="reflectance" value="0.3"/></bsdf>)"));
+    const Scene scene =
+        read(R"(<include filename="parts/a.xml"/>)" + sensor() + R"(<shape type="sphere"><ref id="y"/></shape>)").scene;
+    expect_near(scene.materials.at(0).albedo, glm::dvec3(0.3));
+    write("parts/loop.xml", scene_of(R"(<include filename="../scene.xml"/>)"));
+    EXPECT_EQ(error_of(R"(<include filename="parts/loop.xml"/>)"),
+              "parts/loop.xml:2: include cycle: scene.xml includes parts/loop.xml includes scene.xml");
+}
+
+TEST_F(MitsubaXml, ReferenceProblems) {
+    EXPECT_EQ(error_of(sensor() + R"(<shape type="sphere">
+        <ref id="nothing"/></shape>)"),
+              "scene.xml:3: <ref>: no object has id \"nothing\"");
+    EXPECT_EQ(error_of(sensor() + R"(
+        <bsdf type="twosided" id="a"><ref id="b"/></bsdf>
+        <bsdf type="twosided" id="b"><ref id="a"/></bsdf>
+        <shape type="sphere"><ref id="b"/></shape>)"),
+              "scene.xml:4: bsdf: cyclic reference: \"b\" -> \"a\" -> \"b\"");
+    EXPECT_EQ(error_of(sensor() + R"(
+        <bsdf type="diffuse" id="a"/>
+        <bsdf type="diffuse" id="a"/>)"),
+              "scene.xml:4: <bsdf>: id \"a\" is also the id of the <bsdf> at scene.xml:3");
+}
+
+TEST_F(MitsubaXml, OldVersionsNamesAreUpgradedAsMitsubaDoes) {
+    write("old.xml", R"(<scene version="0.6.0">
+        <integrator type="path"><integer name="maxDepth" value="3"/></integrator>
+        <sensor type="perspective"><float name="fov" value="30"/><string name="fovAxis" value="y"/>
+            <sampler type="independent"><integer name="sampleCount" value="9"/></sampler>
+            <film type="hdrfilm"><integer name="width" value="8"/><integer name="height" value="8"/><rfilter type="box"/></film></sensor>
+        <shape type="sphere"><bsdf type="diffuse"><rgb name="diffuseReflectance" value="0.4"/></bsdf></shape>
+    </scene>)");
+    const Scene scene = read_mitsuba_scene((dir_.path() / "old.xml").string(), {}).scene;
+    EXPECT_EQ(scene.render.max_depth, 2);
+    EXPECT_EQ(scene.render.spp, 9);
+    EXPECT_NEAR(scene.camera.fov_y_degrees, 30.0, 1e-12);
+    expect_near(scene.materials.at(0).albedo, glm::dvec3(0.4));
+}
+
+TEST_F(MitsubaXml, ErrorsNameTheFileLineAndPluginOrProperty) {
+    EXPECT_EQ(error_of(sensor() + R"(
+        <shape type="sphere">
+            <bsdf type="roughplastic"/>
+        </shape>)"),
+              "scene.xml:4: bsdf \"roughplastic\": not supported (supported: diffuse, twosided, dielectric)");
+    EXPECT_EQ(error_of(sensor() + R"(
+        <shape type="rectangle"><float name="width" value="2"/></shape>)"),
+              "scene.xml:3: shape \"rectangle\": float \"width\": not supported (supported: to_world, flip_normals)");
+    EXPECT_EQ(error_of(sensor() + R"(
+        <shape type="sphere">
+            <float name="radius" value="1e13"/></shape>)"),
+              "scene.xml:4: shape \"sphere\": float \"radius\": magnitude must be <= 1e+12, got 1e+13");
+    EXPECT_EQ(error_of(sensor() + "\n<shape type=\"sphere\">"), "scene.xml:4: malformed XML: Start-end tags mismatch");
+    EXPECT_EQ(error_of(R"(<sensor type="thinlens"/>)"),
+              "scene.xml:2: sensor \"thinlens\": not supported (supported: perspective)");
+    EXPECT_EQ(error_of(""), "scene.xml:1: scene: no sensor (wavepath needs a perspective sensor)");
+}
+
+// ---- serialized meshes ----
+
+// One mesh of a serialized file, version 4: header, then its zlib stream.
+std::string serialized_mesh(std::uint32_t flags, const std::vector<double>& positions,
+                            const std::vector<double>& normals, const std::vector<std::uint32_t>& indices) {
+    std::string body(reinterpret_cast<const char*>(&flags), 4);
+    body += std::string("name") + '\0';
+    const std::uint64_t counts[2] = {positions.size() / 3, indices.size() / 3};
+    body.append(reinterpret_cast<const char*>(counts), 16);
+    const bool doubles = flags & 0x2000;
+    for (const std::vector<double>* values : {&positions, &normals}) {
+        for (double v : *values) {
+            const float f = float(v);
+            body.append(doubles ? reinterpret_cast<const char*>(&v) : reinterpret_cast<const char*>(&f),
+                        doubles ? 8 : 4);
+        }
+    }
+    body.append(reinterpret_cast<const char*>(indices.data()), indices.size() * 4);
+    uLongf size = compressBound(uLong(body.size()));
+    std::string compressed(size, '\0');
+    EXPECT_EQ(compress(reinterpret_cast<Bytef*>(compressed.data()), &size, reinterpret_cast<const Bytef*>(body.data()),
+                       uLong(body.size())),
+              Z_OK);
+    compressed.resize(size);
+    return std::string("\x1c\x04\x04\x00", 4) + compressed;
+}
+
+std::string square_mesh() {  // double precision, with normals
+    return serialized_mesh(0x2001, {-1, -1, 0, 1, -1, 0, 1, 1, 0, -1, 1, 0}, {0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1},
+                           {0, 1, 2, 0, 2, 3});
+}
+
+std::string two_mesh_file() {
+    const std::string square = square_mesh();
+    const std::string triangle = serialized_mesh(0x1000, {0, 0, 0, 0.5, 0, 0, 0, 0.25, 0}, {}, {0, 1, 2});
+    std::string file = square + triangle;
+    const std::uint64_t offsets[2] = {0, square.size()};
+    file.append(reinterpret_cast<const char*>(offsets), 16);
+    const std::uint32_t count = 2;
+    file.append(reinterpret_cast<const char*>(&count), 4);
+    return file;
+}
+
+TEST(SerializedMesh, ReadsEachMeshOfTheFile) {
+    const std::string file = two_mesh_file();
+    const ImportedMesh square = parse_serialized_mesh(file, 0);
+    ASSERT_EQ(square.positions.size(), 4u);
+    EXPECT_EQ(square.positions[2], glm::vec3(1, 1, 0));
+    EXPECT_TRUE(square.has_normals);
+    EXPECT_EQ(square.normals[3], glm::vec3(0, 0, 1));
+    EXPECT_EQ(square.triangles.size(), 2u);
+    const ImportedMesh triangle = parse_serialized_mesh(file, 1);
+    ASSERT_EQ(triangle.positions.size(), 3u);
+    EXPECT_EQ(triangle.positions[2], glm::vec3(0, 0.25f, 0));
+    EXPECT_FALSE(triangle.has_normals);
+}
+
+std::string serialized_error(const std::string& bytes, std::int64_t index) {
+    try {
+        parse_serialized_mesh(bytes, index);
+    } catch (const MeshFileError& error) {
+        return error.what();
+    }
+    return "(no error)";
+}
+
+TEST(SerializedMesh, MalformedFilesAreOneError) {
+    const std::string file = two_mesh_file();
+    EXPECT_EQ(serialized_error(file, 2), "shape_index 2 is out of range (the file holds 2 meshes)");
+    EXPECT_EQ(serialized_error("PK\x03\x04", 0), "not a Mitsuba serialized mesh (its first two bytes are not 0x041C)");
+    EXPECT_EQ(serialized_error(std::string("\x1c\x04\x05\x00", 4), 0),
+              "serialized format version 5 (Mitsuba reads 3 and 4)");
+    std::string bad_zlib = file;
+    bad_zlib[4] = char(bad_zlib[4] ^ 0xff);
+    EXPECT_EQ(serialized_error(bad_zlib, 0), "corrupt zlib stream (incorrect header check) in the flags");
+    // Every truncation of a mesh is refused (its zlib stream must end, checksum and all), none crashes
+    // or allocates what the counts claim.
+    const std::string square = square_mesh();
+    EXPECT_EQ(serialized_error(square, 0), "(no error)");
+    for (std::size_t size = 0; size < square.size(); ++size)
+        EXPECT_NE(serialized_error(square.substr(0, size), 0), "(no error)") << size;
+}
+
+TEST_F(MitsubaXml, SerializedShapeUnderItsTransform) {
+    write("meshes.serialized", two_mesh_file());
+    const Scene scene = read(sensor() + R"(<shape type="serialized"><string name="filename" value="meshes.serialized"/>
+        <integer name="shape_index" value="1"/><transform name="to_world"><translate z="-3"/></transform></shape>)")
+                            .scene;
+    const Mesh& mesh = scene.meshes.at(0);
+    ASSERT_EQ(mesh.positions.size(), 3u);
+    expect_near(mesh.positions[1], {0.5, 0, -3});
+    // No normals in the file: Mitsuba's smooth ones (a flat triangle: its face normal).
+    ASSERT_EQ(mesh.normals.size(), 3u);
+    expect_near(mesh.normals[0], {0, 0, 1});
+}
+
+// ---- convert ----
+
+// A scene of every shape; converted to JSON and loaded, it is the same Scene, bit for bit.
+TEST_F(MitsubaXml, ConvertedJsonLoadsAsTheSameScene) {
+    write("meshes.serialized", two_mesh_file());
+    write("tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 1\nf 1 2 3\nf 2 4 3\n");
+    const std::string path = write("scene.xml", scene_of(sensor(8, 8, R"(<float name="fov" value="40"/>)") + R"(
+        <shape type="sphere"><point name="center" value="1, 2, -5"/><float name="radius" value="0.3"/>
+            <emitter type="area"><rgb name="radiance" value="4, 3, 2"/></emitter></shape>
+        <shape type="rectangle"><transform name="to_world"><rotate x="1" angle="-90"/><translate y="-1"/></transform>
+            <bsdf type="twosided"><bsdf type="diffuse"/></bsdf></shape>
+        <shape type="cube"><transform name="to_world"><scale x="-0.5"/><translate z="-4"/></transform>
+            <bsdf type="dielectric"/></shape>
+        <shape type="disk"><boolean name="flip_normals" value="true"/><transform name="to_world"><translate z="-6"/></transform></shape>
+        <shape type="serialized"><string name="filename" value="meshes.serialized"/><transform name="to_world"><translate z="-7"/></transform></shape>
+        <shape type="obj"><string name="filename" value="tri.obj"/><transform name="to_world"><translate z="-8"/></transform></shape>
+        <shape type="obj"><string name="filename" value="tri.obj"/><boolean name="face_normals" value="true"/></shape>
+        <emitter type="constant"><rgb name="radiance" value="0.5"/></emitter>)"));
+    const MitsubaScene mitsuba = read_mitsuba_scene(path, {});
+    fs::create_directories(dir_.path() / "out");
+    const fs::path json = dir_.path() / "out/converted.json";
+    write_scene_json(mitsuba, json);
+    const Scene from_json = load_scene(json.string());
+    const Scene from_xml = load_mitsuba_scene(path, {});
+    // The file mesh with face normals is referred to; the others are written beside the JSON.
+    EXPECT_TRUE(fs::exists(dir_.path() / "out/converted_mesh3.ply"));
+    EXPECT_FALSE(fs::exists(dir_.path() / "out/converted_mesh4.ply"));
+    EXPECT_EQ(from_json.camera.position, from_xml.camera.position);
+    EXPECT_EQ(from_json.camera.look_at, from_xml.camera.look_at);
+    EXPECT_EQ(from_json.camera.up, from_xml.camera.up);
+    EXPECT_EQ(from_json.camera.fov_y_degrees, from_xml.camera.fov_y_degrees);
+    EXPECT_EQ(from_json.background, from_xml.background);
+    EXPECT_EQ(from_json.render.max_depth, from_xml.render.max_depth);
+    ASSERT_EQ(from_json.spheres.size(), 1u);
+    EXPECT_EQ(from_json.spheres[0].center, from_xml.spheres[0].center);
+    ASSERT_EQ(from_json.quads.size(), 1u);
+    EXPECT_EQ(from_json.quads[0].corner, from_xml.quads[0].corner);
+    EXPECT_EQ(from_json.quads[0].edge2, from_xml.quads[0].edge2);
+    ASSERT_EQ(from_json.meshes.size(), from_xml.meshes.size());
+    for (std::size_t m = 0; m < from_xml.meshes.size(); ++m) {
+        SCOPED_TRACE(m);
+        const Mesh &a = from_json.meshes[m], &b = from_xml.meshes[m];
+        // assimp joins identical vertices: compare the triangles' corners.
+        ASSERT_EQ(a.triangles.size(), b.triangles.size());
+        EXPECT_EQ(a.normals.empty(), b.normals.empty());
+        for (std::size_t t = 0; t < a.triangles.size(); ++t)
+            for (int k = 0; k < 3; ++k) {
+                EXPECT_EQ(a.positions[a.triangles[t][k]], b.positions[b.triangles[t][k]]);
+                if (!a.normals.empty()) expect_near(a.normals[a.triangles[t][k]], b.normals[b.triangles[t][k]], 1e-6);
+            }
+        EXPECT_EQ(from_json.materials[std::size_t(a.material)].name, from_xml.materials[std::size_t(b.material)].name);
+    }
+    EXPECT_EQ(from_json.lights.size(), from_xml.lights.size());
+}
+
+}  // namespace
+}  // namespace wp::test
