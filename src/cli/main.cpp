@@ -1,9 +1,10 @@
-// wavepath command line: subcommands `render`, `merge`, `devices` and `version`. Exit codes are
+// wavepath command line: subcommands `render`, `merge`, `convert`, `devices` and `version`. Exit codes are
 // listed in cli/errors.h (and the README).
 #include <CLI/CLI.hpp>
 #include <exception>
 #include <iostream>
 
+#include "cli/convert_command.h"
 #include "cli/errors.h"
 #include "cli/merge_command.h"
 #include "cli/render_command.h"
@@ -22,6 +23,10 @@ int main(int argc, char** argv) {
     MergeCommand merge_command;
     CLI::App* merge = app.add_subcommand("merge", "Merge partial films (render --samples A:B) into one image");
     add_merge_options(*merge, merge_command);
+    ConvertCommand convert_command;
+    CLI::App* convert =
+        app.add_subcommand("convert", "Write a Mitsuba 3 XML scene as the equivalent wavepath JSON scene");
+    add_convert_options(*convert, convert_command);
     CLI::App* version = app.add_subcommand("version", "Print the version");
     CLI::App* devices = app.add_subcommand("devices", "List the OpenCL platforms and devices");
 
@@ -39,8 +44,11 @@ int main(int argc, char** argv) {
             return run_render(render_command);
         } else if (merge->parsed()) {
             run_merge(merge_command);
+        } else if (convert->parsed()) {
+            run_convert(convert_command);
         } else {
-            throw UsageError("a subcommand is required: render, merge, devices or version (see wavepath --help)");
+            throw UsageError(
+                "a subcommand is required: render, merge, convert, devices or version (see wavepath --help)");
         }
         return kExitOk;
     } catch (...) {

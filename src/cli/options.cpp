@@ -54,7 +54,14 @@ void apply_sppm_overrides(const RenderOverrides& overrides, Scene& scene) {
 }  // namespace
 
 void add_render_options(CLI::App& render, RenderCommand& command) {
-    render.add_option("scene", command.scene_path, "Scene file (JSON, see docs/scene-format.md)")->required();
+    render
+        .add_option("scene", command.scene_path,
+                    "Scene file: wavepath JSON, or Mitsuba 3 XML (.xml); see docs/scene-format.md")
+        ->required();
+    render
+        .add_option("-D,--define", command.defines,
+                    "name=value: the value of $name in a Mitsuba XML scene (overrides its <default>); repeatable")
+        ->allow_extra_args(false);
     render.add_option("-o,--output", command.output_path, "Output image: .exr .pfm .hdr (linear) or .png .jpg (sRGB)")
         ->required();
 

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "cli/backends.h"
 #include "import/import_limits.h"
@@ -36,6 +37,7 @@ struct LongRunFlags {
 
 struct RenderCommand {
     std::string scene_path;
+    std::vector<std::string> defines;  // -D name=value, for Mitsuba XML scenes
     std::string output_path;
     std::string stats_json_path;  // empty: none
     bool quiet = false;

@@ -7,6 +7,7 @@
 #include "cli/errors.h"
 #include "cli/progress.h"
 #include "cli/rank_failures.h"
+#include "cli/scene_file.h"
 #include "cli/signals.h"
 #include "cli/summary.h"
 #include "core/atomic_file.h"
@@ -179,7 +180,8 @@ PreparedRender prepare_render(const RenderCommand& command, Ranks& ranks) {
     LongRunPlan& plan = prepared.plan;
     on_every_rank(ranks, [&] {
         if (ranks.is_root()) check_outputs(command);
-        scene = load_scene(command.scene_path, command.mesh_import);
+        scene = load_scene_file(command.scene_path, command.defines, command.mesh_import,
+                                ranks.is_root() ? &std::cerr : nullptr);
         apply_overrides(command.overrides, scene);
         if (scene.render.integrator == Integrator::Sppm) check_sppm_flags(command.long_run, ranks);
         if (command.long_run.target_error && !command.long_run.samples.empty())

@@ -28,23 +28,20 @@ struct CorpusKind {
     std::vector<std::string> (*command)(const std::string& input, const std::string& output);
 };
 
+// The mesh import's limits (docs/scene-format.md) small enough that a case on which assimp loops
+// or allocates without end fails in seconds; the wall-clock limit far above the CPU limit, so
+// that a loaded machine does not change which limit a case meets.
+std::vector<std::string> render_scene(const std::string& scene, const std::string& output) {
+    return {
+        "render", scene, "-o", output, "--mesh-import-memory", "1024", "--mesh-import-cpu", "5", "--mesh-import-time",
+        "300"};
+}
+
 const CorpusKind kKinds[] = {
-    // The mesh import's limits (docs/scene-format.md) small enough that a case on which assimp loops
-    // or allocates without end fails in seconds; the wall-clock limit far above the CPU limit, so
-    // that a loaded machine does not change which limit a case meets.
-    {"scenes", ".json",
-     [](const std::string& scene, const std::string& output) {
-         return std::vector<std::string>{"render",
-                                         scene,
-                                         "-o",
-                                         output,
-                                         "--mesh-import-memory",
-                                         "1024",
-                                         "--mesh-import-cpu",
-                                         "5",
-                                         "--mesh-import-time",
-                                         "300"};
-     }},
+    {"scenes", ".json", render_scene},
+    // Mitsuba 3 XML scenes (docs/scene-format.md, "Mitsuba XML"), with what they include
+    // (<case>.inc) and name (<case>.serialized) beside them.
+    {"xml", ".xml", render_scene},
     // scripts/make_checkpoint_corpus.py writes these, for this command.
     {"checkpoints", ".wpfilm",
      [](const std::string& checkpoint, const std::string& output) {

@@ -1,0 +1,40 @@
+#include "cli/convert_command.h"
+
+#include <filesystem>
+#include <iostream>
+
+#include "cli/errors.h"
+#include "cli/scene_file.h"
+#include "core/atomic_file.h"
+#include "scene/mitsuba_xml.h"
+#include "scene/scene_writer.h"
+
+namespace wp::cli {
+
+void add_convert_options(CLI::App& convert, ConvertCommand& command) {
+    convert.add_option("scene", command.scene_path, "Mitsuba 3 scene (.xml)")->required();
+    convert.add_option("-o,--output", command.output_path, "The wavepath scene to write (.json)")->required();
+    convert
+        .add_option("-D,--define", command.defines,
+                    "name=value: the value of $name in the scene (overrides its <default>); repeatable")
+        ->allow_extra_args(false);
+    convert.add_flag("-q,--quiet", command.quiet, "No warnings and no summary on stderr (errors still appear)");
+}
+
+void run_convert(const ConvertCommand& command) {
+    if (!is_mitsuba_scene_path(command.scene_path))
+        throw UsageError("convert: reads Mitsuba XML scenes (.xml), got " + command.scene_path);
+    if (std::filesystem::path(command.output_path).extension() != ".json")
+        throw UsageError("convert: -o must name a .json file, got " + command.output_path);
+    check_writable_destination(command.output_path);
+    const MitsubaScene scene =
+        read_mitsuba_scene(command.scene_path, parse_defines(command.defines), command.mesh_import);
+    if (!command.quiet)
+        for (const std::string& line : scene.warnings) std::cerr << "wavepath: warning: " << line << std::endl;
+    write_scene_json(scene, command.output_path);
+    if (!command.quiet)
+        std::cerr << "wavepath: wrote " << command.output_path << " (" << scene.scene.meshes.size() << " meshes)"
+                  << std::endl;
+}
+
+}  // namespace wp::cli

@@ -1,0 +1,42 @@
+#include "cli/scene_file.h"
+
+#include <algorithm>
+#include <cctype>
+#include <ostream>
+
+#include "cli/errors.h"
+#include "scene/mitsuba_xml.h"
+
+namespace wp::cli {
+
+XmlDefines parse_defines(const std::vector<std::string>& flags) {
+    XmlDefines defines;
+    for (const std::string& flag : flags) {
+        const std::size_t equals = flag.find('=');
+        const std::string name = flag.substr(0, equals);
+        const bool name_ok = !name.empty() && std::all_of(name.begin(), name.end(), [](char c) {
+            return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
+        });
+        if (equals == std::string::npos || !name_ok)
+            throw UsageError("-D: expected name=value (name of letters, digits and '_'), got '" + flag + "'");
+        defines.push_back({name, flag.substr(equals + 1)});
+    }
+    return defines;
+}
+
+Scene load_scene_file(const std::string& path, const std::vector<std::string>& defines,
+                      const MeshImportLimits& mesh_import, std::ostream* warnings) {
+    const XmlDefines parsed = parse_defines(defines);
+    if (!is_mitsuba_scene_path(path)) {
+        if (!parsed.empty())
+            throw UsageError("-D: applies to Mitsuba XML scenes (.xml) only, and " + path + " is read as JSON");
+        return load_scene(path, mesh_import);
+    }
+    std::vector<std::string> lines;
+    Scene scene = load_mitsuba_scene(path, parsed, mesh_import, &lines);
+    if (warnings)
+        for (const std::string& line : lines) *warnings << "wavepath: warning: " << line << std::endl;
+    return scene;
+}
+
+}  // namespace wp::cli

@@ -1,0 +1,93 @@
+// Mitsuba 3 XML scenes through the binary: `wavepath render SCENE.xml` with
+// -D, the pixel filter's one warning, `wavepath convert` and its JSON, which
+// renders the same image; failures are one line, exit 3 (2 for the command
+// line) and no output (docs/scene-format.md, "Mitsuba XML").
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "cli/run_wavepath.h"
+
+namespace wp::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+const fs::path kScenes = fs::path(WAVEPATH_SOURCE_DIR) / "scenes/test/mitsuba";
+
+class MitsubaCli : public ::testing::Test {
+ protected:
+    CommandResult run(const std::vector<std::string>& args) { return run_wavepath(args, scratch_.path()); }
+    TempDirectory scratch_{"scratch"}, out_{"out"};
+};
+
+TEST_F(MitsubaCli, RendersXmlWithDefines) {
+    const CommandResult result = run({"render", (kScenes / "camera.xml").string(), "-D", "fov_axis=diagonal", "-D",
+                                      "spp=2", "-o", out_ / "camera.pfm", "-q"});
+    EXPECT_EQ(result.exit_code, 0) << result.err;
+    EXPECT_EQ(result.err, "");
+    EXPECT_EQ(out_.entries(), std::vector<std::string>{"camera.pfm"});
+}
+
+TEST_F(MitsubaCli, AGaussianFilterIsOneWarningLine) {
+    write_text(out_ / "gaussian.xml", R"(<scene version="3.0.0">
+    <sensor type="perspective">
+        <film type="hdrfilm">
+            <integer name="width" value="4"/><integer name="height" value="4"/>
+            <rfilter type="gaussian"/>
+        </film>
+        <sampler type="independent"><integer name="sample_count" value="1"/></sampler>
+    </sensor>
+</scene>
+)");
+    const CommandResult result = run({"render", out_ / "gaussian.xml", "-o", scratch_ / "image.pfm", "-q"});
+    EXPECT_EQ(result.exit_code, 0);
+    EXPECT_EQ(result.err, "wavepath: warning: " + (out_ / "gaussian.xml") +
+                              ":5: rfilter \"gaussian\": wavepath's film is a box filter and renders with box (image "
+                              "means agree, pixel filtering differs)\n");
+}
+
+TEST_F(MitsubaCli, ConvertedJsonRendersTheSameImage) {
+    const std::string scene = (kScenes / "cornell_box.xml").string();
+    const CommandResult convert = run({"convert", scene, "-o", out_ / "box.json"});
+    ASSERT_EQ(convert.exit_code, 0) << convert.err;
+    EXPECT_EQ(convert.err, "wavepath: wrote " + (out_ / "box.json") + " (2 meshes)\n");
+    // The two cubes, written beside the JSON.
+    EXPECT_EQ(out_.entries(), (std::vector<std::string>{"box.json", "box_mesh0.ply", "box_mesh1.ply"}));
+    const std::vector<std::string> flags{"--spp", "4", "--seed", "3", "-q"};
+    std::vector<std::string> from_xml{"render", scene, "-o", scratch_ / "xml.pfm"};
+    std::vector<std::string> from_json{"render", out_ / "box.json", "-o", scratch_ / "json.pfm"};
+    from_xml.insert(from_xml.end(), flags.begin(), flags.end());
+    from_json.insert(from_json.end(), flags.begin(), flags.end());
+    ASSERT_EQ(run(from_xml).exit_code, 0);
+    ASSERT_EQ(run(from_json).exit_code, 0);
+    EXPECT_EQ(read_text(scratch_ / "xml.pfm"), read_text(scratch_ / "json.pfm"));
+}
+
+TEST_F(MitsubaCli, FailuresAreOneLineAndLeaveNoOutput) {
+    write_text(scratch_ / "bad.xml",
+               "<scene version=\"3.0.0\">\n<shape type=\"cylinder\"/>\n<sensor type=\"perspective\"/>\n</scene>\n");
+    CommandResult result = run({"convert", scratch_ / "bad.xml", "-o", out_ / "bad.json"});
+    EXPECT_EQ(result.exit_code, 3);
+    EXPECT_EQ(result.err, "wavepath: error: " + (scratch_ / "bad.xml") +
+                              ":2: shape \"cylinder\": not supported (supported: obj, ply, serialized, rectangle, "
+                              "cube, sphere, disk)\n");
+    result = run({"convert", (kScenes / "cornell_box.xml").string(), "-o", out_ / "box.exr"});
+    EXPECT_EQ(result.exit_code, 2);
+    EXPECT_EQ(result.err, "wavepath: error: convert: -o must name a .json file, got " + (out_ / "box.exr") + "\n");
+    result = run({"render", std::string(WAVEPATH_SOURCE_DIR) + "/scenes/test/room_small.json", "-D", "spp=2", "-o",
+                  out_ / "room.pfm"});
+    EXPECT_EQ(result.exit_code, 2);
+    EXPECT_EQ(result.err, "wavepath: error: -D: applies to Mitsuba XML scenes (.xml) only, and " +
+                              std::string(WAVEPATH_SOURCE_DIR) + "/scenes/test/room_small.json is read as JSON\n");
+    result = run({"render", (kScenes / "camera.xml").string(), "-D", "fov axis", "-o", out_ / "camera.pfm"});
+    EXPECT_EQ(result.exit_code, 2);
+    EXPECT_EQ(result.err,
+              "wavepath: error: -D: expected name=value (name of letters, digits and '_'), got 'fov axis'\n");
+    EXPECT_EQ(out_.entries(), std::vector<std::string>{});
+}
+
+}  // namespace
+}  // namespace wp::test
