@@ -20,4 +20,4 @@ CXX=clang++-15 cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DWAVE
   -DWAVEPATH_BUILD_TESTS=ON -DWAVEPATH_BUILD_BENCH=OFF -DWAVEPATH_MPI=OFF
 cmake --build build-asan -j "$(nproc)"
 ctest --test-dir build-asan --output-on-failure -j "$(nproc)" \
-  -E '^(sources_are_clang_formatted|mitsuba_scene_converter|robustness_figures_match_the_doc|wavepath_agrees_with_mitsuba|mitsuba_oracle_fails_on_lights_3_percent_too_bright|sppm_agrees_with_mitsuba)$'
+  -E '^(sources_are_clang_formatted|mitsuba_scene_converter|robustness_figures_match_the_doc|wavepath_agrees_with_mitsuba|mitsuba_oracle_fails_on_lights_3_percent_too_bright|sppm_agrees_with_mitsuba|wavepath_reads_mitsuba_xml_as_mitsuba_does)$'

@@ -126,11 +126,13 @@ def block_statistics(images, block):
     return means, variance_means / counts[:, None]
 
 
-def z_scores(a, b, block):
-    """|z| per block (whole image last) and channel; 0 where both are exactly equal with no variance."""
+def z_scores(a, b, block, rounding=0.0):
+    """|z| per block (whole image last) and channel; 0 where both are exactly equal with no variance. `rounding`,
+    relative to the mean, is added to the standard error: blocks that both render without noise (a constant
+    environment seen directly) then differ by float rounding without an infinite z."""
     mean_a, var_a = block_statistics(a, block)
     mean_b, var_b = block_statistics(b, block)
-    difference, se = mean_a - mean_b, np.sqrt(var_a + var_b)
+    difference, se = mean_a - mean_b, np.sqrt(var_a + var_b) + rounding * np.abs(mean_b)
     with np.errstate(divide="ignore", invalid="ignore"):
         z = np.where(se > 0, np.abs(difference) / np.where(se > 0, se, 1), np.where(difference == 0, 0.0, np.inf))
     return z, mean_a, mean_b, se
@@ -139,9 +141,13 @@ def z_scores(a, b, block):
 def critical_z(scenes, size, block, alpha):
     """(|z| threshold, number of tests) of a run over `scenes`: every block and the whole image of each, every
     channel, Bonferroni so that the run's false-failure rate is at most `alpha`."""
+    return critical_z_for_sizes([image_size(path, size) for path in scenes], block, alpha)
+
+
+def critical_z_for_sizes(sizes, block, alpha):
+    """critical_z of a run over images of these (width, height) sizes."""
     tests = 0
-    for path in scenes:
-        width, height = image_size(path, size)
+    for width, height in sizes:
         tests += 3 * ((-(-width // block)) * (-(-height // block)) + 1)
     return statistics.NormalDist().inv_cdf(1.0 - alpha / (2 * tests)), tests
 
