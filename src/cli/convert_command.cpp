@@ -1,6 +1,9 @@
 #include "cli/convert_command.h"
 
+#include <cerrno>
+#include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
 
 #include "cli/errors.h"
@@ -10,6 +13,41 @@
 #include "scene/scene_writer.h"
 
 namespace wp::cli {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// The JSON and its meshes, each written atomically; on failure nothing of them stays behind.
+void write_scene_json(const MitsubaScene& scene, const fs::path& json_path) {
+    check_writable_destination(json_path);
+    const SceneJson out = scene_json(scene, json_path);
+    std::vector<fs::path> written;
+    try {
+        for (const MeshFileToWrite& mesh : out.meshes) {
+            write_atomically(mesh.path, [&](const fs::path& temporary) {
+                try {
+                    write_ply(temporary, *mesh.mesh);
+                } catch (const std::runtime_error& error) {
+                    throw OutputError(error.what());
+                }
+            });
+            written.push_back(mesh.path);
+        }
+        write_atomically(json_path, [&](const fs::path& temporary) {
+            std::ofstream file(temporary);
+            file << out.json.dump(1) << "\n";
+            file.close();
+            if (!file) throw OutputError(json_path.string() + ": cannot write: " + std::strerror(errno));
+        });
+    } catch (...) {
+        std::error_code ignored;
+        for (const fs::path& path : written) fs::remove(path, ignored);
+        throw;
+    }
+}
+
+}  // namespace
 
 void add_convert_options(CLI::App& convert, ConvertCommand& command) {
     convert.add_option("scene", command.scene_path, "Mitsuba 3 scene (.xml)")->required();

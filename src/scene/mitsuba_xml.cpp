@@ -30,7 +30,7 @@ namespace fs = std::filesystem;
 
 // ---- values ----
 
-std::string join(std::initializer_list<std::string_view> words) {
+std::string joined_names(std::initializer_list<std::string_view> words) {
     std::string joined;
     for (std::string_view word : words) joined += (joined.empty() ? "" : ", ") + std::string(word);
     return joined;
@@ -142,7 +142,7 @@ class Plugin {
                 if (!name) fail_at(child, "<" + child.tag + ">: missing attribute 'name'");
                 if (std::find(properties.begin(), properties.end(), *name) == properties.end())
                     fail(child, child.tag + " " + in_quotes(*name) + ": not supported (supported: " +
-                                    (properties.size() ? join(properties) : "none") + ")");
+                                    (properties.size() ? joined_names(properties) : "none") + ")");
                 continue;
             }
             for (std::string_view step : {"translate", "rotate", "scale", "matrix", "lookat"})
@@ -153,7 +153,7 @@ class Plugin {
                 const std::string* type = object.attribute("type");
                 fail(child, object.tag + (type ? " " + in_quotes(*type) : "") +
                                 (name ? " as " + in_quotes(*name) : std::string(" inside it")) + ": not supported" +
-                                (objects.size() ? " (supported: " + join(objects) + ")" : ""));
+                                (objects.size() ? " (supported: " + joined_names(objects) + ")" : ""));
             }
         }
         std::set<std::string> seen;
@@ -213,7 +213,7 @@ class Plugin {
     void expect_tags(const XmlElement& property, std::initializer_list<std::string_view> tags) const {
         if (std::find(tags.begin(), tags.end(), property.tag) == tags.end())
             fail(property, property_name(property) + ": must be " +
-                               (tags.size() == 1 ? "<" + std::string(*tags.begin()) + ">" : "one of " + join(tags)) +
+                               (tags.size() == 1 ? "<" + std::string(*tags.begin()) + ">" : "one of " + joined_names(tags)) +
                                ", got <" + property.tag + ">");
     }
     void only_attributes(const XmlElement& property, std::initializer_list<std::string_view> names) const {
@@ -556,8 +556,8 @@ const std::string kBoxFilter =
 
 class Reader {
  public:
-    Reader(const std::string& path, const XmlDefines& defines, const MeshImportLimits& mesh_import)
-        : xml_(read_xml_scene(path, defines)), mesh_import_(mesh_import) {
+    Reader(XmlScene xml, const std::string& path, const MeshImportLimits& mesh_import)
+        : xml_(std::move(xml)), mesh_import_(mesh_import) {
         out_.scene.source = path;
         index_ids(xml_.root);
     }
@@ -1022,7 +1022,12 @@ bool is_mitsuba_scene_path(const std::string& path) {
 
 MitsubaScene read_mitsuba_scene(const std::string& path, const XmlDefines& defines,
                                 const MeshImportLimits& mesh_import) {
-    return Reader(path, defines, mesh_import).read();
+    return Reader(read_xml_scene(path, defines), path, mesh_import).read();
+}
+
+MitsubaScene parse_mitsuba_scene(const std::string& text, const std::string& path, const XmlDefines& defines,
+                                 const MeshImportLimits& mesh_import) {
+    return Reader(parse_xml_scene(text, path, defines), path, mesh_import).read();
 }
 
 Scene load_mitsuba_scene(const std::string& path, const XmlDefines& defines, const MeshImportLimits& mesh_import,

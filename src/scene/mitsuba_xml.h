@@ -37,6 +37,10 @@ struct MitsubaScene {
 MitsubaScene read_mitsuba_scene(const std::string& path, const XmlDefines& defines,
                                 const MeshImportLimits& mesh_import = {});
 
+// The same of the scene file's text, as if it were the file `path` (what it names resolves beside it).
+MitsubaScene parse_mitsuba_scene(const std::string& text, const std::string& path, const XmlDefines& defines,
+                                 const MeshImportLimits& mesh_import = {});
+
 // read_mitsuba_scene, then what every loader does after reading (finish_scene).
 Scene load_mitsuba_scene(const std::string& path, const XmlDefines& defines, const MeshImportLimits& mesh_import = {},
                          std::vector<std::string>* warnings = nullptr);

@@ -39,6 +39,10 @@ struct SourceFile {
 }
 
 std::string read_file(const fs::path& path, const std::string& name, const std::string& context) {
+    // Not a FIFO or a device, which could be read without end.
+    std::error_code error;
+    if (fs::exists(path, error) && !fs::is_regular_file(path, error))
+        throw SceneError(context + "cannot read scene file " + name + ": not a regular file");
     std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"), &std::fclose);
     const auto fail = [&](const char* what) {
         throw SceneError(context + what + " " + name + ": " + std::strerror(errno));
@@ -97,20 +101,22 @@ bool is_name_character(char c) { return std::isalnum(static_cast<unsigned char>(
 class TreeBuilder {
  public:
     TreeBuilder(XmlScene& scene, const XmlDefines& defines) : scene_(scene) {
-        for (const auto& [name, value] : defines) {
-            const auto same = [&](const Parameter& p) { return p.key == "$" + name; };
+        for (const auto& define : defines) {
+            const std::string key = "$" + define.first;
+            const auto same = [&](const Parameter& p) { return p.key == key; };
             auto found = std::find_if(parameters_.begin(), parameters_.end(), same);
             if (found != parameters_.end())
-                found->value = value;  // the last -D of a name wins
+                found->value = define.second;  // the last -D of a name wins
             else
-                add_parameter({"$" + name, value, false, true});
+                add_parameter({key, define.second, false, true});
         }
     }
 
-    void read_main(const std::string& path) {
+    // `text`: the scene file's, or nullptr to read it.
+    void read_main(const std::string& path, const std::string* text) {
         const fs::path file(path);
         scene_.search_paths.push_back(file.parent_path().empty() ? fs::path(".") : file.parent_path());
-        main_file_ = path;
+        main_text_ = text;
         std::vector<XmlElement> top;
         read_included(file, path, nullptr, 0, 0, top);
         scene_.root = std::move(top.front());
@@ -131,7 +137,7 @@ class TreeBuilder {
         auto source = std::make_unique<SourceFile>();
         source->name = name;
         source->path = path;
-        source->text = read_file(path, name, context);
+        source->text = !include && main_text_ ? *main_text_ : read_file(path, name, context);
         for (std::size_t i = 0; i < source->text.size(); ++i)
             if (source->text[i] == '\n') source->line_starts.push_back(i + 1);
 
@@ -325,7 +331,7 @@ class TreeBuilder {
     }
 
     XmlScene& scene_;
-    std::string main_file_;
+    const std::string* main_text_ = nullptr;
     std::vector<Parameter> parameters_;  // longest key first
     std::vector<fs::path> include_stack_;
     std::vector<std::string> include_names_;
@@ -348,7 +354,13 @@ void fail_at(const XmlElement& element, std::string_view problem) {
 
 XmlScene read_xml_scene(const std::string& path, const XmlDefines& defines) {
     XmlScene scene;
-    TreeBuilder(scene, defines).read_main(path);
+    TreeBuilder(scene, defines).read_main(path, nullptr);
+    return scene;
+}
+
+XmlScene parse_xml_scene(const std::string& text, const std::string& path, const XmlDefines& defines) {
+    XmlScene scene;
+    TreeBuilder(scene, defines).read_main(path, &text);
     return scene;
 }
 

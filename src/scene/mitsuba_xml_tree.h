@@ -50,6 +50,8 @@ inline constexpr int kMaxIncludeDepth = 15;
 // no line applies) for any problem: malformed XML, a missing file, an
 // include cycle, an undefined $name, a -D definition the scene never uses.
 XmlScene read_xml_scene(const std::string& path, const XmlDefines& defines);
+// The same of the scene file's text, as if it were the file `path` (includes resolve beside it).
+XmlScene parse_xml_scene(const std::string& text, const std::string& path, const XmlDefines& defines);
 
 // Throws SceneError "<element's file>:<line>: <problem>".
 [[noreturn]] void fail_at(const XmlElement& element, std::string_view problem);

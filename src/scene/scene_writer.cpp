@@ -4,8 +4,7 @@
 #include <cerrno>
 #include <cstring>
 #include <fstream>
-
-#include "core/atomic_file.h"
+#include <stdexcept>
 
 namespace wp {
 namespace {
@@ -110,29 +109,7 @@ void write_ply(const fs::path& path, const ImportedMesh& mesh) {
     std::ofstream file(path, std::ios::binary);
     file.write(bytes.data(), std::streamsize(bytes.size()));
     file.close();
-    if (!file) throw OutputError(path.string() + ": cannot write: " + std::strerror(errno));
-}
-
-void write_scene_json(const MitsubaScene& scene, const fs::path& json_path) {
-    check_writable_destination(json_path);
-    const SceneJson out = scene_json(scene, json_path);
-    std::vector<fs::path> written;
-    try {
-        for (const MeshFileToWrite& mesh : out.meshes) {
-            write_atomically(mesh.path, [&](const fs::path& temporary) { write_ply(temporary, *mesh.mesh); });
-            written.push_back(mesh.path);
-        }
-        write_atomically(json_path, [&](const fs::path& temporary) {
-            std::ofstream file(temporary);
-            file << out.json.dump(1) << "\n";
-            file.close();
-            if (!file) throw OutputError(json_path.string() + ": cannot write: " + std::strerror(errno));
-        });
-    } catch (...) {
-        std::error_code ignored;
-        for (const fs::path& path : written) fs::remove(path, ignored);
-        throw;
-    }
+    if (!file) throw std::runtime_error(path.string() + ": cannot write: " + std::strerror(errno));
 }
 
 }  // namespace wp

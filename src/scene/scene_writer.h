@@ -30,11 +30,8 @@ struct SceneJson {
 // JSON, "<stem>_mesh<N>.ply", in its own coordinates under the same transform.
 SceneJson scene_json(const MitsubaScene& scene, const std::filesystem::path& json_path);
 
-// A binary little-endian PLY of float positions (and normals), int triangles.
+// A binary little-endian PLY of float positions (and normals), int triangles; std::runtime_error
+// when it cannot be written.
 void write_ply(const std::filesystem::path& path, const ImportedMesh& mesh);
-
-// Writes the JSON and its meshes, each atomically; on failure nothing of them stays behind.
-// Throws OutputError.
-void write_scene_json(const MitsubaScene& scene, const std::filesystem::path& json_path);
 
 }  // namespace wp

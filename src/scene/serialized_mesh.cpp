@@ -243,6 +243,10 @@ ImportedMesh parse_serialized_mesh(std::string_view bytes, std::int64_t shape_in
 }
 
 ImportedMesh read_serialized_mesh(const std::filesystem::path& path, std::int64_t shape_index) {
+    // Not a FIFO or a device, which could be read without end.
+    std::error_code error;
+    if (std::filesystem::exists(path, error) && !std::filesystem::is_regular_file(path, error))
+        throw MeshFileError("cannot read: not a regular file");
     std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"), &std::fclose);
     if (!file) throw MeshFileError(std::string("cannot open: ") + std::strerror(errno));
     std::string bytes;

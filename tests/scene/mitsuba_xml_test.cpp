@@ -476,7 +476,9 @@ TEST_F(MitsubaXml, ConvertedJsonLoadsAsTheSameScene) {
     const MitsubaScene mitsuba = read_mitsuba_scene(path, {});
     fs::create_directories(dir_.path() / "out");
     const fs::path json = dir_.path() / "out/converted.json";
-    write_scene_json(mitsuba, json);
+    const SceneJson out = scene_json(mitsuba, json);
+    write_text(json, out.json.dump());
+    for (const MeshFileToWrite& mesh : out.meshes) write_ply(mesh.path, *mesh.mesh);
     const Scene from_json = load_scene(json.string());
     const Scene from_xml = load_mitsuba_scene(path, {});
     // The file mesh with face normals is referred to; the others are written beside the JSON.
