@@ -42,7 +42,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         // "<file>:<line>: <problem>", the file the scene's or one it includes (beside it, or by an absolute name).
         const std::string message = error.what();
         if (message.rfind(WAVEPATH_FUZZ_XML_DIR "/", 0) != 0 && message.rfind("/", 0) != 0) std::abort();
-        if (message.find(": wavepath-import ") != std::string::npos) wp::fuzz::note_import_failure(message, data, size);
+        if (is_import_failure(message)) wp::fuzz::note_import_failure(message, data, size);
     }
     return 0;
 }
