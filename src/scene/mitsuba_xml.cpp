@@ -212,9 +212,10 @@ class Plugin {
     }
     void expect_tags(const XmlElement& property, std::initializer_list<std::string_view> tags) const {
         if (std::find(tags.begin(), tags.end(), property.tag) == tags.end())
-            fail(property, property_name(property) + ": must be " +
-                               (tags.size() == 1 ? "<" + std::string(*tags.begin()) + ">" : "one of " + joined_names(tags)) +
-                               ", got <" + property.tag + ">");
+            fail(property,
+                 property_name(property) + ": must be " +
+                     (tags.size() == 1 ? "<" + std::string(*tags.begin()) + ">" : "one of " + joined_names(tags)) +
+                     ", got <" + property.tag + ">");
     }
     void only_attributes(const XmlElement& property, std::initializer_list<std::string_view> names) const {
         for (const auto& [name, value] : property.attributes) {
