@@ -565,7 +565,8 @@ class Reader {
 
     MitsubaScene read() {
         const Plugin scene(xml_.root, ids_);
-        scene.allow({}, {"integrator", "sensor", "shape", "bsdf", "emitter", "texture"});
+        // BSDFs, textures, films, samplers and filters at the top level are read where a reference uses them.
+        scene.allow({}, {"integrator", "sensor", "shape", "bsdf", "emitter", "texture", "film", "sampler", "rfilter"});
         // Without an integrator, Mitsuba's path integrator with its defaults.
         out_.scene.render.max_depth = kMaxDepthLimit;
         out_.scene.render.rr_depth = 5;
@@ -742,7 +743,10 @@ class Reader {
 
     void read_emitter(const XmlElement& element) {
         const Plugin emitter(element, ids_);
-        if (emitter.type() == "area") emitter.fail("an area emitter must be inside the shape that emits");
+        if (emitter.type() == "area") {
+            if (!emitter.id().empty()) return;  // a shape's, by reference (read there)
+            emitter.fail("an area emitter must be inside the shape that emits, or referred to from it by its id");
+        }
         if (emitter.type() != "constant") emitter.fail("not supported (supported: constant; area inside a shape)");
         emitter.allow({"radiance"});
         out_.scene.background += emitter.optional_color("radiance", kMaxSceneMagnitude, "").value_or(glm::dvec3(1.0));

@@ -275,10 +275,14 @@ class TreeBuilder {
         only_attributes(element, {"value"});
         if (root || parent == nullptr || parent->tag != "scene")
             fail_at(element, "<path> can only be a child of <scene>");
-        fs::path folder(*element.attribute("value"));
-        if (!folder.is_absolute()) folder = file.path.parent_path() / folder;
+        // Relative to the file's folder, else to the search paths (Mitsuba's resolver).
+        const fs::path value(*element.attribute("value"));
+        fs::path folder = value.is_absolute() ? value : file.path.parent_path() / value;
         std::error_code error;
-        if (!fs::is_directory(folder, error)) fail_at(element, "<path>: folder " + folder.string() + " not found");
+        for (std::size_t i = 0;
+             !value.is_absolute() && !fs::is_directory(folder, error) && i < scene_.search_paths.size(); ++i)
+            if (fs::is_directory(scene_.search_paths[i] / value, error)) folder = scene_.search_paths[i] / value;
+        if (!fs::is_directory(folder, error)) fail_at(element, "<path>: folder " + value.string() + " not found");
         scene_.search_paths.insert(scene_.search_paths.begin(), folder);
     }
 

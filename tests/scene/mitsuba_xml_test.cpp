@@ -277,6 +277,17 @@ TEST_F(MitsubaXml, BsdfsAsMaterials) {
 
 // ---- $defaults, -D, includes, references ----
 
+TEST_F(MitsubaXml, TopLevelObjectsUsedByReference) {
+    const Scene scene = read(R"(
+        <sampler type="independent" id="s"><integer name="sample_count" value="9"/></sampler>
+        <emitter type="area" id="glow"><rgb name="radiance" value="2"/></emitter>)" +
+                             sensor(8, 8, R"(<ref id="s"/>)") + R"(
+        <shape type="sphere"><ref id="glow"/></shape>)")
+                            .scene;
+    EXPECT_EQ(scene.render.spp, 9);
+    expect_near(scene.materials.at(0).emission, glm::dvec3(2.0));
+}
+
 TEST_F(MitsubaXml, DefaultsAndDefinesSubstituteInDocumentOrder) {
     const std::string body =
         R"(<default name="spp" value="8"/><default name="s" value="2"/>)" +
