@@ -18,6 +18,7 @@
 #include "shared/materials/glass.h"
 #include "shared/materials/microfacet.h"
 #include "shared/materials/mirror.h"
+#include "shared/materials/plastic.h"
 #include "shared/materials/roughconductor.h"
 #include "shared/materials/roughdielectric.h"
 #include "shared/materials/thindielectric.h"

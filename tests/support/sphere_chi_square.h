@@ -5,7 +5,9 @@
 // over it (adaptive quadrature), the cells expected to hold fewer than 5
 // samples pooled, Pearson's statistic and its p-value. Samples the sampler
 // rejects (a reflection below the surface) fill one more cell, expected to
-// hold the density's missing mass.
+// hold the density's missing mass, and those of a delta lobe (a smooth
+// coat's mirror reflection) another, expected to hold the lobe's probability
+// (sphere_chi_square_with_delta).
 #pragma once
 
 #include <algorithm>
@@ -154,6 +156,48 @@ inline SphereChiSquare pooled_chi_square(const std::vector<std::uint64_t>& obser
     result.chi_square.dof = cells - 1;
     if (cells < 2) result.failure += "fewer than two cells; ";
     result.chi_square.p_value = chi_square_p_value(result.chi_square.statistic, std::max(result.chi_square.dof, 1));
+    return result;
+}
+
+// A sampler's outcome where it may also pick a delta lobe (a mirror
+// reflection, which has no density over the sphere): a direction, nothing
+// (rejected), or the delta lobe.
+struct SphereSample {
+    std::optional<glm::dvec3> direction;
+    bool delta = false;
+};
+
+// The test with a delta lobe: the delta lobe's samples fill a cell of their
+// own, expected to hold `delta_probability` of them (its probability
+// averaged over the sampler's random numbers, known in closed form); the
+// rejected samples' cell the mass left, 1 - delta_probability - the
+// density's integral.
+inline SphereChiSquare sphere_chi_square_with_delta(const std::function<SphereSample()>& sample,
+                                                    const std::function<double(const glm::dvec3&)>& pdf,
+                                                    double delta_probability, const glm::dvec3& pole, int samples,
+                                                    int rows = 32, int columns = 64) {
+    SphereCells cells(pole, rows, columns);
+    const int rejected = cells.count(), delta = cells.count() + 1;
+    std::vector<std::uint64_t> observed(cells.count() + 2, 0);
+    for (int i = 0; i < samples; ++i) {
+        SphereSample s = sample();
+        ++observed[s.delta ? delta : s.direction ? cells.cell_of(*s.direction) : rejected];
+    }
+    // Each cell's integral to a tenth of a sample: no more than 0.05 standard
+    // deviations where it is expected to hold 5.
+    const double tolerance = 0.1 / samples;
+    std::vector<double> expected(cells.count() + 2);
+    double integral = 0.0;
+    for (int c = 0; c < cells.count(); ++c) {
+        double probability = cells.integrate(pdf, c, tolerance);
+        integral += probability;
+        expected[c] = probability * samples;
+    }
+    expected[rejected] = std::max(0.0, 1.0 - integral - delta_probability) * samples;
+    expected[delta] = delta_probability * samples;
+    SphereChiSquare result = pooled_chi_square(observed, expected);
+    result.pdf_integral = integral;
+    result.sampled_fraction = 1.0 - static_cast<double>(observed[rejected]) / samples;
     return result;
 }
 
