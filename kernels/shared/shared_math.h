@@ -21,6 +21,7 @@
 #include "shared/materials/plastic.h"
 #include "shared/materials/roughconductor.h"
 #include "shared/materials/roughdielectric.h"
+#include "shared/materials/roughplastic.h"
 #include "shared/materials/thindielectric.h"
 #include "shared/offset.h"
 #include "shared/photon_grid.h"
