@@ -10,6 +10,7 @@
 #include "device/lanes.h"
 #include "device/parameters.h"
 #include "device/scene_hits.h"
+#include "interface/queues.h"
 
 __kernel __attribute__((reqd_work_group_size(WP_GROUP_SIZE, 1, 1))) void intersect_bound(
     WP_PARAMETERS(WP_INTERSECT_BOUND_PARAMETERS)) {

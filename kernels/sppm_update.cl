@@ -7,6 +7,7 @@
 #include "device/parameters.h"
 #include "device/sppm_pixels.h"
 #include "interface/kernel_parameters.h"
+#include "interface/queues.h"
 #include "shared/sppm.h"
 
 __kernel __attribute__((reqd_work_group_size(WP_GROUP_SIZE, 1, 1))) void sppm_update(WP_SPPM_PARAMS) {
