@@ -1,6 +1,7 @@
 #include "megakernel/megakernel_renderer.h"
 
 #include <algorithm>
+#include <stdexcept>
 
 #include "interface/queues.h"
 #include "opencl/device.h"
@@ -43,10 +44,9 @@ class MegakernelFilmRenderer : public FilmRenderer {
           queue_(context_, device_.device,
                  options.profile ? cl_command_queue_properties(CL_QUEUE_PROFILING_ENABLE) : 0),
           launcher_(queue_, options.profile),
-          lanes_(resolve_lanes(options.lanes, LaneProgram::megakernel(scene.features().meshes), device_)),
-          program_(build_program(context_, device_, {"megakernel.cl", "accumulate.cl"},
-                                 program_build_options(scene, scene.features(), options.film_squares, "", lanes_),
-                                 progress)),
+          source_(megakernel_program(scene, options, device_)),
+          lanes_(source_.lanes),
+          program_(build_program(context_, device_, source_.files, source_.options, progress)),
           scene_(context_, flatten_scene(scene)),
           pass_radiance_(context_, CL_MEM_READ_WRITE, sizeof(float) * 3 * kPassSize),
           counts_(context_, CL_MEM_READ_WRITE, sizeof(std::uint32_t) * WP_COUNTS_SIZE),
@@ -117,6 +117,7 @@ class MegakernelFilmRenderer : public FilmRenderer {
     cl::Context context_;
     cl::CommandQueue queue_;
     KernelLauncher launcher_;
+    KernelProgram source_;
     unsigned lanes_;
     BuiltProgram program_;
     DeviceScene scene_;
@@ -135,6 +136,16 @@ class MegakernelFilmRenderer : public FilmRenderer {
 std::string MegakernelReport::explain() const {
     return "device: " + device + "\n" + explain_build(build_options, cache_hit, build_seconds, cache_file) +
            "megakernel: " + std::to_string(lanes) + (lanes == 1 ? " path" : " paths") + " per work item\n";
+}
+
+KernelProgram megakernel_program(const Scene& scene, const MegakernelOptions& options, const DeviceInfo& device) {
+    if (scene.render.integrator == Integrator::Sppm)
+        throw std::invalid_argument("the megakernel traces camera paths only, not the sppm integrator's photons");
+    KernelProgram program;
+    program.files = {"megakernel.cl", "accumulate.cl"};
+    program.lanes = resolve_lanes(options.lanes, LaneProgram::megakernel(scene.features().meshes), device);
+    program.options = program_build_options(scene, scene.features(), options.film_squares, "", program.lanes);
+    return program;
 }
 
 std::unique_ptr<FilmRenderer> make_megakernel_renderer(const Scene& scene, const MegakernelOptions& options,

@@ -10,7 +10,9 @@
 
 #include "core/film_renderer.h"
 #include "core/render.h"
+#include "opencl/device.h"
 #include "opencl/profile.h"
+#include "opencl/program_cache.h"
 #include "scene/scene.h"
 
 namespace wp {
@@ -33,6 +35,11 @@ struct MegakernelReport {
 
     std::string explain() const;  // what --explain prints
 };
+
+// The program make_megakernel_renderer builds for `scene` with `options` on
+// `device`, without building it (as wavefront_program). Throws
+// std::invalid_argument for lanes it cannot take and for the sppm integrator.
+KernelProgram megakernel_program(const Scene& scene, const MegakernelOptions& options, const DeviceInfo& device);
 
 // Renders on OpenCL; throws DeviceError (no device, kernel build failure).
 RenderResult render_megakernel(const Scene& scene, const MegakernelOptions& options, const Progress& progress,

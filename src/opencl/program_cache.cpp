@@ -132,12 +132,16 @@ std::string program_cache_directory() {
     return "";
 }
 
+std::string compiler_options(const std::string& options) {
+    // Correctly rounded divide and sqrt, as in C++; never fast-math or -cl-mad-enable.
+    return "-cl-std=CL1.2 -cl-fp32-correctly-rounded-divide-sqrt -I " + kernel_directory() + " " + options;
+}
+
 BuiltProgram build_program(const cl::Context& context, const DeviceInfo& device, const std::vector<std::string>& files,
                            const std::string& options, const Progress& progress) {
     fs::path dir = kernel_directory();
     BuiltProgram built;
-    // Correctly rounded divide and sqrt, as in C++; never fast-math or -cl-mad-enable.
-    built.options = "-cl-std=CL1.2 -cl-fp32-correctly-rounded-divide-sqrt -I " + dir.string() + " " + options;
+    built.options = compiler_options(options);
     std::string cache_dir = program_cache_directory();
     if (!cache_dir.empty())
         built.cache_file = (fs::path(cache_dir) / (cache_key(device, dir, files, built.options) + ".bin")).string();

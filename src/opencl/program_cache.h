@@ -22,6 +22,16 @@ class KernelBuildError : public DeviceError {
     std::string log_;
 };
 
+// A program as a renderer builds it: its kernel files (names in
+// kernel_directory()), compiled as one program, with `options` (build_program
+// puts its own in front: compiler_options), for `lanes` paths per work item
+// (-DWP_LANES, among the options).
+struct KernelProgram {
+    std::vector<std::string> files;
+    std::string options;
+    unsigned lanes = 1;
+};
+
 struct BuiltProgram {
     cl::Program program;
     std::string options;     // the full build options
@@ -41,9 +51,13 @@ std::string kernel_directory();
 // $WAVEPATH_CACHE_DIR, else $XDG_CACHE_HOME/wavepath, else ~/.cache/wavepath.
 std::string program_cache_directory();
 
+// What build_program gives the OpenCL compiler for a program built with
+// `options`: -cl-std=CL1.2, correctly rounded divide and sqrt, -I for the
+// kernel directory, then `options`.
+std::string compiler_options(const std::string& options);
+
 // Builds the concatenation of `files` (names in kernel_directory()) as one
-// program for `device`, with -I for the kernel directory, -cl-std=CL1.2 and
-// `options`. The cache key hashes the platform, device, driver, options, the
+// program for `device`, with compiler_options(options). The cache key hashes the platform, device, driver, options, the
 // names in `files` and every file under the kernel directory (the headers included).
 // On a cache miss, announces the compilation on `progress` before it starts.
 BuiltProgram build_program(const cl::Context& context, const DeviceInfo& device, const std::vector<std::string>& files,

@@ -33,24 +33,33 @@ const std::vector<std::string>& wavefront_kernel_files() {
     return files;
 }
 
+KernelProgram pipeline_program(const Scene& scene, const DeviceInfo& device, const FeatureSet& kernel_features,
+                               const PipelineOptions& options) {
+    KernelProgram program;
+    program.files = wavefront_kernel_files();
+    program.lanes = resolve_lanes(options.lanes, wavefront_lanes(options.compaction, scene.features().meshes), device);
+    program.options = program_build_options(scene, kernel_features, options.film_squares,
+                                            compaction_build_option(options.compaction), program.lanes);
+    return program;
+}
+
 Pipeline::Pipeline(const Scene& scene, const DeviceInfo& device, std::size_t capacity, std::size_t pass_capacity,
                    const FeatureSet& kernel_features, const PipelineOptions& options)
-    : Pipeline(scene, flatten_scene(scene), device, capacity, pass_capacity, kernel_features, options) {}
+    : Pipeline(scene, flatten_scene(scene), device, capacity, pass_capacity, kernel_features, options,
+               pipeline_program(scene, device, kernel_features, options)) {}
 
 Pipeline::Pipeline(const Scene& scene, const SceneLayout& layout, const DeviceInfo& device, std::size_t capacity,
-                   std::size_t pass_capacity, const FeatureSet& kernel_features, const PipelineOptions& options)
+                   std::size_t pass_capacity, const FeatureSet& kernel_features, const PipelineOptions& options,
+                   const KernelProgram& program)
     : capacity_(capacity),
       pass_capacity_(pass_capacity),
-      lanes_(resolve_lanes(options.lanes, wavefront_lanes(options.compaction, scene.features().meshes), device)),
+      lanes_(program.lanes),
       iteration_(iteration_stages(kernel_features, StageLoop::CAMERA)),
       photon_iteration_(iteration_stages(kernel_features, StageLoop::PHOTON)),
       context_(device.device),
       queue_(context_, device.device, options.profile ? cl_command_queue_properties(CL_QUEUE_PROFILING_ENABLE) : 0),
       launcher_(queue_, options.profile),
-      program_(build_program(context_, device, wavefront_kernel_files(),
-                             program_build_options(scene, kernel_features, options.film_squares,
-                                                   compaction_build_option(options.compaction), lanes_),
-                             options.progress)),
+      program_(build_program(context_, device, program.files, program.options, options.progress)),
       scene_(context_, layout),
       state_(context_, capacity, kernel_features),
       queues_(context_, queue_, program_.program, capacity, options.compaction,

@@ -42,6 +42,15 @@ struct PipelineOptions {
 
 static_assert(WP_NONFINITE_STAGE_COUNT == nonfinite_stage_names.size());
 
+// The program a Pipeline builds for `scene` on `device` (only its type and
+// preferred vector width count: opencl/lanes.h) with kernels for
+// `kernel_features`: every kernel file (wavefront_kernel_files()), the
+// options for those features, the options' compaction and film, and the
+// lanes resolve_lanes gives. Throws std::invalid_argument for lanes the
+// compaction cannot take.
+KernelProgram pipeline_program(const Scene& scene, const DeviceInfo& device, const FeatureSet& kernel_features,
+                               const PipelineOptions& options);
+
 class Pipeline {
  public:
     // capacity: paths in flight; pass_capacity: most work items per pass.
@@ -149,7 +158,8 @@ class Pipeline {
 
  private:
     Pipeline(const Scene& scene, const SceneLayout& layout, const DeviceInfo& device, std::size_t capacity,
-             std::size_t pass_capacity, const FeatureSet& kernel_features, const PipelineOptions& options);
+             std::size_t pass_capacity, const FeatureSet& kernel_features, const PipelineOptions& options,
+             const KernelProgram& program);
     void bind_round();
 
     std::size_t capacity_, pass_capacity_;

@@ -48,6 +48,9 @@ IntersectorChoice choose_intersector(const WavefrontOptions& options, const Devi
     if (*options.intersector == Intersector::Embree && device.type != "CPU")
         throw DeviceError("--intersector embree: Embree traces on the host, which needs a CPU device; " + device.name +
                           " is a " + device.type);
+    if (*options.intersector == Intersector::Embree && features.sppm)
+        throw std::invalid_argument(
+            "--intersector embree: the sppm integrator's photon stages trace on the device; use --intersector bvh");
     return {*options.intersector, "asked for"};
 }
 
@@ -66,6 +69,10 @@ FeatureSet kernel_features(const Scene& scene, const WavefrontOptions& options, 
     if (f.intersect_and_shade && !scan)
         throw std::invalid_argument("intersect_and_shade pushes to the queue it takes, which needs --compaction scan");
     return f;
+}
+
+PipelineOptions pipeline_options(const WavefrontOptions& options, const Progress& progress) {
+    return {options.profile, options.compaction, options.lanes, progress, options.film_squares};
 }
 
 // Items each kernel processed: a stage's, the entries it took from its
@@ -162,7 +169,7 @@ class WavefrontFilmRenderer : public FilmRenderer {
                          ? options.wavefront
                          : default_wavefront_size(max_items, PathState::bytes_per_path(features_), device_)),
           pipeline_(scene, device_, wavefront_, std::min<std::uint64_t>(max_items, kPassesPerWavefront * wavefront_),
-                    features_, {options.profile, options.compaction, options.lanes, progress, options.film_squares}),
+                    features_, pipeline_options(options, progress)),
           profile_(options.profile),
           report_(report ? *report : local_report_),
           photons_per_iteration_(sppm_photons(scene)),
@@ -274,6 +281,12 @@ class WavefrontFilmRenderer : public FilmRenderer {
 };
 
 }  // namespace
+
+KernelProgram wavefront_program(const Scene& scene, const WavefrontOptions& options, const DeviceInfo& device) {
+    const Intersector intersector = choose_intersector(options, device, scene.features()).intersector;
+    return pipeline_program(scene, device, kernel_features(scene, options, intersector, device),
+                            pipeline_options(options, {}));
+}
 
 std::unique_ptr<FilmRenderer> make_wavefront_renderer(const Scene& scene, const WavefrontOptions& options,
                                                       const Progress& progress, WavefrontReport* report,

@@ -13,6 +13,7 @@
 #include "core/render.h"
 #include "opencl/device.h"
 #include "opencl/profile.h"
+#include "opencl/program_cache.h"
 #include "scene/scene.h"
 #include "wavefront/compaction.h"
 #include "wavefront/stage.h"
@@ -91,6 +92,13 @@ RenderResult render_wavefront(const Scene& scene, const WavefrontOptions& option
 std::unique_ptr<FilmRenderer> make_wavefront_renderer(const Scene& scene, const WavefrontOptions& options,
                                                       const Progress& progress, WavefrontReport* report = nullptr,
                                                       std::uint64_t max_items = 0);
+
+// The program make_wavefront_renderer builds for `scene` with `options` on
+// `device`, without building it (of the device, only its type, name and
+// preferred vector width count): for listing every program the renderer can
+// build (tests/gpu_compile). Throws as make_wavefront_renderer does for
+// options that the device or the scene cannot take.
+KernelProgram wavefront_program(const Scene& scene, const WavefrontOptions& options, const DeviceInfo& device);
 
 // The automatic --wavefront size: up to 2^16 paths on a CPU and 2^20 on
 // other devices, no more than the work (pixels x spp), and the state within
