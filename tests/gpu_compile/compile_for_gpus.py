@@ -1,0 +1,216 @@
+#!/usr/bin/env python3
+"""Compiles every kernel program wavepath's renderers can build for the shipped
+and bench scenes for GPU targets, with clang-15: nvptx64 (NVIDIA) and amdgcn
+(AMD), so that a change that breaks the kernels for GPU compilers fails
+without a GPU (docs/architecture.md, "GPU targets").
+
+The programs come from the renderers themselves: wavepath-kernel-programs
+(tests/gpu_compile/list_kernel_programs.cpp) asks them, for every scene under
+scenes/ and bench/scenes/, which program each combination of the options that
+change one would build, and lists each program once. Two passes, for each
+target:
+
+  every program: its source as build_program hands it to the OpenCL compiler
+    (the kernel files one after the other, each after a #line naming it),
+    with its options, through clang's front end for the target
+    (-fsyntax-only: parsed and checked with the target's types, builtins and
+    extensions; no code generated, which would cost half as much again);
+  the GPU defaults (what `wavepath render SCENE` builds on a GPU, with
+    either backend): each kernel file of the program on its own (each
+    includes what it uses), through the optimiser and the target's back end
+    to PTX or AMDGPU assembly (-S).
+
+A compilation that fails prints one line: FAIL, the target, the first error
+(file:line: message), the pass, the options and what builds the program.
+Exit status 0 when everything compiled, 1 when something did not, 2 when the
+check could not run (no clang-15, a target missing from it, no scenes).
+"""
+import argparse
+import concurrent.futures
+import glob
+import os
+import re
+import shutil
+import subprocess
+import sys
+import tempfile
+import time
+
+# (name, clang's target options). -nogpulib: no ROCm device library, which
+# Debian's clang-15 lacks and OpenCL C needs none of (the builtins are clang's).
+TARGETS = [
+    ("nvptx64", ["-target", "nvptx64-nvidia-cuda", "-march=sm_70"]),
+    ("amdgcn", ["-target", "amdgcn-amd-amdhsa", "-mcpu=gfx90a", "-nogpulib"]),
+]
+
+# The first error of a clang log, as "file:line: message".
+ERROR = re.compile(r"^([^\s:][^:\n]*):(\d+):\d+: (?:fatal )?error: (.*)$", re.M)
+
+
+def first_error(log):
+    m = ERROR.search(log)
+    if m:
+        return f"{m.group(1)}:{m.group(2)}: {m.group(3)}"
+    lines = [line for line in log.splitlines() if "error" in line]
+    return (lines or log.splitlines() or ["(no output)"])[0].strip()
+
+
+def scenes(source_dir):
+    found = []
+    for pattern in ("scenes/*.json", "scenes/*/*.json", "bench/scenes/*.json"):
+        found += sorted(glob.glob(os.path.join(source_dir, pattern)))
+    return found
+
+
+def check_clang(clang):
+    path = shutil.which(clang)
+    if not path:
+        return f"{clang} not found (scripts/setup.sh installs clang-15)"
+    listed = subprocess.run([path, "-print-targets"], capture_output=True, text=True).stdout
+    missing = [name for name, _ in TARGETS if not re.search(rf"^\s*{name}\s", listed, re.M)]
+    if missing:
+        return f"{clang} has no {' or '.join(missing)} target"
+    return None
+
+
+def list_programs(lister, scene_files):
+    run = subprocess.run([lister, *scene_files], capture_output=True, text=True)
+    if run.returncode != 0:
+        raise SystemExit(f"gpu_compile: {lister} failed: {run.stderr.strip()}")
+    programs = []
+    for line in run.stdout.splitlines():
+        kind, files, options, what = line.split("\t")
+        programs.append({"gpu_default": kind == "gpu-default", "files": files.split(), "options": options,
+                         "what": what})
+    return programs
+
+
+def kernel_directory(options):
+    # build_program's -I names the kernel directory (compiler_options).
+    words = options.split()
+    return words[words.index("-I") + 1]
+
+
+def program_source(program):
+    # As build_from_source (src/opencl/program_cache.cpp) concatenates it.
+    directory = kernel_directory(program["options"])
+    text = ""
+    for name in program["files"]:
+        path = os.path.join(directory, name)
+        with open(path) as f:
+            text += f'#line 1 "{path}"\n' + f.read() + "\n"
+    return text
+
+
+def program_name(program):
+    backend = "megakernel" if "megakernel.cl" in program["files"] else "wavefront"
+    return f"the {backend}'s program ({' '.join(program['files'])})"
+
+
+def write_logs(directory, clang, failed):
+    # Each failing compilation's command, whole log and (for a program) source, to reproduce it by hand.
+    os.makedirs(directory, exist_ok=True)
+    for n, job in enumerate(failed):
+        stem = os.path.join(directory, f"fail{n}_{job['target']}")
+        source = job["input"]
+        if job["mode"] != ["-S"]:
+            shutil.copyfile(job["input"], stem + ".cl")
+            source = stem + ".cl"
+        command = [clang, "-x", "cl", job["options"], *job["target_options"], *job["mode"], source]
+        with open(stem + ".log", "w") as f:
+            f.write(" ".join(command) + "\n\n" + job["log"])
+
+
+def compile_one(clang, job):
+    command = [clang, "-x", "cl", *job["options"].split(), *job["target_options"], *job["mode"], "-o", os.devnull,
+               job["input"]]
+    start = time.monotonic()
+    run = subprocess.run(command, capture_output=True, text=True)
+    job["seconds"] = time.monotonic() - start
+    job["ok"] = run.returncode == 0
+    job["log"] = run.stderr
+    return job
+
+
+def defines(options):
+    # The options but the ones build_program always passes (-cl-std, -I ...): what varies.
+    words = options.split()
+    return " ".join(w for w in words if w.startswith("-D"))
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--lister", required=True, help="the wavepath-kernel-programs executable")
+    parser.add_argument("--source-dir", required=True, help="the source tree (its scenes/ and bench/scenes/)")
+    parser.add_argument("--clang", default="clang-15")
+    parser.add_argument("--jobs", type=int, default=2, help="compilations at once")
+    parser.add_argument("--scene", action="append", help="only these scenes (default: every shipped and bench scene)")
+    parser.add_argument("--log-dir", help="also write each failing compilation's whole log here")
+    args = parser.parse_args()
+
+    problem = check_clang(args.clang)
+    if problem:
+        print(f"gpu_compile: cannot run: {problem}", file=sys.stderr)
+        return 2
+    scene_files = args.scene or scenes(args.source_dir)
+    if not scene_files:
+        print(f"gpu_compile: cannot run: no scenes under {args.source_dir}", file=sys.stderr)
+        return 2
+    start = time.monotonic()
+    programs = list_programs(args.lister, scene_files)
+
+    with tempfile.TemporaryDirectory(prefix="wavepath-gpu-compile-") as scratch:
+        jobs = []
+        for index, program in enumerate(programs):
+            source = os.path.join(scratch, f"program{index}.cl")
+            with open(source, "w") as f:
+                f.write(program_source(program))
+            for target, target_options in TARGETS:
+                jobs.append({"pass": "program, front end", "target": target, "target_options": target_options,
+                             "mode": ["-fsyntax-only"], "input": source, "options": program["options"],
+                             "what": program["what"], "unit": program_name(program)})
+        seen = set()
+        for program in programs:
+            if not program["gpu_default"]:
+                continue
+            directory = kernel_directory(program["options"])
+            for name in program["files"]:
+                if (name, program["options"]) in seen:
+                    continue
+                seen.add((name, program["options"]))
+                for target, target_options in TARGETS:
+                    jobs.append({"pass": "kernel file to assembly", "target": target, "target_options": target_options,
+                                 "mode": ["-S"], "input": os.path.join(directory, name),
+                                 "options": program["options"], "what": program["what"], "unit": name})
+        # The slow ones first, so that the two workers finish together.
+        jobs.sort(key=lambda job: job["mode"] != ["-S"])
+        with concurrent.futures.ThreadPoolExecutor(max_workers=max(1, args.jobs)) as pool:
+            done = list(pool.map(lambda job: compile_one(args.clang, job), jobs))
+        failed = [job for job in done if not job["ok"]]
+        if failed and args.log_dir:
+            write_logs(args.log_dir, args.clang, failed)
+
+    for job in failed:
+        print(f"FAIL {job['target']}: {first_error(job['log'])} [{job['pass']}: {job['unit']}; "
+              f"options {defines(job['options'])}; built by {job['what']}]")
+    # Many failures are usually one error in many programs: each error once, with its count.
+    errors = {}
+    for job in failed:
+        key = (job["target"], first_error(job["log"]))
+        errors[key] = errors.get(key, 0) + 1
+    if len(failed) > len(errors):
+        for (target, error), count in sorted(errors.items()):
+            print(f"gpu_compile: {count} of the failures: {target}: {error}")
+    programs_compiled = sum(1 for job in done if job["mode"] != ["-S"]) // len(TARGETS)
+    files_compiled = sum(1 for job in done if job["mode"] == ["-S"]) // len(TARGETS)
+    slowest = max(done, key=lambda job: job["seconds"])
+    targets = " and ".join(name for name, _ in TARGETS)
+    print(f"gpu_compile: {len(scene_files)} scenes, {programs_compiled} programs through the front end and "
+          f"{files_compiled} kernel files of the GPU defaults to assembly, for {targets}: {len(done)} compilations "
+          f"in {time.monotonic() - start:.0f} s with {args.jobs} jobs (slowest {slowest['seconds']:.1f} s: "
+          f"{slowest['unit']} for {slowest['target']}); {len(failed)} failed")
+    return 1 if failed else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
