@@ -79,7 +79,7 @@ configure
 cmake --build "$build" -j "$jobs" --target wavepath "${programs[@]}" >"$out/build.txt" 2>&1 ||
   { echo "gpu_check: the build failed (its output: $out/build.txt)" >&2; exit 1; }
 
-export WAVEPATH_CACHE_DIR="$PWD/$build/kernel-cache"  # as CTest's (tests/CMakeLists.txt)
+export WAVEPATH_CACHE_DIR="$(cd "$build" && pwd)/kernel-cache"  # as CTest's (tests/CMakeLists.txt)
 failed=0
 {
   echo "# GPU check: $gpu"
