@@ -6,9 +6,11 @@ without a GPU (docs/architecture.md, "GPU targets").
 
 The programs come from the renderers themselves: wavepath-kernel-programs
 (tests/gpu_compile/list_kernel_programs.cpp) asks them, for every scene under
-scenes/ and bench/scenes/, which program each combination of the options that
-change one would build, and lists each program once. Two passes, for each
-target:
+scenes/, bench/scenes/ and tests/gpu_compile/scenes/ (features no other scene
+uses), which program each combination of the options that change one would
+build, and lists each program once. A feature macro that no listed program
+defines fails the check (its code would never be compiled here). Two passes,
+for each target:
 
   every program: its source as build_program hands it to the OpenCL compiler
     (the kernel files one after the other, each after a #line naming it),
@@ -56,10 +58,24 @@ def first_error(log):
 
 
 def scenes(source_dir):
+    # tests/gpu_compile/scenes/: features no shipped or bench scene uses (coverage_problems).
     found = []
-    for pattern in ("scenes/*.json", "scenes/*/*.json", "bench/scenes/*.json"):
+    for pattern in ("scenes/*.json", "scenes/*/*.json", "bench/scenes/*.json", "tests/gpu_compile/scenes/*.json"):
         found += sorted(glob.glob(os.path.join(source_dir, pattern)))
     return found
+
+
+def coverage_problems(source_dir, programs):
+    """The macros src/opencl/kernel_options.cpp can put in a program's options (the WP_ names in its string
+    literals, as the test KernelOptions.ArchitectureDocListsEveryMacroTheyEmit reads them) that no listed
+    program defines: code that this check would never compile."""
+    with open(os.path.join(source_dir, "src", "opencl", "kernel_options.cpp")) as f:
+        code = f.read()
+    emitted = {name for literal in re.findall(r'"((?:[^"\\\n]|\\.)*)"', code)
+               for name in re.findall(r"WP_[A-Z0-9_]+", literal)}
+    defined = {name for program in programs for name in re.findall(r"-D(WP_[A-Z0-9_]+)", program["options"])}
+    return [f"FAIL coverage: no program defines {name}, which src/opencl/kernel_options.cpp can emit: no scene "
+            f"uses it; add one that does under tests/gpu_compile/scenes/" for name in sorted(emitted - defined)]
 
 
 def check_clang(clang):
@@ -158,6 +174,8 @@ def main():
         return 2
     start = time.monotonic()
     programs = list_programs(args.lister, scene_files)
+    # Only over every scene: --scene chooses fewer on purpose.
+    uncovered = [] if args.scene else coverage_problems(args.source_dir, programs)
 
     with tempfile.TemporaryDirectory(prefix="wavepath-gpu-compile-") as scratch:
         jobs = []
@@ -190,6 +208,8 @@ def main():
         if failed and args.log_dir:
             write_logs(args.log_dir, args.clang, failed)
 
+    for line in uncovered:
+        print(line)
     for job in failed:
         print(f"FAIL {job['target']}: {first_error(job['log'])} [{job['pass']}: {job['unit']}; "
               f"options {defines(job['options'])}; built by {job['what']}]")
@@ -209,7 +229,7 @@ def main():
           f"{files_compiled} kernel files of the GPU defaults to assembly, for {targets}: {len(done)} compilations "
           f"in {time.monotonic() - start:.0f} s with {args.jobs} jobs (slowest {slowest['seconds']:.1f} s: "
           f"{slowest['unit']} for {slowest['target']}); {len(failed)} failed")
-    return 1 if failed else 0
+    return 1 if failed or uncovered else 0
 
 
 if __name__ == "__main__":
