@@ -21,6 +21,7 @@
 #include "scene/limits.h"
 #include "scene/mesh_file.h"
 #include "scene/mitsuba_shapes.h"
+#include "scene/named_media.h"
 #include "scene/serialized_mesh.h"
 
 namespace wp {
@@ -475,18 +476,6 @@ std::optional<glm::dmat4> Plugin::optional_transform(std::string_view name) cons
 
 // ---- the reader ----
 
-// Mitsuba's named indices of refraction (include/mitsuba/render/ior.h).
-const std::pair<const char*, double> kNamedIors[] = {
-    {"vacuum", 1.0},      {"helium", 1.000036},        {"hydrogen", 1.000132},
-    {"air", 1.000277},    {"carbon dioxide", 1.00045}, {"water", 1.3330},
-    {"acetone", 1.36},    {"ethanol", 1.361},          {"carbon tetrachloride", 1.461},
-    {"glycerol", 1.4729}, {"benzene", 1.501},          {"silicone oil", 1.52045},
-    {"bromine", 1.661},   {"water ice", 1.31},         {"fused quartz", 1.458},
-    {"pyrex", 1.470},     {"acrylic glass", 1.49},     {"polypropylene", 1.49},
-    {"bk7", 1.5046},      {"sodium chloride", 1.544},  {"amber", 1.55},
-    {"pet", 1.5750},      {"diamond", 2.419},
-};
-
 // An index of refraction: a number, or one of Mitsuba's names.
 double ior(const Plugin& plugin, std::string_view name, const char* fallback) {
     const XmlElement* p = plugin.property(name);
@@ -496,12 +485,59 @@ double ior(const Plugin& plugin, std::string_view name, const char* fallback) {
         if (!(value > 0.0)) plugin.fail(*p, plugin.property_name(*p) + ": must be > 0, got " + format_number(value));
         return value;
     }
-    if (p) text = lower(*plugin.optional_string(name));
-    for (const auto& [known, value] : kNamedIors)
-        if (text == known) return value;
-    std::string names;
-    for (const auto& [known, value] : kNamedIors) names += (names.empty() ? "" : ", ") + std::string(known);
-    plugin.fail(*p, plugin.property_name(*p) + ": unknown material " + in_quotes(text) + " (known: " + names + ")");
+    if (p) text = *plugin.optional_string(name);
+    if (std::optional<double> value = named_ior(text)) return *value;
+    plugin.fail(
+        *p, plugin.property_name(*p) + ": unknown material " + in_quotes(text) + " (known: " + named_ior_list() + ")");
+}
+
+// A conductor's index: `eta` and `k`, or a named `material` (default "none", a perfect mirror).
+void read_conductor_index(const Plugin& bsdf, Material& m) {
+    std::optional<glm::dvec3> eta = bsdf.optional_color("eta", kMaxSceneMagnitude, "");
+    std::optional<glm::dvec3> k = bsdf.optional_color("k", kMaxSceneMagnitude, "");
+    const XmlElement* name = bsdf.property("material");
+    if (eta || k) {
+        if (name) bsdf.fail(*name, "material: give either material or eta and k, not both");
+        if (!eta || !k) bsdf.fail(std::string(eta ? "eta" : "k") + ": needs " + (eta ? "k" : "eta") + " beside it");
+        m.eta = *eta;
+        m.k = *k;
+        return;
+    }
+    const std::string metal = name ? *bsdf.optional_string("material") : "none";
+    std::optional<ComplexIor> index = named_conductor(metal);
+    if (!index) {
+        bsdf.fail(*name,
+                  "material: unknown conductor " + in_quotes(metal) + " (known: " + named_conductor_list() + ")");
+    }
+    m.eta = index->eta;
+    m.k = index->k;
+}
+
+// A rough material's `distribution` (default beckmann) and `alpha` or `alpha_u` and `alpha_v` (default 0.1).
+void read_microfacet(const Plugin& bsdf, Material& m) {
+    if (const XmlElement* p = bsdf.property("distribution")) {
+        const std::string name = *bsdf.optional_string("distribution");
+        if (name != "beckmann" && name != "ggx")
+            bsdf.fail(*p, "distribution: unknown " + in_quotes(name) + " (expected beckmann or ggx)");
+        m.distribution = name == "ggx" ? Microfacet::GGX : Microfacet::Beckmann;
+    }
+    auto roughness = [&](std::string_view name) {
+        const double alpha = *bsdf.optional_number(name);
+        if (!(alpha >= kMinRoughness)) {
+            bsdf.fail(*bsdf.property(name), std::string(name) + ": must be >= " + format_number(kMinRoughness) +
+                                                ", got " + format_number(alpha));
+        }
+        return alpha;
+    };
+    const bool alpha = bsdf.property("alpha"), alpha_u = bsdf.property("alpha_u"), alpha_v = bsdf.property("alpha_v");
+    if (alpha_u || alpha_v) {
+        if (alpha) bsdf.fail(*bsdf.property("alpha"), "alpha: give either alpha or alpha_u and alpha_v, not both");
+        if (!alpha_u || !alpha_v) bsdf.fail("alpha_u and alpha_v: give both");
+        m.alpha_u = roughness("alpha_u");
+        m.alpha_v = roughness("alpha_v");
+    } else if (alpha) {
+        m.alpha_u = m.alpha_v = roughness("alpha");
+    }
 }
 
 // A BSDF as a wavepath material (without emission). To add a BSDF: a function
@@ -523,7 +559,8 @@ Material read_twosided(const Plugin& bsdf, const std::function<Material(const Xm
     if (inner.empty()) bsdf.fail("needs the BSDF it makes two-sided");
     if (inner.size() > 1) bsdf.fail(*inner[1], "another BSDF on the back side: not supported");
     const Material m = nested(*inner.front());
-    if (m.type == MaterialType::Glass)
+    if (m.type == MaterialType::Glass || m.type == MaterialType::RoughDielectric ||
+        m.type == MaterialType::ThinDielectric)
         bsdf.fail(*inner.front(), "a dielectric inside it: not supported (Mitsuba's twosided reflects only)");
     return m;
 }
@@ -537,10 +574,52 @@ Material read_dielectric(const Plugin& bsdf, const std::function<Material(const 
     return m;
 }
 
+Material read_conductor(const Plugin& bsdf, const std::function<Material(const XmlElement&)>&) {
+    bsdf.allow({"material", "eta", "k", "specular_reflectance"});
+    Material m;
+    m.type = MaterialType::Conductor;
+    read_conductor_index(bsdf, m);
+    m.specular_reflectance =
+        bsdf.optional_color("specular_reflectance", 1.0, " (energy gain)").value_or(glm::dvec3(1.0));
+    return m;
+}
+
+Material read_roughconductor(const Plugin& bsdf, const std::function<Material(const XmlElement&)>&) {
+    bsdf.allow({"material", "eta", "k", "specular_reflectance", "distribution", "alpha", "alpha_u", "alpha_v"});
+    Material m;
+    m.type = MaterialType::RoughConductor;
+    read_conductor_index(bsdf, m);
+    m.specular_reflectance =
+        bsdf.optional_color("specular_reflectance", 1.0, " (energy gain)").value_or(glm::dvec3(1.0));
+    read_microfacet(bsdf, m);
+    return m;
+}
+
+Material read_roughdielectric(const Plugin& bsdf, const std::function<Material(const XmlElement&)>&) {
+    bsdf.allow({"int_ior", "ext_ior", "distribution", "alpha", "alpha_u", "alpha_v"});
+    Material m;
+    m.type = MaterialType::RoughDielectric;
+    m.ior = ior(bsdf, "int_ior", "bk7") / ior(bsdf, "ext_ior", "air");
+    read_microfacet(bsdf, m);
+    return m;
+}
+
+Material read_thindielectric(const Plugin& bsdf, const std::function<Material(const XmlElement&)>&) {
+    bsdf.allow({"int_ior", "ext_ior"});
+    Material m;
+    m.type = MaterialType::ThinDielectric;
+    m.ior = ior(bsdf, "int_ior", "bk7") / ior(bsdf, "ext_ior", "air");
+    return m;
+}
+
 const std::pair<const char*, BsdfReader> kBsdfs[] = {
     {"diffuse", read_diffuse},
     {"twosided", read_twosided},
     {"dielectric", read_dielectric},
+    {"conductor", read_conductor},
+    {"roughconductor", read_roughconductor},
+    {"roughdielectric", read_roughdielectric},
+    {"thindielectric", read_thindielectric},
 };
 
 struct MaterialKey {

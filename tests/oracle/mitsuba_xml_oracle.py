@@ -50,6 +50,7 @@ CASES = [
     ("fov_axis_larger", "camera.xml", {"fov_axis": "larger"}),
     ("shapes", "shapes.xml", {"serialized": "{serialized}"}),
     ("include_ref_dielectric", "materials.xml", {"max_depth": "8"}),
+    ("metals_and_glass", "metals_and_glass.xml", {}),
 ]
 
 

@@ -16,6 +16,7 @@
 
 #include "import/mesh_file_error.h"
 #include "scene/limits.h"
+#include "scene/named_media.h"
 #include "scene/scene_writer.h"
 #include "scene/serialized_mesh.h"
 #include "support/temp_directory.h"
@@ -275,6 +276,44 @@ TEST_F(MitsubaXml, BsdfsAsMaterials) {
     expect_near(scene.background, {0.1, 0.2, 0.3});
 }
 
+TEST_F(MitsubaXml, ConductorsAndRoughDielectricsAsMaterials) {
+    const Scene scene = read(sensor() + R"(
+        <shape type="sphere"><bsdf type="twosided"><bsdf type="roughconductor"><string name="material" value="Cu"/>
+            <string name="distribution" value="ggx"/><float name="alpha" value="0.2"/></bsdf></bsdf></shape>
+        <shape type="sphere"><bsdf type="conductor"><rgb name="eta" value="1, 2, 3"/><float name="k" value="4"/>
+            <rgb name="specular_reflectance" value="0.5"/></bsdf></shape>
+        <shape type="sphere"><bsdf type="roughconductor"><float name="alpha_u" value="0.05"/>
+            <float name="alpha_v" value="0.3"/></bsdf></shape>
+        <shape type="sphere"><bsdf type="roughdielectric"><string name="int_ior" value="water"/></bsdf></shape>
+        <shape type="sphere"><bsdf type="thindielectric"><float name="int_ior" value="1.6"/>
+            <float name="ext_ior" value="1.2"/></bsdf></shape>)")
+                            .scene;
+    const auto material = [&](int sphere) {
+        return scene.materials.at(std::size_t(scene.spheres.at(std::size_t(sphere)).material));
+    };
+    EXPECT_EQ(material(0).type, MaterialType::RoughConductor);
+    expect_near(material(0).eta, named_conductor("Cu")->eta);
+    expect_near(material(0).k, named_conductor("Cu")->k);
+    EXPECT_EQ(material(0).distribution, Microfacet::GGX);
+    EXPECT_EQ(material(0).alpha_u, 0.2);
+    EXPECT_EQ(material(1).type, MaterialType::Conductor);
+    expect_near(material(1).eta, {1.0, 2.0, 3.0});
+    expect_near(material(1).k, glm::dvec3(4.0));
+    expect_near(material(1).specular_reflectance, glm::dvec3(0.5));
+    EXPECT_EQ(material(2).distribution, Microfacet::Beckmann);  // Mitsuba's defaults: beckmann, "none"
+    expect_near(material(2).k, glm::dvec3(1.0));
+    EXPECT_EQ(material(2).alpha_u, 0.05);
+    EXPECT_EQ(material(2).alpha_v, 0.3);
+    EXPECT_EQ(material(3).type, MaterialType::RoughDielectric);
+    EXPECT_NEAR(material(3).ior, *named_ior("water") / *named_ior("air"), 1e-12);
+    EXPECT_EQ(material(3).alpha_u, 0.1);
+    EXPECT_EQ(material(4).type, MaterialType::ThinDielectric);
+    EXPECT_NEAR(material(4).ior, 1.6 / 1.2, 1e-12);
+    EXPECT_EQ(error_of(sensor() + R"(
+        <shape type="sphere"><bsdf type="roughconductor"><float name="alpha" value="0"/></bsdf></shape>)"),
+              "scene.xml:3: bsdf \"roughconductor\": alpha: must be >= 1e-04, got 0");
+}
+
 // ---- $defaults, -D, includes, references ----
 
 TEST_F(MitsubaXml, TopLevelObjectsUsedByReference) {
@@ -356,7 +395,8 @@ TEST_F(MitsubaXml, ErrorsNameTheFileLineAndPluginOrProperty) {
         <shape type="sphere">
             <bsdf type="roughplastic"/>
         </shape>)"),
-              "scene.xml:4: bsdf \"roughplastic\": not supported (supported: diffuse, twosided, dielectric)");
+              "scene.xml:4: bsdf \"roughplastic\": not supported (supported: diffuse, twosided, dielectric, conductor, "
+              "roughconductor, roughdielectric, thindielectric)");
     EXPECT_EQ(error_of(sensor() + R"(
         <shape type="rectangle"><float name="width" value="2"/></shape>)"),
               "scene.xml:3: shape \"rectangle\": float \"width\": not supported (supported: to_world, flip_normals)");
