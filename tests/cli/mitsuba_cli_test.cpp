@@ -12,6 +12,8 @@
 
 namespace wp::test {
 namespace {
+// A namespace of its own: the sanitizer build compiles test files together (unity).
+namespace mitsuba_cli_test {
 
 namespace fs = std::filesystem;
 
@@ -89,5 +91,6 @@ TEST_F(MitsubaCli, FailuresAreOneLineAndLeaveNoOutput) {
     EXPECT_EQ(out_.entries(), std::vector<std::string>{});
 }
 
+}  // namespace mitsuba_cli_test
 }  // namespace
 }  // namespace wp::test

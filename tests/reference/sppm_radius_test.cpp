@@ -23,6 +23,8 @@
 
 namespace wp {
 namespace {
+// A namespace of its own: the sanitizer build compiles test files together (unity).
+namespace sppm_radius_test {
 
 constexpr double kOffAxis = 1.0005;
 
@@ -106,5 +108,6 @@ TEST(SppmFirstRadius, OverrideSetsTheRadiusAndKeepsTheFootprint) {
     expect_lengths(scene, first_radii(scene), 3.0, 0.0, 0.7);
 }
 
+}  // namespace sppm_radius_test
 }  // namespace
 }  // namespace wp

@@ -34,6 +34,8 @@
 
 namespace wp {
 namespace {
+// A namespace of its own: the sanitizer build compiles test files together (unity).
+namespace sppm_scale_test {
 
 using test::RunningMean;
 
@@ -102,5 +104,6 @@ TEST(SppmScale, DefaultsRenderTheSameAtAnyScaleAndExtent) {
     }
 }
 
+}  // namespace sppm_scale_test
 }  // namespace
 }  // namespace wp

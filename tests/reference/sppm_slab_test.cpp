@@ -35,6 +35,8 @@
 #include "support/statistics.h"
 
 namespace {
+// A namespace of its own: the sanitizer build compiles test files together (unity).
+namespace sppm_slab_test {
 
 using wp::test::CausticPatch;
 using wp::test::RenderBlock;
@@ -71,4 +73,5 @@ TEST(SppmSlab, DefaultSettingsAgreeWithTheQuadratureWithinTwoPercent) {
     EXPECT_NEAR(mean.mean(), expected, 0.02 * expected);
 }
 
+}  // namespace sppm_slab_test
 }  // namespace

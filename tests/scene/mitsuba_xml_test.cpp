@@ -23,6 +23,8 @@
 
 namespace wp::test {
 namespace {
+// A namespace of its own: the sanitizer build compiles test files together (unity).
+namespace mitsuba_xml_test {
 
 namespace fs = std::filesystem;
 
@@ -563,5 +565,6 @@ TEST_F(MitsubaXml, ConvertedJsonLoadsAsTheSameScene) {
     EXPECT_EQ(from_json.lights.size(), from_xml.lights.size());
 }
 
+}  // namespace mitsuba_xml_test
 }  // namespace
 }  // namespace wp::test

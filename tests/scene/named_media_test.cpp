@@ -7,6 +7,8 @@
 
 namespace wp {
 namespace {
+// A namespace of its own: the sanitizer build compiles test files together (unity).
+namespace named_media_test {
 
 TEST(NamedMedia, ConductorsHaveMitsubasRgbIndex) {
     const std::optional<ComplexIor> gold = named_conductor("Au");
@@ -44,5 +46,6 @@ TEST(NamedMedia, ListsNameEveryEntryForErrorMessages) {
     EXPECT_NE(iors.find("water ice"), std::string::npos);
 }
 
+}  // namespace named_media_test
 }  // namespace
 }  // namespace wp

@@ -19,6 +19,8 @@
 #include "support/statistics.h"
 
 namespace {
+// A namespace of its own: the sanitizer build compiles test files together (unity).
+namespace conductor_test {
 
 using wp::test::MicrofacetParameters;
 using wp::test::Vec3;
@@ -279,4 +281,5 @@ TYPED_TEST(Conductors, SmoothReflectsAboutTheShadingNormalWithItsFresnel) {
     }
 }
 
+}  // namespace conductor_test
 }  // namespace

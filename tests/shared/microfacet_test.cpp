@@ -17,6 +17,8 @@
 #include "support/real_types.h"
 
 namespace {
+// A namespace of its own: the sanitizer build compiles test files together (unity).
+namespace microfacet_test {
 
 using wp::test::MicrofacetParameters;
 using wp::test::Vec3;
@@ -156,4 +158,5 @@ TYPED_TEST(Microfacets, BeckmannVisibleSlopeInvertsItsDistribution) {
     EXPECT_LT(worst, 2e-6);
 }
 
+}  // namespace microfacet_test
 }  // namespace

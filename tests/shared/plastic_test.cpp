@@ -20,6 +20,8 @@
 #include "support/statistics.h"
 
 namespace {
+// A namespace of its own: the sanitizer build compiles test files together (unity).
+namespace plastic_test {
 
 using wp::test::Vec3;
 namespace table = wp::test::plastic_mitsuba;
@@ -337,4 +339,5 @@ TYPED_TEST(Plastic, AgreesWithMitsuba) {
     }
 }
 
+}  // namespace plastic_test
 }  // namespace

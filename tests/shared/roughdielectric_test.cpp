@@ -17,6 +17,8 @@
 #include "support/statistics.h"
 
 namespace {
+// A namespace of its own: the sanitizer build compiles test files together (unity).
+namespace roughdielectric_test {
 
 using wp::test::MicrofacetParameters;
 using wp::test::shared_microfacet;
@@ -256,4 +258,5 @@ TYPED_TEST(RoughDielectric, AlbedoIsTheSingleScatteringAlbedo) {
     }
 }
 
+}  // namespace roughdielectric_test
 }  // namespace

@@ -25,6 +25,8 @@
 #include "support/statistics.h"
 
 namespace {
+// A namespace of its own: the sanitizer build compiles test files together (unity).
+namespace roughplastic_test {
 
 using wp::test::MicrofacetParameters;
 using wp::test::Vec3;
@@ -364,4 +366,5 @@ TYPED_TEST(RoughPlastic, PrecomputationAgreesWithMitsuba) {
     }
 }
 
+}  // namespace roughplastic_test
 }  // namespace

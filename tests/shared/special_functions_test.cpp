@@ -17,6 +17,8 @@
 #include "support/real_types.h"
 
 namespace {
+// A namespace of its own: the sanitizer build compiles test files together (unity).
+namespace special_functions_test {
 
 template <class Real>
 class SpecialFunctions : public ::testing::Test {};
@@ -128,4 +130,5 @@ TEST(SharedCode, CallsNoTranscendentalFunctionOfTheLibrary) {
     EXPECT_GE(headers, 20);
 }
 
+}  // namespace special_functions_test
 }  // namespace

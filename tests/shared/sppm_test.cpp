@@ -14,6 +14,8 @@
 #include "support/real_types.h"
 
 namespace {
+// A namespace of its own: the sanitizer build compiles test files together (unity).
+namespace sppm_test {
 
 using wp::test::kRoundingTolerance;
 
@@ -83,4 +85,5 @@ TYPED_TEST(Sppm, FirstRadiusIsTwoFootprintsUnlessOverridden) {
     EXPECT_EQ(M::sppm_first_radius(R(0), R(3e-9)), R(6e-9));  // no floor: units are the scene's
 }
 
+}  // namespace sppm_test
 }  // namespace

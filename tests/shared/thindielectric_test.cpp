@@ -9,6 +9,8 @@
 #include "support/real_types.h"
 
 namespace {
+// A namespace of its own: the sanitizer build compiles test files together (unity).
+namespace thindielectric_test {
 
 using wp::test::kRoundingTolerance;
 using wp::test::Vec3;
@@ -66,4 +68,5 @@ TYPED_TEST(ThinDielectric, ReflectsTheSlabsReflectanceAndTransmitsTheRest) {
     }
 }
 
+}  // namespace thindielectric_test
 }  // namespace
