@@ -2,9 +2,9 @@
 # Sets up, builds, and runs the whole test suite through CTest; then builds
 # it again with AddressSanitizer and UndefinedBehaviorSanitizer (clang, in
 # build-asan, a unity build, with the libFuzzer targets) and runs all of it
-# there but six checks that would add nothing: the format check, the
+# there but seven checks that would add nothing: the format check, the
 # Python-only converter test, a second run of test_robustness and the Mitsuba
-# oracles (path tracing's with its sensitivity test, and SPPM's)
+# oracles (path tracing's with its sensitivity test, SPPM's and the XML reader's)
 # (docs/bad-input.md, "The sanitizer build": why, and what it costs).
 # Usage: bash scripts/test.sh
 set -euo pipefail
