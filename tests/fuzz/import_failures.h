@@ -17,11 +17,28 @@
 #include <string_view>
 
 #include "import/import_limits.h"
+#include "import/import_process.h"
 
 namespace wp::fuzz {
 
 // Small enough for two fuzzers side by side, under libFuzzer's 10 s -timeout.
 inline const MeshImportLimits kImportLimits{1024, 4, 8.0};
+
+// What an error line says just before wavepath-import's own words: ": wavepath-import ".
+inline const std::string& import_helper_mark() {
+    static const std::string mark = std::string(": ") + kImportHelperName + " ";
+    return mark;
+}
+
+// Whether wavepath-import's words in an error line (what follows
+// import_helper_mark) say its process failed, rather than the file.
+inline bool is_process_failure(std::string_view helper_words) {
+    for (std::string_view verb :
+         {"crashed", "ran out of memory", "used its", "did not finish", "sent a malformed", "exited with status"}) {
+        if (helper_words.starts_with(verb)) return true;
+    }
+    return false;
+}
 
 inline void note_import_failure(const std::string& message, const std::uint8_t* data, std::size_t size) {
     std::fprintf(stderr, "import failure: %s\n", message.c_str());

@@ -19,17 +19,12 @@ const std::string source = WAVEPATH_FUZZ_SCENE_DIR "/fuzz.json";
 // "<source>: shapes[i].file: <mesh file>: wavepath-import crashed ..." (import/import_process.h); the
 // input may hold such text elsewhere too, in a key or a string that an error quotes.
 bool is_import_failure(const std::string& message) {
-    static const std::string mark = std::string(": ") + wp::kImportHelperName + " ";
+    const std::string& mark = wp::fuzz::import_helper_mark();
     const std::size_t file = message.find("].file: "), helper = message.find(mark);
     if (message.rfind(source + ": shapes[", 0) != 0 || file == std::string::npos || helper == std::string::npos ||
         helper < file)
         return false;
-    const std::string_view failure = std::string_view(message).substr(helper + mark.size());
-    for (std::string_view verb :
-         {"crashed", "ran out of memory", "used its", "did not finish", "sent a malformed", "exited with status"}) {
-        if (failure.starts_with(verb)) return true;
-    }
-    return false;
+    return wp::fuzz::is_process_failure(std::string_view(message).substr(helper + mark.size()));
 }
 
 }  // namespace

@@ -20,15 +20,10 @@ const std::string source = WAVEPATH_FUZZ_XML_DIR "/fuzz.xml";
 
 // "<file>:<line>: shape "obj": <mesh file>: wavepath-import crashed ..." (import/import_process.h).
 bool is_import_failure(const std::string& message) {
-    static const std::string mark = std::string(": ") + wp::kImportHelperName + " ";
+    const std::string& mark = wp::fuzz::import_helper_mark();
     const std::size_t shape = message.find(": shape \""), helper = message.rfind(mark);
     if (shape == std::string::npos || helper == std::string::npos || helper < shape) return false;
-    const std::string_view failure = std::string_view(message).substr(helper + mark.size());
-    for (std::string_view verb :
-         {"crashed", "ran out of memory", "used its", "did not finish", "sent a malformed", "exited with status"}) {
-        if (failure.starts_with(verb)) return true;
-    }
-    return false;
+    return wp::fuzz::is_process_failure(std::string_view(message).substr(helper + mark.size()));
 }
 
 }  // namespace
