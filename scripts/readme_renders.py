@@ -1,13 +1,14 @@
 #!/usr/bin/env python3
-"""Renders the README's pictures and writes the sentences that give their figures.
+"""Renders the pictures of the README and docs/usage.md and writes the sentences that give their figures.
 
 Usage: python3 scripts/readme_renders.py [--binary build/wavepath] [--only NAME,...]
 
 For each picture below: `wavepath render SCENE -o docs/images/NAME.png` with the
-scene's own settings, then the README's text between `<!-- render:NAME -->` and
-`<!-- /render:NAME -->` is replaced by the command, the time and the rates of
-that render, with the commit, date and load it ran under. So the README's
-figures are those of the run that made its pictures, never copied by hand.
+scene's own settings, then the text between `<!-- render:NAME -->` and
+`<!-- /render:NAME -->` of the document that shows it (DOCUMENTS) is replaced by
+the command, the time and the rates of that render, with the commit, date and
+load it ran under. So the figures are those of the run that made the pictures,
+never copied by hand.
 
 The equal-time pair (issue 22): the glass bunny by SPPM for SPPM_ITERATIONS
 iterations, whose render time T is measured, then by path tracing at the spp
@@ -32,6 +33,8 @@ SCENES = {"room": "scenes/room.json", "bunny": "scenes/bunny.json"}
 PAIR = "bunny_equal_time"
 PAIR_SCENE, PAIR_SIZE, SPPM_ITERATIONS = "scenes/bunny.json", 256, 32
 FIT_TOLERANCE = 0.05  # how far from SPPM's time path tracing's may end
+# Where each block is, relative to the repository: the README shows the default scene, docs/usage.md the rest.
+DOCUMENTS = {"room": "README.md", "bunny": "docs/usage.md", PAIR: "docs/usage.md"}
 
 
 def render(binary, scene, name, scratch, flags=(), picture=True):
@@ -99,21 +102,28 @@ def equal_time_pair(binary, scratch, commit):
         if abs(path["time_s"] - budget) <= FIT_TOLERANCE * budget:
             break
         fit = path
+    # docs/usage.md shows the pair, beside docs/images/.
     pictures = (f"![{PAIR_SCENE} by SPPM, {PAIR_SIZE}x{PAIR_SIZE}, {SPPM_ITERATIONS} iterations, "
-                f"{sppm['time_s']:.1f} s](docs/images/bunny_sppm.png) "
+                f"{sppm['time_s']:.1f} s](images/bunny_sppm.png) "
                 f"![{PAIR_SCENE} by path tracing, {PAIR_SIZE}x{PAIR_SIZE}, {spp} spp, {path['time_s']:.1f} s]"
-                f"(docs/images/bunny_path.png)")
+                f"(images/bunny_path.png)")
     return (f"{pictures}\n\nLeft, photon mapping: {described(sppm)}. Right, path tracing in that time: "
             f"{described(path)}; {spp} spp is {budget:.1f} s times the {fit['spp_done_max'] / fit['time_s']:.2f} "
             f"spp/s of an earlier path-traced run at this size "
             f"{provenance(commit, [sppm['load'], path['load']])}")
 
 
-def replace_block(text, name, words):
+def replace_block(name, words):
+    """Writes `words` into NAME's block of its document, atomically."""
+    path = os.path.join(ROOT, DOCUMENTS[name])
+    with open(path) as f:
+        text = f.read()
     pattern = re.compile(rf"(<!-- render:{name} -->\n).*?(<!-- /render:{name} -->)", re.S)
     if not pattern.search(text):
-        sys.exit(f"readme_renders: README.md has no <!-- render:{name} --> block")
-    return pattern.sub(lambda m: m.group(1) + words + "\n" + m.group(2), text)
+        sys.exit(f"readme_renders: {DOCUMENTS[name]} has no <!-- render:{name} --> block")
+    with open(path + ".tmp", "w") as f:
+        f.write(pattern.sub(lambda m: m.group(1) + words + "\n" + m.group(2), text))
+    os.replace(path + ".tmp", path)
 
 
 def main():
@@ -127,17 +137,11 @@ def main():
         sys.exit(f"readme_renders: no block {', '.join(sorted(unknown))} (blocks: {', '.join(blocks)})")
     commit = subprocess.run(["git", "rev-parse", "--short", "HEAD"], capture_output=True, text=True, cwd=ROOT,
                             check=True).stdout.strip()
-    readme_path = os.path.join(ROOT, "README.md")
-    with open(readme_path) as f:
-        text = f.read()
     with tempfile.TemporaryDirectory() as scratch:
         for name in chosen:
             words = (equal_time_pair(args.binary, scratch, commit) if name == PAIR
                      else single(args.binary, name, scratch, commit))
-            text = replace_block(text, name, words)
-    with open(readme_path + ".tmp", "w") as f:
-        f.write(text)
-    os.replace(readme_path + ".tmp", readme_path)
+            replace_block(name, words)
 
 
 if __name__ == "__main__":

@@ -1,5 +1,5 @@
 // wavepath command line: subcommands `render`, `merge`, `convert`, `devices` and `version`. Exit codes are
-// listed in cli/errors.h (and the README).
+// listed in cli/errors.h (and docs/usage.md).
 #include <CLI/CLI.hpp>
 #include <exception>
 #include <iostream>
