@@ -7,8 +7,8 @@ an image that agrees with Mitsuba's is right for a reason other than the
 wavepath code agreeing with itself. The mapping (docs/mitsuba.md):
 
 - camera: `perspective`, `fov_axis` y, looking from `position` at `look_at`;
-  `hdrfilm` with a `box` filter (one pixel wide: each sample lands in its own
-  pixel, as wavepath's film does), RGB float;
+  `hdrfilm` with the camera's `filter` as its `rfilter` (`box` by default:
+  one pixel wide; tent and gaussian with their radius and stddev), RGB float;
 - render: `path` integrator with Mitsuba's `max_depth` = ours + 1 (Mitsuba
   counts path segments, we count scattering events), `rr_depth` = ours (both
   play the roulette first at the rr_depth-th surface hit);
@@ -204,7 +204,8 @@ class Converter:
             "type": "perspective", "fov": camera["fov_y"], "fov_axis": "y",
             "to_world": {"look_at": [[0, 0, 0], sub(camera["look_at"], self.origin), camera["up"]]},
             "film": {"type": "hdrfilm", "width": camera["width"], "height": camera["height"],
-                     "rfilter": {"type": "box"}, "pixel_format": "rgb", "component_format": "float32"},
+                     "rfilter": rfilter(camera.get("filter", {"type": "box"})), "pixel_format": "rgb",
+                     "component_format": "float32"},
             "sampler": {"type": "independent", "sample_count": render["spp"], "seed": render["seed"]},
         }
 
@@ -325,6 +326,16 @@ class Converter:
             for face in faces:
                 f.write(struct.pack("<B3i", 3, *face))
         return os.path.abspath(path)
+
+
+def rfilter(scene_filter):
+    """The camera's pixel filter as Mitsuba's rfilter (the same names, parameters and defaults)."""
+    kind = scene_filter["type"]
+    if kind == "tent":
+        return {"type": "tent", "radius": scene_filter.get("radius", 1.0)}
+    if kind == "gaussian":
+        return {"type": "gaussian", "stddev": scene_filter.get("stddev", 0.5)}
+    return {"type": "box"}
 
 
 def rgb(value):

@@ -6,6 +6,7 @@
 #include "device/lane_memory.h"
 #include "interface/scene_layout.h"
 #include "shared/camera.h"
+#include "shared/pixel_filter.h"
 #include "shared/prelude.h"
 
 WP_FN CameraFrame scene_camera(__global const SceneHeader *scene) {
@@ -18,8 +19,19 @@ WP_FN CameraFrame scene_camera(__global const SceneHeader *scene) {
     return c;
 }
 
-/* The direction through the point (u, v) in [0, 1)^2 of pixel `pixel` (row by
- * row from the top left). */
+/* The camera's pixel filter, its constants as the host computed them. */
+WP_FN PixelFilter scene_pixel_filter(__global const SceneHeader *scene) {
+    PixelFilter f;
+    f.type = scene->filter_type;
+    f.radius = scene->filter_radius;
+    f.scale = scene->filter_scale;
+    f.erf_radius = scene->filter_erf_radius;
+    return f;
+}
+
+/* The direction through the point (u, v) of pixel `pixel` (row by row from the
+ * top left), in pixels from its top left corner: in [0, 1)^2 but where a filter
+ * reaches into the neighbours. */
 WP_FN vec3 pixel_ray_direction(__global const SceneHeader *scene, lane_uint pixel, real u, real v) {
     return pixel_direction(scene_camera(scene), TO_REAL(pixel % scene->width), TO_REAL(pixel / scene->width),
                            (real)scene->width, (real)scene->height, u, v);

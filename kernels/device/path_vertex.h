@@ -81,10 +81,16 @@
 #define WP_USES_UNIFORM_HEMISPHERE 0
 #endif
 
-/* The camera ray direction of sample s of pixel px. */
+/* The camera ray direction of sample s of pixel px, through the point of the
+ * pixel its filter draws (shared/pixel_filter.h). */
 WP_FN vec3 camera_ray_direction(__global const SceneHeader *scene, lane_uint px, lane_uint s) {
     CameraPair film = camera_pair(scene->seed, px, s, 0u, DIM_FILM_X, WP_USES_SOBOL);
+#ifdef WP_HAS_PIXEL_FILTER
+    FilmPoint point = pixel_filter_sample(scene_pixel_filter(scene), film.u, film.v);
+    return pixel_ray_direction(scene, px, point.u, point.v);
+#else
     return pixel_ray_direction(scene, px, film.u, film.v);
+#endif
 }
 
 #ifdef WP_MIS

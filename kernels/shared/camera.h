@@ -30,7 +30,8 @@ WP_FN vec3 camera_direction(CameraFrame c, real x, real y) {
 }
 
 /* Unit direction through the point (column + u, row + v) of a film of
- * width x height pixels, u and v in [0, 1): the pixel's jitter. */
+ * width x height pixels: (u, v) is the pixel's jitter in [0, 1)^2, or the
+ * point a pixel filter drew (shared/pixel_filter.h), which may lie outside. */
 WP_FN vec3 pixel_direction(CameraFrame c, real column, real row, real width, real height, real u, real v) {
     return camera_direction(c, (column + u) / width, (row + v) / height);
 }

@@ -26,6 +26,7 @@
 #include "shared/offset.h"
 #include "shared/photon_grid.h"
 #include "shared/photons.h"
+#include "shared/pixel_filter.h"
 #include "shared/prelude.h"
 #include "shared/rng.h"
 #include "shared/sampler.h"

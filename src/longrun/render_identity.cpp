@@ -57,6 +57,8 @@ std::uint64_t scene_hash(const Scene& scene) {
     Hasher h;
     const Camera& c = scene.camera;
     h.add(c.position).add(c.look_at).add(c.up).add(c.fov_y_degrees).add(c.width).add(c.height);
+    // Only a filter other than the box is hashed: films from before filters keep their hash.
+    if (c.filter.type != FilterType::Box) h.add(c.filter.type).add(c.filter.radius).add(c.filter.stddev);
     h.add(scene.background);
     h.add(scene.materials.size());
     for (const Material& m : scene.materials) add_material(h, m);

@@ -32,6 +32,7 @@ std::vector<std::pair<const char*, const char*>> features_in_use(const FeatureSe
     add(f.quad_lights, "quad-lights", "WP_HAS_QUAD_LIGHTS");
     add(f.mesh_lights, "mesh-lights", "WP_HAS_MESH_LIGHTS");
     add(f.background, "background", "WP_HAS_BACKGROUND");
+    add(f.pixel_filter, "pixel-filter", "WP_HAS_PIXEL_FILTER");
     add(f.nee, "nee", "WP_NEE");
     add(f.mis, "mis", "WP_MIS");
     add(f.host_traced, "host-traced", "WP_HOST_TRACED");

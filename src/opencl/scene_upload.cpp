@@ -7,12 +7,13 @@
 #include "accel/bvh_layout.h"
 #include "core/shared_math.h"
 #include "scene/mesh_lights.h"
+#include "scene/pixel_filter.h"
 
 namespace wp {
 namespace {
 using namespace device_layout;
 
-static_assert(sizeof(SceneHeader) == 28 * 4, "SceneHeader must match its OpenCL C layout");
+static_assert(sizeof(SceneHeader) == 32 * 4, "SceneHeader must match its OpenCL C layout");
 static_assert(sizeof(DeviceSphere) == 5 * 4, "DeviceSphere must match its OpenCL C layout");
 static_assert(sizeof(DevicePlane) == 7 * 4, "DevicePlane must match its OpenCL C layout");
 static_assert(sizeof(DeviceQuad) == 16 * 4, "DeviceQuad must match its OpenCL C layout");
@@ -27,6 +28,13 @@ void put(float (&out)[3], const glm::dvec3& v) {
     out[2] = static_cast<float>(v.z);
 }
 
+void put(SceneHeader& h, const SharedMath<float>::PixelFilter& filter) {
+    h.filter_type = filter.type;
+    h.filter_radius = filter.radius;
+    h.filter_scale = filter.scale;
+    h.filter_erf_radius = filter.erf_radius;
+}
+
 std::uint32_t shape_ref(std::uint32_t type, int index) { return (type << WP_SHAPE_TYPE_SHIFT) | std::uint32_t(index); }
 
 SceneHeader make_header(const Scene& scene) {
@@ -39,6 +47,7 @@ SceneHeader make_header(const Scene& scene) {
     h.tan_half_fov_y = static_cast<float>(frame.tan_half_fov_y);
     h.aspect = static_cast<float>(frame.aspect);
     put(h.background, scene.background);
+    put(h, pixel_filter_constants<float>(c.filter));
     h.width = c.width;
     h.height = c.height;
     h.spp = scene.render.spp;

@@ -466,13 +466,16 @@ Vec3<Real> trace_path(const ReferenceScene<Real>& scene, Ray<Real> ray, const Sa
     return radiance;
 }
 
-// The camera ray of sample `sample` in pixel (px, py): jittered in the pixel.
+// The camera ray of sample `sample` in pixel (px, py), through the point of
+// the pixel its filter draws (shared/pixel_filter.h).
 template <class Real>
 Ray<Real> camera_ray(const ReferenceScene<Real>& scene, int px, int py, const SampleRng<Real>& rng) {
     using M = SharedMath<Real>;
     const auto& c = scene.camera;
     typename M::CameraPair film = rng.pair(0, DIM_FILM_X);
-    return {c.position, M::pixel_direction(c.frame, Real(px), Real(py), Real(c.width), Real(c.height), film.u, film.v)};
+    typename M::FilmPoint point = M::pixel_filter_sample(c.filter, film.u, film.v);
+    return {c.position,
+            M::pixel_direction(c.frame, Real(px), Real(py), Real(c.width), Real(c.height), point.u, point.v)};
 }
 
 // Radiance of one camera sample (finite: every addition was checked); with

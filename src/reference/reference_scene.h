@@ -12,6 +12,7 @@
 #include "accel/embree_intersector.h"
 #include "core/shared_math.h"
 #include "scene/mesh_lights.h"
+#include "scene/pixel_filter.h"
 #include "scene/scene.h"
 
 namespace wp::reference {
@@ -60,6 +61,7 @@ struct ReferenceScene {
         vec3 position;
         typename M::CameraFrame frame;
         int width, height;
+        typename M::PixelFilter filter;
     };
 
     PinholeCamera camera;
@@ -141,7 +143,7 @@ struct ReferenceScene {
         auto frame = SharedMath<double>::camera_frame(c.position, c.look_at, c.up, c.tan_half_fov_y(), c.aspect());
         typename M::CameraFrame rounded{vec3(frame.right), vec3(frame.up), vec3(frame.forward),
                                         Real(frame.tan_half_fov_y), Real(frame.aspect)};
-        return {vec3(c.position), rounded, c.width, c.height};
+        return {vec3(c.position), rounded, c.width, c.height, pixel_filter_constants<Real>(c.filter)};
     }
 };
 

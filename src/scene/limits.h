@@ -17,6 +17,10 @@ inline constexpr std::int64_t kMaxPhotons = std::int64_t{1} << 30;
 // What a hit's shape index holds (kernels/interface/scene_layout.h, WP_SHAPE_INDEX_MASK + 1).
 inline constexpr std::size_t kMaxTriangles = std::size_t{1} << 29;
 
+// The widest pixel filter, in pixels: a tent's radius, a gaussian's window
+// (4 standard deviations).
+inline constexpr double kMaxFilterRadius = 16.0;
+
 // The smallest microfacet roughness alpha: D's peak 1 / (pi alpha^2) then
 // stays far inside float's range (3.2e7), and the lobe is narrower than
 // anything a pixel resolves.

@@ -631,9 +631,6 @@ struct MaterialKey {
     }
 };
 
-const std::string kBoxFilter =
-    "wavepath's film is a box filter and renders with box (image means agree, pixel filtering differs)";
-
 class Reader {
  public:
     Reader(XmlScene xml, const std::string& path, const MeshImportLimits& mesh_import)
@@ -705,10 +702,8 @@ class Reader {
         Camera& camera = out_.scene.camera;
         camera.width = 768;
         camera.height = 576;
-        if (const XmlElement* film = sensor.only_object("film"))
-            read_film(*film);
-        else
-            warn(element, "no film, so Mitsuba's default hdrfilm with a gaussian rfilter; " + kBoxFilter);
+        camera.filter = {.type = FilterType::Gaussian};  // Mitsuba's default film has its default rfilter
+        if (const XmlElement* film = sensor.only_object("film")) read_film(*film);
         if (const XmlElement* sampler = sensor.only_object("sampler"))
             read_sampler(*sampler);
         else
@@ -785,22 +780,38 @@ class Reader {
             film.fail("width * height must be <= " + std::to_string(kMaxPixels) + ", got " +
                       std::to_string(camera.width) + " * " + std::to_string(camera.height));
         film.boolean("sample_border", false);
-        const XmlElement* rfilter = film.only_object("rfilter");
-        if (!rfilter) {
-            warn(element,
-                 "hdrfilm: no rfilter, so Mitsuba's default gaussian; wavepath's film is a box filter and "
-                 "renders with box (image means agree, pixel filtering differs)");
-            return;
-        }
-        const Plugin filter(*rfilter, ids_);
-        if (filter.type() == "box") {
-            filter.allow({});
-        } else if (filter.type() == "tent" || filter.type() == "gaussian") {
-            filter.allow({"radius", "stddev"});
-            warn(*rfilter, "rfilter " + in_quotes(filter.type()) + ": " + kBoxFilter);
+        if (const XmlElement* rfilter = film.only_object("rfilter")) camera.filter = read_rfilter(*rfilter);
+    }
+
+    // Mitsuba 3's box, tent (radius, default 1) and gaussian (stddev, default
+    // 0.5, windowed at 4 stddev), in pixels.
+    PixelFilter read_rfilter(const XmlElement& element) {
+        const Plugin rfilter(element, ids_);
+        PixelFilter filter;
+        if (rfilter.type() == "box") {
+            rfilter.allow({});
+        } else if (rfilter.type() == "tent") {
+            rfilter.allow({"radius"});
+            filter.type = FilterType::Tent;
+            filter.radius = filter_width(rfilter, "radius", filter.radius, 1.0);
+        } else if (rfilter.type() == "gaussian") {
+            rfilter.allow({"stddev"});
+            filter.type = FilterType::Gaussian;
+            filter.stddev = filter_width(rfilter, "stddev", filter.stddev, 4.0);
         } else {
-            filter.fail("not supported (supported: box; tent and gaussian render as box)");
+            rfilter.fail("not supported (supported: box, tent, gaussian)");
         }
+        return filter;
+    }
+
+    // A filter's width `name`: > 0 and within kMaxFilterRadius (`per_radius`:
+    // the filter's radius over it).
+    static double filter_width(const Plugin& rfilter, std::string_view name, double fallback, double per_radius) {
+        const double width = rfilter.number(name, fallback), most = kMaxFilterRadius / per_radius;
+        if (!(width > 0.0 && width <= most))
+            rfilter.fail(*rfilter.property(name), "float \"" + std::string(name) + "\": must be > 0 and <= " +
+                                                      format_number(most) + " pixels, got " + format_number(width));
+        return width;
     }
 
     void read_sampler(const XmlElement& element) {

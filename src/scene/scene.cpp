@@ -61,6 +61,7 @@ FeatureSet Scene::features() const {
         f.mesh_lights |= light.shape == ShapeType::Mesh;
     }
     f.background = background.x > 0.0 || background.y > 0.0 || background.z > 0.0;
+    f.pixel_filter = camera.filter.type != FilterType::Box;
     f.nee = render.nee && !lights.empty();
     f.mis = f.nee && f.non_specular() && render.mis;
     f.sppm = render.integrator == Integrator::Sppm;

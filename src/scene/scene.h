@@ -14,6 +14,16 @@
 
 namespace wp {
 
+// Mitsuba 3's pixel filters (kernels/shared/pixel_filter.h, sampled by
+// importance): the box is the pixel itself.
+enum class FilterType { Box, Tent, Gaussian };
+
+struct PixelFilter {
+    FilterType type = FilterType::Box;
+    double radius = 1.0;  // tent: its half-width in pixels
+    double stddev = 0.5;  // gaussian: its standard deviation in pixels, windowed at 4 stddev
+};
+
 struct Camera {
     glm::dvec3 position{0.0};  // always the origin after loading
     glm::dvec3 look_at{0.0, 0.0, -1.0};
@@ -21,6 +31,7 @@ struct Camera {
     double fov_y_degrees = 40.0;
     int width = 0;
     int height = 0;
+    PixelFilter filter;
     double tan_half_fov_y() const;
     double aspect() const;  // width / height
 };
@@ -130,6 +141,7 @@ struct FeatureSet {
     bool diffuse = false, mirror = false, glass = false, emitter_material = false;
     bool conductor = false, rough_conductor = false, rough_dielectric = false, thin_dielectric = false;
     bool shading_normals = false;  // a mesh shades with its vertex normals
+    bool pixel_filter = false;     // the camera's filter is a tent or a gaussian, not the box
     bool sphere_lights = false, quad_lights = false, mesh_lights = false;
     bool background = false;  // a non-black background
     bool nee = false;         // next-event estimation runs: render.nee is on and the scene has a light

@@ -433,10 +433,43 @@ void read_shape(const JsonField& field, Scene& scene, const MeshImportLimits& me
     }
 }
 
+// A filter's width in pixels: > 0 and within kMaxFilterRadius (`per_radius`:
+// the window's radius over the parameter, 4 for a gaussian's stddev).
+double read_filter_width(const JsonField& field, double per_radius) {
+    double width = field.number();
+    double most = kMaxFilterRadius / per_radius;
+    if (!(width > 0.0 && width <= most)) {
+        field.fail("must be > 0 and <= " + format_number(most) + " pixels, got " + format_number(width));
+    }
+    return width;
+}
+
+// `filter`: {"type": "box"}, {"type": "tent", "radius": r} or {"type":
+// "gaussian", "stddev": s}, as Mitsuba 3's rfilters (defaults 1 and 0.5).
+PixelFilter read_filter(const JsonField& field) {
+    PixelFilter filter;
+    JsonField type_field = field.member("type");
+    std::string type = type_field.string();
+    if (type == "box") {
+        field.allow_only_keys({"type"});
+    } else if (type == "tent") {
+        field.allow_only_keys({"type", "radius"});
+        filter.type = FilterType::Tent;
+        if (auto radius = field.optional_member("radius")) filter.radius = read_filter_width(*radius, 1.0);
+    } else if (type == "gaussian") {
+        field.allow_only_keys({"type", "stddev"});
+        filter.type = FilterType::Gaussian;
+        if (auto stddev = field.optional_member("stddev")) filter.stddev = read_filter_width(*stddev, 4.0);
+    } else {
+        type_field.fail("unknown filter " + nlohmann::json(type).dump() + " (expected box, tent or gaussian)");
+    }
+    return filter;
+}
+
 }  // namespace
 
 Camera read_camera(const JsonField& field) {
-    field.allow_only_keys({"position", "look_at", "up", "fov_y", "width", "height"});
+    field.allow_only_keys({"position", "look_at", "up", "fov_y", "width", "height", "filter"});
     Camera camera;
     camera.position = field.member("position").vec3();
     JsonField look_at = field.member("look_at");
@@ -447,6 +480,7 @@ Camera read_camera(const JsonField& field) {
     camera.width = static_cast<int>(field.member("width").integer(1, kMaxResolution));
     camera.height = static_cast<int>(field.member("height").integer(1, kMaxResolution));
     check_pixel_count(field, camera);
+    if (auto filter = field.optional_member("filter")) camera.filter = read_filter(*filter);
     return camera;
 }
 

@@ -53,6 +53,10 @@ SceneJson scene_json(const MitsubaScene& read, const fs::path& json_path) {
     const Camera& c = scene.camera;
     j["camera"] = {{"position", vec3(c.position)}, {"look_at", vec3(c.look_at)}, {"up", vec3(c.up)},
                    {"fov_y", c.fov_y_degrees},     {"width", c.width},           {"height", c.height}};
+    if (c.filter.type == FilterType::Tent) j["camera"]["filter"] = {{"type", "tent"}, {"radius", c.filter.radius}};
+    if (c.filter.type == FilterType::Gaussian) {
+        j["camera"]["filter"] = {{"type", "gaussian"}, {"stddev", c.filter.stddev}};
+    }
     const RenderSettings& r = scene.render;
     j["render"] = {{"spp", r.spp}, {"max_depth", r.max_depth}, {"rr_depth", r.rr_depth}, {"seed", r.seed}};
     j["background"] = vec3(scene.background);

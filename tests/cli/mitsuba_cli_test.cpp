@@ -33,24 +33,6 @@ TEST_F(MitsubaCli, RendersXmlWithDefines) {
     EXPECT_EQ(out_.entries(), std::vector<std::string>{"camera.pfm"});
 }
 
-TEST_F(MitsubaCli, AGaussianFilterIsOneWarningLine) {
-    write_text(out_ / "gaussian.xml", R"(<scene version="3.0.0">
-    <sensor type="perspective">
-        <film type="hdrfilm">
-            <integer name="width" value="4"/><integer name="height" value="4"/>
-            <rfilter type="gaussian"/>
-        </film>
-        <sampler type="independent"><integer name="sample_count" value="1"/></sampler>
-    </sensor>
-</scene>
-)");
-    const CommandResult result = run({"render", out_ / "gaussian.xml", "-o", scratch_ / "image.pfm", "-q"});
-    EXPECT_EQ(result.exit_code, 0);
-    EXPECT_EQ(result.err, "wavepath: warning: " + (out_ / "gaussian.xml") +
-                              ":5: rfilter \"gaussian\": wavepath's film is a box filter and renders with box (image "
-                              "means agree, pixel filtering differs)\n");
-}
-
 TEST_F(MitsubaCli, ConvertedJsonRendersTheSameImage) {
     const std::string scene = (kScenes / "cornell_box.xml").string();
     const CommandResult convert = run({"convert", scene, "-o", out_ / "box.json"});
@@ -66,6 +48,21 @@ TEST_F(MitsubaCli, ConvertedJsonRendersTheSameImage) {
     ASSERT_EQ(run(from_xml).exit_code, 0);
     ASSERT_EQ(run(from_json).exit_code, 0);
     EXPECT_EQ(read_text(scratch_ / "xml.pfm"), read_text(scratch_ / "json.pfm"));
+}
+
+// The pixel filter travels into the JSON: an image with edges renders the same from either.
+TEST_F(MitsubaCli, ConvertedJsonKeepsThePixelFilter) {
+    const std::string scene = (kScenes / "filters.xml").string();
+    for (const std::string filter : {"tent", "gaussian"}) {
+        const CommandResult convert = run({"convert", scene, "-D", "filter=" + filter, "-o", out_ / "filters.json"});
+        ASSERT_EQ(convert.exit_code, 0) << convert.err;
+        EXPECT_NE(read_text(out_ / "filters.json").find("\"" + filter + "\""), std::string::npos);
+        ASSERT_EQ(run({"render", scene, "-D", "filter=" + filter, "-o", scratch_ / "xml.pfm", "-q"}).exit_code, 0);
+        ASSERT_EQ(run({"render", out_ / "filters.json", "-o", scratch_ / "json.pfm", "-q"}).exit_code, 0);
+        EXPECT_EQ(read_text(scratch_ / "xml.pfm"), read_text(scratch_ / "json.pfm")) << filter;
+        ASSERT_EQ(run({"render", scene, "-D", "filter=box", "-o", scratch_ / "box.pfm", "-q"}).exit_code, 0);
+        EXPECT_NE(read_text(scratch_ / "box.pfm"), read_text(scratch_ / "json.pfm")) << filter;
+    }
 }
 
 TEST_F(MitsubaCli, FailuresAreOneLineAndLeaveNoOutput) {

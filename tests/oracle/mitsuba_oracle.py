@@ -149,7 +149,12 @@ def critical_z_for_sizes(sizes, block, alpha):
     tests = 0
     for width, height in sizes:
         tests += 3 * ((-(-width // block)) * (-(-height // block)) + 1)
-    return statistics.NormalDist().inv_cdf(1.0 - alpha / (2 * tests)), tests
+    return critical_z_for_tests(tests, alpha), tests
+
+
+def critical_z_for_tests(tests, alpha):
+    """The two-sided |z| threshold of `tests` tests at a run's false-failure rate `alpha`, Bonferroni."""
+    return statistics.NormalDist().inv_cdf(1.0 - alpha / (2 * tests))
 
 
 def compare_scene(mi, path, args, seeds, z_crit, scratch, wavepath_scene=None):

@@ -16,14 +16,24 @@ over SEEDS renders, block means of BLOCK x BLOCK pixels and the whole image
 compared per channel by z = difference / combined standard error, |z| below
 the Bonferroni threshold of the whole run (false-failure rate ALPHA). The
 scenes use a box pixel filter, so that pixels are independent in both
-renderers as that method needs.
+renderers as that method needs, but for filters.xml: there Mitsuba splats each
+sample into the pixels its tent or gaussian reaches, so its pixels correlate
+and the sum of their variances understates its blocks' variance, which errs
+towards failing, not passing.
+
+--write-docs writes the run's table into docs/scene-format.md, between
+<!-- xml-oracle:begin --> and <!-- xml-oracle:end -->, with the commit, date
+and Mitsuba's version: the docs' figures are those of a run.
 
 Usage: mitsuba_xml_oracle.py --binary build/wavepath [--cases a,b] [--spp 32] [--seeds 8] [--block 16]
-       [--alpha 1e-3] [--list]
+       [--alpha 1e-3] [--list] [--write-docs]
 """
 import argparse
+import datetime
 import os
+import re
 import struct
+import subprocess
 import sys
 import tempfile
 import time
@@ -51,7 +61,19 @@ CASES = [
     ("shapes", "shapes.xml", {"serialized": "{serialized}"}),
     ("include_ref_dielectric", "materials.xml", {"max_depth": "8"}),
     ("metals_and_glass", "metals_and_glass.xml", {}),
+    ("filter_box", "filters.xml", {"filter": "box"}),
+    ("filter_tent", "filters.xml", {"filter": "tent"}),
+    ("filter_gaussian", "filters.xml", {"filter": "gaussian"}),
 ]
+# Cases compared in blocks of 8 x 8 rather than of --block: filters.xml's edges lie on those blocks' borders, so
+# the light a filter spreads across them (the mean offset beyond 0: 0 for the box, r / 6 for a tent, s / sqrt(2 pi)
+# for a gaussian) moves the blocks on either side by 1-3% of the contrast. (Pixel by pixel, the gaussian's far tail
+# puts a handful of samples into a pixel 1.5 px from an edge: the spread over seeds is then no standard error.)
+FILTER_CASES = {"filter_box", "filter_tent", "filter_gaussian"}
+
+
+def block_of(name, args):
+    return 8 if name in FILTER_CASES else args.block
 
 
 def serialized_mesh_bytes():
@@ -95,17 +117,21 @@ def compare_case(mi, name, scene_file, defines, args, seeds, z_crit, scratch):
     middle = time.time()
     ours = mitsuba_oracle.render_wavepath(args.binary, path, width, height, args.spp, seeds, scratch, options)
     end = time.time()
-    z, mean_ours, mean_theirs, se = mitsuba_oracle.z_scores(ours, theirs, args.block, ROUNDING)
+    z, mean_ours, mean_theirs, se = mitsuba_oracle.z_scores(ours, theirs, block_of(name, args), ROUNDING)
     ratio = mean_ours[-1] / mean_theirs[-1]
     detectable = z_crit * se[-1] / mean_theirs[-1]
+    shown = ", ".join(f"{k}={v}" for k, v in defines.items() if k != "serialized")
+    row = (f"| {name} | {scene_file}{', ' + shown if shown else ''} | {width}x{height} | "
+           f"{', '.join(f'{r:.4f}' for r in ratio)} | {', '.join(f'{v:.2f}' for v in z[-1])} | {z.max():.2f} | "
+           f"{100 * max(detectable):.2f}% |")
     print(f"{name}: {scene_file} {' '.join(f'-D {k}={v}' for k, v in defines.items() if k != 'serialized')} "
           f"{width}x{height}, whole-image ratio wavepath/Mitsuba {' '.join(f'{r:.4f}' for r in ratio)} (RGB), "
           f"|z| whole {' '.join(f'{v:.2f}' for v in z[-1])}, largest |z| {z.max():.2f}; detects a uniform bias of "
           f"{100 * max(detectable):.2f}%; Mitsuba {middle - start:.1f} s, wavepath {end - middle:.1f} s", flush=True)
     if z.max() <= z_crit:
-        return None
+        return row, None
     bad = [(int(b), "RGB"[c]) for b, c in zip(*np.nonzero(z > z_crit))]
-    return f"{name}: {len(bad)} of {z.size} tests beyond |z| {z_crit:.2f} (block, channel: {bad[:8]})"
+    return row, f"{name}: {len(bad)} of {z.size} tests beyond |z| {z_crit:.2f} (block, channel: {bad[:8]})"
 
 
 def main():
@@ -118,6 +144,7 @@ def main():
     parser.add_argument("--alpha", type=float, default=1e-3)
     parser.add_argument("--variant", default="llvm_ad_rgb")
     parser.add_argument("--list", action="store_true", help="list the cases and exit")
+    parser.add_argument("--write-docs", action="store_true", help="write the run's table into docs/scene-format.md")
     args = parser.parse_args()
     cases = [c for c in CASES if not args.cases or c[0] in args.cases.split(",")]
     if args.list:
@@ -133,22 +160,57 @@ def main():
         serialized = os.path.join(scratch, "meshes.serialized")
         with open(serialized, "wb") as f:
             f.write(serialized_mesh_bytes())
-        sizes = []
+        tests = 0
         for name, scene_file, defines in cases:
             scene = mi.load_file(os.path.join(SCENES, scene_file), **defines_for(defines, serialized))
-            sizes.append(film_size(mi, scene))
-        z_crit, tests = mitsuba_oracle.critical_z_for_sizes(sizes, args.block, args.alpha)
+            tests += mitsuba_oracle.critical_z_for_sizes([film_size(mi, scene)], block_of(name, args), args.alpha)[1]
+        z_crit = mitsuba_oracle.critical_z_for_tests(tests, args.alpha)
         print(f"mitsuba_xml_oracle: {len(cases)} cases, {tests} tests, {args.seeds} seeds x {args.spp} spp per "
               f"renderer; |z| <= {z_crit:.2f} (false-failure rate <= {args.alpha:g}, Bonferroni), Mitsuba "
               f"{mi.__version__} {args.variant}", flush=True)
+        rows = []
+        start = time.time()
         for name, scene_file, defines in cases:
-            failure = compare_case(mi, name, scene_file, defines_for(defines, serialized), args, seeds, z_crit, scratch)
+            row, failure = compare_case(mi, name, scene_file, defines_for(defines, serialized), args, seeds, z_crit,
+                                        scratch)
+            rows.append(row)
             if failure:
                 failures.append(failure)
     for failure in failures:
         print(f"mitsuba_xml_oracle: FAIL {failure}")
     print(f"mitsuba_xml_oracle: {'FAILED' if failures else 'passed'}")
+    if args.write_docs:
+        write_docs(rows, args, mi, tests, z_crit, time.time() - start, passed=not failures)
     return 1 if failures else 0
+
+
+def write_docs(rows, args, mi, tests, z_crit, seconds, passed):
+    """The run's table into docs/scene-format.md's xml-oracle block."""
+    commit = subprocess.run(["git", "rev-parse", "--short", "HEAD"], capture_output=True, text=True, cwd=ROOT,
+                            check=True).stdout.strip()
+    dirty = subprocess.run(["git", "status", "--porcelain", "--untracked-files=no"], capture_output=True, text=True,
+                           cwd=ROOT, check=True).stdout.strip()
+    block = "\n".join([
+        f"Run by `python3 tests/oracle/mitsuba_xml_oracle.py --binary build/wavepath --write-docs` on the sources of "
+        f"`{commit}`{' (with uncommitted changes)' if dirty else ''}, "
+        f"{datetime.datetime.now(datetime.timezone.utc):%Y-%m-%d}, on the 2-core development machine; Mitsuba "
+        f"{mi.__version__} `{args.variant}`; {args.seeds} seeds × {args.spp} spp per renderer, blocks of "
+        f"{args.block}^2 (8^2 for the filter cases); {tests} tests, |z| <= {z_crit:.2f}; "
+        f"{'passed' if passed else 'FAILED'} in {seconds:.0f} s.",
+        "",
+        "| case | scene, -D | size | mean ratio wavepath/Mitsuba (R, G, B) | whole-image abs(z) | largest abs(z) | "
+        "smallest uniform bias detected |",
+        "|---|---|---|---|---|---|---|",
+        *rows])
+    path = os.path.join(ROOT, "docs", "scene-format.md")
+    with open(path) as f:
+        text = f.read()
+    pattern = re.compile(r"(<!-- xml-oracle:begin -->\n).*?(\n<!-- xml-oracle:end -->)", re.S)
+    if not pattern.search(text):
+        sys.exit("mitsuba_xml_oracle: docs/scene-format.md has no xml-oracle block")
+    with open(path + ".tmp", "w") as f:
+        f.write(pattern.sub(lambda m: m.group(1) + block + m.group(2), text))
+    os.replace(path + ".tmp", path)
 
 
 if __name__ == "__main__":

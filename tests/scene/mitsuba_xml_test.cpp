@@ -124,8 +124,25 @@ TEST_F(MitsubaXml, MitsubasDefaultsWithoutFilmSamplerIntegratorOrFov) {
     // 50 mm on 35 mm film, the diagonal: Mitsuba's x_fov 38.1848 at 4:3 (its print of the default camera).
     const double x_fov = 2.0 * std::atan(std::tan(glm::radians(scene.camera.fov_y_degrees) / 2.0) * 768.0 / 576.0);
     EXPECT_NEAR(glm::degrees(x_fov), 38.1848, 1e-4);
-    // No rfilter: Mitsuba's gaussian, which wavepath renders as box, with one warning.
-    ASSERT_EQ(read_scene.warnings.size(), 1u);
+    // No film: Mitsuba's default gaussian of stddev 0.5, without a warning.
+    EXPECT_EQ(scene.camera.filter.type, FilterType::Gaussian);
+    EXPECT_EQ(scene.camera.filter.stddev, 0.5);
+    EXPECT_TRUE(read_scene.warnings.empty());
+}
+
+TEST_F(MitsubaXml, RfiltersAsMitsubasWithTheirParameters) {
+    const auto filter = [&](const std::string& rfilter) {
+        return read(R"(<sensor type="perspective"><film type="hdrfilm">)" + rfilter + "</film></sensor>")
+            .scene.camera.filter;
+    };
+    EXPECT_EQ(filter("").type, FilterType::Gaussian);  // the film's default rfilter
+    EXPECT_EQ(filter(R"(<rfilter type="box"/>)").type, FilterType::Box);
+    const PixelFilter tent = filter(R"(<rfilter type="tent"><float name="radius" value="1.5"/></rfilter>)");
+    EXPECT_EQ(tent.type, FilterType::Tent);
+    EXPECT_EQ(tent.radius, 1.5);
+    const PixelFilter gaussian = filter(R"(<rfilter type="gaussian"><float name="stddev" value="0.7"/></rfilter>)");
+    EXPECT_EQ(gaussian.type, FilterType::Gaussian);
+    EXPECT_EQ(gaussian.stddev, 0.7);
 }
 
 TEST_F(MitsubaXml, PathIntegratorDepthsCountSegmentsThere) {

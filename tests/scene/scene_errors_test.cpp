@@ -53,7 +53,7 @@ const PatchCase kPatchCases[] = {
     {"UnknownTopLevelKey", R"({"camra": {}})",
      "camra: unknown key (expected one of: camera, render, background, materials, shapes)"},
     {"UnknownCameraKey", R"({"camera": {"fovy": 40}})",
-     "camera.fovy: unknown key (expected one of: position, look_at, up, fov_y, width, height)"},
+     "camera.fovy: unknown key (expected one of: position, look_at, up, fov_y, width, height, filter)"},
     {"UnknownRenderKey", R"({"render": {"samples": 4}})",
      "render.samples: unknown key (expected one of: spp, max_depth, rr_depth, seed, nee, mis, hemisphere, sampler, "
      "integrator, photons, initial_radius, alpha)"},
