@@ -10,14 +10,17 @@
 #ifndef WP_DEVICE_FEATURES_H
 #define WP_DEVICE_FEATURES_H
 
-/* A material with a delta lobe: paths carry whether their last bounce was one. */
-#if defined(WP_HAS_MIRROR) || defined(WP_HAS_GLASS) || defined(WP_HAS_CONDUCTOR) || defined(WP_HAS_THIN_DIELECTRIC)
+/* A material with a delta lobe: paths carry whether their last bounce was
+ * one. (The plastic has a delta lobe and a diffuse one: this and the next.) */
+#if defined(WP_HAS_MIRROR) || defined(WP_HAS_GLASS) || defined(WP_HAS_CONDUCTOR) || defined(WP_HAS_THIN_DIELECTRIC) || \
+    defined(WP_HAS_PLASTIC)
 #define WP_HAS_SPECULAR
 #endif
 /* A material with a lobe of finite density: next-event estimation and
  * multiple importance sampling run at its vertices, and its BSDF sample
  * takes a pair of random numbers. */
-#if defined(WP_HAS_DIFFUSE) || defined(WP_HAS_ROUGH_CONDUCTOR) || defined(WP_HAS_ROUGH_DIELECTRIC)
+#if defined(WP_HAS_DIFFUSE) || defined(WP_HAS_ROUGH_CONDUCTOR) || defined(WP_HAS_ROUGH_DIELECTRIC) || \
+    defined(WP_HAS_PLASTIC) || defined(WP_HAS_ROUGH_PLASTIC)
 #define WP_HAS_NON_SPECULAR
 #endif
 /* The complex index and reflectance factor of conductor and roughconductor. */
@@ -35,8 +38,17 @@
 #define WP_HAS_REFRACTION
 #endif
 /* A microfacet distribution's parameters. */
-#if defined(WP_HAS_ROUGH_CONDUCTOR) || defined(WP_HAS_ROUGH_DIELECTRIC)
+#if defined(WP_HAS_ROUGH_CONDUCTOR) || defined(WP_HAS_ROUGH_DIELECTRIC) || defined(WP_HAS_ROUGH_PLASTIC)
 #define WP_HAS_MICROFACET
+#endif
+/* A diffuse base under a dielectric coat: the dielectric Fresnel code. */
+#if defined(WP_HAS_PLASTIC) || defined(WP_HAS_ROUGH_PLASTIC)
+#define WP_HAS_PLASTICS
+#endif
+/* A material that picks one of its lobes with a random number (the BSDF
+ * sample's `lobe`). */
+#if defined(WP_HAS_DIELECTRICS) || defined(WP_HAS_PLASTICS)
+#define WP_HAS_LOBE_CHOICE
 #endif
 
 /* WP_IF_<feature>(...) keeps its arguments only when the path state

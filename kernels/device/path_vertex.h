@@ -32,8 +32,14 @@
 #ifdef WP_HAS_ROUGH_CONDUCTOR
 #include "shared/materials/roughconductor.h"
 #endif
-#ifndef WP_HAS_DIELECTRICS
-/* Without a dielectric the dielectric code must not be compiled in: any use is a build error. */
+#ifdef WP_HAS_PLASTIC
+#include "shared/materials/plastic.h"
+#endif
+#ifdef WP_HAS_ROUGH_PLASTIC
+#include "shared/materials/roughplastic.h"
+#endif
+#if !defined(WP_HAS_DIELECTRICS) && !defined(WP_HAS_PLASTICS)
+/* Without a dielectric interface the dielectric code must not be compiled in: any use is a build error. */
 #pragma GCC poison fresnel_dielectric refract_direction
 #endif
 #ifdef WP_HAS_GLASS
@@ -330,6 +336,23 @@ WP_FN BsdfValue vertex_bsdf_value(Vertex v, vec3 wi, vec3 throughput) {
         b.pdf = is_rough ? roughdielectric_pdf(m.microfacet, m.ior, v.front, v.ns, v.wo, wi) : b.pdf;
     }
 #endif
+#ifdef WP_HAS_PLASTIC
+    {
+        /* the diffuse lobe's (the delta lobe has no density to sample lights by) */
+        lane_int is_plastic = m.type == WP_MATERIAL_PLASTIC;
+        vec3 f = plastic_eval(m.plastic, v.ns, v.wo, wi);
+        b.throughput_f = v3_select(is_plastic, v3_mul(throughput, f), b.throughput_f);
+        b.pdf = is_plastic ? plastic_pdf(m.plastic, v.ns, v.wo, wi) : b.pdf;
+    }
+#endif
+#ifdef WP_HAS_ROUGH_PLASTIC
+    {
+        lane_int is_rough = m.type == WP_MATERIAL_ROUGH_PLASTIC;
+        vec3 f = roughplastic_eval(m.roughplastic, v.roughplastic_table, v.ns, v.wo, wi);
+        b.throughput_f = v3_select(is_rough, v3_mul(throughput, f), b.throughput_f);
+        b.pdf = is_rough ? roughplastic_pdf(m.roughplastic, v.roughplastic_table, v.ns, v.wo, wi) : b.pdf;
+    }
+#endif
     return b;
 }
 
@@ -352,6 +375,12 @@ WP_FN lane_int vertex_is_non_specular(Vertex v) {
 #endif
 #ifdef WP_HAS_ROUGH_CONDUCTOR
     non_specular = non_specular || v.material.type == WP_MATERIAL_ROUGH_CONDUCTOR;
+#endif
+#ifdef WP_HAS_PLASTIC
+    non_specular = non_specular || v.material.type == WP_MATERIAL_PLASTIC; /* its diffuse lobe */
+#endif
+#ifdef WP_HAS_ROUGH_PLASTIC
+    non_specular = non_specular || v.material.type == WP_MATERIAL_ROUGH_PLASTIC;
 #endif
     non_specular = non_specular || vertex_transmits(v);
     return non_specular;
@@ -416,7 +445,7 @@ WP_FN vec3 add_light_sample(vec3 radiance, lane_int lit, vec3 contribution, lane
 WP_FN BsdfRandom camera_bsdf_random(uint seed, lane_uint px, lane_uint s, lane_uint bounce) {
     BsdfRandom random;
     random.lobe = random.u = random.v = REAL(0.0);
-#ifdef WP_HAS_DIELECTRICS
+#ifdef WP_HAS_LOBE_CHOICE
     random.lobe = camera_uniform(seed, px, s, bounce, DIM_BSDF_LOBE, WP_USES_SOBOL);
 #endif
 #ifdef WP_HAS_NON_SPECULAR
@@ -430,7 +459,7 @@ WP_FN BsdfRandom camera_bsdf_random(uint seed, lane_uint px, lane_uint s, lane_u
 WP_FN BsdfRandom photon_bsdf_random(uint seed, uint iteration, lane_uint photon, lane_uint bounce) {
     BsdfRandom random;
     random.lobe = random.u = random.v = REAL(0.0);
-#ifdef WP_HAS_DIELECTRICS
+#ifdef WP_HAS_LOBE_CHOICE
     random.lobe = photon_uniform(seed, iteration, photon, bounce, DIM_PHOTON_BSDF_LOBE);
 #endif
 #ifdef WP_HAS_NON_SPECULAR
@@ -483,6 +512,17 @@ WP_FN BsdfSample scatter_vertex(Vertex v, vec3 d, BsdfRandom random, uint transp
                                    roughconductor_sample(m.microfacet, m.eta, m.k, m.specular_reflectance, v.nf, v.ns,
                                                          wo, random.u, random.v, WP_USES_SHADING_NORMALS),
                                    scattered);
+#endif
+#ifdef WP_HAS_PLASTIC
+    scattered =
+        select_bsdf_sample(m.type == WP_MATERIAL_PLASTIC,
+                           plastic_sample(m.plastic, v.nf, v.ns, wo, random, WP_USES_SHADING_NORMALS), scattered);
+#endif
+#ifdef WP_HAS_ROUGH_PLASTIC
+    scattered = select_bsdf_sample(
+        m.type == WP_MATERIAL_ROUGH_PLASTIC,
+        roughplastic_sample(m.roughplastic, v.roughplastic_table, v.nf, v.ns, wo, random, WP_USES_SHADING_NORMALS),
+        scattered);
 #endif
     return scattered;
 }

@@ -11,6 +11,12 @@
 #ifdef WP_HAS_MICROFACET
 #include "shared/materials/microfacet.h"
 #endif
+#ifdef WP_HAS_PLASTIC
+#include "shared/materials/plastic.h"
+#endif
+#ifdef WP_HAS_ROUGH_PLASTIC
+#include "shared/materials/roughplastic.h"
+#endif
 #include "shared/prelude.h"
 
 typedef struct {
@@ -116,6 +122,12 @@ typedef struct {
 #ifdef WP_HAS_MICROFACET
     Microfacet microfacet;
 #endif
+#ifdef WP_HAS_PLASTIC
+    PlasticParams plastic;
+#endif
+#ifdef WP_HAS_ROUGH_PLASTIC
+    RoughPlasticParams roughplastic; /* its table: the vertex's roughplastic_table */
+#endif
 } Material;
 
 WP_FN Material material_at(__global const DeviceMaterial *materials, lane_uint index) {
@@ -142,6 +154,26 @@ WP_FN Material material_at(__global const DeviceMaterial *materials, lane_uint i
     m.microfacet.alpha_u = SCENE_FIELD(materials, index, alpha_u);
     m.microfacet.alpha_v = SCENE_FIELD(materials, index, alpha_v);
 #endif
+#ifdef WP_HAS_PLASTIC
+    m.plastic.diffuse_reflectance = SCENE_FIELD(materials, index, albedo);
+    m.plastic.specular_reflectance = SCENE_FIELD(materials, index, specular_reflectance);
+    m.plastic.eta = SCENE_FIELD(materials, index, ior);
+    m.plastic.inv_eta_2 = SCENE_FIELD(materials, index, inv_eta_2);
+    m.plastic.fdr_int = SCENE_FIELD(materials, index, internal_reflectance);
+    m.plastic.specular_sampling_weight = SCENE_FIELD(materials, index, specular_sampling_weight);
+    m.plastic.nonlinear = SCENE_FIELD(materials, index, nonlinear) != 0u;
+#endif
+#ifdef WP_HAS_ROUGH_PLASTIC
+    m.roughplastic.m = m.microfacet;
+    m.roughplastic.diffuse_reflectance = SCENE_FIELD(materials, index, albedo);
+    m.roughplastic.specular_reflectance = SCENE_FIELD(materials, index, specular_reflectance);
+    m.roughplastic.eta = SCENE_FIELD(materials, index, ior);
+    m.roughplastic.inv_eta_2 = SCENE_FIELD(materials, index, inv_eta_2);
+    m.roughplastic.specular_sampling_weight = SCENE_FIELD(materials, index, specular_sampling_weight);
+    m.roughplastic.internal_reflectance = SCENE_FIELD(materials, index, internal_reflectance);
+    m.roughplastic.nonlinear = SCENE_FIELD(materials, index, nonlinear) != 0u;
+    m.roughplastic.transmittance_offset = SCENE_FIELD(materials, index, transmittance_offset);
+#endif
     return m;
 }
 
@@ -153,6 +185,9 @@ typedef struct {
     lane_int front; /* the ray met the side the geometric normal points to */
     vec3 nf;        /* the geometric normal on the ray's side: where spawned rays start */
     vec3 ns;        /* the shading normal on the same side: what BSDFs and cosines use */
+#ifdef WP_HAS_ROUGH_PLASTIC
+    __global const float *roughplastic_table; /* the scene's roughplastic_transmittance */
+#endif
 } Vertex;
 
 WP_FN Vertex vertex_at(WP_SCENE_PARAMS, lane_uint shape, vec3 origin, vec3 direction, real t) {
@@ -160,6 +195,9 @@ WP_FN Vertex vertex_at(WP_SCENE_PARAMS, lane_uint shape, vec3 origin, vec3 direc
     v.surface = surface_at(WP_SCENE_ARGS, shape, origin, direction, t);
     v.material = material_at(materials, v.surface.material);
     v.wo = v3_neg(direction);
+#ifdef WP_HAS_ROUGH_PLASTIC
+    v.roughplastic_table = roughplastic_transmittance;
+#endif
     FacingNormals facing = normals_facing(direction, v.surface.normal, v.surface.shading);
     v.front = facing.front;
     v.nf = facing.nf;

@@ -13,7 +13,9 @@
 
 /* The scene's buffers (interface/scene_layout.h; the meshes' triangles and
  * BVH nodes of shared/triangle.h and shared/bvh.h; the mesh lights'
- * triangles, src/scene/mesh_lights.h), first in every kernel that traces. */
+ * triangles, src/scene/mesh_lights.h; the roughplastics' tables of their
+ * coat's transmittance, src/scene/plastic_constants.h), first in every
+ * kernel that traces. */
 #define WP_SCENE_PARAMETERS(FIRST, NEXT)                     \
     FIRST(__global const SceneHeader *, scene)               \
     NEXT(__global const DeviceSphere *, spheres)             \
@@ -26,7 +28,8 @@
     NEXT(__global const DeviceLight *, lights)               \
     NEXT(__global const float *, light_cdf)                  \
     NEXT(__global const MeshTriangle *, light_triangles)     \
-    NEXT(__global const float *, light_triangle_cdf)
+    NEXT(__global const float *, light_triangle_cdf)         \
+    NEXT(__global const float *, roughplastic_transmittance)
 
 /* round_pixels: the pixels the work items sample, ascending (every pixel
  * unless adaptive sampling has stopped some): work item w is pixel

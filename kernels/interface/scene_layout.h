@@ -25,6 +25,8 @@
 #define WP_MATERIAL_ROUGH_CONDUCTOR 5u
 #define WP_MATERIAL_ROUGH_DIELECTRIC 6u
 #define WP_MATERIAL_THIN_DIELECTRIC 7u
+#define WP_MATERIAL_PLASTIC 8u
+#define WP_MATERIAL_ROUGH_PLASTIC 9u
 
 typedef struct {
     float camera_right[3], camera_up[3], camera_forward[3];
@@ -62,7 +64,7 @@ typedef struct {
     float albedo[3];      /* diffuse */
     float reflectance[3]; /* mirror */
     float emission[3];    /* diffuse (optional) and emitter */
-    float ior;            /* glass, roughdielectric, thindielectric: inside over outside */
+    float ior;            /* glass, roughdielectric, thindielectric, the plastics: inside over outside */
     uint type;            /* WP_MATERIAL_* */
     uint two_sided;       /* emission on both sides */
     /* conductor and roughconductor: the complex index eta + i k, and the
@@ -72,6 +74,12 @@ typedef struct {
      * the roughness along the shading frame's tangents */
     uint distribution;
     float alpha_u, alpha_v;
+    /* plastic and roughplastic (besides albedo, their diffuse_reflectance, ior
+     * and specular_reflectance): the constants the host computes
+     * (src/scene/plastic_constants.h), and roughplastic's table of t, where
+     * it starts in roughplastic_transmittance */
+    float inv_eta_2, internal_reflectance, specular_sampling_weight;
+    uint nonlinear, transmittance_offset;
 } DeviceMaterial;
 
 typedef struct {

@@ -45,10 +45,13 @@ void add_material(Hasher& h, const Material& m) {
     h.add(m.type).add(m.albedo).add(m.reflectance).add(m.ior).add(m.emission).add(m.two_sided);
     // The newer materials' parameters, theirs alone: the older materials
     // hash as they did before, so their checkpoints stay valid.
+    const bool plastic = m.type == MaterialType::Plastic || m.type == MaterialType::RoughPlastic;
     if (m.type == MaterialType::Conductor || m.type == MaterialType::RoughConductor) {
         h.add(m.eta).add(m.k).add(m.specular_reflectance);
     }
-    if (m.type == MaterialType::RoughConductor || m.type == MaterialType::RoughDielectric) {
+    if (plastic) h.add(m.specular_reflectance).add(m.nonlinear);
+    if (m.type == MaterialType::RoughConductor || m.type == MaterialType::RoughDielectric ||
+        m.type == MaterialType::RoughPlastic) {
         h.add(m.distribution).add(m.alpha_u).add(m.alpha_v);
     }
 }

@@ -27,6 +27,8 @@ std::vector<std::pair<const char*, const char*>> features_in_use(const FeatureSe
     add(f.rough_conductor, "roughconductor", "WP_HAS_ROUGH_CONDUCTOR");
     add(f.rough_dielectric, "roughdielectric", "WP_HAS_ROUGH_DIELECTRIC");
     add(f.thin_dielectric, "thindielectric", "WP_HAS_THIN_DIELECTRIC");
+    add(f.plastic, "plastic", "WP_HAS_PLASTIC");
+    add(f.rough_plastic, "roughplastic", "WP_HAS_ROUGH_PLASTIC");
     add(f.emitter_material, "emitter", nullptr);
     add(f.sphere_lights, "sphere-lights", "WP_HAS_SPHERE_LIGHTS");
     add(f.quad_lights, "quad-lights", "WP_HAS_QUAD_LIGHTS");

@@ -8,6 +8,7 @@
 #include "core/shared_math.h"
 #include "scene/mesh_lights.h"
 #include "scene/pixel_filter.h"
+#include "scene/plastic_constants.h"
 
 namespace wp {
 namespace {
@@ -17,7 +18,7 @@ static_assert(sizeof(SceneHeader) == 32 * 4, "SceneHeader must match its OpenCL 
 static_assert(sizeof(DeviceSphere) == 5 * 4, "DeviceSphere must match its OpenCL C layout");
 static_assert(sizeof(DevicePlane) == 7 * 4, "DevicePlane must match its OpenCL C layout");
 static_assert(sizeof(DeviceQuad) == 16 * 4, "DeviceQuad must match its OpenCL C layout");
-static_assert(sizeof(DeviceMaterial) == 24 * 4, "DeviceMaterial must match its OpenCL C layout");
+static_assert(sizeof(DeviceMaterial) == 29 * 4, "DeviceMaterial must match its OpenCL C layout");
 static_assert(sizeof(DeviceLight) == 4 * 4, "DeviceLight must match its OpenCL C layout");
 static_assert(sizeof(SharedMath<float>::MeshTriangle) == 11 * 4, "MeshTriangle must match its OpenCL C layout");
 static_assert(sizeof(SharedMath<float>::BvhNode) == 64, "BvhNode must match its OpenCL C layout");
@@ -85,6 +86,10 @@ std::uint32_t material_type(MaterialType type) {
             return WP_MATERIAL_ROUGH_DIELECTRIC;
         case MaterialType::ThinDielectric:
             return WP_MATERIAL_THIN_DIELECTRIC;
+        case MaterialType::Plastic:
+            return WP_MATERIAL_PLASTIC;
+        case MaterialType::RoughPlastic:
+            return WP_MATERIAL_ROUGH_PLASTIC;
     }
     return WP_MATERIAL_DIFFUSE;
 }
@@ -149,7 +154,11 @@ SceneLayout flatten_scene(const Scene& scene) {
         d.material = q.material;
         layout.quads.push_back(d);
     }
-    for (const Material& m : scene.materials) {
+    PlasticTables plastics = plastic_tables(scene.materials);
+    for (double t : plastics.transmittance) layout.roughplastic_transmittance.push_back(static_cast<float>(t));
+    for (std::size_t i = 0; i < scene.materials.size(); ++i) {
+        const Material& m = scene.materials[i];
+        const PlasticConstants& plastic = plastics.materials[i];
         DeviceMaterial d{};
         put(d.albedo, m.albedo);
         put(d.reflectance, m.reflectance);
@@ -163,6 +172,11 @@ SceneLayout flatten_scene(const Scene& scene) {
         d.distribution = microfacet_distribution(m.distribution);
         d.alpha_u = static_cast<float>(m.alpha_u);
         d.alpha_v = static_cast<float>(m.alpha_v);
+        d.inv_eta_2 = static_cast<float>(plastic.inv_eta_2);
+        d.internal_reflectance = static_cast<float>(plastic.internal_reflectance);
+        d.specular_sampling_weight = static_cast<float>(plastic.specular_sampling_weight);
+        d.nonlinear = m.nonlinear ? 1u : 0u;
+        d.transmittance_offset = plastic.transmittance_offset;
         layout.materials.push_back(d);
     }
     MeshLightTriangles mesh_lights = mesh_light_triangles(scene);
@@ -215,6 +229,7 @@ DeviceScene::DeviceScene(const cl::Context& context, const SceneLayout& layout) 
     buffers_[arg::Scene::light_cdf] = upload(context, layout.light_cdf);
     buffers_[arg::Scene::light_triangles] = upload(context, layout.light_triangles);
     buffers_[arg::Scene::light_triangle_cdf] = upload(context, layout.light_triangle_cdf);
+    buffers_[arg::Scene::roughplastic_transmittance] = upload(context, layout.roughplastic_transmittance);
 }
 
 void DeviceScene::bind(cl::Kernel& kernel) const {

@@ -264,15 +264,22 @@ Real light_pdf_at_hit(const ReferenceScene<Real>& scene, const ShapeHit<Real>& h
 // estimation samples lights on both sides).
 inline bool transmits(MaterialType material) { return material == MaterialType::RoughDielectric; }
 
-// Whether `material` has a lobe of finite density, where next-event estimation samples a light.
-inline bool is_non_specular(MaterialType material) {
-    return material == MaterialType::Diffuse || material == MaterialType::RoughConductor || transmits(material);
+// Whether `material` is a diffuse base under a dielectric coat.
+inline bool is_plastic(MaterialType material) {
+    return material == MaterialType::Plastic || material == MaterialType::RoughPlastic;
 }
 
-// Whether `material` chooses between reflection and transmission with a random number.
-inline bool is_dielectric(MaterialType material) {
+// Whether `material` has a lobe of finite density, where next-event estimation
+// samples a light (the plastic's diffuse lobe beside its delta lobe).
+inline bool is_non_specular(MaterialType material) {
+    return material == MaterialType::Diffuse || material == MaterialType::RoughConductor || transmits(material) ||
+           is_plastic(material);
+}
+
+// Whether `material` chooses one of its lobes (reflection or transmission, the coat or the base) with a random number.
+inline bool chooses_lobe(MaterialType material) {
     return material == MaterialType::Glass || material == MaterialType::RoughDielectric ||
-           material == MaterialType::ThinDielectric;
+           material == MaterialType::ThinDielectric || is_plastic(material);
 }
 
 // The path's throughput times f, and the density of BSDF sampling, for the
@@ -294,6 +301,15 @@ BsdfValue<Real> bsdf_value(const ReferenceScene<Real>& scene,
         return {throughput * M::roughdielectric_eval(material.microfacet, material.ior, front, ns, wo, wi,
                                                      WP_TRANSPORT_RADIANCE),
                 M::roughdielectric_pdf(material.microfacet, material.ior, front, ns, wo, wi)};
+    }
+    if (material.type == MaterialType::Plastic) {  // the diffuse lobe's
+        return {throughput * M::plastic_eval(material.plastic, ns, wo, wi),
+                M::plastic_pdf(material.plastic, ns, wo, wi)};
+    }
+    if (material.type == MaterialType::RoughPlastic) {
+        const Real* table = scene.roughplastic_transmittance.data();
+        return {throughput * M::roughplastic_eval(material.roughplastic, table, ns, wo, wi),
+                M::roughplastic_pdf(material.roughplastic, table, ns, wo, wi)};
     }
     if (material.type == MaterialType::RoughConductor) {
         return {throughput * M::roughconductor_eval(material.microfacet, material.eta, material.k,
@@ -340,7 +356,7 @@ template <class Real>
 typename SharedMath<Real>::BsdfRandom camera_bsdf_random(const SampleRng<Real>& rng, std::uint32_t bounce,
                                                          MaterialType material) {
     typename SharedMath<Real>::BsdfRandom random{Real(0), Real(0), Real(0)};
-    if (is_dielectric(material)) random.lobe = rng(bounce, DIM_BSDF_LOBE);
+    if (chooses_lobe(material)) random.lobe = rng(bounce, DIM_BSDF_LOBE);
     if (is_non_specular(material)) {
         typename SharedMath<Real>::CameraPair direction = rng.pair(bounce, DIM_BSDF_U);
         random.u = direction.u;
@@ -377,6 +393,11 @@ typename SharedMath<Real>::BsdfSample scatter(const ReferenceScene<Real>& scene,
             return M::roughconductor_sample(material.microfacet, material.eta, material.k,
                                             material.specular_reflectance, nf, ns, -d, random.u, random.v,
                                             scene.shading_normals);
+        case MaterialType::Plastic:
+            return M::plastic_sample(material.plastic, nf, ns, -d, random, scene.shading_normals);
+        case MaterialType::RoughPlastic:
+            return M::roughplastic_sample(material.roughplastic, scene.roughplastic_transmittance.data(), nf, ns, -d,
+                                          random, scene.shading_normals);
         default:  // diffuse
             return M::diffuse_sample(material.albedo, nf, ns, random.u, random.v, scene.uniform_hemisphere,
                                      scene.shading_normals);

@@ -13,6 +13,7 @@
 #include "core/shared_math.h"
 #include "scene/mesh_lights.h"
 #include "scene/pixel_filter.h"
+#include "scene/plastic_constants.h"
 #include "scene/scene.h"
 
 namespace wp::reference {
@@ -48,6 +49,9 @@ struct ReferenceScene {
         bool two_sided;                     // emission on both sides
         vec3 eta, k, specular_reflectance;  // conductor and roughconductor
         typename M::Microfacet microfacet;  // roughconductor
+        typename M::PlasticParams plastic;  // plastic
+        // roughplastic, its table of t in roughplastic_transmittance
+        typename M::RoughPlasticParams roughplastic;
     };
     struct LightRef {
         ShapeType shape;                               // Sphere, Quad or Mesh
@@ -83,6 +87,7 @@ struct ReferenceScene {
     std::vector<Real> light_cdf;
     std::vector<typename M::MeshTriangle> light_triangles;  // mesh lights' (scene/mesh_lights.h)
     std::vector<Real> light_triangle_cdf;
+    std::vector<Real> roughplastic_transmittance;  // scene/plastic_constants.h
 
     // Throws std::invalid_argument for Intersector::Embree in double.
     explicit ReferenceScene(const Scene& scene, Intersector intersector = Intersector::Bvh)
@@ -93,12 +98,7 @@ struct ReferenceScene {
           uniform_hemisphere(scene.render.hemisphere == Hemisphere::Uniform),
           background(scene.background) {
         camera = convert_camera(scene.camera);
-        for (const Material& m : scene.materials) {
-            std::uint32_t distribution = m.distribution == Microfacet::GGX ? WP_MICROFACET_GGX : WP_MICROFACET_BECKMANN;
-            materials.push_back({m.type, vec3(m.albedo), vec3(m.reflectance), vec3(m.emission), Real(m.ior),
-                                 m.two_sided, vec3(m.eta), vec3(m.k), vec3(m.specular_reflectance),
-                                 typename M::Microfacet{distribution, Real(m.alpha_u), Real(m.alpha_v)}});
-        }
+        add_materials(scene);
         for (const Sphere& s : scene.spheres) spheres.push_back({vec3(s.center), Real(s.radius), s.material});
         for (const Plane& p : scene.planes) planes.push_back({vec3(p.point), vec3(p.normal), p.material});
         for (const Quad& q : scene.quads) quads.push_back({vec3(q.corner), vec3(q.edge1), vec3(q.edge2), q.material});
@@ -109,6 +109,47 @@ struct ReferenceScene {
     }
 
  private:
+    // The materials in Real, the plastics' constants and tables as the host
+    // computes them in double (scene/plastic_constants.h), rounded as the
+    // kernels' host rounds them (opencl/scene_upload.cpp).
+    void add_materials(const Scene& scene) {
+        PlasticTables plastics = plastic_tables(scene.materials);
+        for (double t : plastics.transmittance) roughplastic_transmittance.push_back(Real(t));
+        for (std::size_t i = 0; i < scene.materials.size(); ++i) {
+            const Material& m = scene.materials[i];
+            const PlasticConstants& c = plastics.materials[i];
+            std::uint32_t distribution = m.distribution == Microfacet::GGX ? WP_MICROFACET_GGX : WP_MICROFACET_BECKMANN;
+            SurfaceMaterial s{};
+            s.type = m.type;
+            s.albedo = vec3(m.albedo);
+            s.reflectance = vec3(m.reflectance);
+            s.emission = vec3(m.emission);
+            s.ior = Real(m.ior);
+            s.two_sided = m.two_sided;
+            s.eta = vec3(m.eta);
+            s.k = vec3(m.k);
+            s.specular_reflectance = vec3(m.specular_reflectance);
+            s.microfacet = {distribution, Real(m.alpha_u), Real(m.alpha_v)};
+            s.plastic = {s.albedo,
+                         s.specular_reflectance,
+                         s.ior,
+                         Real(c.inv_eta_2),
+                         Real(c.internal_reflectance),  // fdr_int
+                         Real(c.specular_sampling_weight),
+                         m.nonlinear};
+            s.roughplastic = {s.microfacet,
+                              s.albedo,
+                              s.specular_reflectance,
+                              s.ior,
+                              Real(c.inv_eta_2),
+                              Real(c.specular_sampling_weight),
+                              Real(c.internal_reflectance),
+                              m.nonlinear,
+                              c.transmittance_offset};
+            materials.push_back(s);
+        }
+    }
+
     void add_embree(const Scene& scene) {
         if constexpr (std::is_same_v<Real, float>) {
             embree = std::make_shared<const EmbreeIntersector>(scene, triangles);

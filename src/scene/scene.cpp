@@ -54,6 +54,8 @@ FeatureSet Scene::features() const {
         f.rough_conductor |= m.type == MaterialType::RoughConductor;
         f.rough_dielectric |= m.type == MaterialType::RoughDielectric;
         f.thin_dielectric |= m.type == MaterialType::ThinDielectric;
+        f.plastic |= m.type == MaterialType::Plastic;
+        f.rough_plastic |= m.type == MaterialType::RoughPlastic;
     }
     for (const Light& light : lights) {
         f.sphere_lights |= light.shape == ShapeType::Sphere;
@@ -75,9 +77,14 @@ std::string sppm_problem(const Scene& scene) {
         return "sppm takes its light from emitting shapes, and the background is not black: it would light paths no "
                "photon takes (make the background black or render with the path integrator)";
     }
-    if (f.rough_conductor || f.rough_dielectric) {
+    const char* unsupported = f.rough_conductor    ? "roughconductor"
+                              : f.rough_dielectric ? "roughdielectric"
+                              : f.plastic          ? "plastic"
+                              : f.rough_plastic    ? "roughplastic"
+                                                   : nullptr;
+    if (unsupported) {
         return std::string("sppm gathers photons on diffuse surfaces only, and its camera paths would end at a ") +
-               (f.rough_conductor ? "roughconductor" : "roughdielectric") + " (render with the path integrator)";
+               unsupported + " (render with the path integrator)";
     }
     return "";
 }

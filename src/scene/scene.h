@@ -68,9 +68,20 @@ struct RenderSettings {
 };
 
 // The material kinds (docs/scene-format.md, "materials"). Conductor and
-// RoughConductor are Mitsuba 3's `conductor` and `roughconductor`, with its
-// parameter names.
-enum class MaterialType { Diffuse, Mirror, Glass, Emitter, Conductor, RoughConductor, RoughDielectric, ThinDielectric };
+// RoughConductor are Mitsuba 3's `conductor` and `roughconductor`, Plastic and
+// RoughPlastic its `plastic` and `roughplastic`, with its parameter names.
+enum class MaterialType {
+    Diffuse,
+    Mirror,
+    Glass,
+    Emitter,
+    Conductor,
+    RoughConductor,
+    RoughDielectric,
+    ThinDielectric,
+    Plastic,
+    RoughPlastic
+};
 
 // The microfacet distributions of the rough materials (kernels/shared/materials/microfacet.h).
 enum class Microfacet { Beckmann, GGX };
@@ -78,20 +89,21 @@ enum class Microfacet { Beckmann, GGX };
 struct Material {
     std::string name;
     MaterialType type = MaterialType::Diffuse;
-    glm::dvec3 albedo{0.0};       // diffuse
+    glm::dvec3 albedo{0.0};       // diffuse; plastic and roughplastic: the base's diffuse_reflectance
     glm::dvec3 reflectance{0.0};  // mirror
-    double ior = 1.5;             // glass, roughdielectric and thindielectric: inside over outside
+    double ior = 1.5;             // glass, roughdielectric, thindielectric and the plastics: inside over outside
     glm::dvec3 emission{0.0};     // diffuse (optional) and emitter
     bool two_sided = false;       // emission on both sides
     // conductor and roughconductor: the complex index of refraction eta + i k
     // per channel (eta 0, k 1 reflects everything: Mitsuba's material "none"),
-    // and a factor on the reflection
+    // and a factor on the reflection (the plastics' too, on their coat's)
     glm::dvec3 eta{0.0}, k{1.0};
     glm::dvec3 specular_reflectance{1.0};
-    // roughconductor and roughdielectric: the microfacet distribution and its roughness along
-    // the shading frame's two tangents (equal where isotropic)
+    // roughconductor, roughdielectric and roughplastic: the microfacet distribution and its
+    // roughness along the shading frame's two tangents (equal where isotropic; roughplastic's are)
     Microfacet distribution = Microfacet::Beckmann;
     double alpha_u = 0.1, alpha_v = 0.1;
+    bool nonlinear = false;  // plastic and roughplastic: Mitsuba's `nonlinear` (colours saturate under the coat)
     bool emits() const;
 };
 
@@ -140,6 +152,7 @@ struct FeatureSet {
     bool spheres = false, planes = false, quads = false, meshes = false;
     bool diffuse = false, mirror = false, glass = false, emitter_material = false;
     bool conductor = false, rough_conductor = false, rough_dielectric = false, thin_dielectric = false;
+    bool plastic = false, rough_plastic = false;
     bool shading_normals = false;  // a mesh shades with its vertex normals
     bool pixel_filter = false;     // the camera's filter is a tent or a gaussian, not the box
     bool sphere_lights = false, quad_lights = false, mesh_lights = false;
@@ -162,9 +175,9 @@ struct FeatureSet {
     bool intersect_and_shade = false;
 
     // A material with a delta lobe: paths carry whether their last bounce was one.
-    bool specular() const { return mirror || glass || conductor || thin_dielectric; }
+    bool specular() const { return mirror || glass || conductor || thin_dielectric || plastic; }
     // A material with a lobe of finite density: next-event estimation runs at its vertices.
-    bool non_specular() const { return diffuse || rough_conductor || rough_dielectric; }
+    bool non_specular() const { return diffuse || rough_conductor || rough_dielectric || plastic || rough_plastic; }
     // A refraction into another medium: paths carry eta^2 for the roulette.
     bool refraction() const { return glass || rough_dielectric; }
 };

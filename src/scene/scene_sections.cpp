@@ -154,29 +154,35 @@ void read_smooth_conductor(const JsonField& field, Material& material) {
 }
 
 // A microfacet roughness: finite and at least kMinRoughness, below which
-// float's D overflows (docs/scene-format.md; a smooth surface is a conductor).
-double read_roughness(const JsonField& field) {
+// float's D overflows (docs/scene-format.md; a smooth surface is a
+// conductor, or a plastic under a plastic's coat).
+double read_roughness(const JsonField& field, const char* smooth_kind = "conductor") {
     double alpha = field.number();
     if (!(alpha >= kMinRoughness)) {
         field.fail("must be >= " + format_number(kMinRoughness) + ", got " + format_number(alpha) +
-                   " (a smooth surface is a conductor)");
+                   " (a smooth surface is a " + smooth_kind + ")");
     }
     return alpha;
+}
+
+// A microfacet distribution's `distribution` (Mitsuba's default Beckmann).
+void read_distribution(const JsonField& field, Material& material) {
+    std::optional<JsonField> distribution = field.optional_member("distribution");
+    if (!distribution) return;
+    std::string name = distribution->string();
+    if (name == "beckmann") {
+        material.distribution = Microfacet::Beckmann;
+    } else if (name == "ggx") {
+        material.distribution = Microfacet::GGX;
+    } else {
+        distribution->fail("unknown distribution " + nlohmann::json(name).dump() + " (expected beckmann or ggx)");
+    }
 }
 
 // A microfacet distribution: `distribution` (Mitsuba's default Beckmann)
 // and `alpha` or `alpha_u` and `alpha_v` (default 0.1).
 void read_microfacet(const JsonField& field, Material& material) {
-    if (auto distribution = field.optional_member("distribution")) {
-        std::string name = distribution->string();
-        if (name == "beckmann") {
-            material.distribution = Microfacet::Beckmann;
-        } else if (name == "ggx") {
-            material.distribution = Microfacet::GGX;
-        } else {
-            distribution->fail("unknown distribution " + nlohmann::json(name).dump() + " (expected beckmann or ggx)");
-        }
-    }
+    read_distribution(field, material);
     std::optional<JsonField> alpha = field.optional_member("alpha");
     std::optional<JsonField> alpha_u = field.optional_member("alpha_u"), alpha_v = field.optional_member("alpha_v");
     if (alpha_u || alpha_v) {
@@ -198,10 +204,11 @@ void read_rough_conductor(const JsonField& field, Material& material) {
 }
 
 // A dielectric interface's `int_ior` over `ext_ior`, each a number or a name
-// of Mitsuba's, with Mitsuba's defaults: bk7 inside, air outside.
-double read_relative_ior(const JsonField& field) {
+// of Mitsuba's, with Mitsuba's defaults: `default_inside` (its dielectrics'
+// bk7, its plastics' polypropylene) inside, air outside.
+double read_relative_ior(const JsonField& field, const char* default_inside = "bk7") {
     std::optional<JsonField> inside = field.optional_member("int_ior"), outside = field.optional_member("ext_ior");
-    double int_ior = inside ? read_ior(*inside) : *named_ior("bk7");
+    double int_ior = inside ? read_ior(*inside) : *named_ior(default_inside);
     double ext_ior = outside ? read_ior(*outside) : *named_ior("air");
     return int_ior / ext_ior;
 }
@@ -215,6 +222,34 @@ void read_rough_dielectric(const JsonField& field, Material& material) {
     field.allow_only_keys({"type", "int_ior", "ext_ior", "distribution", "alpha", "alpha_u", "alpha_v"});
     material.ior = read_relative_ior(field);
     read_microfacet(field, material);
+}
+
+// A plastic's base and coat (the caller checks the keys), with Mitsuba's
+// defaults: diffuse_reflectance 0.5, specular_reflectance 1, polypropylene
+// in air, nonlinear off.
+void read_plastic_coat(const JsonField& field, Material& material) {
+    material.albedo = glm::dvec3(0.5);
+    if (auto diffuse = field.optional_member("diffuse_reflectance")) material.albedo = read_rgb(*diffuse, 0.0, 1.0);
+    if (auto specular = field.optional_member("specular_reflectance")) {
+        material.specular_reflectance = read_rgb(*specular, 0.0, 1.0);
+    }
+    material.ior = read_relative_ior(field, "polypropylene");
+    if (auto nonlinear = field.optional_member("nonlinear")) material.nonlinear = nonlinear->boolean();
+}
+
+void read_plastic(const JsonField& field, Material& material) {
+    field.allow_only_keys({"type", "diffuse_reflectance", "specular_reflectance", "int_ior", "ext_ior", "nonlinear"});
+    read_plastic_coat(field, material);
+}
+
+// roughplastic: isotropic, as Mitsuba's (`alpha`, no alpha_u and alpha_v).
+void read_rough_plastic(const JsonField& field, Material& material) {
+    field.allow_only_keys({"type", "diffuse_reflectance", "specular_reflectance", "int_ior", "ext_ior", "nonlinear",
+                           "distribution", "alpha"});
+    read_plastic_coat(field, material);
+    read_distribution(field, material);
+    if (auto alpha = field.optional_member("alpha"))
+        material.alpha_u = material.alpha_v = read_roughness(*alpha, "plastic");
 }
 
 void read_emitter(const JsonField& field, Material& material) {
@@ -255,10 +290,16 @@ Material read_material(const std::string& name, const JsonField& field) {
     } else if (type == "thindielectric") {
         material.type = MaterialType::ThinDielectric;
         read_dielectric(field, material);
+    } else if (type == "plastic") {
+        material.type = MaterialType::Plastic;
+        read_plastic(field, material);
+    } else if (type == "roughplastic") {
+        material.type = MaterialType::RoughPlastic;
+        read_rough_plastic(field, material);
     } else {
         type_field.fail("unknown material type " + nlohmann::json(type).dump() +
                         " (expected one of: diffuse, mirror, glass, emitter, conductor, roughconductor, dielectric, "
-                        "roughdielectric, thindielectric)");
+                        "roughdielectric, thindielectric, plastic, roughplastic)");
     }
     return material;
 }

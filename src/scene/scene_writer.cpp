@@ -13,6 +13,21 @@ namespace fs = std::filesystem;
 
 nlohmann::json vec3(const glm::dvec3& v) { return {v.x, v.y, v.z}; }
 
+// plastic and roughplastic, their relative index as int_ior over an ext_ior of 1.
+nlohmann::json plastic_json(const Material& m) {
+    nlohmann::json j = {{"type", m.type == MaterialType::Plastic ? "plastic" : "roughplastic"},
+                        {"diffuse_reflectance", vec3(m.albedo)},
+                        {"specular_reflectance", vec3(m.specular_reflectance)},
+                        {"int_ior", m.ior},
+                        {"ext_ior", 1.0},
+                        {"nonlinear", m.nonlinear}};
+    if (m.type == MaterialType::RoughPlastic) {
+        j["distribution"] = m.distribution == Microfacet::GGX ? "ggx" : "beckmann";
+        j["alpha"] = m.alpha_u;
+    }
+    return j;
+}
+
 nlohmann::json material_json(const Material& m) {
     nlohmann::json j;
     switch (m.type) {
@@ -28,6 +43,12 @@ nlohmann::json material_json(const Material& m) {
             break;
         case MaterialType::Emitter:
             j = {{"type", "emitter"}, {"radiance", vec3(m.emission)}};
+            break;
+        case MaterialType::Plastic:
+        case MaterialType::RoughPlastic:
+            j = plastic_json(m);
+            break;
+        default:
             break;
     }
     if (m.two_sided) j["two_sided"] = true;

@@ -35,7 +35,7 @@ constexpr std::uint64_t kCopyBandwidthBytes = std::uint64_t(256) << 20;
 FeatureSet every_shape_and_material(FeatureSet f) {
     f.spheres = f.planes = f.quads = true;
     f.diffuse = f.mirror = f.glass = f.emitter_material = f.conductor = f.rough_conductor = true;
-    f.rough_dielectric = f.thin_dielectric = true;
+    f.rough_dielectric = f.thin_dielectric = f.plastic = f.rough_plastic = true;
     f.sphere_lights = f.quad_lights = true;
     return f;
 }

@@ -313,6 +313,21 @@ TEST(RenderIdentity, EverySettingThatChangesTheImageChangesIt) {
     EXPECT_TRUE(parameter_changed([](Material& m) { m.distribution = Microfacet::GGX; }));
     EXPECT_TRUE(parameter_changed([](Material& m) { m.alpha_u += 1e-9; }));
     EXPECT_TRUE(parameter_changed([](Material& m) { m.alpha_v += 1e-9; }));
+    // A rough plastic's every parameter (its diffuse_reflectance is the albedo, its eta the ior).
+    auto plastic_parameter_changed = [&](auto change) {
+        Scene a = base;
+        a.materials[0].type = MaterialType::RoughPlastic;
+        Scene b = a;
+        change(b.materials[0]);
+        return render_identity(a, "opencl").scene != render_identity(b, "opencl").scene;
+    };
+    EXPECT_TRUE(plastic_parameter_changed([](Material& m) { m.albedo.y += 1e-9; }));
+    EXPECT_TRUE(plastic_parameter_changed([](Material& m) { m.specular_reflectance.x -= 1e-9; }));
+    EXPECT_TRUE(plastic_parameter_changed([](Material& m) { m.ior += 1e-9; }));
+    EXPECT_TRUE(plastic_parameter_changed([](Material& m) { m.nonlinear = true; }));
+    EXPECT_TRUE(plastic_parameter_changed([](Material& m) { m.distribution = Microfacet::GGX; }));
+    EXPECT_TRUE(plastic_parameter_changed([](Material& m) { m.alpha_u += 1e-9; }));
+    EXPECT_TRUE(plastic_parameter_changed([](Material& m) { m.type = MaterialType::Plastic; }));
     EXPECT_TRUE(scene_changed([](Scene& s) { s.quads.at(0).edge1.z += 1e-9; }));
     EXPECT_TRUE(scene_changed([](Scene& s) { s.background.y += 1e-9; }));
     // A mesh as loaded: one vertex, one normal, one triangle's corners, its material, and a mesh more.

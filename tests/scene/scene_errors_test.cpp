@@ -166,7 +166,7 @@ const PatchCase kPatchCases[] = {
     {"NoMaterialsDefined", R"({"materials": null})",
      R"(shapes[0].material: undefined material "white" (defined: none))"},
     {"UnknownMaterialType", R"({"materials": {"white": {"type": "metal"}}})",
-     R"(materials.white.type: unknown material type "metal" (expected one of: diffuse, mirror, glass, emitter, conductor, roughconductor, dielectric, roughdielectric, thindielectric))"},
+     R"(materials.white.type: unknown material type "metal" (expected one of: diffuse, mirror, glass, emitter, conductor, roughconductor, dielectric, roughdielectric, thindielectric, plastic, roughplastic))"},
     {"UnknownShapeType", R"({"shapes": [{"type": "box", "material": "white"}]})",
      R"(shapes[0].type: unknown shape type "box" (expected one of: sphere, plane, quad, mesh))"},
     {"NegativeAlbedo", R"({"materials": {"white": {"albedo": [0.5, -0.1, 0.5]}}})",
@@ -203,6 +203,15 @@ const PatchCase kPatchCases[] = {
      "materials.m.k[1]: must be >= 0, got -1"},
     {"SpecularReflectanceAboveOne", R"({"materials": {"m": {"type": "conductor", "specular_reflectance": 1.5}}})",
      "materials.m.specular_reflectance: must be in [0, 1], got 1.5"},
+    {"ZeroPlasticRoughness", R"({"materials": {"m": {"type": "roughplastic", "alpha": 0}}})",
+     "materials.m.alpha: must be >= 1e-04, got 0 (a smooth surface is a plastic)"},
+    {"AnisotropicRoughPlastic", R"({"materials": {"m": {"type": "roughplastic", "alpha_u": 0.1, "alpha_v": 0.2}}})",
+     "materials.m.alpha_u: unknown key (expected one of: type, diffuse_reflectance, specular_reflectance, int_ior, "
+     "ext_ior, nonlinear, distribution, alpha)"},
+    {"PlasticDiffuseAboveOne", R"({"materials": {"m": {"type": "plastic", "diffuse_reflectance": [0.5, 1.5, 0.5]}}})",
+     "materials.m.diffuse_reflectance[1]: must be <= 1, got 1.5"},
+    {"PlasticNonlinearNumber", R"({"materials": {"m": {"type": "plastic", "nonlinear": 1}}})",
+     "materials.m.nonlinear: must be a boolean, got number"},
     {"NegativeBackground", R"({"background": [0, 0, -1]})", "background[2]: must be >= 0, got -1"},
     {"EmitterPlane", R"({"shapes": [{)" FLOOR_PLANE R"(, "normal": [0, 1, 0], "material": "lamp"}]})",
      R"(shapes[0].material: "lamp" emits light, but a plane cannot be a light (infinite area))"},
@@ -306,6 +315,10 @@ TEST(SceneErrors, UnknownMediaNamesListTheKnownOnes) {
     scene["materials"]["m"] = {{"type", "glass"}, {"ior", "Glass"}};
     EXPECT_EQ(error_of(scene.dump(2)), R"(test.json: materials.m.ior: unknown index of refraction "Glass" (known: )" +
                                            wp::named_ior_list() + ")");
+    scene["materials"]["m"] = {{"type", "plastic"}, {"ext_ior", "vacuum-ish"}};
+    EXPECT_EQ(error_of(scene.dump(2)),
+              R"(test.json: materials.m.ext_ior: unknown index of refraction "vacuum-ish" (known: )" +
+                  wp::named_ior_list() + ")");
     scene["materials"]["m"] = {{"type", "glass"}, {"ior", {1.5}}};
     EXPECT_EQ(error_of(scene.dump(2)), "test.json: materials.m.ior: must be a number or a name, got array");
 }

@@ -205,6 +205,43 @@ TEST(SceneLoad, ConductorsAndNamedMediaAreRead) {
     EXPECT_TRUE(scene.features().non_specular());
 }
 
+TEST(SceneLoad, PlasticsAreReadWithMitsubasDefaults) {
+    wp::Scene scene = wp::parse_scene(R"({
+        "camera": {"position": [0, 0, 0], "look_at": [0, 0, -1], "fov_y": 45, "width": 8, "height": 8},
+        "materials": {
+            "default": {"type": "plastic"},
+            "varnish": {"type": "plastic", "diffuse_reflectance": [0.6, 0.2, 0.1], "specular_reflectance": 0.8,
+                        "int_ior": "bk7", "ext_ior": 1.2, "nonlinear": true},
+            "satin": {"type": "roughplastic", "distribution": "ggx", "alpha": 0.3},
+            "rough_default": {"type": "roughplastic"}
+        },
+        "shapes": [{"type": "sphere", "center": [0, 0, -5], "radius": 1, "material": "default"}]})",
+                                      "plastics.json");
+    const wp::Material& plain = scene.materials[material_named(scene, "default")];
+    EXPECT_EQ(plain.type, wp::MaterialType::Plastic);
+    expect_vec3_eq(plain.albedo, {0.5, 0.5, 0.5});
+    expect_vec3_eq(plain.specular_reflectance, {1.0, 1.0, 1.0});
+    EXPECT_EQ(plain.ior, *wp::named_ior("polypropylene") / *wp::named_ior("air"));
+    EXPECT_FALSE(plain.nonlinear);
+    const wp::Material& varnish = scene.materials[material_named(scene, "varnish")];
+    expect_vec3_eq(varnish.albedo, {0.6, 0.2, 0.1});
+    expect_vec3_eq(varnish.specular_reflectance, {0.8, 0.8, 0.8});
+    EXPECT_EQ(varnish.ior, *wp::named_ior("bk7") / 1.2);
+    EXPECT_TRUE(varnish.nonlinear);
+    const wp::Material& satin = scene.materials[material_named(scene, "satin")];
+    EXPECT_EQ(satin.type, wp::MaterialType::RoughPlastic);
+    EXPECT_EQ(satin.distribution, wp::Microfacet::GGX);
+    EXPECT_EQ(satin.alpha_u, 0.3);
+    EXPECT_EQ(satin.alpha_v, 0.3);
+    const wp::Material& rough_default = scene.materials[material_named(scene, "rough_default")];
+    EXPECT_EQ(rough_default.distribution, wp::Microfacet::Beckmann);  // Mitsuba 3.9.1's defaults
+    EXPECT_EQ(rough_default.alpha_u, 0.1);
+    EXPECT_TRUE(scene.features().plastic);
+    EXPECT_TRUE(scene.features().rough_plastic);
+    EXPECT_TRUE(scene.features().specular());  // the plastic's delta lobe
+    EXPECT_TRUE(scene.features().non_specular());
+}
+
 TEST(SceneLoad, PositionsAreRebasedToTheCamera) {
     // Far from the origin, where float kernels would lose precision without the rebase.
     const glm::dvec3 camera{1e6 + 0.125, -2e5 + 0.5, 3e6 + 0.25};
