@@ -15,9 +15,9 @@ wavepath code agreeing with itself. The mapping (docs/mitsuba.md):
   `independent` sampler. `nee`, `mis`, `hemisphere` and `sampler` choose
   wavepath's estimator, not the image, and have no counterpart;
 - diffuse: `twosided` `diffuse`; mirror: `twosided` `conductor` of material
-  `none` (reflectance 1) scaled by `specular_reflectance`; conductor and
-  roughconductor: `twosided` around Mitsuba's plugin of the same name and
-  parameters (wavepath's materials are two-sided); dielectric, roughdielectric
+  `none` (reflectance 1) scaled by `specular_reflectance`; conductor,
+  roughconductor, plastic and roughplastic: `twosided` around Mitsuba's plugin
+  of the same name and parameters (wavepath's materials are two-sided); dielectric, roughdielectric
   and thindielectric: Mitsuba's plugin of the same name; glass: `dielectric`
   with `int_ior` = ior and `ext_ior` 1 (the outside is the normal's side in
   both); emitter: black `diffuse`; emission: a one-sided `area` emitter on the
@@ -82,6 +82,9 @@ MATERIAL_KEYS = {
     "dielectric": {"type", "int_ior", "ext_ior"},
     "roughdielectric": {"type", "int_ior", "ext_ior", "distribution", "alpha", "alpha_u", "alpha_v"},
     "thindielectric": {"type", "int_ior", "ext_ior"},
+    "plastic": {"type", "diffuse_reflectance", "specular_reflectance", "int_ior", "ext_ior", "nonlinear"},
+    "roughplastic": {"type", "diffuse_reflectance", "specular_reflectance", "int_ior", "ext_ior", "nonlinear",
+                     "distribution", "alpha"},
 }
 SHAPE_KEYS = {
     "sphere": {"type", "material", "center", "radius"},
@@ -357,11 +360,11 @@ def bsdf(material):
                 "bsdf": {"type": "conductor", "material": "none", "specular_reflectance": rgb(material["reflectance"])}}
     if kind == "glass":
         return {"type": "dielectric", "int_ior": float(material["ior"]), "ext_ior": 1.0}
-    if kind in ("conductor", "roughconductor"):
+    if kind in ("conductor", "roughconductor", "plastic", "roughplastic"):
         # The same names and parameters: wavepath's materials are Mitsuba's, two-sided.
         plugin = {"type": kind}
         for key, value in material.items():
-            if key in ("eta", "k", "specular_reflectance"):
+            if key in ("eta", "k", "specular_reflectance", "diffuse_reflectance"):
                 plugin[key] = rgb([value] * 3 if isinstance(value, (int, float)) else value)
             elif key != "type":
                 plugin[key] = value

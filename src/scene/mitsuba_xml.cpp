@@ -612,6 +612,32 @@ Material read_thindielectric(const Plugin& bsdf, const std::function<Material(co
     return m;
 }
 
+// The base and coat of plastic and roughplastic, with Mitsuba's defaults.
+Material plastic_coat(const Plugin& bsdf, MaterialType type) {
+    Material m;
+    m.type = type;
+    m.albedo = bsdf.optional_color("diffuse_reflectance", 1.0, " (energy gain)").value_or(glm::dvec3(0.5));
+    m.specular_reflectance =
+        bsdf.optional_color("specular_reflectance", 1.0, " (energy gain)").value_or(glm::dvec3(1.0));
+    m.ior = ior(bsdf, "int_ior", "polypropylene") / ior(bsdf, "ext_ior", "air");
+    m.nonlinear = bsdf.boolean("nonlinear", false);
+    return m;
+}
+
+Material read_plastic(const Plugin& bsdf, const std::function<Material(const XmlElement&)>&) {
+    bsdf.allow({"diffuse_reflectance", "specular_reflectance", "int_ior", "ext_ior", "nonlinear"});
+    return plastic_coat(bsdf, MaterialType::Plastic);
+}
+
+// Mitsuba's roughplastic is isotropic: `alpha`, no alpha_u and alpha_v.
+Material read_roughplastic(const Plugin& bsdf, const std::function<Material(const XmlElement&)>&) {
+    bsdf.allow(
+        {"diffuse_reflectance", "specular_reflectance", "int_ior", "ext_ior", "nonlinear", "distribution", "alpha"});
+    Material m = plastic_coat(bsdf, MaterialType::RoughPlastic);
+    read_microfacet(bsdf, m);
+    return m;
+}
+
 const std::pair<const char*, BsdfReader> kBsdfs[] = {
     {"diffuse", read_diffuse},
     {"twosided", read_twosided},
@@ -620,6 +646,8 @@ const std::pair<const char*, BsdfReader> kBsdfs[] = {
     {"roughconductor", read_roughconductor},
     {"roughdielectric", read_roughdielectric},
     {"thindielectric", read_thindielectric},
+    {"plastic", read_plastic},
+    {"roughplastic", read_roughplastic},
 };
 
 struct MaterialKey {

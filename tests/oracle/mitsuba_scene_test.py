@@ -108,6 +108,19 @@ class ConverterTest(unittest.TestCase):
         self.assertEqual(e["emitter"], {"type": "area", "radiance": {"type": "rgb", "value": [1, 2, 3]}})
         self.assertNotIn("emitter", d)
 
+    def test_plastics_are_twosided_around_mitsubas_plugins(self):
+        materials = {"p": {"type": "plastic", "diffuse_reflectance": [0.7, 0.2, 0.1], "int_ior": "bk7", "nonlinear": True},
+                     "r": {"type": "roughplastic", "diffuse_reflectance": 0.4, "specular_reflectance": [0.9, 0.8, 0.7],
+                           "distribution": "ggx", "alpha": 0.3, "ext_ior": 1.2}}
+        p, r = self.shapes(self.convert([{**QUAD, "material": "p"}, {**QUAD, "material": "r"}], materials))
+        self.assertEqual(p["bsdf"], {"type": "twosided", "bsdf": {
+            "type": "plastic", "diffuse_reflectance": {"type": "rgb", "value": [0.7, 0.2, 0.1]}, "int_ior": "bk7",
+            "nonlinear": True}})
+        self.assertEqual(r["bsdf"], {"type": "twosided", "bsdf": {
+            "type": "roughplastic", "diffuse_reflectance": {"type": "rgb", "value": [0.4, 0.4, 0.4]},
+            "specular_reflectance": {"type": "rgb", "value": [0.9, 0.8, 0.7]}, "distribution": "ggx", "alpha": 0.3,
+            "ext_ior": 1.2}})
+
     def test_diffuse_emission_makes_an_area_emitter(self):
         materials = {"glow": {"type": "diffuse", "albedo": [0.5, 0.5, 0.5], "emission": [0, 0.5, 0]},
                      "dark": {"type": "diffuse", "albedo": [0.5, 0.5, 0.5], "emission": [0, 0, 0]}}

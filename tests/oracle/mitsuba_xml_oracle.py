@@ -61,6 +61,7 @@ CASES = [
     ("shapes", "shapes.xml", {"serialized": "{serialized}"}),
     ("include_ref_dielectric", "materials.xml", {"max_depth": "8"}),
     ("metals_and_glass", "metals_and_glass.xml", {}),
+    ("plastics", "plastics.xml", {}),
     ("filter_box", "filters.xml", {"filter": "box"}),
     ("filter_tent", "filters.xml", {"filter": "tent"}),
     ("filter_gaussian", "filters.xml", {"filter": "gaussian"}),

@@ -333,6 +333,37 @@ TEST_F(MitsubaXml, ConductorsAndRoughDielectricsAsMaterials) {
               "scene.xml:3: bsdf \"roughconductor\": alpha: must be >= 1e-04, got 0");
 }
 
+TEST_F(MitsubaXml, PlasticsAsMaterials) {
+    const Scene scene = read(sensor() + R"(
+        <shape type="sphere"><bsdf type="plastic"/></shape>
+        <shape type="sphere"><bsdf type="twosided"><bsdf type="roughplastic">
+            <rgb name="diffuse_reflectance" value="0.6, 0.2, 0.1"/><float name="specular_reflectance" value="0.8"/>
+            <string name="int_ior" value="bk7"/><float name="ext_ior" value="1.2"/>
+            <boolean name="nonlinear" value="true"/><string name="distribution" value="ggx"/>
+            <float name="alpha" value="0.3"/></bsdf></bsdf></shape>)")
+                            .scene;
+    const auto material = [&](int sphere) {
+        return scene.materials.at(std::size_t(scene.spheres.at(std::size_t(sphere)).material));
+    };
+    EXPECT_EQ(material(0).type, MaterialType::Plastic);  // Mitsuba's defaults: 0.5, 1, polypropylene in air, linear
+    expect_near(material(0).albedo, glm::dvec3(0.5));
+    expect_near(material(0).specular_reflectance, glm::dvec3(1.0));
+    EXPECT_NEAR(material(0).ior, *named_ior("polypropylene") / *named_ior("air"), 1e-12);
+    EXPECT_FALSE(material(0).nonlinear);
+    EXPECT_EQ(material(1).type, MaterialType::RoughPlastic);
+    expect_near(material(1).albedo, {0.6, 0.2, 0.1});
+    expect_near(material(1).specular_reflectance, glm::dvec3(0.8));
+    EXPECT_NEAR(material(1).ior, *named_ior("bk7") / 1.2, 1e-12);
+    EXPECT_TRUE(material(1).nonlinear);
+    EXPECT_EQ(material(1).distribution, Microfacet::GGX);
+    EXPECT_EQ(material(1).alpha_u, 0.3);
+    EXPECT_EQ(material(1).alpha_v, 0.3);
+    EXPECT_EQ(error_of(sensor() + R"(
+        <shape type="sphere"><bsdf type="roughplastic"><float name="alpha_u" value="0.1"/></bsdf></shape>)"),
+              "scene.xml:3: bsdf \"roughplastic\": float \"alpha_u\": not supported (supported: diffuse_reflectance, "
+              "specular_reflectance, int_ior, ext_ior, nonlinear, distribution, alpha)");
+}
+
 // ---- $defaults, -D, includes, references ----
 
 TEST_F(MitsubaXml, TopLevelObjectsUsedByReference) {
@@ -412,10 +443,10 @@ TEST_F(MitsubaXml, OldVersionsNamesAreUpgradedAsMitsubaDoes) {
 TEST_F(MitsubaXml, ErrorsNameTheFileLineAndPluginOrProperty) {
     EXPECT_EQ(error_of(sensor() + R"(
         <shape type="sphere">
-            <bsdf type="roughplastic"/>
+            <bsdf type="principled"/>
         </shape>)"),
-              "scene.xml:4: bsdf \"roughplastic\": not supported (supported: diffuse, twosided, dielectric, conductor, "
-              "roughconductor, roughdielectric, thindielectric)");
+              "scene.xml:4: bsdf \"principled\": not supported (supported: diffuse, twosided, dielectric, conductor, "
+              "roughconductor, roughdielectric, thindielectric, plastic, roughplastic)");
     EXPECT_EQ(error_of(sensor() + R"(
         <shape type="rectangle"><float name="width" value="2"/></shape>)"),
               "scene.xml:3: shape \"rectangle\": float \"width\": not supported (supported: to_world, flip_normals)");
