@@ -49,7 +49,10 @@ namespace fs = std::filesystem;
 const fs::path kBunny = fs::path(WAVEPATH_SOURCE_DIR) / "scenes/meshes/bunny.obj";
 
 Mesh in_process(const fs::path& file) { return mesh_from_import(import_with_assimp(file), {}); }
-Mesh contained(const fs::path& file) { return read_mesh_file(file, {}); }
+Mesh contained(const fs::path& file) {
+    MeshImporter importer({});  // started for this file
+    return read_mesh_file(file, {}, importer);
+}
 
 bool identical(const Mesh& a, const Mesh& b) {
     const auto same = [](const auto& x, const auto& y) {

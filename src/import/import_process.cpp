@@ -4,6 +4,7 @@
 #include <poll.h>
 #include <spawn.h>
 #include <sys/resource.h>
+#include <sys/socket.h>
 #include <sys/syscall.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -40,6 +41,10 @@ class Descriptor {
     ~Descriptor() { reset(); }
     Descriptor(const Descriptor&) = delete;
     Descriptor& operator=(const Descriptor&) = delete;
+    Descriptor& operator=(Descriptor&& other) noexcept {
+        std::swap(fd_, other.fd_);
+        return *this;
+    }
     int get() const { return fd_; }
     void reset() {
         if (fd_ >= 0) ::close(fd_);
@@ -56,47 +61,200 @@ int milliseconds_until(Clock::time_point deadline) {
     return static_cast<int>(std::clamp<long long>(left, 0, 1 << 30));
 }
 
-// Waits until `fd` is readable or `deadline` passes (false).
-bool wait_readable(int fd, Clock::time_point deadline) {
-    pollfd entry{fd, POLLIN, 0};
+// A descriptor at 5 or above, close-on-exec: the helper's are dup2'd onto
+// 0, 3 and 4 in the child, which must not overwrite one not yet moved.
+int above_helper_descriptors(int fd) {
+    const int moved = ::fcntl(fd, F_DUPFD_CLOEXEC, kStatusFd + 1);
+    const int error = errno;
+    ::close(fd);
+    if (moved < 0)
+        throw ImportHelperUnavailable("cannot make a pipe for " + std::string(kImportHelperName) + ": " +
+                                      errno_text(error));
+    return moved;
+}
+
+struct Channel {
+    int ours, helpers;
+};
+
+// A pipe (the helper writes) or a socket pair (wavepath writes: a send to a helper that is gone is an error,
+// not SIGPIPE).
+Channel make_channel(bool to_helper) {
+    int fds[2];
+    const int made = to_helper ? ::socketpair(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0, fds) : ::pipe2(fds, O_CLOEXEC);
+    if (made != 0)
+        throw ImportHelperUnavailable("cannot make a pipe for " + std::string(kImportHelperName) + ": " +
+                                      errno_text(errno));
+    return {fds[0], above_helper_descriptors(fds[1])};
+}
+
+// Reads what `fd` (non-blocking) holds now into `bytes`; false at end of file.
+bool read_available(int fd, std::size_t max_bytes, std::string& bytes) {
+    char chunk[1 << 16];
     for (;;) {
-        const int ready = ::poll(&entry, 1, milliseconds_until(deadline));
-        if (ready > 0) return true;
-        if (ready == 0) return false;
-        if (errno != EINTR)
-            throw ImportHelperUnavailable("poll on " + std::string(kImportHelperName) +
+        const ssize_t count = ::read(fd, chunk, sizeof chunk);
+        if (count == 0) return false;
+        if (count < 0) {
+            if (errno == EINTR) continue;
+            if (errno == EAGAIN) return true;
+            throw ImportHelperUnavailable("reading " + std::string(kImportHelperName) +
                                           "'s answer: " + errno_text(errno));
+        }
+        if (bytes.size() + std::size_t(count) > max_bytes)
+            fail(ImportProcessFailure::Malformed,
+                 "sent a malformed answer: more than " + std::to_string(max_bytes) + " bytes");
+        bytes.append(chunk, std::size_t(count));
     }
 }
 
-// The running helper. Its answer pipe is its descriptor 3; stdin, stdout and
-// stderr are /dev/null (what assimp, or a crash, prints must not reach
-// wavepath's one error line), every other descriptor closed. If it is still
-// running when this goes out of scope, it is killed and reaped.
-class HelperProcess {
+void set_non_blocking(int fd) { ::fcntl(fd, F_SETFL, ::fcntl(fd, F_GETFL) | O_NONBLOCK); }
+
+// A null-terminated array of the strings' characters, for posix_spawn.
+std::vector<char*> pointers(std::vector<std::string>& strings) {
+    std::vector<char*> result;
+    for (std::string& text : strings) result.push_back(text.data());
+    result.push_back(nullptr);
+    return result;
+}
+
+// wavepath's environment, with glibc's malloc on transparent huge pages
+// (glibc.malloc.hugetlb=1, added to GLIBC_TUNABLES): assimp's OBJ reader
+// fills a 16 MiB buffer for every file (its IOStreamBuffer), which in each
+// new importer process took 4096 page faults, about 25 ms a file on a
+// loaded machine against 4 ms with huge pages (bench/results/big_scenes.md).
+std::vector<std::string> helper_environment() {
+    constexpr std::string_view kTunables = "GLIBC_TUNABLES=", kHugePages = "glibc.malloc.hugetlb=1";
+    std::vector<std::string> environment;
+    bool tuned = false;
+    for (char** entry = environ; *entry != nullptr; ++entry) {
+        environment.emplace_back(*entry);
+        if (environment.back().starts_with(kTunables)) {
+            environment.back().append(environment.back().size() > kTunables.size() ? ":" : "").append(kHugePages);
+            tuned = true;
+        }
+    }
+    if (!tuned) environment.push_back(std::string(kTunables).append(kHugePages));
+    return environment;
+}
+
+}  // namespace
+
+// The running helper: its requests on its descriptor 0, its importers'
+// answers on 3, their statuses on 4; stdout and stderr are /dev/null (what
+// assimp, or a crash, prints must not reach wavepath's one error line),
+// every other descriptor closed. If it is still running when this goes out
+// of scope, it is killed (its importer with it) and reaped.
+class MeshImporter::Helper {
  public:
-    HelperProcess(const std::filesystem::path& helper, const std::filesystem::path& file,
-                  const MeshImportLimits& limits)
-        : HelperProcess(make_pipe(), helper, file, limits) {}
-    ~HelperProcess() {
+    // How the importer of one request ended, and its answer.
+    struct Outcome {
+        ImporterStatus status;
+        std::string answer;
+        bool helper_ended = false;  // the helper ended instead (`status` is its own): start another
+    };
+
+    Helper(const std::filesystem::path& helper, const MeshImportLimits& limits) {
+        const Channel requests = make_channel(true), answers = make_channel(false), statuses = make_channel(false);
+        requests_ = Descriptor(requests.ours);
+        answers_ = Descriptor(answers.ours);
+        statuses_ = Descriptor(statuses.ours);
+        set_non_blocking(answers_.get());
+        // The helper's copies stay open in it.
+        const Descriptor request_end(requests.helpers), answer_end(answers.helpers), status_end(statuses.helpers);
+        spawn(helper, limits, request_end.get(), answer_end.get(), status_end.get());
+    }
+    ~Helper() {
         if (running_) {
             ::kill(pid_, SIGKILL);
             reap();
         }
     }
-    HelperProcess(const HelperProcess&) = delete;
-    HelperProcess& operator=(const HelperProcess&) = delete;
+    Helper(const Helper&) = delete;
+    Helper& operator=(const Helper&) = delete;
 
-    int answer_fd() const { return answer_.get(); }
-    void kill() { ::kill(pid_, SIGKILL); }
+    // Imports `file`: its importer's answer (at most `max_bytes`) and status.
+    // Throws ImportProcessError (WallTime) when `deadline` passes first.
+    // Asks it to import `file`; receive() takes the outcome.
+    void send_request(const std::string& file) {
+        const auto length = static_cast<std::uint32_t>(file.size());
+        std::string request(reinterpret_cast<const char*>(&length), sizeof length);
+        request += file;
+        for (std::string_view left = request; !left.empty();) {
+            const ssize_t sent = ::send(requests_.get(), left.data(), left.size(), MSG_NOSIGNAL);
+            if (sent < 0 && errno == EINTR) continue;
+            if (sent < 0) return;  // the helper is gone: its status says how it ended
+            left.remove_prefix(std::size_t(sent));
+        }
+    }
+
+    // The importer's answer (at most `max_bytes`) and status for the request
+    // sent. Throws ImportProcessError (WallTime) when `deadline` passes first.
+    Outcome receive(Clock::time_point deadline, std::size_t max_bytes) {
+        Outcome outcome;
+        pollfd entries[2] = {{answers_.get(), POLLIN, 0}, {statuses_.get(), POLLIN, 0}};
+        std::size_t status_bytes = 0;
+        auto* status = reinterpret_cast<char*>(&outcome.status);
+        for (;;) {
+            wait_for(entries, deadline);
+            if (entries[0].revents != 0 && !read_available(answers_.get(), max_bytes, outcome.answer))
+                entries[0].fd = -1;  // closed (a helper that answers once and exits)
+            if (entries[1].revents == 0) continue;
+            const ssize_t count = ::read(statuses_.get(), status + status_bytes, sizeof outcome.status - status_bytes);
+            if (count < 0 && errno == EINTR) continue;
+            if (count <= 0) return helper_ended(std::move(outcome), entries[0].fd >= 0, deadline, max_bytes);
+            status_bytes += std::size_t(count);
+            if (status_bytes < sizeof outcome.status) continue;
+            // The importer has exited: all it wrote is in the pipe.
+            if (entries[0].fd >= 0) read_available(answers_.get(), max_bytes, outcome.answer);
+            return outcome;
+        }
+    }
+
+ private:
+    // Waits until one of `entries` is ready; throws WallTime past `deadline`.
+    void wait_for(pollfd* entries, Clock::time_point deadline) {
+        for (;;) {
+            const int ready = ::poll(entries, 2, milliseconds_until(deadline));
+            if (ready > 0) return;
+            if (ready == 0) fail_wall_time();
+            if (errno != EINTR)
+                throw ImportHelperUnavailable("poll on " + std::string(kImportHelperName) +
+                                              "'s answer: " + errno_text(errno));
+        }
+    }
+
+    [[noreturn]] void fail_wall_time() {
+        ::kill(pid_, SIGKILL);
+        reap();
+        fail(ImportProcessFailure::WallTime,
+             "did not finish within " + format_number(limits_wall_s_) + " s and was stopped (--mesh-import-time)");
+    }
+
+    // The helper closed its statuses: the rest of its answer, then how it ended.
+    Outcome helper_ended(Outcome outcome, bool answer_open, Clock::time_point deadline, std::size_t max_bytes) {
+        pollfd answer{answers_.get(), POLLIN, 0};
+        while (answer_open) {
+            if (::poll(&answer, 1, milliseconds_until(deadline)) == 0) fail_wall_time();
+            answer_open = read_available(answers_.get(), max_bytes, outcome.answer);
+        }
+        if (!wait_exit(deadline)) fail_wall_time();
+        const auto [status, cpu_s] = reap();
+        outcome.status = {status, cpu_s};
+        outcome.helper_ended = true;
+        return outcome;
+    }
 
     // Blocks until it exits or `deadline` passes (false, still running).
     bool wait_exit(Clock::time_point deadline) {
         // A pidfd becomes readable when the process exits.
         Descriptor process(static_cast<int>(::syscall(SYS_pidfd_open, pid_, 0)));
         if (process.get() < 0) return true;  // no pidfd (Linux before 5.3): reap() blocks instead
-        return wait_readable(process.get(), deadline);
+        pollfd entry{process.get(), POLLIN, 0};
+        while (::poll(&entry, 1, milliseconds_until(deadline)) < 0 && errno == EINTR) {
+        }
+        return entry.revents != 0;
     }
+
     // Waits for it to exit: its status and the CPU time it used.
     std::pair<int, double> reap() {
         int status = 0;
@@ -108,33 +266,17 @@ class HelperProcess {
         return {status, seconds(usage.ru_utime) + seconds(usage.ru_stime)};
     }
 
- private:
-    struct PipeEnds {
-        int read, write;
-    };
-    static PipeEnds make_pipe() {
-        int fds[2];
-        if (::pipe2(fds, O_CLOEXEC) != 0)
-            throw ImportHelperUnavailable("cannot make a pipe for " + std::string(kImportHelperName) + ": " +
-                                          errno_text(errno));
-        return {fds[0], fds[1]};
-    }
-    HelperProcess(PipeEnds pipe, const std::filesystem::path& helper, const std::filesystem::path& file,
-                  const MeshImportLimits& limits)
-        : answer_(pipe.read) {
-        const Descriptor write_end(pipe.write);  // the helper's copy stays open in it
-        spawn(helper, file, limits, write_end.get());
-    }
-
-    void spawn(const std::filesystem::path& helper, const std::filesystem::path& file, const MeshImportLimits& limits,
-               int write_end) {
+    void spawn(const std::filesystem::path& helper, const MeshImportLimits& limits, int request_end, int answer_end,
+               int status_end) {
+        limits_wall_s_ = limits.wall_s;
         posix_spawn_file_actions_t actions;
         posix_spawn_file_actions_init(&actions);
-        posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
+        posix_spawn_file_actions_adddup2(&actions, request_end, kRequestFd);
         posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
         posix_spawn_file_actions_addopen(&actions, 2, "/dev/null", O_WRONLY, 0);
-        posix_spawn_file_actions_adddup2(&actions, write_end, kAnswerFd);
-        posix_spawn_file_actions_addclosefrom_np(&actions, kAnswerFd + 1);
+        posix_spawn_file_actions_adddup2(&actions, answer_end, kAnswerFd);
+        posix_spawn_file_actions_adddup2(&actions, status_end, kStatusFd);
+        posix_spawn_file_actions_addclosefrom_np(&actions, kStatusFd + 1);
         // Signals at their defaults (SIGXCPU ends it at its CPU limit) and none blocked.
         posix_spawnattr_t attributes;
         posix_spawnattr_init(&attributes);
@@ -148,11 +290,10 @@ class HelperProcess {
         posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETSIGDEF | POSIX_SPAWN_SETSIGMASK);
 
         std::vector<std::string> arguments{helper.string(), std::to_string(limits.memory_mib),
-                                           std::to_string(limits.cpu_s), file.string()};
-        std::vector<char*> argv;
-        for (std::string& argument : arguments) argv.push_back(argument.data());
-        argv.push_back(nullptr);
-        const int error = ::posix_spawn(&pid_, argv[0], &actions, &attributes, argv.data(), environ);
+                                           std::to_string(limits.cpu_s)};
+        std::vector<std::string> environment = helper_environment();
+        const std::vector<char*> argv = pointers(arguments), envp = pointers(environment);
+        const int error = ::posix_spawn(&pid_, argv[0], &actions, &attributes, argv.data(), envp.data());
         posix_spawn_file_actions_destroy(&actions);
         posix_spawnattr_destroy(&attributes);
         if (error != 0)
@@ -161,30 +302,13 @@ class HelperProcess {
         running_ = true;
     }
 
-    Descriptor answer_;
+    Descriptor requests_, answers_, statuses_;
     pid_t pid_ = -1;
     bool running_ = false;
+    double limits_wall_s_ = 0.0;
 };
 
-// Reads the answer until the helper closes the pipe. Returns false if
-// `deadline` passed first; throws if it sends more than `max_bytes`.
-bool read_answer(int fd, Clock::time_point deadline, std::size_t max_bytes, std::string& answer) {
-    std::vector<char> chunk(1 << 16);
-    for (;;) {
-        if (!wait_readable(fd, deadline)) return false;
-        const ssize_t count = ::read(fd, chunk.data(), chunk.size());
-        if (count == 0) return true;
-        if (count < 0) {
-            if (errno == EINTR) continue;
-            throw ImportHelperUnavailable("reading " + std::string(kImportHelperName) +
-                                          "'s answer: " + errno_text(errno));
-        }
-        if (answer.size() + std::size_t(count) > max_bytes)
-            fail(ImportProcessFailure::Malformed,
-                 "sent a malformed answer: more than " + std::to_string(max_bytes) + " bytes");
-        answer.append(chunk.data(), std::size_t(count));
-    }
-}
+namespace {
 
 std::string signal_text(int signal) { return "signal " + std::to_string(signal) + ": " + ::strsignal(signal); }
 
@@ -214,30 +338,81 @@ std::filesystem::path import_helper_path() {
     return self.parent_path() / kImportHelperName;
 }
 
-ImportedScene import_in_child(const std::filesystem::path& file, const MeshImportLimits& limits,
-                              const std::filesystem::path& helper) {
-    const Clock::time_point deadline =
-        Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(limits.wall_s));
-    HelperProcess process(helper, file, limits);
-    std::string bytes;
-    // The answer cannot be larger than the memory the helper may use.
-    const bool answered = read_answer(process.answer_fd(), deadline, std::size_t(limits.memory_mib) << 20, bytes);
-    if (!answered || !process.wait_exit(deadline)) {
-        process.kill();
-        process.reap();
-        fail(ImportProcessFailure::WallTime,
-             "did not finish within " + format_number(limits.wall_s) + " s and was stopped (--mesh-import-time)");
+MeshImporter::MeshImporter(const MeshImportLimits& limits, std::filesystem::path helper)
+    : limits_(limits), helper_path_(std::move(helper)) {}
+
+MeshImporter::~MeshImporter() = default;
+
+void MeshImporter::expect(std::vector<std::filesystem::path> files) {
+    drop_started();
+    expected_ = std::move(files);
+    next_expected_ = 0;
+    start_expected();
+}
+
+void MeshImporter::start(const std::filesystem::path& file) {
+    std::size_t free = 0;
+    while (std::any_of(started_.begin(), started_.end(), [&](const Started& s) { return s.helper == free; })) ++free;
+    if (helper_path_.empty()) helper_path_ = import_helper_path();
+    if (!helpers_[free]) helpers_[free] = std::make_unique<Helper>(helper_path_, limits_);
+    const auto wall = std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(limits_.wall_s));
+    started_.push_back({file, free, Clock::now() + wall});
+    helpers_[free]->send_request(file.native());
+}
+
+void MeshImporter::start_expected() {
+    while (started_.size() < kHelpers && next_expected_ < expected_.size()) {
+        const std::filesystem::path& file = expected_[next_expected_++];
+        // Names it cannot send are import()'s to refuse.
+        if (file.native().empty() || file.native().size() > kMaxRequestLength) break;
+        start(file);
     }
-    const auto [status, cpu_s] = process.reap();
-    if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) fail_on_status(status, cpu_s, limits);
+}
+
+void MeshImporter::drop_started() {
+    for (const Started& started : started_) helpers_[started.helper].reset();  // killed, with its importer
+    started_.clear();
+}
+
+ImportedScene MeshImporter::import(const std::filesystem::path& file) {
+    const std::string& name = file.native();
+    if (name.empty()) throw MeshFileError(std::string("cannot open: ") + errno_text(ENOENT));
+    if (name.size() > kMaxRequestLength) throw MeshFileError(std::string("cannot open: ") + errno_text(ENAMETOOLONG));
+    if (started_.empty() || started_.front().file != file) {  // not the file expected: import it alone
+        drop_started();
+        expected_.clear();
+        next_expected_ = 0;
+        start(file);
+    }
+    const Started current = started_.front();
+    std::unique_ptr<Helper>& helper = helpers_[current.helper];
+    Helper::Outcome outcome;
+    try {
+        // The answer cannot be larger than the memory the importer may use.
+        outcome = helper->receive(current.deadline, std::size_t(limits_.memory_mib) << 20);
+    } catch (...) {
+        helper.reset();  // killed, with its importer
+        started_.pop_front();
+        throw;
+    }
+    if (outcome.helper_ended) helper.reset();
+    started_.pop_front();  // its helper is free: the next file starts while this one is checked
+    start_expected();
+    const int status = outcome.status.wait_status;
+    if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) fail_on_status(status, outcome.status.cpu_s, limits_);
     ImportAnswer answer;
     try {
-        answer = decode_answer(bytes);
+        answer = decode_answer(outcome.answer);
     } catch (const MalformedAnswer& error) {
         fail(ImportProcessFailure::Malformed, std::string("sent a malformed answer: ") + error.what());
     }
     if (const ImportFailure* failure = std::get_if<ImportFailure>(&answer)) throw MeshFileError(failure->message);
     return std::move(std::get<ImportedScene>(answer));
+}
+
+ImportedScene import_in_child(const std::filesystem::path& file, const MeshImportLimits& limits,
+                              const std::filesystem::path& helper) {
+    return MeshImporter(limits, helper).import(file);
 }
 
 }  // namespace wp

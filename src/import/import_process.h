@@ -1,14 +1,20 @@
-// Mesh files are read by assimp in a child process, wavepath-import
-// (import/helper/main.cpp), started for each file with posix_spawn (safe
-// after MPI_Init: nothing of this process runs in the child) under
-// MeshImportLimits, which answers over a pipe (import/answer.h). Whatever
-// happens there (a crash, an allocation beyond its memory limit, a loop, a
-// hang, an answer that is not well-formed) becomes one ImportProcessError.
+// Mesh files are read by assimp in child processes: wavepath-import
+// (import/helper/main.cpp), started once with posix_spawn (safe after
+// MPI_Init: nothing of this process runs in the child) under
+// MeshImportLimits, forks an importer of its own for each file, which
+// answers over a pipe (import/answer.h). Whatever happens there (a crash,
+// an allocation beyond its memory limit, a loop, a hang, an answer that is
+// not well-formed) becomes one ImportProcessError for that file.
 #pragma once
 
+#include <array>
+#include <chrono>
+#include <deque>
 #include <filesystem>
+#include <memory>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "import/import_limits.h"
 #include "import/imported_scene.h"
@@ -43,9 +49,57 @@ class ImportHelperUnavailable : public std::runtime_error {
 // benchmarks; an installation puts it beside wavepath.
 std::filesystem::path import_helper_path();
 
-// The scene of `file` as `helper` imports it. Throws MeshFileError with the
-// helper's own message if it could not read the file, ImportProcessError if
-// the process failed, ImportHelperUnavailable if it could not be started.
+// Imports mesh files, each in an importer process of its own, forked by a
+// wavepath-import that is started at the first file, kept for the next and
+// started again after a failure that ended it. A scene's loader keeps one
+// for all the scene's files (one start instead of one per file) and says
+// which files it will ask for: then the next is imported while wavepath
+// checks the one before (bench/results/big_scenes.md). The answers are
+// taken in the loader's order, each a function of its file alone.
+class MeshImporter {
+ public:
+    // `helper` empty: import_helper_path(), found at the first file.
+    explicit MeshImporter(const MeshImportLimits& limits, std::filesystem::path helper = {});
+    ~MeshImporter();
+    MeshImporter(const MeshImporter&) = delete;
+    MeshImporter& operator=(const MeshImporter&) = delete;
+
+    // The files import() will be asked for next, in order: the helpers start
+    // on them ahead. (Asked for another file, it drops what it started.)
+    void expect(std::vector<std::filesystem::path> files);
+
+    // The scene of `file` as the helper imports it under the limits (the
+    // wall-clock limit counts from the file's start: this call, or where
+    // expect() started it ahead). Throws MeshFileError with the importer's
+    // own message if it could not read the file, ImportProcessError if the
+    // importer or the helper failed, ImportHelperUnavailable if the helper
+    // could not be started.
+    ImportedScene import(const std::filesystem::path& file);
+
+    const MeshImportLimits& limits() const { return limits_; }
+
+    class Helper;
+
+ private:
+    static constexpr std::size_t kHelpers = 1;  // files under way at once
+    struct Started {
+        std::filesystem::path file;
+        std::size_t helper;  // index into helpers_
+        std::chrono::steady_clock::time_point deadline;
+    };
+    void start(const std::filesystem::path& file);  // on a helper with no file under way
+    void start_expected();                          // up to kHelpers files under way
+    void drop_started();
+
+    MeshImportLimits limits_;
+    std::filesystem::path helper_path_;
+    std::array<std::unique_ptr<Helper>, kHelpers> helpers_;  // none before their first file and after a failure
+    std::deque<Started> started_;                            // the files under way, in the order asked for
+    std::vector<std::filesystem::path> expected_;
+    std::size_t next_expected_ = 0;  // the first of expected_ not yet started
+};
+
+// One file in a helper of its own (MeshImporter::import).
 ImportedScene import_in_child(const std::filesystem::path& file, const MeshImportLimits& limits,
                               const std::filesystem::path& helper = import_helper_path());
 

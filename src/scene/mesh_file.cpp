@@ -171,8 +171,8 @@ Mesh mesh_from_import(const ImportedScene& imported, const MeshFileOptions& opti
     return MeshMerger(imported, options).merge();
 }
 
-Mesh read_mesh_file(const std::filesystem::path& path, const MeshFileOptions& options, const MeshImportLimits& limits) {
-    return mesh_from_import(import_in_child(path, limits), options);
+Mesh read_mesh_file(const std::filesystem::path& path, const MeshFileOptions& options, MeshImporter& importer) {
+    return mesh_from_import(importer.import(path), options);
 }
 
 }  // namespace wp

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "import/import_limits.h"
+#include "import/import_process.h"
 #include "import/imported_scene.h"
 #include "import/mesh_file_error.h"
 #include "scene/scene.h"
@@ -26,8 +26,7 @@ struct MeshFileOptions {
 // every vertex has one in the file), triangles and degenerate_dropped of the
 // result; file and material are the caller's. Throws MeshFileError
 // (ImportProcessError if the import process failed).
-Mesh read_mesh_file(const std::filesystem::path& path, const MeshFileOptions& options,
-                    const MeshImportLimits& limits = {});
+Mesh read_mesh_file(const std::filesystem::path& path, const MeshFileOptions& options, MeshImporter& importer);
 
 // What read_mesh_file makes of an imported file: its meshes checked
 // (finite vertices, indices in range), then merged as above.

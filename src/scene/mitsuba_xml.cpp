@@ -662,7 +662,7 @@ struct MaterialKey {
 class Reader {
  public:
     Reader(XmlScene xml, const std::string& path, const MeshImportLimits& mesh_import)
-        : xml_(std::move(xml)), mesh_import_(mesh_import) {
+        : xml_(std::move(xml)), importer_(mesh_import) {
         out_.scene.source = path;
         index_ids(xml_.root);
     }
@@ -680,7 +680,9 @@ class Reader {
         if (sensors.empty()) fail_at(xml_.root, "scene: no sensor (wavepath needs a perspective sensor)");
         read_sensor(*sensors.front());
         for (const XmlElement* emitter : scene.objects("emitter")) read_emitter(*emitter);
-        for (const XmlElement* shape : scene.objects("shape")) read_shape(*shape);
+        const std::vector<const XmlElement*> shapes = scene.objects("shape");
+        importer_.expect(named_mesh_files(shapes));
+        for (const XmlElement* shape : shapes) read_shape(*shape);
         return std::move(out_);
     }
 
@@ -1033,6 +1035,21 @@ class Reader {
         out_.scene.spheres.push_back(sphere);
     }
 
+    // The OBJ and PLY files the shapes name, in order, for the importer to
+    // start on ahead; read_shape checks every shape as it comes (a malformed
+    // one is left out here).
+    std::vector<fs::path> named_mesh_files(const std::vector<const XmlElement*>& shapes) const {
+        std::vector<fs::path> files;
+        for (const XmlElement* element : shapes) {
+            const std::string* type = element->attribute("type");
+            if (!type || (*type != "obj" && *type != "ply")) continue;
+            const XmlElement* filename = Plugin(*element, ids_).property("filename");
+            const std::string* value = filename && filename->tag == "string" ? filename->attribute("value") : nullptr;
+            if (value && !value->empty()) files.push_back(resolve_scene_file(xml_, *value));
+        }
+        return files;
+    }
+
     // A mesh file's absolute name: as Mitsuba resolves it (the <path>s, then the scene's folder).
     fs::path mesh_path(const Plugin& shape, std::string& name) const {
         const std::optional<std::string> filename = shape.optional_string("filename");
@@ -1047,7 +1064,7 @@ class Reader {
         const fs::path path = mesh_path(shape, name);
         ImportedScene imported;
         try {
-            imported = import_in_child(path, mesh_import_);
+            imported = importer_.import(path);
         } catch (const MeshFileError& error) {
             shape.fail(*shape.property("filename"), name + ": " + error.what());
         }
@@ -1127,7 +1144,7 @@ class Reader {
     }
 
     XmlScene xml_;
-    MeshImportLimits mesh_import_;
+    MeshImporter importer_;  // one helper for all the scene's mesh files
     IdTable ids_;
     MitsubaScene out_;
     std::map<MaterialKey, int> materials_;

@@ -2,7 +2,9 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <memory>
+#include <vector>
 
 #include "scene/json_field.h"
 #include "scene/json_syntax.h"
@@ -25,6 +27,20 @@ void rebase_to_camera(Scene& scene) {
     for (Mesh& mesh : scene.meshes) {
         for (glm::dvec3& position : mesh.positions) position -= origin;
     }
+}
+
+// The mesh files the shapes name, in order, for the importer to start on
+// ahead; read_shapes checks every shape as it comes (a malformed one is
+// left out here).
+std::vector<std::filesystem::path> named_mesh_files(const nlohmann::json& shapes, const std::string& source) {
+    std::vector<std::filesystem::path> files;
+    if (!shapes.is_array()) return files;
+    for (const nlohmann::json& shape : shapes) {
+        if (!shape.is_object() || shape.value("type", nlohmann::json()) != "mesh") continue;
+        const nlohmann::json file = shape.value("file", nlohmann::json());
+        if (file.is_string()) files.push_back(std::filesystem::path(source).parent_path() / file.get<std::string>());
+    }
+    return files;
 }
 
 std::string read_text_file(const std::string& path) {
@@ -58,7 +74,11 @@ Scene parse_scene(const std::string& json_text, const std::string& source_name, 
         scene.background = background->vec3_in(0.0, kMaxSceneMagnitude);
     }
     if (auto materials = root.optional_member("materials")) scene.materials = read_materials(*materials);
-    if (auto shapes = root.optional_member("shapes")) read_shapes(*shapes, scene, mesh_import);
+    if (auto shapes = root.optional_member("shapes")) {
+        MeshImporter importer(mesh_import);
+        importer.expect(named_mesh_files(document.at("shapes"), source_name));
+        read_shapes(*shapes, scene, importer);
+    }
 
     finish_scene(scene);
     if (const std::string problem = sppm_problem(scene); !problem.empty())

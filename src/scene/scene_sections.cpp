@@ -434,7 +434,7 @@ MeshFileOptions read_mesh_options(const JsonField& field) {
 }
 
 // The mesh file's path is relative to the scene file's directory.
-Mesh read_mesh(const JsonField& field, const Scene& scene, const MeshImportLimits& mesh_import) {
+Mesh read_mesh(const JsonField& field, const Scene& scene, MeshImporter& importer) {
     field.allow_only_keys({"type", "file", "material", "transform", "face_normals", "objects"});
     JsonField file_field = field.member("file");
     const std::string file = file_field.string();
@@ -443,7 +443,7 @@ Mesh read_mesh(const JsonField& field, const Scene& scene, const MeshImportLimit
     const int material = resolve_material(field, scene.materials);
     Mesh mesh;
     try {
-        mesh = read_mesh_file(std::filesystem::path(scene.source).parent_path() / file, options, mesh_import);
+        mesh = read_mesh_file(std::filesystem::path(scene.source).parent_path() / file, options, importer);
     } catch (const MeshFileError& error) {
         file_field.fail(file + ": " + error.what());
     }
@@ -452,7 +452,7 @@ Mesh read_mesh(const JsonField& field, const Scene& scene, const MeshImportLimit
     return mesh;
 }
 
-void read_shape(const JsonField& field, Scene& scene, const MeshImportLimits& mesh_import) {
+void read_shape(const JsonField& field, Scene& scene, MeshImporter& importer) {
     JsonField type_field = field.member("type");
     std::string type = type_field.string();
     if (type == "sphere") {
@@ -462,7 +462,7 @@ void read_shape(const JsonField& field, Scene& scene, const MeshImportLimits& me
     } else if (type == "quad") {
         scene.quads.push_back(read_quad(field, scene.materials));
     } else if (type == "mesh") {
-        scene.meshes.push_back(read_mesh(field, scene, mesh_import));
+        scene.meshes.push_back(read_mesh(field, scene, importer));
         std::size_t triangles = 0;
         for (const Mesh& mesh : scene.meshes) triangles += mesh.triangles.size();
         if (triangles > kMaxTriangles)
@@ -587,9 +587,9 @@ std::vector<Material> read_materials(const JsonField& field) {
     return materials;
 }
 
-void read_shapes(const JsonField& field, Scene& scene, const MeshImportLimits& mesh_import) {
+void read_shapes(const JsonField& field, Scene& scene, MeshImporter& importer) {
     std::size_t count = field.array_size();
-    for (std::size_t i = 0; i < count; ++i) read_shape(field.element(i), scene, mesh_import);
+    for (std::size_t i = 0; i < count; ++i) read_shape(field.element(i), scene, importer);
 }
 
 }  // namespace wp

@@ -4,6 +4,7 @@
 
 #include <vector>
 
+#include "import/import_process.h"
 #include "scene/json_field.h"
 #include "scene/limits.h"
 #include "scene/scene.h"
@@ -17,7 +18,7 @@ Camera read_camera(const JsonField& field);
 RenderSettings read_render(const JsonField& field);
 std::vector<Material> read_materials(const JsonField& field);
 // Appends to scene.spheres/planes/quads/meshes; materials and source must already be set
-// (mesh files are found relative to the directory of scene.source, and imported under `mesh_import`).
-void read_shapes(const JsonField& field, Scene& scene, const MeshImportLimits& mesh_import);
+// (mesh files are found relative to the directory of scene.source, and imported by `importer`).
+void read_shapes(const JsonField& field, Scene& scene, MeshImporter& importer);
 
 }  // namespace wp

@@ -39,8 +39,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     static const ScratchDirectory scratch;
     const std::filesystem::path file = scratch.path / ("mesh." + input.substr(0, newline));
     std::ofstream(file, std::ios::binary).write(input.data() + newline + 1, input.size() - newline - 1);
+    static wp::MeshImporter importer(wp::fuzz::kImportLimits);  // one helper for the run, as for a scene
     try {
-        wp::read_mesh_file(file, wp::MeshFileOptions{}, wp::fuzz::kImportLimits);
+        wp::read_mesh_file(file, wp::MeshFileOptions{}, importer);
     } catch (const wp::ImportProcessError& error) {
         wp::fuzz::note_import_failure(error.what(), data, size);
     } catch (const wp::MeshFileError&) {
