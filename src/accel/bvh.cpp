@@ -168,8 +168,33 @@ BvhTree build_bvh(const std::vector<TrianglePositions>& triangles, int threads) 
     return tree;
 }
 
+namespace {
+
+// items[i] = the old items[order[i]] for every i, where `order` lists every index once (the leaves hold each
+// triangle once: the build splits none), following each cycle of the permutation.
+void put_in_order(std::vector<SceneTriangle>& items, const std::vector<std::uint32_t>& order) {
+    if (order.size() != items.size()) throw std::runtime_error("BVH: the leaves do not hold every triangle once");
+    std::vector<bool> placed(items.size(), false);
+    for (std::size_t start = 0; start < items.size(); ++start) {
+        if (placed[start]) continue;
+        SceneTriangle first = items[start];
+        std::size_t slot = start;
+        for (std::size_t from = order[slot]; from != start; slot = from, from = order[slot]) {
+            items[slot] = items[from];
+            placed[slot] = true;
+        }
+        items[slot] = first;
+        placed[slot] = true;
+    }
+}
+
+}  // namespace
+
 std::vector<SceneTriangle> scene_triangles(const Scene& scene) {
     std::vector<SceneTriangle> triangles;
+    std::size_t count = 0;
+    for (const Mesh& mesh : scene.meshes) count += mesh.triangles.size();
+    triangles.reserve(count);
     for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
         const Mesh& mesh = scene.meshes[m];
         for (const glm::uvec3& t : mesh.triangles) {
@@ -184,14 +209,16 @@ std::vector<SceneTriangle> scene_triangles(const Scene& scene) {
 }
 
 SceneBvh build_scene_bvh(const Scene& scene) {
-    std::vector<SceneTriangle> triangles = scene_triangles(scene);
-    std::vector<TrianglePositions> positions;
-    positions.reserve(triangles.size());
-    for (const SceneTriangle& t : triangles) positions.push_back(t.positions);
     SceneBvh result;
-    result.tree = build_bvh(positions);
-    result.triangles.reserve(triangles.size());
-    for (std::uint32_t index : result.tree.leaf_order) result.triangles.push_back(triangles[index]);
+    result.triangles = scene_triangles(scene);
+    {
+        std::vector<TrianglePositions> positions;
+        positions.reserve(result.triangles.size());
+        for (const SceneTriangle& t : result.triangles) positions.push_back(t.positions);
+        result.tree = build_bvh(positions);
+    }
+    // Into leaf order in place: a second copy of the triangles (152 bytes each) would be the load's peak.
+    put_in_order(result.triangles, result.tree.leaf_order);
     return result;
 }
 

@@ -51,6 +51,8 @@ struct TraversableBvh {
 template <class Real>
 TraversableBvh<Real> traversable_bvh(const SceneBvh& bvh) {
     TraversableBvh<Real> flat;
+    flat.triangles.reserve(bvh.triangles.size());
+    flat.nodes.reserve(bvh.tree.nodes.size());
     for (const SceneTriangle& t : bvh.triangles)
         flat.triangles.push_back(mesh_triangle<Real>(t.positions, t.material, t.mesh));
     for (const BvhTree::Node& n : bvh.tree.nodes) {

@@ -134,6 +134,24 @@ TEST(Bvh, SameTreeForAnyThreadCountAndRun) {
     EXPECT_LE(one.depth, 32);
 }
 
+// The scene's triangles, put into leaf order in place: slot i holds input triangle leaf_order[i], whole.
+TEST(Bvh, SceneTrianglesAreInLeafOrder) {
+    Scene scene;
+    scene.meshes = soup();
+    scene.meshes[1].material = 1;  // two meshes apart: the material and the mesh index travel with the triangle
+    const std::vector<SceneTriangle> input = scene_triangles(scene);
+    const SceneBvh bvh = build_scene_bvh(scene);
+    ASSERT_EQ(bvh.triangles.size(), input.size());
+    ASSERT_EQ(bvh.tree.leaf_order.size(), input.size());
+    for (std::size_t i = 0; i < input.size(); ++i) {
+        const SceneTriangle& expected = input[bvh.tree.leaf_order[i]];
+        EXPECT_EQ(bvh.triangles[i].positions, expected.positions);
+        EXPECT_EQ(bvh.triangles[i].normals, expected.normals);
+        EXPECT_EQ(bvh.triangles[i].material, expected.material);
+        EXPECT_EQ(bvh.triangles[i].mesh, expected.mesh);
+    }
+}
+
 // Every float box holds its subtree's triangles in double: rounding outward
 // leaves no sliver of a triangle outside its box.
 TEST(Bvh, BoxesHoldTheirTrianglesExactly) {
