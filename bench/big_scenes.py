@@ -167,23 +167,23 @@ def generate(directory, pieces, levels):
 # ---- the measurements ----
 
 def timed_child(args, env=None):
-    """Runs a command to its end: (stdout, stderr, wall seconds, peak resident bytes: wait4's ru_maxrss, the
-    largest of it and the children it waited for)."""
-    start = time.perf_counter()
-    process = subprocess.Popen(args, stdout=subprocess.PIPE, stderr=subprocess.PIPE, env=env, cwd=ROOT)
-    # communicate() would reap it; read the pipes, then wait4 for the usage.
-    stdout = process.stdout.read()
-    stderr = process.stderr.read()
-    _, status, usage = os.wait4(process.pid, 0)
-    wall = time.perf_counter() - start
-    process.returncode = os.waitstatus_to_exitcode(status)
-    if process.returncode != 0:
-        raise RuntimeError(f"{args[0]} failed ({process.returncode}): {stderr.decode().strip()[-2000:]}")
-    return stdout.decode(), stderr.decode(), wall, usage.ru_maxrss * 1024
+    """Runs a command to its end: (stdout, stderr, wall seconds, peak resident bytes: the largest of it and the
+    children it waited for). The peak comes from /usr/bin/time, a small process: Linux carries a process's
+    ru_maxrss across exec, so a child started from this one (hundreds of MiB of meshes) would report this
+    one's."""
+    with tempfile.NamedTemporaryFile("r", prefix="wavepath-bench-time-") as peak_file:
+        start = time.perf_counter()
+        done = subprocess.run(["/usr/bin/time", "-f", "%M", "-o", peak_file.name, *args], capture_output=True,
+                              text=True, env=env, cwd=ROOT)
+        wall = time.perf_counter() - start
+        if done.returncode != 0:
+            raise RuntimeError(f"{args[0]} failed ({done.returncode}): {done.stderr.strip()[-2000:]}")
+        peak = int(peak_file.read().split()[-1]) * 1024
+    return done.stdout, done.stderr, wall, peak
 
 
 def wavepath_phases(load_bench, scene):
-    stdout, _, wall, peak = timed_child([load_bench, scene])
+    stdout, _, wall, _ = timed_child([load_bench, scene])
     result = json.loads(stdout)
     result["wall_s"] = wall
     return result
@@ -208,14 +208,22 @@ def wavepath_render(binary, scene, scratch, cache):
 
 
 MITSUBA_CHILD = r"""
-import json, resource, sys, time
+import json, sys, time
 import mitsuba as mi
+
+
+def peak_bytes():  # VmHWM: this process's own peak (ru_maxrss would carry a parent's across exec)
+    with open("/proc/self/status") as f:
+        return next(int(line.split()[1]) * 1024 for line in f if line.startswith("VmHWM:"))
+
+
+
 mi.set_variant("llvm_ad_rgb")
 mi.set_log_level(mi.LogLevel.Info)
 start = time.perf_counter()
 scene = mi.load_file(sys.argv[1])
 load_s = time.perf_counter() - start
-after_load = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * 1024
+after_load = peak_bytes()
 mi.render(scene, seed=1).numpy()
 start = time.perf_counter()
 image = mi.render(scene, seed=0).numpy()
@@ -223,7 +231,7 @@ render_s = time.perf_counter() - start
 samples = image.shape[0] * image.shape[1] * scene.sensors()[0].sampler().sample_count()
 print("RESULT " + json.dumps({"load_s": load_s, "peak_after_load_bytes": after_load, "render_s": render_s,
                               "samples_per_s": samples / render_s,
-                              "peak_bytes": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * 1024}))
+                              "peak_bytes": peak_bytes()}))
 """
 
 
@@ -384,10 +392,11 @@ def markdown(result):
         lines.append(f"| {name} | {fmt(s['wavepath_samples_per_s'], '{:,.0f}')} | "
                      f"{fmt(s['mitsuba_samples_per_s'], '{:,.0f}')} | {fmt(s['speed_ratio'], '{:.2f}')} |")
     lines += ["", "## Memory", "",
-              "Peak resident memory (getrusage ru_maxrss). wavepath phases: load_bench's own peak (load, BVH, "
-              "layout, Embree; its import helper apart); wavepath render: `wavepath render` at 128x128, 16 spp "
-              "(wait4: the largest of it and its children); Mitsuba: the process after load_file and at the "
-              "end of its render (Python, Dr.Jit and the LLVM JIT included). Per triangle: the peak over the "
+              "Peak resident memory. wavepath phases: load_bench's own peak (VmHWM: load, BVH, layout, Embree; "
+              "its import helper apart, getrusage of its children); wavepath render: `wavepath render` at "
+              "128x128, 16 spp (/usr/bin/time's %M: the largest of it and its children); Mitsuba: the "
+              "process's VmHWM after load_file and at the end of its render (Python, Dr.Jit and the LLVM JIT "
+              "included). Per triangle: the peak over the "
               "triangles, so a small scene's figure is mostly the process's base.", "",
               "| scene | measure | wavepath (MiB) | Mitsuba (MiB) | wavepath / Mitsuba (min, median) | "
               "wavepath B/triangle | Mitsuba B/triangle |", "|---|---|---|---|---|---|---|"]
