@@ -23,9 +23,12 @@ wavepath code agreeing with itself. The mapping (docs/mitsuba.md):
   both); emitter: black `diffuse`; emission: a one-sided `area` emitter on the
   shape, a two-sided one as a second, flipped copy of the shape just behind it
   (quads and spheres only);
+- textures: Mitsuba's `bitmap` and `checkerboard` of the same parameters,
+  `to_uv` as a 3x3 transform, in place of a diffuse `reflectance`;
 - shapes: spheres as `sphere`; quads as two-triangle PLY meshes written into
   the work directory (Mitsuba's `rectangle` is orthogonal only, and quads may
-  be sheared); planes as a square quad `PLANE_EXTENT` times the scene's extent
+  be sheared), with uvs (0, 0) at the corner, (1, 0) at corner + edge1 and
+  (0, 1) at corner + edge2, as wavepath's quads have them; planes as a square quad `PLANE_EXTENT` times the scene's extent
   around the camera's foot point (Mitsuba has no infinite plane); meshes as
   Mitsuba `obj`/`ply` shapes of the same file with our transform as
   `to_world` (`objects` of an OBJ file: those objects written as a PLY
@@ -68,7 +71,7 @@ class MitsubaSceneError(Exception):
 
 # The keys each part of a scene may have (docs/scene-format.md); any other key is refused,
 # so that a feature added to wavepath is never silently dropped from Mitsuba's image.
-TOP_KEYS = {"camera", "render", "background", "materials", "shapes"}
+TOP_KEYS = {"camera", "render", "background", "textures", "materials", "shapes"}
 CAMERA_KEYS = {"position", "look_at", "up", "fov_y", "width", "height"}
 RENDER_KEYS = {"spp", "max_depth", "rr_depth", "seed", "nee", "mis", "hemisphere", "sampler"}
 MATERIAL_KEYS = {
@@ -93,6 +96,10 @@ SHAPE_KEYS = {
     "mesh": {"type", "material", "file", "transform", "face_normals", "objects"},
 }
 TRANSFORM_KEYS = {"scale", "rotate", "translate", "matrix"}
+TEXTURE_KEYS = {
+    "bitmap": {"type", "file", "filter_type", "wrap_mode", "raw", "to_uv"},
+    "checkerboard": {"type", "color0", "color1", "to_uv"},
+}
 
 
 # Small vector and matrix helpers (3-vectors and 4x4 row-major lists, in double).
@@ -181,16 +188,39 @@ class Converter:
         background = scene.get("background", [0, 0, 0])
         if any(c > 0 for c in background):
             out["background"] = {"type": "constant", "radiance": rgb(background)}
+        self.textures = {name: self.texture(texture, f"textures.{name}")
+                         for name, texture in scene.get("textures", {}).items()}
         materials = scene.get("materials", {})
         for name, material in materials.items():
             kind = material.get("type")
             if kind not in MATERIAL_KEYS:
                 self.fail(f"materials.{name}.type", f"material type {json.dumps(kind)} has no Mitsuba counterpart here")
             self.check_keys(material, MATERIAL_KEYS[kind], f"materials.{name}")
+            if isinstance(material.get("albedo"), dict):
+                material = {**material, "albedo": self.textures[material["albedo"]["texture"]]}
+                materials = {**materials, name: material}
         extent = self.extent()
         for i, shape in enumerate(scene.get("shapes", [])):
             for k, part in enumerate(self.shape(shape, f"shapes[{i}]", materials, extent)):
                 out[f"shape_{i}_{k}"] = part
+        return out
+
+    def texture(self, texture, where):
+        """Mitsuba's texture of the same type and parameters; a bitmap's file is found from the scene's directory."""
+        kind = texture.get("type")
+        if kind not in TEXTURE_KEYS:
+            self.fail(f"{where}.type", f"texture type {json.dumps(kind)} has no Mitsuba counterpart here")
+        self.check_keys(texture, TEXTURE_KEYS[kind], where)
+        out = {"type": kind}
+        for key, value in texture.items():
+            if key == "file":
+                out["filename"] = os.path.abspath(os.path.join(os.path.dirname(self.scene_path), value))
+            elif key in ("color0", "color1"):
+                out[key] = rgb([value] * 3 if isinstance(value, (int, float)) else value)
+            elif key == "to_uv":
+                out[key] = {"to_uv": [list(map(float, row)) for row in value] + [[0.0, 0.0, 1.0]]}
+            elif key != "type":
+                out[key] = value
         return out
 
     def integrator(self, render):
@@ -263,7 +293,8 @@ class Converter:
     def quad_mesh(self, corner, edge1, edge2):
         """The parallelogram corner + u edge1 + v edge2 as two counter-clockwise triangles (normal edge1 x edge2)."""
         points = [corner, add(corner, edge1), add(add(corner, edge1), edge2), add(corner, edge2)]
-        return {"type": "ply", "filename": self.write_ply(points, [(0, 1, 2), (0, 2, 3)]), "face_normals": True}
+        uvs = [(0, 0), (1, 0), (1, 1), (0, 1)]  # wavepath's quad uv: corner + u edge1 + v edge2 (shared/texture.h)
+        return {"type": "ply", "filename": self.write_ply(points, [(0, 1, 2), (0, 2, 3)], uvs), "face_normals": True}
 
     def plane_mesh(self, point, normal, extent):
         """A square of half-size PLANE_EXTENT * extent in the plane, centred on the camera's foot point."""
@@ -314,18 +345,20 @@ class Converter:
             m = matmul(rotation(t["rotate"][:3], t["rotate"][3]), m)
         return matmul(translation(t.get("translate", [0, 0, 0])), m)
 
-    def write_ply(self, points, faces):
-        """A binary little-endian PLY of float positions and triangles in the work directory; returns its path."""
+    def write_ply(self, points, faces, uvs=None):
+        """A binary little-endian PLY of float positions (and uvs) and triangles in the work directory; returns its
+        path."""
         os.makedirs(self.workdir, exist_ok=True)
         path = os.path.join(self.workdir, f"mesh_{self.written}.ply")
         self.written += 1
         header = (f"ply\nformat binary_little_endian 1.0\nelement vertex {len(points)}\n"
                   "property float x\nproperty float y\nproperty float z\n"
+                  + ("property float u\nproperty float v\n" if uvs else "") +
                   f"element face {len(faces)}\nproperty list uchar int vertex_indices\nend_header\n")
         with open(path, "wb") as f:
             f.write(header.encode("ascii"))
-            for p in points:
-                f.write(struct.pack("<3f", *p))
+            for k, p in enumerate(points):
+                f.write(struct.pack("<3f", *p) + (struct.pack("<2f", *uvs[k]) if uvs else b""))
             for face in faces:
                 f.write(struct.pack("<B3i", 3, *face))
         return os.path.abspath(path)
@@ -351,10 +384,15 @@ def emission(material):
     return radiance if radiance is not None and any(c > 0 for c in radiance) else None
 
 
+def rgb_or_texture(value):
+    """A constant colour, or a texture the converter already made Mitsuba's (Converter.texture)."""
+    return value if isinstance(value, dict) else rgb(value)
+
+
 def bsdf(material):
     kind = material["type"]
     if kind == "diffuse":
-        return {"type": "twosided", "bsdf": {"type": "diffuse", "reflectance": rgb(material["albedo"])}}
+        return {"type": "twosided", "bsdf": {"type": "diffuse", "reflectance": rgb_or_texture(material["albedo"])}}
     if kind == "mirror":
         return {"type": "twosided",
                 "bsdf": {"type": "conductor", "material": "none", "specular_reflectance": rgb(material["reflectance"])}}
@@ -433,6 +471,8 @@ def load(mi, scene_dict):
 
     def to_mitsuba(value):
         if isinstance(value, dict):
+            if set(value) == {"to_uv"}:  # a texture's to_uv, a 3x3 matrix (Converter.texture)
+                return mi.ScalarTransform3f(value["to_uv"])
             return {k: to_world(v) if k == "to_world" else to_mitsuba(v) for k, v in value.items()}
         return value
 

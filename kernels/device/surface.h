@@ -18,6 +18,9 @@
 #include "shared/materials/roughplastic.h"
 #endif
 #include "shared/prelude.h"
+#ifdef WP_HAS_TEXTURES
+#include "shared/texture.h"
+#endif
 
 typedef struct {
     vec3 point;
@@ -25,6 +28,9 @@ typedef struct {
     vec3 shading; /* on normal's side: the interpolated vertex normal on triangles that have them, else normal */
     lane_uint material;
     real error; /* bound on the point's distance from the surface (shared/hit_point.h) */
+#ifdef WP_HAS_TEXTURES
+    TextureUV uv; /* shared/texture.h; (0, 0) on planes */
+#endif
 } Surface;
 
 #ifdef WP_HAS_SHADING_NORMALS
@@ -38,6 +44,48 @@ WP_FN vec3 shading_normal(WP_SCENE_PARAMS, lane_uint shape, vec3 normal, vec3 po
                                            SCENE_FIELD(triangle_normals, i, n1), SCENE_FIELD(triangle_normals, i, n2),
                                            normal, point);
     return v3_select(is_triangle, shading, normal);
+}
+#endif
+
+#ifdef WP_HAS_TEXTURES
+/* The uv of the hit at `point` (geometric normal `normal`) of `shape`
+ * (shared/texture.h): every shape kind in the scene is evaluated and each
+ * lane keeps its own kind's. */
+WP_FN TextureUV surface_uv(WP_SCENE_PARAMS, lane_uint shape, vec3 point, vec3 normal) {
+    lane_uint index = shape & WP_SHAPE_INDEX_MASK;
+    lane_uint type = shape >> WP_SHAPE_TYPE_SHIFT;
+    TextureUV uv = make_texture_uv(REAL(0.0), REAL(0.0));
+#ifdef WP_HAS_SPHERES
+    {
+        TextureUV sphere = sphere_uv(normal);
+        lane_int is_sphere = type == WP_SHAPE_SPHERE;
+        uv.u = is_sphere ? sphere.u : uv.u, uv.v = is_sphere ? sphere.v : uv.v;
+    }
+#endif
+#ifdef WP_HAS_QUADS
+    {
+        lane_int is_quad = type == WP_SHAPE_QUAD;
+        lane_uint i = is_quad ? index : (lane_uint)0u;
+        TextureUV quad =
+            quad_uv(SCENE_FIELD(quads, i, corner), SCENE_FIELD(quads, i, edge1), SCENE_FIELD(quads, i, edge2), point);
+        uv.u = is_quad ? quad.u : uv.u, uv.v = is_quad ? quad.v : uv.v;
+    }
+#endif
+#ifdef WP_HAS_MESHES
+    {
+        lane_int is_triangle = type == WP_SHAPE_TRIANGLE;
+        lane_uint i = is_triangle ? index : (lane_uint)0u;
+        TriangleBarycentrics b = triangle_barycentrics(SCENE_FIELD(triangles, i, p0), SCENE_FIELD(triangles, i, p1),
+                                                       SCENE_FIELD(triangles, i, p2), point);
+        lane_uint words = i * WP_STRUCT_WORDS(triangle_uvs);
+        TextureUV uv0 = make_texture_uv(gather(&triangle_uvs->uv0[0], words), gather(&triangle_uvs->uv0[1], words));
+        TextureUV uv1 = make_texture_uv(gather(&triangle_uvs->uv1[0], words), gather(&triangle_uvs->uv1[1], words));
+        TextureUV uv2 = make_texture_uv(gather(&triangle_uvs->uv2[0], words), gather(&triangle_uvs->uv2[1], words));
+        TextureUV triangle = triangle_uv(uv0, uv1, uv2, b.b1, b.b2);
+        uv.u = is_triangle ? triangle.u : uv.u, uv.v = is_triangle ? triangle.v : uv.v;
+    }
+#endif
+    return uv;
 }
 #endif
 
@@ -98,6 +146,9 @@ WP_FN Surface surface_at(WP_SCENE_PARAMS, lane_uint shape, vec3 origin, vec3 dir
     s.shading = shading_normal(WP_SCENE_ARGS, shape, s.normal, s.point);
 #else
     s.shading = s.normal;
+#endif
+#ifdef WP_HAS_TEXTURES
+    s.uv = surface_uv(WP_SCENE_ARGS, shape, s.point, s.normal);
 #endif
     return s;
 }
@@ -177,6 +228,36 @@ WP_FN Material material_at(__global const DeviceMaterial *materials, lane_uint i
     return m;
 }
 
+#ifdef WP_HAS_TEXTURES
+/* Texture `index`'s fields, per lane. */
+WP_FN Texture texture_at(__global const TextureDescriptor *textures, lane_uint index) {
+    Texture t;
+    t.type = SCENE_FIELD(textures, index, type);
+    t.filter = SCENE_FIELD(textures, index, filter);
+    t.wrap = SCENE_FIELD(textures, index, wrap);
+    t.width = SCENE_FIELD(textures, index, width);
+    t.height = SCENE_FIELD(textures, index, height);
+    t.first_texel = SCENE_FIELD(textures, index, first_texel);
+    lane_uint words = index * WP_STRUCT_WORDS(textures);
+    for (int k = 0; k < 6; ++k) t.to_uv[k] = gather(&textures->to_uv[k], words);
+    t.color0 = SCENE_FIELD(textures, index, color0);
+    t.color1 = SCENE_FIELD(textures, index, color1);
+    return t;
+}
+
+/* Material m at surface s with its textured parameters looked up at s's uv
+ * (the lanes whose material has none keep its constants). */
+WP_FN Material textured_material(WP_SCENE_PARAMS, Material m, Surface s) {
+    lane_uint albedo_texture = SCENE_FIELD(material_textures, s.material, albedo);
+    lane_int textured = albedo_texture != WP_NO_TEXTURE;
+    if (lanes_any(textured)) {
+        Texture t = texture_at(textures, textured ? albedo_texture : (lane_uint)0u);
+        m.albedo = v3_select(textured, texture_value(t, texels, s.uv), m.albedo);
+    }
+    return m;
+}
+#endif
+
 /* A path's vertex where its ray (origin, direction) hit `shape` at t. */
 typedef struct {
     Surface surface;
@@ -194,6 +275,9 @@ WP_FN Vertex vertex_at(WP_SCENE_PARAMS, lane_uint shape, vec3 origin, vec3 direc
     Vertex v;
     v.surface = surface_at(WP_SCENE_ARGS, shape, origin, direction, t);
     v.material = material_at(materials, v.surface.material);
+#ifdef WP_HAS_TEXTURES
+    v.material = textured_material(WP_SCENE_ARGS, v.material, v.surface);
+#endif
     v.wo = v3_neg(direction);
 #ifdef WP_HAS_ROUGH_PLASTIC
     v.roughplastic_table = roughplastic_transmittance;

@@ -14,22 +14,27 @@
 /* The scene's buffers (interface/scene_layout.h; the meshes' triangles and
  * BVH nodes of shared/triangle.h and shared/bvh.h; the mesh lights'
  * triangles, src/scene/mesh_lights.h; the roughplastics' tables of their
- * coat's transmittance, src/scene/plastic_constants.h), first in every
- * kernel that traces. */
-#define WP_SCENE_PARAMETERS(FIRST, NEXT)                     \
-    FIRST(__global const SceneHeader *, scene)               \
-    NEXT(__global const DeviceSphere *, spheres)             \
-    NEXT(__global const DevicePlane *, planes)               \
-    NEXT(__global const DeviceQuad *, quads)                 \
-    NEXT(__global const MeshTriangle *, triangles)           \
-    NEXT(__global const TriangleNormals *, triangle_normals) \
-    NEXT(__global const BvhNode *, bvh_nodes)                \
-    NEXT(__global const DeviceMaterial *, materials)         \
-    NEXT(__global const DeviceLight *, lights)               \
-    NEXT(__global const float *, light_cdf)                  \
-    NEXT(__global const MeshTriangle *, light_triangles)     \
-    NEXT(__global const float *, light_triangle_cdf)         \
-    NEXT(__global const float *, roughplastic_transmittance)
+ * coat's transmittance, src/scene/plastic_constants.h; the textures, the texels
+ * and the triangles' uvs of shared/texture.h, and which material parameters are
+ * textured, interface/scene_layout.h), first in every kernel that traces. */
+#define WP_SCENE_PARAMETERS(FIRST, NEXT)                       \
+    FIRST(__global const SceneHeader *, scene)                 \
+    NEXT(__global const DeviceSphere *, spheres)               \
+    NEXT(__global const DevicePlane *, planes)                 \
+    NEXT(__global const DeviceQuad *, quads)                   \
+    NEXT(__global const MeshTriangle *, triangles)             \
+    NEXT(__global const TriangleNormals *, triangle_normals)   \
+    NEXT(__global const BvhNode *, bvh_nodes)                  \
+    NEXT(__global const DeviceMaterial *, materials)           \
+    NEXT(__global const DeviceLight *, lights)                 \
+    NEXT(__global const float *, light_cdf)                    \
+    NEXT(__global const MeshTriangle *, light_triangles)       \
+    NEXT(__global const float *, light_triangle_cdf)           \
+    NEXT(__global const float *, roughplastic_transmittance)   \
+    NEXT(__global const MaterialTextures *, material_textures) \
+    NEXT(__global const TextureDescriptor *, textures)         \
+    NEXT(__global const float *, texels)                       \
+    NEXT(__global const TriangleUVs *, triangle_uvs)
 
 /* round_pixels: the pixels the work items sample, ascending (every pixel
  * unless adaptive sampling has stopped some): work item w is pixel

@@ -82,6 +82,13 @@ typedef struct {
     uint nonlinear, transmittance_offset;
 } DeviceMaterial;
 
+/* Which of a material's parameters are textured: an index into the
+ * textures (shared/texture.h), or WP_NO_TEXTURE where the parameter is the
+ * material's constant. Parallel to the materials. */
+typedef struct {
+    uint albedo; /* diffuse */
+} MaterialTextures;
+
 typedef struct {
     uint shape;          /* WP_SHAPE_SPHERE or WP_SHAPE_QUAD, index included as in hit_shape; a mesh:
                           * WP_SHAPE_TRIANGLE with its first triangle in light_triangles as the index */

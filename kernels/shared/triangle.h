@@ -107,6 +107,22 @@ WP_FN real intersect_triangle(vec3 p0, vec3 p1, vec3 p2, vec3 origin, vec3 direc
 
 WP_FN vec3 triangle_normal(vec3 p0, vec3 p1, vec3 p2) { return v3_normalize(v3_cross(v3_sub(p1, p0), v3_sub(p2, p0))); }
 
+/* The barycentric coordinates b1, b2 (the weights of p1 and p2) of a point
+ * p in the triangle's plane: its sub-triangles' areas over the triangle's. */
+typedef struct {
+    real b1, b2;
+} TriangleBarycentrics;
+
+WP_FN TriangleBarycentrics triangle_barycentrics(vec3 p0, vec3 p1, vec3 p2, vec3 p) {
+    vec3 e1 = v3_sub(p1, p0), e2 = v3_sub(p2, p0), to_p = v3_sub(p, p0);
+    vec3 area = v3_cross(e1, e2);
+    real area_squared = v3_dot(area, area);
+    TriangleBarycentrics b;
+    b.b1 = v3_dot(v3_cross(to_p, e2), area) / area_squared;
+    b.b2 = v3_dot(v3_cross(e1, to_p), area) / area_squared;
+    return b;
+}
+
 /* The shading normal at point p of the triangle with geometric normal
  * `geometric`: the vertex normals n0, n1, n2 interpolated with p's
  * barycentric coordinates (from the areas p makes with the edges, stable for
@@ -114,11 +130,8 @@ WP_FN vec3 triangle_normal(vec3 p0, vec3 p1, vec3 p2) { return v3_normalize(v3_c
  * that the front of a triangle is the same for both. Vertex normals that are
  * all zero, or that cancel, give the geometric normal. */
 WP_FN vec3 triangle_shading_normal(vec3 p0, vec3 p1, vec3 p2, vec3 n0, vec3 n1, vec3 n2, vec3 geometric, vec3 p) {
-    vec3 e1 = v3_sub(p1, p0), e2 = v3_sub(p2, p0), to_p = v3_sub(p, p0);
-    vec3 area = v3_cross(e1, e2);
-    real area_squared = v3_dot(area, area);
-    real b1 = v3_dot(v3_cross(to_p, e2), area) / area_squared;
-    real b2 = v3_dot(v3_cross(e1, to_p), area) / area_squared;
+    TriangleBarycentrics b = triangle_barycentrics(p0, p1, p2, p);
+    real b1 = b.b1, b2 = b.b2;
     vec3 interpolated = v3_add(v3_add(v3_scale(n0, REAL(1.0) - b1 - b2), v3_scale(n1, b1)), v3_scale(n2, b2));
     real length = v3_length(interpolated);
     lane_int usable = length > REAL(0.0) && length < WP_INFINITY; /* false for NaN */

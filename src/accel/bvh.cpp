@@ -200,6 +200,7 @@ std::vector<SceneTriangle> scene_triangles(const Scene& scene) {
         for (const glm::uvec3& t : mesh.triangles) {
             SceneTriangle triangle{{mesh.positions[t.x], mesh.positions[t.y], mesh.positions[t.z]}};
             if (!mesh.normals.empty()) triangle.normals = {mesh.normals[t.x], mesh.normals[t.y], mesh.normals[t.z]};
+            if (!mesh.uvs.empty()) triangle.uvs = {mesh.uvs[t.x], mesh.uvs[t.y], mesh.uvs[t.z]};
             triangle.material = mesh.material;
             triangle.mesh = static_cast<int>(m);
             triangles.push_back(triangle);

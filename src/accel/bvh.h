@@ -34,6 +34,8 @@ BvhTree build_bvh(const std::vector<TrianglePositions>& triangles, int threads =
 struct SceneTriangle {
     TrianglePositions positions;
     std::array<glm::dvec3, 3> normals{};  // the vertices' shading normals; all zero: the mesh has none
+    // the vertices' uvs; a mesh without: (0, 0), (1, 0), (0, 1), whose interpolation is the barycentric coordinates
+    std::array<glm::dvec2, 3> uvs{glm::dvec2(0.0, 0.0), glm::dvec2(1.0, 0.0), glm::dvec2(0.0, 1.0)};
     int material = 0;
     int mesh = 0;
 };

@@ -42,6 +42,24 @@ std::vector<typename SharedMath<Real>::TriangleNormals> triangle_normals(const S
     return normals;
 }
 
+// The triangles' uvs in the tree's leaf order, for scenes with textures
+// (FeatureSet::textures).
+template <class Real>
+std::vector<typename SharedMath<Real>::TriangleUVs> triangle_uvs(const SceneBvh& bvh) {
+    std::vector<typename SharedMath<Real>::TriangleUVs> uvs;
+    uvs.reserve(bvh.triangles.size());
+    for (const SceneTriangle& t : bvh.triangles) {
+        typename SharedMath<Real>::TriangleUVs uv{};
+        for (int i = 0; i < 2; ++i) {
+            uv.uv0[i] = static_cast<Real>(t.uvs[0][i]);
+            uv.uv1[i] = static_cast<Real>(t.uvs[1][i]);
+            uv.uv2[i] = static_cast<Real>(t.uvs[2][i]);
+        }
+        uvs.push_back(uv);
+    }
+    return uvs;
+}
+
 template <class Real>
 struct TraversableBvh {
     std::vector<typename SharedMath<Real>::MeshTriangle> triangles;  // in the tree's leaf order

@@ -8,6 +8,7 @@
 #include <cctype>
 #include <cerrno>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -142,6 +143,42 @@ void write_image(const Image& image, const std::string& path) {
         else
             write_with_oiio(image, format, temporary, path);
     });
+}
+
+float decode_srgb(float encoded) {
+    double v = encoded;
+    return static_cast<float>(v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4));
+}
+
+Image read_texture_image(const std::string& path, bool raw, int max_side) {
+    if (std::FILE* file = std::fopen(path.c_str(), "rb")) {  // OpenImageIO would name the path; the caller does
+        std::fclose(file);
+    } else {
+        throw std::runtime_error(std::string("cannot open: ") + std::strerror(errno));
+    }
+    std::unique_ptr<OIIO::ImageInput> input = OIIO::ImageInput::open(path);
+    if (!input) throw std::runtime_error("cannot read the image: " + OIIO::geterror());
+    const OIIO::ImageSpec& spec = input->spec();
+    if (spec.nchannels == 2) throw std::runtime_error("2 channels (grey and alpha): give grey, RGB or RGBA");
+    if (spec.width > max_side || spec.height > max_side) {
+        throw std::runtime_error(std::to_string(spec.width) + " x " + std::to_string(spec.height) +
+                                 " texels, more than " + std::to_string(max_side) + " on a side");
+    }
+    const int channels = std::min(spec.nchannels, 3);
+    const std::size_t texels = static_cast<std::size_t>(spec.width) * static_cast<std::size_t>(spec.height);
+    std::vector<float> stored(texels * static_cast<std::size_t>(channels));
+    if (!input->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, stored.data()))
+        throw std::runtime_error("cannot read the image: " + input->geterror());
+    const bool decode = !raw && !spec.format.is_floating_point();
+    Image image;
+    image.width = spec.width;
+    image.height = spec.height;
+    image.rgb.resize(texels * 3);
+    for (std::size_t i = 0; i < texels * 3; ++i) {
+        const float value = stored[channels == 1 ? i / 3 : i];
+        image.rgb[i] = decode ? decode_srgb(value) : value;
+    }
+    return image;
 }
 
 Image read_image(const std::string& path) {

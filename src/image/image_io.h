@@ -25,6 +25,18 @@ void write_image(const Image& image, const std::string& path);
 // files are not decoded from sRGB: value / 255). Throws std::runtime_error.
 Image read_image(const std::string& path);
 
+// A texture's image as linear RGB floats, row 0 the file's top row: files
+// of integer samples (PNG, JPEG: sRGB-encoded) are decoded from sRGB
+// unless `raw`, as Mitsuba 3's bitmap does; float files (EXR, HDR) are read
+// as stored. One channel is grey (copied to all three); beyond three, the
+// rest (alpha) is left out. Throws std::runtime_error (the file unreadable,
+// two channels, a side over `max_side`).
+Image read_texture_image(const std::string& path, bool raw, int max_side);
+
+// The inverse of the sRGB transfer function (IEC 61966-2-1): the linear
+// value of an encoded one in [0, 1].
+float decode_srgb(float encoded);
+
 // The sRGB transfer function (IEC 61966-2-1) of a linear value clamped to
 // [0, 1], rounded to the nearest 8-bit code.
 std::uint8_t encode_srgb8(float linear);

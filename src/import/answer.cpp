@@ -88,14 +88,18 @@ class AnswerReader {
     std::string_view rest_;
 };
 
+// A mesh's flags.
+constexpr std::uint32_t kHasNormals = 1u, kHasUvs = 2u;
+
 // ---- writing ----
 
 void put_mesh(AnswerWriter& out, const ImportedMesh& mesh) {
     out.put_count(mesh.positions.size());
-    out.put_count(mesh.has_normals ? 1 : 0);
+    out.put_count((mesh.has_normals ? kHasNormals : 0u) | (mesh.has_uvs ? kHasUvs : 0u));
     out.put_count(mesh.triangles.size());
     out.put_array(mesh.positions);
     if (mesh.has_normals) out.put_array(mesh.normals);
+    if (mesh.has_uvs) out.put_array(mesh.uvs);
     out.put_array(mesh.triangles);
 }
 
@@ -112,12 +116,14 @@ void put_node(AnswerWriter& out, const ImportedNode& node) {
 ImportedMesh take_mesh(AnswerReader& in, const std::string& what) {
     ImportedMesh mesh;
     const std::uint32_t vertices = in.take_count(what + "'s vertex count");
-    const std::uint32_t has_normals = in.take_count(what + "'s normals flag");
-    if (has_normals > 1) AnswerReader::fail(what + "'s normals flag is " + std::to_string(has_normals));
-    mesh.has_normals = has_normals == 1;
+    const std::uint32_t flags = in.take_count(what + "'s flags");
+    if (flags > (kHasNormals | kHasUvs)) AnswerReader::fail(what + "'s flags are " + std::to_string(flags));
+    mesh.has_normals = (flags & kHasNormals) != 0;
+    mesh.has_uvs = (flags & kHasUvs) != 0;
     const std::uint32_t triangles = in.take_count(what + "'s triangle count");
     mesh.positions = in.take_array<glm::vec3>(vertices, what + "'s positions");
     if (mesh.has_normals) mesh.normals = in.take_array<glm::vec3>(vertices, what + "'s normals");
+    if (mesh.has_uvs) mesh.uvs = in.take_array<glm::vec2>(vertices, what + "'s uvs");
     mesh.triangles = in.take_array<glm::uvec3>(triangles, what + "'s triangles");
     return mesh;
 }

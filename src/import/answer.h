@@ -8,8 +8,9 @@
 //   "WPIMPORT" then u32 version (kAnswerVersion), u32 kind:
 //   kind 1 (failure): u32 length (1 to kMaxFailureLength), that many bytes of text;
 //   kind 2 (scene):   u32 mesh count, then each mesh:
-//                       u32 vertices, u32 has_normals (0 or 1), u32 triangles,
+//                       u32 vertices, u32 flags (bit 0: normals, bit 1: uvs), u32 triangles,
 //                       f32 x, y, z per vertex, the normals likewise if it has them,
+//                       f32 u, v per vertex if it has uvs,
 //                       u32 i0, i1, i2 per triangle;
 //                     u32 node count, then each node (depth first, the root first):
 //                       u32 parent (0xffffffff for the root only, else below the node's own index),
@@ -28,7 +29,7 @@
 
 namespace wp {
 
-inline constexpr std::uint32_t kAnswerVersion = 1;
+inline constexpr std::uint32_t kAnswerVersion = 2;
 inline constexpr std::size_t kMaxFailureLength = 4096;
 
 // The helper's file descriptors (import/helper/main.cpp): the requests it

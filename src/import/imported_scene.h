@@ -6,6 +6,7 @@
 
 #include <array>
 #include <cstdint>
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 #include <string>
 #include <vector>
@@ -17,6 +18,8 @@ struct ImportedMesh {
     bool has_normals = false;
     std::vector<glm::vec3> normals;  // one per position if has_normals, else empty
     std::vector<glm::uvec3> triangles;
+    bool has_uvs = false;
+    std::vector<glm::vec2> uvs;  // the file's first texture coordinates, one per position if has_uvs, else empty
 };
 
 // A node of the file's node graph. Nodes are listed depth first, each

@@ -29,6 +29,7 @@ class Hasher {
     }
     Hasher& add(const glm::dvec3& v) { return add(v.x).add(v.y).add(v.z); }
     Hasher& add(const glm::uvec3& v) { return add(v.x).add(v.y).add(v.z); }
+    Hasher& add(const glm::dvec2& v) { return add(v.x).add(v.y); }
     template <class T>
     Hasher& add_all(const std::vector<T>& values) {
         add(values.size());
@@ -54,6 +55,13 @@ void add_material(Hasher& h, const Material& m) {
         m.type == MaterialType::RoughPlastic) {
         h.add(m.distribution).add(m.alpha_u).add(m.alpha_v);
     }
+    if (m.albedo_texture != kNoTexture) h.add(m.albedo_texture);
+}
+
+// A texture by what it holds (its texels, not its file's name or date).
+void add_texture(Hasher& h, const Texture& t) {
+    h.add(t.type).add(t.width).add(t.height).add_all(t.texels).add(t.filter).add(t.wrap).add(t.color0).add(t.color1);
+    for (double m : t.to_uv) h.add(m);
 }
 
 std::uint64_t scene_hash(const Scene& scene) {
@@ -63,6 +71,10 @@ std::uint64_t scene_hash(const Scene& scene) {
     // Only a filter other than the box is hashed: films from before filters keep their hash.
     if (c.filter.type != FilterType::Box) h.add(c.filter.type).add(c.filter.radius).add(c.filter.stddev);
     h.add(scene.background);
+    if (!scene.textures.empty()) {  // scenes without textures hash as before
+        h.add(scene.textures.size());
+        for (const Texture& t : scene.textures) add_texture(h, t);
+    }
     h.add(scene.materials.size());
     for (const Material& m : scene.materials) add_material(h, m);
     h.add(scene.spheres.size());
@@ -72,7 +84,10 @@ std::uint64_t scene_hash(const Scene& scene) {
     h.add(scene.quads.size());
     for (const Quad& q : scene.quads) h.add(q.corner).add(q.edge1).add(q.edge2).add(q.material);
     h.add(scene.meshes.size());
-    for (const Mesh& m : scene.meshes) h.add_all(m.positions).add_all(m.normals).add_all(m.triangles).add(m.material);
+    for (const Mesh& m : scene.meshes) {
+        h.add_all(m.positions).add_all(m.normals).add_all(m.triangles).add(m.material);
+        if (!m.uvs.empty()) h.add_all(m.uvs);  // meshes without uvs hash as before
+    }
     return h.value();
 }
 

@@ -29,6 +29,7 @@ std::vector<std::pair<const char*, const char*>> features_in_use(const FeatureSe
     add(f.thin_dielectric, "thindielectric", "WP_HAS_THIN_DIELECTRIC");
     add(f.plastic, "plastic", "WP_HAS_PLASTIC");
     add(f.rough_plastic, "roughplastic", "WP_HAS_ROUGH_PLASTIC");
+    add(f.textures, "textures", "WP_HAS_TEXTURES");
     add(f.emitter_material, "emitter", nullptr);
     add(f.sphere_lights, "sphere-lights", "WP_HAS_SPHERE_LIGHTS");
     add(f.quad_lights, "quad-lights", "WP_HAS_QUAD_LIGHTS");

@@ -9,6 +9,7 @@
 #include "scene/mesh_lights.h"
 #include "scene/pixel_filter.h"
 #include "scene/plastic_constants.h"
+#include "scene/texture_layout.h"
 
 namespace wp {
 namespace {
@@ -20,6 +21,10 @@ static_assert(sizeof(DevicePlane) == 7 * 4, "DevicePlane must match its OpenCL C
 static_assert(sizeof(DeviceQuad) == 16 * 4, "DeviceQuad must match its OpenCL C layout");
 static_assert(sizeof(DeviceMaterial) == 29 * 4, "DeviceMaterial must match its OpenCL C layout");
 static_assert(sizeof(DeviceLight) == 4 * 4, "DeviceLight must match its OpenCL C layout");
+static_assert(sizeof(MaterialTextures) == 1 * 4, "MaterialTextures must match its OpenCL C layout");
+static_assert(sizeof(SharedMath<float>::TextureDescriptor) == 18 * 4,
+              "TextureDescriptor must match its OpenCL C layout");
+static_assert(sizeof(SharedMath<float>::TriangleUVs) == 6 * 4, "TriangleUVs must match its OpenCL C layout");
 static_assert(sizeof(SharedMath<float>::MeshTriangle) == 11 * 4, "MeshTriangle must match its OpenCL C layout");
 static_assert(sizeof(SharedMath<float>::BvhNode) == 64, "BvhNode must match its OpenCL C layout");
 
@@ -110,6 +115,7 @@ void flatten_meshes(const Scene& scene, SceneLayout& layout) {
     SceneBvh bvh = build_scene_bvh(scene);
     TraversableBvh<float> flat = traversable_bvh<float>(bvh);
     if (scene.features().shading_normals) layout.triangle_normals = triangle_normals<float>(bvh);
+    if (scene.features().textures) layout.triangle_uvs = triangle_uvs<float>(bvh);
     layout.triangles = std::move(flat.triangles);
     layout.bvh_nodes = std::move(flat.nodes);
     MeshSummary& summary = layout.meshes;
@@ -121,7 +127,33 @@ void flatten_meshes(const Scene& scene, SceneLayout& layout) {
     summary.bvh_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
+// The texture table, the texels and the materials' textured parameters.
+void add_textures(const Scene& scene, SceneLayout& layout) {
+    TextureLayout<float> textures = texture_layout<float>(scene);
+    for (std::uint32_t albedo : textures.albedo) layout.material_textures.push_back({albedo});
+    layout.textures = std::move(textures.descriptors);
+    layout.texels = std::move(textures.texels);
+    const std::size_t bytes = layout.textures.size() * sizeof(layout.textures[0]) +
+                              layout.texels.size() * sizeof(float) +
+                              layout.triangle_uvs.size() * sizeof(SharedMath<float>::TriangleUVs);
+    layout.textures_summary = describe_textures(scene, bytes);
+}
+
 }  // namespace
+
+std::string describe_textures(const Scene& scene, std::size_t device_bytes) {
+    if (scene.textures.empty()) return "";
+    std::size_t bitmaps = 0, texels = 0;
+    for (const Texture& t : scene.textures) {
+        bitmaps += t.type == TextureType::Bitmap;
+        texels += t.texels.size() / 3;
+    }
+    std::ostringstream out;
+    out << scene.textures.size() << (scene.textures.size() == 1 ? " texture (" : " textures (") << bitmaps
+        << (bitmaps == 1 ? " bitmap, " : " bitmaps, ") << scene.textures.size() - bitmaps << " checkerboard), "
+        << texels << " texels, " << (device_bytes + 1023) / 1024 << " KiB of device memory";
+    return out.str();
+}
 
 SceneLayout flatten_scene(const Scene& scene) {
     SceneLayout layout;
@@ -179,6 +211,7 @@ SceneLayout flatten_scene(const Scene& scene) {
         d.transmittance_offset = plastic.transmittance_offset;
         layout.materials.push_back(d);
     }
+    add_textures(scene, layout);
     MeshLightTriangles mesh_lights = mesh_light_triangles(scene);
     for (std::size_t i = 0; i < scene.lights.size(); ++i) {
         const Light& light = scene.lights[i];
@@ -216,7 +249,8 @@ std::string MeshSummary::describe() const {
     return out.str();
 }
 
-DeviceScene::DeviceScene(const cl::Context& context, const SceneLayout& layout) : meshes_(layout.meshes) {
+DeviceScene::DeviceScene(const cl::Context& context, const SceneLayout& layout)
+    : meshes_(layout.meshes), textures_(layout.textures_summary) {
     buffers_[arg::Scene::scene] = upload(context, std::vector<SceneHeader>{layout.header});
     buffers_[arg::Scene::spheres] = upload(context, layout.spheres);
     buffers_[arg::Scene::planes] = upload(context, layout.planes);
@@ -230,6 +264,10 @@ DeviceScene::DeviceScene(const cl::Context& context, const SceneLayout& layout) 
     buffers_[arg::Scene::light_triangles] = upload(context, layout.light_triangles);
     buffers_[arg::Scene::light_triangle_cdf] = upload(context, layout.light_triangle_cdf);
     buffers_[arg::Scene::roughplastic_transmittance] = upload(context, layout.roughplastic_transmittance);
+    buffers_[arg::Scene::material_textures] = upload(context, layout.material_textures);
+    buffers_[arg::Scene::textures] = upload(context, layout.textures);
+    buffers_[arg::Scene::texels] = upload(context, layout.texels);
+    buffers_[arg::Scene::triangle_uvs] = upload(context, layout.triangle_uvs);
 }
 
 void DeviceScene::bind(cl::Kernel& kernel) const {

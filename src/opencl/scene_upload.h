@@ -44,10 +44,19 @@ struct SceneLayout {
     std::vector<SharedMath<float>::MeshTriangle> light_triangles;  // scene/mesh_lights.h
     std::vector<float> light_triangle_cdf;
     std::vector<float> roughplastic_transmittance;  // scene/plastic_constants.h
+    std::vector<device_layout::MaterialTextures> material_textures;  // parallel to materials
+    std::vector<SharedMath<float>::TextureDescriptor> textures;
+    std::vector<float> texels;
+    std::vector<SharedMath<float>::TriangleUVs> triangle_uvs;  // parallel to triangles, if FeatureSet::textures
     MeshSummary meshes;
+    std::string textures_summary;  // describe_textures
 };
 
 SceneLayout flatten_scene(const Scene& scene);
+
+// What --explain says of the textures: "2 textures (1 bitmap, 1
+// checkerboard), 65536 texels, 768 KiB of device memory", or "".
+std::string describe_textures(const Scene& scene, std::size_t device_bytes);
 
 // The scene's buffers on the device. Empty arrays get one zeroed element
 // (OpenCL has no empty buffers); the counts say what is real.
@@ -59,10 +68,12 @@ class DeviceScene {
     // The scene header alone (kernels that take it without the rest).
     const cl::Buffer& header() const { return buffers_[arg::Scene::scene]; }
     const MeshSummary& meshes() const { return meshes_; }
+    const std::string& textures() const { return textures_; }
 
  private:
     std::array<cl::Buffer, arg::Scene::count> buffers_;
     MeshSummary meshes_;
+    std::string textures_;
 };
 
 }  // namespace wp

@@ -87,7 +87,8 @@ struct SurfacePoint {
     Vec3<Real> normal;   // geometric: outward, plane normal, or edge1 x edge2
     Vec3<Real> shading;  // on normal's side: a triangle's interpolated vertex normal, else normal
     int material;
-    Real error;  // bound on the point's distance from the surface (shared/hit_point.h)
+    Real error;                                 // bound on the point's distance from the surface (shared/hit_point.h)
+    typename SharedMath<Real>::TextureUV uv{};  // with textures (shared/texture.h); (0, 0) on planes
 };
 
 // A hit as the Embree intersector reports it (WP_SHAPE_* is ShapeType's order).
@@ -148,8 +149,10 @@ bool occluded(const ReferenceScene<Real>& scene, const Ray<Real>& ray, Real dist
                                                     ray.direction, distance, 1, &triangle) < distance;
 }
 
+// Where the ray met `hit`'s shape, its uv left (0, 0).
 template <class Real>
-SurfacePoint<Real> surface_at(const ReferenceScene<Real>& scene, const Ray<Real>& ray, const ShapeHit<Real>& hit) {
+SurfacePoint<Real> untextured_surface_at(const ReferenceScene<Real>& scene, const Ray<Real>& ray,
+                                         const ShapeHit<Real>& hit) {
     using M = SharedMath<Real>;
     auto with_material = [](const typename M::HitPoint& h, int material) {
         return SurfacePoint<Real>{h.point, h.normal, h.normal, material, h.error};
@@ -182,6 +185,50 @@ SurfacePoint<Real> surface_at(const ReferenceScene<Real>& scene, const Ray<Real>
         }
     }
     return {};
+}
+
+// The uv of `x`, a hit on `hit`'s shape (shared/texture.h).
+template <class Real>
+typename SharedMath<Real>::TextureUV surface_uv(const ReferenceScene<Real>& scene, const ShapeHit<Real>& hit,
+                                                const SurfacePoint<Real>& x) {
+    using M = SharedMath<Real>;
+    switch (hit.shape) {
+        case ShapeType::Sphere:
+            return M::sphere_uv(x.normal);
+        case ShapeType::Quad: {
+            const auto& q = scene.quads[hit.index];
+            return M::quad_uv(q.corner, q.edge1, q.edge2, x.point);
+        }
+        case ShapeType::Mesh: {
+            const auto& tri = scene.triangles[hit.index];
+            const auto& uv = scene.triangle_uvs[hit.index];
+            typename M::TriangleBarycentrics b = M::triangle_barycentrics(
+                M::triangle_vertex(tri.p0), M::triangle_vertex(tri.p1), M::triangle_vertex(tri.p2), x.point);
+            return M::triangle_uv({uv.uv0[0], uv.uv0[1]}, {uv.uv1[0], uv.uv1[1]}, {uv.uv2[0], uv.uv2[1]}, b.b1, b.b2);
+        }
+        default:
+            return {Real(0), Real(0)};
+    }
+}
+
+template <class Real>
+SurfacePoint<Real> surface_at(const ReferenceScene<Real>& scene, const Ray<Real>& ray, const ShapeHit<Real>& hit) {
+    SurfacePoint<Real> x = untextured_surface_at(scene, ray, hit);
+    if (scene.textures) x.uv = surface_uv(scene, hit, x);
+    return x;
+}
+
+// The material at surface x with its textured parameters looked up at x's uv (shared/texture.h).
+template <class Real>
+typename ReferenceScene<Real>::SurfaceMaterial material_at(const ReferenceScene<Real>& scene,
+                                                           const SurfacePoint<Real>& x) {
+    using M = SharedMath<Real>;
+    typename ReferenceScene<Real>::SurfaceMaterial material = scene.materials[x.material];
+    if (!scene.textures) return material;
+    std::uint32_t albedo = scene.albedo_textures[x.material];
+    if (albedo != WP_NO_TEXTURE)
+        material.albedo = M::texture_value(scene.texture_table[albedo], scene.texels.data(), x.uv);
+    return material;
 }
 
 // A point sampled on a light, with the material that emits there and the
@@ -441,7 +488,7 @@ Vec3<Real> trace_path(const ReferenceScene<Real>& scene, Ray<Real> ray, const Sa
         }
         travelled += hit.t;
         SurfacePoint<Real> surface = surface_at(scene, ray, hit);
-        const auto& material = scene.materials[surface.material];
+        const auto material = material_at(scene, surface);
         typename M::FacingNormals facing = M::normals_facing(ray.direction, surface.normal, surface.shading);
         const bool front = facing.front;
         const vec3 &nf = facing.nf, &ns = facing.ns;

@@ -94,7 +94,7 @@ void trace_photon(const ReferenceScene<Real>& scene, const PhotonRng<Real>& rng,
         ShapeHit<Real> hit = closest_hit(scene, ray);
         if (!hit.found()) break;
         SurfacePoint<Real> surface = surface_at(scene, ray, hit);
-        const auto& material = scene.materials[surface.material];
+        const auto material = material_at(scene, surface);
         if (material.type == MaterialType::Emitter) break;  // reflects nothing
         if (material.type == MaterialType::Diffuse)
             deposit(surface.point, ray.direction, photon.flux * throughput, depth);

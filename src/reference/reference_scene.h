@@ -15,6 +15,7 @@
 #include "scene/pixel_filter.h"
 #include "scene/plastic_constants.h"
 #include "scene/scene.h"
+#include "scene/texture_layout.h"
 
 namespace wp::reference {
 
@@ -74,6 +75,7 @@ struct ReferenceScene {
     bool mis;                 // with multiple importance sampling (FeatureSet::mis)
     bool shading_normals;     // some mesh shades with vertex normals (FeatureSet::shading_normals)
     bool uniform_hemisphere;  // diffuse vertices sample the uniform hemisphere (render.hemisphere)
+    bool textures;            // some material parameter is textured: hits compute their uv (FeatureSet::textures)
     vec3 background;
     std::vector<SurfaceMaterial> materials;
     std::vector<SphereShape> spheres;
@@ -88,6 +90,10 @@ struct ReferenceScene {
     std::vector<typename M::MeshTriangle> light_triangles;  // mesh lights' (scene/mesh_lights.h)
     std::vector<Real> light_triangle_cdf;
     std::vector<Real> roughplastic_transmittance;  // scene/plastic_constants.h
+    std::vector<typename M::Texture> texture_table;  // scene/texture_layout.h
+    std::vector<Real> texels;
+    std::vector<std::uint32_t> albedo_textures;         // per material: its albedo's texture, or WP_NO_TEXTURE
+    std::vector<typename M::TriangleUVs> triangle_uvs;  // parallel to triangles, if textures
 
     // Throws std::invalid_argument for Intersector::Embree in double.
     explicit ReferenceScene(const Scene& scene, Intersector intersector = Intersector::Bvh)
@@ -96,6 +102,7 @@ struct ReferenceScene {
           mis(scene.features().mis),
           shading_normals(scene.features().shading_normals),
           uniform_hemisphere(scene.render.hemisphere == Hemisphere::Uniform),
+          textures(scene.features().textures),
           background(scene.background) {
         camera = convert_camera(scene.camera);
         add_materials(scene);
@@ -105,6 +112,7 @@ struct ReferenceScene {
         add_meshes(scene);
         if (intersector == Intersector::Embree) add_embree(scene);
         add_lights(scene);
+        add_textures(scene);
         for (double c : scene.light_cdf) light_cdf.push_back(Real(c));
     }
 
@@ -171,11 +179,28 @@ struct ReferenceScene {
         }
     }
 
+    // The texture table as the kernels' (texture_layout), each texture's fields as shared/texture.h reads them.
+    void add_textures(const Scene& scene) {
+        TextureLayout<Real> layout = texture_layout<Real>(scene);
+        for (const auto& d : layout.descriptors) {
+            typename M::Texture t{};
+            t.type = d.type, t.filter = d.filter, t.wrap = d.wrap;
+            t.width = d.width, t.height = d.height, t.first_texel = d.first_texel;
+            for (int i = 0; i < 6; ++i) t.to_uv[i] = d.to_uv[i];
+            t.color0 = vec3(d.color0[0], d.color0[1], d.color0[2]);
+            t.color1 = vec3(d.color1[0], d.color1[1], d.color1[2]);
+            texture_table.push_back(t);
+        }
+        texels = std::move(layout.texels);
+        albedo_textures = std::move(layout.albedo);
+    }
+
     // The same tree and leaf order as the kernels', with the vertices in Real.
     void add_meshes(const Scene& scene) {
         SceneBvh bvh = build_scene_bvh(scene);
         TraversableBvh<Real> flat = traversable_bvh<Real>(bvh);
         if (shading_normals) triangle_normals = wp::triangle_normals<Real>(bvh);
+        if (textures) triangle_uvs = wp::triangle_uvs<Real>(bvh);
         triangles = std::move(flat.triangles);
         bvh_nodes = std::move(flat.nodes);
     }

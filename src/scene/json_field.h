@@ -35,6 +35,7 @@ class JsonField {
     bool is_number() const { return value_.is_number(); }
     bool is_array() const { return value_.is_array(); }
     bool is_string() const { return value_.is_string(); }
+    bool is_object() const { return value_.is_object(); }
 
     // Objects. `allow_only_keys` also checks that this is an object.
     void allow_only_keys(std::initializer_list<std::string_view> keys) const;

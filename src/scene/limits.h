@@ -20,6 +20,11 @@ inline constexpr std::size_t kMaxTriangles = std::size_t{1} << 29;
 // The widest pixel filter, in pixels: a tent's radius, a gaussian's window
 // (4 standard deviations).
 inline constexpr double kMaxFilterRadius = 16.0;
+// A bitmap texture's side, and the texels of all a scene's textures
+// together (float RGB: 768 MiB of device memory; texel indices stay far
+// inside 32 bits).
+inline constexpr int kMaxTextureSide = 16384;
+inline constexpr std::size_t kMaxTextureTexels = std::size_t{1} << 26;
 
 // The smallest microfacet roughness alpha: D's peak 1 / (pi alpha^2) then
 // stays far inside float's range (3.2e7), and the lobe is narrower than

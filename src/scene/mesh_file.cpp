@@ -1,6 +1,8 @@
 #include "scene/mesh_file.h"
 
+#include <algorithm>
 #include <array>
+#include <cctype>
 #include <cmath>
 #include <cstdint>
 #include <glm/geometric.hpp>
@@ -20,6 +22,11 @@ glm::dvec3 to_dvec3(const glm::vec3& v) { return {v.x, v.y, v.z}; }
 // Checked again on what the import process sent (import/mesh_invariants.h).
 void check_imported_mesh(const ImportedMesh& mesh) {
     for (const glm::vec3& position : mesh.positions) check_finite_vertex(to_dvec3(position));
+    for (const glm::vec2& uv : mesh.uvs) {
+        if (!std::isfinite(uv.x) || !std::isfinite(uv.y))
+            throw MeshFileError("texture coordinate (" + format_number(uv.x) + ", " + format_number(uv.y) +
+                                ") is not finite");
+    }
     for (const glm::uvec3& triangle : mesh.triangles) {
         const std::uint32_t corners[] = {triangle.x, triangle.y, triangle.z};
         check_face(corners, mesh.positions.size());
@@ -62,6 +69,7 @@ class MeshMerger {
         }
         check_objects_found();
         finish_normals();
+        if (!all_have_uvs_) mesh_.uvs.clear();  // uvs only where every vertex has one
         if (mesh_.triangles.empty()) throw MeshFileError(empty_message());
         return std::move(mesh_);
     }
@@ -103,6 +111,7 @@ class MeshMerger {
 
     void add_vertices(const ImportedMesh& source, const glm::dmat4& to_world, const glm::dmat3& normal_to_world) {
         all_have_normals_ &= source.has_normals;
+        all_have_uvs_ &= source.has_uvs;
         for (std::size_t v = 0; v < source.positions.size(); ++v) {
             glm::dvec3 position(to_world * glm::dvec4(to_dvec3(source.positions[v]), 1.0));
             if (!within_scene_magnitude(position)) {
@@ -111,6 +120,7 @@ class MeshMerger {
             }
             mesh_.positions.push_back(position);
             if (source.has_normals) mesh_.normals.push_back(normal_to_world * to_dvec3(source.normals[v]));
+            if (source.has_uvs) mesh_.uvs.emplace_back(source.uvs[v].x, source.uvs[v].y);
         }
     }
 
@@ -161,6 +171,7 @@ class MeshMerger {
     std::vector<bool> found_;
     std::vector<std::string> object_names_;
     bool all_have_normals_ = true;
+    bool all_have_uvs_ = true;
     Mesh mesh_;
 };
 
@@ -171,8 +182,19 @@ Mesh mesh_from_import(const ImportedScene& imported, const MeshFileOptions& opti
     return MeshMerger(imported, options).merge();
 }
 
+void flip_obj_uvs(const std::filesystem::path& path, ImportedScene& scene) {
+    std::string extension = path.extension().string();
+    std::transform(extension.begin(), extension.end(), extension.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    if (extension != ".obj") return;
+    for (ImportedMesh& mesh : scene.meshes)
+        for (glm::vec2& uv : mesh.uvs) uv.y = 1.0f - uv.y;
+}
+
 Mesh read_mesh_file(const std::filesystem::path& path, const MeshFileOptions& options, MeshImporter& importer) {
-    return mesh_from_import(importer.import(path), options);
+    ImportedScene imported = importer.import(path);
+    flip_obj_uvs(path, imported);
+    return mesh_from_import(imported, options);
 }
 
 }  // namespace wp

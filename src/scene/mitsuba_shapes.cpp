@@ -36,6 +36,7 @@ ImportedMesh merge_imported(const ImportedScene& scene, bool& exact) {
     ImportedMesh merged;
     exact = true;
     merged.has_normals = true;
+    merged.has_uvs = true;
     std::vector<glm::dmat4> node_to_file(scene.nodes.size());
     for (std::size_t n = 0; n < scene.nodes.size(); ++n) {
         const ImportedNode& node = scene.nodes[n];
@@ -50,6 +51,8 @@ ImportedMesh merge_imported(const ImportedScene& scene, bool& exact) {
             const ImportedMesh& mesh = scene.meshes[m];
             const std::uint32_t base = std::uint32_t(merged.positions.size());
             merged.has_normals &= mesh.has_normals;
+            merged.has_uvs &= mesh.has_uvs;
+            if (mesh.has_uvs) merged.uvs.insert(merged.uvs.end(), mesh.uvs.begin(), mesh.uvs.end());
             for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
                 if (identity) {
                     merged.positions.push_back(mesh.positions[v]);
@@ -65,6 +68,10 @@ ImportedMesh merge_imported(const ImportedScene& scene, bool& exact) {
     if (!merged.has_normals || merged.positions.empty()) {
         merged.has_normals = false;
         merged.normals.clear();
+    }
+    if (!merged.has_uvs || merged.positions.empty()) {
+        merged.has_uvs = false;
+        merged.uvs.clear();
     }
     return merged;
 }

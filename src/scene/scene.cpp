@@ -56,6 +56,7 @@ FeatureSet Scene::features() const {
         f.thin_dielectric |= m.type == MaterialType::ThinDielectric;
         f.plastic |= m.type == MaterialType::Plastic;
         f.rough_plastic |= m.type == MaterialType::RoughPlastic;
+        f.textures |= m.albedo_texture != kNoTexture;
     }
     for (const Light& light : lights) {
         f.sphere_lights |= light.shape == ShapeType::Sphere;

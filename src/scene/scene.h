@@ -3,8 +3,10 @@
 // float kernels keep full precision near the viewer wherever the scene sits.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 #include <stdexcept>
 #include <string>
@@ -83,6 +85,29 @@ enum class MaterialType {
     RoughPlastic
 };
 
+inline constexpr int kNoTexture = -1;
+
+// The texture kinds (docs/scene-format.md, "textures"), Mitsuba 3's bitmap
+// and checkerboard, with its parameters and their defaults.
+enum class TextureType { Bitmap, Checkerboard };
+enum class TextureFilter { Bilinear, Nearest };
+enum class TextureWrap { Repeat, Mirror, Clamp };
+
+struct Texture {
+    std::string name;
+    TextureType type = TextureType::Bitmap;
+    // bitmap: the file as the scene names it (for messages), its size and its
+    // texels in linear RGB, row by row, row 0 at v = 0 (the image's top row)
+    std::string file;
+    int width = 0, height = 0;
+    std::vector<float> texels;
+    TextureFilter filter = TextureFilter::Bilinear;
+    TextureWrap wrap = TextureWrap::Repeat;
+    glm::dvec3 color0{0.4}, color1{0.2};  // checkerboard
+    // u' = to_uv[0] u + to_uv[1] v + to_uv[2], v' = to_uv[3] u + to_uv[4] v + to_uv[5]
+    std::array<double, 6> to_uv{1.0, 0.0, 0.0, 0.0, 1.0, 0.0};
+};
+
 // The microfacet distributions of the rough materials (kernels/shared/materials/microfacet.h).
 enum class Microfacet { Beckmann, GGX };
 
@@ -104,6 +129,8 @@ struct Material {
     Microfacet distribution = Microfacet::Beckmann;
     double alpha_u = 0.1, alpha_v = 0.1;
     bool nonlinear = false;  // plastic and roughplastic: Mitsuba's `nonlinear` (colours saturate under the coat)
+    // Textured parameters: an index into Scene::textures, or kNoTexture for the constant above.
+    int albedo_texture = kNoTexture;
     bool emits() const;
 };
 
@@ -132,6 +159,7 @@ struct Mesh {
     std::string file;                   // as the scene names it, for messages
     std::vector<glm::dvec3> positions;  // finite
     std::vector<glm::dvec3> normals;    // one per position, unit length; empty: face normals only
+    std::vector<glm::dvec2> uvs;        // one per position (the file's first set); empty: none
     std::vector<glm::uvec3> triangles;  // indices into positions, none of zero area; the front is
                                         // the side of (p1 - p0) x (p2 - p0) (counter-clockwise)
     int material = 0;
@@ -155,6 +183,7 @@ struct FeatureSet {
     bool plastic = false, rough_plastic = false;
     bool shading_normals = false;  // a mesh shades with its vertex normals
     bool pixel_filter = false;     // the camera's filter is a tent or a gaussian, not the box
+    bool textures = false;         // a material parameter is textured: hits compute their uv
     bool sphere_lights = false, quad_lights = false, mesh_lights = false;
     bool background = false;  // a non-black background
     bool nee = false;         // next-event estimation runs: render.nee is on and the scene has a light
@@ -188,6 +217,7 @@ struct Scene {
     RenderSettings render;
     glm::dvec3 background{0.0};
     glm::dvec3 world_offset{0.0};  // camera position in the file's coordinates
+    std::vector<Texture> textures;
     std::vector<Material> materials;
     std::vector<Sphere> spheres;
     std::vector<Plane> planes;

@@ -10,6 +10,7 @@
 #include "scene/json_syntax.h"
 #include "scene/scene.h"
 #include "scene/scene_sections.h"
+#include "scene/texture_section.h"
 
 namespace wp {
 namespace {
@@ -64,7 +65,7 @@ void finish_scene(Scene& scene) {
 Scene parse_scene(const std::string& json_text, const std::string& source_name, const MeshImportLimits& mesh_import) {
     const nlohmann::json document = parse_json_strictly(json_text, source_name);
     const JsonField root = root_field(document, source_name);
-    root.allow_only_keys({"camera", "render", "background", "materials", "shapes"});
+    root.allow_only_keys({"camera", "render", "background", "textures", "materials", "shapes"});
 
     Scene scene;
     scene.source = source_name;
@@ -73,7 +74,9 @@ Scene parse_scene(const std::string& json_text, const std::string& source_name, 
     if (auto background = root.optional_member("background")) {
         scene.background = background->vec3_in(0.0, kMaxSceneMagnitude);
     }
-    if (auto materials = root.optional_member("materials")) scene.materials = read_materials(*materials);
+    if (auto textures = root.optional_member("textures")) scene.textures = read_textures(*textures, source_name);
+    if (auto materials = root.optional_member("materials"))
+        scene.materials = read_materials(*materials, scene.textures);
     if (auto shapes = root.optional_member("shapes")) {
         MeshImporter importer(mesh_import);
         importer.expect(named_mesh_files(document.at("shapes"), source_name));

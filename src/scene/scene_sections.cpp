@@ -13,6 +13,7 @@
 #include "scene/limits.h"
 #include "scene/mesh_file.h"
 #include "scene/named_media.h"
+#include "scene/texture_section.h"
 
 namespace wp {
 namespace {
@@ -81,9 +82,9 @@ bool read_two_sided(const JsonField& field) {
     return two_sided && two_sided->boolean();
 }
 
-void read_diffuse(const JsonField& field, Material& material) {
+void read_diffuse(const JsonField& field, Material& material, const std::vector<Texture>& textures) {
     field.allow_only_keys({"type", "albedo", "emission", "two_sided"});
-    material.albedo = read_reflectivity(field.member("albedo"));
+    material.albedo = read_textured_reflectance(field.member("albedo"), textures, &material.albedo_texture);
     if (auto emission = field.optional_member("emission")) material.emission = read_radiance(*emission);
     material.two_sided = read_two_sided(field);
 }
@@ -258,14 +259,14 @@ void read_emitter(const JsonField& field, Material& material) {
     material.two_sided = read_two_sided(field);
 }
 
-Material read_material(const std::string& name, const JsonField& field) {
+Material read_material(const std::string& name, const JsonField& field, const std::vector<Texture>& textures) {
     Material material;
     material.name = name;
     JsonField type_field = field.member("type");
     std::string type = type_field.string();
     if (type == "diffuse") {
         material.type = MaterialType::Diffuse;
-        read_diffuse(field, material);
+        read_diffuse(field, material, textures);
     } else if (type == "mirror") {
         material.type = MaterialType::Mirror;
         read_mirror(field, material);
@@ -581,9 +582,10 @@ RenderSettings read_render(const JsonField& field) {
     return render;
 }
 
-std::vector<Material> read_materials(const JsonField& field) {
+std::vector<Material> read_materials(const JsonField& field, const std::vector<Texture>& textures) {
     std::vector<Material> materials;
-    for (const auto& entry : field.object()) materials.push_back(read_material(entry.first, field.member(entry.first)));
+    for (const auto& entry : field.object())
+        materials.push_back(read_material(entry.first, field.member(entry.first), textures));
     return materials;
 }
 

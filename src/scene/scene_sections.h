@@ -16,7 +16,8 @@ inline constexpr double kMinSine = 1e-6;
 
 Camera read_camera(const JsonField& field);
 RenderSettings read_render(const JsonField& field);
-std::vector<Material> read_materials(const JsonField& field);
+// Materials' parameters may name one of `textures` (scene/texture_section.h).
+std::vector<Material> read_materials(const JsonField& field, const std::vector<Texture>& textures);
 // Appends to scene.spheres/planes/quads/meshes; materials and source must already be set
 // (mesh files are found relative to the directory of scene.source, and imported by `importer`).
 void read_shapes(const JsonField& field, Scene& scene, MeshImporter& importer);

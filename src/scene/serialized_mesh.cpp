@@ -220,7 +220,11 @@ ImportedMesh parse_serialized_mesh(std::string_view bytes, std::int64_t shape_in
         mesh.normals = as_vectors(read_reals(in, 3 * vertices, doubles, "the normals"));
         mesh.has_normals = true;
     }
-    if (flags & kHasTexcoords) skip_reals(in, 2 * vertices, doubles, "the texture coordinates");
+    if (flags & kHasTexcoords) {
+        const std::vector<float> uvs = read_reals(in, 2 * vertices, doubles, "the texture coordinates");
+        for (std::size_t v = 0; v < vertices; ++v) mesh.uvs.emplace_back(uvs[2 * v], uvs[2 * v + 1]);
+        mesh.has_uvs = true;
+    }
     if (flags & kHasColors) skip_reals(in, 3 * vertices, doubles, "the colours");
     std::vector<unsigned char> indices;
     constexpr std::uint64_t kSlice = 1 << 16;

@@ -152,6 +152,7 @@ std::string WavefrontReport::explain() const {
         << "path state: " << state_bytes_per_path << " bytes per path, " << state_bytes_per_path * wavefront / 1024
         << " KiB in all\n";
     if (!meshes.empty()) out << "meshes: " << meshes << "\n";
+    if (!textures.empty()) out << "textures: " << textures << "\n";
     out << "intersector: " << intersector_name(intersector) << " (" << intersector_reason << ")\n";
     return out.str();
 }
@@ -188,6 +189,7 @@ class WavefrontFilmRenderer : public FilmRenderer {
         r.pass_capacity = pipeline_.pass_capacity();
         r.state_bytes_per_path = pipeline_.state().bytes_per_path();
         r.meshes = pipeline_.device_scene().meshes().describe();
+        r.textures = pipeline_.device_scene().textures();
         r.intersector = intersector_.intersector;
         r.intersector_reason = intersector_.reason;
     }

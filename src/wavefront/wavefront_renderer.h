@@ -71,8 +71,9 @@ struct WavefrontReport {
     std::size_t wavefront = 0;
     std::size_t pass_capacity = 0;
     std::size_t state_bytes_per_path = 0;
-    unsigned lanes = 1;  // paths per work item in the stage kernels
-    std::string meshes;  // MeshSummary::describe(), "" without meshes
+    unsigned lanes = 1;    // paths per work item in the stage kernels
+    std::string meshes;    // MeshSummary::describe(), "" without meshes
+    std::string textures;  // describe_textures, "" without textures
     Intersector intersector = Intersector::Bvh;
     std::string intersector_reason;  // why: asked for, or default_intersector's reason
     std::vector<IterationRecord> iterations;

@@ -190,5 +190,36 @@ TEST_F(ImageIoTest, TemporaryKeepsTheExtensionAndIsHidden) {
 
 TEST_F(ImageIoTest, ReadingAMissingFileThrows) { EXPECT_THROW(read_image(path("none.exr")), std::runtime_error); }
 
+// Mitsuba 3.9.1's bitmap texture of a 1 x 1 8-bit RGB image (128, 64, 255)
+// evaluates to (0.21586, 0.0512694, 1): the sRGB decode wavepath must match.
+TEST_F(ImageIoTest, SrgbDecodeAsMitsuba) {
+    EXPECT_NEAR(decode_srgb(128.0f / 255.0f), 0.21586f, 2e-6f);
+    EXPECT_NEAR(decode_srgb(64.0f / 255.0f), 0.0512694f, 2e-7f);
+    EXPECT_EQ(decode_srgb(0.0f), 0.0f);
+    EXPECT_EQ(decode_srgb(1.0f), 1.0f);
+    EXPECT_FLOAT_EQ(decode_srgb(10.0f / 255.0f), 10.0f / 255.0f / 12.92f);  // the linear segment
+    for (int code = 0; code < 256; ++code)  // the inverse of the encoding, to the 8-bit code
+        EXPECT_EQ(encode_srgb8(decode_srgb(code / 255.0f)), code) << code;
+}
+
+// A PNG texture is decoded from sRGB, unless raw; its rows stay top first.
+TEST_F(ImageIoTest, TextureImagesDecodeEightBitFilesUnlessRaw) {
+    const Image image{1, 2, {0.5f, 0.0f, 1.0f, 0.18f, 0.18f, 0.18f}};
+    write_image(image, path("t.png"));  // codes 188, 0, 255 and 118
+    const Image decoded = read_texture_image(path("t.png"), false, 16);
+    const Image raw = read_texture_image(path("t.png"), true, 16);
+    ASSERT_EQ(decoded.width, 1);
+    ASSERT_EQ(decoded.height, 2);
+    EXPECT_NEAR(decoded.rgb[0], 0.5f, 3e-3f);  // within the 8-bit code's step
+    EXPECT_EQ(decoded.rgb[1], 0.0f);
+    EXPECT_EQ(decoded.rgb[2], 1.0f);
+    EXPECT_NEAR(decoded.rgb[3], 0.18f, 2e-3f);
+    EXPECT_FLOAT_EQ(raw.rgb[0], 188.0f / 255.0f);
+    EXPECT_FLOAT_EQ(raw.rgb[3], 118.0f / 255.0f);
+    write_image(image, path("t.exr"));  // float files are linear already
+    EXPECT_EQ(read_texture_image(path("t.exr"), false, 16).rgb, image.rgb);
+    EXPECT_THROW(read_texture_image(path("t.png"), false, 1), std::runtime_error);  // 2 rows, at most 1 allowed
+}
+
 }  // namespace
 }  // namespace wp

@@ -38,6 +38,8 @@ void expect_same_scene(const ImportedScene& a, const ImportedScene& b) {
         EXPECT_TRUE(same_bytes(a.meshes[m].positions, b.meshes[m].positions));
         EXPECT_EQ(a.meshes[m].has_normals, b.meshes[m].has_normals);
         EXPECT_TRUE(same_bytes(a.meshes[m].normals, b.meshes[m].normals));
+        EXPECT_EQ(a.meshes[m].has_uvs, b.meshes[m].has_uvs);
+        EXPECT_TRUE(same_bytes(a.meshes[m].uvs, b.meshes[m].uvs));
         EXPECT_TRUE(same_bytes(a.meshes[m].triangles, b.meshes[m].triangles));
     }
     ASSERT_EQ(a.nodes.size(), b.nodes.size());
@@ -301,7 +303,9 @@ ImportedScene small_scene() {
     scene.meshes.push_back({{{0, 0, 1}, {1, 0, 1}, {0, 1, 1}, {1, 1, 1}},
                             true,
                             {{0, 0, 1}, {0, 0, 1}, {0, 0, 1}, {0, 0, 1}},
-                            {{0, 1, 2}, {2, 1, 3}}});
+                            {{0, 1, 2}, {2, 1, 3}},
+                            true,
+                            {{0, 0}, {1, 0}, {0, 1}, {1, 1}}});
     const std::array<float, 16> identity{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
     std::array<float, 16> moved = identity;
     moved[3] = 2.5f;
@@ -335,14 +339,14 @@ TEST(Answer, MalformedPartsAreNamed) {
     const std::string good = encode_answer(small_scene());
     EXPECT_EQ(malformation(good + "x"), "1 bytes after the answer");
     std::string bytes = good;
-    bytes[8] = 2;  // the version
-    EXPECT_EQ(malformation(bytes), "version 2, not 1");
+    bytes[8] = 3;  // the version
+    EXPECT_EQ(malformation(bytes), "version 3, not 2");
     bytes = good;
     bytes[12] = 3;  // the kind
     EXPECT_EQ(malformation(bytes), "kind 3, neither 1 nor 2");
     bytes = good;
-    bytes[24] = 2;  // mesh 0's normals flag (after the header's 16 bytes, the mesh count, its vertex count)
-    EXPECT_EQ(malformation(bytes), "mesh 0's normals flag is 2");
+    bytes[24] = 4;  // mesh 0's flags (after the header's 16 bytes, the mesh count, its vertex count)
+    EXPECT_EQ(malformation(bytes), "mesh 0's flags are 4");
     bytes = good;
     bytes[20] = static_cast<char>(0xff);  // mesh 0's vertex count, now 255 vertices of 12 bytes
     EXPECT_EQ(malformation(bytes).rfind("it ends within mesh 0's positions (3060 bytes, ", 0), 0u);

@@ -340,5 +340,34 @@ TEST(RenderIdentity, EverySettingThatChangesTheImageChangesIt) {
     EXPECT_FALSE(scene_changed([](Scene& s) { s.source = "elsewhere.json"; }));
 }
 
+TEST(RenderIdentity, EveryTextureParameterChangesIt) {
+    Scene base = test::plane_under_square_light({}, {0.5, 0.5, 0.5}, {4, 4, 4}, 0.5, 1.0);
+    Texture bitmap;
+    bitmap.width = 2;
+    bitmap.height = 1;
+    bitmap.texels = {0.1f, 0.2f, 0.3f, 0.4f, 0.5f, 0.6f};
+    base.textures = {bitmap, Texture{}};
+    base.textures[1].type = TextureType::Checkerboard;
+    base.materials[0].albedo_texture = 0;
+    base.meshes.push_back(test::unit_cube(0));
+    base.meshes[0].uvs.assign(base.meshes[0].positions.size(), glm::dvec2(0.5, 0.5));
+    const RenderIdentity identity = render_identity(base, "opencl");
+    auto scene_changed = [&](auto change) {
+        Scene scene = base;
+        change(scene);
+        return render_identity(scene, "opencl").scene != identity.scene;
+    };
+    EXPECT_TRUE(scene_changed([](Scene& s) { s.textures[0].texels[4] += 1e-6f; }));
+    EXPECT_TRUE(scene_changed([](Scene& s) { std::swap(s.textures[0].width, s.textures[0].height); }));
+    EXPECT_TRUE(scene_changed([](Scene& s) { s.textures[0].filter = TextureFilter::Nearest; }));
+    EXPECT_TRUE(scene_changed([](Scene& s) { s.textures[0].wrap = TextureWrap::Mirror; }));
+    EXPECT_TRUE(scene_changed([](Scene& s) { s.textures[0].to_uv[5] += 1e-9; }));
+    EXPECT_TRUE(scene_changed([](Scene& s) { s.textures[1].color0.y += 1e-9; }));
+    EXPECT_TRUE(scene_changed([](Scene& s) { s.textures[1].color1.z += 1e-9; }));
+    EXPECT_TRUE(scene_changed([](Scene& s) { s.materials[0].albedo_texture = 1; }));
+    EXPECT_TRUE(scene_changed([](Scene& s) { s.meshes[0].uvs[2].y += 1e-9; }));
+    EXPECT_FALSE(scene_changed([](Scene& s) { s.textures[0].file = "elsewhere.png"; }));
+}
+
 }  // namespace
 }  // namespace wp

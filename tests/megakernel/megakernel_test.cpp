@@ -79,6 +79,29 @@ TEST(Megakernel, PlasticsBitIdenticalToWavefrontAndReference) {
     }
 }
 
+// Textures (kernels/shared/texture.h): a checkerboard and bitmaps of each
+// filter and wrap mode on quads, a sphere and a PLY mesh with uvs, looked up
+// by the same shared code in every backend, so bit-identical images,
+// whatever the lanes and the wavefront's size; in SPPM too, whose photons and
+// visible points read the same albedo.
+TEST(Megakernel, TexturesBitIdenticalInEveryBackend) {
+    Scene scene = load_scene(WAVEPATH_SOURCE_DIR "/scenes/test/oracle_textures.json");
+    ASSERT_TRUE(scene.features().textures);
+    scene.render.spp = 2;
+    const RenderResult reference = render_reference(scene, ReferenceOptions{2, false});
+    for (unsigned lanes : {1u, 16u}) {
+        EXPECT_EQ(render_megakernel(scene, with_lanes(lanes), {}).image.rgb, reference.image.rgb) << "lanes " << lanes;
+        WavefrontOptions options;
+        options.lanes = lanes;
+        options.wavefront = 777;
+        EXPECT_EQ(render_wavefront(scene, options, {}).image.rgb, reference.image.rgb) << "lanes " << lanes;
+    }
+    scene.render.integrator = Integrator::Sppm;
+    scene.render.spp = 1;
+    scene.render.sppm.photons = 4096;
+    EXPECT_EQ(render_wavefront(scene, {}, {}).image.rgb, render_reference(scene, ReferenceOptions{2, false}).image.rgb);
+}
+
 TEST(Megakernel, ProfileTimesItsLaunches) {
     Scene scene = test::small_room(32, 2);
     MegakernelReport report;

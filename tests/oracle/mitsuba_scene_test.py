@@ -27,17 +27,19 @@ def apply(matrix, point):
     return [sum(matrix[i][k] * c for k, c in enumerate(point + [1.0])) for i in range(3)]
 
 
-def read_ply(path):
-    """Positions and triangles of a PLY file as mitsuba_scene writes it."""
+def read_ply(path, with_uvs=False):
+    """Positions (and uvs) and triangles of a PLY file as mitsuba_scene writes it."""
     with open(path, "rb") as f:
         header = []
         while not header or header[-1] != "end_header":
             header.append(f.readline().decode().strip())
         vertices = int(next(line.split()[2] for line in header if line.startswith("element vertex")))
         faces = int(next(line.split()[2] for line in header if line.startswith("element face")))
-        points = [list(struct.unpack("<3f", f.read(12))) for _ in range(vertices)]
+        floats = sum(line.startswith("property float") for line in header)
+        rows = [list(struct.unpack(f"<{floats}f", f.read(4 * floats))) for _ in range(vertices)]
         triangles = [struct.unpack("<B3i", f.read(13))[1:] for _ in range(faces)]
-    return points, triangles
+    points = [row[:3] for row in rows]
+    return (points, [row[3:] for row in rows], triangles) if with_uvs else (points, triangles)
 
 
 class ConverterTest(unittest.TestCase):
@@ -121,6 +123,21 @@ class ConverterTest(unittest.TestCase):
             "specular_reflectance": {"type": "rgb", "value": [0.9, 0.8, 0.7]}, "distribution": "ggx", "alpha": 0.3,
             "ext_ior": 1.2}})
 
+    def test_textures_become_mitsubas_plugins_of_the_same_names(self):
+        textures = {"c": {"type": "checkerboard", "color0": 0.5, "color1": [0.1, 0.2, 0.3], "to_uv": [[2, 0, 1], [0, 3, 0]]},
+                    "b": {"type": "bitmap", "file": "t.png", "filter_type": "nearest", "wrap_mode": "mirror", "raw": True}}
+        materials = {"dc": {"type": "diffuse", "albedo": {"texture": "c"}}, "db": {"type": "diffuse", "albedo": {"texture": "b"}}}
+        dc, db = self.shapes(self.convert([{**QUAD, "material": "dc"}, {**QUAD, "material": "db"}], materials, textures=textures))
+        self.assertEqual(dc["bsdf"]["bsdf"]["reflectance"],
+                         {"type": "checkerboard", "color0": {"type": "rgb", "value": [0.5, 0.5, 0.5]},
+                          "color1": {"type": "rgb", "value": [0.1, 0.2, 0.3]},
+                          "to_uv": {"to_uv": [[2.0, 0.0, 1.0], [0.0, 3.0, 0.0], [0.0, 0.0, 1.0]]}})
+        self.assertEqual(db["bsdf"]["bsdf"]["reflectance"],
+                         {"type": "bitmap", "filename": os.path.join(self.dir.name, "t.png"), "filter_type": "nearest",
+                          "wrap_mode": "mirror", "raw": True})
+        self.refused("textures.n.type: texture type \"noise\" has no Mitsuba counterpart here",
+                     textures={"n": {"type": "noise"}})
+
     def test_diffuse_emission_makes_an_area_emitter(self):
         materials = {"glow": {"type": "diffuse", "albedo": [0.5, 0.5, 0.5], "emission": [0, 0.5, 0]},
                      "dark": {"type": "diffuse", "albedo": [0.5, 0.5, 0.5], "emission": [0, 0, 0]}}
@@ -136,8 +153,9 @@ class ConverterTest(unittest.TestCase):
     def test_quad_is_two_counter_clockwise_triangles_about_edge1_cross_edge2(self):
         sheared = {**QUAD, "corner": [1, 2, 1], "edge1": [2, 0, 0], "edge2": [1, 1, 0]}
         (quad,) = self.shapes(self.convert([sheared]))
-        points, triangles = read_ply(quad["filename"])
+        points, uvs, triangles = read_ply(quad["filename"], with_uvs=True)
         self.assertEqual(points, [[0, 0, -2], [2, 0, -2], [3, 1, -2], [1, 1, -2]])
+        self.assertEqual(uvs, [[0, 0], [1, 0], [1, 1], [0, 1]])  # wavepath's quad uvs (shared/texture.h)
         for a, b, c in triangles:
             normal = mitsuba_scene.cross(mitsuba_scene.sub(points[b], points[a]), mitsuba_scene.sub(points[c], points[a]))
             self.assertGreater(normal[2], 0)  # edge1 x edge2 = +z

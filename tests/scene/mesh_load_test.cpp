@@ -277,6 +277,30 @@ TEST_F(MeshLoad, NormalsOnlyWhenEveryVertexHasOne) {
     EXPECT_TRUE(mesh.normals.empty());
 }
 
+// Texture coordinates as Mitsuba 3.9.1 reports them (si.uv): an OBJ's v
+// turned upside down, a PLY's as stored.
+TEST_F(MeshLoad, UvsAsMitsubaReadsThem) {
+    write("uv.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nvt 0.25 0.125\nvt 1 0\nvt 0.5 0.75\nf 1/1 2/2 3/3\n");
+    Mesh obj = load_one(R"({"type": "mesh", "file": "uv.obj", "material": "white"})");
+    ASSERT_EQ(obj.uvs.size(), 3u);
+    EXPECT_EQ(obj.uvs[0], glm::dvec2(0.25, 0.875));
+    EXPECT_EQ(obj.uvs[2], glm::dvec2(0.5, 0.25));
+    write("uv.ply",
+          "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+          "property float u\nproperty float v\nelement face 1\nproperty list uchar int vertex_indices\n"
+          "end_header\n0 0 0 0.25 0.125\n1 0 0 1 0\n1 1 0 0.5 0.75\n3 0 1 2\n");
+    Mesh ply = load_one(R"({"type": "mesh", "file": "uv.ply", "material": "white"})");
+    ASSERT_EQ(ply.uvs.size(), 3u);
+    EXPECT_EQ(ply.uvs[0], glm::dvec2(0.25, 0.125));
+    EXPECT_EQ(ply.uvs[2], glm::dvec2(0.5, 0.75));
+}
+
+TEST_F(MeshLoad, UvsOnlyWhenEveryVertexHasOne) {
+    write("mixed.obj",
+          "o a\nv 0 0 0\nv 1 0 0\nv 1 1 0\nvt 0 0\nf 1/1 2/1 3/1\no b\nv 0 0 1\nv 1 0 1\nv 1 1 1\nf 4 5 6\n");
+    EXPECT_TRUE(load_one(R"({"type": "mesh", "file": "mixed.obj", "material": "white"})").uvs.empty());
+}
+
 // ---- degenerate triangles ----
 
 TEST_F(MeshLoad, ZeroAreaTrianglesAreDroppedAndCounted) {

@@ -172,6 +172,12 @@ ImportedMesh imported_mesh(const aiMesh& mesh) {
         out.normals.reserve(mesh.mNumVertices);
         for (unsigned v = 0; v < mesh.mNumVertices; ++v) out.normals.push_back(to_vec3(mesh.mNormals[v]));
     }
+    out.has_uvs = mesh.mTextureCoords[0] != nullptr;
+    if (out.has_uvs) {
+        out.uvs.reserve(mesh.mNumVertices);
+        for (unsigned v = 0; v < mesh.mNumVertices; ++v)
+            out.uvs.emplace_back(mesh.mTextureCoords[0][v].x, mesh.mTextureCoords[0][v].y);
+    }
     out.triangles.reserve(mesh.mNumFaces);
     for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
         const aiFace& face = mesh.mFaces[f];

@@ -1,0 +1,173 @@
+/* Textures, as Mitsuba 3 defines them: where a hit lies in texture space
+ * (its uv: Mitsuba's parameterisation of spheres and rectangles, a mesh's
+ * interpolated vertex uvs) and what a texture holds there. A `bitmap` is
+ * read with its wrap mode and filter exactly as Mitsuba's (checked against
+ * Mitsuba 3.9.1 in tests/shared/texture_test.cpp): texel (x, y) covers
+ * [x, x + 1] / width by [y, y + 1] / height, its centre at +0.5, row 0 at
+ * v = 0 (no flip); bilinear blends the four texels around
+ * uv * size - 0.5. A `checkerboard` is color0 where the fractional parts
+ * of u and v are both above 1/2 or both not, else color1. Both first map
+ * the uv by their to_uv, an affine map u' = m0 u + m1 v + m2,
+ * v' = m3 u + m4 v + m5. Only arithmetic, floor and sqrt: the same values
+ * in every backend. */
+#ifndef WP_SHARED_TEXTURE_H
+#define WP_SHARED_TEXTURE_H
+
+#include "shared/prelude.h"
+
+#define WP_TEXTURE_BITMAP 0u
+#define WP_TEXTURE_CHECKERBOARD 1u
+#define WP_FILTER_BILINEAR 0u
+#define WP_FILTER_NEAREST 1u
+#define WP_WRAP_REPEAT 0u
+#define WP_WRAP_MIRROR 1u
+#define WP_WRAP_CLAMP 2u
+/* A material parameter that is its constant, not a texture. */
+#define WP_NO_TEXTURE 0xffffffffu
+
+/* A texture as device memory holds it (one table for the scene; the bitmaps'
+ * texels in one buffer of linear RGB, 3 values per texel, row by row). */
+typedef struct {
+    uint type;              /* WP_TEXTURE_* */
+    uint filter, wrap;      /* bitmap: WP_FILTER_*, WP_WRAP_* */
+    uint width, height;     /* bitmap */
+    uint first_texel;       /* bitmap: its texel (0, 0) in the texel buffer */
+    real_element to_uv[6];  /* m0..m5 above */
+    real_element color0[3]; /* checkerboard */
+    real_element color1[3];
+} TextureDescriptor;
+
+/* A mesh triangle's vertex uvs, parallel to the triangles. A mesh without
+ * uvs has (0, 0), (1, 0), (0, 1): its uv is then the hit's barycentric
+ * coordinates (b1, b2), as Mitsuba's. */
+typedef struct {
+    real_element uv0[2], uv1[2], uv2[2];
+} TriangleUVs;
+
+/* A texture's fields, per lane. */
+typedef struct {
+    lane_uint type, filter, wrap, width, height, first_texel;
+    real to_uv[6];
+    vec3 color0, color1;
+} Texture;
+
+typedef struct {
+    real u, v;
+} TextureUV;
+
+WP_FN TextureUV make_texture_uv(real u, real v) {
+    TextureUV uv;
+    uv.u = u, uv.v = v;
+    return uv;
+}
+
+/* atan2(y, x) / (2 pi) in [0, 1) (0 for the origin): the quadrant's
+ * reduction to a in [0, 1], then to |t| <= tan(pi/8) by
+ * atan(a) = pi/4 + atan((a - 1) / (a + 1)), where atan's series through
+ * t^19 errs by less than 5e-10. */
+WP_FN real atan2_turns(real y, real x) {
+    real ax = fabs(x), ay = fabs(y);
+    real big = fmax(ax, ay), small = fmin(ax, ay);
+    real a = big > REAL(0.0) ? small / big : REAL(0.0);
+    lane_int shifted = a > REAL(0.41421356237309504880);
+    real t = shifted ? (a - REAL(1.0)) / (a + REAL(1.0)) : a;
+    real t2 = t * t;
+    real s = REAL(1.0) / REAL(19.0);
+    s = s * t2 - REAL(1.0) / REAL(17.0);
+    s = s * t2 + REAL(1.0) / REAL(15.0);
+    s = s * t2 - REAL(1.0) / REAL(13.0);
+    s = s * t2 + REAL(1.0) / REAL(11.0);
+    s = s * t2 - REAL(1.0) / REAL(9.0);
+    s = s * t2 + REAL(1.0) / REAL(7.0);
+    s = s * t2 - REAL(1.0) / REAL(5.0);
+    s = s * t2 + REAL(1.0) / REAL(3.0);
+    s = s * t2 - REAL(1.0);
+    real angle = -s * t + (shifted ? WP_PI / REAL(4.0) : REAL(0.0)); /* atan(a), in [0, pi/4] */
+    angle = ay > ax ? WP_PI / REAL(2.0) - angle : angle;
+    angle = x < REAL(0.0) ? WP_PI - angle : angle;
+    real turns = angle * (REAL(0.5) * WP_INV_PI); /* [0, 1/2] */
+    return y < REAL(0.0) && turns > REAL(0.0) ? REAL(1.0) - turns : turns;
+}
+
+/* Mitsuba's sphere: u the azimuth atan2(y, x) in turns, v the polar angle
+ * from +z over pi, of the unit normal (the sphere's own axes are the
+ * world's: spheres are a centre and a radius). */
+WP_FN TextureUV sphere_uv(vec3 normal) {
+    real rho = sqrt(normal.x * normal.x + normal.y * normal.y);
+    return make_texture_uv(atan2_turns(normal.y, normal.x), REAL(2.0) * atan2_turns(rho, normal.z));
+}
+
+/* A quad's point corner + u edge1 + v edge2 (Mitsuba's rectangle maps its
+ * corner (-1, -1) to uv (0, 0), +x to u, +y to v; the converter writes the
+ * quad so). */
+WP_FN TextureUV quad_uv(vec3 corner, vec3 edge1, vec3 edge2, vec3 p) {
+    vec3 n = v3_cross(edge1, edge2), d = v3_sub(p, corner);
+    real n2 = v3_dot(n, n);
+    return make_texture_uv(v3_dot(v3_cross(d, edge2), n) / n2, v3_dot(v3_cross(edge1, d), n) / n2);
+}
+
+/* The uv at barycentric coordinates (b1, b2) of a triangle with vertex uvs
+ * uv0, uv1, uv2. */
+WP_FN TextureUV triangle_uv(TextureUV uv0, TextureUV uv1, TextureUV uv2, real b1, real b2) {
+    real b0 = REAL(1.0) - b1 - b2;
+    return make_texture_uv(b0 * uv0.u + b1 * uv1.u + b2 * uv2.u, b0 * uv0.v + b1 * uv1.v + b2 * uv2.v);
+}
+
+WP_FN TextureUV texture_transform(Texture t, TextureUV uv) {
+    return make_texture_uv(t.to_uv[0] * uv.u + t.to_uv[1] * uv.v + t.to_uv[2],
+                           t.to_uv[3] * uv.u + t.to_uv[4] * uv.v + t.to_uv[5]);
+}
+
+/* Texel coordinate x (an integer) of a row or column of `size` texels
+ * wrapped into [0, size) by WP_WRAP_*: repeat; mirror (-1 -> 0, size ->
+ * size - 1); clamp to the edge. */
+WP_FN lane_int wrap_texel(lane_int x, lane_int size, lane_uint wrap) {
+    lane_int repeated = ((x % size) + size) % size;
+    lane_int reflected = x < 0 ? -x - 1 : x;
+    reflected = reflected % (size + size);
+    reflected = reflected >= size ? size + size - 1 - reflected : reflected;
+    lane_int clamped = x < 0 ? (lane_int)0 : (x >= size ? size - 1 : x);
+    return wrap == WP_WRAP_REPEAT ? repeated : (wrap == WP_WRAP_MIRROR ? reflected : clamped);
+}
+
+/* floor(x) as an integer, x first clamped to +-2^30 so that any uv (a huge
+ * or non-finite one too) converts without overflow. */
+WP_FN lane_int floor_to_int(real x) { return TO_LANE_INT(floor(wp_clamp(x, REAL(-1073741824.0), REAL(1073741824.0)))); }
+
+/* The texel at integer coordinates (x, y), wrapped. */
+WP_FN vec3 bitmap_texel(Texture t, WP_GLOBAL const real_element *texels, lane_int x, lane_int y) {
+    lane_int width = TO_LANE_INT(t.width), height = TO_LANE_INT(t.height);
+    lane_int column = wrap_texel(x, width, t.wrap), row = wrap_texel(y, height, t.wrap);
+    lane_uint index = (t.first_texel + TO_LANE_UINT(row * width + column)) * 3u;
+    return make_vec3(gather(texels, index), gather(texels, index + 1u), gather(texels, index + 2u));
+}
+
+WP_FN vec3 bitmap_value(Texture t, WP_GLOBAL const real_element *texels, TextureUV uv) {
+    real x = uv.u * TO_REAL(t.width), y = uv.v * TO_REAL(t.height);
+    vec3 nearest = bitmap_texel(t, texels, floor_to_int(x), floor_to_int(y));
+    x = x - REAL(0.5), y = y - REAL(0.5);
+    real x0 = floor(x), y0 = floor(y);
+    real fx = x - x0, fy = y - y0;
+    lane_int ix = floor_to_int(x0), iy = floor_to_int(y0);
+    vec3 c00 = bitmap_texel(t, texels, ix, iy), c10 = bitmap_texel(t, texels, ix + 1, iy);
+    vec3 c01 = bitmap_texel(t, texels, ix, iy + 1), c11 = bitmap_texel(t, texels, ix + 1, iy + 1);
+    vec3 row0 = v3_add(v3_scale(c00, REAL(1.0) - fx), v3_scale(c10, fx));
+    vec3 row1 = v3_add(v3_scale(c01, REAL(1.0) - fx), v3_scale(c11, fx));
+    vec3 bilinear = v3_add(v3_scale(row0, REAL(1.0) - fy), v3_scale(row1, fy));
+    return v3_select(t.filter == WP_FILTER_NEAREST, nearest, bilinear);
+}
+
+WP_FN vec3 checkerboard_value(Texture t, TextureUV uv) {
+    lane_int u_high = uv.u - floor(uv.u) > REAL(0.5), v_high = uv.v - floor(uv.v) > REAL(0.5);
+    return v3_select(u_high == v_high, t.color0, t.color1);
+}
+
+/* Texture t's value at the hit's uv. */
+WP_FN vec3 texture_value(Texture t, WP_GLOBAL const real_element *texels, TextureUV hit_uv) {
+    TextureUV uv = texture_transform(t, hit_uv);
+    vec3 checkerboard = checkerboard_value(t, uv);
+    vec3 bitmap = bitmap_value(t, texels, uv);
+    return v3_select(t.type == WP_TEXTURE_CHECKERBOARD, checkerboard, bitmap);
+}
+
+#endif

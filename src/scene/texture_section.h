@@ -1,0 +1,21 @@
+// The scene file's `textures` section and the material parameters that may
+// name one of its textures (docs/scene-format.md, "textures").
+#pragma once
+
+#include <glm/vec3.hpp>
+#include <vector>
+
+#include "scene/json_field.h"
+#include "scene/scene.h"
+
+namespace wp {
+
+// Reads every texture, bitmaps' images included (found relative to the
+// directory of `scene_source`); at most kMaxTextureTexels texels in all.
+std::vector<Texture> read_textures(const JsonField& field, const std::string& scene_source);
+
+// A reflectance that may be textured: an RGB in [0, 1] returned as is, or {"texture": "<name>"}, whose
+// index into `textures` goes to *texture (the constant returned is then 0).
+glm::dvec3 read_textured_reflectance(const JsonField& field, const std::vector<Texture>& textures, int* texture);
+
+}  // namespace wp
