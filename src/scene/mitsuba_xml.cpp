@@ -23,6 +23,7 @@
 #include "scene/mitsuba_shapes.h"
 #include "scene/named_media.h"
 #include "scene/serialized_mesh.h"
+#include "scene/texture_section.h"
 
 namespace wp {
 namespace {
@@ -187,6 +188,26 @@ class Plugin {
             if (object.tag == tag) found.push_back(&object);
         }
         return found;
+    }
+    // Every nested <texture> (or <ref> to one) must be given as one of these properties.
+    void textures_only_as(std::initializer_list<std::string_view> names) const {
+        for (const XmlElement& child : element_.children) {
+            if (is_property_tag(child.tag) || resolve(child).tag != "texture") continue;
+            const std::string* n = child.attribute("name");
+            if (!n || std::find(names.begin(), names.end(), *n) == names.end())
+                fail(child, "texture" + (n ? " as " + in_quotes(*n) : std::string(" inside it")) +
+                                ": not supported (supported: " + joined_names(names) + ")");
+        }
+    }
+    // The <texture> (nested or by <ref>) given as property `name`, or null.
+    const XmlElement* texture(std::string_view name) const {
+        for (const XmlElement& child : element_.children) {
+            const std::string* n = child.attribute("name");
+            if (is_property_tag(child.tag) || !n || *n != name) continue;
+            const XmlElement& object = resolve(child);
+            if (object.tag == "texture") return &object;
+        }
+        return nullptr;
     }
     const XmlElement* only_object(std::string_view tag) const {
         const std::vector<const XmlElement*> found = objects(tag);
@@ -544,11 +565,14 @@ void read_microfacet(const Plugin& bsdf, Material& m) {
 // here and its row in kBsdfs.
 using BsdfReader = Material (*)(const Plugin&, const std::function<Material(const XmlElement&)>& nested);
 
+// A texture as its reflectance is the reader's (Reader::bsdf_material).
 Material read_diffuse(const Plugin& bsdf, const std::function<Material(const XmlElement&)>&) {
-    bsdf.allow({"reflectance"});
+    bsdf.allow({"reflectance"}, {"texture"});
+    bsdf.textures_only_as({"reflectance"});
     Material m;
     m.type = MaterialType::Diffuse;
-    m.albedo = bsdf.optional_color("reflectance", 1.0, " (energy gain)").value_or(glm::dvec3(0.5));
+    if (!bsdf.texture("reflectance"))
+        m.albedo = bsdf.optional_color("reflectance", 1.0, " (energy gain)").value_or(glm::dvec3(0.5));
     return m;
 }
 
@@ -906,9 +930,72 @@ class Reader {
             converting_.push_back(&element);
             Material m = reader(bsdf, [this](const XmlElement& inner) { return bsdf_material(inner); });
             converting_.pop_back();
+            if (bsdf.type() == "diffuse")
+                if (const XmlElement* texture = bsdf.texture("reflectance")) m.albedo_texture = texture_index(*texture);
             return m;
         }
         bsdf.fail("not supported (supported: " + supported + ")");
+    }
+
+    // ---- textures ----
+
+    // One of `names`' values by the string property `name`, or `fallback` without it.
+    template <class Value, std::size_t N>
+    static Value choice(const Plugin& plugin, std::string_view name, Value fallback,
+                        const std::pair<const char*, Value> (&names)[N]) {
+        const std::optional<std::string> given = plugin.optional_string(name);
+        if (!given) return fallback;
+        std::string known;
+        for (const auto& [key, value] : names) {
+            if (*given == key) return value;
+            known += (known.empty() ? "" : ", ") + std::string(key);
+        }
+        plugin.fail(*plugin.property(name), "string " + in_quotes(name) + ": unknown value " + in_quotes(*given) +
+                                                " (supported: " + known + ")");
+    }
+
+    // A <texture> as an index into the scene's textures (each element read once).
+    int texture_index(const XmlElement& element) {
+        if (auto found = textures_.find(&element); found != textures_.end()) return found->second;
+        const Plugin plugin(element, ids_);
+        Texture t;
+        t.name = plugin.id().empty() ? plugin.type() : plugin.id();
+        if (plugin.type() == "bitmap") {
+            plugin.allow({"filename", "filter_type", "wrap_mode", "raw", "to_uv"});
+            t.type = TextureType::Bitmap;
+            const std::optional<std::string> filename = plugin.optional_string("filename");
+            if (!filename) plugin.fail("missing property filename");
+            t.file = *filename;
+            t.filter = choice(plugin, "filter_type", TextureFilter::Bilinear,
+                              {std::pair{"bilinear", TextureFilter::Bilinear}, {"nearest", TextureFilter::Nearest}});
+            t.wrap = choice(plugin, "wrap_mode", TextureWrap::Repeat,
+                            {std::pair{"repeat", TextureWrap::Repeat},
+                             {"mirror", TextureWrap::Mirror},
+                             {"clamp", TextureWrap::Clamp}});
+            try {
+                read_bitmap_file(resolve_scene_file(xml_, *filename).string(), plugin.boolean("raw", false), t);
+            } catch (const std::runtime_error& error) {
+                plugin.fail(*plugin.property("filename"), *filename + ": " + error.what());
+            }
+        } else if (plugin.type() == "checkerboard") {
+            plugin.allow({"color0", "color1", "to_uv"});
+            t.type = TextureType::Checkerboard;
+            t.color0 = plugin.optional_color("color0", 1.0, " (energy gain)").value_or(glm::dvec3(0.4));
+            t.color1 = plugin.optional_color("color1", 1.0, " (energy gain)").value_or(glm::dvec3(0.2));
+        } else {
+            plugin.fail("not supported (supported: bitmap, checkerboard)");
+        }
+        // Mitsuba keeps the 4x4 transform's rows and columns x, y and w: an affine map of the plane.
+        if (const std::optional<glm::dmat4> m = plugin.optional_transform("to_uv"))
+            t.to_uv = {(*m)[0][0], (*m)[1][0], (*m)[3][0], (*m)[0][1], (*m)[1][1], (*m)[3][1]};
+        texels_ += t.texels.size() / 3;
+        if (texels_ > kMaxTextureTexels)
+            plugin.fail("the textures so far have " + std::to_string(texels_) + " texels, more than the " +
+                        std::to_string(kMaxTextureTexels) + " a scene may have");
+        out_.scene.textures.push_back(std::move(t));
+        const int index = int(out_.scene.textures.size()) - 1;
+        textures_.emplace(&element, index);
+        return index;
     }
 
     int material_index(const Plugin& shape, const glm::dvec3& emission) {
@@ -1149,6 +1236,8 @@ class Reader {
     IdTable ids_;
     MitsubaScene out_;
     std::map<MaterialKey, int> materials_;
+    std::map<const XmlElement*, int> textures_;  // texture_index's
+    std::size_t texels_ = 0;                     // of every texture read
     std::set<std::string> names_;
     std::vector<const XmlElement*> converting_;
     std::size_t triangles_ = 0;

@@ -69,6 +69,10 @@ void append_le(std::string& out, std::uint32_t value) {
 
 SceneJson scene_json(const MitsubaScene& read, const fs::path& json_path) {
     const Scene& scene = read.scene;
+    // The textures' images would have to be found from the JSON's folder, and meshes' uvs written: not yet.
+    if (!scene.textures.empty())
+        throw SceneError(scene.source + ": " + scene.textures.front().name +
+                         ": textures are not written by convert yet (render the XML scene itself)");
     SceneJson out;
     nlohmann::json& j = out.json;
     const Camera& c = scene.camera;

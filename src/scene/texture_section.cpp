@@ -61,20 +61,11 @@ void read_bitmap(const JsonField& field, const std::string& scene_source, Textur
     }
     const std::optional<JsonField> raw = field.optional_member("raw");
     const std::filesystem::path path = std::filesystem::path(scene_source).parent_path() / texture.file;
-    Image image;
     try {
-        image = read_texture_image(path.string(), raw && raw->boolean(), kMaxTextureSide);
+        read_bitmap_file(path.string(), raw && raw->boolean(), texture);
     } catch (const std::runtime_error& error) {
         file_field.fail(texture.file + ": " + error.what());
     }
-    for (float value : image.rgb) {
-        if (!(value >= 0.0f && value <= 1.0f))
-            file_field.fail(texture.file + ": a texel value " + format_number(value) +
-                            " is outside [0, 1] (energy gain)");
-    }
-    texture.width = image.width;
-    texture.height = image.height;
-    texture.texels = std::move(image.rgb);
 }
 
 void read_checkerboard(const JsonField& field, Texture& texture) {
@@ -99,6 +90,17 @@ Texture read_texture(const std::string& name, const JsonField& field, const std:
 
 }  // namespace texture_section
 }  // namespace
+
+void read_bitmap_file(const std::string& path, bool raw, Texture& texture) {
+    Image image = read_texture_image(path, raw, kMaxTextureSide);
+    for (float value : image.rgb) {
+        if (!(value >= 0.0f && value <= 1.0f))
+            throw std::runtime_error("a texel value " + format_number(value) + " is outside [0, 1] (energy gain)");
+    }
+    texture.width = image.width;
+    texture.height = image.height;
+    texture.texels = std::move(image.rgb);
+}
 
 std::vector<Texture> read_textures(const JsonField& field, const std::string& scene_source) {
     std::vector<Texture> textures;

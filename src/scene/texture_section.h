@@ -14,6 +14,12 @@ namespace wp {
 // directory of `scene_source`); at most kMaxTextureTexels texels in all.
 std::vector<Texture> read_textures(const JsonField& field, const std::string& scene_source);
 
+// A bitmap's image at `path` into texture's width, height and texels (linear
+// RGB, decoded from sRGB unless `raw`, scene/scene.h); throws
+// std::runtime_error with the one-line reason (unreadable, too large, a
+// texel outside [0, 1]). The JSON and the Mitsuba XML readers share it.
+void read_bitmap_file(const std::string& path, bool raw, Texture& texture);
+
 // A reflectance that may be textured: an RGB in [0, 1] returned as is, or {"texture": "<name>"}, whose
 // index into `textures` goes to *texture (the constant returned is then 0).
 glm::dvec3 read_textured_reflectance(const JsonField& field, const std::vector<Texture>& textures, int* texture);
