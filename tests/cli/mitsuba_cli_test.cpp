@@ -22,6 +22,16 @@ const fs::path kScenes = fs::path(WAVEPATH_SOURCE_DIR) / "scenes/test/mitsuba";
 class MitsubaCli : public ::testing::Test {
  protected:
     CommandResult run(const std::vector<std::string>& args) { return run_wavepath(args, scratch_.path()); }
+    // The XML scene and its conversion `json` render the same bytes with `flags`.
+    void expect_same_image(const std::string& xml, const std::string& json, const std::vector<std::string>& flags) {
+        std::vector<std::string> from_xml{"render", xml, "-o", scratch_ / "xml.pfm"};
+        std::vector<std::string> from_json{"render", json, "-o", scratch_ / "json.pfm"};
+        from_xml.insert(from_xml.end(), flags.begin(), flags.end());
+        from_json.insert(from_json.end(), flags.begin(), flags.end());
+        ASSERT_EQ(run(from_xml).exit_code, 0);
+        ASSERT_EQ(run(from_json).exit_code, 0);
+        EXPECT_EQ(read_text(scratch_ / "xml.pfm"), read_text(scratch_ / "json.pfm"));
+    }
     TempDirectory scratch_{"scratch"}, out_{"out"};
 };
 
@@ -40,14 +50,14 @@ TEST_F(MitsubaCli, ConvertedJsonRendersTheSameImage) {
     EXPECT_EQ(convert.err, "wavepath: wrote " + (out_ / "box.json") + " (2 meshes)\n");
     // The two cubes, written beside the JSON.
     EXPECT_EQ(out_.entries(), (std::vector<std::string>{"box.json", "box_mesh0.ply", "box_mesh1.ply"}));
-    const std::vector<std::string> flags{"--spp", "4", "--seed", "3", "-q"};
-    std::vector<std::string> from_xml{"render", scene, "-o", scratch_ / "xml.pfm"};
-    std::vector<std::string> from_json{"render", out_ / "box.json", "-o", scratch_ / "json.pfm"};
-    from_xml.insert(from_xml.end(), flags.begin(), flags.end());
-    from_json.insert(from_json.end(), flags.begin(), flags.end());
-    ASSERT_EQ(run(from_xml).exit_code, 0);
-    ASSERT_EQ(run(from_json).exit_code, 0);
-    EXPECT_EQ(read_text(scratch_ / "xml.pfm"), read_text(scratch_ / "json.pfm"));
+    expect_same_image(scene, out_ / "box.json", {"--spp", "4", "--seed", "3", "-q"});
+}
+
+// The plastics (their every parameter, scene_writer.cpp) survive the conversion to JSON.
+TEST_F(MitsubaCli, ConvertedPlasticsRenderTheSameImage) {
+    const std::string scene = (kScenes / "plastics.xml").string();
+    ASSERT_EQ(run({"convert", scene, "-o", out_ / "plastics.json"}).exit_code, 0);
+    expect_same_image(scene, out_ / "plastics.json", {"--spp", "1", "-q"});
 }
 
 // The pixel filter travels into the JSON: an image with edges renders the same from either.
