@@ -176,16 +176,43 @@ WP_FN vec3 only_where(lane_int where, vec3 term) {
     return v3_select(where, term, make_vec3(REAL(0.0), REAL(0.0), REAL(0.0)));
 }
 
+#ifdef WP_HAS_CONSTANT_ENVIRONMENT
+/* Whether light `light` is the environment (the table's last light). */
+WP_FN lane_int is_environment_light(WP_SCENE_PARAMS, lane_uint light) {
+    return (SCENE_FIELD(lights, light, shape) >> WP_SHAPE_TYPE_SHIFT) == WP_LIGHT_ENVIRONMENT;
+}
+
+/* The density with which next-event estimation picks a direction of the
+ * environment: its selection probability times the uniform sphere's. */
+WP_FN real environment_light_pdf(WP_SCENE_PARAMS) {
+    lane_uint environment = (lane_uint)(LIGHT_COUNT - 1u);
+    return light_sample_pdf(light_selection_pmf(light_cdf, environment), uniform_sphere_pdf());
+}
+
+/* The environment's radiance a path of throughput `throughput` counts where
+ * it leaves the scene: environment_seen with its share emission_weight. */
+WP_FN vec3 environment_emission(WP_SCENE_PARAMS, lane_int after_specular, real bsdf_pdf, vec3 throughput) {
+#ifdef WP_MIS
+    real light_pdf = environment_light_pdf(WP_SCENE_ARGS);
+#else
+    real light_pdf = REAL(0.0);
+#endif
+    real weight = emission_weight(after_specular, bsdf_pdf, light_pdf, WP_USES_NEE, WP_USES_MIS);
+    return environment_seen(throughput, uniform_vec3(scene->background), weight);
+}
+#endif
+
 /* `radiance` plus what a path of throughput `throughput` sees where its ray
- * from `origin` ends: the background where it `missed`, the emission at
+ * from `origin` ends: the environment where it `missed`, the emission at
  * vertex v (hit_emission) where it `hit`. A non-finite term is dropped and
  * counted in *dropped. */
 WP_FN vec3 add_radiance_seen(WP_SCENE_PARAMS, vec3 radiance, lane_int missed, lane_int hit, lane_uint shape,
                              vec3 origin, Vertex v, lane_int after_specular, real bsdf_pdf, vec3 throughput,
                              lane_uint *dropped) {
-#ifdef WP_HAS_BACKGROUND
-    radiance =
-        add_finite(radiance, only_where(missed, background_seen(throughput, uniform_vec3(scene->background))), dropped);
+#ifdef WP_HAS_CONSTANT_ENVIRONMENT
+    radiance = add_finite(radiance,
+                          only_where(missed, environment_emission(WP_SCENE_ARGS, after_specular, bsdf_pdf, throughput)),
+                          dropped);
 #endif
     vec3 emitted = hit_emission(WP_SCENE_ARGS, shape, origin, v, after_specular, bsdf_pdf, throughput);
     return add_finite(radiance, only_where(hit, emitted), dropped);
@@ -402,10 +429,22 @@ WP_FN lane_int sample_direct_light(WP_SCENE_PARAMS, lane_uint pixel, lane_uint s
     LightPoint p = sample_light_shape(WP_SCENE_ARGS, light, v.surface.point, point.u, point.v, u_triangle);
     Material emitter = material_at(materials, p.material);
     vec3 wi = direct_light_direction(p.sample, v.surface.point);
+#ifdef WP_HAS_CONSTANT_ENVIRONMENT
+    lane_int environment = is_environment_light(WP_SCENE_ARGS, light);
+    wi = v3_select(environment, sample_uniform_sphere(point.u, point.v), wi);
+#endif
     BsdfValue bsdf = vertex_bsdf_value(v, wi, throughput);
+    real selection_pmf = light_selection_pmf(light_cdf, light);
     *direct = direct_light(v.surface.point, v.surface.error, v.nf, v.ns, vertex_transmits(v), wi, bsdf.throughput_f,
-                           bsdf.pdf, p.sample, p.magnitude, light_selection_pmf(light_cdf, light), emitter.emission,
-                           emitter.two_sided, WP_USES_MIS, WP_USES_SHADING_NORMALS);
+                           bsdf.pdf, p.sample, p.magnitude, selection_pmf, emitter.emission, emitter.two_sided,
+                           WP_USES_MIS, WP_USES_SHADING_NORMALS);
+#ifdef WP_HAS_CONSTANT_ENVIRONMENT
+    DirectLight distant =
+        distant_direct_light(v.surface.point, v.surface.error, v.nf, v.ns, vertex_transmits(v), wi, bsdf.throughput_f,
+                             bsdf.pdf, light_sample_pdf(selection_pmf, uniform_sphere_pdf()),
+                             uniform_vec3(scene->background), WP_USES_MIS, WP_USES_SHADING_NORMALS);
+    *direct = select_direct_light(environment, distant, *direct);
+#endif
     return direct->carries;
 }
 

@@ -13,6 +13,9 @@
 #define WP_SHAPE_PLANE 1u
 #define WP_SHAPE_QUAD 2u
 #define WP_SHAPE_TRIANGLE 3u /* a mesh triangle, by its index in the BVH's leaf order */
+/* Not a shape: the type of DeviceLight.shape for the environment (Scene's
+ * LightKind::Environment), the light table's last light. */
+#define WP_LIGHT_ENVIRONMENT 4u
 #define WP_SHAPE_TYPE_SHIFT 29u
 #define WP_SHAPE_INDEX_MASK 0x1fffffffu
 #define WP_NO_HIT 0xffffffffu
@@ -31,7 +34,7 @@
 typedef struct {
     float camera_right[3], camera_up[3], camera_forward[3];
     float tan_half_fov_y, aspect;
-    float background[3];
+    float background[3]; /* the environment's radiance */
     uint filter_type; /* the camera's pixel filter (shared/pixel_filter.h): WP_FILTER_*, and its constants */
     float filter_radius, filter_scale, filter_erf_radius;
     uint width, height, spp, max_depth, rr_depth, seed;
@@ -91,7 +94,8 @@ typedef struct {
 
 typedef struct {
     uint shape;          /* WP_SHAPE_SPHERE or WP_SHAPE_QUAD, index included as in hit_shape; a mesh:
-                          * WP_SHAPE_TRIANGLE with its first triangle in light_triangles as the index */
+                          * WP_SHAPE_TRIANGLE with its first triangle in light_triangles as the index;
+                          * the environment: WP_LIGHT_ENVIRONMENT, index 0 */
     uint triangle_count; /* a mesh: its triangles in light_triangles (and light_triangle_cdf) */
     float area;          /* a mesh: its area */
     uint mesh;           /* a mesh: its index in the scene's meshes (MeshTriangle.mesh of its triangles) */

@@ -28,11 +28,25 @@ WP_FN vec3 direct_light_direction(LightSample ls, vec3 x) { return v3_normalize(
  * is `two_sided`. `throughput_f` is the path's throughput times the
  * material's f for wi, `bsdf_pdf` the density with which BSDF sampling
  * would have chosen wi (the other strategy of multiple importance sampling). */
+typedef struct {
+    vec3 nf, ns;
+} SideNormals;
+
+/* The vertex's normals nf and ns on the side that the direction wi leaves
+ * into: turned where the material `transmits` and wi leaves behind it. */
+WP_FN SideNormals light_side_normals(vec3 nf, vec3 ns, lane_int transmits, vec3 wi) {
+    lane_int behind = transmits && v3_dot(wi, nf) < REAL(0.0);
+    SideNormals side;
+    side.nf = v3_select(behind, v3_neg(nf), nf);
+    side.ns = v3_select(behind, v3_neg(ns), ns);
+    return side;
+}
+
 WP_FN DirectLight direct_light(vec3 x, real x_error, vec3 nf, vec3 ns, lane_int transmits, vec3 wi, vec3 throughput_f,
                                real bsdf_pdf, LightSample ls, real light_magnitude, real selection_pmf, vec3 emission,
                                lane_int two_sided, int mis, int shading_normals) {
-    lane_int behind = transmits && v3_dot(wi, nf) < REAL(0.0);
-    vec3 side_nf = v3_select(behind, v3_neg(nf), nf), side_ns = v3_select(behind, v3_neg(ns), ns);
+    SideNormals side = light_side_normals(nf, ns, transmits, wi);
+    vec3 side_nf = side.nf, side_ns = side.ns;
     lane_int faces_vertex = light_faces(ls.normal, ls.point, x);
     real light_pdf = light_sample_pdf(selection_pmf, ls.pdf_solid_angle);
     real weight = light_sample_weight(light_pdf, bsdf_pdf, mis);
@@ -41,6 +55,36 @@ WP_FN DirectLight direct_light(vec3 x, real x_error, vec3 nf, vec3 ns, lane_int 
     direct.contribution = light_sample_contribution(throughput_f, emission, v3_dot(wi, side_ns), light_pdf, weight);
     direct.carries =
         light_sample_carries(ls.pdf_solid_angle, wi, side_nf, side_ns, two_sided, faces_vertex, shading_normals);
+    return direct;
+}
+
+/* The light sample at vertex x (as direct_light's) of a light at infinity
+ * in direction wi, of radiance `radiance` there, chosen with density
+ * `light_pdf` (selection included; a delta light's: its selection
+ * probability, with `mis` 0, since BSDF sampling never finds it). Its
+ * shadow ray leaves x and ends nowhere: nothing may lie anywhere along it. */
+WP_FN DirectLight distant_direct_light(vec3 x, real x_error, vec3 nf, vec3 ns, lane_int transmits, vec3 wi,
+                                       vec3 throughput_f, real bsdf_pdf, real light_pdf, vec3 radiance, int mis,
+                                       int shading_normals) {
+    SideNormals side = light_side_normals(nf, ns, transmits, wi);
+    DirectLight direct;
+    direct.shadow.origin = offset_ray_origin(x, side.nf, x_error);
+    direct.shadow.direction = wi;
+    direct.shadow.distance = WP_REAL_MAX;
+    direct.contribution = light_sample_contribution(throughput_f, radiance, v3_dot(wi, side.ns), light_pdf,
+                                                    light_sample_weight(light_pdf, bsdf_pdf, mis));
+    direct.carries = light_sample_carries(light_pdf, wi, side.nf, side.ns, 1, 1, shading_normals);
+    return direct;
+}
+
+/* `a` where `choose_a`, else `b`, in each lane. */
+WP_FN DirectLight select_direct_light(lane_int choose_a, DirectLight a, DirectLight b) {
+    DirectLight direct;
+    direct.shadow.origin = v3_select(choose_a, a.shadow.origin, b.shadow.origin);
+    direct.shadow.direction = v3_select(choose_a, a.shadow.direction, b.shadow.direction);
+    direct.shadow.distance = choose_a ? a.shadow.distance : b.shadow.distance;
+    direct.contribution = v3_select(choose_a, a.contribution, b.contribution);
+    direct.carries = choose_a ? a.carries : b.carries;
     return direct;
 }
 

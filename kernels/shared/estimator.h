@@ -59,8 +59,11 @@ WP_FN vec3 emission_seen(vec3 emission, lane_int two_sided, lane_int front, real
 }
 
 /* The radiance a path of throughput `throughput` adds where it leaves the
- * scene: all of the background's, which no light sample can choose. */
-WP_FN vec3 background_seen(vec3 throughput, vec3 background) { return v3_mul(throughput, background); }
+ * scene into an environment of radiance `radiance` in its direction: its
+ * `weight` (emission_weight, with the environment's light sample density) of it. */
+WP_FN vec3 environment_seen(vec3 throughput, vec3 radiance, real weight) {
+    return v3_scale(v3_mul(throughput, radiance), weight);
+}
 
 /* Whether a light's side that `light_normal` points to faces x from
  * `light_point`. */

@@ -89,4 +89,12 @@ WP_FN vec3 sample_uniform_hemisphere(real u1, real u2) {
 
 WP_FN real uniform_hemisphere_pdf(void) { return REAL(0.5) * WP_INV_PI; }
 
+/* pdf = 1 / (4 pi) over the sphere. */
+WP_FN vec3 sample_uniform_sphere(real u1, real u2) {
+    real z = REAL(1.0) - REAL(2.0) * u1;
+    return polar_vec3(safe_sqrt(REAL(1.0) - z * z), u2, z);
+}
+
+WP_FN real uniform_sphere_pdf(void) { return REAL(0.25) * WP_INV_PI; }
+
 #endif

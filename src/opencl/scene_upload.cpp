@@ -217,6 +217,11 @@ SceneLayout flatten_scene(const Scene& scene) {
         const Light& light = scene.lights[i];
         const MeshLightTriangles::Range& range = mesh_lights.ranges[i];
         DeviceLight d{};
+        if (light.kind == LightKind::Environment) {
+            d.shape = shape_ref(WP_LIGHT_ENVIRONMENT, 0);
+            layout.lights.push_back(d);
+            continue;
+        }
         switch (light.shape) {
             case ShapeType::Sphere:
                 d.shape = shape_ref(WP_SHAPE_SPHERE, light.index);

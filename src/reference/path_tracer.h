@@ -301,10 +301,37 @@ Real light_pdf_at_hit(const ReferenceScene<Real>& scene, const ShapeHit<Real>& h
     bool is_triangle = hit.shape == ShapeType::Mesh;
     auto index = static_cast<std::uint32_t>(hit.index);
     std::uint32_t key = M::light_key(is_triangle, index, is_triangle ? scene.triangles[index].mesh : 0u);
-    for (std::uint32_t i = 0; i < scene.lights.size(); ++i)  // a light's index is its mesh's for a mesh light
-        if (scene.lights[i].shape == hit.shape && static_cast<std::uint32_t>(scene.lights[i].index) == key)
+    for (std::uint32_t i = 0; i < scene.lights.size(); ++i) {  // a light's index is its mesh's for a mesh light
+        const auto& light = scene.lights[i];
+        if (light.kind == LightKind::Shape && light.shape == hit.shape &&
+            static_cast<std::uint32_t>(light.index) == key)
             return light_point_pdf(scene, i, reference, point, normal);
+    }
     return Real(0);
+}
+
+// The density with which next-event estimation picks a direction of the
+// environment (the light table's last light): its selection probability
+// times the uniform sphere's (the kernels' environment_light_pdf).
+template <class Real>
+Real environment_light_pdf(const ReferenceScene<Real>& scene) {
+    using M = SharedMath<Real>;
+    auto environment = static_cast<std::uint32_t>(scene.lights.size() - 1);
+    return M::light_sample_pdf(M::light_selection_pmf(scene.light_cdf.data(), environment), M::uniform_sphere_pdf());
+}
+
+// The environment's radiance a path of throughput `throughput` counts where
+// it leaves the scene after a specular vertex (or the camera) or a bounce of
+// density `bsdf_pdf` (the kernels' environment_emission).
+template <class Real>
+Vec3<Real> environment_emission(const ReferenceScene<Real>& scene, bool after_specular, Real bsdf_pdf,
+                                const Vec3<Real>& throughput) {
+    using M = SharedMath<Real>;
+    bool has_environment = !scene.lights.empty() && scene.lights.back().kind == LightKind::Environment;
+    if (!has_environment) return Vec3<Real>(Real(0));
+    Real light_pdf = scene.mis ? environment_light_pdf(scene) : Real(0);
+    Real weight = M::emission_weight(after_specular, bsdf_pdf, light_pdf, scene.nee, scene.mis);
+    return M::environment_seen(throughput, scene.background, weight);
 }
 
 // Whether `material` transmits through a lobe of finite density (next-event
@@ -382,14 +409,24 @@ Vec3<Real> sample_direct_light(const ReferenceScene<Real>& scene, const Vec3<Rea
     auto light_count = static_cast<std::uint32_t>(scene.lights.size());
     std::uint32_t index = M::select_light(scene.light_cdf.data(), light_count, rng(bounce, DIM_LIGHT_SELECT));
     typename M::CameraPair point = rng.pair(bounce, DIM_LIGHT_U);
-    LightPoint<Real> p = sample_light(scene, scene.lights[index], x, point.u, point.v, rng(bounce, DIM_LIGHT_TRIANGLE));
-    const auto& emitter = scene.materials[p.material];
-    Vec3<Real> wi = M::direct_light_direction(p.sample, x);
-    BsdfValue<Real> bsdf = bsdf_value(scene, material, front, ns, wo, wi, throughput);
-    typename M::DirectLight direct =
-        M::direct_light(x, x_error, nf, ns, transmits(material.type), wi, bsdf.throughput_f, bsdf.pdf, p.sample,
-                        p.magnitude, M::light_selection_pmf(scene.light_cdf.data(), index), emitter.emission,
-                        emitter.two_sided, scene.mis, scene.shading_normals);
+    Real selection_pmf = M::light_selection_pmf(scene.light_cdf.data(), index);
+    typename M::DirectLight direct;
+    if (scene.lights[index].kind == LightKind::Environment) {
+        Vec3<Real> wi = M::sample_uniform_sphere(point.u, point.v);
+        BsdfValue<Real> bsdf = bsdf_value(scene, material, front, ns, wo, wi, throughput);
+        direct = M::distant_direct_light(x, x_error, nf, ns, transmits(material.type), wi, bsdf.throughput_f, bsdf.pdf,
+                                         M::light_sample_pdf(selection_pmf, M::uniform_sphere_pdf()), scene.background,
+                                         scene.mis, scene.shading_normals);
+    } else {
+        LightPoint<Real> p =
+            sample_light(scene, scene.lights[index], x, point.u, point.v, rng(bounce, DIM_LIGHT_TRIANGLE));
+        const auto& emitter = scene.materials[p.material];
+        Vec3<Real> wi = M::direct_light_direction(p.sample, x);
+        BsdfValue<Real> bsdf = bsdf_value(scene, material, front, ns, wo, wi, throughput);
+        direct = M::direct_light(x, x_error, nf, ns, transmits(material.type), wi, bsdf.throughput_f, bsdf.pdf,
+                                 p.sample, p.magnitude, selection_pmf, emitter.emission, emitter.two_sided, scene.mis,
+                                 scene.shading_normals);
+    }
     if (!direct.carries) return Vec3<Real>(Real(0));
     ++counts.shadow;
     const auto& shadow = direct.shadow;
@@ -482,8 +519,8 @@ Vec3<Real> trace_path(const ReferenceScene<Real>& scene, Ray<Real> ray, const Sa
         ++counts.extension;
         ShapeHit<Real> hit = closest_hit(scene, ray);
         if (!hit.found()) {
-            add_finite<Real>(radiance, M::background_seen(throughput, scene.background), NonfiniteStage::emission,
-                             counts);
+            add_finite<Real>(radiance, environment_emission(scene, specular, bsdf_pdf, throughput),
+                             NonfiniteStage::emission, counts);
             break;
         }
         travelled += hit.t;

@@ -55,7 +55,8 @@ struct ReferenceScene {
         typename M::RoughPlasticParams roughplastic;
     };
     struct LightRef {
-        ShapeType shape;                               // Sphere, Quad or Mesh
+        LightKind kind;                                // a shape's, or the environment (then the last)
+        ShapeType shape;                               // a shape's: Sphere, Quad or Mesh
         int index;                                     // into spheres, quads or the scene's meshes
         std::uint32_t first_triangle, triangle_count;  // a mesh: its triangles in light_triangles
         Real area;                                     // a mesh: its area
@@ -76,7 +77,7 @@ struct ReferenceScene {
     bool shading_normals;     // some mesh shades with vertex normals (FeatureSet::shading_normals)
     bool uniform_hemisphere;  // diffuse vertices sample the uniform hemisphere (render.hemisphere)
     bool textures;            // some material parameter is textured: hits compute their uv (FeatureSet::textures)
-    vec3 background;
+    vec3 background;          // the environment's radiance (a light where not black)
     std::vector<SurfaceMaterial> materials;
     std::vector<SphereShape> spheres;
     std::vector<PlaneShape> planes;
@@ -170,8 +171,8 @@ struct ReferenceScene {
         MeshLightTriangles mesh_lights = mesh_light_triangles(scene);
         for (std::size_t i = 0; i < scene.lights.size(); ++i) {
             const MeshLightTriangles::Range& range = mesh_lights.ranges[i];
-            lights.push_back(
-                {scene.lights[i].shape, scene.lights[i].index, range.first, range.count, Real(range.area)});
+            const Light& light = scene.lights[i];
+            lights.push_back({light.kind, light.shape, light.index, range.first, range.count, Real(range.area)});
         }
         for (std::size_t k = 0; k < mesh_lights.triangles.size(); ++k) {
             light_triangles.push_back(mesh_triangle<Real>(mesh_lights.triangles[k], mesh_lights.materials[k], 0));

@@ -4,6 +4,7 @@
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
+#include <limits>
 #include <numbers>
 
 #include "core/shared_math.h"
@@ -59,11 +60,12 @@ FeatureSet Scene::features() const {
         f.textures |= m.albedo_texture != kNoTexture;
     }
     for (const Light& light : lights) {
-        f.sphere_lights |= light.shape == ShapeType::Sphere;
-        f.quad_lights |= light.shape == ShapeType::Quad;
-        f.mesh_lights |= light.shape == ShapeType::Mesh;
+        bool shape = light.kind == LightKind::Shape;
+        f.sphere_lights |= shape && light.shape == ShapeType::Sphere;
+        f.quad_lights |= shape && light.shape == ShapeType::Quad;
+        f.mesh_lights |= shape && light.shape == ShapeType::Mesh;
+        f.constant_environment |= light.kind == LightKind::Environment;
     }
-    f.background = background.x > 0.0 || background.y > 0.0 || background.z > 0.0;
     f.pixel_filter = camera.filter.type != FilterType::Box;
     f.nee = render.nee && !lights.empty();
     f.mis = f.nee && f.non_specular() && render.mis;
@@ -74,7 +76,7 @@ FeatureSet Scene::features() const {
 std::string sppm_problem(const Scene& scene) {
     if (scene.render.integrator != Integrator::Sppm) return "";
     FeatureSet f = scene.features();
-    if (f.background) {
+    if (f.constant_environment) {
         return "sppm takes its light from emitting shapes, and the background is not black: it would light paths no "
                "photon takes (make the background black or render with the path integrator)";
     }
@@ -98,6 +100,29 @@ double sppm_pixel_spread(const Scene& scene) {
     return 2.0 * scene.camera.tan_half_fov_y() / double(scene.camera.height);
 }
 
+BoundingSphere bounding_sphere(const Scene& scene) {
+    glm::dvec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
+    auto enclose = [&](const glm::dvec3& p) {
+        lo = glm::min(lo, p);
+        hi = glm::max(hi, p);
+    };
+    for (const Sphere& s : scene.spheres) {
+        enclose(s.center - glm::dvec3(s.radius));
+        enclose(s.center + glm::dvec3(s.radius));
+    }
+    for (const Quad& q : scene.quads) {
+        enclose(q.corner);
+        enclose(q.corner + q.edge1);
+        enclose(q.corner + q.edge2);
+        enclose(q.corner + q.edge1 + q.edge2);
+    }
+    for (const Mesh& mesh : scene.meshes)
+        for (const glm::dvec3& p : mesh.positions) enclose(p);
+    if (lo.x > hi.x) return {};
+    return {(lo + hi) * 0.5,
+            glm::length(hi - lo) * 0.5};  // the box's bounding sphere, as pbrt-v4's Bounds3::BoundingSphere
+}
+
 void build_light_table(Scene& scene) {
     scene.lights.clear();
     scene.light_cdf.clear();
@@ -105,21 +130,28 @@ void build_light_table(Scene& scene) {
         const Sphere& s = scene.spheres[i];
         const Material& m = scene.materials[s.material];
         if (m.emits()) {
-            scene.lights.push_back({ShapeType::Sphere, i, emitted_power(m, SharedMath<double>::sphere_area(s.radius))});
+            scene.lights.push_back(
+                {LightKind::Shape, ShapeType::Sphere, i, emitted_power(m, SharedMath<double>::sphere_area(s.radius))});
         }
     }
     for (int i = 0; i < static_cast<int>(scene.quads.size()); ++i) {
         const Quad& q = scene.quads[i];
         const Material& m = scene.materials[q.material];
         if (m.emits()) {
-            scene.lights.push_back(
-                {ShapeType::Quad, i, emitted_power(m, SharedMath<double>::quad_area(q.edge1, q.edge2))});
+            scene.lights.push_back({LightKind::Shape, ShapeType::Quad, i,
+                                    emitted_power(m, SharedMath<double>::quad_area(q.edge1, q.edge2))});
         }
     }
     for (int i = 0; i < static_cast<int>(scene.meshes.size()); ++i) {
         const Mesh& mesh = scene.meshes[i];
         const Material& m = scene.materials[mesh.material];
-        if (m.emits()) scene.lights.push_back({ShapeType::Mesh, i, emitted_power(m, mesh_area(mesh))});
+        if (m.emits())
+            scene.lights.push_back({LightKind::Shape, ShapeType::Mesh, i, emitted_power(m, mesh_area(mesh))});
+    }
+    if (SharedMath<double>::emits(scene.background)) {
+        double radius = bounding_sphere(scene).radius;
+        double power = 4.0 * std::numbers::pi * std::numbers::pi * radius * radius * luminance(scene.background);
+        scene.lights.push_back({LightKind::Environment, ShapeType::Sphere, 0, power});
     }
     std::vector<double> powers;
     for (const Light& light : scene.lights) powers.push_back(light.power);

@@ -168,11 +168,21 @@ struct Mesh {
 
 enum class ShapeType { Sphere, Plane, Quad, Mesh };
 
-// An emitting sphere, quad or mesh; planes cannot emit (infinite power).
+// What emits a light: a shape's material, or the environment, the radiance
+// Scene::background of every direction that leaves the scene (Mitsuba 3's
+// `constant` emitter).
+enum class LightKind { Shape, Environment };
+
+// An emitting sphere, quad or mesh (planes cannot emit: infinite power), or
+// the environment, which is the table's last light.
 struct Light {
-    ShapeType shape = ShapeType::Quad;
-    int index = 0;       // into Scene::spheres, Scene::quads or Scene::meshes
-    double power = 0.0;  // pi * luminance(emission) * area * (two_sided ? 2 : 1)
+    LightKind kind = LightKind::Shape;
+    ShapeType shape = ShapeType::Quad;  // a shape's
+    int index = 0;                      // into Scene::spheres, Scene::quads or Scene::meshes
+    // A shape's: pi * luminance(emission) * area * (two_sided ? 2 : 1). The
+    // environment's: what reaches the scene's bounding sphere, as pbrt-v4
+    // estimates it (UniformInfiniteLight::Phi): 4 pi * pi r^2 * luminance.
+    double power = 0.0;
 };
 
 // Which features occur, so kernels and path state can leave the rest out.
@@ -185,10 +195,10 @@ struct FeatureSet {
     bool pixel_filter = false;     // the camera's filter is a tent or a gaussian, not the box
     bool textures = false;         // a material parameter is textured: hits compute their uv
     bool sphere_lights = false, quad_lights = false, mesh_lights = false;
-    bool background = false;  // a non-black background
-    bool nee = false;         // next-event estimation runs: render.nee is on and the scene has a light
-    bool mis = false;         // nee runs at non-specular vertices and render.mis is on
-    bool sppm = false;        // the integrator is sppm: visible points and photons
+    bool constant_environment = false;  // a non-black background: the environment light
+    bool nee = false;                   // next-event estimation runs: render.nee is on and the scene has a light
+    bool mis = false;                   // nee runs at non-specular vertices and render.mis is on
+    bool sppm = false;                  // the integrator is sppm: visible points and photons
     // Not the scene's: the wavefront's kernels read the rays' hits, which the
     // host traced (--intersector embree, kernels/interface/stages.h).
     bool host_traced = false;
@@ -215,7 +225,7 @@ struct Scene {
     std::string source;  // file name, for messages
     Camera camera;
     RenderSettings render;
-    glm::dvec3 background{0.0};
+    glm::dvec3 background{0.0};    // the environment's radiance (a light where not black)
     glm::dvec3 world_offset{0.0};  // camera position in the file's coordinates
     std::vector<Texture> textures;
     std::vector<Material> materials;
@@ -237,8 +247,8 @@ class SceneError : public std::runtime_error {
 };
 
 // Why the scene cannot be rendered with its sppm settings, or "" when it can:
-// photons leave emitting shapes only, so a background that is not black
-// would light paths no photon takes.
+// photons leave emitting shapes only, so a background that is not black (an
+// environment light) would light paths no photon takes.
 std::string sppm_problem(const Scene& scene);
 
 // The photons per iteration by default: the CPU's default wavefront
@@ -268,8 +278,18 @@ double mesh_area(const Mesh& mesh);
 // select_light searches. Uniform when the weights are all 0.
 std::vector<double> cumulative_distribution(const std::vector<double>& weights);
 
+// The centre and radius of a sphere around the scene's bounded shapes
+// (spheres, quads and meshes; planes are infinite), radius 0 where there are
+// none: what the environment's power is estimated over.
+struct BoundingSphere {
+    glm::dvec3 center{0.0};
+    double radius = 0.0;
+};
+BoundingSphere bounding_sphere(const Scene& scene);
+
 // Fills Scene::lights and Scene::light_cdf from the emitting spheres, quads
-// and meshes (in that order). The loader calls it; tests that build scenes in code call it too.
+// and meshes (in that order), then the environment where the background is
+// not black. The loader calls it; tests that build scenes in code call it too.
 void build_light_table(Scene& scene);
 
 // What every loader does after reading a scene: rebases all positions to the

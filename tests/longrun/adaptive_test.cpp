@@ -162,14 +162,15 @@ TEST_F(AdaptiveRender, EveryPixelHoldsTheFirstSamplesOfTheNonAdaptiveRender) {
 }
 
 // A diffuse sphere under a uniform background, lit from above by a small
-// sphere light: the background and the sphere's unlit side are flat (every
-// sample the same), its lit side noisy. Flat pixels (no variance in their
+// sphere light, with next-event estimation of both: the background is flat
+// (every sample the same), the sphere noisy. Flat pixels (no variance in their
 // whole neighbourhood at the minimum) stop at the first decision; pixels
 // whose error, from the non-adaptive film, is above the threshold at every
 // decision reach the full count.
 TEST(AdaptiveFlatAndNoisy, FlatPixelsStopAtTheMinimumNoisyOnesGoOn) {
     Scene scene = test::sphere_under_background({kSize, kSize, kSpp}, test::diffuse({0.8, 0.8, 0.8}), {0.5, 0.5, 0.5});
     scene.spheres.push_back({{0.9, 1.2, -3.2}, 0.25, test::add_material(scene, test::emitter({30, 30, 30}))});
+    scene.render.nee = true;  // the light's samples (and the background's: the sphere is noisy all over)
     build_light_table(scene);
     const double threshold = 0.02;
     const AdaptiveRun run = run_adaptive(scene, threshold);

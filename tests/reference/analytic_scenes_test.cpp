@@ -185,6 +185,32 @@ TYPED_TEST(ReferenceAnalytic, FloorUnderBackgroundShowsAlbedoTimesBackgroundFrom
     }
 }
 
+// The white furnace with the environment as a light: next-event estimation
+// with and without MIS, and with a brighter light below the floor that no
+// floor point sees (the environment's selection probability, from its power
+// over the scene's bounding sphere, is then below 1 and divides its light
+// samples). Per channel, the image mean of independent pixels against
+// albedo * L within kSigmaTolerance of its own standard errors (a false
+// failure with probability 6.8e-6 per check, 12 checks).
+TYPED_TEST(ReferenceAnalytic, FloorUnderEnvironmentLightShowsAlbedoTimesRadiance) {
+    const glm::dvec3 albedo(0.2, 0.5, 0.9), radiance(1.0, 0.5, 2.0);
+    for (bool mis : {false, true}) {
+        for (bool hidden_light : {false, true}) {
+            RenderBlock block{.width = 32, .height = 32, .spp = 4, .max_depth = 3};
+            wp::Scene scene = wp::test::floor_under_environment(block, albedo, radiance, mis);
+            if (hidden_light) wp::test::add_hidden_light_below_floor(scene, glm::dvec3(40.0));
+            ASSERT_TRUE(scene.features().constant_environment);
+            wp::RenderResult result = this->render(scene);
+            for (int c = 0; c < 3; ++c) {
+                wp::test::RunningMean mean = wp::test::channel_mean(result.image, c);
+                EXPECT_GT(mean.standard_error(), 0.0);  // the light samples do vary
+                EXPECT_NEAR(mean.mean(), albedo[c] * radiance[c], wp::test::kSigmaTolerance * mean.standard_error())
+                    << "mis " << mis << ", hidden light " << hidden_light << ", channel " << c;
+            }
+        }
+    }
+}
+
 // The n^2 law of radiance: tolerance a few float ULPs per Fresnel bounce.
 TYPED_TEST(ReferenceAnalytic, InsideGlassSphereRadianceGrowsByIorSquared) {
     for (double ior : {1.0, 1.5, 2.4}) {

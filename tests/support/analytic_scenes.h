@@ -98,8 +98,12 @@ inline double inside_emissive_sphere_radiance(double albedo, double emission, in
 // channels. A glass sphere scales radiance by 1/eta^2 on entering and by
 // eta^2 on leaving and absorbs nothing, so every sample carries background
 // and the sphere is invisible.
+// The background is the environment light; these scenes render without
+// next-event estimation, whose light samples would make the pixels noisy
+// (floor_under_environment has it).
 inline Scene sphere_under_background(const RenderBlock& block, const Material& material, const glm::dvec3& background) {
     Scene scene = empty_scene(block, {0, 0, -1}, 40.0);
+    scene.render.nee = false;
     scene.background = background;
     scene.spheres.push_back({{0.2, -0.1, -4.0}, 1.0, add_material(scene, material)});
     build_light_table(scene);
@@ -113,9 +117,22 @@ inline Scene sphere_under_background(const RenderBlock& block, const Material& m
 inline Scene floor_under_background(const RenderBlock& block, const glm::dvec3& albedo, const glm::dvec3& background,
                                     double normal_sign) {
     Scene scene = empty_scene(block, {0, -1, 0}, 60.0);
+    scene.render.nee = false;
     scene.background = background;
     scene.planes.push_back({{0, -1, 0}, {0, normal_sign, 0}, add_material(scene, diffuse(albedo))});
     build_light_table(scene);
+    return scene;
+}
+
+// The same floor under the environment of radiance L with next-event
+// estimation (and, where `mis`, multiple importance sampling): each pixel's
+// expected value is still albedo * L (the white furnace), now estimated by
+// the environment's light samples too.
+inline Scene floor_under_environment(const RenderBlock& block, const glm::dvec3& albedo, const glm::dvec3& radiance,
+                                     bool mis) {
+    Scene scene = floor_under_background(block, albedo, radiance, 1.0);
+    scene.render.nee = true;
+    scene.render.mis = mis;
     return scene;
 }
 

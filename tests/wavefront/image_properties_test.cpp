@@ -151,15 +151,16 @@ TEST_P(OpenClAnalytic, EmissiveSphereInterior) {
 
 constexpr const char* kSphereUnderBackground = R"({
   "camera": {"position": [0, 0, 0], "look_at": [0, 0, -1], "up": [0, 1, 0], "fov_y": 30, "width": 16, "height": 16},
-  "render": {"spp": 2, "max_depth": 4, "rr_depth": 100, "seed": 5},
+  "render": {"spp": 2, "max_depth": 4, "rr_depth": 100, "seed": 5, "nee": false},
   "background": [0.8, 0.6, 0.4],
   "materials": {"grey": {"type": "diffuse", "albedo": [0.3, 0.5, 0.7]}},
   "shapes": [{"type": "sphere", "center": [0, 0, -4], "radius": 0.6, "material": "grey"}]
 })";
 
-// A convex diffuse sphere under a uniform background B, without lights: every
-// bounce off the sphere escapes it, so a path that hits shows exactly rho * B
-// and one that misses shows B. The centre pixels are all sphere; the corner
+// A convex diffuse sphere under a uniform background B, without other lights
+// and without next-event estimation (whose samples of the background would
+// vary): every bounce off the sphere escapes it, so a path that hits shows
+// exactly rho * B and one that misses shows B. The centre pixels are all sphere; the corner
 // pixels all background.
 TEST_P(OpenClAnalytic, ConvexSphereUnderBackground) {
     Scene scene = test::scene_from_json(kSphereUnderBackground);
