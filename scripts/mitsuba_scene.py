@@ -35,7 +35,8 @@ wavepath code agreeing with itself. The mapping (docs/mitsuba.md):
   first); `face_normals` unless the file has vertex normals and the scene
   keeps them (Mitsuba would otherwise smooth the normals of files that have
   none);
-- background: a `constant` emitter when not black.
+- background: a `constant` emitter when not black;
+- lights: `directional` emitters of the same `direction` and `irradiance`.
 
 Everything is rebased to the camera as wavepath's loader does (the camera at
 the origin), so that Mitsuba's float arithmetic sees the same small numbers.
@@ -71,7 +72,8 @@ class MitsubaSceneError(Exception):
 
 # The keys each part of a scene may have (docs/scene-format.md); any other key is refused,
 # so that a feature added to wavepath is never silently dropped from Mitsuba's image.
-TOP_KEYS = {"camera", "render", "background", "textures", "materials", "shapes"}
+TOP_KEYS = {"camera", "render", "background", "lights", "textures", "materials", "shapes"}
+LIGHT_KEYS = {"directional": {"type", "direction", "irradiance"}}
 CAMERA_KEYS = {"position", "look_at", "up", "fov_y", "width", "height"}
 RENDER_KEYS = {"spp", "max_depth", "rr_depth", "seed", "nee", "mis", "hemisphere", "sampler"}
 MATERIAL_KEYS = {
@@ -190,6 +192,8 @@ class Converter:
             out["background"] = {"type": "constant", "radiance": rgb(background)}
         self.textures = {name: self.texture(texture, f"textures.{name}")
                          for name, texture in scene.get("textures", {}).items()}
+        for i, light in enumerate(scene.get("lights", [])):
+            out[f"light_{i}"] = self.light(light, f"lights[{i}]")
         materials = scene.get("materials", {})
         for name, material in materials.items():
             kind = material.get("type")
@@ -222,6 +226,14 @@ class Converter:
             elif key != "type":
                 out[key] = value
         return out
+
+    def light(self, light, where):
+        kind = light.get("type")
+        if kind not in LIGHT_KEYS:
+            self.fail(f"{where}.type", f"light type {json.dumps(kind)} has no Mitsuba counterpart here")
+        self.check_keys(light, LIGHT_KEYS[kind], where)
+        return {"type": "directional", "direction": light["direction"],
+                "irradiance": rgb(light.get("irradiance", [1, 1, 1]))}
 
     def integrator(self, render):
         # Mitsuba counts path segments (1: emitters seen directly), wavepath scattering events (0: the same).

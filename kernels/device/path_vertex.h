@@ -433,6 +433,10 @@ WP_FN lane_int sample_direct_light(WP_SCENE_PARAMS, lane_uint pixel, lane_uint s
     lane_int environment = is_environment_light(WP_SCENE_ARGS, light);
     wi = v3_select(environment, sample_uniform_sphere(point.u, point.v), wi);
 #endif
+#ifdef WP_HAS_DIRECTIONAL_LIGHTS
+    lane_int directional = (SCENE_FIELD(lights, light, shape) >> WP_SHAPE_TYPE_SHIFT) == WP_LIGHT_DIRECTIONAL;
+    wi = v3_select(directional, SCENE_FIELD(lights, light, to_light), wi);
+#endif
     BsdfValue bsdf = vertex_bsdf_value(v, wi, throughput);
     real selection_pmf = light_selection_pmf(light_cdf, light);
     *direct = direct_light(v.surface.point, v.surface.error, v.nf, v.ns, vertex_transmits(v), wi, bsdf.throughput_f,
@@ -444,6 +448,13 @@ WP_FN lane_int sample_direct_light(WP_SCENE_PARAMS, lane_uint pixel, lane_uint s
                              bsdf.pdf, light_sample_pdf(selection_pmf, uniform_sphere_pdf()),
                              uniform_vec3(scene->background), WP_USES_MIS, WP_USES_SHADING_NORMALS);
     *direct = select_direct_light(environment, distant, *direct);
+#endif
+#ifdef WP_HAS_DIRECTIONAL_LIGHTS
+    /* a delta light: no multiple importance sampling, its density the selection probability */
+    DirectLight sun = distant_direct_light(v.surface.point, v.surface.error, v.nf, v.ns, vertex_transmits(v), wi,
+                                           bsdf.throughput_f, bsdf.pdf, selection_pmf,
+                                           SCENE_FIELD(lights, light, irradiance), 0, WP_USES_SHADING_NORMALS);
+    *direct = select_direct_light(directional, sun, *direct);
 #endif
     return direct->carries;
 }

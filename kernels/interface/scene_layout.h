@@ -13,9 +13,11 @@
 #define WP_SHAPE_PLANE 1u
 #define WP_SHAPE_QUAD 2u
 #define WP_SHAPE_TRIANGLE 3u /* a mesh triangle, by its index in the BVH's leaf order */
-/* Not a shape: the type of DeviceLight.shape for the environment (Scene's
- * LightKind::Environment), the light table's last light. */
+/* Not shapes: the types of DeviceLight.shape for the environment (Scene's
+ * LightKind::Environment), the light table's last light, and for a
+ * directional light. */
 #define WP_LIGHT_ENVIRONMENT 4u
+#define WP_LIGHT_DIRECTIONAL 5u
 #define WP_SHAPE_TYPE_SHIFT 29u
 #define WP_SHAPE_INDEX_MASK 0x1fffffffu
 #define WP_NO_HIT 0xffffffffu
@@ -95,10 +97,13 @@ typedef struct {
 typedef struct {
     uint shape;          /* WP_SHAPE_SPHERE or WP_SHAPE_QUAD, index included as in hit_shape; a mesh:
                           * WP_SHAPE_TRIANGLE with its first triangle in light_triangles as the index;
-                          * the environment: WP_LIGHT_ENVIRONMENT, index 0 */
+                          * the environment: WP_LIGHT_ENVIRONMENT, index 0; a directional light:
+                          * WP_LIGHT_DIRECTIONAL, index 0 */
     uint triangle_count; /* a mesh: its triangles in light_triangles (and light_triangle_cdf) */
     float area;          /* a mesh: its area */
     uint mesh;           /* a mesh: its index in the scene's meshes (MeshTriangle.mesh of its triangles) */
+    float to_light[3];   /* a directional light: the unit direction towards it */
+    float irradiance[3]; /* a directional light's */
 } DeviceLight;
 
 #endif

@@ -88,6 +88,10 @@ std::uint64_t scene_hash(const Scene& scene) {
         h.add_all(m.positions).add_all(m.normals).add_all(m.triangles).add(m.material);
         if (!m.uvs.empty()) h.add_all(m.uvs);  // meshes without uvs hash as before
     }
+    if (!scene.directional_lights.empty()) {  // only where present: films of scenes without them keep their hash
+        h.add(scene.directional_lights.size());
+        for (const DirectionalLight& d : scene.directional_lights) h.add(d.direction).add(d.irradiance);
+    }
     return h.value();
 }
 

@@ -34,6 +34,7 @@ std::vector<std::pair<const char*, const char*>> features_in_use(const FeatureSe
     add(f.sphere_lights, "sphere-lights", "WP_HAS_SPHERE_LIGHTS");
     add(f.quad_lights, "quad-lights", "WP_HAS_QUAD_LIGHTS");
     add(f.mesh_lights, "mesh-lights", "WP_HAS_MESH_LIGHTS");
+    add(f.directional_lights, "directional-lights", "WP_HAS_DIRECTIONAL_LIGHTS");
     add(f.constant_environment, "constant-environment", "WP_HAS_CONSTANT_ENVIRONMENT");
     add(f.pixel_filter, "pixel-filter", "WP_HAS_PIXEL_FILTER");
     add(f.nee, "nee", "WP_NEE");

@@ -20,7 +20,7 @@ static_assert(sizeof(DeviceSphere) == 5 * 4, "DeviceSphere must match its OpenCL
 static_assert(sizeof(DevicePlane) == 7 * 4, "DevicePlane must match its OpenCL C layout");
 static_assert(sizeof(DeviceQuad) == 16 * 4, "DeviceQuad must match its OpenCL C layout");
 static_assert(sizeof(DeviceMaterial) == 29 * 4, "DeviceMaterial must match its OpenCL C layout");
-static_assert(sizeof(DeviceLight) == 4 * 4, "DeviceLight must match its OpenCL C layout");
+static_assert(sizeof(DeviceLight) == 10 * 4, "DeviceLight must match its OpenCL C layout");
 static_assert(sizeof(MaterialTextures) == 1 * 4, "MaterialTextures must match its OpenCL C layout");
 static_assert(sizeof(SharedMath<float>::TextureDescriptor) == 18 * 4,
               "TextureDescriptor must match its OpenCL C layout");
@@ -219,6 +219,14 @@ SceneLayout flatten_scene(const Scene& scene) {
         DeviceLight d{};
         if (light.kind == LightKind::Environment) {
             d.shape = shape_ref(WP_LIGHT_ENVIRONMENT, 0);
+            layout.lights.push_back(d);
+            continue;
+        }
+        if (light.kind == LightKind::Directional) {
+            const DirectionalLight& directional = scene.directional_lights[std::size_t(light.index)];
+            d.shape = shape_ref(WP_LIGHT_DIRECTIONAL, 0);
+            put(d.to_light, -directional.direction);
+            put(d.irradiance, directional.irradiance);
             layout.lights.push_back(d);
             continue;
         }

@@ -411,15 +411,20 @@ Vec3<Real> sample_direct_light(const ReferenceScene<Real>& scene, const Vec3<Rea
     typename M::CameraPair point = rng.pair(bounce, DIM_LIGHT_U);
     Real selection_pmf = M::light_selection_pmf(scene.light_cdf.data(), index);
     typename M::DirectLight direct;
-    if (scene.lights[index].kind == LightKind::Environment) {
+    const auto& light = scene.lights[index];
+    if (light.kind == LightKind::Directional) {  // a delta light: no MIS, its density the selection probability
+        BsdfValue<Real> bsdf = bsdf_value(scene, material, front, ns, wo, light.to_light, throughput);
+        direct =
+            M::distant_direct_light(x, x_error, nf, ns, transmits(material.type), light.to_light, bsdf.throughput_f,
+                                    bsdf.pdf, selection_pmf, light.irradiance, false, scene.shading_normals);
+    } else if (light.kind == LightKind::Environment) {
         Vec3<Real> wi = M::sample_uniform_sphere(point.u, point.v);
         BsdfValue<Real> bsdf = bsdf_value(scene, material, front, ns, wo, wi, throughput);
         direct = M::distant_direct_light(x, x_error, nf, ns, transmits(material.type), wi, bsdf.throughput_f, bsdf.pdf,
                                          M::light_sample_pdf(selection_pmf, M::uniform_sphere_pdf()), scene.background,
                                          scene.mis, scene.shading_normals);
     } else {
-        LightPoint<Real> p =
-            sample_light(scene, scene.lights[index], x, point.u, point.v, rng(bounce, DIM_LIGHT_TRIANGLE));
+        LightPoint<Real> p = sample_light(scene, light, x, point.u, point.v, rng(bounce, DIM_LIGHT_TRIANGLE));
         const auto& emitter = scene.materials[p.material];
         Vec3<Real> wi = M::direct_light_direction(p.sample, x);
         BsdfValue<Real> bsdf = bsdf_value(scene, material, front, ns, wo, wi, throughput);

@@ -55,11 +55,12 @@ struct ReferenceScene {
         typename M::RoughPlasticParams roughplastic;
     };
     struct LightRef {
-        LightKind kind;                                // a shape's, or the environment (then the last)
-        ShapeType shape;                               // a shape's: Sphere, Quad or Mesh
-        int index;                                     // into spheres, quads or the scene's meshes
+        LightKind kind;   // a shape's, a directional light, or the environment (then the last)
+        ShapeType shape;  // a shape's: Sphere, Quad or Mesh
+        int index;        // into spheres, quads or the scene's meshes
         std::uint32_t first_triangle, triangle_count;  // a mesh: its triangles in light_triangles
         Real area;                                     // a mesh: its area
+        vec3 to_light, irradiance;  // a directional light: the unit direction towards it, its irradiance
     };
     // Pinhole camera; its frame is built in double and then rounded, as the
     // kernels' host does (opencl/scene_upload.cpp).
@@ -172,7 +173,10 @@ struct ReferenceScene {
         for (std::size_t i = 0; i < scene.lights.size(); ++i) {
             const MeshLightTriangles::Range& range = mesh_lights.ranges[i];
             const Light& light = scene.lights[i];
-            lights.push_back({light.kind, light.shape, light.index, range.first, range.count, Real(range.area)});
+            DirectionalLight directional{glm::dvec3(0.0), glm::dvec3(0.0)};
+            if (light.kind == LightKind::Directional) directional = scene.directional_lights[std::size_t(light.index)];
+            lights.push_back({light.kind, light.shape, light.index, range.first, range.count, Real(range.area),
+                              vec3(-directional.direction), vec3(directional.irradiance)});
         }
         for (std::size_t k = 0; k < mesh_lights.triangles.size(); ++k) {
             light_triangles.push_back(mesh_triangle<Real>(mesh_lights.triangles[k], mesh_lights.materials[k], 0));

@@ -891,12 +891,34 @@ class Reader {
             if (!emitter.id().empty()) return;  // a shape's, by reference (read there)
             emitter.fail("an area emitter must be inside the shape that emits, or referred to from it by its id");
         }
-        if (emitter.type() != "constant") emitter.fail("not supported (supported: constant; area inside a shape)");
+        if (emitter.type() == "directional") {
+            read_directional(emitter);
+            return;
+        }
+        if (emitter.type() != "constant")
+            emitter.fail("not supported (supported: constant, directional; area inside a shape)");
         emitter.allow({"radiance"});
         out_.scene.background += emitter.optional_color("radiance", kMaxSceneMagnitude, "").value_or(glm::dvec3(1.0));
         for (int i = 0; i < 3; ++i)
             if (out_.scene.background[i] > kMaxSceneMagnitude)
                 emitter.fail("the constant emitters' radiance sums beyond " + format_number(kMaxSceneMagnitude));
+    }
+
+    // Mitsuba's directional emitter: its light travels along `direction`, or
+    // along to_world's +z (the default: +z itself); `irradiance` (default 1).
+    void read_directional(const Plugin& emitter) {
+        emitter.allow({"irradiance", "direction", "to_world"});
+        if (emitter.property("direction") && emitter.property("to_world"))
+            emitter.fail("give \"direction\" or \"to_world\", not both (as in Mitsuba)");
+        DirectionalLight light;
+        const glm::dmat4 m = emitter.optional_transform("to_world").value_or(glm::dmat4(1.0));
+        glm::dvec3 direction = emitter.optional_point("direction").value_or(glm::dvec3(m * glm::dvec4(0, 0, 1, 0)));
+        if (!(glm::length(direction) > 0.0) || !std::isfinite(glm::length(direction)))
+            emitter.fail(emitter.property("direction") ? *emitter.property("direction") : emitter.element(),
+                         "the direction must be finite and not zero-length");
+        light.direction = glm::normalize(direction);
+        light.irradiance = emitter.optional_color("irradiance", kMaxSceneMagnitude, "").value_or(glm::dvec3(1.0));
+        out_.scene.directional_lights.push_back(light);
     }
 
     glm::dvec3 area_emission(const Plugin& shape) {

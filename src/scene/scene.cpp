@@ -64,6 +64,7 @@ FeatureSet Scene::features() const {
         f.sphere_lights |= shape && light.shape == ShapeType::Sphere;
         f.quad_lights |= shape && light.shape == ShapeType::Quad;
         f.mesh_lights |= shape && light.shape == ShapeType::Mesh;
+        f.directional_lights |= light.kind == LightKind::Directional;
         f.constant_environment |= light.kind == LightKind::Environment;
     }
     f.pixel_filter = camera.filter.type != FilterType::Box;
@@ -79,6 +80,10 @@ std::string sppm_problem(const Scene& scene) {
     if (f.constant_environment) {
         return "sppm takes its light from emitting shapes, and the background is not black: it would light paths no "
                "photon takes (make the background black or render with the path integrator)";
+    }
+    if (f.directional_lights) {
+        return "sppm takes its light from emitting shapes, and a directional light would light paths no photon takes "
+               "(render with the path integrator)";
     }
     const char* unsupported = f.rough_conductor    ? "roughconductor"
                               : f.rough_dielectric ? "roughdielectric"
@@ -148,8 +153,12 @@ void build_light_table(Scene& scene) {
         if (m.emits())
             scene.lights.push_back({LightKind::Shape, ShapeType::Mesh, i, emitted_power(m, mesh_area(mesh))});
     }
+    const double radius = bounding_sphere(scene).radius;
+    for (int i = 0; i < static_cast<int>(scene.directional_lights.size()); ++i) {
+        double power = std::numbers::pi * radius * radius * luminance(scene.directional_lights[i].irradiance);
+        scene.lights.push_back({LightKind::Directional, ShapeType::Sphere, i, power});
+    }
     if (SharedMath<double>::emits(scene.background)) {
-        double radius = bounding_sphere(scene).radius;
         double power = 4.0 * std::numbers::pi * std::numbers::pi * radius * radius * luminance(scene.background);
         scene.lights.push_back({LightKind::Environment, ShapeType::Sphere, 0, power});
     }

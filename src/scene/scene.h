@@ -168,20 +168,28 @@ struct Mesh {
 
 enum class ShapeType { Sphere, Plane, Quad, Mesh };
 
-// What emits a light: a shape's material, or the environment, the radiance
-// Scene::background of every direction that leaves the scene (Mitsuba 3's
-// `constant` emitter).
-enum class LightKind { Shape, Environment };
+// What emits a light: a shape's material, a directional light (Mitsuba 3's
+// `directional`: Scene::directional_lights), or the environment, the
+// radiance Scene::background of every direction that leaves the scene
+// (Mitsuba 3's `constant` emitter).
+enum class LightKind { Shape, Directional, Environment };
 
-// An emitting sphere, quad or mesh (planes cannot emit: infinite power), or
-// the environment, which is the table's last light.
+// A light at infinity in one direction, a delta light (docs/scene-format.md, "lights").
+struct DirectionalLight {
+    glm::dvec3 direction{0.0, -1.0, 0.0};  // unit: the way its light travels (Mitsuba's `direction`)
+    glm::dvec3 irradiance{1.0};            // on a surface facing it
+};
+
+// An emitting sphere, quad or mesh (planes cannot emit: infinite power), a
+// directional light, or the environment, which is the table's last light.
 struct Light {
     LightKind kind = LightKind::Shape;
     ShapeType shape = ShapeType::Quad;  // a shape's
-    int index = 0;                      // into Scene::spheres, Scene::quads or Scene::meshes
+    int index = 0;                      // into Scene::spheres, Scene::quads or Scene::meshes; Scene::directional_lights
     // A shape's: pi * luminance(emission) * area * (two_sided ? 2 : 1). The
-    // environment's: what reaches the scene's bounding sphere, as pbrt-v4
-    // estimates it (UniformInfiniteLight::Phi): 4 pi * pi r^2 * luminance.
+    // distant lights' what reaches the scene's bounding sphere (radius r), as
+    // pbrt-v4 estimates it (DistantLight::Phi, UniformInfiniteLight::Phi):
+    // pi r^2 * luminance(irradiance), 4 pi * pi r^2 * luminance(radiance).
     double power = 0.0;
 };
 
@@ -195,6 +203,7 @@ struct FeatureSet {
     bool pixel_filter = false;     // the camera's filter is a tent or a gaussian, not the box
     bool textures = false;         // a material parameter is textured: hits compute their uv
     bool sphere_lights = false, quad_lights = false, mesh_lights = false;
+    bool directional_lights = false;
     bool constant_environment = false;  // a non-black background: the environment light
     bool nee = false;                   // next-event estimation runs: render.nee is on and the scene has a light
     bool mis = false;                   // nee runs at non-specular vertices and render.mis is on
@@ -233,6 +242,7 @@ struct Scene {
     std::vector<Plane> planes;
     std::vector<Quad> quads;
     std::vector<Mesh> meshes;
+    std::vector<DirectionalLight> directional_lights;
     std::vector<Light> lights;
     std::vector<double> light_cdf;  // cumulative selection probability, proportional to power; last = 1
 
@@ -248,7 +258,7 @@ class SceneError : public std::runtime_error {
 
 // Why the scene cannot be rendered with its sppm settings, or "" when it can:
 // photons leave emitting shapes only, so a background that is not black (an
-// environment light) would light paths no photon takes.
+// environment light) or a directional light would light paths no photon takes.
 std::string sppm_problem(const Scene& scene);
 
 // The photons per iteration by default: the CPU's default wavefront
@@ -288,8 +298,8 @@ struct BoundingSphere {
 BoundingSphere bounding_sphere(const Scene& scene);
 
 // Fills Scene::lights and Scene::light_cdf from the emitting spheres, quads
-// and meshes (in that order), then the environment where the background is
-// not black. The loader calls it; tests that build scenes in code call it too.
+// and meshes (in that order), the directional lights, then the environment
+// where the background is not black. The loader calls it; tests that build scenes in code call it too.
 void build_light_table(Scene& scene);
 
 // What every loader does after reading a scene: rebases all positions to the

@@ -65,7 +65,7 @@ void finish_scene(Scene& scene) {
 Scene parse_scene(const std::string& json_text, const std::string& source_name, const MeshImportLimits& mesh_import) {
     const nlohmann::json document = parse_json_strictly(json_text, source_name);
     const JsonField root = root_field(document, source_name);
-    root.allow_only_keys({"camera", "render", "background", "textures", "materials", "shapes"});
+    root.allow_only_keys({"camera", "render", "background", "lights", "textures", "materials", "shapes"});
 
     Scene scene;
     scene.source = source_name;
@@ -82,6 +82,7 @@ Scene parse_scene(const std::string& json_text, const std::string& source_name, 
         importer.expect(named_mesh_files(document.at("shapes"), source_name));
         read_shapes(*shapes, scene, importer);
     }
+    if (auto lights = root.optional_member("lights")) read_lights(*lights, scene);
 
     finish_scene(scene);
     if (const std::string problem = sppm_problem(scene); !problem.empty())

@@ -594,4 +594,21 @@ void read_shapes(const JsonField& field, Scene& scene, MeshImporter& importer) {
     for (std::size_t i = 0; i < count; ++i) read_shape(field.element(i), scene, importer);
 }
 
+void read_lights(const JsonField& field, Scene& scene) {
+    std::size_t count = field.array_size();
+    for (std::size_t i = 0; i < count; ++i) {
+        const JsonField light = field.element(i);
+        const JsonField type_field = light.member("type");
+        const std::string type = type_field.string();
+        if (type != "directional")
+            type_field.fail("unknown light type " + nlohmann::json(type).dump() + " (expected one of: directional)");
+        light.allow_only_keys({"type", "direction", "irradiance"});
+        DirectionalLight directional;
+        directional.direction = safe_normalize(read_direction(light.member("direction")));
+        if (auto irradiance = light.optional_member("irradiance"))
+            directional.irradiance = irradiance->vec3_in(0.0, kMaxSceneMagnitude);
+        scene.directional_lights.push_back(directional);
+    }
+}
+
 }  // namespace wp

@@ -85,6 +85,12 @@ SceneJson scene_json(const MitsubaScene& read, const fs::path& json_path) {
     const RenderSettings& r = scene.render;
     j["render"] = {{"spp", r.spp}, {"max_depth", r.max_depth}, {"rr_depth", r.rr_depth}, {"seed", r.seed}};
     j["background"] = vec3(scene.background);
+    if (!scene.directional_lights.empty()) {
+        nlohmann::json& lights = j["lights"] = nlohmann::json::array();
+        for (const DirectionalLight& d : scene.directional_lights)
+            lights.push_back(
+                {{"type", "directional"}, {"direction", vec3(d.direction)}, {"irradiance", vec3(d.irradiance)}});
+    }
     j["materials"] = nlohmann::json::object();
     for (const Material& m : scene.materials) j["materials"][m.name] = material_json(m);
     nlohmann::json& shapes = j["shapes"] = nlohmann::json::array();

@@ -330,6 +330,17 @@ TEST(RenderIdentity, EverySettingThatChangesTheImageChangesIt) {
     EXPECT_TRUE(plastic_parameter_changed([](Material& m) { m.type = MaterialType::Plastic; }));
     EXPECT_TRUE(scene_changed([](Scene& s) { s.quads.at(0).edge1.z += 1e-9; }));
     EXPECT_TRUE(scene_changed([](Scene& s) { s.background.y += 1e-9; }));
+    // A directional light, its direction and its irradiance.
+    EXPECT_TRUE(scene_changed([](Scene& s) { s.directional_lights.push_back({}); }));
+    auto directional_changed = [&](auto change) {
+        Scene a = base;
+        a.directional_lights.push_back({});
+        Scene b = a;
+        change(b.directional_lights[0]);
+        return render_identity(a, "opencl").scene != render_identity(b, "opencl").scene;
+    };
+    EXPECT_TRUE(directional_changed([](DirectionalLight& d) { d.direction.x += 1e-9; }));
+    EXPECT_TRUE(directional_changed([](DirectionalLight& d) { d.irradiance.z += 1e-9; }));
     // A mesh as loaded: one vertex, one normal, one triangle's corners, its material, and a mesh more.
     EXPECT_TRUE(scene_changed([](Scene& s) { s.meshes[0].positions[5].y += 1e-9; }));
     EXPECT_TRUE(scene_changed([](Scene& s) { s.meshes[0].normals[3].x += 1e-9; }));

@@ -96,6 +96,16 @@ class ConverterTest(unittest.TestCase):
         out = self.convert(background=[0.5, 0, 0])
         self.assertEqual(out["background"], {"type": "constant", "radiance": {"type": "rgb", "value": [0.5, 0, 0]}})
 
+    def test_directional_lights_are_directional_emitters(self):
+        out = self.convert(lights=[{"type": "directional", "direction": [0, -1, 0.5], "irradiance": [2, 1, 0.5]},
+                                   {"type": "directional", "direction": [1, 0, 0]}])
+        self.assertEqual(out["light_0"], {"type": "directional", "direction": [0, -1, 0.5],
+                                          "irradiance": {"type": "rgb", "value": [2, 1, 0.5]}})
+        self.assertEqual(out["light_1"]["irradiance"], {"type": "rgb", "value": [1, 1, 1]})
+        self.refused("lights[0].type: light type \"spot\" has no Mitsuba counterpart here", lights=[{"type": "spot"}])
+        self.refused("lights[0].angle: not expressible in Mitsuba",
+                     lights=[{"type": "directional", "direction": [0, -1, 0], "angle": 1}])
+
     # Materials.
     def test_materials(self):
         materials = {"d": {"type": "diffuse", "albedo": [0.1, 0.2, 0.3]}, "m": {"type": "mirror", "reflectance": [0.9, 0.8, 0.7]},

@@ -14,6 +14,7 @@
 #include <gtest/gtest.h>
 
 #include <limits>
+#include <numbers>
 #include <string>
 #include <type_traits>
 
@@ -208,6 +209,32 @@ TYPED_TEST(ReferenceAnalytic, FloorUnderEnvironmentLightShowsAlbedoTimesRadiance
                     << "mis " << mis << ", hidden light " << hidden_light << ", channel " << c;
             }
         }
+    }
+}
+
+// A directional light on a diffuse floor: exactly albedo / pi * E cos(theta)
+// in every pixel (a few roundings); with a light below the floor
+// that no floor point sees, the directional light's selection probability
+// (its power pi r^2 luminance(E) over the bounding sphere against the
+// sphere light's) divides its samples and the image mean stays, within
+// kSigmaTolerance standard errors.
+TYPED_TEST(ReferenceAnalytic, FloorUnderDirectionalLightShowsAlbedoTimesIrradianceCosineOverPi) {
+    const glm::dvec3 albedo(0.2, 0.5, 0.9), irradiance(3.0, 2.0, 1.0);
+    const double theta = 0.6;
+    const glm::dvec3 expected = albedo / std::numbers::pi * irradiance * std::cos(theta);
+    RenderBlock block{.width = 16, .height = 16, .spp = 4, .max_depth = 3};
+    wp::Scene scene = wp::test::floor_under_directional_light(block, albedo, irradiance, theta);
+    ASSERT_TRUE(scene.features().directional_lights);
+    expect_uniform_image(this->render(scene).image, expected, 1e-5, "directional light alone");
+
+    block.spp = 16;
+    scene = wp::test::floor_under_directional_light(block, albedo, irradiance, theta);
+    wp::test::add_hidden_light_below_floor(scene, glm::dvec3(0.2));  // chosen with probability 0.55
+    wp::RenderResult result = this->render(scene);
+    for (int c = 0; c < 3; ++c) {
+        wp::test::RunningMean mean = wp::test::channel_mean(result.image, c);
+        EXPECT_GT(mean.standard_error(), 0.0);  // the light choice does vary
+        EXPECT_NEAR(mean.mean(), expected[c], wp::test::kSigmaTolerance * mean.standard_error()) << "channel " << c;
     }
 }
 

@@ -296,6 +296,25 @@ TEST_F(MitsubaXml, BsdfsAsMaterials) {
     expect_near(scene.background, {0.1, 0.2, 0.3});
 }
 
+// Mitsuba's directional emitter: `direction` is the way the light travels
+// (normalized), or to_world's +z; irradiance defaults to 1.
+TEST_F(MitsubaXml, DirectionalEmittersAsDirectionalLights) {
+    Scene scene = read(sensor() + R"(
+        <emitter type="directional"><vector name="direction" value="0, -2, 0"/>
+            <rgb name="irradiance" value="3, 2, 1"/></emitter>
+        <emitter type="directional"><transform name="to_world"><rotate x="1" angle="90"/></transform></emitter>
+        <emitter type="directional"/>)")
+                      .scene;
+    ASSERT_EQ(scene.directional_lights.size(), 3u);
+    expect_near(scene.directional_lights[0].direction, {0, -1, 0});
+    expect_near(scene.directional_lights[0].irradiance, {3, 2, 1});
+    expect_near(scene.directional_lights[1].direction, {0, -1, 0});  // +z turned 90 degrees about x
+    expect_near(scene.directional_lights[1].irradiance, glm::dvec3(1.0));
+    expect_near(scene.directional_lights[2].direction, {0, 0, 1});
+    finish_scene(scene);
+    EXPECT_TRUE(scene.features().directional_lights);
+}
+
 TEST_F(MitsubaXml, ConductorsAndRoughDielectricsAsMaterials) {
     const Scene scene = read(sensor() + R"(
         <shape type="sphere"><bsdf type="twosided"><bsdf type="roughconductor"><string name="material" value="Cu"/>

@@ -51,7 +51,7 @@ struct PatchCase {
 const PatchCase kPatchCases[] = {
     // unknown keys, at every level
     {"UnknownTopLevelKey", R"({"camra": {}})",
-     "camra: unknown key (expected one of: camera, render, background, textures, materials, shapes)"},
+     "camra: unknown key (expected one of: camera, render, background, lights, textures, materials, shapes)"},
     {"UnknownCameraKey", R"({"camera": {"fovy": 40}})",
      "camera.fovy: unknown key (expected one of: position, look_at, up, fov_y, width, height, filter)"},
     {"UnknownRenderKey", R"({"render": {"samples": 4}})",

@@ -136,6 +136,19 @@ inline Scene floor_under_environment(const RenderBlock& block, const glm::dvec3&
     return scene;
 }
 
+// A diffuse floor y = -1 seen straight down under a directional light of
+// irradiance E whose light arrives at angle theta from the floor's normal,
+// black background: the light sample of every floor point is the same, so
+// every pixel is exactly albedo / pi * E * cos(theta).
+inline Scene floor_under_directional_light(const RenderBlock& block, const glm::dvec3& albedo,
+                                           const glm::dvec3& irradiance, double theta) {
+    Scene scene = empty_scene(block, {0, -1, 0}, 60.0);
+    scene.planes.push_back({{0, -1, 0}, {0, 1, 0}, add_material(scene, diffuse(albedo))});
+    scene.directional_lights.push_back({{std::sin(theta), -std::cos(theta), 0.0}, irradiance});
+    build_light_table(scene);
+    return scene;
+}
+
 // The camera inside a glass sphere of index n, off centre by less than r/n
 // so that no ray is ever totally reflected: every path leaves the glass once
 // (after any number of Fresnel reflections), and radiance grows by n^2 on
