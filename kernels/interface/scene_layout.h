@@ -37,7 +37,7 @@ typedef struct {
     float camera_right[3], camera_up[3], camera_forward[3];
     float tan_half_fov_y, aspect;
     float background[3]; /* the environment's radiance */
-    uint filter_type; /* the camera's pixel filter (shared/pixel_filter.h): WP_FILTER_*, and its constants */
+    uint filter_type;    /* the camera's pixel filter (shared/pixel_filter.h): WP_FILTER_*, and its constants */
     float filter_radius, filter_scale, filter_erf_radius;
     uint width, height, spp, max_depth, rr_depth, seed;
     uint sphere_count, plane_count, quad_count, light_count;

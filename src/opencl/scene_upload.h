@@ -43,7 +43,7 @@ struct SceneLayout {
     std::vector<float> light_cdf;
     std::vector<SharedMath<float>::MeshTriangle> light_triangles;  // scene/mesh_lights.h
     std::vector<float> light_triangle_cdf;
-    std::vector<float> roughplastic_transmittance;  // scene/plastic_constants.h
+    std::vector<float> roughplastic_transmittance;                   // scene/plastic_constants.h
     std::vector<device_layout::MaterialTextures> material_textures;  // parallel to materials
     std::vector<SharedMath<float>::TextureDescriptor> textures;
     std::vector<float> texels;

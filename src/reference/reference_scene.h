@@ -91,7 +91,7 @@ struct ReferenceScene {
     std::vector<Real> light_cdf;
     std::vector<typename M::MeshTriangle> light_triangles;  // mesh lights' (scene/mesh_lights.h)
     std::vector<Real> light_triangle_cdf;
-    std::vector<Real> roughplastic_transmittance;  // scene/plastic_constants.h
+    std::vector<Real> roughplastic_transmittance;    // scene/plastic_constants.h
     std::vector<typename M::Texture> texture_table;  // scene/texture_layout.h
     std::vector<Real> texels;
     std::vector<std::uint32_t> albedo_textures;         // per material: its albedo's texture, or WP_NO_TEXTURE

@@ -28,6 +28,32 @@ nlohmann::json plastic_json(const Material& m) {
     return j;
 }
 
+// A microfacet distribution and its roughness along each tangent.
+void add_microfacet(nlohmann::json& j, const Material& m) {
+    j["distribution"] = m.distribution == Microfacet::GGX ? "ggx" : "beckmann";
+    j["alpha_u"] = m.alpha_u;
+    j["alpha_v"] = m.alpha_v;
+}
+
+// conductor and roughconductor: the complex index per channel.
+nlohmann::json conductor_json(const Material& m) {
+    nlohmann::json j = {{"type", m.type == MaterialType::Conductor ? "conductor" : "roughconductor"},
+                        {"eta", vec3(m.eta)},
+                        {"k", vec3(m.k)},
+                        {"specular_reflectance", vec3(m.specular_reflectance)}};
+    if (m.type == MaterialType::RoughConductor) add_microfacet(j, m);
+    return j;
+}
+
+// roughdielectric and thindielectric, their relative index as int_ior over an ext_ior of 1.
+nlohmann::json dielectric_json(const Material& m) {
+    nlohmann::json j = {{"type", m.type == MaterialType::RoughDielectric ? "roughdielectric" : "thindielectric"},
+                        {"int_ior", m.ior},
+                        {"ext_ior", 1.0}};
+    if (m.type == MaterialType::RoughDielectric) add_microfacet(j, m);
+    return j;
+}
+
 nlohmann::json material_json(const Material& m) {
     nlohmann::json j;
     switch (m.type) {
@@ -44,11 +70,17 @@ nlohmann::json material_json(const Material& m) {
         case MaterialType::Emitter:
             j = {{"type", "emitter"}, {"radiance", vec3(m.emission)}};
             break;
+        case MaterialType::Conductor:
+        case MaterialType::RoughConductor:
+            j = conductor_json(m);
+            break;
+        case MaterialType::RoughDielectric:
+        case MaterialType::ThinDielectric:
+            j = dielectric_json(m);
+            break;
         case MaterialType::Plastic:
         case MaterialType::RoughPlastic:
             j = plastic_json(m);
-            break;
-        default:
             break;
     }
     if (m.two_sided) j["two_sided"] = true;

@@ -60,6 +60,14 @@ TEST_F(MitsubaCli, ConvertedPlasticsRenderTheSameImage) {
     expect_same_image(scene, out_ / "plastics.json", {"--spp", "1", "-q"});
 }
 
+// The conductors, rough and smooth, and the rough and thin dielectrics, through the JSON and back.
+TEST_F(MitsubaCli, ConvertedMetalsAndGlassRenderTheSameImage) {
+    const std::string scene = (kScenes / "metals_and_glass.xml").string();
+    ASSERT_EQ(run({"convert", scene, "-o", out_ / "metals.json"}).exit_code, 0);
+    EXPECT_EQ(read_text(out_ / "metals.json").find("null"), std::string::npos);
+    expect_same_image(scene, out_ / "metals.json", {"--spp", "1", "-q"});
+}
+
 // The pixel filter travels into the JSON: an image with edges renders the same from either.
 TEST_F(MitsubaCli, ConvertedJsonKeepsThePixelFilter) {
     const std::string scene = (kScenes / "filters.xml").string();
