@@ -33,8 +33,8 @@ DOC_BEGIN, DOC_END = "<!-- oracle-sensitivity:begin -->", "<!-- oracle-sensitivi
 
 
 def brighter_scene(path, factor, scratch):
-    """A copy of the scene `path` in `scratch` with every light `factor` times as bright (its mesh files named by
-    absolute path, since the copy lies elsewhere): its path."""
+    """A copy of the scene `path` in `scratch` with every light `factor` times as bright (its mesh and texture
+    files named by absolute path, since the copy lies elsewhere): its path."""
     with open(path) as f:
         scene = json.load(f)
     scale = lambda rgb: [factor * c for c in rgb]  # noqa: E731
@@ -44,9 +44,12 @@ def brighter_scene(path, factor, scratch):
                 material[key] = scale(material[key])
     if "background" in scene:
         scene["background"] = scale(scene["background"])
-    for shape in scene.get("shapes", []):
-        if "file" in shape:
-            shape["file"] = os.path.join(os.path.dirname(os.path.abspath(path)), shape["file"])
+    for light in scene.get("lights", []):
+        light["irradiance"] = scale(light.get("irradiance", [1, 1, 1]))
+    here = os.path.dirname(os.path.abspath(path))
+    for named in [*scene.get("shapes", []), *scene.get("textures", {}).values()]:
+        if "file" in named:
+            named["file"] = os.path.join(here, named["file"])
     copy = os.path.join(scratch, "brighter-" + os.path.basename(path))
     with open(copy, "w") as f:
         json.dump(scene, f)
