@@ -103,6 +103,7 @@ TYPED_TEST(Textures, CheckerboardAsMitsubaWithToUv) {
     using M = wp::SharedMath<R>;
     typename M::Texture t = bitmap<R>(WP_FILTER_BILINEAR, WP_WRAP_REPEAT);
     t.type = WP_TEXTURE_CHECKERBOARD;
+    t.width = t.height = 1u;  // as the host lays a checkerboard out: the bitmap lookup beside it reads one texel
     t.color0 = {R(1), R(1), R(1)};
     t.color1 = {R(0), R(0), R(0)};
     const R texel[3] = {0, 0, 0};
