@@ -1,7 +1,8 @@
 /* SPPM's photon pass, stage 3: everything a photon does at its hit,
  * WP_LANES photons per work item, reading the hit once (as shade.cl does for
- * camera paths). First the deposit: a photon that lands on a diffuse surface
- * adds to every visible point within reach (shared/sppm.h), the visible
+ * camera paths). First the deposit: a photon that lands on a non-specular
+ * surface adds to every visible point within reach, which evaluates its
+ * material's f for it (visible_point_bsdf, shared/sppm.h), the visible
  * points of its cell's bucket of the grid (shared/photon_grid.h, built by
  * photon_grid.cl), each lane looping over its own bucket until the longest
  * is done; a pixel's photon count and flux take atomic integer adds
@@ -30,12 +31,12 @@ __kernel __attribute__((reqd_work_group_size(WP_GROUP_SIZE, 1, 1))) void shade_p
         vertex_at(WP_SCENE_ARGS, PATH_READ(hit_shape, lanes), PATH_READ(origin, lanes), d, PATH_READ(hit_t, lanes));
     lane_uint photon = PATH_READ(photon, lanes), depth = PATH_READ(depth, lanes);
 
-#ifdef WP_HAS_DIFFUSE
+#ifdef WP_HAS_NON_SPECULAR
     /* the deposit */
     uint pixels = scene_pixel_count(scene), buckets = photon_grid_buckets(pixels);
-    vec3 x = v.surface.point;
+    vec3 x = v.surface.point, wi = v.wo;
     vec3 power = v3_mul(PATH_READ(photon_flux, lanes), throughput);
-    lane_int lands = lanes.active && v.material.type == WP_MATERIAL_DIFFUSE;
+    lane_int lands = lanes.active && vertex_is_non_specular(v);
     lane_uint bucket = lands ? grid_bucket_of(read_grid_frame(SPPM_IN(grid_frame)), x, buckets) : (lane_uint)0u;
     lane_uint first = gather(SPPM_IN(grid_starts), bucket);
     lane_uint count = lands ? gather(SPPM_IN(grid_starts), bucket + 1u) - first : (lane_uint)0u;
@@ -45,8 +46,18 @@ __kernel __attribute__((reqd_work_group_size(WP_GROUP_SIZE, 1, 1))) void shade_p
             pixel_lanes(gather(SPPM_IN(grid_entries), candidate ? first + e : (lane_uint)0u), candidate, pixels);
         lane_int takes = candidate && photon_depth_counts(SPPM_READ(visible_depth, near), depth, scene->max_depth) &&
                          photon_within(SPPM_READ(visible_point, near), SPPM_READ(sppm_radius, near), x);
-        vec3 flux = photon_deposit(SPPM_READ(visible_weight, near), SPPM_READ(visible_geometric_normal, near),
-                                   SPPM_READ(visible_normal, near), d, power, WP_USES_SHADING_NORMALS);
+        vec3 nf = SPPM_READ(visible_geometric_normal, near), ns = SPPM_READ(visible_normal, near);
+#ifdef WP_HAS_GLOSSY
+        /* a listed pixel's visible point is this iteration's; the other lanes read material 0 */
+        lane_uint material_word = candidate ? SPPM_READ(visible_material, near) : (lane_uint)0u;
+        vec3 wo = SPPM_READ(visible_wo, near);
+#else
+        lane_uint material_word = 0u;
+        vec3 wo = wi;
+#endif
+        VisibleBsdf bsdf =
+            visible_point_bsdf(WP_SCENE_ARGS, material_word, wo, nf, ns, SPPM_READ(visible_weight, near), wi);
+        vec3 flux = photon_deposit(bsdf.throughput_f, nf, ns, bsdf.transmits, d, power, WP_USES_SHADING_NORMALS);
         atomic_increment_where(SPPM_OUT(iteration_photons), near.slot, takes);
         add_flux_where(SPPM_OUT(iteration_flux), near.slot, takes, flux);
     }

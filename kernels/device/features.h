@@ -23,6 +23,13 @@
     defined(WP_HAS_PLASTIC) || defined(WP_HAS_ROUGH_PLASTIC)
 #define WP_HAS_NON_SPECULAR
 #endif
+/* A lobe of finite density other than the Lambertian one (a rough
+ * conductor or dielectric, a plastic's base under its coat): SPPM's visible
+ * points on it keep their material and wo, to evaluate its f at the gather. */
+#if defined(WP_HAS_ROUGH_CONDUCTOR) || defined(WP_HAS_ROUGH_DIELECTRIC) || defined(WP_HAS_PLASTIC) || \
+    defined(WP_HAS_ROUGH_PLASTIC)
+#define WP_HAS_GLOSSY
+#endif
 /* The complex index and reflectance factor of conductor and roughconductor. */
 #if defined(WP_HAS_CONDUCTOR) || defined(WP_HAS_ROUGH_CONDUCTOR)
 #define WP_HAS_CONDUCTORS
@@ -88,6 +95,11 @@
 #define WP_IF_SPPM(...) __VA_ARGS__
 #else
 #define WP_IF_SPPM(...)
+#endif
+#ifdef WP_HAS_GLOSSY
+#define WP_IF_GLOSSY(...) __VA_ARGS__
+#else
+#define WP_IF_GLOSSY(...)
 #endif
 
 /* Shape and light counts: compile-time constants where the host passes them

@@ -42,13 +42,14 @@ typedef struct {
 #define WP_PATH_STATE_PARAM(type, name, feature, writers, readers) \
     WP_IF_##feature(, __global WP_STATE_ELEMENT_##type *restrict state_##name)
 /* SPPM's state (interface/sppm_state.h) after the path state, only with the
- * sppm integrator; in the grid and update kernels after their own. */
-#define WP_SPPM_STATE_PARAM(type, name, size, writers, readers) \
-    WP_IF_SPPM(, __global WP_STATE_ELEMENT_##type *restrict state_##name)
+ * sppm integrator and the entry's feature; in the grid and update kernels
+ * after their own. */
+#define WP_SPPM_STATE_PARAM(type, name, size, feature, writers, readers) \
+    WP_IF_SPPM(WP_IF_##feature(, __global WP_STATE_ELEMENT_##type *restrict state_##name))
 #define WP_STAGE_PARAMS \
     WP_PARAMETERS(WP_STAGE_PARAMETERS) WP_PATH_STATE(WP_PATH_STATE_PARAM) WP_SPPM_STATE(WP_SPPM_STATE_PARAM)
 #define WP_PATH_STATE_ARG(type, name, feature, writers, readers) WP_IF_##feature(, state_##name)
-#define WP_SPPM_STATE_ARG(type, name, size, writers, readers) WP_IF_SPPM(, state_##name)
+#define WP_SPPM_STATE_ARG(type, name, size, feature, writers, readers) WP_IF_SPPM(WP_IF_##feature(, state_##name))
 #define WP_STAGE_ARGS                                        \
     WP_STAGE_PARAMETERS(WP_ARGUMENT_FIRST, WP_ARGUMENT_NEXT) \
     WP_PATH_STATE(WP_PATH_STATE_ARG) WP_SPPM_STATE(WP_SPPM_STATE_ARG)

@@ -294,41 +294,11 @@ WP_FN LightShape light_shape(WP_SCENE_PARAMS, lane_uint light, real u_triangle) 
     return l;
 }
 
-#ifdef WP_NEE
-/* A point sampled on light `light` as seen from x, with its material and
- * magnitude (light_shape). u and v place the point; u_triangle picks a mesh
- * light's triangle. */
-typedef struct {
-    LightSample sample;
-    lane_uint material;
-    real magnitude;
-} LightPoint;
-
-WP_FN LightPoint sample_light_shape(WP_SCENE_PARAMS, lane_uint light, vec3 x, real u, real v, real u_triangle) {
-    LightShape l = light_shape(WP_SCENE_ARGS, light, u_triangle);
-    LightPoint p;
-    p.sample.point = p.sample.normal = make_vec3(REAL(0.0), REAL(0.0), REAL(0.0));
-    p.sample.pdf_solid_angle = REAL(0.0);
-    p.material = l.material;
-    p.magnitude = l.magnitude;
-#ifdef WP_HAS_SPHERE_LIGHTS
-    p.sample = select_light_sample(l.type == WP_SHAPE_SPHERE, sample_sphere(l.center, l.radius, x, u, v), p.sample);
-#endif
-#ifdef WP_HAS_QUAD_LIGHTS
-    p.sample = select_light_sample(l.type == WP_SHAPE_QUAD, sample_quad(l.corner, l.edge1, l.edge2, x, u, v), p.sample);
-#endif
-#ifdef WP_HAS_MESH_LIGHTS
-    p.sample = select_light_sample(l.type == WP_SHAPE_TRIANGLE, sample_triangle(l.p0, l.p1, l.p2, l.mesh_area, x, u, v),
-                                   p.sample);
-#endif
-    return p;
-}
-
 #ifdef WP_HAS_NON_SPECULAR
 /* The path's throughput times f, and the density of BSDF sampling, for the
  * direction wi from vertex v: next-event estimation's two numbers from the
- * material. Every non-specular kind in the scene is evaluated and each lane
- * keeps its own material's (0 at a specular one, which samples no light). */
+ * material (SPPM's gather takes the first at a visible point). Every non-specular kind in the scene is evaluated and
+ * each lane keeps its own material's (0 at a specular one, which samples no light). */
 typedef struct {
     vec3 throughput_f;
     real pdf;
@@ -413,6 +383,71 @@ WP_FN lane_int vertex_is_non_specular(Vertex v) {
     return non_specular;
 }
 
+#ifdef WP_SPPM
+/* Whether SPPM's camera pass makes its visible point at vertex v, whose
+ * BSDF sample is `scattered`: at a non-specular material, and at a plastic
+ * where the sample chose its base (the coat's delta lobe goes on as a
+ * specular bounce, as path tracing takes it). */
+WP_FN lane_int vertex_is_visible_point(Vertex v, BsdfSample scattered) {
+    lane_int visible = vertex_is_non_specular(v);
+#ifdef WP_HAS_PLASTIC
+    visible = visible && !(v.material.type == WP_MATERIAL_PLASTIC && scattered.specular != 0u);
+#endif
+    return visible;
+}
+
+/* The weight a visible point at vertex v keeps from its camera path of
+ * throughput `throughput`, which the gather multiplies by f: at a diffuse
+ * vertex times the albedo (textured where it is: diffuse_eval then takes
+ * it, photon_deposit), at a plastic's base over the probability with which
+ * the sample chose it (plastic_base_throughput), else the throughput. */
+WP_FN vec3 visible_point_weight(Vertex v, vec3 throughput) {
+    vec3 weight = throughput;
+#ifdef WP_HAS_PLASTIC
+    weight = v3_select(v.material.type == WP_MATERIAL_PLASTIC,
+                       plastic_base_throughput(v.material.plastic, v.ns, v.wo, throughput), weight);
+#endif
+#if defined(WP_HAS_DIFFUSE) && defined(WP_HAS_GLOSSY)
+    weight = v3_select(v.material.type == WP_MATERIAL_DIFFUSE, v3_mul(throughput, v.material.albedo), weight);
+#elif defined(WP_HAS_DIFFUSE)
+    weight = v3_mul(throughput, v.material.albedo); /* every visible point is diffuse */
+#endif
+    return weight;
+}
+#endif
+#endif
+
+#ifdef WP_NEE
+/* A point sampled on light `light` as seen from x, with its material and
+ * magnitude (light_shape). u and v place the point; u_triangle picks a mesh
+ * light's triangle. */
+typedef struct {
+    LightSample sample;
+    lane_uint material;
+    real magnitude;
+} LightPoint;
+
+WP_FN LightPoint sample_light_shape(WP_SCENE_PARAMS, lane_uint light, vec3 x, real u, real v, real u_triangle) {
+    LightShape l = light_shape(WP_SCENE_ARGS, light, u_triangle);
+    LightPoint p;
+    p.sample.point = p.sample.normal = make_vec3(REAL(0.0), REAL(0.0), REAL(0.0));
+    p.sample.pdf_solid_angle = REAL(0.0);
+    p.material = l.material;
+    p.magnitude = l.magnitude;
+#ifdef WP_HAS_SPHERE_LIGHTS
+    p.sample = select_light_sample(l.type == WP_SHAPE_SPHERE, sample_sphere(l.center, l.radius, x, u, v), p.sample);
+#endif
+#ifdef WP_HAS_QUAD_LIGHTS
+    p.sample = select_light_sample(l.type == WP_SHAPE_QUAD, sample_quad(l.corner, l.edge1, l.edge2, x, u, v), p.sample);
+#endif
+#ifdef WP_HAS_MESH_LIGHTS
+    p.sample = select_light_sample(l.type == WP_SHAPE_TRIANGLE, sample_triangle(l.p0, l.p1, l.p2, l.mesh_area, x, u, v),
+                                   p.sample);
+#endif
+    return p;
+}
+
+#ifdef WP_HAS_NON_SPECULAR
 /* Samples one light for vertex v on a path of throughput `throughput` into
  * *direct (direct_light); returns where it carries light. */
 WP_FN lane_int sample_direct_light(WP_SCENE_PARAMS, lane_uint pixel, lane_uint sample, lane_uint bounce, Vertex v,

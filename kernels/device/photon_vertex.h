@@ -88,6 +88,47 @@ WP_FN EmittedPhoton emit_scene_photon(WP_SCENE_PARAMS, uint iteration, lane_uint
                        photon_uniform(seed, iteration, photon, 0u, DIM_PHOTON_DIRECTION_V));
 }
 
+#ifdef WP_HAS_NON_SPECULAR
+/* What a visible point makes of a photon arriving along wi
+ * (photon_deposit's first and third arguments): the camera path's
+ * throughput times its material's f, and whether the material transmits. */
+typedef struct {
+    vec3 throughput_f;
+    lane_int transmits;
+} VisibleBsdf;
+
+/* For a visible point of weight `weight` (visible_point_weight) and shading
+ * normal ns; with other materials than diffuse, also its material and side
+ * (`material_word`, visible_material_word), the direction wo back along its
+ * camera path and its geometric normal nf, from which f is evaluated as
+ * next-event estimation evaluates it (vertex_bsdf_value). A diffuse one's
+ * weight holds its albedo: f is diffuse_eval's. */
+WP_FN VisibleBsdf visible_point_bsdf(WP_SCENE_PARAMS, lane_uint material_word, vec3 wo, vec3 nf, vec3 ns, vec3 weight,
+                                     vec3 wi) {
+    VisibleBsdf b;
+#ifdef WP_HAS_GLOSSY
+    Vertex at;
+    at.material = material_at(materials, visible_material_index(material_word));
+    at.front = visible_material_front(material_word);
+    at.wo = wo;
+    at.nf = nf;
+    at.ns = ns;
+#ifdef WP_HAS_ROUGH_PLASTIC
+    at.roughplastic_table = roughplastic_transmittance;
+#endif
+    b.throughput_f = vertex_bsdf_value(at, wi, weight).throughput_f;
+    b.transmits = vertex_transmits(at);
+#ifdef WP_HAS_DIFFUSE
+    b.throughput_f = v3_select(at.material.type == WP_MATERIAL_DIFFUSE, diffuse_eval(weight, ns, wi), b.throughput_f);
+#endif
+#else
+    b.throughput_f = diffuse_eval(weight, ns, wi); /* every visible point is diffuse */
+    b.transmits = 0;
+#endif
+    return b;
+}
+#endif
+
 /* The grid's frame, as photon_grid.cl's grid_bounds wrote it. */
 WP_FN GridFrame read_grid_frame(__global const float *frame) {
     GridFrame f;

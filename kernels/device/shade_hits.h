@@ -13,8 +13,8 @@
  * the device) or goes to intersect_shadow with its would-be contribution
  * (WP_SHADOW_STAGE, interface/stages.h), which then adds it after the
  * emission, as the megakernel does, and finishes a path that ends here.
- * SPPM's camera pass (-DWP_SPPM): the first diffuse vertex is the pixel's
- * visible point, stored for the photon pass (the pixel's first one also
+ * SPPM's camera pass (-DWP_SPPM): the first non-specular vertex is the
+ * pixel's visible point (vertex_is_visible_point), stored for the photon pass (the pixel's first one also
  * sets its radius from the distance the path travelled to it,
  * sppm_first_radius); the path bounces on from it
  * only where an emission it may see there still counts
@@ -103,16 +103,21 @@ WP_FN ShadedPaths shade_hits(WP_STAGE_PARAMS, Lanes lanes, Hit traced) {
 #endif
 #endif
 
+    PathStep step = step_from_vertex(v, d, throughput, eta_scale, scene->seed, px, s, bounce, scene->rr_depth);
     lane_int bounces = scatters; /* BSDF sampling and roulette decide whether it goes on */
-#if defined(WP_SPPM) && defined(WP_HAS_DIFFUSE)
+#if defined(WP_SPPM) && defined(WP_HAS_NON_SPECULAR)
     /* SPPM's camera pass: the pixel's visible point */
-    lane_int visible = scatters && v.material.type == WP_MATERIAL_DIFFUSE;
+    lane_int visible = scatters && vertex_is_visible_point(v, step.scattered);
     Lanes pixels = pixel_lanes(px, visible, scene_pixel_count(scene));
     SPPM_WRITE(visible_point, pixels, visible, v.surface.point);
     SPPM_WRITE(visible_normal, pixels, visible, v.ns);
     SPPM_WRITE(visible_geometric_normal, pixels, visible, v.nf);
-    SPPM_WRITE(visible_weight, pixels, visible, v3_mul(throughput, v.material.albedo));
+    SPPM_WRITE(visible_weight, pixels, visible, visible_point_weight(v, throughput));
     SPPM_WRITE(visible_depth, pixels, visible, bounce);
+#ifdef WP_HAS_GLOSSY
+    SPPM_WRITE(visible_material, pixels, visible, visible_material_word(v.surface.material, v.front));
+    SPPM_WRITE(visible_wo, pixels, visible, v.wo);
+#endif
     /* the pixel's first visible point sets its radius (0 until then) */
     lane_int first = visible && SPPM_READ(sppm_radius, pixels) == REAL(0.0);
     real footprint = sppm_footprint(scene->sppm_pixel_spread, travelled);
@@ -121,7 +126,6 @@ WP_FN ShadedPaths shade_hits(WP_STAGE_PARAMS, Lanes lanes, Hit traced) {
     bounces = scatters && (!visible || camera_pass_bounces_from_visible_point(WP_USES_NEE, WP_USES_MIS));
 #endif
 
-    PathStep step = step_from_vertex(v, d, throughput, eta_scale, scene->seed, px, s, bounce, scene->rr_depth);
     count_nonfinite(slot_nonfinite, WP_COUNTER_NONFINITE_SCATTER, lanes, bounces ? step.nonfinite : (lane_uint)0u);
     lane_int continues = bounces && step.continues, ends = lanes.active && !continues;
     PATH_WRITE(origin, lanes, continues, step.origin);

@@ -11,8 +11,8 @@
  * (WP_SPPM_PARAMS, device/parameters.h), and the table in
  * docs/architecture.md.
  *
- * X(type, name, size, written by, read by): type uint, float or vec3; the
- * kernel files (kernels/<file>.cl) that write and read it, through
+ * X(type, name, size, feature, written by, read by): type uint, float or
+ * vec3; the kernel files (kernels/<file>.cl) that write and read it, through
  * SPPM_WRITE and SPPM_READ (device/sppm_pixels.h) or SPPM_ARRAY ("host":
  * read by the host only, for the summary); size:
  *   PIXELS    one per pixel;
@@ -23,28 +23,36 @@
  *             counting sort's prefix sum;
  *   ENTRIES   WP_GRID_CELLS_PER_SPHERE per pixel: the buckets' lists;
  *   FRAME     four: the grid's origin (x, y, z) and cell size (0: no
- *             visible point). */
+ *             visible point);
+ * feature, when the entry exists besides the sppm integrator:
+ *   ALWAYS    every scene;
+ *   GLOSSY    the scene has a non-specular material other than diffuse
+ *             (WP_HAS_GLOSSY, device/features.h): a visible point's material
+ *             (visible_material_word, shared/sppm.h) and the direction back
+ *             along its camera path, whose f the photons evaluate. */
 #ifndef WP_INTERFACE_SPPM_STATE_H
 #define WP_INTERFACE_SPPM_STATE_H
 
-#define WP_SPPM_STATE(X)                                                                     \
-    X(vec3, visible_point, PIXELS, "shade intersect_and_shade", "shade_photons photon_grid") \
-    X(vec3, visible_normal, PIXELS, "shade intersect_and_shade", "shade_photons")            \
-    X(vec3, visible_geometric_normal, PIXELS, "shade intersect_and_shade", "shade_photons")  \
-    X(vec3, visible_weight, PIXELS, "shade intersect_and_shade", "shade_photons")            \
-    X(uint, visible_depth, PIXELS, "shade intersect_and_shade", "shade_photons photon_grid") \
-    X(float, sppm_count, PIXELS, "sppm_update", "sppm_update")                               \
-    X(float, sppm_radius, PIXELS, "shade intersect_and_shade sppm_update",                   \
-      "shade intersect_and_shade shade_photons photon_grid sppm_update")                     \
-    X(float, sppm_footprint, PIXELS, "shade intersect_and_shade", "host")                    \
-    X(vec3, sppm_flux, PIXELS, "sppm_update", "sppm_update")                                 \
-    X(uint, iteration_photons, PIXELS, "shade_photons", "sppm_update")                       \
-    X(uint, iteration_flux, DEPOSITS, "shade_photons", "sppm_update")                        \
-    X(float, grid_frame, FRAME, "photon_grid", "shade_photons photon_grid")                  \
-    X(uint, grid_counts, BUCKETS, "photon_grid", "photon_grid")                              \
-    X(uint, grid_block_sums, BLOCKS, "photon_grid", "photon_grid")                           \
-    X(uint, grid_starts, BUCKETS, "photon_grid", "shade_photons photon_grid")                \
-    X(uint, grid_entries, ENTRIES, "photon_grid", "shade_photons")
+#define WP_SPPM_STATE(X)                                                                             \
+    X(vec3, visible_point, PIXELS, ALWAYS, "shade intersect_and_shade", "shade_photons photon_grid") \
+    X(vec3, visible_normal, PIXELS, ALWAYS, "shade intersect_and_shade", "shade_photons")            \
+    X(vec3, visible_geometric_normal, PIXELS, ALWAYS, "shade intersect_and_shade", "shade_photons")  \
+    X(vec3, visible_weight, PIXELS, ALWAYS, "shade intersect_and_shade", "shade_photons")            \
+    X(uint, visible_depth, PIXELS, ALWAYS, "shade intersect_and_shade", "shade_photons photon_grid") \
+    X(uint, visible_material, PIXELS, GLOSSY, "shade intersect_and_shade", "shade_photons")          \
+    X(vec3, visible_wo, PIXELS, GLOSSY, "shade intersect_and_shade", "shade_photons")                \
+    X(float, sppm_count, PIXELS, ALWAYS, "sppm_update", "sppm_update")                               \
+    X(float, sppm_radius, PIXELS, ALWAYS, "shade intersect_and_shade sppm_update",                   \
+      "shade intersect_and_shade shade_photons photon_grid sppm_update")                             \
+    X(float, sppm_footprint, PIXELS, ALWAYS, "shade intersect_and_shade", "host")                    \
+    X(vec3, sppm_flux, PIXELS, ALWAYS, "sppm_update", "sppm_update")                                 \
+    X(uint, iteration_photons, PIXELS, ALWAYS, "shade_photons", "sppm_update")                       \
+    X(uint, iteration_flux, DEPOSITS, ALWAYS, "shade_photons", "sppm_update")                        \
+    X(float, grid_frame, FRAME, ALWAYS, "photon_grid", "shade_photons photon_grid")                  \
+    X(uint, grid_counts, BUCKETS, ALWAYS, "photon_grid", "photon_grid")                              \
+    X(uint, grid_block_sums, BLOCKS, ALWAYS, "photon_grid", "photon_grid")                           \
+    X(uint, grid_starts, BUCKETS, ALWAYS, "photon_grid", "shade_photons photon_grid")                \
+    X(uint, grid_entries, ENTRIES, ALWAYS, "photon_grid", "shade_photons")
 
 /* Buckets per block of the counting sort's prefix sum (photon_grid.cl). */
 #define WP_GRID_SCAN_BLOCK 256u

@@ -2,8 +2,10 @@
  * form of pbrt-v4's SPPMIntegrator; docs/architecture.md, "Photon
  * mapping"): what a photon adds to a pixel's visible point, and each
  * pixel's update after an iteration. The visible points themselves are
- * written where the camera path first meets a diffuse surface, the photons
- * found through the grid of shared/photon_grid.h, by the caller. */
+ * written where the camera path first meets a non-specular surface (diffuse,
+ * rough, or a plastic whose base its lobe choice took), the photons found
+ * through the grid of shared/photon_grid.h, and the material's f evaluated,
+ * by the caller. */
 #ifndef WP_SHARED_SPPM_H
 #define WP_SHARED_SPPM_H
 
@@ -11,16 +13,15 @@
 #include "shared/materials/diffuse.h"
 #include "shared/prelude.h"
 
-/* A pixel's visible point has no depth where its camera path met no diffuse
- * surface in the iteration (it left the scene, hit an emitter, or ended). */
+/* A pixel's visible point has no depth where its camera path met no
+ * non-specular surface in the iteration (it left the scene, hit an emitter, or ended). */
 #define WP_NO_VISIBLE_POINT 0xffffffffu
 
 /* Whether SPPM's camera pass bounces once more from a visible point, to
- * add the emission it finds there: only where emission after a diffuse
- * vertex can count (emission_weight, shared/estimator.h): without next-event
- * estimation, or with multiple importance sampling, whose light sample at
- * the visible point counts only its share. Photons add what arrives after
- * more scattering. */
+ * add the emission it finds there: only where emission after a
+ * non-specular vertex (which next-event estimation samples) can count (emission_weight, shared/estimator.h): without
+ * next-event estimation, or with multiple importance sampling, whose light sample at the visible point counts only its
+ * share. Photons add what arrives after more scattering. */
 WP_FN int camera_pass_bounces_from_visible_point(int nee, int mis) { return !nee || mis; }
 
 /* Whether a photon at x falls within the visible point at `center` of
@@ -40,19 +41,36 @@ WP_FN lane_int photon_depth_counts(lane_uint visible_depth, lane_uint photon_dep
 }
 
 /* What a photon carrying `power` along `direction` adds to the flux of a
- * diffuse visible point of normals nf and ns (on the camera's side) whose
- * camera path has throughput times albedo `weight`: weight / pi * power
- * where it arrives above ns and on nf's side. The density estimate counts
- * flux per unit of geometric area, where the shading model wants the cosine
- * to ns: with shading normals each photon takes |wi.ns| / |wi.nf| (the
- * adjoint correction at the gathering vertex, shading_normal_adjoint). */
-WP_FN vec3 photon_deposit(vec3 weight, vec3 nf, vec3 ns, vec3 direction, vec3 power, int shading_normals) {
+ * visible point of normals nf and ns (on the camera's side) whose material
+ * reflects or, where it `transmits`, also transmits: `throughput_f`, the
+ * camera path's throughput times the material's f(wo, wi) for the photon's
+ * wi = -direction (as next-event estimation evaluates it: radiance
+ * transport), times power, where wi lies on nf's side (or behind it, where
+ * the material transmits) with shading normals. The density estimate
+ * counts flux per unit of geometric area, where the shading model wants the
+ * cosine to ns: with shading normals each photon takes |wi.ns| / |wi.nf|
+ * (the adjoint correction at the gathering vertex, shading_normal_adjoint).
+ * A diffuse visible point's throughput_f is diffuse_eval of its weight (the
+ * throughput times the albedo, textured where it is). */
+WP_FN vec3 photon_deposit(vec3 throughput_f, vec3 nf, vec3 ns, lane_int transmits, vec3 direction, vec3 power,
+                          int shading_normals) {
     vec3 wi = v3_neg(direction);
-    lane_int arrives = leaves_on_side(wi, nf, shading_normals);
+    lane_int behind = transmits && v3_dot(wi, nf) < REAL(0.0);
+    lane_int arrives = leaves_on_side(wi, v3_select(behind, v3_neg(nf), nf), shading_normals);
     real correction = shading_normals ? fabs(v3_dot(wi, ns)) / fabs(v3_dot(wi, nf)) : (real)REAL(1.0);
-    vec3 deposit = v3_scale(v3_mul(diffuse_eval(weight, ns, wi), power), correction);
+    vec3 deposit = v3_scale(v3_mul(throughput_f, power), correction);
     return v3_select(arrives, deposit, make_vec3(REAL(0.0), REAL(0.0), REAL(0.0)));
 }
+
+/* A visible point's material and the side of its surface the camera path
+ * met (the rough dielectric's eval needs it) in one word: the material's
+ * index times 2, plus 1 on the front (the side its geometric normal points
+ * to). */
+WP_FN lane_uint visible_material_word(lane_uint material, lane_int front) {
+    return material * 2u + (front ? (lane_uint)1u : (lane_uint)0u);
+}
+WP_FN lane_uint visible_material_index(lane_uint word) { return word >> 1; }
+WP_FN lane_int visible_material_front(lane_uint word) { return (word & 1u) != 0u; }
 
 /* Each pixel's first gathering radius, from its footprint: the width of
  * the camera ray's cone where it meets the pixel's visible point (a ray

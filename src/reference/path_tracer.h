@@ -493,19 +493,51 @@ typename SharedMath<Real>::BsdfSample scatter(const ReferenceScene<Real>& scene,
     }
 }
 
-// Where an SPPM camera path first met a diffuse surface (after any mirror and
-// glass): the visible point photons add to (docs/architecture.md, "Photon mapping").
+// Where an SPPM camera path first met a non-specular surface (after any
+// mirror, glass or plastic coat): the visible point photons add to
+// (docs/architecture.md, "Photon mapping"), with what evaluates its f.
 template <class Real>
 struct VisiblePoint {
     Vec3<Real> point{0}, nf{0}, ns{0};  // the normals on the camera's side
-    Vec3<Real> weight{0};               // the path's throughput times the albedo
+    Vec3<Real> weight{0};               // the path's (the kernels' visible_point_weight)
     std::uint32_t depth = WP_NO_VISIBLE_POINT;
     Real distance = 0;  // the path's length from the camera (sppm_footprint)
+    typename ReferenceScene<Real>::SurfaceMaterial material{};
+    Vec3<Real> wo{0};    // back along the camera path
+    bool front = false;  // the path met the side the geometric normal points to
     bool found() const { return depth != WP_NO_VISIBLE_POINT; }
 };
 
+// Whether SPPM's camera pass makes its visible point at a vertex of
+// `material` whose BSDF sample is `next` (the kernels' vertex_is_visible_point):
+// a non-specular one, and a plastic where the sample chose its base.
+template <class Real>
+bool is_visible_point(MaterialType material, const typename SharedMath<Real>::BsdfSample& next) {
+    return is_non_specular(material) && !(material == MaterialType::Plastic && next.specular);
+}
+
+// The weight a visible point keeps (the kernels' visible_point_weight): the
+// throughput times the albedo at a diffuse vertex, over the base's
+// probability at a plastic's, else the throughput.
+template <class Real>
+Vec3<Real> visible_point_weight(const typename ReferenceScene<Real>::SurfaceMaterial& material, const Vec3<Real>& ns,
+                                const Vec3<Real>& wo, const Vec3<Real>& throughput) {
+    if (material.type == MaterialType::Diffuse) return throughput * material.albedo;
+    if (material.type == MaterialType::Plastic)
+        return SharedMath<Real>::plastic_base_throughput(material.plastic, ns, wo, throughput);
+    return throughput;
+}
+
+// The camera path's throughput times the visible point's f for a photon
+// arriving along wi (the kernels' visible_point_bsdf).
+template <class Real>
+Vec3<Real> visible_point_f(const ReferenceScene<Real>& scene, const VisiblePoint<Real>& vp, const Vec3<Real>& wi) {
+    if (vp.material.type == MaterialType::Diffuse) return SharedMath<Real>::diffuse_eval(vp.weight, vp.ns, wi);
+    return bsdf_value(scene, vp.material, vp.front, vp.ns, vp.wo, wi, vp.weight).throughput_f;
+}
+
 // Radiance carried by one path that starts with `ray`. With `visible` (the
-// camera pass of SPPM) the path records its first diffuse vertex there and
+// camera pass of SPPM) the path records its first non-specular vertex there and
 // ends at the hit after it, where it adds the emission it finds: the path
 // tracer's estimator of the light that reaches the camera after at most one
 // diffuse vertex; the photons bring the rest.
@@ -550,12 +582,20 @@ Vec3<Real> trace_path(const ReferenceScene<Real>& scene, Ray<Real> ray, const Sa
                                                  throughput, material, rng, bounce, counts),
                              NonfiniteStage::direct, counts);
         }
-        if (visible && material.type == MaterialType::Diffuse) {
-            *visible = {surface.point, nf, ns, throughput * material.albedo, bounce, travelled};
-            if (!M::camera_pass_bounces_from_visible_point(scene.nee, scene.mis)) break;
-        }
         typename M::BsdfSample next = scatter(scene, material, ray.direction, front, nf, ns,
                                               camera_bsdf_random(rng, bounce, material.type), WP_TRANSPORT_RADIANCE);
+        if (visible && is_visible_point<Real>(material.type, next)) {
+            *visible = {surface.point,
+                        nf,
+                        ns,
+                        visible_point_weight<Real>(material, ns, -ray.direction, throughput),
+                        bounce,
+                        travelled,
+                        material,
+                        -ray.direction,
+                        front};
+            if (!M::camera_pass_bounces_from_visible_point(scene.nee, scene.mis)) break;
+        }
         if (!next.valid) break;
         throughput *= next.weight;
         ray = {M::offset_ray_origin(surface.point, next.leave_side, surface.error), next.direction};

@@ -75,7 +75,7 @@ typename SharedMath<Real>::EmittedPhoton emit_photon(const ReferenceScene<Real>&
 }
 
 // Traces the photon of `rng` and calls deposit(point, direction, power,
-// depth) at every diffuse surface it meets, `depth` being the scattering
+// depth) at every non-specular surface it meets, `depth` being the scattering
 // events before it (the visible points decide what counts: photon_depth_counts).
 // It scatters through the shared materials with WP_TRANSPORT_IMPORTANCE and
 // the adjoint correction (photon_bsdf_sample), and plays Russian roulette
@@ -96,8 +96,7 @@ void trace_photon(const ReferenceScene<Real>& scene, const PhotonRng<Real>& rng,
         SurfacePoint<Real> surface = surface_at(scene, ray, hit);
         const auto material = material_at(scene, surface);
         if (material.type == MaterialType::Emitter) break;  // reflects nothing
-        if (material.type == MaterialType::Diffuse)
-            deposit(surface.point, ray.direction, photon.flux * throughput, depth);
+        if (is_non_specular(material.type)) deposit(surface.point, ray.direction, photon.flux * throughput, depth);
         if (!M::photon_may_scatter(depth, static_cast<std::uint32_t>(scene.render.max_depth))) break;
 
         typename M::FacingNormals facing = M::normals_facing(ray.direction, surface.normal, surface.shading);

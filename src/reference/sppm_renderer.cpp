@@ -185,8 +185,9 @@ class ReferenceSppmRenderer : public FilmRenderer {
                     if (!M::photon_depth_counts(vp.depth, depth, max_depth) ||
                         !M::photon_within(vp.point, radius_[p], x))
                         continue;
-                    const vec3 flux =
-                        M::photon_deposit(vp.weight, vp.nf, vp.ns, direction, power, scene_.shading_normals);
+                    const vec3 flux = M::photon_deposit(reference::visible_point_f(scene_, vp, -direction), vp.nf,
+                                                        vp.ns, reference::transmits(vp.material.type), direction, power,
+                                                        scene_.shading_normals);
                     std::atomic_ref<std::uint32_t>(photon_counts_[p]).fetch_add(1u);
                     for (int c = 0; c < kFilmChannels; ++c)
                         film_words_add(&photon_flux_[(kFilmChannels * p + c) * WP_FILM_WORDS],

@@ -85,15 +85,6 @@ std::string sppm_problem(const Scene& scene) {
         return "sppm takes its light from emitting shapes, and a directional light would light paths no photon takes "
                "(render with the path integrator)";
     }
-    const char* unsupported = f.rough_conductor    ? "roughconductor"
-                              : f.rough_dielectric ? "roughdielectric"
-                              : f.plastic          ? "plastic"
-                              : f.rough_plastic    ? "roughplastic"
-                                                   : nullptr;
-    if (unsupported) {
-        return std::string("sppm gathers photons on diffuse surfaces only, and its camera paths would end at a ") +
-               unsupported + " (render with the path integrator)";
-    }
     return "";
 }
 

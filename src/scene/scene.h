@@ -226,6 +226,8 @@ struct FeatureSet {
     bool specular() const { return mirror || glass || conductor || thin_dielectric || plastic; }
     // A material with a lobe of finite density: next-event estimation runs at its vertices.
     bool non_specular() const { return diffuse || rough_conductor || rough_dielectric || plastic || rough_plastic; }
+    // A lobe of finite density other than the Lambertian one: SPPM's visible points keep their material to evaluate it.
+    bool glossy() const { return rough_conductor || rough_dielectric || plastic || rough_plastic; }
     // A refraction into another medium: paths carry eta^2 for the roulette.
     bool refraction() const { return glass || rough_dielectric; }
 };

@@ -72,7 +72,7 @@ Pipeline::Pipeline(const Scene& scene, const SceneLayout& layout, const DeviceIn
     if (kernel_features.sppm) {
         photons_per_iteration_ = scene.lights.empty() ? 0 : static_cast<std::uint32_t>(sppm_photons(scene));
         sppm_.emplace(context_, queue_, program_.program, scene_, queues_.counts(),
-                      std::uint64_t(scene.camera.width) * std::uint64_t(scene.camera.height), lanes_);
+                      std::uint64_t(scene.camera.width) * std::uint64_t(scene.camera.height), lanes_, kernel_features);
     }
     for (const StageDeclaration& stage : stage_declarations) {
         cl::Kernel& kernel = stages_.emplace_back(stage_kernel(program_.program, stage));

@@ -24,9 +24,10 @@ cl::Kernel sppm_kernel(const cl::Program& program, const char* name, const Devic
 }  // namespace
 
 SppmPass::SppmPass(const cl::Context& context, cl::CommandQueue& queue, const cl::Program& program,
-                   const DeviceScene& scene, const cl::Buffer& counts, std::uint64_t pixels, unsigned lanes)
+                   const DeviceScene& scene, const cl::Buffer& counts, std::uint64_t pixels, unsigned lanes,
+                   const FeatureSet& features)
     : queue_(queue),
-      state_(context, pixels),
+      state_(context, pixels, features),
       lanes_(lanes),
       bounds_(sppm_kernel(program, "grid_bounds", scene, counts, state_)),
       count_(sppm_kernel(program, "grid_count", scene, counts, state_)),

@@ -18,11 +18,11 @@ namespace wp {
 class SppmPass {
  public:
     // `program` holds the grid and update kernels, built with -DWP_LANES=lanes
-    // and -DWP_SPPM; `counts` is the queues' counters (WP_COUNTER_PHOTON_DEPOSITS).
+    // and -DWP_SPPM for the scene's `features`; `counts` is the queues' counters (WP_COUNTER_PHOTON_DEPOSITS).
     // Every pixel starts with no photon and no radius (0: its first visible
     // point sets it, sppm_first_radius in kernels/shared/sppm.h).
     SppmPass(const cl::Context& context, cl::CommandQueue& queue, const cl::Program& program, const DeviceScene& scene,
-             const cl::Buffer& counts, std::uint64_t pixels, unsigned lanes);
+             const cl::Buffer& counts, std::uint64_t pixels, unsigned lanes, const FeatureSet& features);
 
     const SppmState& state() const { return state_; }
     // Before an iteration's camera pass: no visible point, nothing gathered.

@@ -142,5 +142,48 @@ TEST_F(SppmWavefront, ResumesFromAFilmFileToTheSameBits) {
     EXPECT_EQ(rest->film().image().rgb, whole_->image.rgb);
 }
 
+// Visible points and photon deposits on every non-specular material
+// (docs/architecture.md, "Photon mapping"): a rough conductor, a rough
+// plastic and a smooth plastic (whose coat the camera paths pass as a
+// mirror where their lobe choice takes it) and a rough dielectric (photons
+// reaching its visible points through it, from below) on a diffuse floor.
+// The same bits with one lane and few slots, and in the reference in float.
+Scene rough_scene() {
+    return test::scene_from_json(R"({
+      "camera": {"position": [0, 1.2, 3], "look_at": [0, 0.3, 0], "up": [0, 1, 0], "fov_y": 50,
+                 "width": 16, "height": 16},
+      "render": {"spp": 3, "max_depth": 6, "rr_depth": 2, "seed": 7, "integrator": "sppm", "photons": 1500},
+      "materials": {
+        "white": {"type": "diffuse", "albedo": [0.7, 0.7, 0.7]},
+        "gold": {"type": "roughconductor", "material": "Au", "alpha": 0.2},
+        "varnish": {"type": "roughplastic", "diffuse_reflectance": [0.2, 0.4, 0.7], "alpha": 0.15},
+        "gloss": {"type": "plastic", "diffuse_reflectance": [0.7, 0.2, 0.1]},
+        "frosted": {"type": "roughdielectric", "int_ior": 1.5, "alpha": 0.3},
+        "lamp": {"type": "emitter", "radiance": [30, 30, 30]}
+      },
+      "shapes": [
+        {"type": "quad", "corner": [-2, 0, -2], "edge1": [0, 0, 4], "edge2": [4, 0, 0], "material": "white"},
+        {"type": "quad", "corner": [-2, 0, -2], "edge1": [4, 0, 0], "edge2": [0, 3, 0], "material": "gloss"},
+        {"type": "sphere", "center": [0.5, 0.35, 0.2], "radius": 0.35, "material": "frosted"},
+        {"type": "sphere", "center": [-0.6, 0.3, -0.4], "radius": 0.3, "material": "gold"},
+        {"type": "sphere", "center": [-0.3, 0.25, 0.6], "radius": 0.25, "material": "varnish"},
+        {"type": "quad", "corner": [0, 2, 0], "edge1": [0.3, 0, 0], "edge2": [0, 0, 0.3], "material": "lamp"}
+      ]
+    })");
+}
+
+TEST(SppmWavefrontRough, SameBitsWithOneLaneAndFewSlotsAndAsTheReferenceInFloat) {
+    const Scene scene = rough_scene();
+    const RenderResult wide = render_wavefront(scene, options_with(8, 0), {});
+    EXPECT_GT(wide.stats.photon_deposits, 0u);
+    const RenderResult narrow = render_wavefront(scene, options_with(1, 320), {});
+    EXPECT_EQ(narrow.image.rgb, wide.image.rgb);
+    EXPECT_EQ(narrow.stats.photon_deposits, wide.stats.photon_deposits);
+    const RenderResult reference = render_reference(scene, {.threads = 2});
+    EXPECT_EQ(reference.image.rgb, wide.image.rgb);
+    EXPECT_EQ(reference.stats.photon_rays, wide.stats.photon_rays);
+    EXPECT_EQ(reference.stats.photon_deposits, wide.stats.photon_deposits);
+}
+
 }  // namespace
 }  // namespace wp

@@ -103,6 +103,19 @@ WP_FN real plastic_specular_probability(real fresnel_o, real specular_sampling_w
     return specular / (specular + diffuse);
 }
 
+/* The throughput of a path that takes plastic_sample's diffuse lobe at a
+ * vertex it arrives at along wo (SPPM's visible point on the base, which
+ * evaluates plastic_eval there): `throughput` over the lobe's probability
+ * 1 - P_s; 0 where the base is never chosen (a path from below ns, which
+ * plastic_eval gives nothing either). */
+WP_FN vec3 plastic_base_throughput(PlasticParams p, vec3 ns, vec3 wo, vec3 throughput) {
+    real specular_probability =
+        plastic_specular_probability(fresnel_dielectric(v3_dot(wo, ns), p.eta), p.specular_sampling_weight);
+    real diffuse_probability = REAL(1.0) - specular_probability;
+    return v3_select(diffuse_probability > REAL(0.0), v3_scale(throughput, REAL(1.0) / diffuse_probability),
+                     make_vec3(REAL(0.0), REAL(0.0), REAL(0.0)));
+}
+
 /* The diffuse lobe's f for cosines cos_o, cos_i (both > 0) and their Fresnel
  * reflectances. */
 WP_FN vec3 plastic_diffuse_f(PlasticParams p, real fresnel_o, real fresnel_i) {
