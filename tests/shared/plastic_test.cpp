@@ -2,7 +2,7 @@
 // its sampling against its pdf (a chi-square test, the coat's delta lobe a
 // cell of its own), each sample against eval and pdf, reciprocity, the albedo
 // of white plastics, the fit of the diffuse Fresnel reflectance against its
-// integral, and agreement with Mitsuba 3's own eval, pdf and delta sample
+// integral, SPPM's weight of a visible point on the base, and agreement with Mitsuba 3's own eval, pdf and delta sample
 // (support/plastic_mitsuba_table.h, written by scripts/plastic_reference.py).
 #include <gtest/gtest.h>
 
@@ -232,6 +232,42 @@ TYPED_TEST(Plastic, ReflectsNothingBelowTheSurface) {
             EXPECT_EQ(s.weight, Vec3<R>(0));
             EXPECT_EQ(s.pdf, R(0));
         }
+    }
+}
+
+// SPPM's visible point on the base (plastic_base_throughput): the throughput
+// over the probability with which plastic_sample picks the base, so that
+// over the lobe choice its expected weight is the throughput. The base's
+// share of 4096 stratified lobe numbers (exact to 1/4096 for a threshold
+// rule) times the weight gives the throughput within 1/4096 of it, at three
+// angles per material; below the surface, or where total internal
+// reflection leaves only the coat, the weight is 0 (no NaN for the gather).
+TYPED_TEST(Plastic, BaseVisiblePointWeightUndoesTheLobeChoice) {
+    using R = TypeParam;
+    using M = wp::SharedMath<R>;
+    const Vec3<R> ns(kNormal), throughput(R(0.5), R(1), R(2));
+    const int kLobes = 4096;
+    for (const PlasticMaterial& p : plastics()) {
+        for (double cos_o : {0.9, 0.5, 0.1}) {
+            const Vec3<R> wo(around_normal(cos_o, kAzimuth));
+            int base = 0;
+            for (int i = 0; i < kLobes; ++i) {
+                typename M::BsdfRandom r;
+                r.lobe = R((i + 0.5) / kLobes), r.u = R(0.3), r.v = R(0.6);
+                base += M::plastic_sample(shared_plastic<R>(p), ns, ns, wo, r, 0).specular ? 0 : 1;
+            }
+            const Vec3<R> weight = M::plastic_base_throughput(shared_plastic<R>(p), ns, wo, throughput);
+            if (base == 0) {
+                EXPECT_EQ(weight, Vec3<R>(0)) << p.name << " at " << cos_o;
+                continue;
+            }
+            for (int c = 0; c < 3; ++c)
+                EXPECT_NEAR(double(weight[c]) * base / kLobes, double(throughput[c]),
+                            double(weight[c]) / kLobes + 1e-5 * double(throughput[c]))
+                    << p.name << " at " << cos_o << ", channel " << c;
+        }
+        const Vec3<R> below(around_normal(-0.3, 2.0));
+        EXPECT_TRUE(M::vec3_is_finite(M::plastic_base_throughput(shared_plastic<R>(p), ns, below, throughput)));
     }
 }
 
