@@ -12,6 +12,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <fstream>
+#include <string>
 
 #include "longrun/film_file.h"
 #include "longrun/render_identity.h"
@@ -142,13 +144,22 @@ TEST_F(SppmWavefront, ResumesFromAFilmFileToTheSameBits) {
     EXPECT_EQ(rest->film().image().rgb, whole_->image.rgb);
 }
 
+// A panel of two triangles whose vertex normals lean away from its
+// geometric normal (0, 0, 1) by up to 25 degrees: shading normals.
+constexpr const char* kLeaningPanelObj =
+    "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n"
+    "vn -0.3 -0.3 1\nvn 0.4 -0.2 1\nvn 0.3 0.3 1\nvn -0.2 0.45 1\n"
+    "f 1//1 2//2 3//3\nf 1//1 3//3 4//4\n";
+
 // Visible points and photon deposits on every non-specular material
 // (docs/architecture.md, "Photon mapping"): a rough conductor, a rough
 // plastic and a smooth plastic (whose coat the camera paths pass as a
 // mirror where their lobe choice takes it) and a rough dielectric (photons
-// reaching its visible points through it, from below) on a diffuse floor.
-// The same bits with one lane and few slots, and in the reference in float.
-Scene rough_scene() {
+// reaching its visible points through it, from behind) on a diffuse floor,
+// and, with shading normals, a rough dielectric and a rough conductor panel
+// (`panel`, an OBJ file of kLeaningPanelObj). The same bits with one lane
+// and few slots, and in the reference in float.
+Scene rough_scene(const std::string& panel) {
     return test::scene_from_json(R"({
       "camera": {"position": [0, 1.2, 3], "look_at": [0, 0.3, 0], "up": [0, 1, 0], "fov_y": 50,
                  "width": 16, "height": 16},
@@ -167,13 +178,23 @@ Scene rough_scene() {
         {"type": "sphere", "center": [0.5, 0.35, 0.2], "radius": 0.35, "material": "frosted"},
         {"type": "sphere", "center": [-0.6, 0.3, -0.4], "radius": 0.3, "material": "gold"},
         {"type": "sphere", "center": [-0.3, 0.25, 0.6], "radius": 0.25, "material": "varnish"},
+        {"type": "mesh", "file": ")" +
+                                 panel + R"(", "material": "frosted",
+         "transform": {"scale": 0.6, "rotate": [1, 0, 0, -30], "translate": [0.2, 0.2, 0.9]}},
+        {"type": "mesh", "file": ")" +
+                                 panel + R"(", "material": "gold",
+         "transform": {"scale": 0.5, "rotate": [0, 1, 0, 40], "translate": [-1.2, 0.1, 0.3]}},
         {"type": "quad", "corner": [0, 2, 0], "edge1": [0.3, 0, 0], "edge2": [0, 0, 0.3], "material": "lamp"}
       ]
     })");
 }
 
 TEST(SppmWavefrontRough, SameBitsWithOneLaneAndFewSlotsAndAsTheReferenceInFloat) {
-    const Scene scene = rough_scene();
+    test::TempDirectory dir("sppm_rough");
+    const std::string panel = dir / "panel.obj";
+    std::ofstream(panel) << kLeaningPanelObj;
+    const Scene scene = rough_scene(panel);
+    ASSERT_TRUE(scene.features().shading_normals);
     const RenderResult wide = render_wavefront(scene, options_with(8, 0), {});
     EXPECT_GT(wide.stats.photon_deposits, 0u);
     const RenderResult narrow = render_wavefront(scene, options_with(1, 320), {});
