@@ -116,7 +116,7 @@ WP_FN VisibleBsdf visible_point_bsdf(WP_SCENE_PARAMS, lane_uint material_word, v
 #ifdef WP_HAS_ROUGH_PLASTIC
     at.roughplastic_table = roughplastic_transmittance;
 #endif
-    b.throughput_f = vertex_bsdf_value(at, wi, weight).throughput_f;
+    b.throughput_f = finite_visible_f(vertex_bsdf_value(at, wi, weight).throughput_f);
     b.transmits = vertex_transmits(at);
 #ifdef WP_HAS_DIFFUSE
     b.throughput_f = v3_select(at.material.type == WP_MATERIAL_DIFFUSE, diffuse_eval(weight, ns, wi), b.throughput_f);

@@ -62,6 +62,15 @@ WP_FN vec3 photon_deposit(vec3 throughput_f, vec3 nf, vec3 ns, lane_int transmit
     return v3_select(arrives, deposit, make_vec3(REAL(0.0), REAL(0.0), REAL(0.0)));
 }
 
+/* A visible point's throughput times f (photon_deposit's first argument)
+ * where it is finite, else 0: a deposit goes into an exact fixed-point sum,
+ * which has no room for NaN or Inf (film_sum.h). A diffuse point's always
+ * is; a microfacet's may not be at a grazing degenerate pair, which
+ * next-event estimation drops the same way (add_finite). */
+WP_FN vec3 finite_visible_f(vec3 throughput_f) {
+    return v3_select(vec3_is_finite(throughput_f), throughput_f, make_vec3(REAL(0.0), REAL(0.0), REAL(0.0)));
+}
+
 /* A visible point's material and the side of its surface the camera path
  * met (the rough dielectric's eval needs it) in one word: the material's
  * index times 2, plus 1 on the front (the side its geometric normal points

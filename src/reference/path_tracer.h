@@ -533,7 +533,8 @@ Vec3<Real> visible_point_weight(const typename ReferenceScene<Real>::SurfaceMate
 template <class Real>
 Vec3<Real> visible_point_f(const ReferenceScene<Real>& scene, const VisiblePoint<Real>& vp, const Vec3<Real>& wi) {
     if (vp.material.type == MaterialType::Diffuse) return SharedMath<Real>::diffuse_eval(vp.weight, vp.ns, wi);
-    return bsdf_value(scene, vp.material, vp.front, vp.ns, vp.wo, wi, vp.weight).throughput_f;
+    return SharedMath<Real>::finite_visible_f(
+        bsdf_value(scene, vp.material, vp.front, vp.ns, vp.wo, wi, vp.weight).throughput_f);
 }
 
 // Radiance carried by one path that starts with `ray`. With `visible` (the
