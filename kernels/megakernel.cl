@@ -70,8 +70,9 @@ WP_FN lane_int trace_bounce(WP_SCENE_PARAMS, lane_int alive, CameraPath *path, l
     lane_int missed = alive && hit.shape == WP_NO_HIT;
     alive = alive && !missed;
     Vertex v = vertex_at(WP_SCENE_ARGS, hit.shape, path->origin, path->direction, hit.t);
-    path->radiance = add_radiance_seen(WP_SCENE_ARGS, path->radiance, missed, alive, hit.shape, path->origin, v,
-                                       path->after_specular, path->bsdf_pdf, path->throughput, &dropped[0]);
+    path->radiance =
+        add_radiance_seen(WP_SCENE_ARGS, path->radiance, missed, alive, hit.shape, path->origin, path->direction, v,
+                          path->after_specular, path->bsdf_pdf, path->throughput, &dropped[0]);
     alive = alive && !vertex_ends_path(v, path->depth, scene->max_depth);
 #if defined(WP_NEE) && defined(WP_HAS_NON_SPECULAR)
     DirectLight direct;

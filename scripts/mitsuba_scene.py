@@ -36,7 +36,8 @@ wavepath code agreeing with itself. The mapping (docs/mitsuba.md):
   keeps them (Mitsuba would otherwise smooth the normals of files that have
   none);
 - background: a `constant` emitter when not black;
-- lights: `directional` emitters of the same `direction` and `irradiance`.
+- lights: `directional` emitters of the same `direction` and `irradiance`;
+  `envmap` emitters of the same file, `scale` and `to_world`.
 
 Everything is rebased to the camera as wavepath's loader does (the camera at
 the origin), so that Mitsuba's float arithmetic sees the same small numbers.
@@ -73,7 +74,7 @@ class MitsubaSceneError(Exception):
 # The keys each part of a scene may have (docs/scene-format.md); any other key is refused,
 # so that a feature added to wavepath is never silently dropped from Mitsuba's image.
 TOP_KEYS = {"camera", "render", "background", "lights", "textures", "materials", "shapes"}
-LIGHT_KEYS = {"directional": {"type", "direction", "irradiance"}}
+LIGHT_KEYS = {"directional": {"type", "direction", "irradiance"}, "envmap": {"type", "filename", "scale", "to_world"}}
 CAMERA_KEYS = {"position", "look_at", "up", "fov_y", "width", "height"}
 RENDER_KEYS = {"spp", "max_depth", "rr_depth", "seed", "nee", "mis", "hemisphere", "sampler"}
 MATERIAL_KEYS = {
@@ -232,6 +233,12 @@ class Converter:
         if kind not in LIGHT_KEYS:
             self.fail(f"{where}.type", f"light type {json.dumps(kind)} has no Mitsuba counterpart here")
         self.check_keys(light, LIGHT_KEYS[kind], where)
+        if kind == "envmap":
+            out = {"type": "envmap", "scale": float(light.get("scale", 1.0)),
+                   "filename": os.path.abspath(os.path.join(os.path.dirname(self.scene_path), light["filename"]))}
+            if "to_world" in light:
+                out["to_world"] = self.transform(light["to_world"], f"{where}.to_world")
+            return out
         return {"type": "directional", "direction": light["direction"],
                 "irradiance": rgb(light.get("irradiance", [1, 1, 1]))}
 

@@ -12,6 +12,7 @@
 #include "interface/scene_layout.h"
 #include "interface/sppm_state.h"
 #include "shared/bvh.h"
+#include "shared/environment_map.h"
 #include "shared/texture.h"
 #include "shared/triangle.h"
 

@@ -176,43 +176,70 @@ WP_FN vec3 only_where(lane_int where, vec3 term) {
     return v3_select(where, term, make_vec3(REAL(0.0), REAL(0.0), REAL(0.0)));
 }
 
-#ifdef WP_HAS_CONSTANT_ENVIRONMENT
+#if defined(WP_HAS_CONSTANT_ENVIRONMENT) || defined(WP_HAS_ENVIRONMENT_MAP)
 /* Whether light `light` is the environment (the table's last light). */
 WP_FN lane_int is_environment_light(WP_SCENE_PARAMS, lane_uint light) {
     return (SCENE_FIELD(lights, light, shape) >> WP_SHAPE_TYPE_SHIFT) == WP_LIGHT_ENVIRONMENT;
 }
 
-/* The density with which next-event estimation picks a direction of the
- * environment: its selection probability times the uniform sphere's. */
-WP_FN real environment_light_pdf(WP_SCENE_PARAMS) {
+#ifdef WP_HAS_ENVIRONMENT_MAP
+/* The environment map's size and frame, from the scene's header. */
+WP_FN EnvironmentMapLayout scene_environment_map(WP_SCENE_PARAMS) {
+    EnvironmentMapLayout map;
+    map.width = scene->environment_width;
+    map.height = scene->environment_height;
+    for (int i = 0; i < 9; ++i) map.to_world[i] = scene->environment_to_world[i];
+    return map;
+}
+#endif
+
+/* The density with which next-event estimation picks the environment's
+ * direction d: its selection probability times the map's density
+ * (environment_pdf), or the uniform sphere's for the constant one. */
+WP_FN real environment_light_pdf(WP_SCENE_PARAMS, vec3 d) {
     lane_uint environment = (lane_uint)(LIGHT_COUNT - 1u);
-    return light_sample_pdf(light_selection_pmf(light_cdf, environment), uniform_sphere_pdf());
+#ifdef WP_HAS_ENVIRONMENT_MAP
+    real direction_pdf = environment_pdf(scene_environment_map(WP_SCENE_ARGS), environment_map, d);
+#else
+    real direction_pdf = uniform_sphere_pdf();
+#endif
+    return light_sample_pdf(light_selection_pmf(light_cdf, environment), direction_pdf);
+}
+
+/* The environment's radiance from direction d: the map's, or the constant background. */
+WP_FN vec3 environment_radiance_from(WP_SCENE_PARAMS, vec3 d) {
+#ifdef WP_HAS_ENVIRONMENT_MAP
+    return environment_radiance(scene_environment_map(WP_SCENE_ARGS), environment_map, d);
+#else
+    return uniform_vec3(scene->background);
+#endif
 }
 
 /* The environment's radiance a path of throughput `throughput` counts where
- * it leaves the scene: environment_seen with its share emission_weight. */
-WP_FN vec3 environment_emission(WP_SCENE_PARAMS, lane_int after_specular, real bsdf_pdf, vec3 throughput) {
+ * it leaves the scene along d: environment_seen with its share emission_weight. */
+WP_FN vec3 environment_emission(WP_SCENE_PARAMS, vec3 d, lane_int after_specular, real bsdf_pdf, vec3 throughput) {
 #ifdef WP_MIS
-    real light_pdf = environment_light_pdf(WP_SCENE_ARGS);
+    real light_pdf = environment_light_pdf(WP_SCENE_ARGS, d);
 #else
     real light_pdf = REAL(0.0);
 #endif
     real weight = emission_weight(after_specular, bsdf_pdf, light_pdf, WP_USES_NEE, WP_USES_MIS);
-    return environment_seen(throughput, uniform_vec3(scene->background), weight);
+    return environment_seen(throughput, environment_radiance_from(WP_SCENE_ARGS, d), weight);
 }
 #endif
 
 /* `radiance` plus what a path of throughput `throughput` sees where its ray
- * from `origin` ends: the environment where it `missed`, the emission at
- * vertex v (hit_emission) where it `hit`. A non-finite term is dropped and
- * counted in *dropped. */
+ * from `origin` along `direction` ends: the environment where it `missed`,
+ * the emission at vertex v (hit_emission) where it `hit`. A non-finite term
+ * is dropped and counted in *dropped. */
 WP_FN vec3 add_radiance_seen(WP_SCENE_PARAMS, vec3 radiance, lane_int missed, lane_int hit, lane_uint shape,
-                             vec3 origin, Vertex v, lane_int after_specular, real bsdf_pdf, vec3 throughput,
-                             lane_uint *dropped) {
-#ifdef WP_HAS_CONSTANT_ENVIRONMENT
-    radiance = add_finite(radiance,
-                          only_where(missed, environment_emission(WP_SCENE_ARGS, after_specular, bsdf_pdf, throughput)),
-                          dropped);
+                             vec3 origin, vec3 direction, Vertex v, lane_int after_specular, real bsdf_pdf,
+                             vec3 throughput, lane_uint *dropped) {
+#if defined(WP_HAS_CONSTANT_ENVIRONMENT) || defined(WP_HAS_ENVIRONMENT_MAP)
+    radiance = add_finite(
+        radiance,
+        only_where(missed, environment_emission(WP_SCENE_ARGS, direction, after_specular, bsdf_pdf, throughput)),
+        dropped);
 #endif
     vec3 emitted = hit_emission(WP_SCENE_ARGS, shape, origin, v, after_specular, bsdf_pdf, throughput);
     return add_finite(radiance, only_where(hit, emitted), dropped);
@@ -468,6 +495,11 @@ WP_FN lane_int sample_direct_light(WP_SCENE_PARAMS, lane_uint pixel, lane_uint s
     lane_int environment = is_environment_light(WP_SCENE_ARGS, light);
     wi = v3_select(environment, sample_uniform_sphere(point.u, point.v), wi);
 #endif
+#ifdef WP_HAS_ENVIRONMENT_MAP
+    lane_int environment = is_environment_light(WP_SCENE_ARGS, light);
+    EnvironmentSample sky = environment_sample(scene_environment_map(WP_SCENE_ARGS), environment_map, point.u, point.v);
+    wi = v3_select(environment, sky.direction, wi);
+#endif
 #ifdef WP_HAS_DIRECTIONAL_LIGHTS
     lane_int directional = (SCENE_FIELD(lights, light, shape) >> WP_SHAPE_TYPE_SHIFT) == WP_LIGHT_DIRECTIONAL;
     wi = v3_select(directional, SCENE_FIELD(lights, light, to_light), wi);
@@ -483,6 +515,12 @@ WP_FN lane_int sample_direct_light(WP_SCENE_PARAMS, lane_uint pixel, lane_uint s
                              bsdf.pdf, light_sample_pdf(selection_pmf, uniform_sphere_pdf()),
                              uniform_vec3(scene->background), WP_USES_MIS, WP_USES_SHADING_NORMALS);
     *direct = select_direct_light(environment, distant, *direct);
+#endif
+#ifdef WP_HAS_ENVIRONMENT_MAP
+    DirectLight mapped = distant_direct_light(v.surface.point, v.surface.error, v.nf, v.ns, vertex_transmits(v), wi,
+                                              bsdf.throughput_f, bsdf.pdf, light_sample_pdf(selection_pmf, sky.pdf),
+                                              sky.radiance, WP_USES_MIS, WP_USES_SHADING_NORMALS);
+    *direct = select_direct_light(environment, mapped, *direct);
 #endif
 #ifdef WP_HAS_DIRECTIONAL_LIGHTS
     /* a delta light: no multiple importance sampling, its density the selection probability */

@@ -75,7 +75,7 @@ WP_FN ShadedPaths shade_hits(WP_STAGE_PARAMS, Lanes lanes, Hit traced) {
     lane_int missed = lanes.active && shape == WP_NO_HIT, hit = lanes.active && !missed;
 
     lane_uint dropped = 0u;
-    vec3 radiance = add_radiance_seen(WP_SCENE_ARGS, PATH_READ(radiance, lanes), missed, hit, shape, origin, v,
+    vec3 radiance = add_radiance_seen(WP_SCENE_ARGS, PATH_READ(radiance, lanes), missed, hit, shape, origin, d, v,
                                       after_specular, bsdf_pdf, throughput, &dropped);
     count_nonfinite(slot_nonfinite, WP_COUNTER_NONFINITE_EMISSION, lanes, dropped);
     lane_int scatters = hit && !vertex_ends_path(v, bounce, scene->max_depth);

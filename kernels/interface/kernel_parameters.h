@@ -16,7 +16,8 @@
  * triangles, src/scene/mesh_lights.h; the roughplastics' tables of their
  * coat's transmittance, src/scene/plastic_constants.h; the textures, the texels
  * and the triangles' uvs of shared/texture.h, and which material parameters are
- * textured, interface/scene_layout.h), first in every kernel that traces. */
+ * textured, interface/scene_layout.h; the environment map's texels and
+ * distributions, shared/environment_map.h), first in every kernel that traces. */
 #define WP_SCENE_PARAMETERS(FIRST, NEXT)                       \
     FIRST(__global const SceneHeader *, scene)                 \
     NEXT(__global const DeviceSphere *, spheres)               \
@@ -34,7 +35,8 @@
     NEXT(__global const MaterialTextures *, material_textures) \
     NEXT(__global const TextureDescriptor *, textures)         \
     NEXT(__global const float *, texels)                       \
-    NEXT(__global const TriangleUVs *, triangle_uvs)
+    NEXT(__global const TriangleUVs *, triangle_uvs)           \
+    NEXT(__global const float *, environment_map)
 
 /* round_pixels: the pixels the work items sample, ascending (every pixel
  * unless adaptive sampling has stopped some): work item w is pixel

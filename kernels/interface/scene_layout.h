@@ -45,6 +45,10 @@ typedef struct {
     float sppm_alpha;        /* sppm: the fraction of new photons a pixel keeps (shared/sppm.h) */
     float sppm_radius;       /* sppm: every pixel's first radius; 0: from its footprint (sppm_first_radius) */
     float sppm_pixel_spread; /* sppm: the pixel's angle, the camera ray cone's spread (sppm_footprint) */
+    /* the environment map's (shared/environment_map.h: EnvironmentMapLayout;
+     * its data in the scene buffer `environment`), zero without one */
+    uint environment_width, environment_height;
+    float environment_to_world[9];
 } SceneHeader;
 
 typedef struct {
@@ -97,7 +101,7 @@ typedef struct {
 typedef struct {
     uint shape;          /* WP_SHAPE_SPHERE or WP_SHAPE_QUAD, index included as in hit_shape; a mesh:
                           * WP_SHAPE_TRIANGLE with its first triangle in light_triangles as the index;
-                          * the environment: WP_LIGHT_ENVIRONMENT, index 0; a directional light:
+                          * the environment (constant or a map): WP_LIGHT_ENVIRONMENT, index 0; a directional light:
                           * WP_LIGHT_DIRECTIONAL, index 0 */
     uint triangle_count; /* a mesh: its triangles in light_triangles (and light_triangle_cdf) */
     float area;          /* a mesh: its area */

@@ -7,6 +7,7 @@
 #include "shared/bvh.h"
 #include "shared/camera.h"
 #include "shared/direct_light.h"
+#include "shared/environment_map.h"
 #include "shared/estimator.h"
 #include "shared/fresnel.h"
 #include "shared/geometry.h"

@@ -92,6 +92,10 @@ std::uint64_t scene_hash(const Scene& scene) {
         h.add(scene.directional_lights.size());
         for (const DirectionalLight& d : scene.directional_lights) h.add(d.direction).add(d.irradiance);
     }
+    if (const auto& map = scene.environment_map) {  // by what it holds, not its file's name; only where present
+        h.add(map->width).add(map->height).add_all(map->texels).add(map->scale);
+        for (int column = 0; column < 3; ++column) h.add(map->to_world[column]);
+    }
     return h.value();
 }
 

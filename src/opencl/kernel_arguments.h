@@ -48,8 +48,8 @@ struct CountDepths {
 // The kernels that trace take the scene's buffers first, so DeviceScene binds
 // them at the same indices in all of them.
 constexpr cl_uint kSceneArgumentCount = Scene::count;
-static_assert(cl_uint(Stage::triangle_uvs) + 1 == kSceneArgumentCount &&
-              cl_uint(Megakernel::triangle_uvs) + 1 == kSceneArgumentCount &&
-              cl_uint(IntersectBound::triangle_uvs) + 1 == kSceneArgumentCount);
+static_assert(cl_uint(Stage::environment_map) + 1 == kSceneArgumentCount &&
+              cl_uint(Megakernel::environment_map) + 1 == kSceneArgumentCount &&
+              cl_uint(IntersectBound::environment_map) + 1 == kSceneArgumentCount);
 
 }  // namespace wp::arg

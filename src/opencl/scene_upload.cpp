@@ -6,6 +6,7 @@
 
 #include "accel/bvh_layout.h"
 #include "core/shared_math.h"
+#include "scene/environment_layout.h"
 #include "scene/mesh_lights.h"
 #include "scene/pixel_filter.h"
 #include "scene/plastic_constants.h"
@@ -15,7 +16,7 @@ namespace wp {
 namespace {
 using namespace device_layout;
 
-static_assert(sizeof(SceneHeader) == 32 * 4, "SceneHeader must match its OpenCL C layout");
+static_assert(sizeof(SceneHeader) == 43 * 4, "SceneHeader must match its OpenCL C layout");
 static_assert(sizeof(DeviceSphere) == 5 * 4, "DeviceSphere must match its OpenCL C layout");
 static_assert(sizeof(DevicePlane) == 7 * 4, "DevicePlane must match its OpenCL C layout");
 static_assert(sizeof(DeviceQuad) == 16 * 4, "DeviceQuad must match its OpenCL C layout");
@@ -139,6 +140,15 @@ void add_textures(const Scene& scene, SceneLayout& layout) {
     layout.textures_summary = describe_textures(scene, bytes);
 }
 
+// The environment map's data, its size and frame in the header.
+void add_environment_map(const Scene& scene, SceneLayout& layout) {
+    EnvironmentLayout<float> environment = environment_layout<float>(scene);
+    layout.header.environment_width = environment.map.width;
+    layout.header.environment_height = environment.map.height;
+    for (int i = 0; i < 9; ++i) layout.header.environment_to_world[i] = environment.map.to_world[i];
+    layout.environment = std::move(environment.data);
+}
+
 }  // namespace
 
 std::string describe_textures(const Scene& scene, std::size_t device_bytes) {
@@ -212,6 +222,7 @@ SceneLayout flatten_scene(const Scene& scene) {
         layout.materials.push_back(d);
     }
     add_textures(scene, layout);
+    add_environment_map(scene, layout);
     MeshLightTriangles mesh_lights = mesh_light_triangles(scene);
     for (std::size_t i = 0; i < scene.lights.size(); ++i) {
         const Light& light = scene.lights[i];
@@ -281,6 +292,7 @@ DeviceScene::DeviceScene(const cl::Context& context, const SceneLayout& layout)
     buffers_[arg::Scene::textures] = upload(context, layout.textures);
     buffers_[arg::Scene::texels] = upload(context, layout.texels);
     buffers_[arg::Scene::triangle_uvs] = upload(context, layout.triangle_uvs);
+    buffers_[arg::Scene::environment_map] = upload(context, layout.environment);
 }
 
 void DeviceScene::bind(cl::Kernel& kernel) const {

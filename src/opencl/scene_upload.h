@@ -48,6 +48,7 @@ struct SceneLayout {
     std::vector<SharedMath<float>::TextureDescriptor> textures;
     std::vector<float> texels;
     std::vector<SharedMath<float>::TriangleUVs> triangle_uvs;  // parallel to triangles, if FeatureSet::textures
+    std::vector<float> environment;                            // scene/environment_layout.h
     MeshSummary meshes;
     std::string textures_summary;  // describe_textures
 };

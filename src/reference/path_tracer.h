@@ -310,28 +310,40 @@ Real light_pdf_at_hit(const ReferenceScene<Real>& scene, const ShapeHit<Real>& h
     return Real(0);
 }
 
-// The density with which next-event estimation picks a direction of the
-// environment (the light table's last light): its selection probability
-// times the uniform sphere's (the kernels' environment_light_pdf).
+// The density with which next-event estimation picks the environment's
+// direction d (the light table's last light): its selection probability
+// times the map's density, or the uniform sphere's for the constant one (the
+// kernels' environment_light_pdf).
 template <class Real>
-Real environment_light_pdf(const ReferenceScene<Real>& scene) {
+Real environment_light_pdf(const ReferenceScene<Real>& scene, const Vec3<Real>& d) {
     using M = SharedMath<Real>;
     auto environment = static_cast<std::uint32_t>(scene.lights.size() - 1);
-    return M::light_sample_pdf(M::light_selection_pmf(scene.light_cdf.data(), environment), M::uniform_sphere_pdf());
+    Real direction_pdf = scene.environment_map
+                             ? M::environment_pdf(scene.environment_layout, scene.environment_data.data(), d)
+                             : M::uniform_sphere_pdf();
+    return M::light_sample_pdf(M::light_selection_pmf(scene.light_cdf.data(), environment), direction_pdf);
+}
+
+// The environment's radiance from direction d: the map's, or the constant background.
+template <class Real>
+Vec3<Real> environment_radiance_from(const ReferenceScene<Real>& scene, const Vec3<Real>& d) {
+    using M = SharedMath<Real>;
+    return scene.environment_map ? M::environment_radiance(scene.environment_layout, scene.environment_data.data(), d)
+                                 : scene.background;
 }
 
 // The environment's radiance a path of throughput `throughput` counts where
-// it leaves the scene after a specular vertex (or the camera) or a bounce of
-// density `bsdf_pdf` (the kernels' environment_emission).
+// it leaves the scene along d after a specular vertex (or the camera) or a
+// bounce of density `bsdf_pdf` (the kernels' environment_emission).
 template <class Real>
-Vec3<Real> environment_emission(const ReferenceScene<Real>& scene, bool after_specular, Real bsdf_pdf,
-                                const Vec3<Real>& throughput) {
+Vec3<Real> environment_emission(const ReferenceScene<Real>& scene, const Vec3<Real>& d, bool after_specular,
+                                Real bsdf_pdf, const Vec3<Real>& throughput) {
     using M = SharedMath<Real>;
     bool has_environment = !scene.lights.empty() && scene.lights.back().kind == LightKind::Environment;
     if (!has_environment) return Vec3<Real>(Real(0));
-    Real light_pdf = scene.mis ? environment_light_pdf(scene) : Real(0);
+    Real light_pdf = scene.mis ? environment_light_pdf(scene, d) : Real(0);
     Real weight = M::emission_weight(after_specular, bsdf_pdf, light_pdf, scene.nee, scene.mis);
-    return M::environment_seen(throughput, scene.background, weight);
+    return M::environment_seen(throughput, environment_radiance_from(scene, d), weight);
 }
 
 // Whether `material` transmits through a lobe of finite density (next-event
@@ -417,6 +429,13 @@ Vec3<Real> sample_direct_light(const ReferenceScene<Real>& scene, const Vec3<Rea
         direct =
             M::distant_direct_light(x, x_error, nf, ns, transmits(material.type), light.to_light, bsdf.throughput_f,
                                     bsdf.pdf, selection_pmf, light.irradiance, false, scene.shading_normals);
+    } else if (light.kind == LightKind::Environment && scene.environment_map) {
+        typename M::EnvironmentSample sky =
+            M::environment_sample(scene.environment_layout, scene.environment_data.data(), point.u, point.v);
+        BsdfValue<Real> bsdf = bsdf_value(scene, material, front, ns, wo, sky.direction, throughput);
+        direct = M::distant_direct_light(x, x_error, nf, ns, transmits(material.type), sky.direction, bsdf.throughput_f,
+                                         bsdf.pdf, M::light_sample_pdf(selection_pmf, sky.pdf), sky.radiance, scene.mis,
+                                         scene.shading_normals);
     } else if (light.kind == LightKind::Environment) {
         Vec3<Real> wi = M::sample_uniform_sphere(point.u, point.v);
         BsdfValue<Real> bsdf = bsdf_value(scene, material, front, ns, wo, wi, throughput);
@@ -557,7 +576,7 @@ Vec3<Real> trace_path(const ReferenceScene<Real>& scene, Ray<Real> ray, const Sa
         ++counts.extension;
         ShapeHit<Real> hit = closest_hit(scene, ray);
         if (!hit.found()) {
-            add_finite<Real>(radiance, environment_emission(scene, specular, bsdf_pdf, throughput),
+            add_finite<Real>(radiance, environment_emission(scene, ray.direction, specular, bsdf_pdf, throughput),
                              NonfiniteStage::emission, counts);
             break;
         }

@@ -11,6 +11,7 @@
 #include "accel/bvh_layout.h"
 #include "accel/embree_intersector.h"
 #include "core/shared_math.h"
+#include "scene/environment_layout.h"
 #include "scene/mesh_lights.h"
 #include "scene/pixel_filter.h"
 #include "scene/plastic_constants.h"
@@ -79,6 +80,7 @@ struct ReferenceScene {
     bool uniform_hemisphere;  // diffuse vertices sample the uniform hemisphere (render.hemisphere)
     bool textures;            // some material parameter is textured: hits compute their uv (FeatureSet::textures)
     vec3 background;          // the environment's radiance (a light where not black)
+    bool environment_map;     // the environment is an image (FeatureSet::environment_map)
     std::vector<SurfaceMaterial> materials;
     std::vector<SphereShape> spheres;
     std::vector<PlaneShape> planes;
@@ -94,8 +96,10 @@ struct ReferenceScene {
     std::vector<Real> roughplastic_transmittance;    // scene/plastic_constants.h
     std::vector<typename M::Texture> texture_table;  // scene/texture_layout.h
     std::vector<Real> texels;
-    std::vector<std::uint32_t> albedo_textures;         // per material: its albedo's texture, or WP_NO_TEXTURE
-    std::vector<typename M::TriangleUVs> triangle_uvs;  // parallel to triangles, if textures
+    std::vector<std::uint32_t> albedo_textures;           // per material: its albedo's texture, or WP_NO_TEXTURE
+    std::vector<typename M::TriangleUVs> triangle_uvs;    // parallel to triangles, if textures
+    typename M::EnvironmentMapLayout environment_layout;  // scene/environment_layout.h, with environment_map
+    std::vector<Real> environment_data;
 
     // Throws std::invalid_argument for Intersector::Embree in double.
     explicit ReferenceScene(const Scene& scene, Intersector intersector = Intersector::Bvh)
@@ -105,7 +109,8 @@ struct ReferenceScene {
           shading_normals(scene.features().shading_normals),
           uniform_hemisphere(scene.render.hemisphere == Hemisphere::Uniform),
           textures(scene.features().textures),
-          background(scene.background) {
+          background(scene.background),
+          environment_map(scene.features().environment_map) {
         camera = convert_camera(scene.camera);
         add_materials(scene);
         for (const Sphere& s : scene.spheres) spheres.push_back({vec3(s.center), Real(s.radius), s.material});
@@ -115,6 +120,9 @@ struct ReferenceScene {
         if (intersector == Intersector::Embree) add_embree(scene);
         add_lights(scene);
         add_textures(scene);
+        EnvironmentLayout<Real> environment = wp::environment_layout<Real>(scene);
+        environment_layout = environment.map;
+        environment_data = std::move(environment.data);
         for (double c : scene.light_cdf) light_cdf.push_back(Real(c));
     }
 

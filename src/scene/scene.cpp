@@ -8,6 +8,7 @@
 #include <numbers>
 
 #include "core/shared_math.h"
+#include "scene/environment_layout.h"
 
 namespace wp {
 namespace {
@@ -65,7 +66,8 @@ FeatureSet Scene::features() const {
         f.quad_lights |= shape && light.shape == ShapeType::Quad;
         f.mesh_lights |= shape && light.shape == ShapeType::Mesh;
         f.directional_lights |= light.kind == LightKind::Directional;
-        f.constant_environment |= light.kind == LightKind::Environment;
+        f.constant_environment |= light.kind == LightKind::Environment && !environment_map;
+        f.environment_map |= light.kind == LightKind::Environment && environment_map.has_value();
     }
     f.pixel_filter = camera.filter.type != FilterType::Box;
     f.nee = render.nee && !lights.empty();
@@ -80,6 +82,10 @@ std::string sppm_problem(const Scene& scene) {
     if (f.constant_environment) {
         return "sppm takes its light from emitting shapes, and the background is not black: it would light paths no "
                "photon takes (make the background black or render with the path integrator)";
+    }
+    if (f.environment_map) {
+        return "sppm takes its light from emitting shapes, and an environment map would light paths no photon takes "
+               "(render with the path integrator)";
     }
     if (f.directional_lights) {
         return "sppm takes its light from emitting shapes, and a directional light would light paths no photon takes "
@@ -149,7 +155,10 @@ void build_light_table(Scene& scene) {
         double power = std::numbers::pi * radius * radius * luminance(scene.directional_lights[i].irradiance);
         scene.lights.push_back({LightKind::Directional, ShapeType::Sphere, i, power});
     }
-    if (SharedMath<double>::emits(scene.background)) {
+    if (scene.environment_map) {
+        double power = std::numbers::pi * radius * radius * environment_luminance_integral(*scene.environment_map);
+        scene.lights.push_back({LightKind::Environment, ShapeType::Sphere, 0, power});
+    } else if (SharedMath<double>::emits(scene.background)) {
         double power = 4.0 * std::numbers::pi * std::numbers::pi * radius * radius * luminance(scene.background);
         scene.lights.push_back({LightKind::Environment, ShapeType::Sphere, 0, power});
     }

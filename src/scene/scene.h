@@ -6,8 +6,10 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <glm/mat3x3.hpp>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -180,6 +182,18 @@ struct DirectionalLight {
     glm::dvec3 irradiance{1.0};            // on a surface facing it
 };
 
+// The environment as an image (Mitsuba 3's `envmap`; docs/scene-format.md,
+// "lights"): a latitude-longitude map of the radiance arriving from every
+// direction, kernels/shared/environment_map.h's mapping.
+struct EnvironmentMap {
+    std::string file;  // as the scene names it, for messages
+    int width = 0, height = 0;
+    std::vector<float> texels;  // linear RGB, row by row, row 0 the image's top (t = 0), before `scale`
+    double scale = 1.0;
+    glm::dmat3 to_world{1.0};  // orthogonal: the map's frame in the world's
+    std::string path;          // the file as the reader found it (for the scene writer)
+};
+
 // An emitting sphere, quad or mesh (planes cannot emit: infinite power), a
 // directional light, or the environment, which is the table's last light.
 struct Light {
@@ -205,6 +219,7 @@ struct FeatureSet {
     bool sphere_lights = false, quad_lights = false, mesh_lights = false;
     bool directional_lights = false;
     bool constant_environment = false;  // a non-black background: the environment light
+    bool environment_map = false;       // the environment is an image (Scene::environment_map)
     bool nee = false;                   // next-event estimation runs: render.nee is on and the scene has a light
     bool mis = false;                   // nee runs at non-specular vertices and render.mis is on
     bool sppm = false;                  // the integrator is sppm: visible points and photons
@@ -245,6 +260,9 @@ struct Scene {
     std::vector<Quad> quads;
     std::vector<Mesh> meshes;
     std::vector<DirectionalLight> directional_lights;
+    // The environment as an image; then the background is black (one
+    // environment per scene).
+    std::optional<EnvironmentMap> environment_map;
     std::vector<Light> lights;
     std::vector<double> light_cdf;  // cumulative selection probability, proportional to power; last = 1
 

@@ -10,6 +10,7 @@
 #include <limits>
 #include <string>
 
+#include "core/shared_math.h"
 #include "scene/limits.h"
 #include "scene/mesh_file.h"
 #include "scene/named_media.h"
@@ -594,14 +595,55 @@ void read_shapes(const JsonField& field, Scene& scene, MeshImporter& importer) {
     for (std::size_t i = 0; i < count; ++i) read_shape(field.element(i), scene, importer);
 }
 
+namespace {
+
+// An envmap light: its image (relative to the scene's folder), scale and
+// to_world (a rotation or a mirror; its translation is ignored, as for any
+// direction). One environment per scene: a non-black background is one.
+void read_environment_map(const JsonField& light, Scene& scene) {
+    light.allow_only_keys({"type", "filename", "scale", "to_world"});
+    if (scene.environment_map || SharedMath<double>::emits(scene.background)) {
+        light.member("type").fail(
+            "a second environment: a scene has one (an envmap, or the constant one of a non-black background)");
+    }
+    EnvironmentMap map;
+    if (auto scale = light.optional_member("scale")) map.scale = read_positive(*scale);
+    if (auto to_world = light.optional_member("to_world")) {
+        map.to_world = glm::dmat3(read_transform(*to_world));
+        const glm::dmat3 product = glm::transpose(map.to_world) * map.to_world;
+        for (int column = 0; column < 3; ++column)
+            if (glm::length(product[column] - glm::dmat3(1.0)[column]) > 1e-6)
+                to_world->fail("must rotate or mirror only (its 3x3 part orthogonal): an environment has no size");
+    }
+    const JsonField file_field = light.member("filename");
+    map.file = file_field.string();
+    if (map.file.empty()) file_field.fail("must not be empty");
+    const std::filesystem::path path = std::filesystem::path(scene.source).parent_path() / map.file;
+    try {
+        read_environment_map_file(path.string(), map);
+    } catch (const std::runtime_error& error) {
+        file_field.fail(map.file + ": " + error.what());
+    }
+    map.path = path.string();
+    scene.environment_map = std::move(map);
+}
+
+}  // namespace
+
 void read_lights(const JsonField& field, Scene& scene) {
     std::size_t count = field.array_size();
     for (std::size_t i = 0; i < count; ++i) {
         const JsonField light = field.element(i);
         const JsonField type_field = light.member("type");
         const std::string type = type_field.string();
-        if (type != "directional")
-            type_field.fail("unknown light type " + nlohmann::json(type).dump() + " (expected one of: directional)");
+        if (type == "envmap") {
+            read_environment_map(light, scene);
+            continue;
+        }
+        if (type != "directional") {
+            type_field.fail("unknown light type " + nlohmann::json(type).dump() +
+                            " (expected one of: directional, envmap)");
+        }
         light.allow_only_keys({"type", "direction", "irradiance"});
         DirectionalLight directional;
         directional.direction = safe_normalize(read_direction(light.member("direction")));

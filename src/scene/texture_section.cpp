@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "image/image_io.h"
+#include "scene/environment_layout.h"
 #include "scene/limits.h"
 
 namespace wp {
@@ -100,6 +101,28 @@ void read_bitmap_file(const std::string& path, bool raw, Texture& texture) {
     texture.width = image.width;
     texture.height = image.height;
     texture.texels = std::move(image.rgb);
+}
+
+void read_environment_map_file(const std::string& path, EnvironmentMap& map) {
+    Image image = read_texture_image(path, false, kMaxTextureSide);
+    if (image.width < 2 || image.height < 3) {
+        throw std::runtime_error(std::to_string(image.width) + " x " + std::to_string(image.height) +
+                                 " texels, fewer than an environment map's 2 x 3");
+    }
+    const std::size_t texels = std::size_t(image.width) * std::size_t(image.height);
+    if (texels > kMaxTextureTexels) {
+        throw std::runtime_error(std::to_string(texels) + " texels, more than the " +
+                                 std::to_string(kMaxTextureTexels) + " a scene may have");
+    }
+    for (float value : image.rgb) {
+        if (!(value >= 0.0f && value <= float(kMaxSceneMagnitude)))
+            throw std::runtime_error("a texel value " + format_number(value) + " is outside [0, 1e12] (radiance)");
+    }
+    map.width = image.width;
+    map.height = image.height;
+    map.texels = std::move(image.rgb);
+    if (!(environment_luminance_integral(map) > 0.0))
+        throw std::runtime_error("the map has no power (its luminance is 0 everywhere)");
 }
 
 std::vector<Texture> read_textures(const JsonField& field, const std::string& scene_source) {

@@ -20,6 +20,15 @@ std::vector<Texture> read_textures(const JsonField& field, const std::string& sc
 // texel outside [0, 1]). The JSON and the Mitsuba XML readers share it.
 void read_bitmap_file(const std::string& path, bool raw, Texture& texture);
 
+// An environment map's image at `path` into map's width, height and texels
+// (linear RGB, decoded from sRGB where the file holds integers, as
+// Mitsuba 3's envmap reads it), `scale` already set; throws
+// std::runtime_error with the one-line reason (unreadable, smaller than
+// Mitsuba's 2 x 3 or larger than the texture limits, a texel negative or not
+// finite, no power: black everywhere). The JSON and the Mitsuba XML readers
+// share it.
+void read_environment_map_file(const std::string& path, EnvironmentMap& map);
+
 // A reflectance that may be textured: an RGB in [0, 1] returned as is, or {"texture": "<name>"}, whose
 // index into `textures` goes to *texture (the constant returned is then 0).
 glm::dvec3 read_textured_reflectance(const JsonField& field, const std::vector<Texture>& textures, int* texture);

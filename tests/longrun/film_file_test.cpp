@@ -341,6 +341,18 @@ TEST(RenderIdentity, EverySettingThatChangesTheImageChangesIt) {
     };
     EXPECT_TRUE(directional_changed([](DirectionalLight& d) { d.direction.x += 1e-9; }));
     EXPECT_TRUE(directional_changed([](DirectionalLight& d) { d.irradiance.z += 1e-9; }));
+    // An environment map: its texels, scale and frame.
+    auto environment_changed = [&](auto change) {
+        Scene a = base;
+        a.environment_map = EnvironmentMap{"sky.exr", 2, 3, std::vector<float>(18, 0.5f)};
+        Scene b = a;
+        change(*b.environment_map);
+        return render_identity(a, "opencl").scene != render_identity(b, "opencl").scene;
+    };
+    EXPECT_TRUE(scene_changed([](Scene& s) { s.environment_map = EnvironmentMap{"sky.exr", 2, 3, {}}; }));
+    EXPECT_TRUE(environment_changed([](EnvironmentMap& m) { m.texels[7] += 1e-6f; }));
+    EXPECT_TRUE(environment_changed([](EnvironmentMap& m) { m.scale += 1e-9; }));
+    EXPECT_TRUE(environment_changed([](EnvironmentMap& m) { m.to_world[2][0] = 1e-9; }));
     // A mesh as loaded: one vertex, one normal, one triangle's corners, its material, and a mesh more.
     EXPECT_TRUE(scene_changed([](Scene& s) { s.meshes[0].positions[5].y += 1e-9; }));
     EXPECT_TRUE(scene_changed([](Scene& s) { s.meshes[0].normals[3].x += 1e-9; }));

@@ -212,6 +212,31 @@ TYPED_TEST(ReferenceAnalytic, FloorUnderEnvironmentLightShowsAlbedoTimesRadiance
     }
 }
 
+// The white furnace under a constant environment map (importance-sampled
+// by its cells, the density's sin(t) and the map's frame included) shows
+// what it shows under the constant environment: albedo * L, next-event
+// estimation with and without MIS, with and without a hidden brighter
+// light dividing the choice, within kSigmaTolerance standard errors (as above).
+TYPED_TEST(ReferenceAnalytic, FloorUnderConstantEnvironmentMapShowsAlbedoTimesRadiance) {
+    const glm::dvec3 albedo(0.2, 0.5, 0.9), radiance(1.0, 0.5, 2.0);
+    for (bool mis : {false, true}) {
+        for (bool hidden_light : {false, true}) {
+            RenderBlock block{.width = 32, .height = 32, .spp = 4, .max_depth = 3};
+            wp::Scene scene = wp::test::floor_under_constant_environment_map(block, albedo, radiance, mis);
+            if (hidden_light) wp::test::add_hidden_light_below_floor(scene, glm::dvec3(40.0));
+            ASSERT_TRUE(scene.features().environment_map);
+            ASSERT_FALSE(scene.features().constant_environment);
+            wp::RenderResult result = this->render(scene);
+            for (int c = 0; c < 3; ++c) {
+                wp::test::RunningMean mean = wp::test::channel_mean(result.image, c);
+                EXPECT_GT(mean.standard_error(), 0.0);  // the light samples do vary
+                EXPECT_NEAR(mean.mean(), albedo[c] * radiance[c], wp::test::kSigmaTolerance * mean.standard_error())
+                    << "mis " << mis << ", hidden light " << hidden_light << ", channel " << c;
+            }
+        }
+    }
+}
+
 // A directional light on a diffuse floor: exactly albedo / pi * E cos(theta)
 // in every pixel (a few roundings); with a light below the floor
 // that no floor point sees, the directional light's selection probability

@@ -136,6 +136,22 @@ inline Scene floor_under_environment(const RenderBlock& block, const glm::dvec3&
     return scene;
 }
 
+// The same floor under an environment map of constant radiance L (8 x 5
+// texels, turned about x so that its poles are not the floor's normal):
+// each pixel's expected value is albedo * L, as under the constant
+// environment, now estimated by the map's importance-sampled light samples.
+inline Scene floor_under_constant_environment_map(const RenderBlock& block, const glm::dvec3& albedo,
+                                                  const glm::dvec3& radiance, bool mis) {
+    Scene scene = floor_under_environment(block, albedo, glm::dvec3(0.0), mis);
+    std::vector<float> texels;
+    for (int i = 0; i < 8 * 5; ++i)
+        texels.insert(texels.end(), {float(radiance.x), float(radiance.y), float(radiance.z)});
+    const double c = std::cos(0.4), s = std::sin(0.4);
+    scene.environment_map = EnvironmentMap{"constant.exr", 8, 5, texels, 1.0, glm::dmat3(1, 0, 0, 0, c, s, 0, -s, c)};
+    build_light_table(scene);
+    return scene;
+}
+
 // A diffuse floor y = -1 seen straight down under a directional light of
 // irradiance E whose light arrives at angle theta from the floor's normal,
 // black background: the light sample of every floor point is the same, so
