@@ -15,6 +15,7 @@
 #include <set>
 
 #include "core/number_text.h"
+#include "core/shared_math.h"
 #include "import/import_process.h"
 #include "import/mesh_file_error.h"
 #include "scene/json_field.h"
@@ -895,9 +896,14 @@ class Reader {
             read_directional(emitter);
             return;
         }
+        if (emitter.type() == "envmap") {
+            read_envmap(emitter);
+            return;
+        }
         if (emitter.type() != "constant")
-            emitter.fail("not supported (supported: constant, directional; area inside a shape)");
+            emitter.fail("not supported (supported: constant, directional, envmap; area inside a shape)");
         emitter.allow({"radiance"});
+        if (out_.scene.environment_map) emitter.fail(kSecondEnvironment);
         out_.scene.background += emitter.optional_color("radiance", kMaxSceneMagnitude, "").value_or(glm::dvec3(1.0));
         for (int i = 0; i < 3; ++i)
             if (out_.scene.background[i] > kMaxSceneMagnitude)
@@ -919,6 +925,36 @@ class Reader {
         light.direction = glm::normalize(direction);
         light.irradiance = emitter.optional_color("irradiance", kMaxSceneMagnitude, "").value_or(glm::dvec3(1.0));
         out_.scene.directional_lights.push_back(light);
+    }
+
+    static constexpr const char* kSecondEnvironment =
+        "a second environment: wavepath renders one (an envmap, or constant emitters)";
+
+    // Mitsuba's envmap: `filename` (found as Mitsuba finds it), `scale`
+    // (default 1) and `to_world`, which may rotate or mirror only.
+    void read_envmap(const Plugin& emitter) {
+        emitter.allow({"filename", "scale", "to_world"});
+        if (out_.scene.environment_map || SharedMath<double>::emits(out_.scene.background))
+            emitter.fail(kSecondEnvironment);
+        EnvironmentMap map;
+        map.scale = emitter.number("scale", 1.0);
+        if (!(map.scale > 0.0 && map.scale <= kMaxSceneMagnitude))
+            emitter.fail(*emitter.property("scale"), "float \"scale\": must be > 0, got " + format_number(map.scale));
+        map.to_world = glm::dmat3(emitter.optional_transform("to_world").value_or(glm::dmat4(1.0)));
+        const glm::dmat3 product = glm::transpose(map.to_world) * map.to_world;
+        for (int column = 0; column < 3; ++column)
+            if (glm::length(product[column] - glm::dmat3(1.0)[column]) > 1e-6)
+                emitter.fail(*emitter.property("to_world"), "transform \"to_world\": must rotate or mirror only");
+        const std::optional<std::string> filename = emitter.optional_string("filename");
+        if (!filename) emitter.fail("missing property filename");
+        map.file = *filename;
+        map.path = resolve_scene_file(xml_, *filename).string();
+        try {
+            read_environment_map_file(map.path, map);
+        } catch (const std::runtime_error& error) {
+            emitter.fail(*emitter.property("filename"), *filename + ": " + error.what());
+        }
+        out_.scene.environment_map = std::move(map);
     }
 
     glm::dvec3 area_emission(const Plugin& shape) {

@@ -97,6 +97,23 @@ void append_le(std::string& out, std::uint32_t value) {
     for (int i = 0; i < 4; ++i) out += char((value >> (8 * i)) & 0xff);
 }
 
+// The envmap light, its file named from the JSON's folder and its frame as a matrix.
+nlohmann::json envmap_json(const EnvironmentMap& map, const fs::path& json_path) {
+    const fs::path file = fs::absolute(map.path).lexically_normal();
+    const fs::path relative = file.lexically_relative(fs::absolute(json_path).parent_path());
+    nlohmann::json matrix = nlohmann::json::array();
+    for (int row = 0; row < 4; ++row) {
+        nlohmann::json numbers = nlohmann::json::array();
+        for (int column = 0; column < 4; ++column)
+            numbers.push_back(row < 3 && column < 3 ? map.to_world[column][row] : double(row == column));
+        matrix.push_back(numbers);
+    }
+    return {{"type", "envmap"},
+            {"filename", (relative.empty() ? file : relative).generic_string()},
+            {"scale", map.scale},
+            {"to_world", {{"matrix", matrix}}}};
+}
+
 }  // namespace
 
 SceneJson scene_json(const MitsubaScene& read, const fs::path& json_path) {
@@ -117,11 +134,12 @@ SceneJson scene_json(const MitsubaScene& read, const fs::path& json_path) {
     const RenderSettings& r = scene.render;
     j["render"] = {{"spp", r.spp}, {"max_depth", r.max_depth}, {"rr_depth", r.rr_depth}, {"seed", r.seed}};
     j["background"] = vec3(scene.background);
-    if (!scene.directional_lights.empty()) {
+    if (!scene.directional_lights.empty() || scene.environment_map) {
         nlohmann::json& lights = j["lights"] = nlohmann::json::array();
         for (const DirectionalLight& d : scene.directional_lights)
             lights.push_back(
                 {{"type", "directional"}, {"direction", vec3(d.direction)}, {"irradiance", vec3(d.irradiance)}});
+        if (const auto& map = scene.environment_map) lights.push_back(envmap_json(*map, json_path));
     }
     j["materials"] = nlohmann::json::object();
     for (const Material& m : scene.materials) j["materials"][m.name] = material_json(m);

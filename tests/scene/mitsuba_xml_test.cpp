@@ -315,6 +315,37 @@ TEST_F(MitsubaXml, DirectionalEmittersAsDirectionalLights) {
     EXPECT_TRUE(scene.features().directional_lights);
 }
 
+// Mitsuba's envmap: its file found beside the scene, `scale` and a
+// `to_world` that rotates; `wavepath convert` writes it (the file named from
+// the JSON's folder, to_world as a matrix) and the JSON reads back the same
+// map. A second environment, or a to_world that scales, is refused.
+TEST_F(MitsubaXml, EnvmapEmitterAsEnvironmentMap) {
+    write_image(Image{2, 3, std::vector<float>(18, 0.5f)}, (dir_.path() / "sky.exr").string());
+    const std::string envmap = R"(
+        <emitter type="envmap"><string name="filename" value="sky.exr"/><float name="scale" value="2"/>
+            <transform name="to_world"><rotate y="1" angle="90"/></transform></emitter>)";
+    const MitsubaScene read_scene = read(sensor() + envmap);
+    const Scene& scene = read_scene.scene;
+    ASSERT_TRUE(scene.environment_map.has_value());
+    EXPECT_EQ(scene.environment_map->width, 2);
+    EXPECT_EQ(scene.environment_map->height, 3);
+    EXPECT_EQ(scene.environment_map->scale, 2.0);
+    expect_near(scene.environment_map->to_world * glm::dvec3(1, 0, 0), {0, 0, -1});
+    fs::create_directories(dir_.path() / "out");
+    const fs::path json = dir_.path() / "out/converted.json";
+    write_text(json, scene_json(read_scene, json).json.dump());
+    const Scene from_json = load_scene(json.string());
+    ASSERT_TRUE(from_json.environment_map.has_value());
+    EXPECT_EQ(from_json.environment_map->texels, scene.environment_map->texels);
+    EXPECT_EQ(from_json.environment_map->scale, 2.0);
+    EXPECT_EQ(from_json.environment_map->to_world, scene.environment_map->to_world);
+    EXPECT_TRUE(from_json.features().environment_map);
+    EXPECT_THROW(read(sensor() + envmap + R"(<emitter type="constant"/>)"), SceneError);
+    EXPECT_THROW(read(sensor() + R"(<emitter type="envmap"><string name="filename" value="sky.exr"/>
+            <transform name="to_world"><scale value="2"/></transform></emitter>)"),
+                 SceneError);
+}
+
 TEST_F(MitsubaXml, ConductorsAndRoughDielectricsAsMaterials) {
     const Scene scene = read(sensor() + R"(
         <shape type="sphere"><bsdf type="twosided"><bsdf type="roughconductor"><string name="material" value="Cu"/>
