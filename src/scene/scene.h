@@ -173,7 +173,7 @@ enum class ShapeType { Sphere, Plane, Quad, Mesh };
 // What emits a light: a shape's material, a directional light (Mitsuba 3's
 // `directional`: Scene::directional_lights), or the environment, the
 // radiance Scene::background of every direction that leaves the scene
-// (Mitsuba 3's `constant` emitter).
+// (Mitsuba 3's `constant` emitter) or Scene::environment_map's (its `envmap`).
 enum class LightKind { Shape, Directional, Environment };
 
 // A light at infinity in one direction, a delta light (docs/scene-format.md, "lights").
@@ -202,8 +202,10 @@ struct Light {
     int index = 0;                      // into Scene::spheres, Scene::quads or Scene::meshes; Scene::directional_lights
     // A shape's: pi * luminance(emission) * area * (two_sided ? 2 : 1). The
     // distant lights' what reaches the scene's bounding sphere (radius r), as
-    // pbrt-v4 estimates it (DistantLight::Phi, UniformInfiniteLight::Phi):
-    // pi r^2 * luminance(irradiance), 4 pi * pi r^2 * luminance(radiance).
+    // pbrt-v4 estimates it (DistantLight::Phi, UniformInfiniteLight::Phi,
+    // ImageInfiniteLight::Phi): pi r^2 * luminance(irradiance),
+    // 4 pi * pi r^2 * luminance(radiance), an environment map's pi r^2 times
+    // its luminance's integral over the sphere (environment_luminance_integral).
     double power = 0.0;
 };
 
@@ -319,7 +321,8 @@ BoundingSphere bounding_sphere(const Scene& scene);
 
 // Fills Scene::lights and Scene::light_cdf from the emitting spheres, quads
 // and meshes (in that order), the directional lights, then the environment
-// where the background is not black. The loader calls it; tests that build scenes in code call it too.
+// where there is one (an environment map, or a background that is not black). The loader calls it; tests that
+// build scenes in code call it too.
 void build_light_table(Scene& scene);
 
 // What every loader does after reading a scene: rebases all positions to the

@@ -106,6 +106,19 @@ class ConverterTest(unittest.TestCase):
         self.refused("lights[0].angle: not expressible in Mitsuba",
                      lights=[{"type": "directional", "direction": [0, -1, 0], "angle": 1}])
 
+    def test_envmap_lights_are_envmap_emitters(self):
+        out = self.convert(lights=[{"type": "envmap", "filename": "sky.exr", "scale": 2,
+                                    "to_world": {"rotate": [0, 1, 0, 90]}}])
+        self.assertEqual(out["light_0"]["type"], "envmap")
+        self.assertEqual(out["light_0"]["filename"], os.path.join(self.dir.name, "sky.exr"))  # beside the scene
+        self.assertEqual(out["light_0"]["scale"], 2.0)
+        to_world = out["light_0"]["to_world"]  # +x turned 90 degrees about +y: -z
+        self.assertAlmostEqual(to_world[2][0], -1.0)
+        self.assertAlmostEqual(to_world[0][0], 0.0)
+        self.assertNotIn("to_world", self.convert(lights=[{"type": "envmap", "filename": "sky.exr"}])["light_0"])
+        self.refused("lights[0].irradiance: not expressible in Mitsuba",
+                     lights=[{"type": "envmap", "filename": "sky.exr", "irradiance": [1, 1, 1]}])
+
     # Materials.
     def test_materials(self):
         materials = {"d": {"type": "diffuse", "albedo": [0.1, 0.2, 0.3]}, "m": {"type": "mirror", "reflectance": [0.9, 0.8, 0.7]},
