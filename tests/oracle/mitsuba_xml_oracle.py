@@ -66,6 +66,7 @@ CASES = [
     ("filter_tent", "filters.xml", {"filter": "tent"}),
     ("filter_gaussian", "filters.xml", {"filter": "gaussian"}),
     ("textures", "textures.xml", {}),
+    ("envmap", "envmap.xml", {}),
 ]
 # Cases compared in blocks of 8 x 8 rather than of --block: filters.xml's edges lie on those blocks' borders, so
 # the light a filter spreads across them (the mean offset beyond 0: 0 for the box, r / 6 for a tent, s / sqrt(2 pi)
