@@ -1,9 +1,10 @@
-/* e^x, ln x, erf and its inverse, written out from +, -, *, /, sqrt, fabs,
+/* e^x, ln x, erf and its inverse, atan2 in turns, written out from +, -, *, /, sqrt, fabs,
  * floor, copysign and selects only (shared/prelude.h), so that every backend
  * computes the same bits: the library's exp, log and erf round their last
  * bits differently in libm and in PoCL. The microfacet models need them
  * (Beckmann's distribution, its masking function and its sampling,
- * shared/materials/microfacet.h).
+ * shared/materials/microfacet.h), and textures and environment maps their
+ * angles (shared/texture.h, shared/environment_map.h).
  *
  * Accuracy: float's, a few ulp (tests/shared/special_functions_test.cpp
  * measures each against std:: over its domain). The double build runs the same
@@ -167,6 +168,34 @@ WP_FN real wp_erfinv(real y) {
     q = q * tail + REAL(1.00167406);
     q = q * tail + REAL(2.83297682);
     return (w < REAL(5.0) ? p : q) * y;
+}
+
+/* atan2(y, x) / (2 pi) in [0, 1) (0 for the origin): the quadrant's
+ * reduction to a in [0, 1], then to |t| <= tan(pi/8) by
+ * atan(a) = pi/4 + atan((a - 1) / (a + 1)), where atan's series through
+ * t^19 errs by less than 5e-10. */
+WP_FN real atan2_turns(real y, real x) {
+    real ax = fabs(x), ay = fabs(y);
+    real big = fmax(ax, ay), small = fmin(ax, ay);
+    real a = big > REAL(0.0) ? small / big : REAL(0.0);
+    lane_int shifted = a > REAL(0.41421356237309504880);
+    real t = shifted ? (a - REAL(1.0)) / (a + REAL(1.0)) : a;
+    real t2 = t * t;
+    real s = REAL(1.0) / REAL(19.0);
+    s = s * t2 - REAL(1.0) / REAL(17.0);
+    s = s * t2 + REAL(1.0) / REAL(15.0);
+    s = s * t2 - REAL(1.0) / REAL(13.0);
+    s = s * t2 + REAL(1.0) / REAL(11.0);
+    s = s * t2 - REAL(1.0) / REAL(9.0);
+    s = s * t2 + REAL(1.0) / REAL(7.0);
+    s = s * t2 - REAL(1.0) / REAL(5.0);
+    s = s * t2 + REAL(1.0) / REAL(3.0);
+    s = s * t2 - REAL(1.0);
+    real angle = -s * t + (shifted ? WP_PI / REAL(4.0) : REAL(0.0)); /* atan(a), in [0, pi/4] */
+    angle = ay > ax ? WP_PI / REAL(2.0) - angle : angle;
+    angle = x < REAL(0.0) ? WP_PI - angle : angle;
+    real turns = angle * (REAL(0.5) * WP_INV_PI); /* [0, 1/2] */
+    return y < REAL(0.0) && turns > REAL(0.0) ? REAL(1.0) - turns : turns;
 }
 
 #endif

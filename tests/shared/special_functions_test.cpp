@@ -11,6 +11,7 @@
 #include <numbers>
 #include <regex>
 #include <string>
+#include <type_traits>
 
 #include "core/shared_math.h"
 #include "support/kernel_sources.h"
@@ -111,6 +112,21 @@ TYPED_TEST(SpecialFunctions, ErfinvInvertsErf) {
         const TypeParam y = TypeParam(i / 1000.0);
         EXPECT_NEAR(M::wp_erf(M::wp_erfinv(y)), y, 4 * kFloatUlp) << y;
     }
+}
+
+// atan2 in turns against std::atan2 over every quadrant and several radii.
+TYPED_TEST(SpecialFunctions, Atan2TurnsMatchesTheLibrary) {
+    using R = TypeParam;
+    using M = wp::SharedMath<R>;
+    const double tolerance = std::is_same_v<R, float> ? 2e-7 : 1e-9;
+    for (int i = 0; i < 4000; ++i) {
+        const double angle = 2.0 * std::numbers::pi * (i + 0.37) / 4000.0, radius = 1.0 + (i % 7);
+        const R y = R(radius * std::sin(angle)), x = R(radius * std::cos(angle));
+        double expected = std::atan2(double(y), double(x)) / (2.0 * std::numbers::pi);
+        if (expected < 0) expected += 1.0;
+        EXPECT_NEAR(M::atan2_turns(y, x), expected, tolerance) << "angle " << angle;
+    }
+    EXPECT_EQ(M::atan2_turns(R(0), R(0)), R(0));
 }
 
 // The shared code (kernels/shared, every header) calls no exp, log, pow, erf,

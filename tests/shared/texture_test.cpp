@@ -137,20 +137,6 @@ TYPED_TEST(Textures, SphereUvAsMitsuba) {
     }
 }
 
-TYPED_TEST(Textures, Atan2TurnsMatchesTheLibrary) {
-    using R = TypeParam;
-    using M = wp::SharedMath<R>;
-    const double tolerance = std::is_same_v<R, float> ? 2e-7 : 1e-9;
-    for (int i = 0; i < 4000; ++i) {
-        const double angle = 2.0 * M_PI * (i + 0.37) / 4000.0, radius = 1.0 + (i % 7);
-        const R y = R(radius * std::sin(angle)), x = R(radius * std::cos(angle));
-        double expected = std::atan2(double(y), double(x)) / (2.0 * M_PI);
-        if (expected < 0) expected += 1.0;
-        EXPECT_NEAR(M::atan2_turns(y, x), expected, tolerance) << "angle " << angle;
-    }
-    EXPECT_EQ(M::atan2_turns(R(0), R(0)), R(0));
-}
-
 TYPED_TEST(Textures, QuadUvIsTheEdgesCoordinatesOfASheardQuad) {
     using R = TypeParam;
     using M = wp::SharedMath<R>;
