@@ -5,19 +5,20 @@ The scene is bench/scenes/sppm_caustic.json (a glass sphere over a diffuse
 floor before a wall, under a quad light facing down, black background), its
 light LIGHT_SCALE times as wide about its centre at the same power (so that
 Mitsuba's path tracer, which finds the caustic only where a BSDF sample
-through the glass hits the light, converges in the test's time), at SIZE x
-SIZE pixels. wavepath renders it with `--integrator sppm` (the default
-backend) 24 times (--seeds), each 64 iterations (--iterations) of 16,384
-photons (--photons) from the initial radius r0 = 0.05 (--initial-radius);
-Mitsuba's `path` integrator (scripts/mitsuba_scene.py,
-tests/oracle/mitsuba_oracle.py) 8 times (--mitsuba-seeds) at 8192 spp
-(--mitsuba-spp). The conversion (the dielectric sphere, the one-sided quad
+through the glass hits the light, converges in the test's time), at 64 x 64
+pixels (--size). wavepath renders it with `--integrator sppm` (the default
+backend) at its default first radius (each pixel's two footprints;
+--initial-radius sets one in scene units instead) 24 times (--seeds), each 64
+iterations (--iterations) of 16,384 photons (--photons); Mitsuba's `path`
+integrator (scripts/mitsuba_scene.py, tests/oracle/mitsuba_oracle.py) 8
+times (--mitsuba-seeds) at 2048 spp (--mitsuba-spp). The conversion (the dielectric sphere, the one-sided quad
 light facing down, max_depth) was checked by hand at eb074b1: wavepath's
 path tracer (8 seeds x 2048 spp) against Mitsuba's (8 x 16384) on this
 scene, whole image +0.03% (z 0.20), every block within |z| 2.3.
 
 The compared values are the means, over the three channels (the scene is
-grey), of every block of BLOCK x BLOCK pixels and of the whole image.
+grey), of every block of a 4 x 4 grid (16 x 16 pixels at 64 x 64) and of the
+whole image.
 
 Standard errors: SPPM's pixels share their photons, so its standard error
 is the spread of the block means over its renders (SEEDS - 1 degrees of
@@ -49,32 +50,31 @@ device.) So a block fails when
 
     |mean_wavepath - mean_mitsuba| > t_crit(dof) * sqrt(se_wavepath^2 + se_mitsuba^2) + BIAS * mean_mitsuba.
 
-At wavepath's default radius (`--initial-radius 0`: each pixel's two
-footprints, 0.2 on the mean at 32 x 32, four times r0 here; issue 39) the
-bias at the two blocks of the wall-floor corner exceeds the allowance:
--1.28% +- 0.13% (block 4) and -1.60% +- 0.15% (block 7), 1.22 and 1.46
-times their tolerance, every other block within 0.68 and the whole image
--0.45% +- 0.18% (at 15787d6, 2026-12-05, 24 renders, the defaults
-otherwise). An allowance wide enough for those would no longer see the 5%
-flux error below, so the oracle keeps r0 = 0.05 (half a footprint on the
-mean), where it measures the photons' transport rather than the blur of
-the first radius.
+At wavepath's default radius the first radius grows with the pixel's size,
+so the image size sets the blur: at 32 x 32 (0.2 on the mean, four times
+the 0.05 above) the two blocks of the wall-floor corner exceeded the
+allowance (-1.28% +- 0.13% and -1.60% +- 0.15%, 1.22 and 1.46 times their
+tolerance; at 15787d6, 2026-12-05), so the oracle renders at 64 x 64, where
+they lie at -0.66% +- 0.14% and -0.95% +- 0.14% (0.62 and 0.87 of their
+tolerance), every other block within 0.37 and the whole image -0.09% +-
+0.10% (at 8ce7960, 2026-12-05, the 2-core development machine under load).
+Mitsuba's 2048 spp at 64 x 64 are its 8192 at 32 x 32 per block.
 
 What it detects: with the photons' flux 5% too high (a temporary change of
-emit_photon's flux in kernels/shared/photons.h, by hand at eb074b1), the
-default run failed 5 of its 17 tests: the two caustic blocks under the
-sphere (+3.14% and +3.81%, 1.23 and 1.50 times their tolerance), two
-corner blocks of the back wall (1.06, 1.02) and the whole image (+1.79%,
-1.20); unchanged, it passed with every block within 0.37 of its tolerance.
-A default run takes about 60 s on the 2-core machine (half wavepath's 24
-processes, half Mitsuba).
+emit_photon's flux in kernels/shared/photons.h, by hand at 8ce7960), the
+run failed 6 of its 17 tests: four blocks of the floor and wall (+1.31% to
++1.78%, 1.05 to 1.48 times their tolerance), the caustic's two blocks
+(+3.76%, +4.88%: 1.62 and 2.10) and the whole image (+1.63%, 1.75); at
+32 x 32 and r0 = 0.05 it had failed 5 (at eb074b1). The passing run took
+124 s on the 2-core machine under load (wavepath's 24 processes 95 s of
+it).
 
 Prints each block's ratio wavepath/Mitsuba, its |difference| over its
 tolerance, and the whole image's; exit 1 when a block or the whole image
 fails, 2 when Mitsuba is missing.
 
 Usage: sppm_oracle.py --binary build/wavepath [--seeds 24] [--iterations 64] [--photons 16384]
-       [--initial-radius 0.05] [--mitsuba-spp 8192] [--mitsuba-seeds 8] [--alpha 1e-3]
+       [--initial-radius R] [--size 64] [--mitsuba-spp 2048] [--mitsuba-seeds 8] [--alpha 1e-3]
 """
 import argparse
 import json
@@ -92,7 +92,7 @@ from mitsuba_oracle import FIRST_SEED, ROOT  # noqa: E402
 
 SCENE = os.path.join(ROOT, "bench", "scenes", "sppm_caustic.json")
 LIGHT_SCALE = 2.5  # the light's side, times the bench scene's (0.2 -> 0.5), at the same power
-SIZE, BLOCK = 32, 8
+BLOCKS_PER_ROW = 4  # the compared blocks: 4 x 4, whatever the image size
 BIAS = 0.005  # SPPM's bias allowance, a fraction of the block mean (measured: the docstring)
 
 
@@ -189,9 +189,10 @@ def main():
     parser.add_argument("--seeds", type=int, default=24, help="SPPM renders")
     parser.add_argument("--iterations", type=int, default=64, help="SPPM iterations per render")
     parser.add_argument("--photons", type=int, default=16384, help="SPPM photons per iteration")
-    parser.add_argument("--initial-radius", type=float, default=0.05,
-                        help="SPPM's r0, in scene units (0: wavepath's default, two footprints per pixel)")
-    parser.add_argument("--mitsuba-spp", type=int, default=8192)
+    parser.add_argument("--initial-radius", type=float, default=0.0,
+                        help="SPPM's r0, in scene units (0, the default: wavepath's, two footprints per pixel)")
+    parser.add_argument("--size", type=int, default=64, help="image width and height, a multiple of 4")
+    parser.add_argument("--mitsuba-spp", type=int, default=2048)
     parser.add_argument("--mitsuba-seeds", type=int, default=8)
     parser.add_argument("--alpha", type=float, default=1e-3, help="false-failure rate of the whole run")
     parser.add_argument("--variant", default="llvm_ad_rgb", help="Mitsuba variant")
@@ -200,26 +201,27 @@ def main():
     if mi is None:
         return 2
 
-    tests = (SIZE // BLOCK) ** 2 + 1
+    size, block = args.size, args.size // BLOCKS_PER_ROW
+    tests = BLOCKS_PER_ROW ** 2 + 1
     print(f"sppm_oracle: {os.path.relpath(SCENE, ROOT)} with its light x {LIGHT_SCALE} wide at the same power, "
-          f"{SIZE}x{SIZE}; wavepath sppm {args.seeds} renders x {args.iterations} iterations x {args.photons} "
+          f"{size}x{size}; wavepath sppm {args.seeds} renders x {args.iterations} iterations x {args.photons} "
           f"photons, r0 {args.initial_radius or 'two footprints per pixel'}; Mitsuba path {args.mitsuba_seeds} seeds x {args.mitsuba_spp} spp; "
-          f"{tests} tests (blocks of {BLOCK}^2 and the whole image), false-failure rate <= {args.alpha:g} "
+          f"{tests} tests (blocks of {block}^2 and the whole image), false-failure rate <= {args.alpha:g} "
           f"(Bonferroni), bias allowance {100 * BIAS:g}% of the block mean", flush=True)
     with tempfile.TemporaryDirectory(prefix="wavepath-sppm-oracle-") as scratch:
         scene = widened_light_scene(scratch)
         start = time.time()
         ours = mitsuba_oracle.render_wavepath(
-            args.binary, scene, SIZE, SIZE, args.iterations, range(FIRST_SEED, FIRST_SEED + args.seeds), scratch,
+            args.binary, scene, size, size, args.iterations, range(FIRST_SEED, FIRST_SEED + args.seeds), scratch,
             ["--integrator", "sppm", "--photons", str(args.photons)]
             + (["--initial-radius", str(args.initial_radius)] if args.initial_radius > 0 else []))
         middle = time.time()
-        theirs = mitsuba_oracle.render_mitsuba(mi, scene, SIZE, SIZE, args.mitsuba_spp,
+        theirs = mitsuba_oracle.render_mitsuba(mi, scene, size, size, args.mitsuba_spp,
                                                list(range(FIRST_SEED, FIRST_SEED + args.mitsuba_seeds)), scratch)
         end = time.time()
 
-    mean_ours, variance_ours, dof_ours = sppm_block_statistics(ours, BLOCK)
-    mean_theirs, variance_theirs, dof_theirs = path_block_statistics(theirs, BLOCK)
+    mean_ours, variance_ours, dof_ours = sppm_block_statistics(ours, block)
+    mean_theirs, variance_theirs, dof_theirs = path_block_statistics(theirs, block)
     variance = variance_ours + variance_theirs
     dof = variance ** 2 / (variance_ours ** 2 / dof_ours + variance_theirs ** 2 / dof_theirs)
     difference, se = mean_ours - mean_theirs, np.sqrt(variance)
@@ -227,7 +229,7 @@ def main():
     tolerance = t_crit * se + BIAS * mean_theirs
     share = np.abs(difference) / tolerance  # fails above 1
 
-    blocks_per_row = SIZE // BLOCK
+    blocks_per_row = BLOCKS_PER_ROW
     for b in range(tests):
         where = "whole image" if b == tests - 1 else f"block {b} (row {b // blocks_per_row}, column {b % blocks_per_row})"
         print(f"  {where}: wavepath/Mitsuba {mean_ours[b] / mean_theirs[b]:.4f} ({100 * difference[b] / mean_theirs[b]:+.2f}% "
