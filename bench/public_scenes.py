@@ -12,16 +12,17 @@ Usage: python3 bench/public_scenes.py --ppg DIR --mitsuba-data DIR [--binary bui
 
 For each scene of SCENES found under the two folders:
 1. Load: `wavepath render` at 1 spp; a scene it cannot render is listed with its one error line (what it lacks).
-2. Both renderers render the scene as its file has it, but for the image: WIDTH wide at the film's exact aspect
-   (scaled down), and the path integrator where the file names another (the path-guiding lab's scenes name their
+2. Both renderers render the scene as its file has it, but for the image: about WIDTH wide at the film's aspect
+   (film_size), and the path integrator where the file names another (the path-guiding lab's scenes name their
    own; -D integrator=path). wavepath takes --width/--height; Mitsuba renders with a sensor of that size built
    from the file's (its world transform, x field of view and pixel filter).
 3. Agreement: the REPEATS renders of each (seeds 0..REPEATS-1, SPP each) give each pixel's mean and variance;
    8x8 block means (and the whole image) are compared per channel by z = difference / combined standard error, as
    tests/oracle/mitsuba_oracle.py does, against the Bonferroni threshold of the whole run at a false-failure rate
-   of 1e-3. With a tent or gaussian filter (most of these files name one) neighbouring pixels correlate, so the
-   sum of pixel variances understates a block's: that errs towards failing (tests/oracle/mitsuba_xml_oracle.py
-   says the same of its filter cases).
+   of 1e-3. With a tent or gaussian filter (most of these files name one) Mitsuba splats each sample into
+   neighbouring pixels, which then correlate, so the sum of pixel variances understates a block's: each renderer's
+   sum is scaled by its design effect, the ratio pooled over all blocks of the spread of block means over the
+   renders to that sum (block_variances).
 4. Efficiency: 1 / mean(relMSE x time) over the repetitions, relMSE against Mitsuba's converged image
    (CONVERGED_SPP, in passes) less that image's own noise; time is each renderer's render alone (loading and
    kernel builds left out: each configuration renders once before it is timed). wavepath runs its default command
@@ -86,13 +87,16 @@ def load_error(binary, path, defines, scratch):
 
 
 def film_size(width, original):
-    """WIDTH x height at the original film's exact aspect: the smallest multiple of the reduced aspect that is at
-    least WIDTH wide (the original size where it is smaller)."""
+    """About WIDTH wide at the original film's aspect: the smallest multiple of the reduced aspect that is at least
+    WIDTH wide where that is at most twice WIDTH (the aspect exact), else WIDTH by the nearest height (683 x 512
+    becomes 128 x 96: an aspect 0.06% off the file's, the same in both renderers)."""
     w, h = original
     g = math.gcd(w, h)
     a, b = w // g, h // g
     k = max(1, -(-width // a))
-    return (a * k, b * k) if a * k <= w else (w, h)
+    if a * k <= min(w, 2 * width):
+        return a * k, b * k
+    return min(w, width), max(1, round(min(w, width) * h / w))
 
 
 class MitsubaXml:
@@ -144,6 +148,29 @@ class MitsubaVersion:
         return f"Mitsuba {self.version} llvm_ad_rgb"
 
 
+def block_variances(images):
+    """Per block (whole image last) and channel: the mean over the renders and the variance of that mean. The
+    sum of the pixels' variances (mitsuba_oracle.block_statistics) is scaled by the design effect: the ratio, over
+    all blocks, of the spread of whole blocks' means over the renders to that sum. A tent or gaussian filter that
+    splats (Mitsuba's) correlates neighbouring pixels, which the sum alone leaves out; pooled over every block
+    the ratio is well estimated where each block's own spread over a few renders is not."""
+    means, variances = mitsuba_oracle.block_statistics(images, BLOCK)
+    per_render = np.stack([mitsuba_oracle.block_means(image, BLOCK)[0] for image in images])
+    spread = per_render.var(axis=0, ddof=1) / len(images)
+    effect = max(1.0, float(spread[:-1].sum() / variances[:-1].sum()))
+    return means, variances * effect, effect
+
+
+def block_z(ours, theirs):
+    """|z| per block (whole image last) and channel, and both renderers' block means (block_variances)."""
+    mean_ours, variance_ours, _ = block_variances(ours)
+    mean_theirs, variance_theirs, _ = block_variances(theirs)
+    se = np.sqrt(variance_ours + variance_theirs)
+    difference = mean_ours - mean_theirs
+    z = np.where(se > 0, np.abs(difference) / np.where(se > 0, se, 1), np.where(difference == 0, 0.0, np.inf))
+    return z, mean_ours, mean_theirs
+
+
 def as_images(flat, size):
     return np.stack([np.asarray(f, dtype=np.float64).reshape(size[1], size[0], 3) for f in flat])
 
@@ -165,7 +192,7 @@ def measure(args, mi, runner, name, path, defines, scratch):
             r["relmse"] = rel_mse(r["image"], truth) - noise
     ours = as_images([r["image"] for r in runs["wavepath"]], peer.size)
     theirs = as_images([r["image"] for r in runs["mitsuba"]], peer.size)
-    z, mean_ours, mean_theirs, _ = mitsuba_oracle.z_scores(ours, theirs, BLOCK)
+    z, mean_ours, mean_theirs = block_z(ours, theirs)
     products = {who: [r["relmse"] * r["time_s"] for r in runs[who]] for who in runs}
     per_repetition = [m / w for w, m in zip(products["wavepath"], products["mitsuba"])]
     return {"scene": name, "file": path, "defines": defines, "size": [width, height], "spp": args.spp,
