@@ -299,7 +299,7 @@ TEST(RealHelper, MissingIsAnInstallationProblem) {
 // Two meshes (one with normals) and three nodes, two of them instancing mesh 1.
 ImportedScene small_scene() {
     ImportedScene scene;
-    scene.meshes.push_back({{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, false, {}, {{0, 1, 2}}});
+    scene.meshes.push_back({{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, false, {}, {{0, 1, 2}}, false, {}});
     scene.meshes.push_back({{{0, 0, 1}, {1, 0, 1}, {0, 1, 1}, {1, 1, 1}},
                             true,
                             {{0, 0, 1}, {0, 0, 1}, {0, 0, 1}, {0, 0, 1}},

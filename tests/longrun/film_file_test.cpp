@@ -344,12 +344,13 @@ TEST(RenderIdentity, EverySettingThatChangesTheImageChangesIt) {
     // An environment map: its texels, scale and frame.
     auto environment_changed = [&](auto change) {
         Scene a = base;
-        a.environment_map = EnvironmentMap{"sky.exr", 2, 3, std::vector<float>(18, 0.5f)};
+        a.environment_map = EnvironmentMap{"sky.exr", 2, 3, std::vector<float>(18, 0.5f), 1.0, glm::dmat3(1.0), ""};
         Scene b = a;
         change(*b.environment_map);
         return render_identity(a, "opencl").scene != render_identity(b, "opencl").scene;
     };
-    EXPECT_TRUE(scene_changed([](Scene& s) { s.environment_map = EnvironmentMap{"sky.exr", 2, 3, {}}; }));
+    EXPECT_TRUE(scene_changed(
+        [](Scene& s) { s.environment_map = EnvironmentMap{"sky.exr", 2, 3, {}, 1.0, glm::dmat3(1.0), ""}; }));
     EXPECT_TRUE(environment_changed([](EnvironmentMap& m) { m.texels[7] += 1e-6f; }));
     EXPECT_TRUE(environment_changed([](EnvironmentMap& m) { m.scale += 1e-9; }));
     EXPECT_TRUE(environment_changed([](EnvironmentMap& m) { m.to_world[2][0] = 1e-9; }));

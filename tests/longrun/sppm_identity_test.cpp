@@ -122,8 +122,9 @@ TEST_F(SppmWavefront, SameRadiiAndFootprintsAsTheReference) {
     EXPECT_GT(unset(third), 0);
     EXPECT_LT(unset(third), unset(first));
     for (std::uint64_t p = 0; p < pixels; ++p)  // no override: two footprints, shrunk where photons came
-        if (third.radius[p] > 0.0 && third.count[p] == 0.0)
+        if (third.radius[p] > 0.0 && third.count[p] == 0.0) {
             EXPECT_EQ(third.radius[p], double(2.0f * float(third.footprint[p]))) << p;
+        }
 }
 
 // Iteration 1 rendered, written to a film file, read back into a new

@@ -32,7 +32,7 @@ TYPED_TEST_SUITE(EnvironmentMaps, wp::test::RealTypes, wp::test::RealTypeNames);
 wp::Scene scene_with_map(int width, int height, const std::vector<float>& texels, double scale,
                          const glm::dmat3& to_world) {
     wp::Scene scene;
-    scene.environment_map = wp::EnvironmentMap{"test.exr", width, height, texels, scale, to_world};
+    scene.environment_map = wp::EnvironmentMap{"test.exr", width, height, texels, scale, to_world, ""};
     return scene;
 }
 

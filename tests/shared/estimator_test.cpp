@@ -74,7 +74,9 @@ TYPED_TEST(Estimator, EmissionAndLightSampleWeightsOfOneSampleSumToOne) {
                 << light_pdf << " " << bsdf_pdf;
             EXPECT_GE(emission, R(0));
             EXPECT_LE(emission, R(1));
-            if (light_exponent > bsdf_exponent) EXPECT_GT(light_sample, emission) << "the denser strategy weighs more";
+            if (light_exponent > bsdf_exponent) {
+                EXPECT_GT(light_sample, emission) << "the denser strategy weighs more";
+            }
         }
     }
     // A strategy that cannot make the sample gets none of it.

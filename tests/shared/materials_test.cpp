@@ -138,7 +138,9 @@ TYPED_TEST(Materials, DiffuseSampleAgreesWithEvaluateAndPdf) {
             EXPECT_EQ(s.leave_side, Vec3<R>(nf));
             bool leaves_above_nf = glm::dot(w, nf) > 0;
             below_nf += !leaves_above_nf;
-            if (std::fabs(glm::dot(w, nf)) > 1e-5) ASSERT_EQ(bool(s.valid), leaves_above_nf) << "sample " << i;
+            if (std::fabs(glm::dot(w, nf)) > 1e-5) {
+                ASSERT_EQ(bool(s.valid), leaves_above_nf) << "sample " << i;
+            }
             auto without = M::diffuse_sample(Vec3<R>(kAlbedo), Vec3<R>(nf), Vec3<R>(kNormal), random_number<R>(i, 0),
                                              random_number<R>(i, 1), uniform, 0);
             ASSERT_TRUE(without.valid);

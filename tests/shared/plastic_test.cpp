@@ -190,7 +190,9 @@ TYPED_TEST(Plastic, SampleAgreesWithEvalAndPdf) {
                         << p.name << " cos " << cos_theta << " sample " << i << " channel " << c;
                 }
             }
-            if (p_s < 0.99) EXPECT_GT(diffuse, 0) << p.name << " cos " << cos_theta;
+            if (p_s < 0.99) {
+                EXPECT_GT(diffuse, 0) << p.name << " cos " << cos_theta;
+            }
             EXPECT_GT(deltas, 0) << p.name << " cos " << cos_theta;
         }
     }

@@ -147,7 +147,12 @@ inline Scene floor_under_constant_environment_map(const RenderBlock& block, cons
     for (int i = 0; i < 8 * 5; ++i)
         texels.insert(texels.end(), {float(radiance.x), float(radiance.y), float(radiance.z)});
     const double c = std::cos(0.4), s = std::sin(0.4);
-    scene.environment_map = EnvironmentMap{"constant.exr", 8, 5, texels, 1.0, glm::dmat3(1, 0, 0, 0, c, s, 0, -s, c)};
+    EnvironmentMap map;
+    map.file = "constant.exr";
+    map.width = 8, map.height = 5;
+    map.texels = texels;
+    map.to_world = glm::dmat3(1, 0, 0, 0, c, s, 0, -s, c);
+    scene.environment_map = map;
     build_light_table(scene);
     return scene;
 }
