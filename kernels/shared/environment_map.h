@@ -87,9 +87,7 @@ WP_FN vec3 environment_radiance_uv(EnvironmentMapLayout map, WP_GLOBAL const rea
     lane_int ix = floor_to_int(x0), iy = floor_to_int(y0);
     vec3 c00 = environment_texel(map, data, ix, iy), c10 = environment_texel(map, data, ix + 1, iy);
     vec3 c01 = environment_texel(map, data, ix, iy + 1), c11 = environment_texel(map, data, ix + 1, iy + 1);
-    vec3 row0 = v3_add(v3_scale(c00, REAL(1.0) - fx), v3_scale(c10, fx));
-    vec3 row1 = v3_add(v3_scale(c01, REAL(1.0) - fx), v3_scale(c11, fx));
-    return v3_add(v3_scale(row0, REAL(1.0) - fy), v3_scale(row1, fy));
+    return bilinear_blend(c00, c10, c01, c11, fx, fy);
 }
 
 /* The direction d (world, unit) in the map's frame: to_world's transpose. */

@@ -107,6 +107,15 @@ WP_FN lane_int wrap_texel(lane_int x, lane_int size, lane_uint wrap) {
  * or non-finite one too) converts without overflow. */
 WP_FN lane_int floor_to_int(real x) { return TO_LANE_INT(floor(wp_clamp(x, REAL(-1073741824.0), REAL(1073741824.0)))); }
 
+/* The bilinear blend of the four texels around a point, c00 at (0, 0) and
+ * c11 at (1, 1), at fractions (fx, fy) between them (bitmaps and
+ * environment maps alike). */
+WP_FN vec3 bilinear_blend(vec3 c00, vec3 c10, vec3 c01, vec3 c11, real fx, real fy) {
+    vec3 row0 = v3_add(v3_scale(c00, REAL(1.0) - fx), v3_scale(c10, fx));
+    vec3 row1 = v3_add(v3_scale(c01, REAL(1.0) - fx), v3_scale(c11, fx));
+    return v3_add(v3_scale(row0, REAL(1.0) - fy), v3_scale(row1, fy));
+}
+
 /* The texel at integer coordinates (x, y), wrapped. */
 WP_FN vec3 bitmap_texel(Texture t, WP_GLOBAL const real_element *texels, lane_int x, lane_int y) {
     lane_int width = TO_LANE_INT(t.width), height = TO_LANE_INT(t.height);
@@ -124,9 +133,7 @@ WP_FN vec3 bitmap_value(Texture t, WP_GLOBAL const real_element *texels, Texture
     lane_int ix = floor_to_int(x0), iy = floor_to_int(y0);
     vec3 c00 = bitmap_texel(t, texels, ix, iy), c10 = bitmap_texel(t, texels, ix + 1, iy);
     vec3 c01 = bitmap_texel(t, texels, ix, iy + 1), c11 = bitmap_texel(t, texels, ix + 1, iy + 1);
-    vec3 row0 = v3_add(v3_scale(c00, REAL(1.0) - fx), v3_scale(c10, fx));
-    vec3 row1 = v3_add(v3_scale(c01, REAL(1.0) - fx), v3_scale(c11, fx));
-    vec3 bilinear = v3_add(v3_scale(row0, REAL(1.0) - fy), v3_scale(row1, fy));
+    vec3 bilinear = bilinear_blend(c00, c10, c01, c11, fx, fy);
     return v3_select(t.filter == WP_FILTER_NEAREST, nearest, bilinear);
 }
 
