@@ -42,12 +42,12 @@ double estimate_eta(double fraction, double first_fraction, double since_first_s
     return since_first_s * (1.0 - fraction) / (fraction - first_fraction);
 }
 
-std::string format_spp_done(const ProgressPlan& plan, double fraction) {
-    if (plan.spp_at_end <= 0.0) return "";
+std::string format_count_done(const ProgressPlan& plan, double fraction) {
+    if (plan.count_at_end <= 0.0) return "";
     char text[64];
-    std::snprintf(text, sizeof text, "%.1f/%.0f spp",
-                  plan.spp_at_start + fraction * (plan.spp_at_end - plan.spp_at_start), plan.spp_at_end);
-    return text;
+    std::snprintf(text, sizeof text, "%.*f/%.0f ", plan.decimals,
+                  plan.count_at_start + fraction * (plan.count_at_end - plan.count_at_start), plan.count_at_end);
+    return text + plan.unit;
 }
 
 std::string format_progress_bar(double fraction, double elapsed_s, double eta_s, const std::string& spp_done) {
@@ -124,6 +124,13 @@ void ProgressReporter::finish() {
     end_bar_line();
 }
 
+void ProgressReporter::finish_shown() {
+    std::lock_guard lock(draw_mutex_);
+    if (!bar_open_) return;
+    draw(1.0, Clock::now());
+    end_bar_line();
+}
+
 void ProgressReporter::draw(double fraction, Clock::time_point now) {
     const double elapsed_s = seconds(now - start_);
     // Before the first update() nothing has been sampled (finish() without one).
@@ -134,7 +141,7 @@ void ProgressReporter::draw(double fraction, Clock::time_point now) {
         const double budget_left_s = std::max(0.0, plan_.time_budget_s - since_first_s);
         eta_s = eta_s < 0.0 ? budget_left_s : std::min(eta_s, budget_left_s);
     }
-    const std::string spp_done = format_spp_done(plan_, fraction);
+    const std::string spp_done = format_count_done(plan_, fraction);
     if (style_ == ProgressStyle::Bar) {
         out_ << "\r" << format_progress_bar(fraction, elapsed_s, eta_s, spp_done) << "\033[K"
              << std::flush;  // clear leftovers

@@ -27,17 +27,21 @@ std::string format_duration(double seconds);
 // make the ETA absurd. -1: not measured yet.
 double estimate_eta(double fraction, double first_fraction, double since_first_s);
 
-// What a fraction done means to the user: the samples per pixel at fraction
-// 0 and 1 (both 0: not shown), and a time budget (0: none) that caps the ETA.
+// What a fraction done means to the user: the count it goes through (samples
+// per pixel for a render, shapes for a scene's load) at fraction 0 and 1
+// (both 0: not shown), with its unit and the decimals shown of the count
+// reached, and a time budget (0: none) that caps the ETA.
 struct ProgressPlan {
-    double spp_at_start = 0.0, spp_at_end = 0.0;
+    double count_at_start = 0.0, count_at_end = 0.0;
     double time_budget_s = 0.0;
+    std::string unit = "spp";
+    int decimals = 1;
 };
 
-// "12.5/64 spp" at `fraction` of `plan`, "" when the plan shows no spp.
-std::string format_spp_done(const ProgressPlan& plan, double fraction);
+// "12.5/64 spp" at `fraction` of `plan`, "" when the plan shows no count.
+std::string format_count_done(const ProgressPlan& plan, double fraction);
 
-// eta_s < 0 shows "ETA --"; spp_done (format_spp_done) is left out when "".
+// eta_s < 0 shows "ETA --"; spp_done (format_count_done) is left out when "".
 // "[#########-----------]  45.0%  12.5/64 spp  elapsed 7s  ETA 9s" (no line ending).
 std::string format_progress_bar(double fraction, double elapsed_s, double eta_s, const std::string& spp_done = "");
 // "wavepath: 45% done, 12.5/64 spp, 7s elapsed, ETA 9s".
@@ -64,10 +68,13 @@ class ProgressReporter {
     void step(std::string_view what);
     // step() and update() for a renderer.
     Progress callback();
-    // Shows samples per pixel and caps the ETA by the time budget (call before the first update()).
+    // Shows the plan's count and caps the ETA by the time budget (call before the first update()).
     void set_plan(const ProgressPlan& plan) { plan_ = plan; }
     // Draws the complete bar and ends its line (no-op for other styles).
     void finish();
+    // finish() if a bar is on screen; nothing if none was drawn (a scene
+    // that loaded too quickly to show its bar).
+    void finish_shown();
 
  private:
     double record(double fraction_done);

@@ -180,8 +180,9 @@ PreparedRender prepare_render(const RenderCommand& command, Ranks& ranks) {
     LongRunPlan& plan = prepared.plan;
     on_every_rank(ranks, [&] {
         if (ranks.is_root()) check_outputs(command);
+        ProgressReporter loading(choose_progress_style(command.quiet || !ranks.is_root()), std::cerr);
         scene = load_scene_file(command.scene_path, command.defines, command.mesh_import,
-                                ranks.is_root() ? &std::cerr : nullptr);
+                                ranks.is_root() ? &std::cerr : nullptr, &loading);
         apply_overrides(command.overrides, scene);
         if (scene.render.integrator == Integrator::Sppm) check_sppm_flags(command.long_run, ranks);
         if (command.long_run.target_error && !command.long_run.samples.empty())

@@ -24,16 +24,32 @@ XmlDefines parse_defines(const std::vector<std::string>& flags) {
     return defines;
 }
 
+namespace {
+
+ShapeProgress shapes_read(ProgressReporter* progress) {
+    if (!progress) return {};
+    return [progress, planned = false](std::size_t read, std::size_t count) mutable {
+        if (!planned) progress->set_plan({0.0, double(count), 0.0, "shapes", 0});
+        planned = true;
+        progress->update(double(read) / double(count));
+    };
+}
+
+}  // namespace
+
 Scene load_scene_file(const std::string& path, const std::vector<std::string>& defines,
-                      const MeshImportLimits& mesh_import, std::ostream* warnings) {
+                      const MeshImportLimits& mesh_import, std::ostream* warnings, ProgressReporter* progress) {
     const XmlDefines parsed = parse_defines(defines);
     if (!is_mitsuba_scene_path(path)) {
         if (!parsed.empty())
             throw UsageError("-D: applies to Mitsuba XML scenes (.xml) only, and " + path + " is read as JSON");
-        return load_scene(path, mesh_import);
+        Scene scene = load_scene(path, mesh_import, shapes_read(progress));
+        if (progress) progress->finish_shown();
+        return scene;
     }
     std::vector<std::string> lines;
-    Scene scene = load_mitsuba_scene(path, parsed, mesh_import, &lines);
+    Scene scene = load_mitsuba_scene(path, parsed, mesh_import, &lines, shapes_read(progress));
+    if (progress) progress->finish_shown();
     if (warnings)
         for (const std::string& line : lines) *warnings << "wavepath: warning: " << line << std::endl;
     return scene;

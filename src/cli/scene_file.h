@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "cli/progress.h"
 #include "import/import_limits.h"
 #include "scene/mitsuba_xml_tree.h"
 #include "scene/scene.h"
@@ -18,8 +19,13 @@ XmlDefines parse_defines(const std::vector<std::string>& flags);
 
 // The scene: Mitsuba XML when the name ends in .xml, else JSON (where -D is a
 // UsageError). The Mitsuba reader's warnings are printed to `warnings`, one
-// line each ("wavepath: warning: ..."), when it is not null.
+// line each ("wavepath: warning: ..."), when it is not null. `progress`, when
+// not null, shows the shapes read ("120/500 shapes"): a scene of many mesh
+// files takes seconds to load. Its lines start 5 s into the load (a bar at
+// once on a terminal), so a quick load, and a quick failure's one error
+// line, show nothing else.
 Scene load_scene_file(const std::string& path, const std::vector<std::string>& defines,
-                      const MeshImportLimits& mesh_import, std::ostream* warnings);
+                      const MeshImportLimits& mesh_import, std::ostream* warnings,
+                      ProgressReporter* progress = nullptr);
 
 }  // namespace wp::cli

@@ -686,8 +686,8 @@ struct MaterialKey {
 
 class Reader {
  public:
-    Reader(XmlScene xml, const std::string& path, const MeshImportLimits& mesh_import)
-        : xml_(std::move(xml)), importer_(mesh_import) {
+    Reader(XmlScene xml, const std::string& path, const MeshImportLimits& mesh_import, const ShapeProgress& progress)
+        : xml_(std::move(xml)), importer_(mesh_import), progress_(progress) {
         out_.scene.source = path;
         index_ids(xml_.root);
     }
@@ -707,7 +707,10 @@ class Reader {
         for (const XmlElement* emitter : scene.objects("emitter")) read_emitter(*emitter);
         const std::vector<const XmlElement*> shapes = scene.objects("shape");
         importer_.expect(named_mesh_files(shapes));
-        for (const XmlElement* shape : shapes) read_shape(*shape);
+        for (std::size_t i = 0; i < shapes.size(); ++i) {
+            read_shape(*shapes[i]);
+            if (progress_) progress_(i + 1, shapes.size());
+        }
         return std::move(out_);
     }
 
@@ -1291,6 +1294,7 @@ class Reader {
 
     XmlScene xml_;
     MeshImporter importer_;  // one helper for all the scene's mesh files
+    const ShapeProgress& progress_;
     IdTable ids_;
     MitsubaScene out_;
     std::map<MaterialKey, int> materials_;
@@ -1308,19 +1312,19 @@ bool is_mitsuba_scene_path(const std::string& path) {
     return extension == ".xml";
 }
 
-MitsubaScene read_mitsuba_scene(const std::string& path, const XmlDefines& defines,
-                                const MeshImportLimits& mesh_import) {
-    return Reader(read_xml_scene(path, defines), path, mesh_import).read();
+MitsubaScene read_mitsuba_scene(const std::string& path, const XmlDefines& defines, const MeshImportLimits& mesh_import,
+                                const ShapeProgress& progress) {
+    return Reader(read_xml_scene(path, defines), path, mesh_import, progress).read();
 }
 
 MitsubaScene parse_mitsuba_scene(const std::string& text, const std::string& path, const XmlDefines& defines,
-                                 const MeshImportLimits& mesh_import) {
-    return Reader(parse_xml_scene(text, path, defines), path, mesh_import).read();
+                                 const MeshImportLimits& mesh_import, const ShapeProgress& progress) {
+    return Reader(parse_xml_scene(text, path, defines), path, mesh_import, progress).read();
 }
 
 Scene load_mitsuba_scene(const std::string& path, const XmlDefines& defines, const MeshImportLimits& mesh_import,
-                         std::vector<std::string>* warnings) {
-    MitsubaScene read = read_mitsuba_scene(path, defines, mesh_import);
+                         std::vector<std::string>* warnings, const ShapeProgress& progress) {
+    MitsubaScene read = read_mitsuba_scene(path, defines, mesh_import, progress);
     finish_scene(read.scene);
     if (warnings) *warnings = std::move(read.warnings);
     return std::move(read.scene);

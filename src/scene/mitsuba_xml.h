@@ -35,15 +35,15 @@ struct MitsubaScene {
 
 // Reads the scene; `defines` are -D name=value. Mesh files are imported under `mesh_import`.
 MitsubaScene read_mitsuba_scene(const std::string& path, const XmlDefines& defines,
-                                const MeshImportLimits& mesh_import = {});
+                                const MeshImportLimits& mesh_import = {}, const ShapeProgress& progress = {});
 
 // The same of the scene file's text, as if it were the file `path` (what it names resolves beside it).
 MitsubaScene parse_mitsuba_scene(const std::string& text, const std::string& path, const XmlDefines& defines,
-                                 const MeshImportLimits& mesh_import = {});
+                                 const MeshImportLimits& mesh_import = {}, const ShapeProgress& progress = {});
 
 // read_mitsuba_scene, then what every loader does after reading (finish_scene).
 Scene load_mitsuba_scene(const std::string& path, const XmlDefines& defines, const MeshImportLimits& mesh_import = {},
-                         std::vector<std::string>* warnings = nullptr);
+                         std::vector<std::string>* warnings = nullptr, const ShapeProgress& progress = {});
 
 // Whether a scene file is read as Mitsuba XML: its name ends in .xml (any case).
 bool is_mitsuba_scene_path(const std::string& path);

@@ -6,6 +6,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <glm/mat3x3.hpp>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
@@ -330,9 +331,14 @@ void build_light_table(Scene& scene);
 // coordinates) and builds the light table.
 void finish_scene(Scene& scene);
 
+// Told after each shape a loader has read: how many so far, of how many the
+// scene has. Mesh files make a load long (each is imported in a helper
+// process, import/import_process.h), so the command line shows it.
+using ShapeProgress = std::function<void(std::size_t read, std::size_t count)>;
+
 // Mesh files are imported under `mesh_import` (import/import_limits.h).
-Scene load_scene(const std::string& path, const MeshImportLimits& mesh_import = {});
+Scene load_scene(const std::string& path, const MeshImportLimits& mesh_import = {}, const ShapeProgress& progress = {});
 Scene parse_scene(const std::string& json_text, const std::string& source_name,
-                  const MeshImportLimits& mesh_import = {});
+                  const MeshImportLimits& mesh_import = {}, const ShapeProgress& progress = {});
 
 }  // namespace wp

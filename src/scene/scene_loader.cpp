@@ -62,7 +62,8 @@ void finish_scene(Scene& scene) {
     build_light_table(scene);
 }
 
-Scene parse_scene(const std::string& json_text, const std::string& source_name, const MeshImportLimits& mesh_import) {
+Scene parse_scene(const std::string& json_text, const std::string& source_name, const MeshImportLimits& mesh_import,
+                  const ShapeProgress& progress) {
     const nlohmann::json document = parse_json_strictly(json_text, source_name);
     const JsonField root = root_field(document, source_name);
     root.allow_only_keys({"camera", "render", "background", "lights", "textures", "materials", "shapes"});
@@ -80,7 +81,7 @@ Scene parse_scene(const std::string& json_text, const std::string& source_name, 
     if (auto shapes = root.optional_member("shapes")) {
         MeshImporter importer(mesh_import);
         importer.expect(named_mesh_files(document.at("shapes"), source_name));
-        read_shapes(*shapes, scene, importer);
+        read_shapes(*shapes, scene, importer, progress);
     }
     if (auto lights = root.optional_member("lights")) read_lights(*lights, scene);
 
@@ -90,8 +91,8 @@ Scene parse_scene(const std::string& json_text, const std::string& source_name, 
     return scene;
 }
 
-Scene load_scene(const std::string& path, const MeshImportLimits& mesh_import) {
-    return parse_scene(read_text_file(path), path, mesh_import);
+Scene load_scene(const std::string& path, const MeshImportLimits& mesh_import, const ShapeProgress& progress) {
+    return parse_scene(read_text_file(path), path, mesh_import, progress);
 }
 
 }  // namespace wp

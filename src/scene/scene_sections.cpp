@@ -590,9 +590,12 @@ std::vector<Material> read_materials(const JsonField& field, const std::vector<T
     return materials;
 }
 
-void read_shapes(const JsonField& field, Scene& scene, MeshImporter& importer) {
-    std::size_t count = field.array_size();
-    for (std::size_t i = 0; i < count; ++i) read_shape(field.element(i), scene, importer);
+void read_shapes(const JsonField& field, Scene& scene, MeshImporter& importer, const ShapeProgress& progress) {
+    const std::size_t count = field.array_size();
+    for (std::size_t i = 0; i < count; ++i) {
+        read_shape(field.element(i), scene, importer);
+        if (progress) progress(i + 1, count);
+    }
 }
 
 namespace {

@@ -20,7 +20,7 @@ RenderSettings read_render(const JsonField& field);
 std::vector<Material> read_materials(const JsonField& field, const std::vector<Texture>& textures);
 // Appends to scene.spheres/planes/quads/meshes; materials and source must already be set
 // (mesh files are found relative to the directory of scene.source, and imported by `importer`).
-void read_shapes(const JsonField& field, Scene& scene, MeshImporter& importer);
+void read_shapes(const JsonField& field, Scene& scene, MeshImporter& importer, const ShapeProgress& progress);
 // Appends to scene.directional_lights.
 void read_lights(const JsonField& field, Scene& scene);
 

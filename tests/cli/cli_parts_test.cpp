@@ -2,6 +2,7 @@
 // stats JSON, overrides, and the mapping from errors to exit codes.
 #include <gtest/gtest.h>
 
+#include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <thread>
@@ -11,6 +12,7 @@
 #include "cli/errors.h"
 #include "cli/options.h"
 #include "cli/progress.h"
+#include "cli/scene_file.h"
 #include "cli/summary.h"
 #include "core/atomic_file.h"
 #include "opencl/device.h"
@@ -190,10 +192,31 @@ RunSummary example_summary() {
     return summary;
 }
 
-TEST(Progress, SppDoneFollowsThePlan) {
-    EXPECT_EQ(format_spp_done({0.0, 64.0, 0.0}, 0.25), "16.0/64 spp");
-    EXPECT_EQ(format_spp_done({8.0, 16.0, 0.0}, 0.5), "12.0/16 spp");  // resumed at 8 spp
-    EXPECT_EQ(format_spp_done({}, 0.5), "");
+TEST(Progress, CountDoneFollowsThePlan) {
+    EXPECT_EQ(format_count_done({0.0, 64.0, 0.0}, 0.25), "16.0/64 spp");
+    EXPECT_EQ(format_count_done({8.0, 16.0, 0.0}, 0.5), "12.0/16 spp");  // resumed at 8 spp
+    EXPECT_EQ(format_count_done({}, 0.5), "");
+    EXPECT_EQ(format_count_done({0.0, 500.0, 0.0, "shapes", 0}, 0.24), "120/500 shapes");
+}
+
+// A scene's load shows the shapes read: one line per shape at zero interval,
+// the last at the whole count, for either reader (the XML's sphere and
+// rectangle are two shapes; cornell.json's count comes from its file).
+TEST(Progress, SceneLoadShowsTheShapesRead) {
+    const std::string cornell = WAVEPATH_SOURCE_DIR "/scenes/cornell.json";
+    std::ifstream file(cornell);
+    const std::size_t cornell_shapes = nlohmann::json::parse(file).at("shapes").size();
+    const std::vector<std::pair<std::string, std::size_t>> scenes = {
+        {cornell, cornell_shapes}, {WAVEPATH_SOURCE_DIR "/scenes/test/mitsuba/filters.xml", 2}};
+    for (const auto& [path, shapes] : scenes) {
+        std::ostringstream out;
+        ProgressReporter reporter(ProgressStyle::Lines, out, ProgressReporter::Clock::duration::zero());
+        load_scene_file(path, {}, {}, nullptr, &reporter);
+        const std::string text = out.str();
+        EXPECT_EQ(std::size_t(std::count(text.begin(), text.end(), '\n')), shapes) << path << "\n" << text;
+        const std::string whole = std::to_string(shapes) + "/" + std::to_string(shapes) + " shapes, ";
+        EXPECT_NE(text.find("wavepath: 100% done, " + whole), std::string::npos) << path << "\n" << text;
+    }
 }
 
 TEST(Summary, LineHasTimeRatesNonfiniteAndPath) {
