@@ -25,8 +25,6 @@ committed table differs from what Mitsuba gives now; without Mitsuba it exits
 
 Usage: scripts/named_media.py [--check] [--variant llvm_ad_rgb]
 """
-import argparse
-import difflib
 import os
 import pathlib
 import re
@@ -37,7 +35,7 @@ import numpy as np
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 TABLE = ROOT / "src" / "scene" / "named_media_table.h"
 sys.path.insert(0, str(ROOT / "scripts"))
-SKIP = 77
+from mitsuba_table import table_main  # noqa: E402
 
 
 def shortest(value):
@@ -123,31 +121,7 @@ def table(mi, variant):
 
 
 def main():
-    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    parser.add_argument("--check", action="store_true", help="compare with the committed table, write nothing")
-    parser.add_argument("--variant", default="llvm_ad_rgb")
-    args = parser.parse_args()
-    try:
-        import mitsuba_scene
-
-        mi = mitsuba_scene.open_mitsuba(args.variant)
-        mi.set_log_level(mi.LogLevel.Error)  # not its warnings about spectra clamped into the sRGB gamut
-    except ImportError as error:
-        print(f"named_media: skipped, Mitsuba is not installed ({error})")
-        return SKIP
-    text = table(mi, args.variant)
-    if args.check:
-        committed = TABLE.read_text() if TABLE.exists() else ""
-        if committed != text:
-            sys.stdout.writelines(difflib.unified_diff(committed.splitlines(True), text.splitlines(True),
-                                                       str(TABLE), "from Mitsuba"))
-            print("named_media: the table differs from Mitsuba's; run scripts/named_media.py")
-            return 1
-        print(f"named_media: {TABLE.relative_to(ROOT)} matches Mitsuba {mi.__version__}")
-        return 0
-    TABLE.write_text(text)
-    print(f"named_media: wrote {TABLE.relative_to(ROOT)}")
-    return 0
+    return table_main("named_media", __doc__.split("\n")[0], TABLE, table)
 
 
 if __name__ == "__main__":

@@ -30,8 +30,6 @@ committed table differs from what Mitsuba gives now; without Mitsuba it exits
 
 Usage: scripts/plastic_reference.py [--check] [--variant llvm_ad_rgb]
 """
-import argparse
-import difflib
 import math
 import pathlib
 import sys
@@ -41,7 +39,7 @@ import numpy as np
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 TABLE = ROOT / "tests" / "support" / "plastic_mitsuba_table.h"
 sys.path.insert(0, str(ROOT / "scripts"))
-SKIP = 77
+from mitsuba_table import table_main  # noqa: E402
 TABLE_SIZE = 64  # Mitsuba's MI_ROUGH_TRANSMITTANCE_RES
 
 # (name, plugin dictionary beyond "type"); None for a parameter left at Mitsuba's default.
@@ -239,31 +237,7 @@ def table(mi, variant):
 
 
 def main():
-    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    parser.add_argument("--check", action="store_true", help="compare with the committed table, write nothing")
-    parser.add_argument("--variant", default="llvm_ad_rgb")
-    args = parser.parse_args()
-    try:
-        import mitsuba_scene
-
-        mi = mitsuba_scene.open_mitsuba(args.variant)
-        mi.set_log_level(mi.LogLevel.Error)
-    except ImportError as error:
-        print(f"plastic_reference: skipped, Mitsuba is not installed ({error})")
-        return SKIP
-    text = table(mi, args.variant)
-    if args.check:
-        committed = TABLE.read_text() if TABLE.exists() else ""
-        if committed != text:
-            sys.stdout.writelines(difflib.unified_diff(committed.splitlines(True), text.splitlines(True),
-                                                       str(TABLE), "from Mitsuba"))
-            print("plastic_reference: the table differs from Mitsuba's; run scripts/plastic_reference.py")
-            return 1
-        print(f"plastic_reference: {TABLE.relative_to(ROOT)} matches Mitsuba {mi.__version__}")
-        return 0
-    TABLE.write_text(text)
-    print(f"plastic_reference: wrote {TABLE.relative_to(ROOT)}")
-    return 0
+    return table_main("plastic_reference", __doc__.split("\n")[0], TABLE, table)
 
 
 if __name__ == "__main__":
