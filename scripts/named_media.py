@@ -25,7 +25,6 @@ committed table differs from what Mitsuba gives now; without Mitsuba it exits
 
 Usage: scripts/named_media.py [--check] [--variant llvm_ad_rgb]
 """
-import os
 import pathlib
 import re
 import sys
