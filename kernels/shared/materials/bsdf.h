@@ -13,6 +13,7 @@
 #define WP_SHARED_MATERIALS_BSDF_H
 
 #include "shared/prelude.h"
+#include "shared/sampling.h"
 
 /* What a path carries, where a material's weight depends on it (pbrt-v4's
  * TransportMode): radiance (a path from the camera) or importance and flux (a
@@ -103,6 +104,23 @@ WP_FN real shading_normal_adjoint(vec3 wo, vec3 wi, vec3 nf, vec3 ns) {
     real numerator = fabs(v3_dot(wo, ns)) * fabs(v3_dot(wi, nf));
     real denominator = fabs(v3_dot(wo, nf)) * fabs(v3_dot(wi, ns));
     return denominator > REAL(0.0) ? numerator / denominator : REAL(0.0);
+}
+
+/* A glossy reflection sampled in the shading frame (roughconductor,
+ * roughplastic): wi_local with its weight (f cos / pdf) and pdf, where
+ * `reflects` says that wo and wi are above the surface and the density is
+ * positive; else no direction, and the path ends. */
+WP_FN BsdfSample glossy_reflection_sample(Frame frame, vec3 wi_local, vec3 weight, real pdf, lane_int reflects, vec3 nf,
+                                          vec3 ns, int shading_normals) {
+    BsdfSample s;
+    s.direction = v3_select(reflects, frame_to_world(frame, wi_local), ns);
+    s.weight = v3_select(reflects, weight, make_vec3(REAL(0.0), REAL(0.0), REAL(0.0)));
+    s.leave_side = nf;
+    s.pdf = reflects ? pdf : REAL(0.0);
+    s.eta_squared = REAL(1.0);
+    s.specular = 0u;
+    s.valid = reflects && leaves_on_side(s.direction, nf, shading_normals);
+    return s;
 }
 
 #endif

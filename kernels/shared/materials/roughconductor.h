@@ -60,15 +60,7 @@ WP_FN BsdfSample roughconductor_sample(Microfacet m, vec3 eta, vec3 k, vec3 spec
     lane_int reflects = wo_local.z > REAL(0.0) && wi_local.z > REAL(0.0) && pdf > REAL(0.0);
     vec3 weight = v3_scale(v3_mul(specular_reflectance, fresnel_conductor(v3_dot(wo_local, h), eta, k)),
                            microfacet_G1(m, wi_local, h));
-    BsdfSample s;
-    s.direction = v3_select(reflects, frame_to_world(frame, wi_local), ns);
-    s.weight = v3_select(reflects, weight, make_vec3(REAL(0.0), REAL(0.0), REAL(0.0)));
-    s.leave_side = nf;
-    s.pdf = reflects ? pdf : REAL(0.0);
-    s.eta_squared = REAL(1.0);
-    s.specular = 0u;
-    s.valid = reflects && leaves_on_side(s.direction, nf, shading_normals);
-    return s;
+    return glossy_reflection_sample(frame, wi_local, weight, pdf, reflects, nf, ns, shading_normals);
 }
 
 #endif

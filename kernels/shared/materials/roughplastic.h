@@ -253,15 +253,8 @@ WP_FN BsdfSample roughplastic_sample(RoughPlasticParams p, WP_GLOBAL const real_
     real pdf = roughplastic_pdf_local(p, table, wo_local, wi_local);
     vec3 f = roughplastic_eval_local(p, table, wo_local, wi_local);
     lane_int reflects = wo_local.z > REAL(0.0) && wi_local.z > REAL(0.0) && pdf > REAL(0.0);
-    BsdfSample s;
-    s.direction = v3_select(reflects, frame_to_world(frame, wi_local), ns);
-    s.weight = v3_select(reflects, v3_scale(f, wi_local.z / pdf), make_vec3(REAL(0.0), REAL(0.0), REAL(0.0)));
-    s.leave_side = nf;
-    s.pdf = reflects ? pdf : REAL(0.0);
-    s.eta_squared = REAL(1.0);
-    s.specular = 0u;
-    s.valid = reflects && leaves_on_side(s.direction, nf, shading_normals);
-    return s;
+    return glossy_reflection_sample(frame, wi_local, v3_scale(f, wi_local.z / pdf), pdf, reflects, nf, ns,
+                                    shading_normals);
 }
 
 #endif
