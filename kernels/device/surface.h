@@ -245,15 +245,42 @@ WP_FN Texture texture_at(__global const TextureDescriptor *textures, lane_uint i
     return t;
 }
 
+/* Textured parameter `parameter` (WP_TEXTURED_*) of surface s's material at
+ * s's uv, `untextured` where the material gives it no texture
+ * (colour_parameter); a texture is read only where some lane's material
+ * names one. */
+WP_FN vec3 surface_colour(WP_SCENE_PARAMS, Surface s, uint parameter, vec3 untextured) {
+    lane_uint texture = gather(&material_textures->texture[parameter], s.material * WP_STRUCT_WORDS(material_textures));
+    lane_int textured = texture != WP_NO_TEXTURE;
+    if (!lanes_any(textured)) return untextured;
+    return colour_parameter(untextured, texture, texture_at(textures, textured ? texture : (lane_uint)0u), texels,
+                            s.uv);
+}
+
 /* Material m at surface s with its textured parameters looked up at s's uv
  * (the lanes whose material has none keep its constants). */
 WP_FN Material textured_material(WP_SCENE_PARAMS, Material m, Surface s) {
-    lane_uint albedo_texture = SCENE_FIELD(material_textures, s.material, albedo);
-    lane_int textured = albedo_texture != WP_NO_TEXTURE;
-    if (lanes_any(textured)) {
-        Texture t = texture_at(textures, textured ? albedo_texture : (lane_uint)0u);
-        m.albedo = v3_select(textured, texture_value(t, texels, s.uv), m.albedo);
-    }
+#if defined(WP_HAS_DIFFUSE) || defined(WP_HAS_PLASTIC) || defined(WP_HAS_ROUGH_PLASTIC)
+    vec3 albedo = surface_colour(WP_SCENE_ARGS, s, WP_TEXTURED_ALBEDO, SCENE_FIELD(materials, s.material, albedo));
+#endif
+#if defined(WP_HAS_CONDUCTORS) || defined(WP_HAS_PLASTIC) || defined(WP_HAS_ROUGH_PLASTIC)
+    vec3 specular = surface_colour(WP_SCENE_ARGS, s, WP_TEXTURED_SPECULAR_REFLECTANCE,
+                                   SCENE_FIELD(materials, s.material, specular_reflectance));
+#endif
+#ifdef WP_HAS_DIFFUSE
+    m.albedo = albedo;
+#endif
+#ifdef WP_HAS_CONDUCTORS
+    m.specular_reflectance = specular;
+#endif
+#ifdef WP_HAS_PLASTIC
+    m.plastic.diffuse_reflectance = albedo;
+    m.plastic.specular_reflectance = specular;
+#endif
+#ifdef WP_HAS_ROUGH_PLASTIC
+    m.roughplastic.diffuse_reflectance = albedo;
+    m.roughplastic.specular_reflectance = specular;
+#endif
     return m;
 }
 #endif

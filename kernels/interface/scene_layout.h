@@ -91,11 +91,19 @@ typedef struct {
     uint nonlinear, transmittance_offset;
 } DeviceMaterial;
 
-/* Which of a material's parameters are textured: an index into the
- * textures (shared/texture.h), or WP_NO_TEXTURE where the parameter is the
- * material's constant. Parallel to the materials. */
+/* The material parameters that may be textured (docs/scene-format.md),
+ * src/scene/scene.h's TexturedParameter in the same order: the albedo (the
+ * diffuse albedo, the plastics' diffuse_reflectance: DeviceMaterial's
+ * albedo) and the conductors' and plastics' specular_reflectance. */
+#define WP_TEXTURED_ALBEDO 0
+#define WP_TEXTURED_SPECULAR_REFLECTANCE 1
+#define WP_TEXTURED_PARAMETERS 2
+
+/* Which of a material's parameters are textured: per WP_TEXTURED_*, an
+ * index into the textures (shared/texture.h), or WP_NO_TEXTURE where the
+ * parameter is the material's constant. Parallel to the materials. */
 typedef struct {
-    uint albedo; /* diffuse */
+    uint texture[WP_TEXTURED_PARAMETERS];
 } MaterialTextures;
 
 typedef struct {

@@ -150,4 +150,15 @@ WP_FN vec3 texture_value(Texture t, WP_GLOBAL const real_element *texels, Textur
     return v3_select(t.type == WP_TEXTURE_CHECKERBOARD, checkerboard, bitmap);
 }
 
+/* A material's colour parameter at a hit of uv `uv`: its constant
+ * (`untextured`; `constant` is OpenCL C's address space), or where
+ * the material gives it a texture (`texture`, an index into the textures, is
+ * not WP_NO_TEXTURE) that texture's value there; t is the textures' entry
+ * `texture` (any entry where there is none). Every backend reads every
+ * textured colour parameter through this. */
+WP_FN vec3 colour_parameter(vec3 untextured, lane_uint texture, Texture t, WP_GLOBAL const real_element *texels,
+                            TextureUV uv) {
+    return v3_select(texture != WP_NO_TEXTURE, texture_value(t, texels, uv), untextured);
+}
+
 #endif

@@ -55,7 +55,10 @@ void add_material(Hasher& h, const Material& m) {
         m.type == MaterialType::RoughPlastic) {
         h.add(m.distribution).add(m.alpha_u).add(m.alpha_v);
     }
-    if (m.albedo_texture != kNoTexture) h.add(m.albedo_texture);
+    // A textured albedo hashes its index alone, as before the other parameters could be textured.
+    if (m.texture(TexturedParameter::Albedo) != kNoTexture) h.add(m.texture(TexturedParameter::Albedo));
+    for (std::size_t p = 1; p < kTexturedParameters; ++p)
+        if (m.textures[p] != kNoTexture) h.add(p).add(m.textures[p]);
 }
 
 // A texture by what it holds (its texels, not its file's name or date).

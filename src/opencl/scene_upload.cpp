@@ -22,7 +22,12 @@ static_assert(sizeof(DevicePlane) == 7 * 4, "DevicePlane must match its OpenCL C
 static_assert(sizeof(DeviceQuad) == 16 * 4, "DeviceQuad must match its OpenCL C layout");
 static_assert(sizeof(DeviceMaterial) == 29 * 4, "DeviceMaterial must match its OpenCL C layout");
 static_assert(sizeof(DeviceLight) == 10 * 4, "DeviceLight must match its OpenCL C layout");
-static_assert(sizeof(MaterialTextures) == 1 * 4, "MaterialTextures must match its OpenCL C layout");
+static_assert(sizeof(MaterialTextures) == WP_TEXTURED_PARAMETERS * 4,
+              "MaterialTextures must match its OpenCL C layout");
+static_assert(WP_TEXTURED_PARAMETERS == kTexturedParameters &&
+                  WP_TEXTURED_ALBEDO == static_cast<int>(TexturedParameter::Albedo) &&
+                  WP_TEXTURED_SPECULAR_REFLECTANCE == static_cast<int>(TexturedParameter::SpecularReflectance),
+              "the kernels' WP_TEXTURED_* must be TexturedParameter's");
 static_assert(sizeof(SharedMath<float>::TextureDescriptor) == 18 * 4,
               "TextureDescriptor must match its OpenCL C layout");
 static_assert(sizeof(SharedMath<float>::TriangleUVs) == 6 * 4, "TriangleUVs must match its OpenCL C layout");
@@ -131,7 +136,11 @@ void flatten_meshes(const Scene& scene, SceneLayout& layout) {
 // The texture table, the texels and the materials' textured parameters.
 void add_textures(const Scene& scene, SceneLayout& layout) {
     TextureLayout<float> textures = texture_layout<float>(scene);
-    for (std::uint32_t albedo : textures.albedo) layout.material_textures.push_back({albedo});
+    for (const auto& slots : textures.material_textures) {
+        MaterialTextures m{};
+        std::copy(slots.begin(), slots.end(), m.texture);
+        layout.material_textures.push_back(m);
+    }
     layout.textures = std::move(textures.descriptors);
     layout.texels = std::move(textures.texels);
     const std::size_t bytes = layout.textures.size() * sizeof(layout.textures[0]) +

@@ -218,16 +218,27 @@ SurfacePoint<Real> surface_at(const ReferenceScene<Real>& scene, const Ray<Real>
     return x;
 }
 
-// The material at surface x with its textured parameters looked up at x's uv (shared/texture.h).
+// Textured parameter p of surface x's material at x's uv, `untextured` where it has no texture (shared/texture.h).
+template <class Real>
+Vec3<Real> surface_colour(const ReferenceScene<Real>& scene, const SurfacePoint<Real>& x, TexturedParameter p,
+                          const Vec3<Real>& untextured) {
+    const std::uint32_t texture = scene.material_textures[x.material][static_cast<std::size_t>(p)];
+    return SharedMath<Real>::colour_parameter(
+        untextured, texture, scene.texture_table[texture == WP_NO_TEXTURE ? 0u : texture], scene.texels.data(), x.uv);
+}
+
+// The material at surface x with its textured parameters looked up at x's uv (the kernels' textured_material).
 template <class Real>
 typename ReferenceScene<Real>::SurfaceMaterial material_at(const ReferenceScene<Real>& scene,
                                                            const SurfacePoint<Real>& x) {
-    using M = SharedMath<Real>;
     typename ReferenceScene<Real>::SurfaceMaterial material = scene.materials[x.material];
     if (!scene.textures) return material;
-    std::uint32_t albedo = scene.albedo_textures[x.material];
-    if (albedo != WP_NO_TEXTURE)
-        material.albedo = M::texture_value(scene.texture_table[albedo], scene.texels.data(), x.uv);
+    const Vec3<Real> albedo = surface_colour(scene, x, TexturedParameter::Albedo, material.albedo);
+    const Vec3<Real> specular =
+        surface_colour(scene, x, TexturedParameter::SpecularReflectance, material.specular_reflectance);
+    material.albedo = material.plastic.diffuse_reflectance = material.roughplastic.diffuse_reflectance = albedo;
+    material.specular_reflectance = material.plastic.specular_reflectance = material.roughplastic.specular_reflectance =
+        specular;
     return material;
 }
 

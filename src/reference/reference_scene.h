@@ -96,7 +96,8 @@ struct ReferenceScene {
     std::vector<Real> roughplastic_transmittance;    // scene/plastic_constants.h
     std::vector<typename M::Texture> texture_table;  // scene/texture_layout.h
     std::vector<Real> texels;
-    std::vector<std::uint32_t> albedo_textures;           // per material: its albedo's texture, or WP_NO_TEXTURE
+    // per material and TexturedParameter: its texture, or WP_NO_TEXTURE
+    std::vector<std::array<std::uint32_t, kTexturedParameters>> material_textures;
     std::vector<typename M::TriangleUVs> triangle_uvs;    // parallel to triangles, if textures
     typename M::EnvironmentMapLayout environment_layout;  // scene/environment_layout.h, with environment_map
     std::vector<Real> environment_data;
@@ -205,7 +206,7 @@ struct ReferenceScene {
             texture_table.push_back(t);
         }
         texels = std::move(layout.texels);
-        albedo_textures = std::move(layout.albedo);
+        material_textures = std::move(layout.material_textures);
     }
 
     // The same tree and leaf order as the kernels', with the vertices in Real.

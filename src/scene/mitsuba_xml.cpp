@@ -992,7 +992,8 @@ class Reader {
             Material m = reader(bsdf, [this](const XmlElement& inner) { return bsdf_material(inner); });
             converting_.pop_back();
             if (bsdf.type() == "diffuse")
-                if (const XmlElement* texture = bsdf.texture("reflectance")) m.albedo_texture = texture_index(*texture);
+                if (const XmlElement* texture = bsdf.texture("reflectance"))
+                    m.texture(TexturedParameter::Albedo) = texture_index(*texture);
             return m;
         }
         bsdf.fail("not supported (supported: " + supported + ")");

@@ -1,5 +1,6 @@
 #include "scene/scene.h"
 
+#include <algorithm>
 #include <cmath>
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
@@ -27,6 +28,10 @@ double Camera::tan_half_fov_y() const { return std::tan(glm::radians(fov_y_degre
 double Camera::aspect() const { return static_cast<double>(width) / static_cast<double>(height); }
 
 bool Material::emits() const { return SharedMath<double>::emits(emission); }
+
+bool Material::textured() const {
+    return std::any_of(textures.begin(), textures.end(), [](int t) { return t != kNoTexture; });
+}
 
 double triangle_area(const Mesh& mesh, const glm::uvec3& t) {
     return 0.5 * glm::length(
@@ -58,7 +63,7 @@ FeatureSet Scene::features() const {
         f.thin_dielectric |= m.type == MaterialType::ThinDielectric;
         f.plastic |= m.type == MaterialType::Plastic;
         f.rough_plastic |= m.type == MaterialType::RoughPlastic;
-        f.textures |= m.albedo_texture != kNoTexture;
+        f.textures |= m.textured();
     }
     for (const Light& light : lights) {
         bool shape = light.kind == LightKind::Shape;

@@ -111,6 +111,14 @@ struct Texture {
     std::array<double, 6> to_uv{1.0, 0.0, 0.0, 0.0, 1.0, 0.0};
 };
 
+// The material parameters that may be textured (docs/scene-format.md), each
+// a slot of Material::textures: Albedo is the diffuse albedo and the
+// plastics' diffuse_reflectance (Material::albedo), SpecularReflectance the
+// conductors' and plastics' specular_reflectance. The kernels' WP_TEXTURED_*
+// (kernels/interface/scene_layout.h) in the same order.
+enum class TexturedParameter { Albedo, SpecularReflectance };
+inline constexpr std::size_t kTexturedParameters = 2;
+
 // The microfacet distributions of the rough materials (kernels/shared/materials/microfacet.h).
 enum class Microfacet { Beckmann, GGX };
 
@@ -132,8 +140,11 @@ struct Material {
     Microfacet distribution = Microfacet::Beckmann;
     double alpha_u = 0.1, alpha_v = 0.1;
     bool nonlinear = false;  // plastic and roughplastic: Mitsuba's `nonlinear` (colours saturate under the coat)
-    // Textured parameters: an index into Scene::textures, or kNoTexture for the constant above.
-    int albedo_texture = kNoTexture;
+    // Per TexturedParameter: an index into Scene::textures, or kNoTexture for the constant above.
+    std::array<int, kTexturedParameters> textures{kNoTexture, kNoTexture};
+    int& texture(TexturedParameter p) { return textures[static_cast<std::size_t>(p)]; }
+    int texture(TexturedParameter p) const { return textures[static_cast<std::size_t>(p)]; }
+    bool textured() const;  // some parameter is
     bool emits() const;
 };
 

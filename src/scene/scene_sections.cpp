@@ -85,7 +85,8 @@ bool read_two_sided(const JsonField& field) {
 
 void read_diffuse(const JsonField& field, Material& material, const std::vector<Texture>& textures) {
     field.allow_only_keys({"type", "albedo", "emission", "two_sided"});
-    material.albedo = read_textured_reflectance(field.member("albedo"), textures, &material.albedo_texture);
+    material.albedo =
+        read_textured_reflectance(field.member("albedo"), textures, &material.texture(TexturedParameter::Albedo));
     if (auto emission = field.optional_member("emission")) material.emission = read_radiance(*emission);
     material.two_sided = read_two_sided(field);
 }

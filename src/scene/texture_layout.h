@@ -3,6 +3,7 @@
 // reference its own Real's.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -20,7 +21,8 @@ struct TextureLayout {
     // descriptor says 1 x 1 texels at 0, so that the bitmap path every lane
     // also evaluates reads inside the buffer.
     std::vector<Real> texels;
-    std::vector<std::uint32_t> albedo;  // per material: its albedo's texture, or WP_NO_TEXTURE
+    // Per material and TexturedParameter: its texture, or WP_NO_TEXTURE.
+    std::vector<std::array<std::uint32_t, kTexturedParameters>> material_textures;
 };
 
 inline std::uint32_t texture_filter(TextureFilter filter) {
@@ -58,9 +60,12 @@ TextureLayout<Real> texture_layout(const Scene& scene) {
         layout.descriptors.push_back(black);
     }
     if (layout.texels.empty()) layout.texels.resize(3, Real(0));
-    for (const Material& m : scene.materials)
-        layout.albedo.push_back(m.albedo_texture == kNoTexture ? WP_NO_TEXTURE
-                                                               : static_cast<std::uint32_t>(m.albedo_texture));
+    for (const Material& m : scene.materials) {
+        std::array<std::uint32_t, kTexturedParameters> slots{};
+        for (std::size_t p = 0; p < kTexturedParameters; ++p)
+            slots[p] = m.textures[p] == kNoTexture ? WP_NO_TEXTURE : static_cast<std::uint32_t>(m.textures[p]);
+        layout.material_textures.push_back(slots);
+    }
     return layout;
 }
 

@@ -372,7 +372,7 @@ TEST(RenderIdentity, EveryTextureParameterChangesIt) {
     bitmap.texels = {0.1f, 0.2f, 0.3f, 0.4f, 0.5f, 0.6f};
     base.textures = {bitmap, Texture{}};
     base.textures[1].type = TextureType::Checkerboard;
-    base.materials[0].albedo_texture = 0;
+    base.materials[0].texture(TexturedParameter::Albedo) = 0;
     base.meshes.push_back(test::unit_cube(0));
     base.meshes[0].uvs.assign(base.meshes[0].positions.size(), glm::dvec2(0.5, 0.5));
     const RenderIdentity identity = render_identity(base, "opencl");
@@ -388,7 +388,9 @@ TEST(RenderIdentity, EveryTextureParameterChangesIt) {
     EXPECT_TRUE(scene_changed([](Scene& s) { s.textures[0].to_uv[5] += 1e-9; }));
     EXPECT_TRUE(scene_changed([](Scene& s) { s.textures[1].color0.y += 1e-9; }));
     EXPECT_TRUE(scene_changed([](Scene& s) { s.textures[1].color1.z += 1e-9; }));
-    EXPECT_TRUE(scene_changed([](Scene& s) { s.materials[0].albedo_texture = 1; }));
+    EXPECT_TRUE(scene_changed([](Scene& s) { s.materials[0].texture(TexturedParameter::Albedo) = 1; }));
+    EXPECT_TRUE(scene_changed([](Scene& s) { s.materials[0].texture(TexturedParameter::SpecularReflectance) = 1; }));
+    EXPECT_TRUE(scene_changed([](Scene& s) { std::swap(s.materials[0].textures[0], s.materials[0].textures[1]); }));
     EXPECT_TRUE(scene_changed([](Scene& s) { s.meshes[0].uvs[2].y += 1e-9; }));
     EXPECT_FALSE(scene_changed([](Scene& s) { s.textures[0].file = "elsewhere.png"; }));
 }

@@ -699,9 +699,9 @@ TEST_F(MitsubaXml, TexturesOfADiffuseReflectance) {
     EXPECT_EQ(checkerboard.type, TextureType::Checkerboard);
     expect_near(checkerboard.color0, {0.1, 0.2, 0.3});
     expect_near(checkerboard.color1, glm::dvec3(0.2));  // Mitsuba's default
-    EXPECT_EQ(scene.materials[scene.spheres[0].material].albedo_texture, 0);
-    EXPECT_EQ(scene.materials[scene.spheres[1].material].albedo_texture, 0);
-    EXPECT_EQ(scene.materials[scene.spheres[2].material].albedo_texture, 1);
+    EXPECT_EQ(scene.materials[scene.spheres[0].material].texture(TexturedParameter::Albedo), 0);
+    EXPECT_EQ(scene.materials[scene.spheres[1].material].texture(TexturedParameter::Albedo), 0);
+    EXPECT_EQ(scene.materials[scene.spheres[2].material].texture(TexturedParameter::Albedo), 1);
     EXPECT_TRUE(scene.features().textures);
     // `wavepath convert` refuses what it cannot write yet, by one line.
     EXPECT_THROW(scene_json(read_scene, dir_.path() / "out.json"), SceneError);

@@ -119,6 +119,27 @@ TYPED_TEST(Textures, CheckerboardAsMitsubaWithToUv) {
     EXPECT_EQ(M::texture_value(t, texel, {R(0.3), R(0.1)}).x, R(1));
 }
 
+// A material's colour parameter: the constant where the material names no
+// texture for it, else the texture's value at the hit (whatever the constant).
+TYPED_TEST(Textures, ColourParameterIsTheConstantOrTheTexturesValueAtTheUv) {
+    using R = TypeParam;
+    using M = wp::SharedMath<R>;
+    const typename M::Texture t = bitmap<R>(WP_FILTER_NEAREST, WP_WRAP_REPEAT);
+    const std::vector<R> texels = coded_texels<R>();
+    const typename M::vec3 constant(R(0.25), R(0.5), R(0.75));
+    const typename M::TextureUV uv{R(0.5), R(0.75)};  // texel (1, 1): red 11
+    const typename M::vec3 untextured = M::colour_parameter(constant, WP_NO_TEXTURE, t, texels.data(), uv);
+    EXPECT_EQ(untextured.x, R(0.25));
+    EXPECT_EQ(untextured.y, R(0.5));
+    EXPECT_EQ(untextured.z, R(0.75));
+    for (std::uint32_t index : {0u, 3u}) {  // any texture index: the caller passes its entry as t
+        const typename M::vec3 textured = M::colour_parameter(constant, index, t, texels.data(), uv);
+        EXPECT_EQ(textured.x, R(11)) << index;
+        EXPECT_EQ(textured.y, R(0)) << index;
+        EXPECT_EQ(textured.z, R(0)) << index;
+    }
+}
+
 TYPED_TEST(Textures, SphereUvAsMitsuba) {
     using R = TypeParam;
     using M = wp::SharedMath<R>;
