@@ -55,8 +55,13 @@ __kernel __attribute__((reqd_work_group_size(WP_GROUP_SIZE, 1, 1))) void shade_p
         lane_uint material_word = 0u;
         vec3 wo = wi;
 #endif
+#if defined(WP_HAS_GLOSSY) && defined(WP_HAS_TEXTURES)
+        real u = SPPM_READ(visible_u, near), v = SPPM_READ(visible_v, near);
+#else
+        real u = REAL(0.0), v = REAL(0.0);
+#endif
         VisibleBsdf bsdf =
-            visible_point_bsdf(WP_SCENE_ARGS, material_word, wo, nf, ns, SPPM_READ(visible_weight, near), wi);
+            visible_point_bsdf(WP_SCENE_ARGS, material_word, u, v, wo, nf, ns, SPPM_READ(visible_weight, near), wi);
         vec3 flux = photon_deposit(bsdf.throughput_f, nf, ns, bsdf.transmits, d, power, WP_USES_SHADING_NORMALS);
         atomic_increment_where(SPPM_OUT(iteration_photons), near.slot, takes);
         add_flux_where(SPPM_OUT(iteration_flux), near.slot, takes, flux);

@@ -24,7 +24,9 @@ wavepath code agreeing with itself. The mapping (docs/mitsuba.md):
   shape, a two-sided one as a second, flipped copy of the shape just behind it
   (quads and spheres only);
 - textures: Mitsuba's `bitmap` and `checkerboard` of the same parameters,
-  `to_uv` as a 3x3 transform, in place of a diffuse `reflectance`;
+  `to_uv` as a 3x3 transform, in place of a textured colour parameter (a
+  diffuse `reflectance`, a plastic's `diffuse_reflectance`, a conductor's or
+  plastic's `specular_reflectance`);
 - shapes: spheres as `sphere`; quads as two-triangle PLY meshes written into
   the work directory (Mitsuba's `rectangle` is orthogonal only, and quads may
   be sheared), with uvs (0, 0) at the corner, (1, 0) at corner + edge1 and
@@ -201,8 +203,10 @@ class Converter:
             if kind not in MATERIAL_KEYS:
                 self.fail(f"materials.{name}.type", f"material type {json.dumps(kind)} has no Mitsuba counterpart here")
             self.check_keys(material, MATERIAL_KEYS[kind], f"materials.{name}")
-            if isinstance(material.get("albedo"), dict):
-                material = {**material, "albedo": self.textures[material["albedo"]["texture"]]}
+            textured = {key: self.textures[value["texture"]] for key, value in material.items()
+                        if key in TEXTURABLE_KEYS and isinstance(value, dict)}
+            if textured:
+                material = {**material, **textured}
                 materials = {**materials, name: material}
         extent = self.extent()
         for i, shape in enumerate(scene.get("shapes", [])):
@@ -403,6 +407,10 @@ def emission(material):
     return radiance if radiance is not None and any(c > 0 for c in radiance) else None
 
 
+# The materials' colour parameters that may be {"texture": name} (docs/scene-format.md).
+TEXTURABLE_KEYS = ("albedo", "diffuse_reflectance", "specular_reflectance")
+
+
 def rgb_or_texture(value):
     """A constant colour, or a texture the converter already made Mitsuba's (Converter.texture)."""
     return value if isinstance(value, dict) else rgb(value)
@@ -421,7 +429,9 @@ def bsdf(material):
         # The same names and parameters: wavepath's materials are Mitsuba's, two-sided.
         plugin = {"type": kind}
         for key, value in material.items():
-            if key in ("eta", "k", "specular_reflectance", "diffuse_reflectance"):
+            if key in TEXTURABLE_KEYS:
+                plugin[key] = rgb_or_texture([value] * 3 if isinstance(value, (int, float)) else value)
+            elif key in ("eta", "k"):
                 plugin[key] = rgb([value] * 3 if isinstance(value, (int, float)) else value)
             elif key != "type":
                 plugin[key] = value

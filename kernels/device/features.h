@@ -101,6 +101,11 @@
 #else
 #define WP_IF_GLOSSY(...)
 #endif
+#if defined(WP_HAS_GLOSSY) && defined(WP_HAS_TEXTURES)
+#define WP_IF_GLOSSY_TEXTURES(...) __VA_ARGS__
+#else
+#define WP_IF_GLOSSY_TEXTURES(...)
+#endif
 
 /* Shape and light counts: compile-time constants where the host passes them
  * (small scenes), so the loops over them unroll into straight-line code that

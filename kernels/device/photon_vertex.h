@@ -99,16 +99,21 @@ typedef struct {
 
 /* For a visible point of weight `weight` (visible_point_weight) and shading
  * normal ns; with other materials than diffuse, also its material and side
- * (`material_word`, visible_material_word), the direction wo back along its
- * camera path and its geometric normal nf, from which f is evaluated as
- * next-event estimation evaluates it (vertex_bsdf_value). A diffuse one's
- * weight holds its albedo: f is diffuse_eval's. */
-WP_FN VisibleBsdf visible_point_bsdf(WP_SCENE_PARAMS, lane_uint material_word, vec3 wo, vec3 nf, vec3 ns, vec3 weight,
-                                     vec3 wi) {
+ * (`material_word`, visible_material_word), its uv (u, v) where its
+ * material is textured, the direction wo back along its camera path and its
+ * geometric normal nf, from which f is evaluated as next-event estimation
+ * evaluates it (vertex_bsdf_value). A diffuse one's weight holds its
+ * (textured) albedo: f is diffuse_eval's. */
+WP_FN VisibleBsdf visible_point_bsdf(WP_SCENE_PARAMS, lane_uint material_word, real u, real v, vec3 wo, vec3 nf,
+                                     vec3 ns, vec3 weight, vec3 wi) {
     VisibleBsdf b;
 #ifdef WP_HAS_GLOSSY
     Vertex at;
-    at.material = material_at(materials, visible_material_index(material_word));
+    lane_uint material = visible_material_index(material_word);
+    at.material = material_at(materials, material);
+#ifdef WP_HAS_TEXTURES
+    at.material = textured_material(WP_SCENE_ARGS, at.material, material, make_texture_uv(u, v));
+#endif
     at.front = visible_material_front(material_word);
     at.wo = wo;
     at.nf = nf;

@@ -117,6 +117,10 @@ WP_FN ShadedPaths shade_hits(WP_STAGE_PARAMS, Lanes lanes, Hit traced) {
 #ifdef WP_HAS_GLOSSY
     SPPM_WRITE(visible_material, pixels, visible, visible_material_word(v.surface.material, v.front));
     SPPM_WRITE(visible_wo, pixels, visible, v.wo);
+#ifdef WP_HAS_TEXTURES
+    SPPM_WRITE(visible_u, pixels, visible, v.surface.uv.u);
+    SPPM_WRITE(visible_v, pixels, visible, v.surface.uv.v);
+#endif
 #endif
     /* the pixel's first visible point sets its radius (0 until then) */
     lane_int first = visible && SPPM_READ(sppm_radius, pixels) == REAL(0.0);

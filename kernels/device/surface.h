@@ -245,27 +245,26 @@ WP_FN Texture texture_at(__global const TextureDescriptor *textures, lane_uint i
     return t;
 }
 
-/* Textured parameter `parameter` (WP_TEXTURED_*) of surface s's material at
- * s's uv, `untextured` where the material gives it no texture
- * (colour_parameter); a texture is read only where some lane's material
- * names one. */
-WP_FN vec3 surface_colour(WP_SCENE_PARAMS, Surface s, uint parameter, vec3 untextured) {
-    lane_uint texture = gather(&material_textures->texture[parameter], s.material * WP_STRUCT_WORDS(material_textures));
+/* Textured parameter `parameter` (WP_TEXTURED_*) of `material` at uv,
+ * `untextured` where the material gives it no texture (colour_parameter); a
+ * texture is read only where some lane's material names one. */
+WP_FN vec3 material_colour(WP_SCENE_PARAMS, lane_uint material, TextureUV uv, uint parameter, vec3 untextured) {
+    lane_uint texture = gather(&material_textures->texture[parameter], material * WP_STRUCT_WORDS(material_textures));
     lane_int textured = texture != WP_NO_TEXTURE;
     if (!lanes_any(textured)) return untextured;
-    return colour_parameter(untextured, texture, texture_at(textures, textured ? texture : (lane_uint)0u), texels,
-                            s.uv);
+    return colour_parameter(untextured, texture, texture_at(textures, textured ? texture : (lane_uint)0u), texels, uv);
 }
 
-/* Material m at surface s with its textured parameters looked up at s's uv
+/* m, the fields of `material`, with its textured parameters looked up at uv
  * (the lanes whose material has none keep its constants). */
-WP_FN Material textured_material(WP_SCENE_PARAMS, Material m, Surface s) {
-#if defined(WP_HAS_DIFFUSE) || defined(WP_HAS_PLASTIC) || defined(WP_HAS_ROUGH_PLASTIC)
-    vec3 albedo = surface_colour(WP_SCENE_ARGS, s, WP_TEXTURED_ALBEDO, SCENE_FIELD(materials, s.material, albedo));
+WP_FN Material textured_material(WP_SCENE_PARAMS, Material m, lane_uint material, TextureUV uv) {
+#if defined(WP_HAS_DIFFUSE) || defined(WP_HAS_PLASTICS)
+    vec3 albedo =
+        material_colour(WP_SCENE_ARGS, material, uv, WP_TEXTURED_ALBEDO, SCENE_FIELD(materials, material, albedo));
 #endif
-#if defined(WP_HAS_CONDUCTORS) || defined(WP_HAS_PLASTIC) || defined(WP_HAS_ROUGH_PLASTIC)
-    vec3 specular = surface_colour(WP_SCENE_ARGS, s, WP_TEXTURED_SPECULAR_REFLECTANCE,
-                                   SCENE_FIELD(materials, s.material, specular_reflectance));
+#if defined(WP_HAS_CONDUCTORS) || defined(WP_HAS_PLASTICS)
+    vec3 specular = material_colour(WP_SCENE_ARGS, material, uv, WP_TEXTURED_SPECULAR_REFLECTANCE,
+                                    SCENE_FIELD(materials, material, specular_reflectance));
 #endif
 #ifdef WP_HAS_DIFFUSE
     m.albedo = albedo;
@@ -303,7 +302,7 @@ WP_FN Vertex vertex_at(WP_SCENE_PARAMS, lane_uint shape, vec3 origin, vec3 direc
     v.surface = surface_at(WP_SCENE_ARGS, shape, origin, direction, t);
     v.material = material_at(materials, v.surface.material);
 #ifdef WP_HAS_TEXTURES
-    v.material = textured_material(WP_SCENE_ARGS, v.material, v.surface);
+    v.material = textured_material(WP_SCENE_ARGS, v.material, v.surface.material, v.surface.uv);
 #endif
     v.wo = v3_neg(direction);
 #ifdef WP_HAS_ROUGH_PLASTIC

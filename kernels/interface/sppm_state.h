@@ -29,7 +29,10 @@
  *   GLOSSY    the scene has a non-specular material other than diffuse
  *             (WP_HAS_GLOSSY, device/features.h): a visible point's material
  *             (visible_material_word, shared/sppm.h) and the direction back
- *             along its camera path, whose f the photons evaluate. */
+ *             along its camera path, whose f the photons evaluate;
+ *   GLOSSY_TEXTURES  GLOSSY and some material parameter is textured
+ *             (WP_HAS_TEXTURES): the visible point's uv, where the photons
+ *             look its material's textures up. */
 #ifndef WP_INTERFACE_SPPM_STATE_H
 #define WP_INTERFACE_SPPM_STATE_H
 
@@ -41,6 +44,8 @@
     X(uint, visible_depth, PIXELS, ALWAYS, "shade intersect_and_shade", "shade_photons photon_grid") \
     X(uint, visible_material, PIXELS, GLOSSY, "shade intersect_and_shade", "shade_photons")          \
     X(vec3, visible_wo, PIXELS, GLOSSY, "shade intersect_and_shade", "shade_photons")                \
+    X(float, visible_u, PIXELS, GLOSSY_TEXTURES, "shade intersect_and_shade", "shade_photons")       \
+    X(float, visible_v, PIXELS, GLOSSY_TEXTURES, "shade intersect_and_shade", "shade_photons")       \
     X(float, sppm_count, PIXELS, ALWAYS, "sppm_update", "sppm_update")                               \
     X(float, sppm_radius, PIXELS, ALWAYS, "shade intersect_and_shade sppm_update",                   \
       "shade intersect_and_shade shade_photons photon_grid sppm_update")                             \

@@ -205,7 +205,7 @@ SceneLayout flatten_scene(const Scene& scene) {
         d.material = q.material;
         layout.quads.push_back(d);
     }
-    PlasticTables plastics = plastic_tables(scene.materials);
+    PlasticTables plastics = plastic_tables(scene.materials, scene.textures);
     for (double t : plastics.transmittance) layout.roughplastic_transmittance.push_back(static_cast<float>(t));
     for (std::size_t i = 0; i < scene.materials.size(); ++i) {
         const Material& m = scene.materials[i];

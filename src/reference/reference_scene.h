@@ -132,7 +132,7 @@ struct ReferenceScene {
     // computes them in double (scene/plastic_constants.h), rounded as the
     // kernels' host rounds them (opencl/scene_upload.cpp).
     void add_materials(const Scene& scene) {
-        PlasticTables plastics = plastic_tables(scene.materials);
+        PlasticTables plastics = plastic_tables(scene.materials, scene.textures);
         for (double t : plastics.transmittance) roughplastic_transmittance.push_back(Real(t));
         for (std::size_t i = 0; i < scene.materials.size(); ++i) {
             const Material& m = scene.materials[i];

@@ -33,7 +33,7 @@ namespace fs = std::filesystem;
 
 // ---- values ----
 
-std::string joined_names(std::initializer_list<std::string_view> words) {
+std::string joined_names(const std::vector<std::string_view>& words) {
     std::string joined;
     for (std::string_view word : words) joined += (joined.empty() ? "" : ", ") + std::string(word);
     return joined;
@@ -191,7 +191,7 @@ class Plugin {
         return found;
     }
     // Every nested <texture> (or <ref> to one) must be given as one of these properties.
-    void textures_only_as(std::initializer_list<std::string_view> names) const {
+    void textures_only_as(const std::vector<std::string_view>& names) const {
         for (const XmlElement& child : element_.children) {
             if (is_property_tag(child.tag) || resolve(child).tag != "texture") continue;
             const std::string* n = child.attribute("name");
@@ -566,14 +566,44 @@ void read_microfacet(const Plugin& bsdf, Material& m) {
 // here and its row in kBsdfs.
 using BsdfReader = Material (*)(const Plugin&, const std::function<Material(const XmlElement&)>& nested);
 
-// A texture as its reflectance is the reader's (Reader::bsdf_material).
+// The BSDF properties that may be textures, and the material parameter each
+// one is (docs/scene-format.md); Reader::bsdf_material reads the textures.
+struct TexturableProperty {
+    std::string_view bsdf, property;
+    TexturedParameter parameter;
+};
+constexpr TexturableProperty kTexturableProperties[] = {
+    {"diffuse", "reflectance", TexturedParameter::Albedo},
+    {"conductor", "specular_reflectance", TexturedParameter::SpecularReflectance},
+    {"roughconductor", "specular_reflectance", TexturedParameter::SpecularReflectance},
+    {"plastic", "diffuse_reflectance", TexturedParameter::Albedo},
+    {"plastic", "specular_reflectance", TexturedParameter::SpecularReflectance},
+    {"roughplastic", "diffuse_reflectance", TexturedParameter::Albedo},
+    {"roughplastic", "specular_reflectance", TexturedParameter::SpecularReflectance},
+};
+
+// Every property must be one of `properties`, and every texture (nested or
+// by <ref>) one of those kTexturableProperties lists for the BSDF's type.
+void allow_bsdf_properties(const Plugin& bsdf, std::initializer_list<std::string_view> properties) {
+    std::vector<std::string_view> texturable;
+    for (const TexturableProperty& t : kTexturableProperties)
+        if (t.bsdf == bsdf.type()) texturable.push_back(t.property);
+    bsdf.allow(properties, {"texture"});
+    bsdf.textures_only_as(texturable);
+}
+
+// A colour property that may be a texture: its constant in [0, 1], `fallback`
+// without it, 0 where it is a texture (whose value the material reads instead).
+glm::dvec3 reflectance(const Plugin& bsdf, std::string_view name, glm::dvec3 fallback) {
+    if (bsdf.texture(name)) return glm::dvec3(0.0);
+    return bsdf.optional_color(name, 1.0, " (energy gain)").value_or(fallback);
+}
+
 Material read_diffuse(const Plugin& bsdf, const std::function<Material(const XmlElement&)>&) {
-    bsdf.allow({"reflectance"}, {"texture"});
-    bsdf.textures_only_as({"reflectance"});
+    allow_bsdf_properties(bsdf, {"reflectance"});
     Material m;
     m.type = MaterialType::Diffuse;
-    if (!bsdf.texture("reflectance"))
-        m.albedo = bsdf.optional_color("reflectance", 1.0, " (energy gain)").value_or(glm::dvec3(0.5));
+    m.albedo = reflectance(bsdf, "reflectance", glm::dvec3(0.5));
     return m;
 }
 
@@ -600,22 +630,21 @@ Material read_dielectric(const Plugin& bsdf, const std::function<Material(const 
 }
 
 Material read_conductor(const Plugin& bsdf, const std::function<Material(const XmlElement&)>&) {
-    bsdf.allow({"material", "eta", "k", "specular_reflectance"});
+    allow_bsdf_properties(bsdf, {"material", "eta", "k", "specular_reflectance"});
     Material m;
     m.type = MaterialType::Conductor;
     read_conductor_index(bsdf, m);
-    m.specular_reflectance =
-        bsdf.optional_color("specular_reflectance", 1.0, " (energy gain)").value_or(glm::dvec3(1.0));
+    m.specular_reflectance = reflectance(bsdf, "specular_reflectance", glm::dvec3(1.0));
     return m;
 }
 
 Material read_roughconductor(const Plugin& bsdf, const std::function<Material(const XmlElement&)>&) {
-    bsdf.allow({"material", "eta", "k", "specular_reflectance", "distribution", "alpha", "alpha_u", "alpha_v"});
+    allow_bsdf_properties(
+        bsdf, {"material", "eta", "k", "specular_reflectance", "distribution", "alpha", "alpha_u", "alpha_v"});
     Material m;
     m.type = MaterialType::RoughConductor;
     read_conductor_index(bsdf, m);
-    m.specular_reflectance =
-        bsdf.optional_color("specular_reflectance", 1.0, " (energy gain)").value_or(glm::dvec3(1.0));
+    m.specular_reflectance = reflectance(bsdf, "specular_reflectance", glm::dvec3(1.0));
     read_microfacet(bsdf, m);
     return m;
 }
@@ -641,23 +670,22 @@ Material read_thindielectric(const Plugin& bsdf, const std::function<Material(co
 Material plastic_coat(const Plugin& bsdf, MaterialType type) {
     Material m;
     m.type = type;
-    m.albedo = bsdf.optional_color("diffuse_reflectance", 1.0, " (energy gain)").value_or(glm::dvec3(0.5));
-    m.specular_reflectance =
-        bsdf.optional_color("specular_reflectance", 1.0, " (energy gain)").value_or(glm::dvec3(1.0));
+    m.albedo = reflectance(bsdf, "diffuse_reflectance", glm::dvec3(0.5));
+    m.specular_reflectance = reflectance(bsdf, "specular_reflectance", glm::dvec3(1.0));
     m.ior = ior(bsdf, "int_ior", "polypropylene") / ior(bsdf, "ext_ior", "air");
     m.nonlinear = bsdf.boolean("nonlinear", false);
     return m;
 }
 
 Material read_plastic(const Plugin& bsdf, const std::function<Material(const XmlElement&)>&) {
-    bsdf.allow({"diffuse_reflectance", "specular_reflectance", "int_ior", "ext_ior", "nonlinear"});
+    allow_bsdf_properties(bsdf, {"diffuse_reflectance", "specular_reflectance", "int_ior", "ext_ior", "nonlinear"});
     return plastic_coat(bsdf, MaterialType::Plastic);
 }
 
 // Mitsuba's roughplastic is isotropic: `alpha`, no alpha_u and alpha_v.
 Material read_roughplastic(const Plugin& bsdf, const std::function<Material(const XmlElement&)>&) {
-    bsdf.allow(
-        {"diffuse_reflectance", "specular_reflectance", "int_ior", "ext_ior", "nonlinear", "distribution", "alpha"});
+    allow_bsdf_properties(bsdf, {"diffuse_reflectance", "specular_reflectance", "int_ior", "ext_ior", "nonlinear",
+                                 "distribution", "alpha"});
     Material m = plastic_coat(bsdf, MaterialType::RoughPlastic);
     read_microfacet(bsdf, m);
     return m;
@@ -991,9 +1019,10 @@ class Reader {
             converting_.push_back(&element);
             Material m = reader(bsdf, [this](const XmlElement& inner) { return bsdf_material(inner); });
             converting_.pop_back();
-            if (bsdf.type() == "diffuse")
-                if (const XmlElement* texture = bsdf.texture("reflectance"))
-                    m.texture(TexturedParameter::Albedo) = texture_index(*texture);
+            for (const TexturableProperty& t : kTexturableProperties)
+                if (t.bsdf == bsdf.type())
+                    if (const XmlElement* texture = bsdf.texture(t.property))
+                        m.texture(t.parameter) = texture_index(*texture);
             return m;
         }
         bsdf.fail("not supported (supported: " + supported + ")");

@@ -5,6 +5,7 @@
 #include <tuple>
 
 #include "core/shared_math.h"
+#include "scene/texture_section.h"
 
 namespace wp {
 namespace {
@@ -40,15 +41,20 @@ const RoughCoat& rough_coat(const Material& m) {
 }  // namespace plastic_constants
 }  // namespace
 
-PlasticTables plastic_tables(const std::vector<Material>& materials) {
+PlasticTables plastic_tables(const std::vector<Material>& materials, const std::vector<Texture>& textures) {
     using namespace plastic_constants;
     PlasticTables tables;
     for (const Material& m : materials) {
         PlasticConstants c;
         if (m.type == MaterialType::Plastic || m.type == MaterialType::RoughPlastic) {
             c.inv_eta_2 = 1.0 / (m.ior * m.ior);
+            auto mean = [&](TexturedParameter p, const glm::dvec3& constant) {
+                return m.texture(p) == kNoTexture ? D::plastic_channel_mean(dvec(constant))
+                                                  : texture_mean(textures[std::size_t(m.texture(p))]);
+            };
             c.specular_sampling_weight = D::plastic_specular_sampling_weight(
-                D::plastic_channel_mean(dvec(m.albedo)), D::plastic_channel_mean(dvec(m.specular_reflectance)));
+                mean(TexturedParameter::Albedo, m.albedo),
+                mean(TexturedParameter::SpecularReflectance, m.specular_reflectance));
         }
         if (m.type == MaterialType::Plastic) c.internal_reflectance = D::fresnel_diffuse_reflectance(1.0 / m.ior);
         if (m.type == MaterialType::RoughPlastic) {

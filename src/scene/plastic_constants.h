@@ -24,11 +24,13 @@ struct PlasticTables {
     std::vector<double> transmittance;
 };
 
-// The constants of every plastic and roughplastic among `materials`. A
+// The constants of every plastic and roughplastic among `materials`, whose
+// textured parameters are `textures`' (a textured reflectance's sampling
+// weight takes the texture's mean, as Mitsuba's: texture_mean). A
 // roughplastic's R_int and table take about 64 x 64^2 + 64 x 32^2 visible
 // normals; they are computed once per distribution, alpha and eta in a
 // process and kept for the next call (the backends of one run each flatten
 // the scene).
-PlasticTables plastic_tables(const std::vector<Material>& materials);
+PlasticTables plastic_tables(const std::vector<Material>& materials, const std::vector<Texture>& textures);
 
 }  // namespace wp

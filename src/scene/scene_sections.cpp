@@ -83,10 +83,24 @@ bool read_two_sided(const JsonField& field) {
     return two_sided && two_sided->boolean();
 }
 
+// A colour parameter that may be textured (docs/scene-format.md): {"texture": "<name>"} names
+// material's texture for `parameter` (`value`, its constant, is then 0: unused), anything else is
+// the constant, which `read_constant` reads into `value`.
+template <class ReadConstant>
+void read_colour_parameter(const JsonField& field, const std::vector<Texture>& textures, Material& material,
+                           TexturedParameter parameter, glm::dvec3& value, ReadConstant read_constant) {
+    if (field.is_object()) {
+        material.texture(parameter) = read_texture_reference(field, textures);
+        value = glm::dvec3(0.0);
+    } else {
+        value = read_constant(field);
+    }
+}
+
 void read_diffuse(const JsonField& field, Material& material, const std::vector<Texture>& textures) {
     field.allow_only_keys({"type", "albedo", "emission", "two_sided"});
-    material.albedo =
-        read_textured_reflectance(field.member("albedo"), textures, &material.texture(TexturedParameter::Albedo));
+    read_colour_parameter(field.member("albedo"), textures, material, TexturedParameter::Albedo, material.albedo,
+                          read_reflectivity);
     if (auto emission = field.optional_member("emission")) material.emission = read_radiance(*emission);
     material.two_sided = read_two_sided(field);
 }
@@ -143,17 +157,26 @@ void read_conductor_index(const JsonField& field, Material& material) {
     material.k = index->k;
 }
 
-// A conductor's index and `specular_reflectance` (the caller checks the keys).
-void read_conductor(const JsonField& field, Material& material) {
-    read_conductor_index(field, material);
+// A reflectance factor: a number or an RGB in [0, 1].
+glm::dvec3 read_reflectance_factor(const JsonField& field) { return read_rgb(field, 0.0, 1.0); }
+
+// The conductors' and plastics' `specular_reflectance`, which may be textured (the default: 1).
+void read_specular_reflectance(const JsonField& field, Material& material, const std::vector<Texture>& textures) {
     if (auto specular = field.optional_member("specular_reflectance")) {
-        material.specular_reflectance = read_rgb(*specular, 0.0, 1.0);
+        read_colour_parameter(*specular, textures, material, TexturedParameter::SpecularReflectance,
+                              material.specular_reflectance, read_reflectance_factor);
     }
 }
 
-void read_smooth_conductor(const JsonField& field, Material& material) {
+// A conductor's index and `specular_reflectance` (the caller checks the keys).
+void read_conductor(const JsonField& field, Material& material, const std::vector<Texture>& textures) {
+    read_conductor_index(field, material);
+    read_specular_reflectance(field, material, textures);
+}
+
+void read_smooth_conductor(const JsonField& field, Material& material, const std::vector<Texture>& textures) {
     field.allow_only_keys({"type", "material", "eta", "k", "specular_reflectance"});
-    read_conductor(field, material);
+    read_conductor(field, material, textures);
 }
 
 // A microfacet roughness: finite and at least kMinRoughness, below which
@@ -199,10 +222,10 @@ void read_microfacet(const JsonField& field, Material& material) {
     }
 }
 
-void read_rough_conductor(const JsonField& field, Material& material) {
+void read_rough_conductor(const JsonField& field, Material& material, const std::vector<Texture>& textures) {
     field.allow_only_keys(
         {"type", "material", "eta", "k", "specular_reflectance", "distribution", "alpha", "alpha_u", "alpha_v"});
-    read_conductor(field, material);
+    read_conductor(field, material, textures);
     read_microfacet(field, material);
 }
 
@@ -230,26 +253,27 @@ void read_rough_dielectric(const JsonField& field, Material& material) {
 // A plastic's base and coat (the caller checks the keys), with Mitsuba's
 // defaults: diffuse_reflectance 0.5, specular_reflectance 1, polypropylene
 // in air, nonlinear off.
-void read_plastic_coat(const JsonField& field, Material& material) {
+void read_plastic_coat(const JsonField& field, Material& material, const std::vector<Texture>& textures) {
     material.albedo = glm::dvec3(0.5);
-    if (auto diffuse = field.optional_member("diffuse_reflectance")) material.albedo = read_rgb(*diffuse, 0.0, 1.0);
-    if (auto specular = field.optional_member("specular_reflectance")) {
-        material.specular_reflectance = read_rgb(*specular, 0.0, 1.0);
+    if (auto diffuse = field.optional_member("diffuse_reflectance")) {
+        read_colour_parameter(*diffuse, textures, material, TexturedParameter::Albedo, material.albedo,
+                              read_reflectance_factor);
     }
+    read_specular_reflectance(field, material, textures);
     material.ior = read_relative_ior(field, "polypropylene");
     if (auto nonlinear = field.optional_member("nonlinear")) material.nonlinear = nonlinear->boolean();
 }
 
-void read_plastic(const JsonField& field, Material& material) {
+void read_plastic(const JsonField& field, Material& material, const std::vector<Texture>& textures) {
     field.allow_only_keys({"type", "diffuse_reflectance", "specular_reflectance", "int_ior", "ext_ior", "nonlinear"});
-    read_plastic_coat(field, material);
+    read_plastic_coat(field, material, textures);
 }
 
 // roughplastic: isotropic, as Mitsuba's (`alpha`, no alpha_u and alpha_v).
-void read_rough_plastic(const JsonField& field, Material& material) {
+void read_rough_plastic(const JsonField& field, Material& material, const std::vector<Texture>& textures) {
     field.allow_only_keys({"type", "diffuse_reflectance", "specular_reflectance", "int_ior", "ext_ior", "nonlinear",
                            "distribution", "alpha"});
-    read_plastic_coat(field, material);
+    read_plastic_coat(field, material, textures);
     read_distribution(field, material);
     if (auto alpha = field.optional_member("alpha"))
         material.alpha_u = material.alpha_v = read_roughness(*alpha, "plastic");
@@ -280,10 +304,10 @@ Material read_material(const std::string& name, const JsonField& field, const st
         read_emitter(field, material);
     } else if (type == "conductor") {
         material.type = MaterialType::Conductor;
-        read_smooth_conductor(field, material);
+        read_smooth_conductor(field, material, textures);
     } else if (type == "roughconductor") {
         material.type = MaterialType::RoughConductor;
-        read_rough_conductor(field, material);
+        read_rough_conductor(field, material, textures);
     } else if (type == "dielectric") {
         material.type = MaterialType::Glass;
         read_dielectric(field, material);
@@ -295,10 +319,10 @@ Material read_material(const std::string& name, const JsonField& field, const st
         read_dielectric(field, material);
     } else if (type == "plastic") {
         material.type = MaterialType::Plastic;
-        read_plastic(field, material);
+        read_plastic(field, material, textures);
     } else if (type == "roughplastic") {
         material.type = MaterialType::RoughPlastic;
-        read_rough_plastic(field, material);
+        read_rough_plastic(field, material, textures);
     } else {
         type_field.fail("unknown material type " + nlohmann::json(type).dump() +
                         " (expected one of: diffuse, mirror, glass, emitter, conductor, roughconductor, dielectric, "

@@ -140,8 +140,7 @@ std::vector<Texture> read_textures(const JsonField& field, const std::string& sc
     return textures;
 }
 
-glm::dvec3 read_textured_reflectance(const JsonField& field, const std::vector<Texture>& textures, int* texture) {
-    if (!field.is_object()) return field.vec3_in(0.0, 1.0, " (energy gain)");
+int read_texture_reference(const JsonField& field, const std::vector<Texture>& textures) {
     field.allow_only_keys({"texture"});
     JsonField name_field = field.member("texture");
     const std::string name = name_field.string();
@@ -152,8 +151,18 @@ glm::dvec3 read_textured_reflectance(const JsonField& field, const std::vector<T
         name_field.fail("undefined texture " + nlohmann::json(name).dump() +
                         " (defined: " + (names.empty() ? "none" : names) + ")");
     }
-    *texture = static_cast<int>(found - textures.begin());
-    return glm::dvec3(0.0);
+    return static_cast<int>(found - textures.begin());
+}
+
+double texture_mean(const Texture& texture) {
+    if (texture.type == TextureType::Checkerboard) {
+        auto mean = [](const glm::dvec3& c) { return (c.x + c.y + c.z) / 3.0; };
+        return 0.5 * (mean(texture.color0) + mean(texture.color1));
+    }
+    double sum = 0.0;
+    for (std::size_t i = 0; i + 2 < texture.texels.size(); i += 3)
+        sum += 0.212671 * texture.texels[i] + 0.715160 * texture.texels[i + 1] + 0.072169 * texture.texels[i + 2];
+    return sum / (double(texture.width) * double(texture.height));
 }
 
 }  // namespace wp

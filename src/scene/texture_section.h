@@ -29,8 +29,13 @@ void read_bitmap_file(const std::string& path, bool raw, Texture& texture);
 // share it.
 void read_environment_map_file(const std::string& path, EnvironmentMap& map);
 
-// A reflectance that may be textured: an RGB in [0, 1] returned as is, or {"texture": "<name>"}, whose
-// index into `textures` goes to *texture (the constant returned is then 0).
-glm::dvec3 read_textured_reflectance(const JsonField& field, const std::vector<Texture>& textures, int* texture);
+// The texture a textured parameter names, {"texture": "<name>"}, as its index into `textures` (one error
+// line naming the key where the name is undefined).
+int read_texture_reference(const JsonField& field, const std::vector<Texture>& textures);
+
+// A texture's mean as Mitsuba 3's Texture::mean(): a bitmap's mean texel
+// luminance, a checkerboard's mean of its two colours' channel means (what
+// a textured plastic's specular sampling weight takes, as Mitsuba's).
+double texture_mean(const Texture& texture);
 
 }  // namespace wp

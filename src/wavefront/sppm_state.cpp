@@ -26,14 +26,23 @@ const std::vector<SppmStateField>& sppm_state_fields() {
 }
 
 bool sppm_feature_compiled(SppmFeature feature, const FeatureSet& features) {
-    return feature == SppmFeature::ALWAYS || features.glossy();
+    switch (feature) {
+        case SppmFeature::ALWAYS:
+            return true;
+        case SppmFeature::GLOSSY:
+            return features.glossy();
+        case SppmFeature::GLOSSY_TEXTURES:
+            return features.glossy() && features.textures;
+    }
+    return false;
 }
 
 std::string sppm_state_table_markdown() {
     static const char* size_names[] = {"1 per pixel",       "3 x 8 words per pixel (exact flux sums)",
                                        "1 per bucket, + 1", "1 per 256 buckets, + 1",
                                        "8 per pixel",       "4"};
-    static const char* feature_names[] = {"always", "glossy (a non-specular material other than diffuse)"};
+    static const char* feature_names[] = {"always", "glossy (a non-specular material other than diffuse)",
+                                          "glossy and textures"};
     std::ostringstream table;
     table << "| entry | type | elements | when | written by | read by |\n|---|---|---|---|---|---|\n";
     for (const SppmStateField& f : sppm_state_fields())

@@ -15,7 +15,7 @@
 namespace wp {
 
 enum class SppmSize { PIXELS, DEPOSITS, BUCKETS, BLOCKS, ENTRIES, FRAME };
-enum class SppmFeature { ALWAYS, GLOSSY };
+enum class SppmFeature { ALWAYS, GLOSSY, GLOSSY_TEXTURES };
 
 struct SppmStateField {
     const char* type;

@@ -108,6 +108,26 @@ TEST(Megakernel, TexturesBitIdenticalInEveryBackend) {
     EXPECT_EQ(render_wavefront(scene, {}, {}).image.rgb, render_reference(scene, ReferenceOptions{2, false}).image.rgb);
 }
 
+// Textured plastics' diffuse_reflectance and specular_reflectance and
+// conductors' specular_reflectance (smooth and rough), read through the one
+// shared colour_parameter in every backend: bit-identical images; in SPPM
+// too, whose glossy visible points keep their uv for the photons' lookups.
+TEST(Megakernel, TexturedMaterialsBitIdenticalInEveryBackend) {
+    Scene scene = load_scene(WAVEPATH_SOURCE_DIR "/scenes/test/oracle_textured_materials.json");
+    ASSERT_TRUE(scene.features().textures);
+    scene.render.spp = 2;
+    const RenderResult reference = render_reference(scene, ReferenceOptions{2, false});
+    EXPECT_EQ(render_megakernel(scene, with_lanes(16), {}).image.rgb, reference.image.rgb);
+    WavefrontOptions options;
+    options.lanes = 4;
+    options.wavefront = 777;
+    EXPECT_EQ(render_wavefront(scene, options, {}).image.rgb, reference.image.rgb);
+    scene.render.integrator = Integrator::Sppm;
+    scene.render.spp = 1;
+    scene.render.sppm.photons = 4096;
+    EXPECT_EQ(render_wavefront(scene, {}, {}).image.rgb, render_reference(scene, ReferenceOptions{2, false}).image.rgb);
+}
+
 // The environment map (kernels/shared/environment_map.h): its lookup where
 // rays leave, its importance sampling and density in next-event estimation
 // and MIS, the same shared code in every backend, so bit-identical images

@@ -161,6 +161,17 @@ class ConverterTest(unittest.TestCase):
         self.refused("textures.n.type: texture type \"noise\" has no Mitsuba counterpart here",
                      textures={"n": {"type": "noise"}})
 
+    def test_textured_plastic_and_conductor_parameters_become_their_textures(self):
+        textures = {"c": {"type": "checkerboard"}}
+        materials = {"p": {"type": "roughplastic", "diffuse_reflectance": {"texture": "c"}, "specular_reflectance": 0.5},
+                     "m": {"type": "conductor", "material": "Au", "specular_reflectance": {"texture": "c"}}}
+        p, m = self.shapes(self.convert([{**QUAD, "material": "p"}, {**QUAD, "material": "m"}], materials,
+                                        textures=textures))
+        self.assertEqual(p["bsdf"]["bsdf"]["diffuse_reflectance"]["type"], "checkerboard")
+        self.assertEqual(p["bsdf"]["bsdf"]["specular_reflectance"], {"type": "rgb", "value": [0.5, 0.5, 0.5]})
+        self.assertEqual(m["bsdf"]["bsdf"]["specular_reflectance"]["type"], "checkerboard")
+        self.assertEqual(m["bsdf"]["bsdf"]["material"], "Au")
+
     def test_diffuse_emission_makes_an_area_emitter(self):
         materials = {"glow": {"type": "diffuse", "albedo": [0.5, 0.5, 0.5], "emission": [0, 0.5, 0]},
                      "dark": {"type": "diffuse", "albedo": [0.5, 0.5, 0.5], "emission": [0, 0, 0]}}

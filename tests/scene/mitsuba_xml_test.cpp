@@ -707,6 +707,43 @@ TEST_F(MitsubaXml, TexturesOfADiffuseReflectance) {
     EXPECT_THROW(scene_json(read_scene, dir_.path() / "out.json"), SceneError);
 }
 
+// The other textured colour parameters: a plastic's and roughplastic's
+// diffuse_reflectance and specular_reflectance, a conductor's and
+// roughconductor's specular_reflectance, each its material's slot; the
+// constant of a textured parameter is 0 (unused), the others keep theirs.
+TEST_F(MitsubaXml, TexturesOfPlasticsAndConductors) {
+    const Scene scene = read(sensor() + R"(
+        <texture type="checkerboard" id="a"/>
+        <shape type="sphere"><bsdf type="plastic"><ref name="diffuse_reflectance" id="a"/>
+            <rgb name="specular_reflectance" value="0.5"/></bsdf></shape>
+        <shape type="sphere"><point name="center" x="3" y="0" z="0"/>
+            <bsdf type="roughplastic"><texture type="checkerboard" name="specular_reflectance"/></bsdf></shape>
+        <shape type="sphere"><point name="center" x="6" y="0" z="0"/>
+            <bsdf type="twosided"><bsdf type="conductor"><ref name="specular_reflectance" id="a"/></bsdf></bsdf></shape>
+        <shape type="sphere"><point name="center" x="9" y="0" z="0"/>
+            <bsdf type="roughconductor"><ref name="specular_reflectance" id="a"/></bsdf></shape>)")
+                            .scene;
+    ASSERT_EQ(scene.textures.size(), 2u);
+    auto material = [&](int sphere) {
+        return scene.materials[std::size_t(scene.spheres[std::size_t(sphere)].material)];
+    };
+    using P = TexturedParameter;
+    EXPECT_EQ(material(0).type, MaterialType::Plastic);
+    EXPECT_EQ(material(0).texture(P::Albedo), 0);
+    EXPECT_EQ(material(0).texture(P::SpecularReflectance), kNoTexture);
+    expect_near(material(0).albedo, glm::dvec3(0.0));
+    expect_near(material(0).specular_reflectance, glm::dvec3(0.5));
+    EXPECT_EQ(material(1).type, MaterialType::RoughPlastic);
+    EXPECT_EQ(material(1).texture(P::Albedo), kNoTexture);
+    EXPECT_EQ(material(1).texture(P::SpecularReflectance), 1);
+    expect_near(material(1).albedo, glm::dvec3(0.5));  // Mitsuba's default
+    EXPECT_EQ(material(2).type, MaterialType::Conductor);
+    EXPECT_EQ(material(2).texture(P::SpecularReflectance), 0);
+    EXPECT_EQ(material(3).type, MaterialType::RoughConductor);
+    EXPECT_EQ(material(3).texture(P::SpecularReflectance), 0);
+    EXPECT_EQ(material(3).texture(P::Albedo), kNoTexture);
+}
+
 }  // namespace mitsuba_xml_test
 }  // namespace
 }  // namespace wp::test

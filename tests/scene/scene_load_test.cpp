@@ -10,7 +10,9 @@
 #include <string>
 
 #include "scene/named_media.h"
+#include "scene/plastic_constants.h"
 #include "scene/scene.h"
+#include "scene/texture_section.h"
 
 namespace {
 
@@ -203,6 +205,43 @@ TEST(SceneLoad, ConductorsAndNamedMediaAreRead) {
     EXPECT_TRUE(scene.features().rough_conductor);
     EXPECT_TRUE(scene.features().conductor);
     EXPECT_TRUE(scene.features().non_specular());
+}
+
+// {"texture": name} as a plastic's diffuse_reflectance and specular_reflectance
+// and a conductor's specular_reflectance: the material's slot names the
+// texture, its constant is 0 (unused), the untextured parameters keep theirs.
+// The textured plastic's specular sampling weight takes the textures' means as
+// Mitsuba 3.9.1's Texture::mean() prints them: a checkerboard of rgb
+// (1, 0, 0) and (0, 0, 0.5) 0.25 (its colours' channel means averaged), a raw
+// bitmap of texels (1, 0, 0) and (0, 0, 1) 0.14242 (the mean luminance).
+TEST(SceneLoad, TexturedPlasticsAndConductors) {
+    wp::Scene scene = wp::parse_scene(R"({
+        "camera": {"position": [0, 0, 0], "look_at": [0, 0, -1], "fov_y": 45, "width": 8, "height": 8},
+        "textures": {"checks": {"type": "checkerboard", "color0": [1, 0, 0], "color1": [0, 0, 0.5]}},
+        "materials": {
+            "tiled": {"type": "roughplastic", "diffuse_reflectance": {"texture": "checks"}, "specular_reflectance": 0.5},
+            "metal": {"type": "conductor", "specular_reflectance": {"texture": "checks"}}
+        },
+        "shapes": [{"type": "sphere", "center": [0, 0, -5], "radius": 1, "material": "tiled"}]})",
+                                      "textured.json");
+    using P = wp::TexturedParameter;
+    const wp::Material& tiled = scene.materials[material_named(scene, "tiled")];
+    EXPECT_EQ(tiled.texture(P::Albedo), 0);
+    EXPECT_EQ(tiled.texture(P::SpecularReflectance), wp::kNoTexture);
+    expect_vec3_eq(tiled.albedo, {0.0, 0.0, 0.0});
+    expect_vec3_eq(tiled.specular_reflectance, {0.5, 0.5, 0.5});
+    const wp::Material& metal = scene.materials[material_named(scene, "metal")];
+    EXPECT_EQ(metal.texture(P::SpecularReflectance), 0);
+    EXPECT_EQ(metal.texture(P::Albedo), wp::kNoTexture);
+    EXPECT_TRUE(scene.features().textures);
+    EXPECT_NEAR(wp::texture_mean(scene.textures[0]), 0.25, 1e-12);
+    // Mitsuba's weight s / (d + s) with the texture's mean as d
+    const std::size_t tiled_index = std::size_t(material_named(scene, "tiled"));
+    EXPECT_NEAR(wp::plastic_tables(scene.materials, scene.textures).materials[tiled_index].specular_sampling_weight,
+                0.5 / (0.25 + 0.5), 1e-12);
+    wp::Texture bitmap;
+    bitmap.width = 2, bitmap.height = 1, bitmap.texels = {1, 0, 0, 0, 0, 1};
+    EXPECT_NEAR(wp::texture_mean(bitmap), 0.14242, 1e-5);
 }
 
 TEST(SceneLoad, PlasticsAreReadWithMitsubasDefaults) {
