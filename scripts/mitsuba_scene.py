@@ -26,7 +26,8 @@ wavepath code agreeing with itself. The mapping (docs/mitsuba.md):
 - textures: Mitsuba's `bitmap` and `checkerboard` of the same parameters,
   `to_uv` as a 3x3 transform, in place of a textured colour parameter (a
   diffuse `reflectance`, a plastic's `diffuse_reflectance`, a conductor's or
-  plastic's `specular_reflectance`);
+  plastic's `specular_reflectance`, a roughconductor's or roughdielectric's
+  `alpha`, `alpha_u` or `alpha_v`);
 - shapes: spheres as `sphere`; quads as two-triangle PLY meshes written into
   the work directory (Mitsuba's `rectangle` is orthogonal only, and quads may
   be sheared), with uvs (0, 0) at the corner, (1, 0) at corner + edge1 and
@@ -407,8 +408,10 @@ def emission(material):
     return radiance if radiance is not None and any(c > 0 for c in radiance) else None
 
 
-# The materials' colour parameters that may be {"texture": name} (docs/scene-format.md).
-TEXTURABLE_KEYS = ("albedo", "diffuse_reflectance", "specular_reflectance")
+# The materials' parameters that may be {"texture": name} (docs/scene-format.md): colours, and
+# the rough conductors' and dielectrics' roughness, which Mitsuba reads from the same texture plugins.
+COLOUR_KEYS = ("albedo", "diffuse_reflectance", "specular_reflectance")
+TEXTURABLE_KEYS = COLOUR_KEYS + ("alpha", "alpha_u", "alpha_v")
 
 
 def rgb_or_texture(value):
@@ -429,7 +432,7 @@ def bsdf(material):
         # The same names and parameters: wavepath's materials are Mitsuba's, two-sided.
         plugin = {"type": kind}
         for key, value in material.items():
-            if key in TEXTURABLE_KEYS:
+            if key in COLOUR_KEYS:
                 plugin[key] = rgb_or_texture([value] * 3 if isinstance(value, (int, float)) else value)
             elif key in ("eta", "k"):
                 plugin[key] = rgb([value] * 3 if isinstance(value, (int, float)) else value)

@@ -245,15 +245,30 @@ WP_FN Texture texture_at(__global const TextureDescriptor *textures, lane_uint i
     return t;
 }
 
-/* Textured parameter `parameter` (WP_TEXTURED_*) of `material` at uv,
- * `untextured` where the material gives it no texture (colour_parameter); a
- * texture is read only where some lane's material names one. */
+/* The texture of `material`'s parameter `parameter` (WP_TEXTURED_*), or WP_NO_TEXTURE. */
+WP_FN lane_uint material_texture(WP_SCENE_PARAMS, lane_uint material, uint parameter) {
+    return gather(&material_textures->texture[parameter], material * WP_STRUCT_WORDS(material_textures));
+}
+
+/* Colour parameter `parameter` of `material` at uv, `untextured` where the
+ * material gives it no texture (colour_parameter); a texture is read only
+ * where some lane's material names one. */
 WP_FN vec3 material_colour(WP_SCENE_PARAMS, lane_uint material, TextureUV uv, uint parameter, vec3 untextured) {
-    lane_uint texture = gather(&material_textures->texture[parameter], material * WP_STRUCT_WORDS(material_textures));
+    lane_uint texture = material_texture(WP_SCENE_ARGS, material, parameter);
     lane_int textured = texture != WP_NO_TEXTURE;
     if (!lanes_any(textured)) return untextured;
     return colour_parameter(untextured, texture, texture_at(textures, textured ? texture : (lane_uint)0u), texels, uv);
 }
+
+#if defined(WP_HAS_ROUGH_CONDUCTOR) || defined(WP_HAS_ROUGH_DIELECTRIC)
+/* Scalar parameter `parameter` of `material` at uv, as material_colour (scalar_parameter). */
+WP_FN real material_scalar(WP_SCENE_PARAMS, lane_uint material, TextureUV uv, uint parameter, real untextured) {
+    lane_uint texture = material_texture(WP_SCENE_ARGS, material, parameter);
+    lane_int textured = texture != WP_NO_TEXTURE;
+    if (!lanes_any(textured)) return untextured;
+    return scalar_parameter(untextured, texture, texture_at(textures, textured ? texture : (lane_uint)0u), texels, uv);
+}
+#endif
 
 /* m, the fields of `material`, with its textured parameters looked up at uv
  * (the lanes whose material has none keep its constants). */
@@ -279,6 +294,11 @@ WP_FN Material textured_material(WP_SCENE_PARAMS, Material m, lane_uint material
 #ifdef WP_HAS_ROUGH_PLASTIC
     m.roughplastic.diffuse_reflectance = albedo;
     m.roughplastic.specular_reflectance = specular;
+#endif
+#if defined(WP_HAS_ROUGH_CONDUCTOR) || defined(WP_HAS_ROUGH_DIELECTRIC)
+    /* roughplastic's roughness is untextured (Mitsuba's tables depend on it): m.roughplastic.m keeps it */
+    m.microfacet.alpha_u = material_scalar(WP_SCENE_ARGS, material, uv, WP_TEXTURED_ALPHA_U, m.microfacet.alpha_u);
+    m.microfacet.alpha_v = material_scalar(WP_SCENE_ARGS, material, uv, WP_TEXTURED_ALPHA_V, m.microfacet.alpha_v);
 #endif
     return m;
 }

@@ -94,10 +94,14 @@ typedef struct {
 /* The material parameters that may be textured (docs/scene-format.md),
  * src/scene/scene.h's TexturedParameter in the same order: the albedo (the
  * diffuse albedo, the plastics' diffuse_reflectance: DeviceMaterial's
- * albedo) and the conductors' and plastics' specular_reflectance. */
+ * albedo), the conductors' and plastics' specular_reflectance, and the
+ * roughconductor's and roughdielectric's roughness along each tangent
+ * (alpha_u, alpha_v). */
 #define WP_TEXTURED_ALBEDO 0
 #define WP_TEXTURED_SPECULAR_REFLECTANCE 1
-#define WP_TEXTURED_PARAMETERS 2
+#define WP_TEXTURED_ALPHA_U 2
+#define WP_TEXTURED_ALPHA_V 3
+#define WP_TEXTURED_PARAMETERS 4
 
 /* Which of a material's parameters are textured: per WP_TEXTURED_*, an
  * index into the textures (shared/texture.h), or WP_NO_TEXTURE where the

@@ -161,4 +161,17 @@ WP_FN vec3 colour_parameter(vec3 untextured, lane_uint texture, Texture t, WP_GL
     return v3_select(texture != WP_NO_TEXTURE, texture_value(t, texels, uv), untextured);
 }
 
+/* A material's scalar parameter (a roughness) at a hit of uv `uv`, as
+ * colour_parameter: its constant, or its texture's value there read as
+ * Mitsuba's eval_1 reads a colour texture: a bitmap's luminance, a
+ * checkerboard's channel mean (checked against Mitsuba 3.9.1). */
+WP_FN real scalar_parameter(real untextured, lane_uint texture, Texture t, WP_GLOBAL const real_element *texels,
+                            TextureUV uv) {
+    vec3 c = texture_value(t, texels, uv);
+    real luminance = REAL(0.212671) * c.x + REAL(0.715160) * c.y + REAL(0.072169) * c.z;
+    real mean = (c.x + c.y + c.z) / REAL(3.0);
+    real value = t.type == WP_TEXTURE_CHECKERBOARD ? mean : luminance;
+    return texture != WP_NO_TEXTURE ? value : untextured;
+}
+
 #endif

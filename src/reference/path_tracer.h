@@ -227,6 +227,15 @@ Vec3<Real> surface_colour(const ReferenceScene<Real>& scene, const SurfacePoint<
         untextured, texture, scene.texture_table[texture == WP_NO_TEXTURE ? 0u : texture], scene.texels.data(), x.uv);
 }
 
+// Textured scalar parameter p of surface x's material at x's uv, as surface_colour (shared/texture.h).
+template <class Real>
+Real surface_scalar(const ReferenceScene<Real>& scene, const SurfacePoint<Real>& x, TexturedParameter p,
+                    Real untextured) {
+    const std::uint32_t texture = scene.material_textures[x.material][static_cast<std::size_t>(p)];
+    return SharedMath<Real>::scalar_parameter(
+        untextured, texture, scene.texture_table[texture == WP_NO_TEXTURE ? 0u : texture], scene.texels.data(), x.uv);
+}
+
 // The material at surface x with its textured parameters looked up at x's uv (the kernels' textured_material).
 template <class Real>
 typename ReferenceScene<Real>::SurfaceMaterial material_at(const ReferenceScene<Real>& scene,
@@ -239,6 +248,9 @@ typename ReferenceScene<Real>::SurfaceMaterial material_at(const ReferenceScene<
     material.albedo = material.plastic.diffuse_reflectance = material.roughplastic.diffuse_reflectance = albedo;
     material.specular_reflectance = material.plastic.specular_reflectance = material.roughplastic.specular_reflectance =
         specular;
+    // roughplastic's roughness stays untextured (Mitsuba's tables depend on it): roughplastic.m keeps it
+    material.microfacet.alpha_u = surface_scalar(scene, x, TexturedParameter::AlphaU, material.microfacet.alpha_u);
+    material.microfacet.alpha_v = surface_scalar(scene, x, TexturedParameter::AlphaV, material.microfacet.alpha_v);
     return material;
 }
 

@@ -535,7 +535,8 @@ void read_conductor_index(const Plugin& bsdf, Material& m) {
     m.k = index->k;
 }
 
-// A rough material's `distribution` (default beckmann) and `alpha` or `alpha_u` and `alpha_v` (default 0.1).
+// A rough material's `distribution` (default beckmann) and `alpha` or `alpha_u` and `alpha_v` (default 0.1);
+// a roughness that is a texture is 0 here (Reader::bsdf_material reads the texture).
 void read_microfacet(const Plugin& bsdf, Material& m) {
     if (const XmlElement* p = bsdf.property("distribution")) {
         const std::string name = *bsdf.optional_string("distribution");
@@ -544,6 +545,7 @@ void read_microfacet(const Plugin& bsdf, Material& m) {
         m.distribution = name == "ggx" ? Microfacet::GGX : Microfacet::Beckmann;
     }
     auto roughness = [&](std::string_view name) {
+        if (bsdf.texture(name)) return 0.0;
         const double alpha = *bsdf.optional_number(name);
         if (!(alpha >= kMinRoughness)) {
             bsdf.fail(*bsdf.property(name), std::string(name) + ": must be >= " + format_number(kMinRoughness) +
@@ -551,9 +553,14 @@ void read_microfacet(const Plugin& bsdf, Material& m) {
         }
         return alpha;
     };
-    const bool alpha = bsdf.property("alpha"), alpha_u = bsdf.property("alpha_u"), alpha_v = bsdf.property("alpha_v");
+    auto given = [&](std::string_view name) { return bsdf.property(name) || bsdf.texture(name); };
+    const bool alpha = given("alpha"), alpha_u = given("alpha_u"), alpha_v = given("alpha_v");
     if (alpha_u || alpha_v) {
-        if (alpha) bsdf.fail(*bsdf.property("alpha"), "alpha: give either alpha or alpha_u and alpha_v, not both");
+        if (alpha) {
+            const char* both = "alpha: give either alpha or alpha_u and alpha_v, not both";
+            if (const XmlElement* p = bsdf.property("alpha")) bsdf.fail(*p, both);
+            bsdf.fail(both);
+        }
         if (!alpha_u || !alpha_v) bsdf.fail("alpha_u and alpha_v: give both");
         m.alpha_u = roughness("alpha_u");
         m.alpha_v = roughness("alpha_v");
@@ -580,6 +587,14 @@ constexpr TexturableProperty kTexturableProperties[] = {
     {"plastic", "specular_reflectance", TexturedParameter::SpecularReflectance},
     {"roughplastic", "diffuse_reflectance", TexturedParameter::Albedo},
     {"roughplastic", "specular_reflectance", TexturedParameter::SpecularReflectance},
+    {"roughconductor", "alpha", TexturedParameter::AlphaU},
+    {"roughconductor", "alpha", TexturedParameter::AlphaV},
+    {"roughconductor", "alpha_u", TexturedParameter::AlphaU},
+    {"roughconductor", "alpha_v", TexturedParameter::AlphaV},
+    {"roughdielectric", "alpha", TexturedParameter::AlphaU},
+    {"roughdielectric", "alpha", TexturedParameter::AlphaV},
+    {"roughdielectric", "alpha_u", TexturedParameter::AlphaU},
+    {"roughdielectric", "alpha_v", TexturedParameter::AlphaV},
 };
 
 // Every property must be one of `properties`, and every texture (nested or
@@ -587,7 +602,8 @@ constexpr TexturableProperty kTexturableProperties[] = {
 void allow_bsdf_properties(const Plugin& bsdf, std::initializer_list<std::string_view> properties) {
     std::vector<std::string_view> texturable;
     for (const TexturableProperty& t : kTexturableProperties)
-        if (t.bsdf == bsdf.type()) texturable.push_back(t.property);
+        if (t.bsdf == bsdf.type() && std::find(texturable.begin(), texturable.end(), t.property) == texturable.end())
+            texturable.push_back(t.property);
     bsdf.allow(properties, {"texture"});
     bsdf.textures_only_as(texturable);
 }
@@ -650,7 +666,7 @@ Material read_roughconductor(const Plugin& bsdf, const std::function<Material(co
 }
 
 Material read_roughdielectric(const Plugin& bsdf, const std::function<Material(const XmlElement&)>&) {
-    bsdf.allow({"int_ior", "ext_ior", "distribution", "alpha", "alpha_u", "alpha_v"});
+    allow_bsdf_properties(bsdf, {"int_ior", "ext_ior", "distribution", "alpha", "alpha_u", "alpha_v"});
     Material m;
     m.type = MaterialType::RoughDielectric;
     m.ior = ior(bsdf, "int_ior", "bk7") / ior(bsdf, "ext_ior", "air");
@@ -1022,7 +1038,7 @@ class Reader {
             for (const TexturableProperty& t : kTexturableProperties)
                 if (t.bsdf == bsdf.type())
                     if (const XmlElement* texture = bsdf.texture(t.property))
-                        m.texture(t.parameter) = texture_index(*texture);
+                        m.texture(t.parameter) = textured_parameter(bsdf, t, *texture);
             return m;
         }
         bsdf.fail("not supported (supported: " + supported + ")");
@@ -1043,6 +1059,18 @@ class Reader {
         }
         plugin.fail(*plugin.property(name), "string " + in_quotes(name) + ": unknown value " + in_quotes(*given) +
                                                 " (supported: " + known + ")");
+    }
+
+    // The texture of BSDF property t as its index into the scene's textures; a roughness texture must
+    // be one everywhere (roughness_texture_problem).
+    int textured_parameter(const Plugin& bsdf, const TexturableProperty& t, const XmlElement& texture) {
+        const int index = texture_index(texture);
+        const bool roughness = t.parameter == TexturedParameter::AlphaU || t.parameter == TexturedParameter::AlphaV;
+        if (roughness) {
+            const std::string problem = roughness_texture_problem(out_.scene.textures[std::size_t(index)]);
+            if (!problem.empty()) bsdf.fail(std::string(t.property) + ": " + problem);
+        }
+        return index;
     }
 
     // A <texture> as an index into the scene's textures (each element read once).

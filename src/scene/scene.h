@@ -114,10 +114,12 @@ struct Texture {
 // The material parameters that may be textured (docs/scene-format.md), each
 // a slot of Material::textures: Albedo is the diffuse albedo and the
 // plastics' diffuse_reflectance (Material::albedo), SpecularReflectance the
-// conductors' and plastics' specular_reflectance. The kernels' WP_TEXTURED_*
-// (kernels/interface/scene_layout.h) in the same order.
-enum class TexturedParameter { Albedo, SpecularReflectance };
-inline constexpr std::size_t kTexturedParameters = 2;
+// conductors' and plastics' specular_reflectance, AlphaU and AlphaV the
+// roughconductor's and roughdielectric's roughness (alpha_u, alpha_v; `alpha`
+// is both). The kernels' WP_TEXTURED_* (kernels/interface/scene_layout.h) in
+// the same order.
+enum class TexturedParameter { Albedo, SpecularReflectance, AlphaU, AlphaV };
+inline constexpr std::size_t kTexturedParameters = 4;
 
 // The microfacet distributions of the rough materials (kernels/shared/materials/microfacet.h).
 enum class Microfacet { Beckmann, GGX };
@@ -141,7 +143,7 @@ struct Material {
     double alpha_u = 0.1, alpha_v = 0.1;
     bool nonlinear = false;  // plastic and roughplastic: Mitsuba's `nonlinear` (colours saturate under the coat)
     // Per TexturedParameter: an index into Scene::textures, or kNoTexture for the constant above.
-    std::array<int, kTexturedParameters> textures{kNoTexture, kNoTexture};
+    std::array<int, kTexturedParameters> textures{kNoTexture, kNoTexture, kNoTexture, kNoTexture};
     int& texture(TexturedParameter p) { return textures[static_cast<std::size_t>(p)]; }
     int texture(TexturedParameter p) const { return textures[static_cast<std::size_t>(p)]; }
     bool textured() const;  // some parameter is

@@ -205,9 +205,26 @@ void read_distribution(const JsonField& field, Material& material) {
     }
 }
 
+// A roughconductor's or roughdielectric's roughness along one tangent, which
+// may be textured: {"texture": "<name>"} names material's texture for
+// `parameter` (`value` is then 0: unused), each of whose values
+// (texture_scalar_min) must be a roughness; else the number.
+void read_textured_roughness(const JsonField& field, const std::vector<Texture>& textures, Material& material,
+                             TexturedParameter parameter, double& value) {
+    if (!field.is_object()) {
+        value = read_roughness(field);
+        return;
+    }
+    const int texture = read_texture_reference(field, textures);
+    if (const std::string problem = roughness_texture_problem(textures[std::size_t(texture)]); !problem.empty())
+        field.member("texture").fail(problem);
+    material.texture(parameter) = texture;
+    value = 0.0;
+}
+
 // A microfacet distribution: `distribution` (Mitsuba's default Beckmann)
-// and `alpha` or `alpha_u` and `alpha_v` (default 0.1).
-void read_microfacet(const JsonField& field, Material& material) {
+// and `alpha` or `alpha_u` and `alpha_v` (default 0.1), each a number or a texture.
+void read_microfacet(const JsonField& field, Material& material, const std::vector<Texture>& textures) {
     read_distribution(field, material);
     std::optional<JsonField> alpha = field.optional_member("alpha");
     std::optional<JsonField> alpha_u = field.optional_member("alpha_u"), alpha_v = field.optional_member("alpha_v");
@@ -215,10 +232,12 @@ void read_microfacet(const JsonField& field, Material& material) {
         if (alpha) alpha->fail("give either alpha or alpha_u and alpha_v, not both");
         if (!alpha_u) alpha_v->fail("needs alpha_u beside it");
         if (!alpha_v) alpha_u->fail("needs alpha_v beside it");
-        material.alpha_u = read_roughness(*alpha_u);
-        material.alpha_v = read_roughness(*alpha_v);
+        read_textured_roughness(*alpha_u, textures, material, TexturedParameter::AlphaU, material.alpha_u);
+        read_textured_roughness(*alpha_v, textures, material, TexturedParameter::AlphaV, material.alpha_v);
     } else if (alpha) {
-        material.alpha_u = material.alpha_v = read_roughness(*alpha);
+        read_textured_roughness(*alpha, textures, material, TexturedParameter::AlphaU, material.alpha_u);
+        material.alpha_v = material.alpha_u;
+        material.texture(TexturedParameter::AlphaV) = material.texture(TexturedParameter::AlphaU);
     }
 }
 
@@ -226,7 +245,7 @@ void read_rough_conductor(const JsonField& field, Material& material, const std:
     field.allow_only_keys(
         {"type", "material", "eta", "k", "specular_reflectance", "distribution", "alpha", "alpha_u", "alpha_v"});
     read_conductor(field, material, textures);
-    read_microfacet(field, material);
+    read_microfacet(field, material, textures);
 }
 
 // A dielectric interface's `int_ior` over `ext_ior`, each a number or a name
@@ -244,10 +263,10 @@ void read_dielectric(const JsonField& field, Material& material) {
     material.ior = read_relative_ior(field);
 }
 
-void read_rough_dielectric(const JsonField& field, Material& material) {
+void read_rough_dielectric(const JsonField& field, Material& material, const std::vector<Texture>& textures) {
     field.allow_only_keys({"type", "int_ior", "ext_ior", "distribution", "alpha", "alpha_u", "alpha_v"});
     material.ior = read_relative_ior(field);
-    read_microfacet(field, material);
+    read_microfacet(field, material, textures);
 }
 
 // A plastic's base and coat (the caller checks the keys), with Mitsuba's
@@ -313,7 +332,7 @@ Material read_material(const std::string& name, const JsonField& field, const st
         read_dielectric(field, material);
     } else if (type == "roughdielectric") {
         material.type = MaterialType::RoughDielectric;
-        read_rough_dielectric(field, material);
+        read_rough_dielectric(field, material, textures);
     } else if (type == "thindielectric") {
         material.type = MaterialType::ThinDielectric;
         read_dielectric(field, material);

@@ -2,8 +2,11 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <limits>
 #include <stdexcept>
+#include <string>
 
+#include "core/number_text.h"
 #include "image/image_io.h"
 #include "scene/environment_layout.h"
 #include "scene/limits.h"
@@ -152,6 +155,31 @@ int read_texture_reference(const JsonField& field, const std::vector<Texture>& t
                         " (defined: " + (names.empty() ? "none" : names) + ")");
     }
     return static_cast<int>(found - textures.begin());
+}
+
+namespace {
+namespace texture_section {
+double luminance(float r, float g, float b) { return 0.212671 * r + 0.715160 * g + 0.072169 * b; }
+double channel_mean(const glm::dvec3& c) { return (c.x + c.y + c.z) / 3.0; }
+}  // namespace texture_section
+}  // namespace
+
+double texture_scalar_min(const Texture& texture) {
+    using namespace texture_section;
+    if (texture.type == TextureType::Checkerboard)
+        return std::min(channel_mean(texture.color0), channel_mean(texture.color1));
+    double least = std::numeric_limits<double>::infinity();
+    for (std::size_t i = 0; i + 2 < texture.texels.size(); i += 3)
+        least = std::min(least, luminance(texture.texels[i], texture.texels[i + 1], texture.texels[i + 2]));
+    return least;
+}
+
+std::string roughness_texture_problem(const Texture& texture) {
+    const double least = texture_scalar_min(texture);
+    if (least >= kMinRoughness) return "";
+    return "texture " + nlohmann::json(texture.name).dump() +
+           " as a roughness must be >= " + format_number(kMinRoughness) +
+           " everywhere (a bitmap's texel luminance, a checkerboard's colour means), " + "got " + format_number(least);
 }
 
 double texture_mean(const Texture& texture) {

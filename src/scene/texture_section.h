@@ -38,4 +38,14 @@ int read_texture_reference(const JsonField& field, const std::vector<Texture>& t
 // a textured plastic's specular sampling weight takes, as Mitsuba's).
 double texture_mean(const Texture& texture);
 
+// The least value a texture takes as a scalar parameter (a roughness), read
+// as the kernels' scalar_parameter reads it (Mitsuba's eval_1): a bitmap's
+// least texel luminance (bilinear blends never go below it), a
+// checkerboard's lesser colour channel mean.
+double texture_scalar_min(const Texture& texture);
+
+// A roughness texture's problem, for one error line: empty where every
+// value it takes (texture_scalar_min) is at least kMinRoughness.
+std::string roughness_texture_problem(const Texture& texture);
+
 }  // namespace wp

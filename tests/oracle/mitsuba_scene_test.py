@@ -172,6 +172,15 @@ class ConverterTest(unittest.TestCase):
         self.assertEqual(m["bsdf"]["bsdf"]["specular_reflectance"]["type"], "checkerboard")
         self.assertEqual(m["bsdf"]["bsdf"]["material"], "Au")
 
+    def test_textured_roughness_becomes_its_texture_and_a_number_stays_one(self):
+        materials = {"r": {"type": "roughconductor", "alpha_u": {"texture": "c"}, "alpha_v": 0.2},
+                     "g": {"type": "roughdielectric", "alpha": {"texture": "c"}}}
+        r, g = self.shapes(self.convert([{**QUAD, "material": "r"}, {**QUAD, "material": "g"}], materials,
+                                        textures={"c": {"type": "checkerboard"}}))
+        self.assertEqual(r["bsdf"]["bsdf"]["alpha_u"]["type"], "checkerboard")
+        self.assertEqual(r["bsdf"]["bsdf"]["alpha_v"], 0.2)
+        self.assertEqual(g["bsdf"]["alpha"]["type"], "checkerboard")
+
     def test_diffuse_emission_makes_an_area_emitter(self):
         materials = {"glow": {"type": "diffuse", "albedo": [0.5, 0.5, 0.5], "emission": [0, 0.5, 0]},
                      "dark": {"type": "diffuse", "albedo": [0.5, 0.5, 0.5], "emission": [0, 0, 0]}}

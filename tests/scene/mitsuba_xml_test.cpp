@@ -709,8 +709,9 @@ TEST_F(MitsubaXml, TexturesOfADiffuseReflectance) {
 
 // The other textured colour parameters: a plastic's and roughplastic's
 // diffuse_reflectance and specular_reflectance, a conductor's and
-// roughconductor's specular_reflectance, each its material's slot; the
-// constant of a textured parameter is 0 (unused), the others keep theirs.
+// roughconductor's specular_reflectance, and a roughconductor's and
+// roughdielectric's roughness, each its material's slot; the constant of a
+// textured parameter is 0 (unused), the others keep theirs.
 TEST_F(MitsubaXml, TexturesOfPlasticsAndConductors) {
     const Scene scene = read(sensor() + R"(
         <texture type="checkerboard" id="a"/>
@@ -721,7 +722,11 @@ TEST_F(MitsubaXml, TexturesOfPlasticsAndConductors) {
         <shape type="sphere"><point name="center" x="6" y="0" z="0"/>
             <bsdf type="twosided"><bsdf type="conductor"><ref name="specular_reflectance" id="a"/></bsdf></bsdf></shape>
         <shape type="sphere"><point name="center" x="9" y="0" z="0"/>
-            <bsdf type="roughconductor"><ref name="specular_reflectance" id="a"/></bsdf></shape>)")
+            <bsdf type="roughconductor"><ref name="specular_reflectance" id="a"/></bsdf></shape>
+        <shape type="sphere"><point name="center" x="12" y="0" z="0"/>
+            <bsdf type="roughdielectric"><ref name="alpha" id="a"/></bsdf></shape>
+        <shape type="sphere"><point name="center" x="15" y="0" z="0"/>
+            <bsdf type="roughconductor"><float name="alpha_u" value="0.3"/><ref name="alpha_v" id="a"/></bsdf></shape>)")
                             .scene;
     ASSERT_EQ(scene.textures.size(), 2u);
     auto material = [&](int sphere) {
@@ -742,6 +747,13 @@ TEST_F(MitsubaXml, TexturesOfPlasticsAndConductors) {
     EXPECT_EQ(material(3).type, MaterialType::RoughConductor);
     EXPECT_EQ(material(3).texture(P::SpecularReflectance), 0);
     EXPECT_EQ(material(3).texture(P::Albedo), kNoTexture);
+    // a roughness: `alpha` both tangents', alpha_u and alpha_v one each
+    EXPECT_EQ(material(4).type, MaterialType::RoughDielectric);
+    EXPECT_EQ(material(4).texture(P::AlphaU), 0);
+    EXPECT_EQ(material(4).texture(P::AlphaV), 0);
+    EXPECT_EQ(material(5).texture(P::AlphaU), kNoTexture);
+    EXPECT_EQ(material(5).alpha_u, 0.3);
+    EXPECT_EQ(material(5).texture(P::AlphaV), 0);
 }
 
 }  // namespace mitsuba_xml_test

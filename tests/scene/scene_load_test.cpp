@@ -220,7 +220,9 @@ TEST(SceneLoad, TexturedPlasticsAndConductors) {
         "textures": {"checks": {"type": "checkerboard", "color0": [1, 0, 0], "color1": [0, 0, 0.5]}},
         "materials": {
             "tiled": {"type": "roughplastic", "diffuse_reflectance": {"texture": "checks"}, "specular_reflectance": 0.5},
-            "metal": {"type": "conductor", "specular_reflectance": {"texture": "checks"}}
+            "metal": {"type": "conductor", "specular_reflectance": {"texture": "checks"}},
+            "brushed": {"type": "roughconductor", "alpha": {"texture": "checks"}},
+            "frosted": {"type": "roughdielectric", "alpha_u": 0.2, "alpha_v": {"texture": "checks"}}
         },
         "shapes": [{"type": "sphere", "center": [0, 0, -5], "radius": 1, "material": "tiled"}]})",
                                       "textured.json");
@@ -233,8 +235,17 @@ TEST(SceneLoad, TexturedPlasticsAndConductors) {
     const wp::Material& metal = scene.materials[material_named(scene, "metal")];
     EXPECT_EQ(metal.texture(P::SpecularReflectance), 0);
     EXPECT_EQ(metal.texture(P::Albedo), wp::kNoTexture);
+    // `alpha` textures both tangents' roughness, alpha_u and alpha_v one each
+    const wp::Material& brushed = scene.materials[material_named(scene, "brushed")];
+    EXPECT_EQ(brushed.texture(P::AlphaU), 0);
+    EXPECT_EQ(brushed.texture(P::AlphaV), 0);
+    const wp::Material& frosted = scene.materials[material_named(scene, "frosted")];
+    EXPECT_EQ(frosted.texture(P::AlphaU), wp::kNoTexture);
+    EXPECT_EQ(frosted.alpha_u, 0.2);
+    EXPECT_EQ(frosted.texture(P::AlphaV), 0);
     EXPECT_TRUE(scene.features().textures);
     EXPECT_NEAR(wp::texture_mean(scene.textures[0]), 0.25, 1e-12);
+    EXPECT_NEAR(wp::texture_scalar_min(scene.textures[0]), 1.0 / 6.0, 1e-12);  // color1's mean
     // Mitsuba's weight s / (d + s) with the texture's mean as d
     const std::size_t tiled_index = std::size_t(material_named(scene, "tiled"));
     EXPECT_NEAR(wp::plastic_tables(scene.materials, scene.textures).materials[tiled_index].specular_sampling_weight,

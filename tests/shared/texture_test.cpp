@@ -140,6 +140,27 @@ TYPED_TEST(Textures, ColourParameterIsTheConstantOrTheTexturesValueAtTheUv) {
     }
 }
 
+// A scalar parameter (a roughness): the constant without a texture, else the
+// texture read as Mitsuba 3.9.1's eval_1 reads it: a bitmap's luminance
+// (0.212671 R + 0.715160 G + 0.072169 B, the values it printed for red and blue
+// texels), a checkerboard's channel mean (it printed 1/3 for rgb (1, 0, 0)).
+TYPED_TEST(Textures, ScalarParameterIsALuminanceOfABitmapAndAChannelMeanOfACheckerboard) {
+    using R = TypeParam;
+    using M = wp::SharedMath<R>;
+    typename M::Texture t = bitmap<R>(WP_FILTER_NEAREST, WP_WRAP_REPEAT);
+    std::vector<R> texels = coded_texels<R>();
+    texels[3 * 4 + 1] = R(0.5), texels[3 * 4 + 2] = R(0.25);  // texel (1, 1): (11, 0.5, 0.25)
+    const typename M::TextureUV uv{R(0.5), R(0.75)};
+    EXPECT_EQ(M::scalar_parameter(R(0.3), WP_NO_TEXTURE, t, texels.data(), uv), R(0.3));
+    EXPECT_NEAR(M::scalar_parameter(R(0.3), 0u, t, texels.data(), uv), 0.212671 * 11 + 0.715160 * 0.5 + 0.072169 * 0.25,
+                1e-5);
+    t.type = WP_TEXTURE_CHECKERBOARD;
+    t.color0 = {R(0.3), R(0.6), R(0.9)};  // at (0.1, 0.1); color1 at (0.1, 0.6)
+    t.color1 = {R(0), R(0), R(0.3)};
+    EXPECT_NEAR(M::scalar_parameter(R(0.3), 0u, t, texels.data(), {R(0.1), R(0.1)}), 0.6, 1e-6);
+    EXPECT_NEAR(M::scalar_parameter(R(0.3), 0u, t, texels.data(), {R(0.1), R(0.6)}), 0.1, 1e-6);
+}
+
 TYPED_TEST(Textures, SphereUvAsMitsuba) {
     using R = TypeParam;
     using M = wp::SharedMath<R>;
