@@ -610,7 +610,7 @@ void allow_bsdf_properties(const Plugin& bsdf, std::initializer_list<std::string
 
 // A colour property that may be a texture: its constant in [0, 1], `fallback`
 // without it, 0 where it is a texture (whose value the material reads instead).
-glm::dvec3 reflectance(const Plugin& bsdf, std::string_view name, glm::dvec3 fallback) {
+glm::dvec3 colour_property(const Plugin& bsdf, std::string_view name, glm::dvec3 fallback) {
     if (bsdf.texture(name)) return glm::dvec3(0.0);
     return bsdf.optional_color(name, 1.0, " (energy gain)").value_or(fallback);
 }
@@ -619,7 +619,7 @@ Material read_diffuse(const Plugin& bsdf, const std::function<Material(const Xml
     allow_bsdf_properties(bsdf, {"reflectance"});
     Material m;
     m.type = MaterialType::Diffuse;
-    m.albedo = reflectance(bsdf, "reflectance", glm::dvec3(0.5));
+    m.albedo = colour_property(bsdf, "reflectance", glm::dvec3(0.5));
     return m;
 }
 
@@ -650,7 +650,7 @@ Material read_conductor(const Plugin& bsdf, const std::function<Material(const X
     Material m;
     m.type = MaterialType::Conductor;
     read_conductor_index(bsdf, m);
-    m.specular_reflectance = reflectance(bsdf, "specular_reflectance", glm::dvec3(1.0));
+    m.specular_reflectance = colour_property(bsdf, "specular_reflectance", glm::dvec3(1.0));
     return m;
 }
 
@@ -660,7 +660,7 @@ Material read_roughconductor(const Plugin& bsdf, const std::function<Material(co
     Material m;
     m.type = MaterialType::RoughConductor;
     read_conductor_index(bsdf, m);
-    m.specular_reflectance = reflectance(bsdf, "specular_reflectance", glm::dvec3(1.0));
+    m.specular_reflectance = colour_property(bsdf, "specular_reflectance", glm::dvec3(1.0));
     read_microfacet(bsdf, m);
     return m;
 }
@@ -686,8 +686,8 @@ Material read_thindielectric(const Plugin& bsdf, const std::function<Material(co
 Material plastic_coat(const Plugin& bsdf, MaterialType type) {
     Material m;
     m.type = type;
-    m.albedo = reflectance(bsdf, "diffuse_reflectance", glm::dvec3(0.5));
-    m.specular_reflectance = reflectance(bsdf, "specular_reflectance", glm::dvec3(1.0));
+    m.albedo = colour_property(bsdf, "diffuse_reflectance", glm::dvec3(0.5));
+    m.specular_reflectance = colour_property(bsdf, "specular_reflectance", glm::dvec3(1.0));
     m.ior = ior(bsdf, "int_ior", "polypropylene") / ior(bsdf, "ext_ior", "air");
     m.nonlinear = bsdf.boolean("nonlinear", false);
     return m;

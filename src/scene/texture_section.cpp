@@ -159,18 +159,19 @@ int read_texture_reference(const JsonField& field, const std::vector<Texture>& t
 
 namespace {
 namespace texture_section {
+// Mitsuba's luminance of linear RGB (what its bitmap's eval_1 and mean() take)
 double luminance(float r, float g, float b) { return 0.212671 * r + 0.715160 * g + 0.072169 * b; }
 double channel_mean(const glm::dvec3& c) { return (c.x + c.y + c.z) / 3.0; }
 }  // namespace texture_section
 }  // namespace
 
 double texture_scalar_min(const Texture& texture) {
-    using namespace texture_section;
     if (texture.type == TextureType::Checkerboard)
-        return std::min(channel_mean(texture.color0), channel_mean(texture.color1));
+        return std::min(texture_section::channel_mean(texture.color0), texture_section::channel_mean(texture.color1));
     double least = std::numeric_limits<double>::infinity();
     for (std::size_t i = 0; i + 2 < texture.texels.size(); i += 3)
-        least = std::min(least, luminance(texture.texels[i], texture.texels[i + 1], texture.texels[i + 2]));
+        least = std::min(least,
+                         texture_section::luminance(texture.texels[i], texture.texels[i + 1], texture.texels[i + 2]));
     return least;
 }
 
@@ -179,17 +180,15 @@ std::string roughness_texture_problem(const Texture& texture) {
     if (least >= kMinRoughness) return "";
     return "texture " + nlohmann::json(texture.name).dump() +
            " as a roughness must be >= " + format_number(kMinRoughness) +
-           " everywhere (a bitmap's texel luminance, a checkerboard's colour means), " + "got " + format_number(least);
+           " everywhere (a bitmap's texel luminance, a checkerboard's colour means), got " + format_number(least);
 }
 
 double texture_mean(const Texture& texture) {
-    if (texture.type == TextureType::Checkerboard) {
-        auto mean = [](const glm::dvec3& c) { return (c.x + c.y + c.z) / 3.0; };
-        return 0.5 * (mean(texture.color0) + mean(texture.color1));
-    }
+    if (texture.type == TextureType::Checkerboard)
+        return 0.5 * (texture_section::channel_mean(texture.color0) + texture_section::channel_mean(texture.color1));
     double sum = 0.0;
     for (std::size_t i = 0; i + 2 < texture.texels.size(); i += 3)
-        sum += 0.212671 * texture.texels[i] + 0.715160 * texture.texels[i + 1] + 0.072169 * texture.texels[i + 2];
+        sum += texture_section::luminance(texture.texels[i], texture.texels[i + 1], texture.texels[i + 2]);
     return sum / (double(texture.width) * double(texture.height));
 }
 
