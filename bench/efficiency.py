@@ -3,6 +3,8 @@
 
 Usage: python3 bench/efficiency.py [--binary build/wavepath] [--out bench/results] [--repeats 5]
                                    [--quiet-load 2.5] [--wait-s 1200] [--scenes room.json,cornell.json,bunny.json]
+                                   [--name efficiency]
+       python3 bench/efficiency.py --scenes materials.json --name efficiency_materials   (issue 36)
 
 Efficiency is 1 / (relMSE x time): relMSE against Mitsuba's converged image of the scene (bench/mitsuba_peer.py,
 cached in bench/out/converged-cache as bench/run.py caches them), less that image's own noise, and the render's
@@ -16,8 +18,12 @@ time. Measured per scene at 256x256 for:
 Each repetition renders every configuration once, in turn (interleaved), with the load average taken before each
 render. A configuration's efficiency is 1 / mean over runs of (relMSE x time), with the standard error of that
 mean; its ratio to Mitsuba's is stated with the two errors combined, and also per repetition (min and median).
-Writes efficiency.json and efficiency.md into --out, headed by the commit, date, machine, OpenCL platform and the
-command that reproduces them, and the targets met or not into the generated block of --out's analysis.md.
+A scene is one of SCENE_SPP's, found in scenes/ or else in bench/scenes/ (the bench's own, such as issue 36's
+material-test scene). Each scene's run ends with one profiled render of the default command (--profile-json): its
+stages' device time per sample, what the time per sample is spent on.
+Writes NAME.json and NAME.md (--name, default efficiency) into --out, headed by the commit, date, machine, OpenCL
+platform and the command that reproduces them, and the targets met or not into the generated block of --out's
+analysis.md that names NAME.json.
 --quiet-load waits (up to --wait-s) for the 1-minute load average to fall below it before starting, and the
 results say whether it did.
 """
@@ -42,7 +48,12 @@ SIZE = 256
 # `stratified` and `ldsampler` round other counts up to a power of four (32 to 36 and to 64), and a scrambled
 # net's error per sample falls with the sample count, so samplers compared at different counts are not like
 # for like. Each scene's table says what every configuration took.
-SCENE_SPP = {"room.json": 64, "cornell.json": 64, "bunny.json": 16}
+SCENE_SPP = {"room.json": 64, "cornell.json": 64, "bunny.json": 16, "materials.json": 64}
+DEFAULT_SCENES = "room.json,cornell.json,bunny.json"
+# The issue whose targets a scene's run reads: issue 36's material-test scene (bench/scenes/materials.json: a
+# textured floor, rough metal, plastic and glass under an environment map); the others issue 21's.
+SCENE_ISSUE = {"materials.json": 36}
+BACKEND_AUTO_SOURCE = "efficiency"  # the --name whose .json src/cli/backend_choice.cpp restates
 CONVERGED_SPP = 4096
 BACKENDS = ["wavefront", "megakernel", "reference"]  # the explicit ones, beside the default command; --backend auto ranks them
 # Who --backend auto ranks first where two backends tie (neither has a clear lead, clear_lead): the wavefront, which
@@ -69,6 +80,18 @@ def wait_for_quiet(threshold, wait_s):
         time.sleep(60)
 
 
+def scene_path(scene):
+    """A scene of SCENE_SPP: the shipped one (scenes/) or else the bench's own (bench/scenes/)."""
+    for folder in (os.path.join(ROOT, "scenes"), os.path.join(ROOT, "bench", "scenes")):
+        if os.path.exists(os.path.join(folder, scene)):
+            return os.path.join(folder, scene)
+    sys.exit(f"efficiency: {scene}: in neither scenes/ nor bench/scenes/")
+
+
+def issue(scene):
+    return SCENE_ISSUE.get(scene, 21)
+
+
 def scene_has_meshes(path):
     with open(path) as f:
         return any(shape.get("type") == "mesh" for shape in json.load(f).get("shapes", []))
@@ -91,7 +114,7 @@ def configurations():
 def measure_scene(runner, peer, scene, spp, repeats, cache):
     """Every configuration's runs on one scene, interleaved: relMSE (less the truth's noise), time, samples/s
     and the load average before the run."""
-    path = os.path.join(ROOT, "scenes", scene)
+    path = scene_path(scene)
     truth = peer.converged(path, SIZE, CONVERGED_SPP, scene_max_depth(path), cache)
     noise = rel_noise(truth.variance, truth.image)
     runs = {label: [] for label, _ in configurations()}
@@ -110,8 +133,11 @@ def measure_scene(runner, peer, scene, spp, repeats, cache):
                                 "time_s": r["time_s"], "samples": r["samples"],
                                 "samples_per_s": r["samples_per_s"], "load_average": round(load, 2),
                                 "backend_choice": r.get("backend_choice")})
+    profiled = runner.render(path, None, SIZE, SIZE, spp, profile=True, seed=repeats)
     return {"scene": scene, "spp": spp, "meshes": scene_has_meshes(path), "truth_spp": CONVERGED_SPP,
-            "truth_noise_relmse": noise, "truth_file": os.path.basename(truth.file), "runs": runs}
+            "truth_noise_relmse": noise, "truth_file": os.path.basename(truth.file), "runs": runs,
+            "profile": {"backend": profiled["backend"], "samples": profiled["samples"],
+                        "time_s": profiled["time_s"], "profile": profiled["profile"]}}
 
 
 def efficiency(runs):
@@ -170,7 +196,7 @@ def summarise(scene_runs):
             "mitsuba_best_sampler": best_sampler.removeprefix("mitsuba-"),
             "wavefront_over_megakernel_samples_s": spread(wavefront_over_megakernel), "ranking": ranking,
             "sobol_over_independent": sobol,
-            "backend_pairs": pairs}
+            "backend_pairs": pairs, **({"profile": scene_runs["profile"]} if "profile" in scene_runs else {})}
 
 
 # Student's t at 97.5% (one-sided) by degrees of freedom, for a lead's lower bound; beyond the table, the normal's.
@@ -249,8 +275,15 @@ def device_type(binary):
     return ""
 
 
+def issues(results):
+    """The issues whose targets the run's scenes read, as the heading names them: "21", "21 and 36"."""
+    return " and ".join(str(i) for i in sorted({issue(s["scene"]) for s in results["raw"]}))
+
+
 def targets(results):
-    """Issue 21's targets read off the run: (text, met) pairs."""
+    """The targets of the scenes' issues read off the run: (text, met) pairs. Issue 21's and 36's: the default
+    command at 1.5x Mitsuba's efficiency; issue 21's: the wavefront at 0.9x the megakernel's samples/s where no
+    meshes."""
     lines = []
     for s in results["scenes"]:
         c = s["configurations"]
@@ -268,7 +301,7 @@ def targets(results):
                       f"{s['mitsuba_best_sampler']}, {d['efficiency'] / best['efficiency']:.2f}x",
                       v["per_repetition"]["median"] >= 1.5))
     for s in results["scenes"]:
-        if not s["meshes"]:
+        if not s["meshes"] and issue(s["scene"]) == 21:
             w = s["wavefront_over_megakernel_samples_s"]
             short = "" if w["median"] >= 0.9 else f", {0.9 / w['median']:.2f}x short"
             lines.append((f"{s['scene']}: the wavefront at {w['median']:.2f}x the megakernel's samples/s (median per "
@@ -280,7 +313,7 @@ def markdown(results):
     m, command = results["meta"], results["command"]
     quiet = results["quiet"]
     loads = [r["load_average"] for s in results["raw"] for runs in s["runs"].values() for r in runs]
-    lines = ["# Efficiency against Mitsuba 3 (issue 21)", "",
+    lines = [f"# Efficiency against Mitsuba 3 (issue {issues(results)})", "",
              f"Generated by `{command}`; do not edit by hand.", "",
              f"- commit `{m['commit']}`, {m['date']}, {m['wavepath']} ({m['build_type']} build)",
              f"- machine: {m['cpu']}, {m['cores']} cores",
@@ -291,7 +324,7 @@ def markdown(results):
              f"{quiet['threshold']} (seen: {', '.join(map(str, quiet['loads_seen']))}): "
              + ("it did." if quiet["quiet"] else "it did not; measured anyway, interleaved."),
              f"- {results['repeats']} repetitions; each renders every configuration once, in turn; "
-             f"{results['elapsed_s']} s in all", "", "## Issue 21's targets in this run", ""]
+             f"{results['elapsed_s']} s in all", "", f"## Issue {issues(results)}'s targets in this run", ""]
     lines += [f"- {'met' if met else 'NOT met'}: {text}." for text, met in targets(results)]
     lines += ["", "## Method", "",
              "Efficiency = 1 / (relMSE x time), estimated as 1 / mean over the runs of relMSE x time (each run its "
@@ -343,10 +376,16 @@ def markdown(results):
                   f"- The wavefront's samples/s over the megakernel's, per repetition: {w['min']:.2f} (min), "
                   f"{w['median']:.2f} (median), {w['max']:.2f} (max).",
                   f"- The explicit backends by efficiency in this scene: {ranking}.", ""]
-    lines += ["## The ranking `--backend auto` restates", "",
+        if s.get("profile"):
+            lines += profile_lines(s)
+    restated = results["name"] == BACKEND_AUTO_SOURCE
+    lines += ["## The ranking `--backend auto` restates" if restated else
+              f"## The explicit backends ranked as `--backend auto` ranks them (it restates {BACKEND_AUTO_SOURCE}.md's, "
+              "not this)", "",
               "Per situation, the explicit backends by the geometric mean over its scenes of their efficiency over "
               "Mitsuba's, each with the range over those scenes of its per-repetition median efficiency over the "
-              "next's (src/cli/backend_choice.cpp restates it; a range across 1 is a tie between the scenes). A "
+              "next's (" + ("src/cli/backend_choice.cpp restates it; " if restated else "") +
+              "a range across 1 is a tie between the scenes). A "
               "backend's lead over the next is clear where, at 97.5% confidence per scene from the spread over "
               "repetitions, it is ahead in some scene and behind in none; otherwise the two tie and the order is "
               f"{', '.join(TIE_ORDER)}'s.",
@@ -362,14 +401,40 @@ def markdown(results):
     return "\n".join(lines) + "\n"
 
 
-ANALYSIS_BEGIN = "<!-- generated by bench/efficiency.py from efficiency.json: begin -->"
+def profile_lines(s):
+    """The profiled render's stages per sample, beside Mitsuba's whole time per sample."""
+    p, prof = s["profile"], s["profile"]["profile"]
+    samples = p["samples"]
+    mitsuba_us = 1.0 / s["configurations"][PEER]["msamples_s"]["median"]
+    default_us = 1.0 / s["configurations"]["default"]["msamples_s"]["median"]
+    lines = [f"Where the default command's time goes: one render under `--profile-json` ({p['backend']}, "
+             f"{samples / SIZE ** 2:.0f} spp, {prof['render_s']:.3f} s: {1e6 * prof['render_s'] / samples:.3f} us per "
+             f"sample; unprofiled, median of the runs above: {default_us:.3f} us; Mitsuba's independent sampler: "
+             f"{mitsuba_us:.3f} us). Device time per stage; items per sample: the rays or paths it took per camera "
+             "sample.", "",
+             "| stage | launches | items per sample | us per item | us per sample | share of the render |",
+             "|---|---|---|---|---|---|"]
+    for k in prof["kernels"]:
+        lines.append(f"| {k['name']} | {k['launches']} | {k['items'] / samples:.3f} | "
+                     f"{1e6 * k['device_s'] / max(k['items'], 1):.3f} | {1e6 * k['device_s'] / samples:.4f} | "
+                     f"{100 * k['device_s'] / prof['render_s']:.1f}% |")
+    for label, key in (("(between kernels)", "gaps_s"), ("(host, other)", "host_other_s")):
+        lines.append(f"| {label} | | | | {1e6 * prof[key] / samples:.4f} | {100 * prof[key] / prof['render_s']:.1f}% |")
+    return lines + [""]
+
+
 ANALYSIS_END = "<!-- generated by bench/efficiency.py: end -->"
+
+
+def analysis_begin(name):
+    """The marker that opens the block of analysis.md written from NAME.json (each run's name has its own)."""
+    return f"<!-- generated by bench/efficiency.py from {name}.json: begin -->"
 
 
 def analysis_block(results):
     """The run's targets as analysis.md states them, with the run they come from."""
-    m = results["meta"]
-    return "\n".join([f"From [efficiency.md](efficiency.md): commit `{m['commit']}`, {m['date']}, {m['cpu']}, "
+    m, name = results["meta"], results["name"]
+    return "\n".join([f"From [{name}.md]({name}.md): commit `{m['commit']}`, {m['date']}, {m['cpu']}, "
                       f"{results['repeats']} interleaved repetitions.", ""] +
                      [f"- **{'met' if met else 'NOT met'}**: {text}." for text, met in targets(results)])
 
@@ -378,26 +443,28 @@ def write_analysis(results, path):
     """Replaces the generated block of analysis.md (between its markers) with this run's targets; an --out
     without an analysis.md (a scratch run) has none to replace."""
     if not os.path.exists(path):
-        print(f"efficiency: no {path}: the targets are in efficiency.md alone", file=sys.stderr)
+        print(f"efficiency: no {path}: the targets are in {results['name']}.md alone", file=sys.stderr)
         return
     with open(path) as f:
         text = f.read()
-    begin, end = text.find(ANALYSIS_BEGIN), text.find(ANALYSIS_END)
+    marker = analysis_begin(results["name"])
+    begin = text.find(marker)
+    end = text.find(ANALYSIS_END, begin)
     if begin < 0 or end < begin:
-        sys.exit(f"efficiency: {path}: no block between '{ANALYSIS_BEGIN}' and '{ANALYSIS_END}' to write")
+        sys.exit(f"efficiency: {path}: no block between '{marker}' and '{ANALYSIS_END}' to write")
     with open(path, "w") as f:
-        f.write(text[:begin + len(ANALYSIS_BEGIN)] + "\n" + analysis_block(results) + "\n" + text[end:])
+        f.write(text[:begin + len(marker)] + "\n" + analysis_block(results) + "\n" + text[end:])
 
 
 def write_results(results, out):
-    """The runs' summary into `results`, then efficiency.json and efficiency.md into `out`, and the targets into
-    its analysis.md's generated block."""
+    """The runs' summary into `results`, then NAME.json and NAME.md into `out`, and the targets into its
+    analysis.md's generated block."""
     results["scenes"] = [summarise(s) for s in results["raw"]]
     results["situations"] = situations(results["scenes"])
     os.makedirs(out, exist_ok=True)
-    with open(os.path.join(out, "efficiency.json"), "w") as f:
+    with open(os.path.join(out, results["name"] + ".json"), "w") as f:
         json.dump(results, f, indent=1)
-    with open(os.path.join(out, "efficiency.md"), "w") as f:
+    with open(os.path.join(out, results["name"] + ".md"), "w") as f:
         f.write(markdown(results))
     write_analysis(results, os.path.join(out, "analysis.md"))
 
@@ -411,19 +478,25 @@ def main():
     parser.add_argument("--repeats", type=int, default=5)
     parser.add_argument("--quiet-load", type=float, default=2.5)
     parser.add_argument("--wait-s", type=float, default=1200)
-    parser.add_argument("--scenes", default=",".join(SCENE_SPP))
+    parser.add_argument("--scenes", default=DEFAULT_SCENES, help=f"of {', '.join(SCENE_SPP)}")
+    parser.add_argument("--name", default=BACKEND_AUTO_SOURCE,
+                        help="the results' file name (NAME.json, NAME.md) and analysis.md's block")
     parser.add_argument("--summarise-again", action="store_true",
-                        help="measure nothing: summarise --out's efficiency.json's runs again into it and "
-                             "efficiency.md (after a change to this script's summary)")
+                        help="measure nothing: summarise --out's NAME.json's runs again into it and "
+                             "NAME.md (after a change to this script's summary)")
     args = parser.parse_args()
     if args.summarise_again:
-        with open(os.path.join(args.out, "efficiency.json")) as f:
-            results = json.load(f)
+        with open(os.path.join(args.out, args.name + ".json")) as f:
+            results = {"name": args.name, **json.load(f)}
         write_results(results, args.out)
         return
+    unknown = [scene for scene in args.scenes.split(",") if scene not in SCENE_SPP]
+    if unknown:
+        sys.exit(f"efficiency: --scenes: {', '.join(unknown)}: not in SCENE_SPP ({', '.join(SCENE_SPP)})")
     command = "python3 bench/efficiency.py" + "".join(
         f" {flag} {shlex.quote(str(value))}" for flag, value, default in
-        (("--repeats", args.repeats, 5), ("--scenes", args.scenes, ",".join(SCENE_SPP)))
+        (("--repeats", args.repeats, 5), ("--scenes", args.scenes, DEFAULT_SCENES),
+         ("--name", args.name, BACKEND_AUTO_SOURCE))
         if value != default)
     quiet = wait_for_quiet(args.quiet_load, args.wait_s)
     binary = os.path.abspath(args.binary)
@@ -434,11 +507,11 @@ def main():
         meta = run_meta(binary, peer)
         raw = [measure_scene(runner, peer, scene, SCENE_SPP[scene], args.repeats, args.cache)
                for scene in args.scenes.split(",")]
-    results = {"command": command, "meta": meta, "device_type": device_type(binary),
+    results = {"name": args.name, "command": command, "meta": meta, "device_type": device_type(binary),
                "quiet": quiet, "repeats": args.repeats, "size": SIZE, "elapsed_s": round(time.time() - start),
                "raw": raw}
     write_results(results, args.out)
-    print(f"efficiency: wrote {args.out}/efficiency.md in {results['elapsed_s']} s")
+    print(f"efficiency: wrote {args.out}/{args.name}.md in {results['elapsed_s']} s")
 
 
 if __name__ == "__main__":
