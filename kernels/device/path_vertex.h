@@ -3,9 +3,11 @@
  * next-event estimation, BSDF sampling and Russian roulette. What is computed
  * is the shared code's (kernels/shared: materials/, lights.h, estimator.h,
  * camera.h), which the reference calls too; this header reads each lane's
- * scene data and chooses per lane (shared/prelude.h): every kind of shape,
- * light and material in the scene is computed in every lane, and each lane
- * keeps its own with a select. */
+ * scene data and chooses per lane (shared/prelude.h): every kind of shape
+ * and light in the scene is computed in every lane, and each lane keeps its
+ * own with a select; a material kind is sampled and evaluated only where some
+ * lane of the vector has it (bench/results/analysis.md, "Materials against
+ * Mitsuba 3": evaluating every kind cost each vertex the scene's others). */
 #ifndef WP_DEVICE_PATH_VERTEX_H
 #define WP_DEVICE_PATH_VERTEX_H
 
@@ -324,8 +326,8 @@ WP_FN LightShape light_shape(WP_SCENE_PARAMS, lane_uint light, real u_triangle) 
 #ifdef WP_HAS_NON_SPECULAR
 /* The path's throughput times f, and the density of BSDF sampling, for the
  * direction wi from vertex v: next-event estimation's two numbers from the
- * material (SPPM's gather takes the first at a visible point). Every non-specular kind in the scene is evaluated and
- * each lane keeps its own material's (0 at a specular one, which samples no light). */
+ * material (SPPM's gather takes the first at a visible point). Every non-specular kind that some lane has is evaluated
+ * and each lane keeps its own material's (0 at a specular one, which samples no light). */
 typedef struct {
     vec3 throughput_f;
     real pdf;
@@ -593,7 +595,7 @@ WP_FN BsdfRandom photon_bsdf_random(uint seed, uint iteration, lane_uint photon,
 }
 
 /* BSDF sampling with `random` at vertex v, reached along d, for its
- * material's kind (every kind in the scene is sampled; each lane keeps its
+ * material's kind (every kind that some lane has is sampled; each lane keeps its
  * material's), on a path that carries `transport` (WP_TRANSPORT_*). */
 WP_FN BsdfSample scatter_vertex(Vertex v, vec3 d, BsdfRandom random, uint transport) {
     Material m = v.material;
