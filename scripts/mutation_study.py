@@ -28,7 +28,9 @@ It writes docs/mutation-study.md (the commit, date, machine, each mutant with
 its file:line, its change and the test that killed it or "survived", the kill
 rate, and each survivor's reason from the mutant's `note`) and keeps
 each mutant's result in BUILD/mutation-study.json, so that rerunning some
-mutants with --only updates their rows and keeps the others'.
+mutants with --only updates their rows and keeps the others' (from that file,
+or, for mutants it has no result of, from the doc's rows: a fresh clone has
+the doc, not the build directory).
 
 It runs by hand, not in CI (40 to 60 minutes on the shared 2-core machine,
 mostly compiling the mutants). CI runs only --check (the CTest test
@@ -424,10 +426,46 @@ def machine():
     return f"{cpu}, {os.cpu_count()} cores, {distro or platform.platform()}, {compiler[0] if compiler else 'c++'}"
 
 
-def load_results(path):
+# A row of the doc's table (write_doc): its mutant, verdict, the commit it ran at when the doc names several,
+# and its build and test seconds.
+DOC_ROW = re.compile(r"^\| \d+ \| `(?P<name>[^`]+)` \| .* \| (?P<verdict>killed: .*?|\*\*survived\*\*|build failed "
+                     r"\(not counted\))(?: \(at (?P<commit>\w+)\))? \| (?P<build>\d+) \+ (?P<test>\d+) \|$")
+
+
+def results_from_doc(doc):
+    """The results the doc records (a clone has the doc, not the build directory's results): each run mutant's
+    verdict, commit and seconds, and the run's start."""
+    results = {"mutants": {}}
+    if not doc.is_file():
+        return results
+    text = doc.read_text()
+    commits = re.search(r"^- Commit: (.*)$", text, re.M)
+    only_commit = commits.group(1).strip() if commits and "," not in commits.group(1) else None
+    started = re.search(r"^- Run: (\d{4}-\d\d-\d\d \d\d:\d\d)", text, re.M)
+    if started:
+        results["started"] = started.group(1)
+    for line in text.splitlines():
+        row = DOC_ROW.match(line)
+        if not row or not (row["commit"] or only_commit):
+            continue
+        verdict = row["verdict"]
+        verdict = ("survived" if verdict == "**survived**" else "build failed" if verdict.startswith("build failed")
+                   else verdict[len("killed: "):])
+        results["mutants"][row["name"]] = {"verdict": verdict, "commit": row["commit"] or only_commit,
+                                           "build_s": float(row["build"]), "test_s": float(row["test"])}
+    return results
+
+
+def load_results(path, doc):
+    """The build directory's results of earlier runs, and for mutants it has none of, the doc's."""
+    results = results_from_doc(doc)
     if path.is_file():
-        return json.loads(path.read_text())
-    return {"mutants": {}}
+        kept = json.loads(path.read_text())
+        started = min(filter(None, [results.get("started"), kept.get("started")]))
+        results["mutants"].update(kept["mutants"])
+        results.update({key: value for key, value in kept.items() if key != "mutants"})
+        results["started"] = started
+    return results
 
 
 def save_results(path, results):
@@ -567,7 +605,7 @@ def main():
     chosen = [m for m in MUTANTS if not args.only or m.name in args.only]
 
     results_path = build / "mutation-study.json"
-    results = load_results(results_path) if args.only else {"mutants": {}}
+    results = load_results(results_path, args.doc) if args.only else {"mutants": {}}
     log_path = build / "mutation-study.log"
     started = datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M")
     with open(log_path, "w") as log:
