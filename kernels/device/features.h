@@ -30,6 +30,13 @@
     defined(WP_HAS_ROUGH_PLASTIC)
 #define WP_HAS_GLOSSY
 #endif
+/* More than one kind of BSDF: each kind's code then runs only where some
+ * lane of the vector has it (path_vertex.h, lanes_have_kind). */
+#if (defined(WP_HAS_DIFFUSE) + defined(WP_HAS_MIRROR) + defined(WP_HAS_GLASS) + defined(WP_HAS_CONDUCTOR) + \
+     defined(WP_HAS_ROUGH_CONDUCTOR) + defined(WP_HAS_ROUGH_DIELECTRIC) + defined(WP_HAS_THIN_DIELECTRIC) + \
+     defined(WP_HAS_PLASTIC) + defined(WP_HAS_ROUGH_PLASTIC)) > 1
+#define WP_HAS_MIXED_MATERIALS
+#endif
 /* The complex index and reflectance factor of conductor and roughconductor. */
 #if defined(WP_HAS_CONDUCTOR) || defined(WP_HAS_ROUGH_CONDUCTOR)
 #define WP_HAS_CONDUCTORS

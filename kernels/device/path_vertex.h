@@ -323,6 +323,19 @@ WP_FN LightShape light_shape(WP_SCENE_PARAMS, lane_uint light, real u_triangle) 
     return l;
 }
 
+/* Whether some lane of the vector has material kind `kind`: its code runs
+ * only then (a vertex pays for the kinds its vector holds, not for every
+ * kind compiled in: bench/results/analysis.md, "Materials against Mitsuba
+ * 3"). With one kind of BSDF in the scene every lane that scatters has it,
+ * and the test is compiled out. */
+WP_FN int lanes_have_kind(lane_uint type, uint kind) {
+#ifdef WP_HAS_MIXED_MATERIALS
+    return lanes_any(type == kind);
+#else
+    return 1;
+#endif
+}
+
 #ifdef WP_HAS_NON_SPECULAR
 /* The path's throughput times f, and the density of BSDF sampling, for the
  * direction wi from vertex v: next-event estimation's two numbers from the
@@ -339,7 +352,7 @@ WP_FN BsdfValue vertex_bsdf_value(Vertex v, vec3 wi, vec3 throughput) {
     b.throughput_f = make_vec3(REAL(0.0), REAL(0.0), REAL(0.0));
     b.pdf = REAL(0.0);
 #ifdef WP_HAS_DIFFUSE
-    if (lanes_any(m.type == WP_MATERIAL_DIFFUSE)) {
+    if (lanes_have_kind(m.type, WP_MATERIAL_DIFFUSE)) {
         lane_int is_diffuse = m.type == WP_MATERIAL_DIFFUSE;
         /* the albedo before 1 / pi (diffuse_eval), in the order the estimator has always rounded it */
         b.throughput_f = v3_select(is_diffuse, diffuse_eval(v3_mul(throughput, m.albedo), v.ns, wi), b.throughput_f);
@@ -347,7 +360,7 @@ WP_FN BsdfValue vertex_bsdf_value(Vertex v, vec3 wi, vec3 throughput) {
     }
 #endif
 #ifdef WP_HAS_ROUGH_CONDUCTOR
-    if (lanes_any(m.type == WP_MATERIAL_ROUGH_CONDUCTOR)) {
+    if (lanes_have_kind(m.type, WP_MATERIAL_ROUGH_CONDUCTOR)) {
         lane_int is_rough = m.type == WP_MATERIAL_ROUGH_CONDUCTOR;
         vec3 f = roughconductor_eval(m.microfacet, m.eta, m.k, m.specular_reflectance, v.ns, v.wo, wi);
         b.throughput_f = v3_select(is_rough, v3_mul(throughput, f), b.throughput_f);
@@ -355,7 +368,7 @@ WP_FN BsdfValue vertex_bsdf_value(Vertex v, vec3 wi, vec3 throughput) {
     }
 #endif
 #ifdef WP_HAS_ROUGH_DIELECTRIC
-    if (lanes_any(m.type == WP_MATERIAL_ROUGH_DIELECTRIC)) {
+    if (lanes_have_kind(m.type, WP_MATERIAL_ROUGH_DIELECTRIC)) {
         lane_int is_rough = m.type == WP_MATERIAL_ROUGH_DIELECTRIC;
         vec3 f = roughdielectric_eval(m.microfacet, m.ior, v.front, v.ns, v.wo, wi, WP_TRANSPORT_RADIANCE);
         b.throughput_f = v3_select(is_rough, v3_mul(throughput, f), b.throughput_f);
@@ -363,7 +376,7 @@ WP_FN BsdfValue vertex_bsdf_value(Vertex v, vec3 wi, vec3 throughput) {
     }
 #endif
 #ifdef WP_HAS_PLASTIC
-    if (lanes_any(m.type == WP_MATERIAL_PLASTIC)) {
+    if (lanes_have_kind(m.type, WP_MATERIAL_PLASTIC)) {
         /* the diffuse lobe's (the delta lobe has no density to sample lights by) */
         lane_int is_plastic = m.type == WP_MATERIAL_PLASTIC;
         vec3 f = plastic_eval(m.plastic, v.ns, v.wo, wi);
@@ -372,7 +385,7 @@ WP_FN BsdfValue vertex_bsdf_value(Vertex v, vec3 wi, vec3 throughput) {
     }
 #endif
 #ifdef WP_HAS_ROUGH_PLASTIC
-    if (lanes_any(m.type == WP_MATERIAL_ROUGH_PLASTIC)) {
+    if (lanes_have_kind(m.type, WP_MATERIAL_ROUGH_PLASTIC)) {
         lane_int is_rough = m.type == WP_MATERIAL_ROUGH_PLASTIC;
         vec3 f = roughplastic_eval(m.roughplastic, v.roughplastic_table, v.ns, v.wo, wi);
         b.throughput_f = v3_select(is_rough, v3_mul(throughput, f), b.throughput_f);
@@ -602,45 +615,45 @@ WP_FN BsdfSample scatter_vertex(Vertex v, vec3 d, BsdfRandom random, uint transp
     vec3 wo = v3_neg(d);
     BsdfSample scattered = no_bsdf_sample();
 #ifdef WP_HAS_DIFFUSE
-    if (lanes_any(m.type == WP_MATERIAL_DIFFUSE))
+    if (lanes_have_kind(m.type, WP_MATERIAL_DIFFUSE))
         scattered = select_bsdf_sample(m.type == WP_MATERIAL_DIFFUSE,
                                        diffuse_sample(m.albedo, v.nf, v.ns, random.u, random.v,
                                                       WP_USES_UNIFORM_HEMISPHERE, WP_USES_SHADING_NORMALS),
                                        scattered);
 #endif
 #ifdef WP_HAS_MIRROR
-    if (lanes_any(m.type == WP_MATERIAL_MIRROR))
+    if (lanes_have_kind(m.type, WP_MATERIAL_MIRROR))
         scattered =
             select_bsdf_sample(m.type == WP_MATERIAL_MIRROR,
                                mirror_sample(m.reflectance, wo, v.nf, v.ns, WP_USES_SHADING_NORMALS), scattered);
 #endif
 #ifdef WP_HAS_GLASS
-    if (lanes_any(m.type == WP_MATERIAL_GLASS))
+    if (lanes_have_kind(m.type, WP_MATERIAL_GLASS))
         scattered = select_bsdf_sample(
             m.type == WP_MATERIAL_GLASS,
             glass_sample(m.ior, v.front, wo, v.nf, v.ns, random.lobe, transport, WP_USES_SHADING_NORMALS), scattered);
 #endif
 #ifdef WP_HAS_CONDUCTOR
-    if (lanes_any(m.type == WP_MATERIAL_CONDUCTOR))
+    if (lanes_have_kind(m.type, WP_MATERIAL_CONDUCTOR))
         scattered = select_bsdf_sample(
             m.type == WP_MATERIAL_CONDUCTOR,
             conductor_sample(m.eta, m.k, m.specular_reflectance, wo, v.nf, v.ns, WP_USES_SHADING_NORMALS), scattered);
 #endif
 #ifdef WP_HAS_ROUGH_DIELECTRIC
-    if (lanes_any(m.type == WP_MATERIAL_ROUGH_DIELECTRIC))
+    if (lanes_have_kind(m.type, WP_MATERIAL_ROUGH_DIELECTRIC))
         scattered = select_bsdf_sample(m.type == WP_MATERIAL_ROUGH_DIELECTRIC,
                                        roughdielectric_sample(m.microfacet, m.ior, v.front, v.nf, v.ns, wo, random,
                                                               transport, WP_USES_SHADING_NORMALS),
                                        scattered);
 #endif
 #ifdef WP_HAS_THIN_DIELECTRIC
-    if (lanes_any(m.type == WP_MATERIAL_THIN_DIELECTRIC))
+    if (lanes_have_kind(m.type, WP_MATERIAL_THIN_DIELECTRIC))
         scattered = select_bsdf_sample(
             m.type == WP_MATERIAL_THIN_DIELECTRIC,
             thindielectric_sample(m.ior, wo, v.nf, v.ns, random.lobe, WP_USES_SHADING_NORMALS), scattered);
 #endif
 #ifdef WP_HAS_ROUGH_CONDUCTOR
-    if (lanes_any(m.type == WP_MATERIAL_ROUGH_CONDUCTOR))
+    if (lanes_have_kind(m.type, WP_MATERIAL_ROUGH_CONDUCTOR))
         scattered = select_bsdf_sample(m.type == WP_MATERIAL_ROUGH_CONDUCTOR,
                                        roughconductor_sample(m.microfacet, m.eta, m.k, m.specular_reflectance, v.nf,
                                                              v.ns, wo, random.u, random.v, WP_USES_SHADING_NORMALS),
@@ -652,7 +665,7 @@ WP_FN BsdfSample scatter_vertex(Vertex v, vec3 d, BsdfRandom random, uint transp
                            plastic_sample(m.plastic, v.nf, v.ns, wo, random, WP_USES_SHADING_NORMALS), scattered);
 #endif
 #ifdef WP_HAS_ROUGH_PLASTIC
-    if (lanes_any(m.type == WP_MATERIAL_ROUGH_PLASTIC))
+    if (lanes_have_kind(m.type, WP_MATERIAL_ROUGH_PLASTIC))
         scattered = select_bsdf_sample(
             m.type == WP_MATERIAL_ROUGH_PLASTIC,
             roughplastic_sample(m.roughplastic, v.roughplastic_table, v.nf, v.ns, wo, random, WP_USES_SHADING_NORMALS),
