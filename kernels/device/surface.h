@@ -250,23 +250,27 @@ WP_FN lane_uint material_texture(WP_SCENE_PARAMS, lane_uint material, uint param
     return gather(&material_textures->texture[parameter], material * WP_STRUCT_WORDS(material_textures));
 }
 
+/* The textures' entry `texture`, or any entry where it is WP_NO_TEXTURE
+ * (the parameter functions then keep the constant). */
+WP_FN Texture parameter_texture(__global const TextureDescriptor *textures, lane_uint texture) {
+    return texture_at(textures, texture != WP_NO_TEXTURE ? texture : (lane_uint)0u);
+}
+
 /* Colour parameter `parameter` of `material` at uv, `untextured` where the
  * material gives it no texture (colour_parameter); a texture is read only
  * where some lane's material names one. */
 WP_FN vec3 material_colour(WP_SCENE_PARAMS, lane_uint material, TextureUV uv, uint parameter, vec3 untextured) {
     lane_uint texture = material_texture(WP_SCENE_ARGS, material, parameter);
-    lane_int textured = texture != WP_NO_TEXTURE;
-    if (!lanes_any(textured)) return untextured;
-    return colour_parameter(untextured, texture, texture_at(textures, textured ? texture : (lane_uint)0u), texels, uv);
+    if (!lanes_any(texture != WP_NO_TEXTURE)) return untextured;
+    return colour_parameter(untextured, texture, parameter_texture(textures, texture), texels, uv);
 }
 
 #if defined(WP_HAS_ROUGH_CONDUCTOR) || defined(WP_HAS_ROUGH_DIELECTRIC)
 /* Scalar parameter `parameter` of `material` at uv, as material_colour (scalar_parameter). */
 WP_FN real material_scalar(WP_SCENE_PARAMS, lane_uint material, TextureUV uv, uint parameter, real untextured) {
     lane_uint texture = material_texture(WP_SCENE_ARGS, material, parameter);
-    lane_int textured = texture != WP_NO_TEXTURE;
-    if (!lanes_any(textured)) return untextured;
-    return scalar_parameter(untextured, texture, texture_at(textures, textured ? texture : (lane_uint)0u), texels, uv);
+    if (!lanes_any(texture != WP_NO_TEXTURE)) return untextured;
+    return scalar_parameter(untextured, texture, parameter_texture(textures, texture), texels, uv);
 }
 #endif
 
