@@ -1,6 +1,7 @@
 #include "image/image_io.h"
 
-#include <OpenImageIO/imageio.h>
+#include <dlfcn.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <array>
@@ -9,13 +10,17 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <stdexcept>
+#include <utility>
 #include <vector>
 
 #include "core/atomic_file.h"
+#include "image/image_codec.h"
 
 namespace wp {
 
@@ -81,28 +86,42 @@ std::vector<std::uint8_t> encode_srgb8_values(const std::vector<float>& linear) 
     return encoded;
 }
 
-[[noreturn]] void fail_write(const std::string& target, const std::string& oiio_error) {
-    throw OutputError("cannot write " + target + ": " +
-                      (oiio_error.empty() ? std::string("unknown OpenImageIO error") : oiio_error));
+// The OpenImageIO module: $WAVEPATH_IMAGE_MODULE, else the build's.
+const char* image_module_path() {
+    const char* env = std::getenv("WAVEPATH_IMAGE_MODULE");
+    return env && *env ? env : WAVEPATH_IMAGE_MODULE;
+}
+
+// The module, opened on the first call. Throws std::runtime_error naming it
+// if it cannot be loaded.
+const image_codec::Codec& codec() {
+    static const image_codec::Codec* const loaded = [] {
+        void* module = dlopen(image_module_path(), RTLD_NOW | RTLD_LOCAL);
+        const char* error = module ? nullptr : dlerror();
+        auto* entry =
+            module ? reinterpret_cast<const image_codec::Codec* (*)()>(dlsym(module, "wavepath_image_codec")) : nullptr;
+        if (!entry)  // dlerror names the module
+            throw std::runtime_error(std::string("cannot load the image library: ") + (error ? error : dlerror()));
+        return entry();
+    }();
+    return *loaded;
 }
 
 // Writes `image` to `file`, whose extension selects OpenImageIO's writer;
 // errors name `target`, the path the user asked for.
 void write_with_oiio(const Image& image, const Format& format, const fs::path& file, const std::string& target) {
-    std::unique_ptr<OIIO::ImageOutput> output = OIIO::ImageOutput::create(file.string());
-    if (!output) fail_write(target, OIIO::geterror());
-
     const bool srgb = format.encoding == Encoding::Srgb8;
-    const OIIO::TypeDesc type = srgb ? OIIO::TypeDesc::UINT8 : OIIO::TypeDesc::FLOAT;
-    OIIO::ImageSpec spec(image.width, image.height, 3, type);
-    spec.attribute("oiio:ColorSpace", srgb ? "sRGB" : "Linear");
-    if (format.compression) spec.attribute("compression", format.compression);
-
-    if (!output->open(file.string(), spec)) fail_write(target, output->geterror());
-    const bool written = srgb ? output->write_image(type, encode_srgb8_values(image.rgb).data())
-                              : output->write_image(type, image.rgb.data());
-    if (!written) fail_write(target, output->geterror());
-    if (!output->close()) fail_write(target, output->geterror());
+    const std::vector<std::uint8_t> encoded = srgb ? encode_srgb8_values(image.rgb) : std::vector<std::uint8_t>{};
+    const image_codec::Codec* writer = nullptr;
+    try {
+        writer = &codec();
+    } catch (const std::runtime_error& error) {
+        throw OutputError("cannot write " + target + ": " + error.what());
+    }
+    const std::string error =
+        writer->write(file.string(), image.width, image.height, srgb,
+                      srgb ? static_cast<const void*>(encoded.data()) : image.rgb.data(), format.compression);
+    if (!error.empty()) throw OutputError("cannot write " + target + ": " + error);
 }
 
 // PFM: "PF", width and height, a scale whose sign gives the byte order
@@ -129,7 +148,11 @@ std::uint8_t encode_srgb8(float linear) {
 }
 
 void validate_output_path(const std::string& path) {
-    format_for(path);
+    // A missing module fails here, before the render; loading it would cost
+    // every process that fails later (a scene error) what the module saves.
+    if (format_for(path).encoding != Encoding::Pfm && access(image_module_path(), R_OK) != 0)
+        throw OutputError("cannot write " + path + ": cannot load the image library: " + image_module_path() + ": " +
+                          std::strerror(errno));
     check_writable_destination(path);
 }
 
@@ -156,42 +179,36 @@ Image read_texture_image(const std::string& path, bool raw, int max_side) {
     } else {
         throw std::runtime_error(std::string("cannot open: ") + std::strerror(errno));
     }
-    std::unique_ptr<OIIO::ImageInput> input = OIIO::ImageInput::open(path);
-    if (!input) throw std::runtime_error("cannot read the image: " + OIIO::geterror());
-    const OIIO::ImageSpec& spec = input->spec();
-    if (spec.nchannels == 2) throw std::runtime_error("2 channels (grey and alpha): give grey, RGB or RGBA");
-    if (spec.width > max_side || spec.height > max_side) {
-        throw std::runtime_error(std::to_string(spec.width) + " x " + std::to_string(spec.height) +
+    image_codec::Pixels pixels;
+    const std::string error = codec().read(path, max_side, pixels);
+    if (!error.empty()) throw std::runtime_error("cannot read the image: " + error);
+    if (pixels.channels == 2) throw std::runtime_error("2 channels (grey and alpha): give grey, RGB or RGBA");
+    if (pixels.width > max_side || pixels.height > max_side) {
+        throw std::runtime_error(std::to_string(pixels.width) + " x " + std::to_string(pixels.height) +
                                  " texels, more than " + std::to_string(max_side) + " on a side");
     }
-    const int channels = std::min(spec.nchannels, 3);
-    const std::size_t texels = static_cast<std::size_t>(spec.width) * static_cast<std::size_t>(spec.height);
-    std::vector<float> stored(texels * static_cast<std::size_t>(channels));
-    if (!input->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, stored.data()))
-        throw std::runtime_error("cannot read the image: " + input->geterror());
-    const bool decode = !raw && !spec.format.is_floating_point();
+    const bool grey = pixels.channels == 1;
+    const bool decode = !raw && !pixels.floating_point;
     Image image;
-    image.width = spec.width;
-    image.height = spec.height;
-    image.rgb.resize(texels * 3);
-    for (std::size_t i = 0; i < texels * 3; ++i) {
-        const float value = stored[channels == 1 ? i / 3 : i];
+    image.width = pixels.width;
+    image.height = pixels.height;
+    image.rgb.resize(static_cast<std::size_t>(pixels.width) * static_cast<std::size_t>(pixels.height) * 3);
+    for (std::size_t i = 0; i < image.rgb.size(); ++i) {
+        const float value = pixels.values[grey ? i / 3 : i];
         image.rgb[i] = decode ? decode_srgb(value) : value;
     }
     return image;
 }
 
 Image read_image(const std::string& path) {
-    std::unique_ptr<OIIO::ImageInput> input = OIIO::ImageInput::open(path);
-    if (!input) throw std::runtime_error("cannot read " + path + ": " + OIIO::geterror());
-    const OIIO::ImageSpec& spec = input->spec();
-    if (spec.nchannels < 3) throw std::runtime_error("cannot read " + path + ": fewer than 3 channels");
+    image_codec::Pixels pixels;
+    const std::string error = codec().read(path, std::numeric_limits<int>::max(), pixels);
+    if (!error.empty()) throw std::runtime_error("cannot read " + path + ": " + error);
+    if (pixels.channels < 3) throw std::runtime_error("cannot read " + path + ": fewer than 3 channels");
     Image image;
-    image.width = spec.width;
-    image.height = spec.height;
-    image.rgb.resize(static_cast<std::size_t>(spec.width) * static_cast<std::size_t>(spec.height) * 3);
-    if (!input->read_image(0, 0, 0, 3, OIIO::TypeDesc::FLOAT, image.rgb.data()))
-        throw std::runtime_error("cannot read " + path + ": " + input->geterror());
+    image.width = pixels.width;
+    image.height = pixels.height;
+    image.rgb = std::move(pixels.values);
     return image;
 }
 

@@ -14,6 +14,7 @@
 #include "image/image_io.h"
 #include "reference/reference_renderer.h"
 #include "scene/scene.h"
+#include "support/scoped_env.h"
 
 namespace wp::test {
 namespace {
@@ -193,6 +194,26 @@ TEST_F(CliTest, OutputErrorComesBeforeSceneErrors) {
     // An unusable output path is reported without even reading the scene.
     const CommandResult result = run({"render", scenes_ / "absent.json", "-o", outputs_ / "out.bmp"});
     expect_failure(result, 4, "cannot write ");
+}
+
+TEST_F(CliTest, AMissingImageLibraryFailsBeforeRendering) {
+    // OpenImageIO is a module opened on the first image (image/image_codec.h).
+    const ScopedEnv module("WAVEPATH_IMAGE_MODULE", outputs_ / "absent.so");
+    const std::string target = outputs_ / "out.png";
+    const CommandResult result = run({"render", write_scene(base_scene().dump()), "-o", target});
+    expect_failure(result, 4,
+                   "cannot write " + target + ": cannot load the image library: " + outputs_ / "absent.so" +
+                       ": No such file or directory");
+    EXPECT_EQ(result.out, "");
+}
+
+TEST_F(CliTest, AnImageLibraryThatDoesNotLoadIsAnOutputErrorAfterTheRender) {
+    const std::string broken = scenes_ / "broken.so";
+    write_text(broken, "not a shared library");
+    const ScopedEnv module("WAVEPATH_IMAGE_MODULE", broken);
+    const std::string target = outputs_ / "out.png";
+    expect_failure(run({"render", write_scene(base_scene().dump()), "-o", target}), 4,
+                   "cannot write " + target + ": cannot load the image library: " + broken + ": ");
 }
 
 // ---- successful runs ----

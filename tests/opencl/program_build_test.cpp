@@ -12,12 +12,14 @@
 #include "opencl/device.h"
 #include "opencl/kernel_options.h"
 #include "opencl/program_cache.h"
+#include "support/scoped_env.h"
 #include "support/temp_directory.h"
 #include "wavefront/pipeline.h"
 
 namespace wp {
 namespace {
 namespace fs = std::filesystem;
+using test::ScopedEnv;
 
 // A fresh directory under the system temp dir, removed afterwards.
 struct TempDir {
@@ -33,19 +35,6 @@ struct TempDir {
         static int n = 0;
         return n;
     }
-};
-
-// Sets an environment variable for the scope, restoring the old value.
-struct ScopedEnv {
-    std::string name, old;
-    bool had;
-    ScopedEnv(const std::string& n, const std::string& value) : name(n) {
-        const char* v = std::getenv(n.c_str());
-        had = v != nullptr;
-        if (had) old = v;
-        ::setenv(n.c_str(), value.c_str(), 1);
-    }
-    ~ScopedEnv() { had ? (void)::setenv(name.c_str(), old.c_str(), 1) : (void)::unsetenv(name.c_str()); }
 };
 
 FeatureSet diffuse_spheres() {

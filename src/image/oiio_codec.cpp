@@ -1,0 +1,49 @@
+// The module libwavepath_oiio.so: image_codec.h's calls, made with OpenImageIO.
+#include <OpenImageIO/imageio.h>
+
+#include <algorithm>
+#include <memory>
+
+#include "image/image_codec.h"
+
+namespace {
+
+std::string error_or_unknown(const std::string& error) {
+    return error.empty() ? std::string("unknown OpenImageIO error") : error;
+}
+
+std::string write(const std::string& file, int width, int height, bool srgb8, const void* rgb,
+                  const char* compression) {
+    std::unique_ptr<OIIO::ImageOutput> output = OIIO::ImageOutput::create(file);
+    if (!output) return error_or_unknown(OIIO::geterror());
+    const OIIO::TypeDesc type = srgb8 ? OIIO::TypeDesc::UINT8 : OIIO::TypeDesc::FLOAT;
+    OIIO::ImageSpec spec(width, height, 3, type);
+    spec.attribute("oiio:ColorSpace", srgb8 ? "sRGB" : "Linear");
+    if (compression) spec.attribute("compression", compression);
+    if (!output->open(file, spec) || !output->write_image(type, rgb) || !output->close())
+        return error_or_unknown(output->geterror());
+    return {};
+}
+
+std::string read(const std::string& file, int max_side, wp::image_codec::Pixels& pixels) {
+    std::unique_ptr<OIIO::ImageInput> input = OIIO::ImageInput::open(file);
+    if (!input) return error_or_unknown(OIIO::geterror());
+    const OIIO::ImageSpec& spec = input->spec();
+    pixels.width = spec.width;
+    pixels.height = spec.height;
+    pixels.channels = spec.nchannels;
+    pixels.floating_point = spec.format.is_floating_point();
+    if (spec.width > max_side || spec.height > max_side) return {};
+    const int channels = std::min(spec.nchannels, 3);
+    pixels.values.resize(static_cast<std::size_t>(spec.width) * static_cast<std::size_t>(spec.height) *
+                         static_cast<std::size_t>(channels));
+    if (!input->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, pixels.values.data()))
+        return error_or_unknown(input->geterror());
+    return {};
+}
+
+constexpr wp::image_codec::Codec kCodec{write, read};
+
+}  // namespace
+
+extern "C" const wp::image_codec::Codec* wavepath_image_codec() { return &kCodec; }
