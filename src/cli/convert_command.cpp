@@ -71,8 +71,9 @@ void run_convert(const ConvertCommand& command) {
         for (const std::string& line : scene.warnings) std::cerr << "wavepath: warning: " << line << std::endl;
     write_scene_json(scene, command.output_path);
     if (!command.quiet)
-        std::cerr << "wavepath: wrote " << command.output_path << " (" << scene.scene.meshes.size() << " meshes)"
-                  << std::endl;
+        std::cerr << "wavepath: wrote " << command.output_path << " (" << scene.scene.meshes.size()
+                  << (scene.scene.meshes.size() == 1 ? " mesh" : " meshes") << ", " << scene.scene.textures.size()
+                  << (scene.scene.textures.size() == 1 ? " texture" : " textures") << ")" << std::endl;
 }
 
 }  // namespace wp::cli

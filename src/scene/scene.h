@@ -99,9 +99,12 @@ enum class TextureWrap { Repeat, Mirror, Clamp };
 struct Texture {
     std::string name;
     TextureType type = TextureType::Bitmap;
-    // bitmap: the file as the scene names it (for messages), its size and its
-    // texels in linear RGB, row by row, row 0 at v = 0 (the image's top row)
+    // bitmap: the file as the scene names it (for messages), the path it was
+    // read from, whether it was read `raw` (not decoded from sRGB), its size
+    // and its texels in linear RGB, row by row, row 0 at v = 0 (the image's top row)
     std::string file;
+    std::string path;
+    bool raw = false;
     int width = 0, height = 0;
     std::vector<float> texels;
     TextureFilter filter = TextureFilter::Bilinear;

@@ -4,7 +4,9 @@
 #include <cerrno>
 #include <cstring>
 #include <fstream>
+#include <set>
 #include <stdexcept>
+#include <type_traits>
 
 namespace wp {
 namespace {
@@ -13,11 +15,67 @@ namespace fs = std::filesystem;
 
 nlohmann::json vec3(const glm::dvec3& v) { return {v.x, v.y, v.z}; }
 
+// A file as the JSON in `folder` names it: relative to the folder where one
+// path leads to the other, else absolute.
+std::string path_from(const fs::path& folder, const std::string& file) {
+    const fs::path absolute = fs::absolute(file).lexically_normal();
+    const fs::path relative = absolute.lexically_relative(folder);
+    return (relative.empty() ? absolute : relative).generic_string();
+}
+
+// The materials' textures by the names the JSON gives them: the scene's, made
+// unique (Mitsuba names a nested texture by its type) by a suffix " 2", " 3", ...
+class TextureNames {
+ public:
+    explicit TextureNames(const std::vector<Texture>& textures) {
+        std::set<std::string> taken;
+        for (const Texture& t : textures) {
+            std::string name = t.name;
+            for (int n = 2; !taken.insert(name).second; ++n) name = t.name + " " + std::to_string(n);
+            names_.push_back(name);
+        }
+    }
+    const std::string& operator[](int texture) const { return names_[std::size_t(texture)]; }
+
+ private:
+    std::vector<std::string> names_;
+};
+
+nlohmann::json texture_json(const Texture& t, const fs::path& folder) {
+    nlohmann::json j;
+    if (t.type == TextureType::Bitmap) {
+        j = {{"type", "bitmap"},
+             {"file", path_from(folder, t.path)},
+             {"filter_type", t.filter == TextureFilter::Nearest ? "nearest" : "bilinear"},
+             {"wrap_mode", t.wrap == TextureWrap::Mirror  ? "mirror"
+                           : t.wrap == TextureWrap::Clamp ? "clamp"
+                                                          : "repeat"},
+             {"raw", t.raw}};
+    } else {
+        j = {{"type", "checkerboard"}, {"color0", vec3(t.color0)}, {"color1", vec3(t.color1)}};
+    }
+    const std::array<double, 6>& m = t.to_uv;
+    j["to_uv"] = {{m[0], m[1], m[2]}, {m[3], m[4], m[5]}};
+    return j;
+}
+
+// A material's parameter: its texture's name, or its constant.
+template <typename Constant>
+nlohmann::json parameter_json(const Material& m, TexturedParameter p, const Constant& constant,
+                              const TextureNames& textures) {
+    if (m.texture(p) != kNoTexture) return {{"texture", textures[m.texture(p)]}};
+    if constexpr (std::is_same_v<Constant, glm::dvec3>)
+        return vec3(constant);
+    else
+        return constant;
+}
+
 // plastic and roughplastic, their relative index as int_ior over an ext_ior of 1.
-nlohmann::json plastic_json(const Material& m) {
+nlohmann::json plastic_json(const Material& m, const TextureNames& textures) {
     nlohmann::json j = {{"type", m.type == MaterialType::Plastic ? "plastic" : "roughplastic"},
-                        {"diffuse_reflectance", vec3(m.albedo)},
-                        {"specular_reflectance", vec3(m.specular_reflectance)},
+                        {"diffuse_reflectance", parameter_json(m, TexturedParameter::Albedo, m.albedo, textures)},
+                        {"specular_reflectance",
+                         parameter_json(m, TexturedParameter::SpecularReflectance, m.specular_reflectance, textures)},
                         {"int_ior", m.ior},
                         {"ext_ior", 1.0},
                         {"nonlinear", m.nonlinear}};
@@ -29,36 +87,37 @@ nlohmann::json plastic_json(const Material& m) {
 }
 
 // A microfacet distribution and its roughness along each tangent.
-void add_microfacet(nlohmann::json& j, const Material& m) {
+void add_microfacet(nlohmann::json& j, const Material& m, const TextureNames& textures) {
     j["distribution"] = m.distribution == Microfacet::GGX ? "ggx" : "beckmann";
-    j["alpha_u"] = m.alpha_u;
-    j["alpha_v"] = m.alpha_v;
+    j["alpha_u"] = parameter_json(m, TexturedParameter::AlphaU, m.alpha_u, textures);
+    j["alpha_v"] = parameter_json(m, TexturedParameter::AlphaV, m.alpha_v, textures);
 }
 
 // conductor and roughconductor: the complex index per channel.
-nlohmann::json conductor_json(const Material& m) {
+nlohmann::json conductor_json(const Material& m, const TextureNames& textures) {
     nlohmann::json j = {{"type", m.type == MaterialType::Conductor ? "conductor" : "roughconductor"},
                         {"eta", vec3(m.eta)},
                         {"k", vec3(m.k)},
-                        {"specular_reflectance", vec3(m.specular_reflectance)}};
-    if (m.type == MaterialType::RoughConductor) add_microfacet(j, m);
+                        {"specular_reflectance",
+                         parameter_json(m, TexturedParameter::SpecularReflectance, m.specular_reflectance, textures)}};
+    if (m.type == MaterialType::RoughConductor) add_microfacet(j, m, textures);
     return j;
 }
 
 // roughdielectric and thindielectric, their relative index as int_ior over an ext_ior of 1.
-nlohmann::json dielectric_json(const Material& m) {
+nlohmann::json dielectric_json(const Material& m, const TextureNames& textures) {
     nlohmann::json j = {{"type", m.type == MaterialType::RoughDielectric ? "roughdielectric" : "thindielectric"},
                         {"int_ior", m.ior},
                         {"ext_ior", 1.0}};
-    if (m.type == MaterialType::RoughDielectric) add_microfacet(j, m);
+    if (m.type == MaterialType::RoughDielectric) add_microfacet(j, m, textures);
     return j;
 }
 
-nlohmann::json material_json(const Material& m) {
+nlohmann::json material_json(const Material& m, const TextureNames& textures) {
     nlohmann::json j;
     switch (m.type) {
         case MaterialType::Diffuse:
-            j = {{"type", "diffuse"}, {"albedo", vec3(m.albedo)}};
+            j = {{"type", "diffuse"}, {"albedo", parameter_json(m, TexturedParameter::Albedo, m.albedo, textures)}};
             if (m.emits()) j["emission"] = vec3(m.emission);
             break;
         case MaterialType::Mirror:
@@ -72,15 +131,15 @@ nlohmann::json material_json(const Material& m) {
             break;
         case MaterialType::Conductor:
         case MaterialType::RoughConductor:
-            j = conductor_json(m);
+            j = conductor_json(m, textures);
             break;
         case MaterialType::RoughDielectric:
         case MaterialType::ThinDielectric:
-            j = dielectric_json(m);
+            j = dielectric_json(m, textures);
             break;
         case MaterialType::Plastic:
         case MaterialType::RoughPlastic:
-            j = plastic_json(m);
+            j = plastic_json(m, textures);
             break;
     }
     if (m.two_sided) j["two_sided"] = true;
@@ -98,9 +157,7 @@ void append_le(std::string& out, std::uint32_t value) {
 }
 
 // The envmap light, its file named from the JSON's folder and its frame as a matrix.
-nlohmann::json envmap_json(const EnvironmentMap& map, const fs::path& json_path) {
-    const fs::path file = fs::absolute(map.path).lexically_normal();
-    const fs::path relative = file.lexically_relative(fs::absolute(json_path).parent_path());
+nlohmann::json envmap_json(const EnvironmentMap& map, const fs::path& folder) {
     nlohmann::json matrix = nlohmann::json::array();
     for (int row = 0; row < 4; ++row) {
         nlohmann::json numbers = nlohmann::json::array();
@@ -109,7 +166,7 @@ nlohmann::json envmap_json(const EnvironmentMap& map, const fs::path& json_path)
         matrix.push_back(numbers);
     }
     return {{"type", "envmap"},
-            {"filename", (relative.empty() ? file : relative).generic_string()},
+            {"filename", path_from(folder, map.path)},
             {"scale", map.scale},
             {"to_world", {{"matrix", matrix}}}};
 }
@@ -118,10 +175,7 @@ nlohmann::json envmap_json(const EnvironmentMap& map, const fs::path& json_path)
 
 SceneJson scene_json(const MitsubaScene& read, const fs::path& json_path) {
     const Scene& scene = read.scene;
-    // The textures' images would have to be found from the JSON's folder, and meshes' uvs written: not yet.
-    if (!scene.textures.empty())
-        throw SceneError(scene.source + ": " + scene.textures.front().name +
-                         ": textures are not written by convert yet (render the XML scene itself)");
+    const fs::path folder = fs::absolute(json_path).parent_path();
     SceneJson out;
     nlohmann::json& j = out.json;
     const Camera& c = scene.camera;
@@ -139,10 +193,16 @@ SceneJson scene_json(const MitsubaScene& read, const fs::path& json_path) {
         for (const DirectionalLight& d : scene.directional_lights)
             lights.push_back(
                 {{"type", "directional"}, {"direction", vec3(d.direction)}, {"irradiance", vec3(d.irradiance)}});
-        if (const auto& map = scene.environment_map) lights.push_back(envmap_json(*map, json_path));
+        if (const auto& map = scene.environment_map) lights.push_back(envmap_json(*map, folder));
+    }
+    const TextureNames texture_names(scene.textures);
+    if (!scene.textures.empty()) {
+        nlohmann::json& textures = j["textures"] = nlohmann::json::object();
+        for (std::size_t t = 0; t < scene.textures.size(); ++t)
+            textures[texture_names[int(t)]] = texture_json(scene.textures[t], folder);
     }
     j["materials"] = nlohmann::json::object();
-    for (const Material& m : scene.materials) j["materials"][m.name] = material_json(m);
+    for (const Material& m : scene.materials) j["materials"][m.name] = material_json(m, texture_names);
     nlohmann::json& shapes = j["shapes"] = nlohmann::json::array();
     const auto material = [&](int index) { return scene.materials[std::size_t(index)].name; };
     for (const Sphere& s : scene.spheres)
@@ -154,14 +214,11 @@ SceneJson scene_json(const MitsubaScene& read, const fs::path& json_path) {
                           {"edge1", vec3(q.edge1)},
                           {"edge2", vec3(q.edge2)},
                           {"material", material(q.material)}});
-    const fs::path folder = fs::absolute(json_path).parent_path();
     for (std::size_t i = 0; i < scene.meshes.size(); ++i) {
         const MeshOrigin& origin = read.meshes[i];
         nlohmann::json mesh = {{"type", "mesh"}, {"material", material(scene.meshes[i].material)}};
         if (origin.as_file) {
-            const fs::path file = fs::absolute(origin.file).lexically_normal();
-            const fs::path relative = file.lexically_relative(folder);
-            mesh["file"] = (relative.empty() ? file : relative).generic_string();
+            mesh["file"] = path_from(folder, origin.file);
         } else {
             const fs::path file = json_path.parent_path() /
                                   (json_path.stem().string() + "_mesh" + std::to_string(out.meshes.size()) + ".ply");
@@ -180,12 +237,15 @@ void write_ply(const fs::path& path, const ImportedMesh& mesh) {
                         std::to_string(mesh.positions.size()) +
                         "\nproperty float x\nproperty float y\nproperty float z\n";
     if (mesh.has_normals) bytes += "property float nx\nproperty float ny\nproperty float nz\n";
+    if (mesh.has_uvs) bytes += "property float u\nproperty float v\n";
     bytes += "element face " + std::to_string(mesh.triangles.size()) +
              "\nproperty list uchar int vertex_indices\nend_header\n";
     for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
         for (int k = 0; k < 3; ++k) append_le(bytes, std::bit_cast<std::uint32_t>(mesh.positions[v][k]));
         if (mesh.has_normals)
             for (int k = 0; k < 3; ++k) append_le(bytes, std::bit_cast<std::uint32_t>(mesh.normals[v][k]));
+        if (mesh.has_uvs)
+            for (int k = 0; k < 2; ++k) append_le(bytes, std::bit_cast<std::uint32_t>(mesh.uvs[v][k]));
     }
     for (const glm::uvec3& t : mesh.triangles) {
         bytes += char(3);

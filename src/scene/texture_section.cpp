@@ -101,6 +101,8 @@ void read_bitmap_file(const std::string& path, bool raw, Texture& texture) {
         if (!(value >= 0.0f && value <= 1.0f))
             throw std::runtime_error("a texel value " + format_number(value) + " is outside [0, 1] (energy gain)");
     }
+    texture.path = path;
+    texture.raw = raw;
     texture.width = image.width;
     texture.height = image.height;
     texture.texels = std::move(image.rgb);

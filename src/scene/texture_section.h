@@ -14,8 +14,8 @@ namespace wp {
 // directory of `scene_source`); at most kMaxTextureTexels texels in all.
 std::vector<Texture> read_textures(const JsonField& field, const std::string& scene_source);
 
-// A bitmap's image at `path` into texture's width, height and texels (linear
-// RGB, decoded from sRGB unless `raw`, scene/scene.h); throws
+// A bitmap's image at `path` into texture's path, raw, width, height and
+// texels (linear RGB, decoded from sRGB unless `raw`, scene/scene.h); throws
 // std::runtime_error with the one-line reason (unreadable, too large, a
 // texel outside [0, 1]). The JSON and the Mitsuba XML readers share it.
 void read_bitmap_file(const std::string& path, bool raw, Texture& texture);

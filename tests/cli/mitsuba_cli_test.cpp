@@ -47,7 +47,7 @@ TEST_F(MitsubaCli, ConvertedJsonRendersTheSameImage) {
     const std::string scene = (kScenes / "cornell_box.xml").string();
     const CommandResult convert = run({"convert", scene, "-o", out_ / "box.json"});
     ASSERT_EQ(convert.exit_code, 0) << convert.err;
-    EXPECT_EQ(convert.err, "wavepath: wrote " + (out_ / "box.json") + " (2 meshes)\n");
+    EXPECT_EQ(convert.err, "wavepath: wrote " + (out_ / "box.json") + " (2 meshes, 0 textures)\n");
     // The two cubes, written beside the JSON.
     EXPECT_EQ(out_.entries(), (std::vector<std::string>{"box.json", "box_mesh0.ply", "box_mesh1.ply"}));
     expect_same_image(scene, out_ / "box.json", {"--spp", "4", "--seed", "3", "-q"});
@@ -66,6 +66,21 @@ TEST_F(MitsubaCli, ConvertedMetalsAndGlassRenderTheSameImage) {
     ASSERT_EQ(run({"convert", scene, "-o", out_ / "metals.json"}).exit_code, 0);
     EXPECT_EQ(read_text(out_ / "metals.json").find("null"), std::string::npos);
     expect_same_image(scene, out_ / "metals.json", {"--spp", "1", "-q"});
+}
+
+// Textures (bitmaps nested and by <ref>, raw, nearest, mirror; a checkerboard;
+// their to_uv) on every parameter that takes one, through the JSON and back:
+// the images are found from the JSON's folder, which is not the XML's.
+TEST_F(MitsubaCli, ConvertedTexturesRenderTheSameImage) {
+    for (const auto& [name, textures] : {std::pair{"textures", 3}, {"textured_materials", 5}}) {
+        SCOPED_TRACE(name);
+        const std::string scene = (kScenes / (std::string(name) + ".xml")).string();
+        const std::string json = out_ / (std::string(name) + ".json");
+        const CommandResult convert = run({"convert", scene, "-o", json});
+        ASSERT_EQ(convert.exit_code, 0) << convert.err;
+        EXPECT_NE(convert.err.find(" " + std::to_string(textures) + " textures)"), std::string::npos) << convert.err;
+        expect_same_image(scene, json, {"--spp", "1", "-q"});
+    }
 }
 
 // The pixel filter travels into the JSON: an image with edges renders the same from either.
