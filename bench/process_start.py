@@ -52,7 +52,9 @@ def main():
     print(f"commit {commit}, {subprocess.run(['date', '-u'], capture_output=True, text=True).stdout.strip()}")
     print(f"machine {machine(args.binary)}")
     for name, binary in binaries.items():
-        print(f"{name}: {binary}")
+        source = subprocess.run(["git", "-C", os.path.dirname(os.path.abspath(binary)), "describe", "--always",
+                                 "--dirty", "--abbrev=12"], capture_output=True, text=True).stdout.strip()
+        print(f"{name}: {binary} (built from {source or 'an unknown commit'})")
     for command in commands:
         for name in binaries:
             values = cpu[(name, command)]
