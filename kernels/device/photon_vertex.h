@@ -112,7 +112,8 @@ WP_FN VisibleBsdf visible_point_bsdf(WP_SCENE_PARAMS, lane_uint material_word, r
     lane_uint material = visible_material_index(material_word);
     at.material = material_at(materials, material);
 #ifdef WP_HAS_TEXTURES
-    at.material = textured_material(WP_SCENE_ARGS, at.material, material, make_texture_uv(u, v));
+    at.material = textured_material(WP_SCENE_ARGS, at.material, material, parameter_textures(WP_SCENE_ARGS, material),
+                                    make_texture_uv(u, v));
 #endif
     at.front = visible_material_front(material_word);
     at.wo = wo;

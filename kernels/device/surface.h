@@ -29,7 +29,7 @@ typedef struct {
     lane_uint material;
     real error; /* bound on the point's distance from the surface (shared/hit_point.h) */
 #ifdef WP_HAS_TEXTURES
-    TextureUV uv; /* shared/texture.h; (0, 0) on planes */
+    TextureUV uv; /* shared/texture.h; (0, 0) on planes; found by vertex_at only where some lane is textured */
 #endif
 } Surface;
 
@@ -148,7 +148,7 @@ WP_FN Surface surface_at(WP_SCENE_PARAMS, lane_uint shape, vec3 origin, vec3 dir
     s.shading = s.normal;
 #endif
 #ifdef WP_HAS_TEXTURES
-    s.uv = surface_uv(WP_SCENE_ARGS, shape, s.point, s.normal);
+    s.uv = make_texture_uv(REAL(0.0), REAL(0.0));
 #endif
     return s;
 }
@@ -245,9 +245,24 @@ WP_FN Texture texture_at(__global const TextureDescriptor *textures, lane_uint i
     return t;
 }
 
-/* The texture of `material`'s parameter `parameter` (WP_TEXTURED_*), or WP_NO_TEXTURE. */
-WP_FN lane_uint material_texture(WP_SCENE_PARAMS, lane_uint material, uint parameter) {
-    return gather(&material_textures->texture[parameter], material * WP_STRUCT_WORDS(material_textures));
+/* The textures of a material's parameters, per WP_TEXTURED_*: an index
+ * into the textures, or WP_NO_TEXTURE (MaterialTextures' row), per lane. */
+typedef struct {
+    lane_uint texture[WP_TEXTURED_PARAMETERS];
+} ParameterTextures;
+
+WP_FN ParameterTextures parameter_textures(WP_SCENE_PARAMS, lane_uint material) {
+    ParameterTextures p;
+    for (uint k = 0u; k < WP_TEXTURED_PARAMETERS; ++k)
+        p.texture[k] = gather(&material_textures->texture[k], material * WP_STRUCT_WORDS(material_textures));
+    return p;
+}
+
+/* Whether some parameter of the lane's material is textured. */
+WP_FN lane_int has_texture(ParameterTextures p) {
+    lane_int any = p.texture[0] != WP_NO_TEXTURE;
+    for (uint k = 1u; k < WP_TEXTURED_PARAMETERS; ++k) any = any | (p.texture[k] != WP_NO_TEXTURE);
+    return any;
 }
 
 /* The textures' entry `texture`, or any entry where it is WP_NO_TEXTURE
@@ -256,33 +271,31 @@ WP_FN Texture parameter_texture(__global const TextureDescriptor *textures, lane
     return texture_at(textures, texture != WP_NO_TEXTURE ? texture : (lane_uint)0u);
 }
 
-/* Colour parameter `parameter` of `material` at uv, `untextured` where the
- * material gives it no texture (colour_parameter); a texture is read only
- * where some lane's material names one. */
-WP_FN vec3 material_colour(WP_SCENE_PARAMS, lane_uint material, TextureUV uv, uint parameter, vec3 untextured) {
-    lane_uint texture = material_texture(WP_SCENE_ARGS, material, parameter);
+/* A colour parameter of texture `texture` at uv, `untextured` where it has
+ * none (colour_parameter); a texture is read only where some lane's
+ * material names one. */
+WP_FN vec3 material_colour(WP_SCENE_PARAMS, lane_uint texture, TextureUV uv, vec3 untextured) {
     if (!lanes_any(texture != WP_NO_TEXTURE)) return untextured;
     return colour_parameter(untextured, texture, parameter_texture(textures, texture), texels, uv);
 }
 
 #if defined(WP_HAS_ROUGH_CONDUCTOR) || defined(WP_HAS_ROUGH_DIELECTRIC)
-/* Scalar parameter `parameter` of `material` at uv, as material_colour (scalar_parameter). */
-WP_FN real material_scalar(WP_SCENE_PARAMS, lane_uint material, TextureUV uv, uint parameter, real untextured) {
-    lane_uint texture = material_texture(WP_SCENE_ARGS, material, parameter);
+/* A scalar parameter, as material_colour (scalar_parameter). */
+WP_FN real material_scalar(WP_SCENE_PARAMS, lane_uint texture, TextureUV uv, real untextured) {
     if (!lanes_any(texture != WP_NO_TEXTURE)) return untextured;
     return scalar_parameter(untextured, texture, parameter_texture(textures, texture), texels, uv);
 }
 #endif
 
-/* m, the fields of `material`, with its textured parameters looked up at uv
- * (the lanes whose material has none keep its constants). */
-WP_FN Material textured_material(WP_SCENE_PARAMS, Material m, lane_uint material, TextureUV uv) {
+/* m, the fields of `material`, with its textured parameters (p) looked up
+ * at uv (the lanes whose material has none keep its constants). */
+WP_FN Material textured_material(WP_SCENE_PARAMS, Material m, lane_uint material, ParameterTextures p, TextureUV uv) {
 #if defined(WP_HAS_DIFFUSE) || defined(WP_HAS_PLASTICS)
     vec3 albedo =
-        material_colour(WP_SCENE_ARGS, material, uv, WP_TEXTURED_ALBEDO, SCENE_FIELD(materials, material, albedo));
+        material_colour(WP_SCENE_ARGS, p.texture[WP_TEXTURED_ALBEDO], uv, SCENE_FIELD(materials, material, albedo));
 #endif
 #if defined(WP_HAS_CONDUCTORS) || defined(WP_HAS_PLASTICS)
-    vec3 specular = material_colour(WP_SCENE_ARGS, material, uv, WP_TEXTURED_SPECULAR_REFLECTANCE,
+    vec3 specular = material_colour(WP_SCENE_ARGS, p.texture[WP_TEXTURED_SPECULAR_REFLECTANCE], uv,
                                     SCENE_FIELD(materials, material, specular_reflectance));
 #endif
 #ifdef WP_HAS_DIFFUSE
@@ -301,8 +314,8 @@ WP_FN Material textured_material(WP_SCENE_PARAMS, Material m, lane_uint material
 #endif
 #if defined(WP_HAS_ROUGH_CONDUCTOR) || defined(WP_HAS_ROUGH_DIELECTRIC)
     /* roughplastic's roughness is untextured (Mitsuba's tables depend on it): m.roughplastic.m keeps it */
-    m.microfacet.alpha_u = material_scalar(WP_SCENE_ARGS, material, uv, WP_TEXTURED_ALPHA_U, m.microfacet.alpha_u);
-    m.microfacet.alpha_v = material_scalar(WP_SCENE_ARGS, material, uv, WP_TEXTURED_ALPHA_V, m.microfacet.alpha_v);
+    m.microfacet.alpha_u = material_scalar(WP_SCENE_ARGS, p.texture[WP_TEXTURED_ALPHA_U], uv, m.microfacet.alpha_u);
+    m.microfacet.alpha_v = material_scalar(WP_SCENE_ARGS, p.texture[WP_TEXTURED_ALPHA_V], uv, m.microfacet.alpha_v);
 #endif
     return m;
 }
@@ -326,7 +339,11 @@ WP_FN Vertex vertex_at(WP_SCENE_PARAMS, lane_uint shape, vec3 origin, vec3 direc
     v.surface = surface_at(WP_SCENE_ARGS, shape, origin, direction, t);
     v.material = material_at(materials, v.surface.material);
 #ifdef WP_HAS_TEXTURES
-    v.material = textured_material(WP_SCENE_ARGS, v.material, v.surface.material, v.surface.uv);
+    ParameterTextures parameters = parameter_textures(WP_SCENE_ARGS, v.surface.material);
+    if (lanes_any(has_texture(parameters))) { /* a vector of untextured hits needs no uv */
+        v.surface.uv = surface_uv(WP_SCENE_ARGS, shape, v.surface.point, v.surface.normal);
+        v.material = textured_material(WP_SCENE_ARGS, v.material, v.surface.material, parameters, v.surface.uv);
+    }
 #endif
     v.wo = v3_neg(direction);
 #ifdef WP_HAS_ROUGH_PLASTIC

@@ -93,14 +93,21 @@ WP_FN TextureUV texture_transform(Texture t, TextureUV uv) {
 
 /* Texel coordinate x (an integer) of a row or column of `size` texels
  * wrapped into [0, size) by WP_WRAP_*: repeat; mirror (-1 -> 0, size ->
- * size - 1); clamp to the edge. */
+ * size - 1); clamp to the edge. A mode's integer divisions (a loop over the
+ * lanes in vector code) are done only where some lane has that mode. */
 WP_FN lane_int wrap_texel(lane_int x, lane_int size, lane_uint wrap) {
-    lane_int repeated = ((x % size) + size) % size;
-    lane_int reflected = x < 0 ? -x - 1 : x;
-    reflected = reflected % (size + size);
-    reflected = reflected >= size ? size + size - 1 - reflected : reflected;
-    lane_int clamped = x < 0 ? (lane_int)0 : (x >= size ? size - 1 : x);
-    return wrap == WP_WRAP_REPEAT ? repeated : (wrap == WP_WRAP_MIRROR ? reflected : clamped);
+    lane_int wrapped = x < 0 ? (lane_int)0 : (x >= size ? size - 1 : x); /* clamped */
+    if (lanes_any(wrap == WP_WRAP_REPEAT)) {
+        lane_int remainder = x % size; /* in (-size, size) */
+        wrapped = wrap == WP_WRAP_REPEAT ? (remainder < 0 ? remainder + size : remainder) : wrapped;
+    }
+    if (lanes_any(wrap == WP_WRAP_MIRROR)) {
+        lane_int reflected = x < 0 ? -x - 1 : x;
+        reflected = reflected % (size + size);
+        reflected = reflected >= size ? size + size - 1 - reflected : reflected;
+        wrapped = wrap == WP_WRAP_MIRROR ? reflected : wrapped;
+    }
+    return wrapped;
 }
 
 /* floor(x) as an integer, x first clamped to +-2^30 so that any uv (a huge
@@ -116,25 +123,36 @@ WP_FN vec3 bilinear_blend(vec3 c00, vec3 c10, vec3 c01, vec3 c11, real fx, real 
     return v3_add(v3_scale(row0, REAL(1.0) - fy), v3_scale(row1, fy));
 }
 
-/* The texel at integer coordinates (x, y), wrapped. */
-WP_FN vec3 bitmap_texel(Texture t, WP_GLOBAL const real_element *texels, lane_int x, lane_int y) {
-    lane_int width = TO_LANE_INT(t.width), height = TO_LANE_INT(t.height);
-    lane_int column = wrap_texel(x, width, t.wrap), row = wrap_texel(y, height, t.wrap);
-    lane_uint index = (t.first_texel + TO_LANE_UINT(row * width + column)) * 3u;
+/* The texel at column and row (wrapped already). */
+WP_FN vec3 bitmap_texel(Texture t, WP_GLOBAL const real_element *texels, lane_int column, lane_int row) {
+    lane_uint index = (t.first_texel + TO_LANE_UINT(row * TO_LANE_INT(t.width) + column)) * 3u;
     return make_vec3(gather(texels, index), gather(texels, index + 1u), gather(texels, index + 2u));
 }
 
+/* The nearest texel, or the bilinear blend of the four around uv, each
+ * only where some lane's filter is that one; the wrapped coordinates of the
+ * blend's two columns and two rows are found once each. */
 WP_FN vec3 bitmap_value(Texture t, WP_GLOBAL const real_element *texels, TextureUV uv) {
+    lane_int width = TO_LANE_INT(t.width), height = TO_LANE_INT(t.height);
     real x = uv.u * TO_REAL(t.width), y = uv.v * TO_REAL(t.height);
-    vec3 nearest = bitmap_texel(t, texels, floor_to_int(x), floor_to_int(y));
-    x = x - REAL(0.5), y = y - REAL(0.5);
-    real x0 = floor(x), y0 = floor(y);
-    real fx = x - x0, fy = y - y0;
-    lane_int ix = floor_to_int(x0), iy = floor_to_int(y0);
-    vec3 c00 = bitmap_texel(t, texels, ix, iy), c10 = bitmap_texel(t, texels, ix + 1, iy);
-    vec3 c01 = bitmap_texel(t, texels, ix, iy + 1), c11 = bitmap_texel(t, texels, ix + 1, iy + 1);
-    vec3 bilinear = bilinear_blend(c00, c10, c01, c11, fx, fy);
-    return v3_select(t.filter == WP_FILTER_NEAREST, nearest, bilinear);
+    lane_int nearest = t.filter == WP_FILTER_NEAREST;
+    vec3 value = make_vec3(REAL(0.0), REAL(0.0), REAL(0.0));
+    if (lanes_any(nearest)) {
+        value = bitmap_texel(t, texels, wrap_texel(floor_to_int(x), width, t.wrap),
+                             wrap_texel(floor_to_int(y), height, t.wrap));
+    }
+    if (lanes_any(!nearest)) {
+        x = x - REAL(0.5), y = y - REAL(0.5);
+        real x0 = floor(x), y0 = floor(y);
+        real fx = x - x0, fy = y - y0;
+        lane_int ix = floor_to_int(x0), iy = floor_to_int(y0);
+        lane_int column0 = wrap_texel(ix, width, t.wrap), column1 = wrap_texel(ix + 1, width, t.wrap);
+        lane_int row0 = wrap_texel(iy, height, t.wrap), row1 = wrap_texel(iy + 1, height, t.wrap);
+        vec3 c00 = bitmap_texel(t, texels, column0, row0), c10 = bitmap_texel(t, texels, column1, row0);
+        vec3 c01 = bitmap_texel(t, texels, column0, row1), c11 = bitmap_texel(t, texels, column1, row1);
+        value = v3_select(nearest, value, bilinear_blend(c00, c10, c01, c11, fx, fy));
+    }
+    return value;
 }
 
 WP_FN vec3 checkerboard_value(Texture t, TextureUV uv) {
@@ -145,9 +163,10 @@ WP_FN vec3 checkerboard_value(Texture t, TextureUV uv) {
 /* Texture t's value at the hit's uv. */
 WP_FN vec3 texture_value(Texture t, WP_GLOBAL const real_element *texels, TextureUV hit_uv) {
     TextureUV uv = texture_transform(t, hit_uv);
-    vec3 checkerboard = checkerboard_value(t, uv);
-    vec3 bitmap = bitmap_value(t, texels, uv);
-    return v3_select(t.type == WP_TEXTURE_CHECKERBOARD, checkerboard, bitmap);
+    lane_int checkerboard = t.type == WP_TEXTURE_CHECKERBOARD;
+    vec3 value = checkerboard_value(t, uv);
+    if (lanes_any(!checkerboard)) value = v3_select(checkerboard, value, bitmap_value(t, texels, uv));
+    return value;
 }
 
 /* A material's colour parameter at a hit of uv `uv`: its constant
