@@ -27,7 +27,10 @@ wavepath code agreeing with itself. The mapping (docs/mitsuba.md):
   `to_uv` as a 3x3 transform, in place of a textured colour parameter (a
   diffuse `reflectance`, a plastic's `diffuse_reflectance`, a conductor's or
   plastic's `specular_reflectance`, a roughconductor's or roughdielectric's
-  `alpha`, `alpha_u` or `alpha_v`);
+  `alpha`, `alpha_u` or `alpha_v`), and a normalmap's `normalmap`;
+- normalmap: `twosided` around Mitsuba's `normalmap` around the nested
+  material's plugin (twosided outside, so that the nested BSDF is black to an
+  arrival below the perturbed normal, as in wavepath);
 - shapes: spheres as `sphere`; quads as two-triangle PLY meshes written into
   the work directory (Mitsuba's `rectangle` is orthogonal only, and quads may
   be sheared), with uvs (0, 0) at the corner, (1, 0) at corner + edge1 and
@@ -94,6 +97,7 @@ MATERIAL_KEYS = {
     "plastic": {"type", "diffuse_reflectance", "specular_reflectance", "int_ior", "ext_ior", "nonlinear"},
     "roughplastic": {"type", "diffuse_reflectance", "specular_reflectance", "int_ior", "ext_ior", "nonlinear",
                      "distribution", "alpha"},
+    "normalmap": {"type", "normalmap", "bsdf"},
 }
 SHAPE_KEYS = {
     "sphere": {"type", "material", "center", "radius"},
@@ -198,22 +202,25 @@ class Converter:
                          for name, texture in scene.get("textures", {}).items()}
         for i, light in enumerate(scene.get("lights", [])):
             out[f"light_{i}"] = self.light(light, f"lights[{i}]")
-        materials = scene.get("materials", {})
-        for name, material in materials.items():
-            kind = material.get("type")
-            if kind not in MATERIAL_KEYS:
-                self.fail(f"materials.{name}.type", f"material type {json.dumps(kind)} has no Mitsuba counterpart here")
-            self.check_keys(material, MATERIAL_KEYS[kind], f"materials.{name}")
-            textured = {key: self.textures[value["texture"]] for key, value in material.items()
-                        if key in TEXTURABLE_KEYS and isinstance(value, dict)}
-            if textured:
-                material = {**material, **textured}
-                materials = {**materials, name: material}
+        materials = {name: self.material(material, f"materials.{name}")
+                     for name, material in scene.get("materials", {}).items()}
         extent = self.extent()
         for i, shape in enumerate(scene.get("shapes", [])):
             for k, part in enumerate(self.shape(shape, f"shapes[{i}]", materials, extent)):
                 out[f"shape_{i}_{k}"] = part
         return out
+
+    def material(self, material, where):
+        """The material with its textured parameters (and a normalmap's map and nested material's) made Mitsuba's."""
+        kind = material.get("type")
+        if kind not in MATERIAL_KEYS:
+            self.fail(f"{where}.type", f"material type {json.dumps(kind)} has no Mitsuba counterpart here")
+        self.check_keys(material, MATERIAL_KEYS[kind], where)
+        textured = {key: self.textures[value["texture"]] for key, value in material.items()
+                    if key in TEXTURABLE_KEYS + ("normalmap",) and isinstance(value, dict)}
+        if kind == "normalmap":
+            textured["bsdf"] = self.material(material["bsdf"], f"{where}.bsdf")
+        return {**material, **textured}
 
     def texture(self, texture, where):
         """Mitsuba's texture of the same type and parameters; a bitmap's file is found from the scene's directory."""
@@ -439,6 +446,12 @@ def bsdf(material):
             elif key != "type":
                 plugin[key] = value
         return {"type": "twosided", "bsdf": plugin}
+    if kind == "normalmap":
+        # twosided outside: Mitsuba's nested BSDF is then black to an arrival
+        # below the perturbed normal, as wavepath's (shared/normal_map.h)
+        nested = bsdf(material["bsdf"])
+        return {"type": "twosided", "bsdf": {"type": "normalmap", "normalmap": material["normalmap"],
+                                             "bsdf": nested["bsdf"]}}
     if kind in ("dielectric", "roughdielectric", "thindielectric"):
         # The same names and parameters; a dielectric has two sides of its own (inside and outside).
         return dict(material)

@@ -21,6 +21,9 @@
 #ifdef WP_HAS_TEXTURES
 #include "shared/texture.h"
 #endif
+#ifdef WP_HAS_NORMAL_MAP
+#include "shared/normal_map.h"
+#endif
 
 typedef struct {
     vec3 point;
@@ -321,6 +324,57 @@ WP_FN Material textured_material(WP_SCENE_PARAMS, Material m, lane_uint material
 }
 #endif
 
+#ifdef WP_HAS_NORMAL_MAP
+/* dp/du at surface s of `shape` (shared/normal_map.h): every shape kind in
+ * the scene is evaluated and each lane keeps its own kind's; zero on planes. */
+WP_FN vec3 surface_dp_du(WP_SCENE_PARAMS, lane_uint shape, Surface s) {
+    lane_uint index = shape & WP_SHAPE_INDEX_MASK;
+    lane_uint type = shape >> WP_SHAPE_TYPE_SHIFT;
+    vec3 dp_du = make_vec3(REAL(0.0), REAL(0.0), REAL(0.0));
+#ifdef WP_HAS_SPHERES
+    dp_du = v3_select(type == WP_SHAPE_SPHERE, sphere_dp_du(s.normal), dp_du);
+#endif
+#ifdef WP_HAS_QUADS
+    {
+        lane_int is_quad = type == WP_SHAPE_QUAD;
+        dp_du = v3_select(is_quad, SCENE_FIELD(quads, is_quad ? index : (lane_uint)0u, edge1), dp_du);
+    }
+#endif
+#ifdef WP_HAS_MESHES
+    {
+        lane_int is_triangle = type == WP_SHAPE_TRIANGLE;
+        lane_uint i = is_triangle ? index : (lane_uint)0u;
+        lane_uint words = i * WP_STRUCT_WORDS(triangle_uvs);
+        vec3 triangle =
+            triangle_dp_du(SCENE_FIELD(triangles, i, p0), SCENE_FIELD(triangles, i, p1), SCENE_FIELD(triangles, i, p2),
+                           gather(&triangle_uvs->uv0[0], words), gather(&triangle_uvs->uv0[1], words),
+                           gather(&triangle_uvs->uv1[0], words), gather(&triangle_uvs->uv1[1], words),
+                           gather(&triangle_uvs->uv2[0], words), gather(&triangle_uvs->uv2[1], words));
+        dp_du = v3_select(is_triangle, triangle, dp_du);
+    }
+#endif
+    return dp_du;
+}
+
+/* The shading normal of surface s of `shape`, turned to wo's side (`side`),
+ * perturbed by its material's normal map `texture` (shared/normal_map.h):
+ * `side` itself, and no terminator term, where the material has none
+ * (WP_NO_TEXTURE); the map is read only where some lane's material has one. */
+WP_FN NormalMapped surface_normal_mapped(WP_SCENE_PARAMS, lane_uint shape, Surface s, lane_uint texture, vec3 side,
+                                         vec3 wo) {
+    lane_int mapped = texture != WP_NO_TEXTURE;
+    NormalMapped none;
+    none.normal = side;
+    none.terminator_alpha2 = REAL(0.0);
+    if (!lanes_any(mapped)) return none;
+    vec3 colour = texture_value(parameter_texture(textures, texture), texels, s.uv);
+    NormalMapped m = normal_mapped(s.shading, side, surface_dp_du(WP_SCENE_ARGS, shape, s), colour, wo);
+    m.normal = v3_select(mapped, m.normal, side);
+    m.terminator_alpha2 = mapped ? m.terminator_alpha2 : REAL(0.0);
+    return m;
+}
+#endif
+
 /* A path's vertex where its ray (origin, direction) hit `shape` at t. */
 typedef struct {
     Surface surface;
@@ -329,6 +383,11 @@ typedef struct {
     lane_int front; /* the ray met the side the geometric normal points to */
     vec3 nf;        /* the geometric normal on the ray's side: where spawned rays start */
     vec3 ns;        /* the shading normal on the same side: what BSDFs and cosines use */
+#ifdef WP_HAS_NORMAL_MAP
+    vec3 ns_unperturbed;    /* ns before the material's normal map: what its terminator term measures from */
+    real terminator_alpha2; /* the map's terminator term (normal_map_terminator); 0: none */
+    lane_int shades;        /* the material scatters the path at all (normal_map_shades; 1 without a normal map) */
+#endif
 #ifdef WP_HAS_ROUGH_PLASTIC
     __global const float *roughplastic_table; /* the scene's roughplastic_transmittance */
 #endif
@@ -353,6 +412,14 @@ WP_FN Vertex vertex_at(WP_SCENE_PARAMS, lane_uint shape, vec3 origin, vec3 direc
     v.front = facing.front;
     v.nf = facing.nf;
     v.ns = facing.ns;
+#ifdef WP_HAS_NORMAL_MAP
+    lane_uint normal_map = parameters.texture[WP_TEXTURED_NORMAL_MAP];
+    NormalMapped mapped = surface_normal_mapped(WP_SCENE_ARGS, shape, v.surface, normal_map, v.ns, v.wo);
+    v.ns_unperturbed = v.ns;
+    v.ns = mapped.normal;
+    v.terminator_alpha2 = mapped.terminator_alpha2;
+    v.shades = normal_map == WP_NO_TEXTURE || normal_map_shades(v.wo, v.ns);
+#endif
     return v;
 }
 

@@ -96,12 +96,13 @@ typedef struct {
  * diffuse albedo, the plastics' diffuse_reflectance: DeviceMaterial's
  * albedo), the conductors' and plastics' specular_reflectance, and the
  * roughconductor's and roughdielectric's roughness along each tangent
- * (alpha_u, alpha_v). */
+ * (alpha_u, alpha_v), and a `normalmap` adapter's map (shared/normal_map.h). */
 #define WP_TEXTURED_ALBEDO 0
 #define WP_TEXTURED_SPECULAR_REFLECTANCE 1
 #define WP_TEXTURED_ALPHA_U 2
 #define WP_TEXTURED_ALPHA_V 3
-#define WP_TEXTURED_PARAMETERS 4
+#define WP_TEXTURED_NORMAL_MAP 4
+#define WP_TEXTURED_PARAMETERS 5
 
 /* Which of a material's parameters are textured: per WP_TEXTURED_*, an
  * index into the textures (shared/texture.h), or WP_NO_TEXTURE where the

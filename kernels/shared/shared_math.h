@@ -24,6 +24,7 @@
 #include "shared/materials/roughdielectric.h"
 #include "shared/materials/roughplastic.h"
 #include "shared/materials/thindielectric.h"
+#include "shared/normal_map.h"
 #include "shared/offset.h"
 #include "shared/photon_grid.h"
 #include "shared/photons.h"

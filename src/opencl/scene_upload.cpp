@@ -28,7 +28,8 @@ static_assert(WP_TEXTURED_PARAMETERS == kTexturedParameters &&
                   WP_TEXTURED_ALBEDO == static_cast<int>(TexturedParameter::Albedo) &&
                   WP_TEXTURED_SPECULAR_REFLECTANCE == static_cast<int>(TexturedParameter::SpecularReflectance) &&
                   WP_TEXTURED_ALPHA_U == static_cast<int>(TexturedParameter::AlphaU) &&
-                  WP_TEXTURED_ALPHA_V == static_cast<int>(TexturedParameter::AlphaV),
+                  WP_TEXTURED_ALPHA_V == static_cast<int>(TexturedParameter::AlphaV) &&
+                  WP_TEXTURED_NORMAL_MAP == static_cast<int>(TexturedParameter::NormalMap),
               "the kernels' WP_TEXTURED_* must be TexturedParameter's");
 static_assert(sizeof(SharedMath<float>::TextureDescriptor) == 18 * 4,
               "TextureDescriptor must match its OpenCL C layout");

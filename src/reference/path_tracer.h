@@ -176,7 +176,7 @@ SurfacePoint<Real> untextured_surface_at(const ReferenceScene<Real>& scene, cons
                        p2 = M::triangle_vertex(tri.p2);
             SurfacePoint<Real> x =
                 with_material(M::triangle_hit(p0, p1, p2, ray.origin, ray.direction), static_cast<int>(tri.material));
-            if (scene.shading_normals) {
+            if (scene.vertex_normals) {
                 const auto& n = scene.triangle_normals[hit.index];
                 x.shading = M::triangle_shading_normal(p0, p1, p2, M::triangle_vertex(n.n0), M::triangle_vertex(n.n1),
                                                        M::triangle_vertex(n.n2), x.normal, x.point);
@@ -211,11 +211,59 @@ typename SharedMath<Real>::TextureUV surface_uv(const ReferenceScene<Real>& scen
     }
 }
 
+// dp/du of `x`, a hit on `hit`'s shape (shared/normal_map.h); zero on planes.
+template <class Real>
+Vec3<Real> surface_dp_du(const ReferenceScene<Real>& scene, const ShapeHit<Real>& hit, const SurfacePoint<Real>& x) {
+    using M = SharedMath<Real>;
+    switch (hit.shape) {
+        case ShapeType::Sphere:
+            return M::sphere_dp_du(x.normal);
+        case ShapeType::Quad:
+            return scene.quads[hit.index].edge1;
+        case ShapeType::Mesh: {
+            const auto& tri = scene.triangles[hit.index];
+            const auto& uv = scene.triangle_uvs[hit.index];
+            return M::triangle_dp_du(M::triangle_vertex(tri.p0), M::triangle_vertex(tri.p1), M::triangle_vertex(tri.p2),
+                                     uv.uv0[0], uv.uv0[1], uv.uv1[0], uv.uv1[1], uv.uv2[0], uv.uv2[1]);
+        }
+        default:
+            return Vec3<Real>(0);
+    }
+}
+
+// The normal-map texture of x's material, or WP_NO_TEXTURE.
+template <class Real>
+std::uint32_t normal_map_of(const ReferenceScene<Real>& scene, const SurfacePoint<Real>& x) {
+    if (!scene.normal_map) return WP_NO_TEXTURE;
+    return scene.material_textures[x.material][static_cast<std::size_t>(TexturedParameter::NormalMap)];
+}
+
 template <class Real>
 SurfacePoint<Real> surface_at(const ReferenceScene<Real>& scene, const Ray<Real>& ray, const ShapeHit<Real>& hit) {
     SurfacePoint<Real> x = untextured_surface_at(scene, ray, hit);
     if (scene.textures) x.uv = surface_uv(scene, hit, x);
     return x;
+}
+
+// At surface x of `hit`, reached from wo, whose normals `facing` turned to
+// wo's side: where its material is a normalmap, the perturbed shading
+// normal into facing.ns and the terminator term into `material` (the
+// kernels' vertex_at); returns whether the material scatters the path at
+// all (normal_map_shades).
+template <class Real>
+bool normal_mapped_vertex(const ReferenceScene<Real>& scene, const ShapeHit<Real>& hit, const SurfacePoint<Real>& x,
+                          const Vec3<Real>& wo, typename SharedMath<Real>::FacingNormals& facing,
+                          typename ReferenceScene<Real>::SurfaceMaterial& material) {
+    using M = SharedMath<Real>;
+    const std::uint32_t map = normal_map_of(scene, x);
+    if (map == WP_NO_TEXTURE) return true;
+    const typename M::NormalMapped mapped =
+        M::normal_mapped(x.shading, facing.ns, surface_dp_du(scene, hit, x),
+                         M::texture_value(scene.texture_table[map], scene.texels.data(), x.uv), wo);
+    material.unperturbed_normal = facing.ns;
+    material.terminator_alpha2 = mapped.terminator_alpha2;
+    facing.ns = mapped.normal;
+    return M::normal_map_shades(wo, facing.ns);
 }
 
 // Textured parameter p of surface x's material at x's uv, `untextured` where it has no texture (shared/texture.h).
@@ -401,10 +449,10 @@ struct BsdfValue {
 };
 
 template <class Real>
-BsdfValue<Real> bsdf_value(const ReferenceScene<Real>& scene,
-                           const typename ReferenceScene<Real>::SurfaceMaterial& material, bool front,
-                           const Vec3<Real>& ns, const Vec3<Real>& wo, const Vec3<Real>& wi,
-                           const Vec3<Real>& throughput) {
+BsdfValue<Real> nested_bsdf_value(const ReferenceScene<Real>& scene,
+                                  const typename ReferenceScene<Real>::SurfaceMaterial& material, bool front,
+                                  const Vec3<Real>& ns, const Vec3<Real>& wo, const Vec3<Real>& wi,
+                                  const Vec3<Real>& throughput) {
     using M = SharedMath<Real>;
     if (material.type == MaterialType::RoughDielectric) {
         return {throughput * M::roughdielectric_eval(material.microfacet, material.ior, front, ns, wo, wi,
@@ -426,6 +474,19 @@ BsdfValue<Real> bsdf_value(const ReferenceScene<Real>& scene,
                 M::roughconductor_pdf(material.microfacet, ns, wo, wi)};
     }
     return {M::diffuse_eval(throughput * material.albedo, ns, wi), M::diffuse_pdf(ns, wi, scene.uniform_hemisphere)};
+}
+
+// The material's, times a normal map's terminator term (shared/normal_map.h; 1 without one).
+template <class Real>
+BsdfValue<Real> bsdf_value(const ReferenceScene<Real>& scene,
+                           const typename ReferenceScene<Real>::SurfaceMaterial& material, bool front,
+                           const Vec3<Real>& ns, const Vec3<Real>& wo, const Vec3<Real>& wi,
+                           const Vec3<Real>& throughput) {
+    BsdfValue<Real> b = nested_bsdf_value(scene, material, front, ns, wo, wi, throughput);
+    if (scene.normal_map)
+        b.throughput_f = b.throughput_f * SharedMath<Real>::normal_map_terminator(material.terminator_alpha2,
+                                                                                  material.unperturbed_normal, wi);
+    return b;
 }
 
 // Next-event estimation at a point x (with error bound x_error) of a
@@ -501,11 +562,12 @@ typename SharedMath<Real>::BsdfRandom camera_bsdf_random(const SampleRng<Real>& 
 // back, with the geometric and shading normals nf and ns turned to face d,
 // for a path that carries `transport` (WP_TRANSPORT_*).
 template <class Real>
-typename SharedMath<Real>::BsdfSample scatter(const ReferenceScene<Real>& scene,
-                                              const typename ReferenceScene<Real>::SurfaceMaterial& material,
-                                              const Vec3<Real>& d, bool front, const Vec3<Real>& nf,
-                                              const Vec3<Real>& ns, const typename SharedMath<Real>::BsdfRandom& random,
-                                              std::uint32_t transport) {
+typename SharedMath<Real>::BsdfSample nested_scatter(const ReferenceScene<Real>& scene,
+                                                     const typename ReferenceScene<Real>::SurfaceMaterial& material,
+                                                     const Vec3<Real>& d, bool front, const Vec3<Real>& nf,
+                                                     const Vec3<Real>& ns,
+                                                     const typename SharedMath<Real>::BsdfRandom& random,
+                                                     std::uint32_t transport) {
     using M = SharedMath<Real>;
     switch (material.type) {
         case MaterialType::Mirror:
@@ -533,6 +595,20 @@ typename SharedMath<Real>::BsdfSample scatter(const ReferenceScene<Real>& scene,
             return M::diffuse_sample(material.albedo, nf, ns, random.u, random.v, scene.uniform_hemisphere,
                                      scene.shading_normals);
     }
+}
+
+// The material's sample, its weight times a normal map's terminator term (shared/normal_map.h; 1 without one).
+template <class Real>
+typename SharedMath<Real>::BsdfSample scatter(const ReferenceScene<Real>& scene,
+                                              const typename ReferenceScene<Real>::SurfaceMaterial& material,
+                                              const Vec3<Real>& d, bool front, const Vec3<Real>& nf,
+                                              const Vec3<Real>& ns, const typename SharedMath<Real>::BsdfRandom& random,
+                                              std::uint32_t transport) {
+    typename SharedMath<Real>::BsdfSample s = nested_scatter(scene, material, d, front, nf, ns, random, transport);
+    if (scene.normal_map)
+        s.weight = s.weight * SharedMath<Real>::normal_map_terminator(material.terminator_alpha2,
+                                                                      material.unperturbed_normal, s.direction);
+    return s;
 }
 
 // Where an SPPM camera path first met a non-specular surface (after any
@@ -605,8 +681,9 @@ Vec3<Real> trace_path(const ReferenceScene<Real>& scene, Ray<Real> ray, const Sa
         }
         travelled += hit.t;
         SurfacePoint<Real> surface = surface_at(scene, ray, hit);
-        const auto material = material_at(scene, surface);
+        auto material = material_at(scene, surface);
         typename M::FacingNormals facing = M::normals_facing(ray.direction, surface.normal, surface.shading);
+        const bool shades = normal_mapped_vertex(scene, hit, surface, -ray.direction, facing, material);
         const bool front = facing.front;
         const vec3 &nf = facing.nf, &ns = facing.ns;
         bool weighs_emission = scene.mis && !specular && M::emits(material.emission);  // the power heuristic's case
@@ -619,6 +696,7 @@ Vec3<Real> trace_path(const ReferenceScene<Real>& scene, Ray<Real> ray, const Sa
         if (visible && visible->found()) break;  // the hit after the visible point
 
         auto bounce = static_cast<std::uint32_t>(depth);
+        if (!shades) break;
         if (is_non_specular(material.type) && scene.nee) {
             add_finite<Real>(radiance,
                              sample_direct_light(scene, surface.point, surface.error, nf, ns, front, -ray.direction,

@@ -54,6 +54,11 @@ struct ReferenceScene {
         typename M::PlasticParams plastic;  // plastic
         // roughplastic, its table of t in roughplastic_transmittance
         typename M::RoughPlasticParams roughplastic;
+        // At a normalmap's hit (path_tracer.h's normal_mapped_vertex): its
+        // terminator term's alpha^2 (0: none) and the unperturbed shading
+        // normal it measures from (shared/normal_map.h).
+        Real terminator_alpha2 = 0;
+        vec3 unperturbed_normal{0};
     };
     struct LightRef {
         LightKind kind;   // a shape's, a directional light, or the environment (then the last)
@@ -74,9 +79,11 @@ struct ReferenceScene {
 
     PinholeCamera camera;
     RenderSettings render;
-    bool nee;                 // next-event estimation runs (FeatureSet::nee)
-    bool mis;                 // with multiple importance sampling (FeatureSet::mis)
-    bool shading_normals;     // some mesh shades with vertex normals (FeatureSet::shading_normals)
+    bool nee;              // next-event estimation runs (FeatureSet::nee)
+    bool mis;              // with multiple importance sampling (FeatureSet::mis)
+    bool vertex_normals;   // some mesh shades with vertex normals (FeatureSet::shading_normals)
+    bool normal_map;       // some material is a normalmap (FeatureSet::normal_map)
+    bool shading_normals;  // either: shading normals differ from geometric ones (the kernels' WP_USES_SHADING_NORMALS)
     bool uniform_hemisphere;  // diffuse vertices sample the uniform hemisphere (render.hemisphere)
     bool textures;            // some material parameter is textured: hits compute their uv (FeatureSet::textures)
     vec3 background;          // the environment's radiance (a light where not black)
@@ -86,7 +93,7 @@ struct ReferenceScene {
     std::vector<PlaneShape> planes;
     std::vector<QuadShape> quads;
     std::vector<typename M::MeshTriangle> triangles;            // in the BVH's leaf order
-    std::vector<typename M::TriangleNormals> triangle_normals;  // parallel to triangles, if shading_normals
+    std::vector<typename M::TriangleNormals> triangle_normals;  // parallel to triangles, if vertex_normals
     std::vector<typename M::BvhNode> bvh_nodes;
     std::shared_ptr<const EmbreeIntersector> embree;  // Intersector::Embree: closest_hit and occluded ask it
     std::vector<LightRef> lights;
@@ -107,7 +114,9 @@ struct ReferenceScene {
         : render(scene.render),
           nee(scene.features().nee),
           mis(scene.features().mis),
-          shading_normals(scene.features().shading_normals),
+          vertex_normals(scene.features().shading_normals),
+          normal_map(scene.features().normal_map),
+          shading_normals(vertex_normals || normal_map),
           uniform_hemisphere(scene.render.hemisphere == Hemisphere::Uniform),
           textures(scene.features().textures),
           background(scene.background),
@@ -213,7 +222,7 @@ struct ReferenceScene {
     void add_meshes(const Scene& scene) {
         SceneBvh bvh = build_scene_bvh(scene);
         TraversableBvh<Real> flat = traversable_bvh<Real>(bvh);
-        if (shading_normals) triangle_normals = wp::triangle_normals<Real>(bvh);
+        if (vertex_normals) triangle_normals = wp::triangle_normals<Real>(bvh);
         if (textures) triangle_uvs = wp::triangle_uvs<Real>(bvh);
         triangles = std::move(flat.triangles);
         bvh_nodes = std::move(flat.nodes);

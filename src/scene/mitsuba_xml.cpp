@@ -595,6 +595,7 @@ constexpr TexturableProperty kTexturableProperties[] = {
     {"roughdielectric", "alpha", TexturedParameter::AlphaV},
     {"roughdielectric", "alpha_u", TexturedParameter::AlphaU},
     {"roughdielectric", "alpha_v", TexturedParameter::AlphaV},
+    {"normalmap", "normalmap", TexturedParameter::NormalMap},
 };
 
 // Every property must be one of `properties`, and every texture (nested or
@@ -633,6 +634,25 @@ Material read_twosided(const Plugin& bsdf, const std::function<Material(const Xm
     if (m.type == MaterialType::Glass || m.type == MaterialType::RoughDielectric ||
         m.type == MaterialType::ThinDielectric)
         bsdf.fail(*inner.front(), "a dielectric inside it: not supported (Mitsuba's twosided reflects only)");
+    return m;
+}
+
+// Mitsuba's normalmap adapter: the BSDF it wraps, with the texture
+// `normalmap` perturbing its shading normal (kernels/shared/normal_map.h;
+// bsdf_material sets the texture). Like twosided, it wraps one BSDF that
+// reflects only (the JSON reader's read_normal_map says why).
+Material read_normalmap(const Plugin& bsdf, const std::function<Material(const XmlElement&)>& nested) {
+    bsdf.allow({}, {"bsdf", "texture"});
+    bsdf.textures_only_as({"normalmap"});
+    if (!bsdf.texture("normalmap")) bsdf.fail("missing texture normalmap");
+    const std::vector<const XmlElement*> inner = bsdf.objects("bsdf");
+    if (inner.empty()) bsdf.fail("needs the BSDF it perturbs");
+    if (inner.size() > 1) bsdf.fail(*inner[1], "a second BSDF: normalmap wraps one");
+    const Material m = nested(*inner.front());
+    if (m.texture(TexturedParameter::NormalMap) != kNoTexture) bsdf.fail(*inner.front(), "a normalmap inside it");
+    if (m.type == MaterialType::Glass || m.type == MaterialType::RoughDielectric ||
+        m.type == MaterialType::ThinDielectric)
+        bsdf.fail(*inner.front(), "a dielectric inside it: not supported (normalmap wraps a BSDF that reflects only)");
     return m;
 }
 
@@ -717,6 +737,7 @@ const std::pair<const char*, BsdfReader> kBsdfs[] = {
     {"thindielectric", read_thindielectric},
     {"plastic", read_plastic},
     {"roughplastic", read_roughplastic},
+    {"normalmap", read_normalmap},
 };
 
 struct MaterialKey {

@@ -64,6 +64,7 @@ FeatureSet Scene::features() const {
         f.plastic |= m.type == MaterialType::Plastic;
         f.rough_plastic |= m.type == MaterialType::RoughPlastic;
         f.textures |= m.textured();
+        f.normal_map |= m.texture(TexturedParameter::NormalMap) != kNoTexture;
     }
     for (const Light& light : lights) {
         bool shape = light.kind == LightKind::Shape;
@@ -96,6 +97,7 @@ std::string sppm_problem(const Scene& scene) {
         return "sppm takes its light from emitting shapes, and a directional light would light paths no photon takes "
                "(render with the path integrator)";
     }
+    if (f.normal_map) return "sppm does not render normalmap materials (render with the path integrator)";
     return "";
 }
 

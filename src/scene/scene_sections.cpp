@@ -304,6 +304,29 @@ void read_emitter(const JsonField& field, Material& material) {
     material.two_sided = read_two_sided(field);
 }
 
+Material read_material(const std::string& name, const JsonField& field, const std::vector<Texture>& textures);
+
+// Mitsuba's `normalmap` adapter (kernels/shared/normal_map.h): its nested
+// material (`bsdf`) with the texture `normalmap` perturbing the shading
+// normal. Only materials that reflect alone may be nested: a transmitting
+// one would need Mitsuba's inside-out treatment of an arrival below the
+// perturbed normal, which the kernels do not model.
+Material read_normal_map(const std::string& name, const JsonField& field, const std::vector<Texture>& textures) {
+    field.allow_only_keys({"type", "normalmap", "bsdf"});
+    const JsonField nested_field = field.member("bsdf");
+    Material material = read_material(name, nested_field, textures);
+    const MaterialType t = material.type;
+    if (material.texture(TexturedParameter::NormalMap) != kNoTexture)
+        nested_field.fail("a normalmap cannot nest another");
+    if (t == MaterialType::Emitter || t == MaterialType::Glass || t == MaterialType::RoughDielectric ||
+        t == MaterialType::ThinDielectric) {
+        nested_field.member("type").fail(
+            "normalmap nests only diffuse, mirror, conductor, roughconductor, plastic or roughplastic");
+    }
+    material.texture(TexturedParameter::NormalMap) = read_texture_reference(field.member("normalmap"), textures);
+    return material;
+}
+
 Material read_material(const std::string& name, const JsonField& field, const std::vector<Texture>& textures) {
     Material material;
     material.name = name;
@@ -342,10 +365,12 @@ Material read_material(const std::string& name, const JsonField& field, const st
     } else if (type == "roughplastic") {
         material.type = MaterialType::RoughPlastic;
         read_rough_plastic(field, material, textures);
+    } else if (type == "normalmap") {
+        material = read_normal_map(name, field, textures);
     } else {
         type_field.fail("unknown material type " + nlohmann::json(type).dump() +
                         " (expected one of: diffuse, mirror, glass, emitter, conductor, roughconductor, dielectric, "
-                        "roughdielectric, thindielectric, plastic, roughplastic)");
+                        "roughdielectric, thindielectric, plastic, roughplastic, normalmap)");
     }
     return material;
 }

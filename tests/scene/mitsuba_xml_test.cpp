@@ -497,7 +497,7 @@ TEST_F(MitsubaXml, ErrorsNameTheFileLineAndPluginOrProperty) {
             <bsdf type="principled"/>
         </shape>)"),
               "scene.xml:4: bsdf \"principled\": not supported (supported: diffuse, twosided, dielectric, conductor, "
-              "roughconductor, roughdielectric, thindielectric, plastic, roughplastic)");
+              "roughconductor, roughdielectric, thindielectric, plastic, roughplastic, normalmap)");
     EXPECT_EQ(error_of(sensor() + R"(
         <shape type="rectangle"><float name="width" value="2"/></shape>)"),
               "scene.xml:3: shape \"rectangle\": float \"width\": not supported (supported: to_world, flip_normals)");
