@@ -181,6 +181,19 @@ class ConverterTest(unittest.TestCase):
         self.assertEqual(r["bsdf"]["bsdf"]["alpha_v"], 0.2)
         self.assertEqual(g["bsdf"]["alpha"]["type"], "checkerboard")
 
+    def test_normalmap_is_twosided_around_normalmap_around_the_nested_plugin(self):
+        textures = {"n": {"type": "bitmap", "file": "n.png", "raw": True}, "c": {"type": "checkerboard"}}
+        materials = {"m": {"type": "normalmap", "normalmap": {"texture": "n"},
+                           "bsdf": {"type": "roughplastic", "diffuse_reflectance": {"texture": "c"}}}}
+        m, = self.shapes(self.convert([{**QUAD, "material": "m"}], materials, textures=textures))
+        self.assertEqual(m["bsdf"]["type"], "twosided")
+        self.assertEqual(m["bsdf"]["bsdf"]["type"], "normalmap")
+        self.assertEqual(m["bsdf"]["bsdf"]["normalmap"],
+                         {"type": "bitmap", "filename": os.path.join(self.dir.name, "n.png"), "raw": True})
+        nested = m["bsdf"]["bsdf"]["bsdf"]
+        self.assertEqual(nested["type"], "roughplastic")
+        self.assertEqual(nested["diffuse_reflectance"]["type"], "checkerboard")
+
     def test_diffuse_emission_makes_an_area_emitter(self):
         materials = {"glow": {"type": "diffuse", "albedo": [0.5, 0.5, 0.5], "emission": [0, 0.5, 0]},
                      "dark": {"type": "diffuse", "albedo": [0.5, 0.5, 0.5], "emission": [0, 0, 0]}}
