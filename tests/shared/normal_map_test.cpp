@@ -152,7 +152,9 @@ TYPED_TEST(NormalMap, NoDirectionBelowTheGeometricSurfaceIsEverReflected) {
                     M::roughconductor_sample(rough, vec3<Real>(0), vec3<Real>(1), vec3<Real>(1), nf, ns, wo, u, v, 1);
                 for (const auto& s : {d, r}) {
                     valid += s.valid;
-                    if (s.valid) ASSERT_GT(glm::dot(s.direction, nf), Real(0)) << "colour " << c << " wo " << i;
+                    if (s.valid) {
+                        ASSERT_GT(glm::dot(s.direction, nf), Real(0)) << "colour " << c << " wo " << i;
+                    }
                 }
                 const vec3<Real> wi = spread<Real>(j * 2, 64) * Real(-1);  // below nf
                 EXPECT_FALSE(M::light_sample_carries(Real(1), wi, nf, ns, 0, 1, 1));
