@@ -294,8 +294,12 @@ void read_rough_plastic(const JsonField& field, Material& material, const std::v
                            "distribution", "alpha"});
     read_plastic_coat(field, material, textures);
     read_distribution(field, material);
-    if (auto alpha = field.optional_member("alpha"))
+    if (auto alpha = field.optional_member("alpha")) {
+        // Mitsuba's roughplastic precomputes its tables for one roughness.
+        if (alpha->is_object())  // {"texture": ...} elsewhere
+            alpha->fail("must be a number: a roughplastic's roughness takes no texture (Mitsuba's neither)");
         material.alpha_u = material.alpha_v = read_roughness(*alpha, "plastic");
+    }
 }
 
 void read_emitter(const JsonField& field, Material& material) {
