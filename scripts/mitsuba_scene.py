@@ -27,10 +27,12 @@ wavepath code agreeing with itself. The mapping (docs/mitsuba.md):
   `to_uv` as a 3x3 transform, in place of a textured colour parameter (a
   diffuse `reflectance`, a plastic's `diffuse_reflectance`, a conductor's or
   plastic's `specular_reflectance`, a roughconductor's or roughdielectric's
-  `alpha`, `alpha_u` or `alpha_v`), and a normalmap's `normalmap`;
+  `alpha`, `alpha_u` or `alpha_v`), a normalmap's `normalmap` and a bumpmap's
+  `bumpmap`;
 - normalmap: `twosided` around Mitsuba's `normalmap` around the nested
   material's plugin (twosided outside, so that the nested BSDF is black to an
-  arrival below the perturbed normal, as in wavepath);
+  arrival below the perturbed normal, as in wavepath); bumpmap: the same with
+  Mitsuba's `bumpmap` and its `scale`;
 - shapes: spheres as `sphere`; quads as two-triangle PLY meshes written into
   the work directory (Mitsuba's `rectangle` is orthogonal only, and quads may
   be sheared), with uvs (0, 0) at the corner, (1, 0) at corner + edge1 and
@@ -98,6 +100,7 @@ MATERIAL_KEYS = {
     "roughplastic": {"type", "diffuse_reflectance", "specular_reflectance", "int_ior", "ext_ior", "nonlinear",
                      "distribution", "alpha"},
     "normalmap": {"type", "normalmap", "bsdf"},
+    "bumpmap": {"type", "bumpmap", "scale", "bsdf"},
 }
 SHAPE_KEYS = {
     "sphere": {"type", "material", "center", "radius"},
@@ -211,14 +214,15 @@ class Converter:
         return out
 
     def material(self, material, where):
-        """The material with its textured parameters (and a normalmap's map and nested material's) made Mitsuba's."""
+        """The material with its textured parameters (and a normalmap's or bumpmap's map and nested material's) made
+        Mitsuba's."""
         kind = material.get("type")
         if kind not in MATERIAL_KEYS:
             self.fail(f"{where}.type", f"material type {json.dumps(kind)} has no Mitsuba counterpart here")
         self.check_keys(material, MATERIAL_KEYS[kind], where)
         textured = {key: self.textures[value["texture"]] for key, value in material.items()
-                    if key in TEXTURABLE_KEYS + ("normalmap",) and isinstance(value, dict)}
-        if kind == "normalmap":
+                    if key in TEXTURABLE_KEYS + ("normalmap", "bumpmap") and isinstance(value, dict)}
+        if kind in ("normalmap", "bumpmap"):
             textured["bsdf"] = self.material(material["bsdf"], f"{where}.bsdf")
         return {**material, **textured}
 
@@ -452,6 +456,11 @@ def bsdf(material):
         nested = bsdf(material["bsdf"])
         return {"type": "twosided", "bsdf": {"type": "normalmap", "normalmap": material["normalmap"],
                                              "bsdf": nested["bsdf"]}}
+    if kind == "bumpmap":
+        # twosided outside, as a normalmap's
+        nested = bsdf(material["bsdf"])
+        return {"type": "twosided", "bsdf": {"type": "bumpmap", "bumpmap": material["bumpmap"],
+                                             "scale": float(material.get("scale", 1.0)), "bsdf": nested["bsdf"]}}
     if kind in ("dielectric", "roughdielectric", "thindielectric"):
         # The same names and parameters; a dielectric has two sides of its own (inside and outside).
         return dict(material)

@@ -306,6 +306,11 @@ MUTANTS = [
            "return REAL(1.0);",
            "the nested BSDF is not multiplied by Mitsuba's shadow terminator term",
            (GTest("test_shared", "NormalMap/*.*"),)),
+    Mutant("bump-gradient-without-to-uv", "kernels/shared/texture.h",
+           "return make_texture_uv(t.to_uv[0] * dx + t.to_uv[3] * dy, t.to_uv[1] * dx + t.to_uv[4] * dy);",
+           "return make_texture_uv(dx, dy);",
+           "a bump map's height gradient is taken in the texture's uv, not carried through to_uv to the hit's",
+           (GTest("test_shared", "BumpMap/*.*"),)),
     # ---------------------------------------------------------------- the BVH
     Mutant("box-widening-removed", "kernels/shared/bvh.h",
            "WP_FN real box_leave_scale(void) { return REAL(1.0) + REAL(2.0) * rounding_gamma(REAL(3.0)); }",

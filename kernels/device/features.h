@@ -37,6 +37,11 @@
      defined(WP_HAS_PLASTIC) + defined(WP_HAS_ROUGH_PLASTIC)) > 1
 #define WP_HAS_MIXED_MATERIALS
 #endif
+/* A normalmap or bumpmap adapter: hits perturb their shading normal
+ * (shared/normal_map.h), and the nested BSDF carries the terminator term. */
+#if defined(WP_HAS_NORMAL_MAP) || defined(WP_HAS_BUMP_MAP)
+#define WP_PERTURBS_NORMALS
+#endif
 /* The complex index and reflectance factor of conductor and roughconductor. */
 #if defined(WP_HAS_CONDUCTOR) || defined(WP_HAS_ROUGH_CONDUCTOR)
 #define WP_HAS_CONDUCTORS

@@ -73,7 +73,7 @@
 #else
 #define WP_USES_MIS 0
 #endif
-#if defined(WP_HAS_SHADING_NORMALS) || defined(WP_HAS_NORMAL_MAP)
+#if defined(WP_HAS_SHADING_NORMALS) || defined(WP_PERTURBS_NORMALS)
 #define WP_USES_SHADING_NORMALS 1
 #else
 #define WP_USES_SHADING_NORMALS 0
@@ -392,7 +392,7 @@ WP_FN BsdfValue vertex_bsdf_value(Vertex v, vec3 wi, vec3 throughput) {
         b.pdf = is_rough ? roughplastic_pdf(m.roughplastic, v.roughplastic_table, v.ns, v.wo, wi) : b.pdf;
     }
 #endif
-#ifdef WP_HAS_NORMAL_MAP
+#ifdef WP_PERTURBS_NORMALS
     b.throughput_f = v3_scale(b.throughput_f, normal_map_terminator(v.terminator_alpha2, v.ns_unperturbed, wi));
 #endif
     return b;
@@ -556,7 +556,7 @@ WP_FN lane_int sample_direct_light(WP_SCENE_PARAMS, lane_uint pixel, lane_uint s
  * contribution in *direct. */
 WP_FN lane_int vertex_light_sample(WP_SCENE_PARAMS, lane_int continues, Vertex v, lane_uint pixel, lane_uint sample,
                                    lane_uint bounce, vec3 throughput, DirectLight *direct) {
-#ifdef WP_HAS_NORMAL_MAP
+#ifdef WP_PERTURBS_NORMALS
     continues = continues && v.shades;
 #endif
     return continues && vertex_is_non_specular(v) &&
@@ -677,7 +677,7 @@ WP_FN BsdfSample scatter_vertex(Vertex v, vec3 d, BsdfRandom random, uint transp
             roughplastic_sample(m.roughplastic, v.roughplastic_table, v.nf, v.ns, wo, random, WP_USES_SHADING_NORMALS),
             scattered);
 #endif
-#ifdef WP_HAS_NORMAL_MAP
+#ifdef WP_PERTURBS_NORMALS
     scattered.valid = scattered.valid && v.shades;
     scattered.weight =
         v3_scale(scattered.weight, normal_map_terminator(v.terminator_alpha2, v.ns_unperturbed, scattered.direction));

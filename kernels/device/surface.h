@@ -21,7 +21,7 @@
 #ifdef WP_HAS_TEXTURES
 #include "shared/texture.h"
 #endif
-#ifdef WP_HAS_NORMAL_MAP
+#ifdef WP_PERTURBS_NORMALS
 #include "shared/normal_map.h"
 #endif
 
@@ -375,6 +375,72 @@ WP_FN NormalMapped surface_normal_mapped(WP_SCENE_PARAMS, lane_uint shape, Surfa
 }
 #endif
 
+#ifdef WP_HAS_BUMP_MAP
+/* dp/du and dp/dv at surface s of `shape`, to their length
+ * (shared/normal_map.h' bump_mapped): every shape kind in the scene is
+ * evaluated and each lane keeps its own kind's; zero on planes. */
+WP_FN SurfaceTangents surface_tangents(WP_SCENE_PARAMS, lane_uint shape, Surface s) {
+    lane_uint index = shape & WP_SHAPE_INDEX_MASK;
+    lane_uint type = shape >> WP_SHAPE_TYPE_SHIFT;
+    SurfaceTangents tangents;
+    tangents.dp_du = make_vec3(REAL(0.0), REAL(0.0), REAL(0.0));
+    tangents.dp_dv = tangents.dp_du;
+#ifdef WP_HAS_SPHERES
+    {
+        lane_int is_sphere = type == WP_SHAPE_SPHERE;
+        SurfaceTangents sphere =
+            sphere_tangents(s.normal, SCENE_FIELD(spheres, is_sphere ? index : (lane_uint)0u, radius));
+        tangents.dp_du = v3_select(is_sphere, sphere.dp_du, tangents.dp_du);
+        tangents.dp_dv = v3_select(is_sphere, sphere.dp_dv, tangents.dp_dv);
+    }
+#endif
+#ifdef WP_HAS_QUADS
+    {
+        lane_int is_quad = type == WP_SHAPE_QUAD;
+        lane_uint i = is_quad ? index : (lane_uint)0u;
+        tangents.dp_du = v3_select(is_quad, SCENE_FIELD(quads, i, edge1), tangents.dp_du);
+        tangents.dp_dv = v3_select(is_quad, SCENE_FIELD(quads, i, edge2), tangents.dp_dv);
+    }
+#endif
+#ifdef WP_HAS_MESHES
+    {
+        lane_int is_triangle = type == WP_SHAPE_TRIANGLE;
+        lane_uint i = is_triangle ? index : (lane_uint)0u;
+        lane_uint words = i * WP_STRUCT_WORDS(triangle_uvs);
+        vec3 p0 = SCENE_FIELD(triangles, i, p0), p1 = SCENE_FIELD(triangles, i, p1), p2 = SCENE_FIELD(triangles, i, p2);
+        real u0 = gather(&triangle_uvs->uv0[0], words), v0 = gather(&triangle_uvs->uv0[1], words);
+        real u1 = gather(&triangle_uvs->uv1[0], words), v1 = gather(&triangle_uvs->uv1[1], words);
+        real u2 = gather(&triangle_uvs->uv2[0], words), v2 = gather(&triangle_uvs->uv2[1], words);
+        tangents.dp_du = v3_select(is_triangle, triangle_dp_du(p0, p1, p2, u0, v0, u1, v1, u2, v2), tangents.dp_du);
+        tangents.dp_dv = v3_select(is_triangle, triangle_dp_dv(p0, p1, p2, u0, v0, u1, v1, u2, v2), tangents.dp_dv);
+    }
+#endif
+    return tangents;
+}
+
+/* The shading normal of surface s of `shape`, turned to wo's side (`side`),
+ * bent by its material's bump map `texture` (shared/normal_map.h' bump_mapped,
+ * the height's gradient times the material's bump_scale): `side` itself, and
+ * no terminator term, where the material has none (WP_NO_TEXTURE); the map
+ * is read only where some lane's material has one. */
+WP_FN NormalMapped surface_bump_mapped(WP_SCENE_PARAMS, lane_uint shape, Surface s, lane_uint texture, vec3 side,
+                                       vec3 wo) {
+    lane_int bumped = texture != WP_NO_TEXTURE;
+    NormalMapped none;
+    none.normal = side;
+    none.terminator_alpha2 = REAL(0.0);
+    if (!lanes_any(bumped)) return none;
+    TextureUV gradient = texture_gradient(parameter_texture(textures, texture), texels, s.uv);
+    real scale = SCENE_FIELD(materials, s.material, bump_scale);
+    SurfaceTangents tangents = surface_tangents(WP_SCENE_ARGS, shape, s);
+    NormalMapped m = bump_mapped(s.normal, s.shading, side, tangents.dp_du, tangents.dp_dv, scale * gradient.u,
+                                 scale * gradient.v, wo);
+    m.normal = v3_select(bumped, m.normal, side);
+    m.terminator_alpha2 = bumped ? m.terminator_alpha2 : REAL(0.0);
+    return m;
+}
+#endif
+
 /* A path's vertex where its ray (origin, direction) hit `shape` at t. */
 typedef struct {
     Surface surface;
@@ -383,10 +449,10 @@ typedef struct {
     lane_int front; /* the ray met the side the geometric normal points to */
     vec3 nf;        /* the geometric normal on the ray's side: where spawned rays start */
     vec3 ns;        /* the shading normal on the same side: what BSDFs and cosines use */
-#ifdef WP_HAS_NORMAL_MAP
-    vec3 ns_unperturbed;    /* ns before the material's normal map: what its terminator term measures from */
+#ifdef WP_PERTURBS_NORMALS
+    vec3 ns_unperturbed;    /* ns before the material's normal or bump map: what its terminator term measures from */
     real terminator_alpha2; /* the map's terminator term (normal_map_terminator); 0: none */
-    lane_int shades;        /* the material scatters the path at all (normal_map_shades; 1 without a normal map) */
+    lane_int shades;        /* the material scatters the path at all (normal_map_shades; 1 without a map) */
 #endif
 #ifdef WP_HAS_ROUGH_PLASTIC
     __global const float *roughplastic_table; /* the scene's roughplastic_transmittance */
@@ -412,13 +478,30 @@ WP_FN Vertex vertex_at(WP_SCENE_PARAMS, lane_uint shape, vec3 origin, vec3 direc
     v.front = facing.front;
     v.nf = facing.nf;
     v.ns = facing.ns;
+#ifdef WP_PERTURBS_NORMALS
+    NormalMapped mapped;
+    lane_int adapted; /* the material is a normalmap or a bumpmap (a material is at most one) */
 #ifdef WP_HAS_NORMAL_MAP
     lane_uint normal_map = parameters.texture[WP_TEXTURED_NORMAL_MAP];
-    NormalMapped mapped = surface_normal_mapped(WP_SCENE_ARGS, shape, v.surface, normal_map, v.ns, v.wo);
+    mapped = surface_normal_mapped(WP_SCENE_ARGS, shape, v.surface, normal_map, v.ns, v.wo);
+    adapted = normal_map != WP_NO_TEXTURE;
+#else
+    mapped.normal = v.ns;
+    mapped.terminator_alpha2 = REAL(0.0);
+    adapted = 0;
+#endif
+#ifdef WP_HAS_BUMP_MAP
+    lane_uint bump_map = parameters.texture[WP_TEXTURED_BUMP_MAP];
+    NormalMapped bumped = surface_bump_mapped(WP_SCENE_ARGS, shape, v.surface, bump_map, v.ns, v.wo);
+    lane_int bumps = bump_map != WP_NO_TEXTURE;
+    mapped.normal = v3_select(bumps, bumped.normal, mapped.normal);
+    mapped.terminator_alpha2 = bumps ? bumped.terminator_alpha2 : mapped.terminator_alpha2;
+    adapted = adapted || bumps;
+#endif
     v.ns_unperturbed = v.ns;
     v.ns = mapped.normal;
     v.terminator_alpha2 = mapped.terminator_alpha2;
-    v.shades = normal_map == WP_NO_TEXTURE || normal_map_shades(v.wo, v.ns);
+    v.shades = !adapted || normal_map_shades(v.wo, v.ns);
 #endif
     return v;
 }

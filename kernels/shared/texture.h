@@ -129,9 +129,31 @@ WP_FN vec3 bitmap_texel(Texture t, WP_GLOBAL const real_element *texels, lane_in
     return make_vec3(gather(texels, index), gather(texels, index + 1u), gather(texels, index + 2u));
 }
 
+/* The four texels around a point of a bitmap (c00 at its lower column and
+ * row) and the point's fractions (fx, fy) between them, for a bilinear
+ * blend; the wrapped coordinates of the two columns and two rows are found
+ * once each. */
+typedef struct {
+    vec3 c00, c10, c01, c11;
+    real fx, fy;
+} BilinearTexels;
+
+WP_FN BilinearTexels bilinear_texels(Texture t, WP_GLOBAL const real_element *texels, real x, real y) {
+    lane_int width = TO_LANE_INT(t.width), height = TO_LANE_INT(t.height);
+    BilinearTexels b;
+    x = x - REAL(0.5), y = y - REAL(0.5);
+    real x0 = floor(x), y0 = floor(y);
+    b.fx = x - x0, b.fy = y - y0;
+    lane_int ix = floor_to_int(x0), iy = floor_to_int(y0);
+    lane_int column0 = wrap_texel(ix, width, t.wrap), column1 = wrap_texel(ix + 1, width, t.wrap);
+    lane_int row0 = wrap_texel(iy, height, t.wrap), row1 = wrap_texel(iy + 1, height, t.wrap);
+    b.c00 = bitmap_texel(t, texels, column0, row0), b.c10 = bitmap_texel(t, texels, column1, row0);
+    b.c01 = bitmap_texel(t, texels, column0, row1), b.c11 = bitmap_texel(t, texels, column1, row1);
+    return b;
+}
+
 /* The nearest texel, or the bilinear blend of the four around uv, each
- * only where some lane's filter is that one; the wrapped coordinates of the
- * blend's two columns and two rows are found once each. */
+ * only where some lane's filter is that one. */
 WP_FN vec3 bitmap_value(Texture t, WP_GLOBAL const real_element *texels, TextureUV uv) {
     lane_int width = TO_LANE_INT(t.width), height = TO_LANE_INT(t.height);
     real x = uv.u * TO_REAL(t.width), y = uv.v * TO_REAL(t.height);
@@ -142,15 +164,8 @@ WP_FN vec3 bitmap_value(Texture t, WP_GLOBAL const real_element *texels, Texture
                              wrap_texel(floor_to_int(y), height, t.wrap));
     }
     if (lanes_any(!nearest)) {
-        x = x - REAL(0.5), y = y - REAL(0.5);
-        real x0 = floor(x), y0 = floor(y);
-        real fx = x - x0, fy = y - y0;
-        lane_int ix = floor_to_int(x0), iy = floor_to_int(y0);
-        lane_int column0 = wrap_texel(ix, width, t.wrap), column1 = wrap_texel(ix + 1, width, t.wrap);
-        lane_int row0 = wrap_texel(iy, height, t.wrap), row1 = wrap_texel(iy + 1, height, t.wrap);
-        vec3 c00 = bitmap_texel(t, texels, column0, row0), c10 = bitmap_texel(t, texels, column1, row0);
-        vec3 c01 = bitmap_texel(t, texels, column0, row1), c11 = bitmap_texel(t, texels, column1, row1);
-        value = v3_select(nearest, value, bilinear_blend(c00, c10, c01, c11, fx, fy));
+        BilinearTexels b = bilinear_texels(t, texels, x, y);
+        value = v3_select(nearest, value, bilinear_blend(b.c00, b.c10, b.c01, b.c11, b.fx, b.fy));
     }
     return value;
 }
@@ -180,6 +195,9 @@ WP_FN vec3 colour_parameter(vec3 untextured, lane_uint texture, Texture t, WP_GL
     return v3_select(texture != WP_NO_TEXTURE, texture_value(t, texels, uv), untextured);
 }
 
+/* A colour's luminance, as Mitsuba's eval_1 reads a bitmap's. */
+WP_FN real texture_luminance(vec3 c) { return REAL(0.212671) * c.x + REAL(0.715160) * c.y + REAL(0.072169) * c.z; }
+
 /* A material's scalar parameter (a roughness) at a hit of uv `uv`, as
  * colour_parameter: its constant, or its texture's value there read as
  * Mitsuba's eval_1 reads a colour texture: a bitmap's luminance, a
@@ -187,10 +205,28 @@ WP_FN vec3 colour_parameter(vec3 untextured, lane_uint texture, Texture t, WP_GL
 WP_FN real scalar_parameter(real untextured, lane_uint texture, Texture t, WP_GLOBAL const real_element *texels,
                             TextureUV uv) {
     vec3 c = texture_value(t, texels, uv);
-    real luminance = REAL(0.212671) * c.x + REAL(0.715160) * c.y + REAL(0.072169) * c.z;
+    real luminance = texture_luminance(c);
     real mean = (c.x + c.y + c.z) / REAL(3.0);
     real value = t.type == WP_TEXTURE_CHECKERBOARD ? mean : luminance;
     return texture != WP_NO_TEXTURE ? value : untextured;
+}
+
+/* The gradient of a bitmap's scalar value (its luminance, scalar_parameter)
+ * over the hit's uv, as Mitsuba 3.9.1's eval_1_grad: with the bilinear
+ * filter the exact derivative of the blend (per texel: times the width and
+ * height), through to_uv to the hit's uv (the chain rule: d/du = m0 d/du' +
+ * m3 d/dv', d/dv = m1 d/du' + m4 d/dv'); zero with the nearest filter.
+ * (Mitsuba has no checkerboard gradient: the readers refuse one where a
+ * gradient is needed.) */
+WP_FN TextureUV texture_gradient(Texture t, WP_GLOBAL const real_element *texels, TextureUV hit_uv) {
+    TextureUV uv = texture_transform(t, hit_uv);
+    BilinearTexels b = bilinear_texels(t, texels, uv.u * TO_REAL(t.width), uv.v * TO_REAL(t.height));
+    vec3 along_x = v3_add(v3_scale(v3_sub(b.c10, b.c00), REAL(1.0) - b.fy), v3_scale(v3_sub(b.c11, b.c01), b.fy));
+    vec3 along_y = v3_add(v3_scale(v3_sub(b.c01, b.c00), REAL(1.0) - b.fx), v3_scale(v3_sub(b.c11, b.c10), b.fx));
+    lane_int linear = t.filter == WP_FILTER_BILINEAR;
+    real dx = linear ? texture_luminance(along_x) * TO_REAL(t.width) : REAL(0.0);
+    real dy = linear ? texture_luminance(along_y) * TO_REAL(t.height) : REAL(0.0);
+    return make_texture_uv(t.to_uv[0] * dx + t.to_uv[3] * dy, t.to_uv[1] * dx + t.to_uv[4] * dy);
 }
 
 #endif

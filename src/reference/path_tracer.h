@@ -231,11 +231,33 @@ Vec3<Real> surface_dp_du(const ReferenceScene<Real>& scene, const ShapeHit<Real>
     }
 }
 
-// The normal-map texture of x's material, or WP_NO_TEXTURE.
+// dp/du and dp/dv of `x`, a hit on `hit`'s shape, to their length (shared/normal_map.h' bump_mapped); zero on planes.
 template <class Real>
-std::uint32_t normal_map_of(const ReferenceScene<Real>& scene, const SurfacePoint<Real>& x) {
-    if (!scene.normal_map) return WP_NO_TEXTURE;
-    return scene.material_textures[x.material][static_cast<std::size_t>(TexturedParameter::NormalMap)];
+typename SharedMath<Real>::SurfaceTangents surface_tangents(const ReferenceScene<Real>& scene,
+                                                            const ShapeHit<Real>& hit, const SurfacePoint<Real>& x) {
+    using M = SharedMath<Real>;
+    switch (hit.shape) {
+        case ShapeType::Sphere:
+            return M::sphere_tangents(x.normal, scene.spheres[hit.index].radius);
+        case ShapeType::Quad:
+            return {scene.quads[hit.index].edge1, scene.quads[hit.index].edge2};
+        case ShapeType::Mesh: {
+            const auto& tri = scene.triangles[hit.index];
+            const auto& uv = scene.triangle_uvs[hit.index];
+            const Vec3<Real> p0 = M::triangle_vertex(tri.p0), p1 = M::triangle_vertex(tri.p1),
+                             p2 = M::triangle_vertex(tri.p2);
+            return {M::triangle_dp_du(p0, p1, p2, uv.uv0[0], uv.uv0[1], uv.uv1[0], uv.uv1[1], uv.uv2[0], uv.uv2[1]),
+                    M::triangle_dp_dv(p0, p1, p2, uv.uv0[0], uv.uv0[1], uv.uv1[0], uv.uv1[1], uv.uv2[0], uv.uv2[1])};
+        }
+        default:
+            return {Vec3<Real>(0), Vec3<Real>(0)};
+    }
+}
+
+// Texture p (TexturedParameter) of x's material, or WP_NO_TEXTURE.
+template <class Real>
+std::uint32_t texture_of(const ReferenceScene<Real>& scene, const SurfacePoint<Real>& x, TexturedParameter p) {
+    return scene.material_textures[x.material][static_cast<std::size_t>(p)];
 }
 
 template <class Real>
@@ -246,20 +268,31 @@ SurfacePoint<Real> surface_at(const ReferenceScene<Real>& scene, const Ray<Real>
 }
 
 // At surface x of `hit`, reached from wo, whose normals `facing` turned to
-// wo's side: where its material is a normalmap, the perturbed shading
-// normal into facing.ns and the terminator term into `material` (the
-// kernels' vertex_at); returns whether the material scatters the path at
-// all (normal_map_shades).
+// wo's side: where its material is a normalmap or bumpmap, the perturbed
+// shading normal into facing.ns and the terminator term into `material`
+// (the kernels' vertex_at); returns whether the material scatters the path
+// at all (normal_map_shades).
 template <class Real>
 bool normal_mapped_vertex(const ReferenceScene<Real>& scene, const ShapeHit<Real>& hit, const SurfacePoint<Real>& x,
                           const Vec3<Real>& wo, typename SharedMath<Real>::FacingNormals& facing,
                           typename ReferenceScene<Real>::SurfaceMaterial& material) {
     using M = SharedMath<Real>;
-    const std::uint32_t map = normal_map_of(scene, x);
-    if (map == WP_NO_TEXTURE) return true;
-    const typename M::NormalMapped mapped =
-        M::normal_mapped(x.shading, facing.ns, surface_dp_du(scene, hit, x),
-                         M::texture_value(scene.texture_table[map], scene.texels.data(), x.uv), wo);
+    const std::uint32_t normal_map =
+        scene.normal_map ? texture_of(scene, x, TexturedParameter::NormalMap) : WP_NO_TEXTURE;
+    const std::uint32_t bump_map = scene.bump_map ? texture_of(scene, x, TexturedParameter::BumpMap) : WP_NO_TEXTURE;
+    typename M::NormalMapped mapped;
+    if (normal_map != WP_NO_TEXTURE) {
+        mapped = M::normal_mapped(x.shading, facing.ns, surface_dp_du(scene, hit, x),
+                                  M::texture_value(scene.texture_table[normal_map], scene.texels.data(), x.uv), wo);
+    } else if (bump_map != WP_NO_TEXTURE) {
+        const typename M::SurfaceTangents tangents = surface_tangents(scene, hit, x);
+        const typename M::TextureUV gradient =
+            M::texture_gradient(scene.texture_table[bump_map], scene.texels.data(), x.uv);
+        mapped = M::bump_mapped(x.normal, x.shading, facing.ns, tangents.dp_du, tangents.dp_dv,
+                                material.bump_scale * gradient.u, material.bump_scale * gradient.v, wo);
+    } else {
+        return true;
+    }
     material.unperturbed_normal = facing.ns;
     material.terminator_alpha2 = mapped.terminator_alpha2;
     facing.ns = mapped.normal;
@@ -483,7 +516,7 @@ BsdfValue<Real> bsdf_value(const ReferenceScene<Real>& scene,
                            const Vec3<Real>& ns, const Vec3<Real>& wo, const Vec3<Real>& wi,
                            const Vec3<Real>& throughput) {
     BsdfValue<Real> b = nested_bsdf_value(scene, material, front, ns, wo, wi, throughput);
-    if (scene.normal_map)
+    if (scene.perturbs_normals)
         b.throughput_f = b.throughput_f * SharedMath<Real>::normal_map_terminator(material.terminator_alpha2,
                                                                                   material.unperturbed_normal, wi);
     return b;
@@ -605,7 +638,7 @@ typename SharedMath<Real>::BsdfSample scatter(const ReferenceScene<Real>& scene,
                                               const Vec3<Real>& ns, const typename SharedMath<Real>::BsdfRandom& random,
                                               std::uint32_t transport) {
     typename SharedMath<Real>::BsdfSample s = nested_scatter(scene, material, d, front, nf, ns, random, transport);
-    if (scene.normal_map)
+    if (scene.perturbs_normals)
         s.weight = s.weight * SharedMath<Real>::normal_map_terminator(material.terminator_alpha2,
                                                                       material.unperturbed_normal, s.direction);
     return s;

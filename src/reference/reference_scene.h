@@ -54,9 +54,10 @@ struct ReferenceScene {
         typename M::PlasticParams plastic;  // plastic
         // roughplastic, its table of t in roughplastic_transmittance
         typename M::RoughPlasticParams roughplastic;
-        // At a normalmap's hit (path_tracer.h's normal_mapped_vertex): its
-        // terminator term's alpha^2 (0: none) and the unperturbed shading
-        // normal it measures from (shared/normal_map.h).
+        Real bump_scale;  // a bumpmap's scale (Material::bump_scale)
+        // At a normalmap's or bumpmap's hit (path_tracer.h's
+        // normal_mapped_vertex): its terminator term's alpha^2 (0: none) and
+        // the unperturbed shading normal it measures from (shared/normal_map.h).
         Real terminator_alpha2 = 0;
         vec3 unperturbed_normal{0};
     };
@@ -79,11 +80,13 @@ struct ReferenceScene {
 
     PinholeCamera camera;
     RenderSettings render;
-    bool nee;              // next-event estimation runs (FeatureSet::nee)
-    bool mis;              // with multiple importance sampling (FeatureSet::mis)
-    bool vertex_normals;   // some mesh shades with vertex normals (FeatureSet::shading_normals)
-    bool normal_map;       // some material is a normalmap (FeatureSet::normal_map)
-    bool shading_normals;  // either: shading normals differ from geometric ones (the kernels' WP_USES_SHADING_NORMALS)
+    bool nee;                 // next-event estimation runs (FeatureSet::nee)
+    bool mis;                 // with multiple importance sampling (FeatureSet::mis)
+    bool vertex_normals;      // some mesh shades with vertex normals (FeatureSet::shading_normals)
+    bool normal_map;          // some material is a normalmap (FeatureSet::normal_map)
+    bool bump_map;            // some material is a bumpmap (FeatureSet::bump_map)
+    bool perturbs_normals;    // either (the kernels' WP_PERTURBS_NORMALS)
+    bool shading_normals;     // any: shading normals differ from geometric ones (the kernels' WP_USES_SHADING_NORMALS)
     bool uniform_hemisphere;  // diffuse vertices sample the uniform hemisphere (render.hemisphere)
     bool textures;            // some material parameter is textured: hits compute their uv (FeatureSet::textures)
     vec3 background;          // the environment's radiance (a light where not black)
@@ -116,7 +119,9 @@ struct ReferenceScene {
           mis(scene.features().mis),
           vertex_normals(scene.features().shading_normals),
           normal_map(scene.features().normal_map),
-          shading_normals(vertex_normals || normal_map),
+          bump_map(scene.features().bump_map),
+          perturbs_normals(normal_map || bump_map),
+          shading_normals(vertex_normals || perturbs_normals),
           uniform_hemisphere(scene.render.hemisphere == Hemisphere::Uniform),
           textures(scene.features().textures),
           background(scene.background),
@@ -158,6 +163,7 @@ struct ReferenceScene {
             s.k = vec3(m.k);
             s.specular_reflectance = vec3(m.specular_reflectance);
             s.microfacet = {distribution, Real(m.alpha_u), Real(m.alpha_v)};
+            s.bump_scale = Real(m.bump_scale);
             s.plastic = {s.albedo,
                          s.specular_reflectance,
                          s.ior,

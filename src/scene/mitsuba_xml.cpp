@@ -637,22 +637,44 @@ Material read_twosided(const Plugin& bsdf, const std::function<Material(const Xm
     return m;
 }
 
+// The BSDF a normalmap or bumpmap adapter (`bsdf`) wraps: like twosided,
+// one, and one that reflects only, nor another adapter (the JSON reader's
+// read_adapted_material says why).
+Material read_adapted_bsdf(const Plugin& bsdf, const std::function<Material(const XmlElement&)>& nested) {
+    const std::vector<const XmlElement*> inner = bsdf.objects("bsdf");
+    if (inner.empty()) bsdf.fail("needs the BSDF it perturbs");
+    if (inner.size() > 1) bsdf.fail(*inner[1], "a second BSDF: " + std::string(bsdf.type()) + " wraps one");
+    const Material m = nested(*inner.front());
+    if (m.texture(TexturedParameter::NormalMap) != kNoTexture || m.texture(TexturedParameter::BumpMap) != kNoTexture)
+        bsdf.fail(*inner.front(), "a normalmap or bumpmap inside it");
+    if (m.type == MaterialType::Glass || m.type == MaterialType::RoughDielectric ||
+        m.type == MaterialType::ThinDielectric)
+        bsdf.fail(*inner.front(), "a dielectric inside it: not supported (" + std::string(bsdf.type()) +
+                                      " wraps a BSDF that reflects only)");
+    return m;
+}
+
 // Mitsuba's normalmap adapter: the BSDF it wraps, with the texture
 // `normalmap` perturbing its shading normal (kernels/shared/normal_map.h;
-// bsdf_material sets the texture). Like twosided, it wraps one BSDF that
-// reflects only (the JSON reader's read_normal_map says why).
+// bsdf_material sets the texture).
 Material read_normalmap(const Plugin& bsdf, const std::function<Material(const XmlElement&)>& nested) {
     bsdf.allow({}, {"bsdf", "texture"});
     bsdf.textures_only_as({"normalmap"});
     if (!bsdf.texture("normalmap")) bsdf.fail("missing texture normalmap");
-    const std::vector<const XmlElement*> inner = bsdf.objects("bsdf");
-    if (inner.empty()) bsdf.fail("needs the BSDF it perturbs");
-    if (inner.size() > 1) bsdf.fail(*inner[1], "a second BSDF: normalmap wraps one");
-    const Material m = nested(*inner.front());
-    if (m.texture(TexturedParameter::NormalMap) != kNoTexture) bsdf.fail(*inner.front(), "a normalmap inside it");
-    if (m.type == MaterialType::Glass || m.type == MaterialType::RoughDielectric ||
-        m.type == MaterialType::ThinDielectric)
-        bsdf.fail(*inner.front(), "a dielectric inside it: not supported (normalmap wraps a BSDF that reflects only)");
+    return read_adapted_bsdf(bsdf, nested);
+}
+
+// Mitsuba's bumpmap adapter: the BSDF it wraps, with its shading normal
+// bent by the gradient of its one texture (a height, under any name:
+// bsdf_material sets it) times `scale` (kernels/shared/normal_map.h'
+// bump_mapped).
+Material read_bumpmap(const Plugin& bsdf, const std::function<Material(const XmlElement&)>& nested) {
+    bsdf.allow({"scale"}, {"bsdf", "texture"});
+    const std::vector<const XmlElement*> heights = bsdf.objects("texture");
+    if (heights.empty()) bsdf.fail("missing its texture (the height)");
+    if (heights.size() > 1) bsdf.fail(*heights[1], "a second texture: bumpmap takes one");
+    Material m = read_adapted_bsdf(bsdf, nested);
+    m.bump_scale = bsdf.number("scale", 1.0);
     return m;
 }
 
@@ -738,6 +760,7 @@ const std::pair<const char*, BsdfReader> kBsdfs[] = {
     {"plastic", read_plastic},
     {"roughplastic", read_roughplastic},
     {"normalmap", read_normalmap},
+    {"bumpmap", read_bumpmap},
 };
 
 struct MaterialKey {
@@ -1060,6 +1083,7 @@ class Reader {
                 if (t.bsdf == bsdf.type())
                     if (const XmlElement* texture = bsdf.texture(t.property))
                         m.texture(t.parameter) = textured_parameter(bsdf, t, *texture);
+            if (bsdf.type() == "bumpmap") m.texture(TexturedParameter::BumpMap) = bump_height(bsdf);
             return m;
         }
         bsdf.fail("not supported (supported: " + supported + ")");
@@ -1091,6 +1115,16 @@ class Reader {
             const std::string problem = roughness_texture_problem(out_.scene.textures[std::size_t(index)]);
             if (!problem.empty()) bsdf.fail(std::string(t.property) + ": " + problem);
         }
+        return index;
+    }
+
+    // A bumpmap's one texture (read_bumpmap checked there is one) as its
+    // index into the scene's textures: a bitmap (bump_texture_problem).
+    int bump_height(const Plugin& bsdf) {
+        const XmlElement& height = *bsdf.objects("texture").front();
+        const int index = texture_index(height);
+        const std::string problem = bump_texture_problem(out_.scene.textures[std::size_t(index)]);
+        if (!problem.empty()) bsdf.fail(height, problem);
         return index;
     }
 

@@ -65,6 +65,7 @@ FeatureSet Scene::features() const {
         f.rough_plastic |= m.type == MaterialType::RoughPlastic;
         f.textures |= m.textured();
         f.normal_map |= m.texture(TexturedParameter::NormalMap) != kNoTexture;
+        f.bump_map |= m.texture(TexturedParameter::BumpMap) != kNoTexture;
     }
     for (const Light& light : lights) {
         bool shape = light.kind == LightKind::Shape;
@@ -98,6 +99,7 @@ std::string sppm_problem(const Scene& scene) {
                "(render with the path integrator)";
     }
     if (f.normal_map) return "sppm does not render normalmap materials (render with the path integrator)";
+    if (f.bump_map) return "sppm does not render bumpmap materials (render with the path integrator)";
     return "";
 }
 

@@ -120,10 +120,11 @@ struct Texture {
 // conductors' and plastics' specular_reflectance, AlphaU and AlphaV the
 // roughconductor's and roughdielectric's roughness (alpha_u, alpha_v; `alpha`
 // is both), NormalMap a `normalmap` adapter's map (read raw:
-// kernels/shared/normal_map.h). The kernels' WP_TEXTURED_*
+// kernels/shared/normal_map.h), BumpMap a `bumpmap` adapter's height (a
+// bitmap; the gradient of its luminance bends the normal). The kernels' WP_TEXTURED_*
 // (kernels/interface/scene_layout.h) in the same order.
-enum class TexturedParameter { Albedo, SpecularReflectance, AlphaU, AlphaV, NormalMap };
-inline constexpr std::size_t kTexturedParameters = 5;
+enum class TexturedParameter { Albedo, SpecularReflectance, AlphaU, AlphaV, NormalMap, BumpMap };
+inline constexpr std::size_t kTexturedParameters = 6;
 
 // The microfacet distributions of the rough materials (kernels/shared/materials/microfacet.h).
 enum class Microfacet { Beckmann, GGX };
@@ -146,8 +147,11 @@ struct Material {
     Microfacet distribution = Microfacet::Beckmann;
     double alpha_u = 0.1, alpha_v = 0.1;
     bool nonlinear = false;  // plastic and roughplastic: Mitsuba's `nonlinear` (colours saturate under the coat)
+    double bump_scale =
+        1;  // a `bumpmap` adapter's `scale`: its height's gradient times this (TexturedParameter::BumpMap)
     // Per TexturedParameter: an index into Scene::textures, or kNoTexture for the constant above.
-    std::array<int, kTexturedParameters> textures{kNoTexture, kNoTexture, kNoTexture, kNoTexture, kNoTexture};
+    std::array<int, kTexturedParameters> textures{kNoTexture, kNoTexture, kNoTexture,
+                                                  kNoTexture, kNoTexture, kNoTexture};
     int& texture(TexturedParameter p) { return textures[static_cast<std::size_t>(p)]; }
     int texture(TexturedParameter p) const { return textures[static_cast<std::size_t>(p)]; }
     bool textured() const;  // some parameter is
@@ -237,6 +241,7 @@ struct FeatureSet {
     bool pixel_filter = false;     // the camera's filter is a tent or a gaussian, not the box
     bool textures = false;         // a material parameter is textured: hits compute their uv
     bool normal_map = false;       // a material is a `normalmap` adapter: hits perturb their shading normal
+    bool bump_map = false;         // a material is a `bumpmap` adapter: hits bend their shading normal
     bool sphere_lights = false, quad_lights = false, mesh_lights = false;
     bool directional_lights = false;
     bool constant_environment = false;  // a non-black background: the environment light

@@ -310,24 +310,47 @@ void read_emitter(const JsonField& field, Material& material) {
 
 Material read_material(const std::string& name, const JsonField& field, const std::vector<Texture>& textures);
 
-// Mitsuba's `normalmap` adapter (kernels/shared/normal_map.h): its nested
-// material (`bsdf`) with the texture `normalmap` perturbing the shading
-// normal. Only materials that reflect alone may be nested: a transmitting
+// The material a `normalmap` or `bumpmap` adapter (`adapter`) nests
+// (`bsdf`). Only materials that reflect alone may be nested: a transmitting
 // one would need Mitsuba's inside-out treatment of an arrival below the
-// perturbed normal, which the kernels do not model.
-Material read_normal_map(const std::string& name, const JsonField& field, const std::vector<Texture>& textures) {
-    field.allow_only_keys({"type", "normalmap", "bsdf"});
+// perturbed normal, which the kernels do not model; nor may another adapter.
+Material read_adapted_material(const std::string& name, const JsonField& field, const std::vector<Texture>& textures,
+                               const std::string& adapter) {
     const JsonField nested_field = field.member("bsdf");
     Material material = read_material(name, nested_field, textures);
     const MaterialType t = material.type;
-    if (material.texture(TexturedParameter::NormalMap) != kNoTexture)
-        nested_field.fail("a normalmap cannot nest another");
+    if (material.texture(TexturedParameter::NormalMap) != kNoTexture ||
+        material.texture(TexturedParameter::BumpMap) != kNoTexture)
+        nested_field.fail("a " + adapter + " cannot nest a normalmap or bumpmap");
     if (t == MaterialType::Emitter || t == MaterialType::Glass || t == MaterialType::RoughDielectric ||
         t == MaterialType::ThinDielectric) {
         nested_field.member("type").fail(
-            "normalmap nests only diffuse, mirror, conductor, roughconductor, plastic or roughplastic");
+            adapter + " nests only diffuse, mirror, conductor, roughconductor, plastic or roughplastic");
     }
+    return material;
+}
+
+// Mitsuba's `normalmap` adapter (kernels/shared/normal_map.h): its nested
+// material with the texture `normalmap` perturbing the shading normal.
+Material read_normal_map(const std::string& name, const JsonField& field, const std::vector<Texture>& textures) {
+    field.allow_only_keys({"type", "normalmap", "bsdf"});
+    Material material = read_adapted_material(name, field, textures, "normalmap");
     material.texture(TexturedParameter::NormalMap) = read_texture_reference(field.member("normalmap"), textures);
+    return material;
+}
+
+// Mitsuba's `bumpmap` adapter (kernels/shared/normal_map.h' bump_mapped):
+// its nested material with the shading normal bent by the gradient of the
+// bitmap `bumpmap` (a height) times `scale` (default 1).
+Material read_bump_map(const std::string& name, const JsonField& field, const std::vector<Texture>& textures) {
+    field.allow_only_keys({"type", "bumpmap", "scale", "bsdf"});
+    Material material = read_adapted_material(name, field, textures, "bumpmap");
+    const JsonField map = field.member("bumpmap");
+    const int texture = read_texture_reference(map, textures);
+    if (const std::string problem = bump_texture_problem(textures[std::size_t(texture)]); !problem.empty())
+        map.member("texture").fail(problem);
+    material.texture(TexturedParameter::BumpMap) = texture;
+    if (auto scale = field.optional_member("scale")) material.bump_scale = scale->number();
     return material;
 }
 
@@ -371,10 +394,12 @@ Material read_material(const std::string& name, const JsonField& field, const st
         read_rough_plastic(field, material, textures);
     } else if (type == "normalmap") {
         material = read_normal_map(name, field, textures);
+    } else if (type == "bumpmap") {
+        material = read_bump_map(name, field, textures);
     } else {
         type_field.fail("unknown material type " + nlohmann::json(type).dump() +
                         " (expected one of: diffuse, mirror, glass, emitter, conductor, roughconductor, dielectric, "
-                        "roughdielectric, thindielectric, plastic, roughplastic, normalmap)");
+                        "roughdielectric, thindielectric, plastic, roughplastic, normalmap, bumpmap)");
     }
     return material;
 }

@@ -185,6 +185,12 @@ std::string roughness_texture_problem(const Texture& texture) {
            " everywhere (a bitmap's texel luminance, a checkerboard's colour means), got " + format_number(least);
 }
 
+std::string bump_texture_problem(const Texture& texture) {
+    if (texture.type == TextureType::Bitmap) return "";
+    return "texture " + nlohmann::json(texture.name).dump() +
+           " is a checkerboard, which has no gradient: a bump map's height must be a bitmap (as Mitsuba's)";
+}
+
 double texture_mean(const Texture& texture) {
     if (texture.type == TextureType::Checkerboard)
         return 0.5 * (texture_section::channel_mean(texture.color0) + texture_section::channel_mean(texture.color1));

@@ -48,4 +48,8 @@ double texture_scalar_min(const Texture& texture);
 // value it takes (texture_scalar_min) is at least kMinRoughness.
 std::string roughness_texture_problem(const Texture& texture);
 
+// A bump map's height texture's problem, for one error line: empty for a
+// bitmap; a checkerboard has no gradient (Mitsuba's eval_1_grad has none).
+std::string bump_texture_problem(const Texture& texture);
+
 }  // namespace wp

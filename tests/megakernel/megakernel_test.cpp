@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <utility>
 
 #include "megakernel/megakernel_renderer.h"
 #include "opencl/device.h"
@@ -128,16 +129,11 @@ TEST(Megakernel, TexturedMaterialsBitIdenticalInEveryBackend) {
     EXPECT_EQ(render_wavefront(scene, {}, {}).image.rgb, render_reference(scene, ReferenceOptions{2, false}).image.rgb);
 }
 
-// Normal maps (kernels/shared/normal_map.h) over diffuse, rough conductor,
-// rough plastic and plastic materials on quads, spheres and a PLY mesh with
-// uvs: the same perturbed frame and the same arrival rule in every backend,
-// so bit-identical images whatever the lanes and the wavefront's size; the
-// double reference, whose paths part from float's only where rounding turns
-// a decision, has the float image's mean within 1%.
-TEST(Megakernel, NormalMapsBitIdenticalInEveryBackend) {
-    Scene scene = load_scene(WAVEPATH_SOURCE_DIR "/scenes/test/oracle_normal_map.json");
-    ASSERT_TRUE(scene.features().normal_map && scene.features().textures);
-    scene.render.spp = 2;
+// A scene of normal or bump maps renders bit-identical images in every
+// backend whatever the lanes and the wavefront's size; the double reference,
+// whose paths part from float's only where rounding turns a decision, has
+// the float image's mean within 1%.
+void expect_perturbed_normals_bit_identical(const Scene& scene) {
     const RenderResult reference = render_reference(scene, ReferenceOptions{2, false});
     for (unsigned lanes : {1u, 16u}) {
         EXPECT_EQ(render_megakernel(scene, with_lanes(lanes), {}).image.rgb, reference.image.rgb) << "lanes " << lanes;
@@ -152,6 +148,34 @@ TEST(Megakernel, NormalMapsBitIdenticalInEveryBackend) {
     for (float c : in_double.image.rgb) sum_double += c;
     EXPECT_TRUE(std::isfinite(sum_double));
     EXPECT_NEAR(sum_double, sum_float, 0.01 * sum_float);
+}
+
+// Normal maps (kernels/shared/normal_map.h) over diffuse, rough conductor,
+// rough plastic and plastic materials on quads, spheres and a PLY mesh with
+// uvs: the same perturbed frame and the same arrival rule in every backend.
+TEST(Megakernel, NormalMapsBitIdenticalInEveryBackend) {
+    Scene scene = load_scene(WAVEPATH_SOURCE_DIR "/scenes/test/oracle_normal_map.json");
+    ASSERT_TRUE(scene.features().normal_map && scene.features().textures);
+    scene.render.spp = 2;
+    expect_perturbed_normals_bit_identical(scene);
+}
+
+// Bump maps (normal_map.h' bump_mapped, texture.h' texture_gradient) over the
+// same materials and shapes (a sheared to_uv among them), alone and beside a
+// normal map (the floor's heights read as one: both adapters in one vector of
+// lanes).
+TEST(Megakernel, BumpMapsBitIdenticalInEveryBackend) {
+    Scene scene = load_scene(WAVEPATH_SOURCE_DIR "/scenes/test/oracle_bump_map.json");
+    ASSERT_TRUE(scene.features().bump_map && !scene.features().normal_map);
+    scene.render.spp = 2;
+    expect_perturbed_normals_bit_identical(scene);
+    auto floor_it = std::find_if(scene.materials.begin(), scene.materials.end(),
+                                 [](const Material& m) { return m.name == "floor"; });
+    ASSERT_NE(floor_it, scene.materials.end());
+    Material& floor = *floor_it;
+    std::swap(floor.texture(TexturedParameter::NormalMap), floor.texture(TexturedParameter::BumpMap));
+    ASSERT_TRUE(scene.features().bump_map && scene.features().normal_map);
+    expect_perturbed_normals_bit_identical(scene);
 }
 
 // The environment map (kernels/shared/environment_map.h): its lookup where

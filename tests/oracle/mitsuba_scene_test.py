@@ -194,6 +194,23 @@ class ConverterTest(unittest.TestCase):
         self.assertEqual(nested["type"], "roughplastic")
         self.assertEqual(nested["diffuse_reflectance"]["type"], "checkerboard")
 
+    def test_bumpmap_is_twosided_around_bumpmap_with_its_scale_around_the_nested_plugin(self):
+        textures = {"h": {"type": "bitmap", "file": "h.png", "raw": True}}
+        materials = {"m": {"type": "bumpmap", "bumpmap": {"texture": "h"}, "scale": 0.25,
+                           "bsdf": {"type": "diffuse", "albedo": [0.5, 0.5, 0.5]}},
+                     "d": {"type": "bumpmap", "bumpmap": {"texture": "h"}, "bsdf": {"type": "conductor"}}}
+        m, d = self.shapes(self.convert([{**QUAD, "material": "m"}, {**QUAD, "material": "d"}], materials,
+                                        textures=textures))
+        self.assertEqual(m["bsdf"]["type"], "twosided")
+        bump = m["bsdf"]["bsdf"]
+        self.assertEqual(bump["type"], "bumpmap")
+        self.assertEqual(bump["scale"], 0.25)
+        self.assertEqual(bump["bumpmap"],
+                         {"type": "bitmap", "filename": os.path.join(self.dir.name, "h.png"), "raw": True})
+        self.assertEqual(bump["bsdf"]["type"], "diffuse")
+        self.assertEqual(d["bsdf"]["bsdf"]["scale"], 1.0)  # Mitsuba's default
+        self.assertEqual(d["bsdf"]["bsdf"]["bsdf"]["type"], "conductor")
+
     def test_diffuse_emission_makes_an_area_emitter(self):
         materials = {"glow": {"type": "diffuse", "albedo": [0.5, 0.5, 0.5], "emission": [0, 0.5, 0]},
                      "dark": {"type": "diffuse", "albedo": [0.5, 0.5, 0.5], "emission": [0, 0, 0]}}

@@ -497,7 +497,7 @@ TEST_F(MitsubaXml, ErrorsNameTheFileLineAndPluginOrProperty) {
             <bsdf type="principled"/>
         </shape>)"),
               "scene.xml:4: bsdf \"principled\": not supported (supported: diffuse, twosided, dielectric, conductor, "
-              "roughconductor, roughdielectric, thindielectric, plastic, roughplastic, normalmap)");
+              "roughconductor, roughdielectric, thindielectric, plastic, roughplastic, normalmap, bumpmap)");
     EXPECT_EQ(error_of(sensor() + R"(
         <shape type="rectangle"><float name="width" value="2"/></shape>)"),
               "scene.xml:3: shape \"rectangle\": float \"width\": not supported (supported: to_world, flip_normals)");
@@ -703,6 +703,32 @@ TEST_F(MitsubaXml, TexturesOfADiffuseReflectance) {
     EXPECT_EQ(scene.materials[scene.spheres[1].material].texture(TexturedParameter::Albedo), 0);
     EXPECT_EQ(scene.materials[scene.spheres[2].material].texture(TexturedParameter::Albedo), 1);
     EXPECT_TRUE(scene.features().textures);
+}
+
+// A bumpmap: its one texture (under any name, nested or by <ref>) the
+// material's height, its scale (Mitsuba's default 1), inside or around
+// twosided, its nested BSDF's parameters kept; the feature bit on.
+TEST_F(MitsubaXml, BumpmapsAsTheirNestedBsdfWithAHeight) {
+    write_image(Image{2, 1, {0.5f, 0.25f, 1.0f, 0.0f, 0.0f, 0.0f}}, (dir_.path() / "h.png").string());
+    const Scene scene = read(sensor() + R"(
+        <texture type="bitmap" id="h"><string name="filename" value="h.png"/><boolean name="raw" value="true"/></texture>
+        <shape type="sphere"><bsdf type="bumpmap"><ref name="anything" id="h"/><float name="scale" value="0.25"/>
+            <bsdf type="roughplastic"><float name="alpha" value="0.2"/></bsdf></bsdf></shape>
+        <shape type="sphere"><point name="center" x="3" y="0" z="0"/>
+            <bsdf type="twosided"><bsdf type="bumpmap"><ref id="h"/><bsdf type="diffuse"/></bsdf></bsdf></shape>)")
+                            .scene;
+    ASSERT_EQ(scene.textures.size(), 1u);
+    const Material& first = scene.materials[scene.spheres[0].material];
+    EXPECT_EQ(first.type, MaterialType::RoughPlastic);
+    EXPECT_EQ(first.alpha_u, 0.2);
+    EXPECT_EQ(first.texture(TexturedParameter::BumpMap), 0);
+    EXPECT_EQ(first.bump_scale, 0.25);
+    const Material& second = scene.materials[scene.spheres[1].material];
+    EXPECT_EQ(second.type, MaterialType::Diffuse);
+    EXPECT_EQ(second.texture(TexturedParameter::BumpMap), 0);
+    EXPECT_EQ(second.bump_scale, 1.0);
+    EXPECT_TRUE(scene.features().bump_map);
+    EXPECT_FALSE(scene.features().normal_map);
 }
 
 // The other textured colour parameters: a plastic's and roughplastic's
