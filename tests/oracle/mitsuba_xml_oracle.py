@@ -68,6 +68,7 @@ CASES = [
     ("textures", "textures.xml", {}),
     ("textured_materials", "textured_materials.xml", {}),
     ("normal_map", "normal_map.xml", {}),
+    ("bump_map", "bump_map.xml", {}),
     ("envmap", "envmap.xml", {}),
 ]
 # Cases compared in blocks of 8 x 8 rather than of --block: filters.xml's edges lie on those blocks' borders, so
