@@ -7,6 +7,7 @@
 #include <set>
 #include <stdexcept>
 #include <type_traits>
+#include <utility>
 
 namespace wp {
 namespace {
@@ -113,6 +114,20 @@ nlohmann::json dielectric_json(const Material& m, const TextureNames& textures) 
     return j;
 }
 
+// A normalmap or bumpmap around the nested material's JSON, or that JSON as it is.
+nlohmann::json adapted_json(const Material& m, nlohmann::json nested, const TextureNames& textures) {
+    if (m.texture(TexturedParameter::NormalMap) != kNoTexture)
+        return {{"type", "normalmap"},
+                {"normalmap", parameter_json(m, TexturedParameter::NormalMap, 0.0, textures)},
+                {"bsdf", std::move(nested)}};
+    if (m.texture(TexturedParameter::BumpMap) != kNoTexture)
+        return {{"type", "bumpmap"},
+                {"bumpmap", parameter_json(m, TexturedParameter::BumpMap, 0.0, textures)},
+                {"scale", m.bump_scale},
+                {"bsdf", std::move(nested)}};
+    return nested;
+}
+
 nlohmann::json material_json(const Material& m, const TextureNames& textures) {
     nlohmann::json j;
     switch (m.type) {
@@ -143,7 +158,7 @@ nlohmann::json material_json(const Material& m, const TextureNames& textures) {
             break;
     }
     if (m.two_sided) j["two_sided"] = true;
-    return j;
+    return adapted_json(m, std::move(j), textures);
 }
 
 nlohmann::json matrix_json(const glm::dmat4& m) {
