@@ -25,15 +25,16 @@
  * +z in turns): along (-y, x, 0); zero at the poles. */
 WP_FN vec3 sphere_dp_du(vec3 normal) { return make_vec3(-normal.y, normal.x, REAL(0.0)); }
 
-/* Mitsuba's sphere's dp/du and dp/dv at unit normal `normal` on a sphere of
- * `radius`, to their length (a bump map's slope is per unit of uv): u the
- * azimuth in turns, 2 pi r (-y, x, 0); v the polar angle over pi,
- * pi r (z cos phi, z sin phi, -rho), rho = sqrt(x^2 + y^2), and (1, 0, 0)
- * there at the poles, as Mitsuba's. */
+/* A surface's dp/du and dp/dv at a point, to their length (a bump map's
+ * slope is per unit of uv). */
 typedef struct {
     vec3 dp_du, dp_dv;
 } SurfaceTangents;
 
+/* Mitsuba's sphere's at unit normal `normal` on a sphere of `radius`: u the
+ * azimuth in turns, 2 pi r (-y, x, 0); v the polar angle over pi,
+ * pi r (z cos phi, z sin phi, -rho), rho = sqrt(x^2 + y^2), and (1, 0, 0)
+ * there at the poles, as Mitsuba's. */
 WP_FN SurfaceTangents sphere_tangents(vec3 normal, real radius) {
     real rho = sqrt(normal.x * normal.x + normal.y * normal.y);
     lane_int pole = rho == REAL(0.0);
@@ -55,7 +56,9 @@ WP_FN vec3 triangle_dp_du(vec3 p0, vec3 p1, vec3 p2, real u0, real v0, real u1, 
     return v3_scale(dp_du, det != REAL(0.0) ? REAL(1.0) / det : REAL(0.0));
 }
 
-/* dp/dv of the same triangle (triangle_dp_du's other unknown). */
+/* dp/dv of the same triangle (triangle_dp_du's other unknown); zero too
+ * where the uvs are degenerate, so that a bump map leaves such a triangle's
+ * normal (Mitsuba takes an arbitrary frame there). */
 WP_FN vec3 triangle_dp_dv(vec3 p0, vec3 p1, vec3 p2, real u0, real v0, real u1, real v1, real u2, real v2) {
     real du1 = u1 - u0, dv1 = v1 - v0, du2 = u2 - u0, dv2 = v2 - v0;
     real det = du1 * dv2 - dv1 * du2;
