@@ -324,6 +324,24 @@ WP_FN Material textured_material(WP_SCENE_PARAMS, Material m, lane_uint material
 }
 #endif
 
+#ifdef WP_PERTURBS_NORMALS
+/* The side's normal and no terminator term: a surface that no map bends. */
+WP_FN NormalMapped side_as_mapped(vec3 side) {
+    NormalMapped none;
+    none.normal = side;
+    none.terminator_alpha2 = REAL(0.0);
+    return none;
+}
+
+/* m where the lane's material has a map (`texture`), else side_as_mapped. */
+WP_FN NormalMapped where_mapped(lane_uint texture, vec3 side, NormalMapped m) {
+    lane_int mapped = texture != WP_NO_TEXTURE;
+    m.normal = v3_select(mapped, m.normal, side);
+    m.terminator_alpha2 = mapped ? m.terminator_alpha2 : REAL(0.0);
+    return m;
+}
+#endif
+
 #ifdef WP_HAS_NORMAL_MAP
 /* dp/du at surface s of `shape` (shared/normal_map.h): every shape kind in
  * the scene is evaluated and each lane keeps its own kind's; zero on planes. */
@@ -362,16 +380,10 @@ WP_FN vec3 surface_dp_du(WP_SCENE_PARAMS, lane_uint shape, Surface s) {
  * (WP_NO_TEXTURE); the map is read only where some lane's material has one. */
 WP_FN NormalMapped surface_normal_mapped(WP_SCENE_PARAMS, lane_uint shape, Surface s, lane_uint texture, vec3 side,
                                          vec3 wo) {
-    lane_int mapped = texture != WP_NO_TEXTURE;
-    NormalMapped none;
-    none.normal = side;
-    none.terminator_alpha2 = REAL(0.0);
-    if (!lanes_any(mapped)) return none;
+    if (!lanes_any(texture != WP_NO_TEXTURE)) return side_as_mapped(side);
     vec3 colour = texture_value(parameter_texture(textures, texture), texels, s.uv);
-    NormalMapped m = normal_mapped(s.shading, side, surface_dp_du(WP_SCENE_ARGS, shape, s), colour, wo);
-    m.normal = v3_select(mapped, m.normal, side);
-    m.terminator_alpha2 = mapped ? m.terminator_alpha2 : REAL(0.0);
-    return m;
+    return where_mapped(texture, side,
+                        normal_mapped(s.shading, side, surface_dp_du(WP_SCENE_ARGS, shape, s), colour, wo));
 }
 #endif
 
@@ -425,19 +437,13 @@ WP_FN SurfaceTangents surface_tangents(WP_SCENE_PARAMS, lane_uint shape, Surface
  * is read only where some lane's material has one. */
 WP_FN NormalMapped surface_bump_mapped(WP_SCENE_PARAMS, lane_uint shape, Surface s, lane_uint texture, vec3 side,
                                        vec3 wo) {
-    lane_int bumped = texture != WP_NO_TEXTURE;
-    NormalMapped none;
-    none.normal = side;
-    none.terminator_alpha2 = REAL(0.0);
-    if (!lanes_any(bumped)) return none;
+    if (!lanes_any(texture != WP_NO_TEXTURE)) return side_as_mapped(side);
     TextureUV gradient = texture_gradient(parameter_texture(textures, texture), texels, s.uv);
     real scale = SCENE_FIELD(materials, s.material, bump_scale);
     SurfaceTangents tangents = surface_tangents(WP_SCENE_ARGS, shape, s);
-    NormalMapped m = bump_mapped(s.normal, s.shading, side, tangents.dp_du, tangents.dp_dv, scale * gradient.u,
-                                 scale * gradient.v, wo);
-    m.normal = v3_select(bumped, m.normal, side);
-    m.terminator_alpha2 = bumped ? m.terminator_alpha2 : REAL(0.0);
-    return m;
+    return where_mapped(texture, side,
+                        bump_mapped(s.normal, s.shading, side, tangents.dp_du, tangents.dp_dv, scale * gradient.u,
+                                    scale * gradient.v, wo));
 }
 #endif
 
