@@ -32,7 +32,8 @@ wavepath code agreeing with itself. The mapping (docs/mitsuba.md):
 - normalmap: `twosided` around Mitsuba's `normalmap` around the nested
   material's plugin (twosided outside, so that the nested BSDF is black to an
   arrival below the perturbed normal, as in wavepath); bumpmap: the same with
-  Mitsuba's `bumpmap` and its `scale`;
+  Mitsuba's `bumpmap` and its `scale`; mask: Mitsuba's `mask` with the same
+  `opacity` (a number or a texture) around the nested material's BSDF;
 - shapes: spheres as `sphere`; quads as two-triangle PLY meshes written into
   the work directory (Mitsuba's `rectangle` is orthogonal only, and quads may
   be sheared), with uvs (0, 0) at the corner, (1, 0) at corner + edge1 and
@@ -101,6 +102,7 @@ MATERIAL_KEYS = {
                      "distribution", "alpha"},
     "normalmap": {"type", "normalmap", "bsdf"},
     "bumpmap": {"type", "bumpmap", "scale", "bsdf"},
+    "mask": {"type", "opacity", "bsdf"},
 }
 SHAPE_KEYS = {
     "sphere": {"type", "material", "center", "radius"},
@@ -214,17 +216,29 @@ class Converter:
         return out
 
     def material(self, material, where):
-        """The material with its textured parameters (and a normalmap's or bumpmap's map and nested material's) made
-        Mitsuba's."""
+        """The material with its textured parameters (and a normalmap's, bumpmap's or mask's map and nested
+        material's) made Mitsuba's."""
         kind = material.get("type")
         if kind not in MATERIAL_KEYS:
             self.fail(f"{where}.type", f"material type {json.dumps(kind)} has no Mitsuba counterpart here")
         self.check_keys(material, MATERIAL_KEYS[kind], where)
-        textured = {key: self.textures[value["texture"]] for key, value in material.items()
-                    if key in TEXTURABLE_KEYS + ("normalmap", "bumpmap") and isinstance(value, dict)}
-        if kind in ("normalmap", "bumpmap"):
+        textured = {key: self.mitsuba_texture(value["texture"], key) for key, value in material.items()
+                    if key in TEXTURABLE_KEYS + ("normalmap", "bumpmap", "opacity") and isinstance(value, dict)}
+        if kind in ("normalmap", "bumpmap", "mask"):
             textured["bsdf"] = self.material(material["bsdf"], f"{where}.bsdf")
         return {**material, **textured}
+
+    def mitsuba_texture(self, name, key):
+        """Texture `name` as material key `key` takes it. Mitsuba 3.9.1's checkerboard reads color1 where its eval
+        reads color0 when a BSDF takes it as a scalar (eval_1: a roughness, a mask's opacity), where wavepath's
+        checkerboard is the same pattern for every parameter: for a scalar key the colours are swapped, so that
+        Mitsuba renders the pattern the wavepath scene means."""
+        texture = self.textures[name]
+        if texture["type"] == "checkerboard" and key in SCALAR_KEYS:
+            # Mitsuba's defaults where the scene gives none (wavepath's are the same: 0.4 and 0.2)
+            return {**texture, "color0": texture.get("color1", rgb([0.2] * 3)),
+                    "color1": texture.get("color0", rgb([0.4] * 3))}
+        return texture
 
     def texture(self, texture, where):
         """Mitsuba's texture of the same type and parameters; a bitmap's file is found from the scene's directory."""
@@ -422,6 +436,7 @@ def emission(material):
 # The materials' parameters that may be {"texture": name} (docs/scene-format.md): colours, and
 # the rough conductors' and dielectrics' roughness, which Mitsuba reads from the same texture plugins.
 COLOUR_KEYS = ("albedo", "diffuse_reflectance", "specular_reflectance")
+SCALAR_KEYS = ("alpha", "alpha_u", "alpha_v", "opacity")
 TEXTURABLE_KEYS = COLOUR_KEYS + ("alpha", "alpha_u", "alpha_v")
 
 
@@ -461,6 +476,11 @@ def bsdf(material):
         nested = bsdf(material["bsdf"])
         return {"type": "twosided", "bsdf": {"type": "bumpmap", "bumpmap": material["bumpmap"],
                                              "scale": float(material.get("scale", 1.0)), "bsdf": nested["bsdf"]}}
+    if kind == "mask":
+        # the same plugin around the nested material's BSDF (twosided inside, as wavepath's materials are)
+        opacity = material.get("opacity", 0.5)
+        return {"type": "mask", "opacity": opacity if isinstance(opacity, dict) else float(opacity),
+                "bsdf": bsdf(material["bsdf"])}
     if kind in ("dielectric", "roughdielectric", "thindielectric"):
         # The same names and parameters; a dielectric has two sides of its own (inside and outside).
         return dict(material)

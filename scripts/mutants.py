@@ -311,6 +311,17 @@ MUTANTS = [
            "return make_texture_uv(dx, dy);",
            "a bump map's height gradient is taken in the texture's uv, not carried through to_uv to the hit's",
            (GTest("test_shared", "BumpMap/*.*"),)),
+    Mutant("mask-density-unscaled", "kernels/shared/materials/mask.h",
+           "nested.pdf = nested.pdf * opacity;",
+           "nested.pdf = nested.pdf;",
+           "a mask's nested sample keeps the nested material's density, not its density times the opacity "
+           "(MIS weighs it against the light sample with the wrong density)",
+           (GTest("test_shared", "Mask/*.*"),)),
+    Mutant("mask-lobe-not-rescaled", "kernels/shared/materials/mask.h",
+           "return mask_passes(opacity, u) ? u : u / opacity;",
+           "return u;",
+           "a mask hands its nested material the number that chose it, uniform on [0, opacity) instead of [0, 1)",
+           (GTest("test_shared", "Mask/*.*"),)),
     # ---------------------------------------------------------------- the BVH
     Mutant("box-widening-removed", "kernels/shared/bvh.h",
            "WP_FN real box_leave_scale(void) { return REAL(1.0) + REAL(2.0) * rounding_gamma(REAL(3.0)); }",

@@ -11,9 +11,10 @@
 #define WP_DEVICE_FEATURES_H
 
 /* A material with a delta lobe: paths carry whether their last bounce was
- * one. (The plastic has a delta lobe and a diffuse one: this and the next.) */
+ * one. (The plastic has a delta lobe and a diffuse one: this and the next;
+ * a mask's pass is a delta lobe.) */
 #if defined(WP_HAS_MIRROR) || defined(WP_HAS_GLASS) || defined(WP_HAS_CONDUCTOR) || defined(WP_HAS_THIN_DIELECTRIC) || \
-    defined(WP_HAS_PLASTIC)
+    defined(WP_HAS_PLASTIC) || defined(WP_HAS_MASK)
 #define WP_HAS_SPECULAR
 #endif
 /* A material with a lobe of finite density: next-event estimation and
@@ -65,8 +66,8 @@
 #define WP_HAS_PLASTICS
 #endif
 /* A material that picks one of its lobes with a random number (the BSDF
- * sample's `lobe`). */
-#if defined(WP_HAS_DIELECTRICS) || defined(WP_HAS_PLASTICS)
+ * sample's `lobe`; a mask picks between its pass and the material it nests). */
+#if defined(WP_HAS_DIELECTRICS) || defined(WP_HAS_PLASTICS) || defined(WP_HAS_MASK)
 #define WP_HAS_LOBE_CHOICE
 #endif
 

@@ -395,6 +395,10 @@ WP_FN BsdfValue vertex_bsdf_value(Vertex v, vec3 wi, vec3 throughput) {
 #ifdef WP_PERTURBS_NORMALS
     b.throughput_f = v3_scale(b.throughput_f, normal_map_terminator(v.terminator_alpha2, v.ns_unperturbed, wi));
 #endif
+#ifdef WP_HAS_MASK
+    b.throughput_f = v3_scale(b.throughput_f, m.opacity);
+    b.pdf = b.pdf * m.opacity;
+#endif
     return b;
 }
 
@@ -620,6 +624,10 @@ WP_FN BsdfSample scatter_vertex(Vertex v, vec3 d, BsdfRandom random, uint transp
     Material m = v.material;
     vec3 wo = v3_neg(d);
     BsdfSample scattered = no_bsdf_sample();
+#ifdef WP_HAS_MASK
+    lane_int passes = mask_passes(m.opacity, random.lobe);
+    random.lobe = mask_nested_lobe(m.opacity, random.lobe);
+#endif
 #ifdef WP_HAS_DIFFUSE
     if (lanes_have_kind(m.type, WP_MATERIAL_DIFFUSE))
         scattered = select_bsdf_sample(m.type == WP_MATERIAL_DIFFUSE,
@@ -681,6 +689,9 @@ WP_FN BsdfSample scatter_vertex(Vertex v, vec3 d, BsdfRandom random, uint transp
     scattered.valid = scattered.valid && v.shades;
     scattered.weight =
         v3_scale(scattered.weight, normal_map_terminator(v.terminator_alpha2, v.ns_unperturbed, scattered.direction));
+#endif
+#ifdef WP_HAS_MASK
+    scattered = mask_sample(m.opacity, passes, scattered, d, v.nf);
 #endif
     return scattered;
 }

@@ -17,6 +17,9 @@
 #ifdef WP_HAS_ROUGH_PLASTIC
 #include "shared/materials/roughplastic.h"
 #endif
+#ifdef WP_HAS_MASK
+#include "shared/materials/mask.h"
+#endif
 #include "shared/prelude.h"
 #ifdef WP_HAS_TEXTURES
 #include "shared/texture.h"
@@ -182,6 +185,9 @@ typedef struct {
 #ifdef WP_HAS_ROUGH_PLASTIC
     RoughPlasticParams roughplastic; /* its table: the vertex's roughplastic_table */
 #endif
+#ifdef WP_HAS_MASK
+    real opacity; /* mask_opacity's: 1 on a material that no mask wraps */
+#endif
 } Material;
 
 WP_FN Material material_at(__global const DeviceMaterial *materials, lane_uint index) {
@@ -227,6 +233,9 @@ WP_FN Material material_at(__global const DeviceMaterial *materials, lane_uint i
     m.roughplastic.internal_reflectance = SCENE_FIELD(materials, index, internal_reflectance);
     m.roughplastic.nonlinear = SCENE_FIELD(materials, index, nonlinear) != 0u;
     m.roughplastic.transmittance_offset = SCENE_FIELD(materials, index, transmittance_offset);
+#endif
+#ifdef WP_HAS_MASK
+    m.opacity = SCENE_FIELD(materials, index, opacity);
 #endif
     return m;
 }
@@ -282,7 +291,7 @@ WP_FN vec3 material_colour(WP_SCENE_PARAMS, lane_uint texture, TextureUV uv, vec
     return colour_parameter(untextured, texture, parameter_texture(textures, texture), texels, uv);
 }
 
-#if defined(WP_HAS_ROUGH_CONDUCTOR) || defined(WP_HAS_ROUGH_DIELECTRIC)
+#if defined(WP_HAS_ROUGH_CONDUCTOR) || defined(WP_HAS_ROUGH_DIELECTRIC) || defined(WP_HAS_MASK)
 /* A scalar parameter, as material_colour (scalar_parameter). */
 WP_FN real material_scalar(WP_SCENE_PARAMS, lane_uint texture, TextureUV uv, real untextured) {
     if (!lanes_any(texture != WP_NO_TEXTURE)) return untextured;
@@ -319,6 +328,9 @@ WP_FN Material textured_material(WP_SCENE_PARAMS, Material m, lane_uint material
     /* roughplastic's roughness is untextured (Mitsuba's tables depend on it): m.roughplastic.m keeps it */
     m.microfacet.alpha_u = material_scalar(WP_SCENE_ARGS, p.texture[WP_TEXTURED_ALPHA_U], uv, m.microfacet.alpha_u);
     m.microfacet.alpha_v = material_scalar(WP_SCENE_ARGS, p.texture[WP_TEXTURED_ALPHA_V], uv, m.microfacet.alpha_v);
+#endif
+#ifdef WP_HAS_MASK
+    m.opacity = mask_opacity(material_scalar(WP_SCENE_ARGS, p.texture[WP_TEXTURED_OPACITY], uv, m.opacity));
 #endif
     return m;
 }

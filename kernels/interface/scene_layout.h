@@ -90,6 +90,7 @@ typedef struct {
     float inv_eta_2, internal_reflectance, specular_sampling_weight;
     uint nonlinear, transmittance_offset;
     float bump_scale; /* a `bumpmap` adapter's: its height texture's gradient times this (shared/normal_map.h) */
+    float opacity;    /* a `mask` adapter's (shared/materials/mask.h); 1 on every other material */
 } DeviceMaterial;
 
 /* The material parameters that may be textured (docs/scene-format.md),
@@ -97,15 +98,17 @@ typedef struct {
  * diffuse albedo, the plastics' diffuse_reflectance: DeviceMaterial's
  * albedo), the conductors' and plastics' specular_reflectance, and the
  * roughconductor's and roughdielectric's roughness along each tangent
- * (alpha_u, alpha_v), a `normalmap` adapter's map and a `bumpmap` adapter's
- * height (shared/normal_map.h). */
+ * (alpha_u, alpha_v), a `normalmap` adapter's map, a `bumpmap` adapter's
+ * height (shared/normal_map.h) and a `mask` adapter's opacity
+ * (shared/materials/mask.h). */
 #define WP_TEXTURED_ALBEDO 0
 #define WP_TEXTURED_SPECULAR_REFLECTANCE 1
 #define WP_TEXTURED_ALPHA_U 2
 #define WP_TEXTURED_ALPHA_V 3
 #define WP_TEXTURED_NORMAL_MAP 4
 #define WP_TEXTURED_BUMP_MAP 5
-#define WP_TEXTURED_PARAMETERS 6
+#define WP_TEXTURED_OPACITY 6
+#define WP_TEXTURED_PARAMETERS 7
 
 /* Which of a material's parameters are textured: per WP_TEXTURED_*, an
  * index into the textures (shared/texture.h), or WP_NO_TEXTURE where the

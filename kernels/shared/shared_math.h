@@ -17,6 +17,7 @@
 #include "shared/materials/conductor.h"
 #include "shared/materials/diffuse.h"
 #include "shared/materials/glass.h"
+#include "shared/materials/mask.h"
 #include "shared/materials/microfacet.h"
 #include "shared/materials/mirror.h"
 #include "shared/materials/plastic.h"

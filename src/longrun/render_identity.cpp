@@ -59,6 +59,9 @@ void add_material(Hasher& h, const Material& m) {
     if (m.texture(TexturedParameter::Albedo) != kNoTexture) h.add(m.texture(TexturedParameter::Albedo));
     for (std::size_t p = 1; p < kTexturedParameters; ++p)
         if (m.textures[p] != kNoTexture) h.add(p).add(m.textures[p]);
+    // The adapters' constants, where the material is one.
+    if (m.texture(TexturedParameter::BumpMap) != kNoTexture) h.add(m.bump_scale);
+    if (m.masked()) h.add(m.opacity);
 }
 
 // A texture by what it holds (its texels, not its file's name or date).

@@ -20,7 +20,7 @@ static_assert(sizeof(SceneHeader) == 43 * 4, "SceneHeader must match its OpenCL 
 static_assert(sizeof(DeviceSphere) == 5 * 4, "DeviceSphere must match its OpenCL C layout");
 static_assert(sizeof(DevicePlane) == 7 * 4, "DevicePlane must match its OpenCL C layout");
 static_assert(sizeof(DeviceQuad) == 16 * 4, "DeviceQuad must match its OpenCL C layout");
-static_assert(sizeof(DeviceMaterial) == 30 * 4, "DeviceMaterial must match its OpenCL C layout");
+static_assert(sizeof(DeviceMaterial) == 31 * 4, "DeviceMaterial must match its OpenCL C layout");
 static_assert(sizeof(DeviceLight) == 10 * 4, "DeviceLight must match its OpenCL C layout");
 static_assert(sizeof(MaterialTextures) == WP_TEXTURED_PARAMETERS * 4,
               "MaterialTextures must match its OpenCL C layout");
@@ -30,7 +30,8 @@ static_assert(WP_TEXTURED_PARAMETERS == kTexturedParameters &&
                   WP_TEXTURED_ALPHA_U == static_cast<int>(TexturedParameter::AlphaU) &&
                   WP_TEXTURED_ALPHA_V == static_cast<int>(TexturedParameter::AlphaV) &&
                   WP_TEXTURED_NORMAL_MAP == static_cast<int>(TexturedParameter::NormalMap) &&
-                  WP_TEXTURED_BUMP_MAP == static_cast<int>(TexturedParameter::BumpMap),
+                  WP_TEXTURED_BUMP_MAP == static_cast<int>(TexturedParameter::BumpMap) &&
+                  WP_TEXTURED_OPACITY == static_cast<int>(TexturedParameter::Opacity),
               "the kernels' WP_TEXTURED_* must be TexturedParameter's");
 static_assert(sizeof(SharedMath<float>::TextureDescriptor) == 18 * 4,
               "TextureDescriptor must match its OpenCL C layout");
@@ -233,6 +234,7 @@ SceneLayout flatten_scene(const Scene& scene) {
         d.nonlinear = m.nonlinear ? 1u : 0u;
         d.transmittance_offset = plastic.transmittance_offset;
         d.bump_scale = static_cast<float>(m.bump_scale);
+        d.opacity = static_cast<float>(m.opacity);
         layout.materials.push_back(d);
     }
     add_textures(scene, layout);

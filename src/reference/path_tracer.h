@@ -332,6 +332,9 @@ typename ReferenceScene<Real>::SurfaceMaterial material_at(const ReferenceScene<
     // roughplastic's roughness stays untextured (Mitsuba's tables depend on it): roughplastic.m keeps it
     material.microfacet.alpha_u = surface_scalar(scene, x, TexturedParameter::AlphaU, material.microfacet.alpha_u);
     material.microfacet.alpha_v = surface_scalar(scene, x, TexturedParameter::AlphaV, material.microfacet.alpha_v);
+    if (scene.mask)
+        material.opacity =
+            SharedMath<Real>::mask_opacity(surface_scalar(scene, x, TexturedParameter::Opacity, material.opacity));
     return material;
 }
 
@@ -509,7 +512,8 @@ BsdfValue<Real> nested_bsdf_value(const ReferenceScene<Real>& scene,
     return {M::diffuse_eval(throughput * material.albedo, ns, wi), M::diffuse_pdf(ns, wi, scene.uniform_hemisphere)};
 }
 
-// The material's, times a normal map's terminator term (shared/normal_map.h; 1 without one).
+// The material's, times a normal map's terminator term (shared/normal_map.h;
+// 1 without one), and f and the density times a mask's opacity (shared/materials/mask.h).
 template <class Real>
 BsdfValue<Real> bsdf_value(const ReferenceScene<Real>& scene,
                            const typename ReferenceScene<Real>::SurfaceMaterial& material, bool front,
@@ -519,6 +523,10 @@ BsdfValue<Real> bsdf_value(const ReferenceScene<Real>& scene,
     if (scene.perturbs_normals)
         b.throughput_f = b.throughput_f * SharedMath<Real>::normal_map_terminator(material.terminator_alpha2,
                                                                                   material.unperturbed_normal, wi);
+    if (scene.mask) {
+        b.throughput_f = b.throughput_f * material.opacity;
+        b.pdf = b.pdf * material.opacity;
+    }
     return b;
 }
 
@@ -576,12 +584,13 @@ Vec3<Real> sample_direct_light(const ReferenceScene<Real>& scene, const Vec3<Rea
 }
 
 // The random numbers of a camera path's BSDF sample at `bounce`, drawn for
-// the material that uses them (a non-specular direction, a glass lobe), 0 else.
+// the material that uses them (a non-specular direction, a glass lobe, a
+// mask's choice: `masked`, in a scene with masks), 0 else.
 template <class Real>
 typename SharedMath<Real>::BsdfRandom camera_bsdf_random(const SampleRng<Real>& rng, std::uint32_t bounce,
-                                                         MaterialType material) {
+                                                         MaterialType material, bool masked) {
     typename SharedMath<Real>::BsdfRandom random{Real(0), Real(0), Real(0)};
-    if (chooses_lobe(material)) random.lobe = rng(bounce, DIM_BSDF_LOBE);
+    if (chooses_lobe(material) || masked) random.lobe = rng(bounce, DIM_BSDF_LOBE);
     if (is_non_specular(material)) {
         typename SharedMath<Real>::CameraPair direction = rng.pair(bounce, DIM_BSDF_U);
         random.u = direction.u;
@@ -630,17 +639,22 @@ typename SharedMath<Real>::BsdfSample nested_scatter(const ReferenceScene<Real>&
     }
 }
 
-// The material's sample, its weight times a normal map's terminator term (shared/normal_map.h; 1 without one).
+// The material's sample, its weight times a normal map's terminator term
+// (shared/normal_map.h; 1 without one), or a mask's pass (shared/materials/mask.h).
 template <class Real>
 typename SharedMath<Real>::BsdfSample scatter(const ReferenceScene<Real>& scene,
                                               const typename ReferenceScene<Real>::SurfaceMaterial& material,
                                               const Vec3<Real>& d, bool front, const Vec3<Real>& nf,
-                                              const Vec3<Real>& ns, const typename SharedMath<Real>::BsdfRandom& random,
+                                              const Vec3<Real>& ns, typename SharedMath<Real>::BsdfRandom random,
                                               std::uint32_t transport) {
-    typename SharedMath<Real>::BsdfSample s = nested_scatter(scene, material, d, front, nf, ns, random, transport);
+    using M = SharedMath<Real>;
+    const bool passes = scene.mask && M::mask_passes(material.opacity, random.lobe);
+    if (scene.mask) random.lobe = M::mask_nested_lobe(material.opacity, random.lobe);
+    typename M::BsdfSample s = nested_scatter(scene, material, d, front, nf, ns, random, transport);
     if (scene.perturbs_normals)
-        s.weight = s.weight * SharedMath<Real>::normal_map_terminator(material.terminator_alpha2,
-                                                                      material.unperturbed_normal, s.direction);
+        s.weight =
+            s.weight * M::normal_map_terminator(material.terminator_alpha2, material.unperturbed_normal, s.direction);
+    if (scene.mask) s = M::mask_sample(material.opacity, passes, s, d, nf);
     return s;
 }
 
@@ -736,8 +750,9 @@ Vec3<Real> trace_path(const ReferenceScene<Real>& scene, Ray<Real> ray, const Sa
                                                  throughput, material, rng, bounce, counts),
                              NonfiniteStage::direct, counts);
         }
-        typename M::BsdfSample next = scatter(scene, material, ray.direction, front, nf, ns,
-                                              camera_bsdf_random(rng, bounce, material.type), WP_TRANSPORT_RADIANCE);
+        typename M::BsdfSample next =
+            scatter(scene, material, ray.direction, front, nf, ns,
+                    camera_bsdf_random(rng, bounce, material.type, scene.mask), WP_TRANSPORT_RADIANCE);
         if (visible && is_visible_point<Real>(material.type, next)) {
             *visible = {surface.point,
                         nf,

@@ -55,6 +55,7 @@ struct ReferenceScene {
         // roughplastic, its table of t in roughplastic_transmittance
         typename M::RoughPlasticParams roughplastic;
         Real bump_scale;  // a bumpmap's scale (Material::bump_scale)
+        Real opacity;     // a mask's opacity (Material::opacity; 1 without a mask)
         // At a normalmap's or bumpmap's hit (path_tracer.h's
         // normal_mapped_vertex): its terminator term's alpha^2 (0: none) and
         // the unperturbed shading normal it measures from (shared/normal_map.h).
@@ -86,6 +87,7 @@ struct ReferenceScene {
     bool normal_map;          // some material is a normalmap (FeatureSet::normal_map)
     bool bump_map;            // some material is a bumpmap (FeatureSet::bump_map)
     bool perturbs_normals;    // either (the kernels' WP_PERTURBS_NORMALS)
+    bool mask;                // some material is a mask (FeatureSet::mask)
     bool shading_normals;     // any: shading normals differ from geometric ones (the kernels' WP_USES_SHADING_NORMALS)
     bool uniform_hemisphere;  // diffuse vertices sample the uniform hemisphere (render.hemisphere)
     bool textures;            // some material parameter is textured: hits compute their uv (FeatureSet::textures)
@@ -121,6 +123,7 @@ struct ReferenceScene {
           normal_map(scene.features().normal_map),
           bump_map(scene.features().bump_map),
           perturbs_normals(normal_map || bump_map),
+          mask(scene.features().mask),
           shading_normals(vertex_normals || perturbs_normals),
           uniform_hemisphere(scene.render.hemisphere == Hemisphere::Uniform),
           textures(scene.features().textures),
@@ -164,6 +167,7 @@ struct ReferenceScene {
             s.specular_reflectance = vec3(m.specular_reflectance);
             s.microfacet = {distribution, Real(m.alpha_u), Real(m.alpha_v)};
             s.bump_scale = Real(m.bump_scale);
+            s.opacity = Real(m.opacity);
             s.plastic = {s.albedo,
                          s.specular_reflectance,
                          s.ior,

@@ -596,6 +596,7 @@ constexpr TexturableProperty kTexturableProperties[] = {
     {"roughdielectric", "alpha_u", TexturedParameter::AlphaU},
     {"roughdielectric", "alpha_v", TexturedParameter::AlphaV},
     {"normalmap", "normalmap", TexturedParameter::NormalMap},
+    {"mask", "opacity", TexturedParameter::Opacity},
 };
 
 // Every property must be one of `properties`, and every texture (nested or
@@ -645,8 +646,9 @@ Material read_adapted_bsdf(const Plugin& bsdf, const std::function<Material(cons
     if (inner.empty()) bsdf.fail("needs the BSDF it perturbs");
     if (inner.size() > 1) bsdf.fail(*inner[1], "a second BSDF: " + std::string(bsdf.type()) + " wraps one");
     const Material m = nested(*inner.front());
-    if (m.texture(TexturedParameter::NormalMap) != kNoTexture || m.texture(TexturedParameter::BumpMap) != kNoTexture)
-        bsdf.fail(*inner.front(), "a normalmap or bumpmap inside it");
+    if (m.texture(TexturedParameter::NormalMap) != kNoTexture || m.texture(TexturedParameter::BumpMap) != kNoTexture ||
+        m.masked())
+        bsdf.fail(*inner.front(), "a normalmap, bumpmap or mask inside it");
     if (m.type == MaterialType::Glass || m.type == MaterialType::RoughDielectric ||
         m.type == MaterialType::ThinDielectric)
         bsdf.fail(*inner.front(), "a dielectric inside it: not supported (" + std::string(bsdf.type()) +
@@ -675,6 +677,30 @@ Material read_bumpmap(const Plugin& bsdf, const std::function<Material(const Xml
     if (heights.size() > 1) bsdf.fail(*heights[1], "a second texture: bumpmap takes one");
     Material m = read_adapted_bsdf(bsdf, nested);
     m.bump_scale = bsdf.number("scale", 1.0);
+    return m;
+}
+
+// Mitsuba's mask: the BSDF it wraps scatters with probability `opacity` (a
+// float in [0, 1] or a texture, which bsdf_material sets; default 0.5), and
+// a ray passes straight through otherwise (kernels/shared/materials/mask.h).
+// No adapter inside it (the JSON reader's read_mask says why).
+Material read_mask(const Plugin& bsdf, const std::function<Material(const XmlElement&)>& nested) {
+    bsdf.allow({"opacity"}, {"bsdf", "texture"});
+    bsdf.textures_only_as({"opacity"});
+    const std::vector<const XmlElement*> inner = bsdf.objects("bsdf");
+    if (inner.empty()) bsdf.fail("needs the BSDF it masks");
+    if (inner.size() > 1) bsdf.fail(*inner[1], "a second BSDF: mask wraps one");
+    Material m = nested(*inner.front());
+    if (m.texture(TexturedParameter::NormalMap) != kNoTexture || m.texture(TexturedParameter::BumpMap) != kNoTexture ||
+        m.masked())
+        bsdf.fail(*inner.front(), "a normalmap, bumpmap or mask inside it");
+    if (bsdf.texture("opacity")) {
+        m.opacity = 0.0;
+        return m;
+    }
+    m.opacity = bsdf.number("opacity", 0.5);
+    if (!(m.opacity >= 0.0 && m.opacity <= 1.0))
+        bsdf.fail(*bsdf.property("opacity"), "opacity: must be in [0, 1], got " + format_number(m.opacity));
     return m;
 }
 
@@ -761,6 +787,7 @@ const std::pair<const char*, BsdfReader> kBsdfs[] = {
     {"roughplastic", read_roughplastic},
     {"normalmap", read_normalmap},
     {"bumpmap", read_bumpmap},
+    {"mask", read_mask},
 };
 
 struct MaterialKey {
@@ -770,6 +797,14 @@ struct MaterialKey {
         if (bsdf != o.bsdf) return std::less<>()(bsdf, o.bsdf);
         return std::tie(emission.x, emission.y, emission.z) < std::tie(o.emission.x, o.emission.y, o.emission.z);
     }
+};
+
+// A <texture> element as the reader reads it: as it is, or a checkerboard
+// with its colours swapped (Reader::texture_index).
+struct TextureUse {
+    const XmlElement* element;
+    bool swapped;
+    bool operator<(const TextureUse& o) const { return std::tie(element, swapped) < std::tie(o.element, o.swapped); }
 };
 
 class Reader {
@@ -1109,8 +1144,8 @@ class Reader {
     // The texture of BSDF property t as its index into the scene's textures; a roughness texture must
     // be one everywhere (roughness_texture_problem).
     int textured_parameter(const Plugin& bsdf, const TexturableProperty& t, const XmlElement& texture) {
-        const int index = texture_index(texture);
         const bool roughness = t.parameter == TexturedParameter::AlphaU || t.parameter == TexturedParameter::AlphaV;
+        const int index = texture_index(texture, roughness || t.parameter == TexturedParameter::Opacity);
         if (roughness) {
             const std::string problem = roughness_texture_problem(out_.scene.textures[std::size_t(index)]);
             if (!problem.empty()) bsdf.fail(std::string(t.property) + ": " + problem);
@@ -1128,9 +1163,17 @@ class Reader {
         return index;
     }
 
-    // A <texture> as an index into the scene's textures (each element read once).
-    int texture_index(const XmlElement& element) {
-        if (auto found = textures_.find(&element); found != textures_.end()) return found->second;
+    // A <texture> as an index into the scene's textures (each element read
+    // once for each way it is read). `as_scalar`: a BSDF reads it as a number
+    // (Mitsuba's eval_1: a roughness, an opacity). Mitsuba 3.9.1's
+    // checkerboard then gives color1 where its colour lookup gives color0;
+    // wavepath's is one pattern for every parameter, so such a use reads a
+    // checkerboard with its colours swapped (under the same name, which
+    // errors quote), and the image is Mitsuba's.
+    int texture_index(const XmlElement& element, bool as_scalar = false) {
+        const std::string* type = element.attribute("type");
+        const TextureUse use{&element, as_scalar && type && *type == "checkerboard"};
+        if (auto found = textures_.find(use); found != textures_.end()) return found->second;
         const Plugin plugin(element, ids_);
         Texture t;
         t.name = plugin.id().empty() ? plugin.type() : plugin.id();
@@ -1156,6 +1199,7 @@ class Reader {
             t.type = TextureType::Checkerboard;
             t.color0 = plugin.optional_color("color0", 1.0, " (energy gain)").value_or(glm::dvec3(0.4));
             t.color1 = plugin.optional_color("color1", 1.0, " (energy gain)").value_or(glm::dvec3(0.2));
+            if (use.swapped) std::swap(t.color0, t.color1);
         } else {
             plugin.fail("not supported (supported: bitmap, checkerboard)");
         }
@@ -1168,7 +1212,7 @@ class Reader {
                         std::to_string(kMaxTextureTexels) + " a scene may have");
         out_.scene.textures.push_back(std::move(t));
         const int index = int(out_.scene.textures.size()) - 1;
-        textures_.emplace(&element, index);
+        textures_.emplace(use, index);
         return index;
     }
 
@@ -1411,8 +1455,8 @@ class Reader {
     IdTable ids_;
     MitsubaScene out_;
     std::map<MaterialKey, int> materials_;
-    std::map<const XmlElement*, int> textures_;  // texture_index's
-    std::size_t texels_ = 0;                     // of every texture read
+    std::map<TextureUse, int> textures_;  // texture_index's
+    std::size_t texels_ = 0;              // of every texture read
     std::set<std::string> names_;
     std::vector<const XmlElement*> converting_;
     std::size_t triangles_ = 0;

@@ -29,6 +29,8 @@ double Camera::aspect() const { return static_cast<double>(width) / static_cast<
 
 bool Material::emits() const { return SharedMath<double>::emits(emission); }
 
+bool Material::masked() const { return opacity != 1.0 || texture(TexturedParameter::Opacity) != kNoTexture; }
+
 bool Material::textured() const {
     return std::any_of(textures.begin(), textures.end(), [](int t) { return t != kNoTexture; });
 }
@@ -66,6 +68,7 @@ FeatureSet Scene::features() const {
         f.textures |= m.textured();
         f.normal_map |= m.texture(TexturedParameter::NormalMap) != kNoTexture;
         f.bump_map |= m.texture(TexturedParameter::BumpMap) != kNoTexture;
+        f.mask |= m.masked();
     }
     for (const Light& light : lights) {
         bool shape = light.kind == LightKind::Shape;
@@ -100,6 +103,7 @@ std::string sppm_problem(const Scene& scene) {
     }
     if (f.normal_map) return "sppm does not render normalmap materials (render with the path integrator)";
     if (f.bump_map) return "sppm does not render bumpmap materials (render with the path integrator)";
+    if (f.mask) return "sppm does not render mask materials (render with the path integrator)";
     return "";
 }
 

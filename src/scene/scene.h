@@ -121,10 +121,11 @@ struct Texture {
 // roughconductor's and roughdielectric's roughness (alpha_u, alpha_v; `alpha`
 // is both), NormalMap a `normalmap` adapter's map (read raw:
 // kernels/shared/normal_map.h), BumpMap a `bumpmap` adapter's height (a
-// bitmap; the gradient of its luminance bends the normal). The kernels' WP_TEXTURED_*
+// bitmap; the gradient of its luminance bends the normal), Opacity a `mask`
+// adapter's opacity (kernels/shared/materials/mask.h). The kernels' WP_TEXTURED_*
 // (kernels/interface/scene_layout.h) in the same order.
-enum class TexturedParameter { Albedo, SpecularReflectance, AlphaU, AlphaV, NormalMap, BumpMap };
-inline constexpr std::size_t kTexturedParameters = 6;
+enum class TexturedParameter { Albedo, SpecularReflectance, AlphaU, AlphaV, NormalMap, BumpMap, Opacity };
+inline constexpr std::size_t kTexturedParameters = 7;
 
 // The microfacet distributions of the rough materials (kernels/shared/materials/microfacet.h).
 enum class Microfacet { Beckmann, GGX };
@@ -149,12 +150,17 @@ struct Material {
     bool nonlinear = false;  // plastic and roughplastic: Mitsuba's `nonlinear` (colours saturate under the coat)
     double bump_scale =
         1;  // a `bumpmap` adapter's `scale`: its height's gradient times this (TexturedParameter::BumpMap)
+    // a `mask` adapter's opacity in [0, 1] (TexturedParameter::Opacity): the
+    // probability that the surface scatters a ray rather than let it pass
+    // (kernels/shared/materials/mask.h); 1 without a mask
+    double opacity = 1;
     // Per TexturedParameter: an index into Scene::textures, or kNoTexture for the constant above.
-    std::array<int, kTexturedParameters> textures{kNoTexture, kNoTexture, kNoTexture,
+    std::array<int, kTexturedParameters> textures{kNoTexture, kNoTexture, kNoTexture, kNoTexture,
                                                   kNoTexture, kNoTexture, kNoTexture};
     int& texture(TexturedParameter p) { return textures[static_cast<std::size_t>(p)]; }
     int texture(TexturedParameter p) const { return textures[static_cast<std::size_t>(p)]; }
     bool textured() const;  // some parameter is
+    bool masked() const;    // a `mask` adapter: its opacity is below 1 somewhere
     bool emits() const;
 };
 
@@ -242,6 +248,7 @@ struct FeatureSet {
     bool textures = false;         // a material parameter is textured: hits compute their uv
     bool normal_map = false;       // a material is a `normalmap` adapter: hits perturb their shading normal
     bool bump_map = false;         // a material is a `bumpmap` adapter: hits bend their shading normal
+    bool mask = false;             // a material is a `mask` adapter: rays may pass its surface
     bool sphere_lights = false, quad_lights = false, mesh_lights = false;
     bool directional_lights = false;
     bool constant_environment = false;  // a non-black background: the environment light

@@ -320,8 +320,8 @@ Material read_adapted_material(const std::string& name, const JsonField& field, 
     Material material = read_material(name, nested_field, textures);
     const MaterialType t = material.type;
     if (material.texture(TexturedParameter::NormalMap) != kNoTexture ||
-        material.texture(TexturedParameter::BumpMap) != kNoTexture)
-        nested_field.fail("a " + adapter + " cannot nest a normalmap or bumpmap");
+        material.texture(TexturedParameter::BumpMap) != kNoTexture || material.masked())
+        nested_field.fail("a " + adapter + " cannot nest a normalmap, bumpmap or mask");
     if (t == MaterialType::Emitter || t == MaterialType::Glass || t == MaterialType::RoughDielectric ||
         t == MaterialType::ThinDielectric) {
         nested_field.member("type").fail(
@@ -351,6 +351,34 @@ Material read_bump_map(const std::string& name, const JsonField& field, const st
         map.member("texture").fail(problem);
     material.texture(TexturedParameter::BumpMap) = texture;
     if (auto scale = field.optional_member("scale")) material.bump_scale = scale->number();
+    return material;
+}
+
+// Mitsuba's `mask` adapter (kernels/shared/materials/mask.h): its nested
+// material (`bsdf`) scatters a ray with probability `opacity` (a number in
+// [0, 1] or a texture, clamped to [0, 1] where it is read; Mitsuba's default
+// 0.5), and otherwise the ray passes straight through. An adapter inside it
+// is refused (a normal map's arrival rule would end rays the mask lets
+// pass), as is an emitter (its emission does not pass).
+Material read_mask(const std::string& name, const JsonField& field, const std::vector<Texture>& textures) {
+    field.allow_only_keys({"type", "opacity", "bsdf"});
+    const JsonField nested_field = field.member("bsdf");
+    Material material = read_material(name, nested_field, textures);
+    if (material.texture(TexturedParameter::NormalMap) != kNoTexture ||
+        material.texture(TexturedParameter::BumpMap) != kNoTexture || material.masked())
+        nested_field.fail("a mask cannot nest a normalmap, bumpmap or mask");
+    if (material.type == MaterialType::Emitter) nested_field.member("type").fail("a mask cannot nest an emitter");
+    const std::optional<JsonField> opacity = field.optional_member("opacity");
+    if (!opacity) {
+        material.opacity = 0.5;
+    } else if (opacity->is_object()) {
+        material.texture(TexturedParameter::Opacity) = read_texture_reference(*opacity, textures);
+        material.opacity = 0.0;
+    } else {
+        material.opacity = opacity->number();
+        if (!(material.opacity >= 0.0 && material.opacity <= 1.0))
+            opacity->fail("must be in [0, 1], got " + format_number(material.opacity));
+    }
     return material;
 }
 
@@ -396,10 +424,12 @@ Material read_material(const std::string& name, const JsonField& field, const st
         material = read_normal_map(name, field, textures);
     } else if (type == "bumpmap") {
         material = read_bump_map(name, field, textures);
+    } else if (type == "mask") {
+        material = read_mask(name, field, textures);
     } else {
         type_field.fail("unknown material type " + nlohmann::json(type).dump() +
                         " (expected one of: diffuse, mirror, glass, emitter, conductor, roughconductor, dielectric, "
-                        "roughdielectric, thindielectric, plastic, roughplastic, normalmap, bumpmap)");
+                        "roughdielectric, thindielectric, plastic, roughplastic, normalmap, bumpmap, mask)");
     }
     return material;
 }

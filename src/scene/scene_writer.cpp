@@ -114,8 +114,12 @@ nlohmann::json dielectric_json(const Material& m, const TextureNames& textures) 
     return j;
 }
 
-// A normalmap or bumpmap around the nested material's JSON, or that JSON as it is.
+// A normalmap, bumpmap or mask around the nested material's JSON, or that JSON as it is.
 nlohmann::json adapted_json(const Material& m, nlohmann::json nested, const TextureNames& textures) {
+    if (m.masked())
+        return {{"type", "mask"},
+                {"opacity", parameter_json(m, TexturedParameter::Opacity, m.opacity, textures)},
+                {"bsdf", std::move(nested)}};
     if (m.texture(TexturedParameter::NormalMap) != kNoTexture)
         return {{"type", "normalmap"},
                 {"normalmap", parameter_json(m, TexturedParameter::NormalMap, 0.0, textures)},

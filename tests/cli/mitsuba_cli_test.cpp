@@ -70,11 +70,13 @@ TEST_F(MitsubaCli, ConvertedMetalsAndGlassRenderTheSameImage) {
 
 // Textures (bitmaps nested and by <ref>, raw, nearest, mirror; a checkerboard;
 // their to_uv) on every parameter that takes one, and normal and bump maps
-// around their nested materials (a bump map's scale), through the JSON and
+// and masks around their nested materials (a bump map's scale, a mask's
+// opacity; a checkerboard roughness or opacity with its colours swapped),
+// through the JSON and
 // back: the images are found from the JSON's folder, which is not the XML's.
 TEST_F(MitsubaCli, ConvertedTexturesRenderTheSameImage) {
     for (const auto& [name, textures] :
-         {std::pair{"textures", 3}, {"textured_materials", 5}, {"normal_map", 2}, {"bump_map", 2}}) {
+         {std::pair{"textures", 3}, {"textured_materials", 5}, {"normal_map", 2}, {"bump_map", 2}, {"mask", 2}}) {
         SCOPED_TRACE(name);
         const std::string scene = (kScenes / (std::string(name) + ".xml")).string();
         const std::string json = out_ / (std::string(name) + ".json");

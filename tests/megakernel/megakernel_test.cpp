@@ -129,11 +129,12 @@ TEST(Megakernel, TexturedMaterialsBitIdenticalInEveryBackend) {
     EXPECT_EQ(render_wavefront(scene, {}, {}).image.rgb, render_reference(scene, ReferenceOptions{2, false}).image.rgb);
 }
 
-// A scene of normal or bump maps renders bit-identical images in every
-// backend whatever the lanes and the wavefront's size; the double reference,
+// A scene renders bit-identical images in every backend whatever the lanes
+// and the wavefront's size (the adapters' scenes: normal and bump maps,
+// masks); the double reference,
 // whose paths part from float's only where rounding turns a decision, has
 // the float image's mean within 1%.
-void expect_perturbed_normals_bit_identical(const Scene& scene) {
+void expect_bit_identical_in_every_backend(const Scene& scene) {
     const RenderResult reference = render_reference(scene, ReferenceOptions{2, false});
     for (unsigned lanes : {1u, 16u}) {
         EXPECT_EQ(render_megakernel(scene, with_lanes(lanes), {}).image.rgb, reference.image.rgb) << "lanes " << lanes;
@@ -157,7 +158,7 @@ TEST(Megakernel, NormalMapsBitIdenticalInEveryBackend) {
     Scene scene = load_scene(WAVEPATH_SOURCE_DIR "/scenes/test/oracle_normal_map.json");
     ASSERT_TRUE(scene.features().normal_map && scene.features().textures);
     scene.render.spp = 2;
-    expect_perturbed_normals_bit_identical(scene);
+    expect_bit_identical_in_every_backend(scene);
 }
 
 // Bump maps (normal_map.h' bump_mapped, texture.h' texture_gradient) over the
@@ -168,14 +169,46 @@ TEST(Megakernel, BumpMapsBitIdenticalInEveryBackend) {
     Scene scene = load_scene(WAVEPATH_SOURCE_DIR "/scenes/test/oracle_bump_map.json");
     ASSERT_TRUE(scene.features().bump_map && !scene.features().normal_map);
     scene.render.spp = 2;
-    expect_perturbed_normals_bit_identical(scene);
+    expect_bit_identical_in_every_backend(scene);
     auto floor_it = std::find_if(scene.materials.begin(), scene.materials.end(),
                                  [](const Material& m) { return m.name == "floor"; });
     ASSERT_NE(floor_it, scene.materials.end());
     Material& floor = *floor_it;
     std::swap(floor.texture(TexturedParameter::NormalMap), floor.texture(TexturedParameter::BumpMap));
     ASSERT_TRUE(scene.features().bump_map && scene.features().normal_map);
-    expect_perturbed_normals_bit_identical(scene);
+    expect_bit_identical_in_every_backend(scene);
+}
+
+// Masks (kernels/shared/materials/mask.h) of a checkerboard, a bitmap and
+// constant opacities around a diffuse, a plastic, a dielectric and a rough
+// conductor: the same passes, rescaled lobe numbers and scaled densities in
+// every backend; and with every mask made opaque, the image of the nested
+// materials alone, bit for bit (an opacity of 1 never passes, and scales
+// f, the density and the lobe number by exactly 1).
+TEST(Megakernel, MasksBitIdenticalInEveryBackend) {
+    Scene scene = load_scene(WAVEPATH_SOURCE_DIR "/scenes/test/oracle_mask.json");
+    ASSERT_TRUE(scene.features().mask && scene.features().textures);
+    scene.render.spp = 2;
+    expect_bit_identical_in_every_backend(scene);
+
+    Scene opaque = scene, unmasked = scene;
+    Texture ones;
+    ones.name = "ones";
+    ones.type = TextureType::Checkerboard;
+    ones.color0 = ones.color1 = glm::dvec3(1.0);
+    opaque.textures.push_back(ones);
+    for (Material& m : opaque.materials) {
+        if (!m.masked()) continue;
+        m.opacity = 0.0;
+        m.texture(TexturedParameter::Opacity) = static_cast<int>(opaque.textures.size()) - 1;
+    }
+    for (Material& m : unmasked.materials) {
+        m.opacity = 1.0;
+        m.texture(TexturedParameter::Opacity) = kNoTexture;
+    }
+    ASSERT_TRUE(opaque.features().mask && !unmasked.features().mask);
+    EXPECT_EQ(render_megakernel(opaque, with_lanes(16u), {}).image.rgb,
+              render_megakernel(unmasked, with_lanes(16u), {}).image.rgb);
 }
 
 // The environment map (kernels/shared/environment_map.h): its lookup where

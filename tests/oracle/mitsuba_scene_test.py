@@ -181,6 +181,24 @@ class ConverterTest(unittest.TestCase):
         self.assertEqual(r["bsdf"]["bsdf"]["alpha_v"], 0.2)
         self.assertEqual(g["bsdf"]["alpha"]["type"], "checkerboard")
 
+    def test_mask_is_mask_around_the_nested_plugin_and_a_checkerboard_opacity_swaps_its_colours(self):
+        # Mitsuba 3.9.1's checkerboard read as a number (eval_1) gives color1 where its colour lookup gives color0
+        textures = {"c": {"type": "checkerboard", "color0": 1, "color1": 0}}
+        materials = {"m": {"type": "mask", "opacity": {"texture": "c"},
+                           "bsdf": {"type": "diffuse", "albedo": {"texture": "c"}}},
+                     "h": {"type": "mask", "bsdf": {"type": "dielectric", "int_ior": 1.5, "ext_ior": 1.0}}}
+        m, h = self.shapes(self.convert([{**QUAD, "material": "m"}, {**QUAD, "material": "h"}], materials,
+                                        textures=textures))
+        self.assertEqual(m["bsdf"]["type"], "mask")
+        one, zero = {"type": "rgb", "value": [1, 1, 1]}, {"type": "rgb", "value": [0, 0, 0]}
+        self.assertEqual((m["bsdf"]["opacity"]["color0"], m["bsdf"]["opacity"]["color1"]), (zero, one))
+        nested = m["bsdf"]["bsdf"]
+        self.assertEqual(nested["type"], "twosided")
+        self.assertEqual((nested["bsdf"]["reflectance"]["color0"], nested["bsdf"]["reflectance"]["color1"]),
+                         (one, zero))  # a colour: as it is
+        self.assertEqual(h["bsdf"]["opacity"], 0.5)  # Mitsuba's default, written out
+        self.assertEqual(h["bsdf"]["bsdf"]["type"], "dielectric")
+
     def test_normalmap_is_twosided_around_normalmap_around_the_nested_plugin(self):
         textures = {"n": {"type": "bitmap", "file": "n.png", "raw": True}, "c": {"type": "checkerboard"}}
         materials = {"m": {"type": "normalmap", "normalmap": {"texture": "n"},

@@ -69,6 +69,7 @@ CASES = [
     ("textured_materials", "textured_materials.xml", {}),
     ("normal_map", "normal_map.xml", {}),
     ("bump_map", "bump_map.xml", {}),
+    ("mask", "mask.xml", {}),
     ("envmap", "envmap.xml", {}),
 ]
 # Cases compared in blocks of 8 x 8 rather than of --block: filters.xml's edges lie on those blocks' borders, so

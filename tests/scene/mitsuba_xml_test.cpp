@@ -497,7 +497,7 @@ TEST_F(MitsubaXml, ErrorsNameTheFileLineAndPluginOrProperty) {
             <bsdf type="principled"/>
         </shape>)"),
               "scene.xml:4: bsdf \"principled\": not supported (supported: diffuse, twosided, dielectric, conductor, "
-              "roughconductor, roughdielectric, thindielectric, plastic, roughplastic, normalmap, bumpmap)");
+              "roughconductor, roughdielectric, thindielectric, plastic, roughplastic, normalmap, bumpmap, mask)");
     EXPECT_EQ(error_of(sensor() + R"(
         <shape type="rectangle"><float name="width" value="2"/></shape>)"),
               "scene.xml:3: shape \"rectangle\": float \"width\": not supported (supported: to_world, flip_normals)");
@@ -752,7 +752,11 @@ TEST_F(MitsubaXml, TexturesOfPlasticsAndConductors) {
         <shape type="sphere"><point name="center" x="15" y="0" z="0"/>
             <bsdf type="roughconductor"><float name="alpha_u" value="0.3"/><ref name="alpha_v" id="a"/></bsdf></shape>)")
                             .scene;
-    ASSERT_EQ(scene.textures.size(), 2u);
+    // the roughnesses read `a` as a number: a third texture, `a` with its colours swapped (Mitsuba's eval_1)
+    ASSERT_EQ(scene.textures.size(), 3u);
+    expect_near(scene.textures[2].color0, scene.textures[0].color1);
+    expect_near(scene.textures[2].color1, scene.textures[0].color0);
+    EXPECT_EQ(scene.textures[2].name, scene.textures[0].name);
     auto material = [&](int sphere) {
         return scene.materials[std::size_t(scene.spheres[std::size_t(sphere)].material)];
     };
@@ -773,11 +777,42 @@ TEST_F(MitsubaXml, TexturesOfPlasticsAndConductors) {
     EXPECT_EQ(material(3).texture(P::Albedo), kNoTexture);
     // a roughness: `alpha` both tangents', alpha_u and alpha_v one each
     EXPECT_EQ(material(4).type, MaterialType::RoughDielectric);
-    EXPECT_EQ(material(4).texture(P::AlphaU), 0);
-    EXPECT_EQ(material(4).texture(P::AlphaV), 0);
+    EXPECT_EQ(material(4).texture(P::AlphaU), 2);
+    EXPECT_EQ(material(4).texture(P::AlphaV), 2);
     EXPECT_EQ(material(5).texture(P::AlphaU), kNoTexture);
     EXPECT_EQ(material(5).alpha_u, 0.3);
-    EXPECT_EQ(material(5).texture(P::AlphaV), 0);
+    EXPECT_EQ(material(5).texture(P::AlphaV), 2);
+}
+
+// A mask around its BSDF (twosided inside or outside): a constant opacity,
+// Mitsuba's default 0.5, and a texture (a checkerboard read as a number:
+// its colours swapped), which makes the constant 0 (unused).
+TEST_F(MitsubaXml, MasksAroundTheirBsdfs) {
+    const Scene scene = read(sensor() + R"(
+        <shape type="sphere"><bsdf type="mask"><float name="opacity" value="0.25"/>
+            <bsdf type="twosided"><bsdf type="diffuse"/></bsdf></bsdf></shape>
+        <shape type="sphere"><point name="center" x="3" y="0" z="0"/>
+            <bsdf type="twosided"><bsdf type="mask"><bsdf type="roughconductor"/></bsdf></bsdf></shape>
+        <shape type="sphere"><point name="center" x="6" y="0" z="0"/>
+            <bsdf type="mask"><texture type="checkerboard" name="opacity">
+                <float name="color0" value="1"/><float name="color1" value="0"/></texture>
+            <bsdf type="dielectric"/></bsdf></shape>)")
+                            .scene;
+    auto material = [&](int sphere) {
+        return scene.materials[std::size_t(scene.spheres[std::size_t(sphere)].material)];
+    };
+    EXPECT_EQ(material(0).type, MaterialType::Diffuse);
+    EXPECT_EQ(material(0).opacity, 0.25);
+    EXPECT_EQ(material(1).type, MaterialType::RoughConductor);
+    EXPECT_EQ(material(1).opacity, 0.5);
+    EXPECT_EQ(material(2).type, MaterialType::Glass);
+    EXPECT_EQ(material(2).opacity, 0.0);
+    ASSERT_EQ(material(2).texture(TexturedParameter::Opacity), 0);
+    ASSERT_EQ(scene.textures.size(), 1u);
+    expect_near(scene.textures[0].color0, glm::dvec3(0.0));
+    expect_near(scene.textures[0].color1, glm::dvec3(1.0));
+    EXPECT_TRUE(material(0).masked() && material(1).masked() && material(2).masked());
+    EXPECT_TRUE(scene.features().mask);
 }
 
 }  // namespace mitsuba_xml_test

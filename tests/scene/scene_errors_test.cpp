@@ -166,7 +166,7 @@ const PatchCase kPatchCases[] = {
     {"NoMaterialsDefined", R"({"materials": null})",
      R"(shapes[0].material: undefined material "white" (defined: none))"},
     {"UnknownMaterialType", R"({"materials": {"white": {"type": "metal"}}})",
-     R"(materials.white.type: unknown material type "metal" (expected one of: diffuse, mirror, glass, emitter, conductor, roughconductor, dielectric, roughdielectric, thindielectric, plastic, roughplastic, normalmap, bumpmap))"},
+     R"(materials.white.type: unknown material type "metal" (expected one of: diffuse, mirror, glass, emitter, conductor, roughconductor, dielectric, roughdielectric, thindielectric, plastic, roughplastic, normalmap, bumpmap, mask))"},
     {"UnknownShapeType", R"({"shapes": [{"type": "box", "material": "white"}]})",
      R"(shapes[0].type: unknown shape type "box" (expected one of: sphere, plane, quad, mesh))"},
     {"NegativeAlbedo", R"({"materials": {"white": {"albedo": [0.5, -0.1, 0.5]}}})",

@@ -122,7 +122,7 @@ TEST(ShadeStage, GlassSplitFollowsFresnelAndMatchesReference) {
             fresnel = M::fresnel_dielectric(-glm::dot(ray.direction, nf), entering ? 1.5f : 1 / 1.5f);
             reference::SampleRng<float> rng = reference::sample_rng(ref, 0u, std::uint32_t(i));
             auto next = reference::scatter(ref, ref.materials[0], ray.direction, entering, nf, nf,
-                                           reference::camera_bsdf_random(rng, 0u, ref.materials[0].type),
+                                           reference::camera_bsdf_random(rng, 0u, ref.materials[0].type, ref.mask),
                                            WP_TRANSPORT_RADIANCE);
             vec3 got(dir[0][i], dir[1][i], dir[2][i]);
             ASSERT_NEAR(glm::length(got - next.direction), 0.0f, 1e-6f) << "path " << i;
