@@ -10,7 +10,7 @@ cd "$(dirname "$0")/.."
 
 # What building and running the renderer needs (assimp reads mesh files, and
 # its CMake config names libz.so without libassimp-dev depending on
-# zlib1g-dev; glmark2-data ships the bunny that scenes/meshes/bunny.obj links to;
+# zlib1g-dev; tinyobjloader parses OBJ files for it; glmark2-data ships the bunny that scenes/meshes/bunny.obj links to;
 # Open MPI for `mpirun -n N wavepath render`, the WAVEPATH_MPI component, which
 # the build leaves out where MPI is not found; pugixml reads Mitsuba 3 XML
 # scenes, the XML library Mitsuba itself uses, and zlib inflates their
@@ -19,7 +19,7 @@ RENDER_PACKAGES=(
   build-essential cmake pkg-config
   ocl-icd-opencl-dev opencl-headers opencl-clhpp-headers pocl-opencl-icd
   libglm-dev libopenimageio-dev nlohmann-json3-dev libcli11-dev
-  libembree-dev libassimp-dev zlib1g-dev libpugixml-dev glmark2-data
+  libembree-dev libassimp-dev libtinyobjloader-dev zlib1g-dev libpugixml-dev glmark2-data
   openmpi-bin libopenmpi-dev
 )
 # What the tests and the benchmark add: GoogleTest (whose CMake config also

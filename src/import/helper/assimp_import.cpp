@@ -13,12 +13,14 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
+#include <exception>
 #include <memory>
 #include <string>
 #include <string_view>
 #include <utility>
 #include <vector>
 
+#include "import/helper/obj_reader.h"
 #include "import/mesh_file_error.h"
 #include "import/mesh_invariants.h"
 
@@ -75,10 +77,11 @@ std::string one_line(std::string text) {
 
 // ---- the reader ----
 
-// assimp's names for the readers of the formats docs/scene-format.md lists.
-constexpr std::string_view kDocumentedReaders[] = {"Wavefront Object Importer",
-                                                   "Stanford Polygon Library (PLY) Importer", "OFF Importer",
-                                                   "Stereolithography (STL) Importer", "glTF2 Importer"};
+// assimp's names for the readers of the formats docs/scene-format.md lists
+// (OBJ: wavepath's own, import/helper/obj_reader.h).
+constexpr std::string_view kDocumentedReaders[] = {TinyObjReader::kName, "Stanford Polygon Library (PLY) Importer",
+                                                   "OFF Importer", "Stereolithography (STL) Importer",
+                                                   "glTF2 Importer"};
 
 // Why the reader assimp chose for the file may not read it; empty if it may
 // or none is chosen yet. assimp's ReadFile records its choice (by the
@@ -138,13 +141,26 @@ void check_raw_mesh(const aiMesh& mesh) {
     }
 }
 
+// What a reader of wavepath's threw inside assimp (TinyObjReader), if that ended the read.
+void rethrow_mesh_file_error(const std::exception_ptr& exception) {
+    if (!exception) return;
+    try {
+        std::rethrow_exception(exception);
+    } catch (const MeshFileError&) {
+        throw;
+    } catch (...) {
+    }
+}
+
 // The file's scene, triangulated with identical vertices joined, or MeshFileError.
 const aiScene* import_triangles(Assimp::Importer& importer, const std::filesystem::path& path) {
     AssimpErrorCapture log;
+    use_tiny_obj_reader(importer);
     auto* gate = new ReaderGate(importer);
     importer.SetProgressHandler(gate);  // the importer owns it
     const aiScene* scene = importer.ReadFile(path.string(), 0);
     if (!gate->refusal().empty()) throw MeshFileError(gate->refusal());
+    if (!scene) rethrow_mesh_file_error(importer.GetException());
     if (!scene) throw MeshFileError("assimp cannot read it: " + one_line(importer.GetErrorString()));
     if (std::string refusal = reader_refusal(importer); !refusal.empty()) throw MeshFileError(refusal);
     if (std::string error = log.find("out of range"); !error.empty())
