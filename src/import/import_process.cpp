@@ -117,26 +117,6 @@ std::vector<char*> pointers(std::vector<std::string>& strings) {
     return result;
 }
 
-// wavepath's environment, with glibc's malloc on transparent huge pages
-// (glibc.malloc.hugetlb=1, added to GLIBC_TUNABLES): assimp's OBJ reader
-// fills a 16 MiB buffer for every file (its IOStreamBuffer), which in each
-// new importer process took 4096 page faults, about 25 ms a file on a
-// loaded machine against 4 ms with huge pages (bench/results/big_scenes.md).
-std::vector<std::string> helper_environment() {
-    constexpr std::string_view kTunables = "GLIBC_TUNABLES=", kHugePages = "glibc.malloc.hugetlb=1";
-    std::vector<std::string> environment;
-    bool tuned = false;
-    for (char** entry = environ; *entry != nullptr; ++entry) {
-        environment.emplace_back(*entry);
-        if (environment.back().starts_with(kTunables)) {
-            environment.back().append(environment.back().size() > kTunables.size() ? ":" : "").append(kHugePages);
-            tuned = true;
-        }
-    }
-    if (!tuned) environment.push_back(std::string(kTunables).append(kHugePages));
-    return environment;
-}
-
 }  // namespace
 
 // The running helper: its requests on its descriptor 0, its importers'
@@ -291,9 +271,8 @@ class MeshImporter::Helper {
 
         std::vector<std::string> arguments{helper.string(), std::to_string(limits.memory_mib),
                                            std::to_string(limits.cpu_s)};
-        std::vector<std::string> environment = helper_environment();
-        const std::vector<char*> argv = pointers(arguments), envp = pointers(environment);
-        const int error = ::posix_spawn(&pid_, argv[0], &actions, &attributes, argv.data(), envp.data());
+        const std::vector<char*> argv = pointers(arguments);
+        const int error = ::posix_spawn(&pid_, argv[0], &actions, &attributes, argv.data(), environ);
         posix_spawn_file_actions_destroy(&actions);
         posix_spawnattr_destroy(&attributes);
         if (error != 0)
