@@ -35,7 +35,7 @@ inline constexpr std::size_t kMaxFailureLength = 4096;
 // The helper's file descriptors (import/helper/main.cpp): the requests it
 // reads (each a u32 length, then that many bytes of a file's name, at most
 // kMaxRequestLength), the answers its importers write, and the statuses
-// (ImporterStatus) it writes when an importer has ended. Exit statuses
+// (ImporterStatus) it writes when an importer has answered or ended. Exit statuses
 // besides 0 (answered), of an importer or of the helper: its command line
 // was not what wavepath passes, its limits could not be set or it could not
 // start an importer (usage); an allocation failed under its memory limit.
@@ -46,10 +46,13 @@ inline constexpr std::uint32_t kMaxRequestLength = 1u << 16;
 inline constexpr int kHelperUsageStatus = 2;
 inline constexpr int kHelperOutOfMemoryStatus = 10;
 
-// How an importer ended: its wait status (wait4) and the CPU time it used.
+// How an importer's file ended: its wait status (wait4) if the importer
+// ended on it, else 0 (answered); the CPU time the file took; and how many
+// files the importer had answered before it.
 struct ImporterStatus {
     int wait_status = 0;
     double cpu_s = 0.0;
+    std::uint32_t files_before = 0;
 };
 
 // An answer's message when the file could not be imported (one line).

@@ -119,6 +119,13 @@ std::vector<char*> pointers(std::vector<std::string>& strings) {
 
 }  // namespace
 
+// How the importer of one request ended, and its answer.
+struct MeshImporter::Outcome {
+    ImporterStatus status;
+    std::string answer;
+    bool helper_ended = false;  // the helper ended instead (`status` is its own): start another
+};
+
 // The running helper: its requests on its descriptor 0, its importers'
 // answers on 3, their statuses on 4; stdout and stderr are /dev/null (what
 // assimp, or a crash, prints must not reach wavepath's one error line),
@@ -126,13 +133,6 @@ std::vector<char*> pointers(std::vector<std::string>& strings) {
 // of scope, it is killed (its importer with it) and reaped.
 class MeshImporter::Helper {
  public:
-    // How the importer of one request ended, and its answer.
-    struct Outcome {
-        ImporterStatus status;
-        std::string answer;
-        bool helper_ended = false;  // the helper ended instead (`status` is its own): start another
-    };
-
     Helper(const std::filesystem::path& helper, const MeshImportLimits& limits) {
         const Channel requests = make_channel(true), answers = make_channel(false), statuses = make_channel(false);
         requests_ = Descriptor(requests.ours);
@@ -350,6 +350,8 @@ void MeshImporter::start_expected() {
 
 void MeshImporter::drop_started() {
     for (const Started& started : started_) helpers_[started.helper].reset();  // killed, with its importer
+    // The files started were the expected ones before next_expected_: they start again.
+    next_expected_ -= std::min(next_expected_, started_.size());
     started_.clear();
 }
 
@@ -363,9 +365,27 @@ ImportedScene MeshImporter::import(const std::filesystem::path& file) {
         next_expected_ = 0;
         start(file);
     }
+    Outcome outcome = take_front();
+    if (outcome.status.files_before > 0) {
+        try {
+            return scene_of(outcome);
+        } catch (const MeshFileError&) {
+            // Its importer had read other files before, so the failure may be
+            // theirs: the file again, in a fresh helper and importer, whose
+            // answer is the file's own.
+            drop_started();
+            for (std::unique_ptr<Helper>& helper : helpers_) helper.reset();
+            start(file);
+            outcome = take_front();
+        }
+    }
+    return scene_of(outcome);
+}
+
+MeshImporter::Outcome MeshImporter::take_front() {
     const Started current = started_.front();
     std::unique_ptr<Helper>& helper = helpers_[current.helper];
-    Helper::Outcome outcome;
+    Outcome outcome;
     try {
         // The answer cannot be larger than the memory the importer may use.
         outcome = helper->receive(current.deadline, std::size_t(limits_.memory_mib) << 20);
@@ -377,6 +397,10 @@ ImportedScene MeshImporter::import(const std::filesystem::path& file) {
     if (outcome.helper_ended) helper.reset();
     started_.pop_front();  // its helper is free: the next file starts while this one is checked
     start_expected();
+    return outcome;
+}
+
+ImportedScene MeshImporter::scene_of(const Outcome& outcome) const {
     const int status = outcome.status.wait_status;
     if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) fail_on_status(status, outcome.status.cpu_s, limits_);
     ImportAnswer answer;

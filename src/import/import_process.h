@@ -1,10 +1,13 @@
 // Mesh files are read by assimp in child processes: wavepath-import
 // (import/helper/main.cpp), started once with posix_spawn (safe after
 // MPI_Init: nothing of this process runs in the child) under
-// MeshImportLimits, forks an importer of its own for each file, which
-// answers over a pipe (import/answer.h). Whatever happens there (a crash,
-// an allocation beyond its memory limit, a loop, a hang, an answer that is
-// not well-formed) becomes one ImportProcessError for that file.
+// MeshImportLimits, forks an importer, which reads the files one after
+// another, each under the limits, and answers over a pipe
+// (import/answer.h). Whatever happens there (a crash, an allocation beyond
+// its memory limit, a loop, a hang, an answer that is not well-formed)
+// becomes one ImportProcessError for that file; a file that fails in an
+// importer that had read other files is imported again in a fresh one, so
+// that its failure is its own.
 #pragma once
 
 #include <array>
@@ -49,9 +52,10 @@ class ImportHelperUnavailable : public std::runtime_error {
 // benchmarks; an installation puts it beside wavepath.
 std::filesystem::path import_helper_path();
 
-// Imports mesh files, each in an importer process of its own, forked by a
-// wavepath-import that is started at the first file, kept for the next and
-// started again after a failure that ended it. A scene's loader keeps one
+// Imports mesh files in an importer process, forked by a wavepath-import
+// that is started at the first file, kept for the next and started again
+// after a failure that ended it (or, after any failure of a file in an
+// importer that had read others, to import that file alone). A scene's loader keeps one
 // for all the scene's files (one start instead of one per file) and says
 // which files it will ask for: then the next is imported while wavepath
 // checks the one before (bench/results/big_scenes.md). The answers are
@@ -90,6 +94,9 @@ class MeshImporter {
     void start(const std::filesystem::path& file);  // on a helper with no file under way
     void start_expected();                          // up to kHelpers files under way
     void drop_started();
+    struct Outcome;        // how one file's import ended (import_process.cpp)
+    Outcome take_front();  // the first file under way's; then the next expected file starts
+    ImportedScene scene_of(const Outcome& outcome) const;  // or the error it is
 
     MeshImportLimits limits_;
     std::filesystem::path helper_path_;

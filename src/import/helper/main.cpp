@@ -2,18 +2,23 @@
 // (import/import_process.h), which trusts nothing it sends.
 //
 // Usage: wavepath-import MEMORY_MIB CPU_S
-// It dies with its parent. It reads requests on descriptor 0
-// (kRequestFd), each a u32 length and that many bytes of a file's name,
-// until end of file. For each it forks an importer, which limits itself
-// before it opens the file: MEMORY_MIB more address space than it has then
-// (RLIMIT_AS; an allocation beyond it ends it with status
-// kHelperOutOfMemoryStatus), CPU_S seconds of CPU time (RLIMIT_CPU:
-// SIGXCPU), no core files, and death with this process. The importer
-// answers on descriptor 3 (kAnswerFd, import/answer.h) and exits; then this
-// process writes its wait status and CPU time on descriptor 4
-// (kStatusFd). One process per file, so what a malformed file does to an
-// importer's memory ends with it; one start (the dynamic loader, assimp's
-// relocations) for all the files of a scene.
+// It dies with its parent. It forks an importer, which reads requests on
+// descriptor 0 (kRequestFd), each a u32 length and that many bytes of a
+// file's name, until end of file, and answers each on descriptor 3
+// (kAnswerFd, import/answer.h). Before each file the importer limits
+// itself, counted from there: MEMORY_MIB more address space than it has
+// then (RLIMIT_AS; an allocation beyond it ends it with status
+// kHelperOutOfMemoryStatus) and CPU_S more seconds of CPU time (RLIMIT_CPU:
+// SIGXCPU); no core files, and death with this process. After each answer
+// this process writes a status on descriptor 4 (kStatusFd): the file's CPU
+// time and how many files the importer had answered before. An importer
+// that ends on a file (a crash, a limit) is reported with its wait status,
+// and the next request goes to a new one: wavepath imports a file that
+// failed in an importer that had read others again in a fresh one
+// (import/import_process.h), so that a failure is the file's own. One start
+// (the dynamic loader, assimp's relocations) and one importer for the files
+// of a scene that import cleanly (bench/results/big_scenes.md).
+#include <fcntl.h>
 #include <sys/prctl.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
@@ -22,6 +27,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <charconv>
+#include <cmath>
 #include <csignal>
 #include <cstdint>
 #include <cstdio>
@@ -61,12 +67,6 @@ bool lower_limit(int resource, rlim_t soft, rlim_t hard) {
 // Death with the parent; false if the parent is already gone (it is no longer `parent`).
 bool die_with_parent(pid_t parent) { return ::prctl(PR_SET_PDEATHSIG, SIGKILL) == 0 && ::getppid() == parent; }
 
-bool limit_importer(std::uint64_t memory_mib, std::uint64_t cpu_s) {
-    const rlim_t address_space = mapped_bytes() + (memory_mib << 20);
-    return lower_limit(RLIMIT_CORE, 0, 0) && lower_limit(RLIMIT_CPU, cpu_s, cpu_s + 1) &&
-           lower_limit(RLIMIT_AS, address_space, address_space);
-}
-
 bool write_all(int fd, std::string_view bytes) {
     while (!bytes.empty()) {
         const ssize_t written = ::write(fd, bytes.data(), bytes.size());
@@ -99,37 +99,82 @@ bool read_request(std::string& file) {
     return read_all(wp::kRequestFd, file.data(), length);
 }
 
-// The importer: never returns.
-[[noreturn]] void import_file(pid_t server, const std::string& file, std::uint64_t memory_mib, std::uint64_t cpu_s) {
-    // The requests and statuses are the server's alone.
-    ::close(wp::kRequestFd);
-    ::close(wp::kStatusFd);
-    if (!die_with_parent(server) || !limit_importer(memory_mib, cpu_s)) ::_exit(wp::kHelperUsageStatus);
-    std::set_new_handler([] { ::_exit(wp::kHelperOutOfMemoryStatus); });
-    std::string answer;
-    try {
-        answer = wp::encode_answer(wp::import_with_assimp(file));
-    } catch (const wp::MeshFileError& error) {
-        answer = wp::encode_answer(wp::ImportFailure{error.what()});
-    }
-    // No destructors: the answer is all that is left to do, and freeing a large scene takes time.
-    ::_exit(write_all(wp::kAnswerFd, answer) ? 0 : 1);
+double cpu_seconds(int who) {
+    rusage usage{};
+    ::getrusage(who, &usage);
+    const auto seconds = [](const timeval& t) { return double(t.tv_sec) + 1e-6 * double(t.tv_usec); };
+    return seconds(usage.ru_utime) + seconds(usage.ru_stime);
 }
 
-// Imports `file` in a process of its own and reports how that process ended; false if it could not be started.
-bool serve(const std::string& file, std::uint64_t memory_mib, std::uint64_t cpu_s) {
+// The limits of one file, counted from now: the memory and CPU time it has already used stay the importer's.
+bool limit_file(std::uint64_t memory_mib, std::uint64_t cpu_s) {
+    const rlim_t address_space = mapped_bytes() + (memory_mib << 20);
+    const auto cpu_limit = rlim_t(std::ceil(cpu_seconds(RUSAGE_SELF))) + cpu_s;
+    return lower_limit(RLIMIT_CPU, cpu_limit, RLIM_INFINITY) && lower_limit(RLIMIT_AS, address_space, RLIM_INFINITY);
+}
+
+// The importer: reads requests and answers them until the requests end; never returns. After each answer it
+// tells the server (on `done`) the CPU time the file took.
+[[noreturn]] void run_importer(pid_t server, int done, std::uint64_t memory_mib, std::uint64_t cpu_s) {
+    ::close(wp::kStatusFd);  // the server's alone
+    if (!die_with_parent(server) || !lower_limit(RLIMIT_CORE, 0, 0)) ::_exit(wp::kHelperUsageStatus);
+    std::set_new_handler([] { ::_exit(wp::kHelperOutOfMemoryStatus); });
+    std::string file;
+    double cpu_before = cpu_seconds(RUSAGE_SELF);
+    while (read_request(file)) {
+        if (!limit_file(memory_mib, cpu_s)) ::_exit(wp::kHelperUsageStatus);
+        std::string answer;
+        try {
+            answer = wp::encode_answer(wp::import_with_assimp(file));
+        } catch (const wp::MeshFileError& error) {
+            answer = wp::encode_answer(wp::ImportFailure{error.what()});
+        }
+        const double cpu = cpu_seconds(RUSAGE_SELF);
+        const double file_cpu_s = cpu - cpu_before;
+        cpu_before = cpu;
+        if (!write_all(wp::kAnswerFd, answer) ||
+            !write_all(done, std::string_view(reinterpret_cast<const char*>(&file_cpu_s), sizeof file_cpu_s)))
+            ::_exit(1);
+    }
+    ::_exit(0);  // the requests ended: wavepath is done
+}
+
+bool write_status(const wp::ImporterStatus& status) {
+    return write_all(wp::kStatusFd, std::string_view(reinterpret_cast<const char*>(&status), sizeof status));
+}
+
+enum class Served { RequestsEnded, ImporterEnded, Failed };
+
+// Starts an importer and reports each file it answers, until the requests
+// end or the importer ends on a file (reported with the files it had
+// answered before; the next importer takes the next request).
+Served serve(std::uint64_t memory_mib, std::uint64_t cpu_s) {
     const pid_t server = ::getpid();
+    int done[2];
+    if (::pipe2(done, O_CLOEXEC) != 0) return Served::Failed;
     const pid_t importer = ::fork();
-    if (importer < 0) return false;
-    if (importer == 0) import_file(server, file, memory_mib, cpu_s);
+    if (importer < 0) return Served::Failed;
+    if (importer == 0) {
+        ::close(done[0]);
+        run_importer(server, done[1], memory_mib, cpu_s);
+    }
+    ::close(done[1]);
     wp::ImporterStatus status{};
+    double answered_cpu_s = 0.0;
+    while (read_all(done[0], reinterpret_cast<char*>(&status.cpu_s), sizeof status.cpu_s)) {
+        if (!write_status(status)) return Served::Failed;
+        ++status.files_before;
+        answered_cpu_s += status.cpu_s;
+    }
+    ::close(done[0]);
     rusage usage{};
     while (::wait4(importer, &status.wait_status, 0, &usage) < 0) {
-        if (errno != EINTR) return false;
+        if (errno != EINTR) return Served::Failed;
     }
+    if (WIFEXITED(status.wait_status) && WEXITSTATUS(status.wait_status) == 0) return Served::RequestsEnded;
     const auto seconds = [](const timeval& t) { return double(t.tv_sec) + 1e-6 * double(t.tv_usec); };
-    status.cpu_s = seconds(usage.ru_utime) + seconds(usage.ru_stime);
-    return write_all(wp::kStatusFd, std::string_view(reinterpret_cast<const char*>(&status), sizeof status));
+    status.cpu_s = seconds(usage.ru_utime) + seconds(usage.ru_stime) - answered_cpu_s;  // the file's own
+    return write_status(status) ? Served::ImporterEnded : Served::Failed;
 }
 
 }  // namespace
@@ -139,9 +184,14 @@ int main(int argc, char** argv) {
     if (argc != 3 || !parse_count(argv[1], memory_mib) || !parse_count(argv[2], cpu_s) || memory_mib > (1ull << 40) ||
         ::prctl(PR_SET_PDEATHSIG, SIGKILL) != 0 || !lower_limit(RLIMIT_CORE, 0, 0))
         return wp::kHelperUsageStatus;
-    std::string file;
-    while (read_request(file)) {
-        if (!serve(file, memory_mib, cpu_s)) return wp::kHelperUsageStatus;
+    for (;;) {
+        switch (serve(memory_mib, cpu_s)) {
+            case Served::RequestsEnded:
+                return 0;
+            case Served::ImporterEnded:
+                continue;
+            case Served::Failed:
+                return wp::kHelperUsageStatus;
+        }
     }
-    return 0;
 }
