@@ -152,6 +152,15 @@ class MeshImporter::Helper {
     Helper(const Helper&) = delete;
     Helper& operator=(const Helper&) = delete;
 
+    // Ends its requests: with no file under way, it and its importer exit on
+    // their own (and are reaped, each by its parent, so that their resource
+    // usage counts where their parent's does); killed if not within `grace`.
+    void finish(Clock::duration grace) {
+        requests_.reset();
+        if (!wait_exit(Clock::now() + grace)) ::kill(pid_, SIGKILL);
+        reap();
+    }
+
     // Imports `file`: its importer's answer (at most `max_bytes`) and status.
     // Throws ImportProcessError (WallTime) when `deadline` passes first.
     // Asks it to import `file`; receive() takes the outcome.
@@ -320,7 +329,12 @@ std::filesystem::path import_helper_path() {
 MeshImporter::MeshImporter(const MeshImportLimits& limits, std::filesystem::path helper)
     : limits_(limits), helper_path_(std::move(helper)) {}
 
-MeshImporter::~MeshImporter() = default;
+MeshImporter::~MeshImporter() {
+    drop_started();  // files under way: their helpers killed
+    for (std::unique_ptr<Helper>& helper : helpers_) {
+        if (helper) helper->finish(std::chrono::seconds(1));
+    }
+}
 
 void MeshImporter::expect(std::vector<std::filesystem::path> files) {
     drop_started();

@@ -4,6 +4,7 @@
 // an exit status) is one ImportProcessError; a malformed answer is refused
 // whichever part of it is wrong; a reader of another format is refused.
 #include <gtest/gtest.h>
+#include <sys/resource.h>
 #include <sys/stat.h>
 
 #include <chrono>
@@ -292,6 +293,20 @@ TEST(HelperFailure, AFailureInAnImporterThatReadOtherFilesIsRetriedInAFreshOne) 
     EXPECT_EQ(garbage_then_bunny(first, 0),
               "wavepath-import sent a malformed answer: it does not begin with \"WPIMPORT\"");
     EXPECT_EQ(garbage_then_bunny(again, 3), "the bunny");
+}
+
+TEST(RealHelper, EndsOnItsOwnAtTheEndWithItsImporterReaped) {
+    // The bunny's importer peaks at about 50 MiB, the helper at about 7: a
+    // helper killed at the end leaves its importer unreaped, whose usage then
+    // counts nowhere (bench/big_scenes.py reads it in RUSAGE_CHILDREN).
+    // ctest runs each test in a process of its own, where no child came before.
+    {
+        MeshImporter importer({1024, 60, 60.0});
+        importer.import(kBunny);
+    }
+    rusage children{};
+    ASSERT_EQ(::getrusage(RUSAGE_CHILDREN, &children), 0);
+    EXPECT_GT(children.ru_maxrss, 30 * 1024) << "KiB";
 }
 
 TEST(RealHelper, FilesAfterACrashInTheSameHelperAreRight) {
