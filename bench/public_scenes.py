@@ -66,8 +66,9 @@ SCENES = [
         "bsdf_roughconductor_copper", "bsdf_roughconductor_anisotropic_aluminium", "bsdf_dielectric_glass",
         "bsdf_dielectric_diamond", "bsdf_roughdielectric_glass", "bsdf_roughdielectric_rough",
         "bsdf_thindielectric_glass", "bsdf_plastic_default", "bsdf_plastic_shiny", "bsdf_roughplastic_ggx",
-        "bsdf_roughplastic_beckmann", "bsdf_twosided_cbox", "texture_checkerboard", "emitter_constant",
-        "emitter_directional", "emitter_envmap"]),
+        "bsdf_roughplastic_beckmann", "bsdf_twosided_cbox", "bsdf_twosided_cbox_onesided", "bsdf_mask_before",
+        "bsdf_mask_after", "bsdf_bumpmap_with", "bsdf_normalmap_with", "bsdf_roughconductor_textured_carbon",
+        "texture_checkerboard", "emitter_constant", "emitter_directional", "emitter_envmap"]),
 ]
 BLOCK = 8
 ALPHA = 1e-3

@@ -182,19 +182,21 @@ Image read_texture_image(const std::string& path, bool raw, int max_side) {
     image_codec::Pixels pixels;
     const std::string error = codec().read(path, max_side, pixels);
     if (!error.empty()) throw std::runtime_error("cannot read the image: " + error);
-    if (pixels.channels == 2) throw std::runtime_error("2 channels (grey and alpha): give grey, RGB or RGBA");
     if (pixels.width > max_side || pixels.height > max_side) {
         throw std::runtime_error(std::to_string(pixels.width) + " x " + std::to_string(pixels.height) +
                                  " texels, more than " + std::to_string(max_side) + " on a side");
     }
-    const bool grey = pixels.channels == 1;
+    // Grey, with or without alpha, is read as its grey channel in all three (Mitsuba's bitmap
+    // texture reads grey and alpha as grey); the codec gives min(channels, 3) a texel.
+    const bool grey = pixels.channels <= 2;
+    const std::size_t stride = static_cast<std::size_t>(std::min(pixels.channels, 3));
     const bool decode = !raw && !pixels.floating_point;
     Image image;
     image.width = pixels.width;
     image.height = pixels.height;
     image.rgb.resize(static_cast<std::size_t>(pixels.width) * static_cast<std::size_t>(pixels.height) * 3);
     for (std::size_t i = 0; i < image.rgb.size(); ++i) {
-        const float value = pixels.values[grey ? i / 3 : i];
+        const float value = pixels.values[grey ? i / 3 * stride : i];
         image.rgb[i] = decode ? decode_srgb(value) : value;
     }
     return image;

@@ -26,7 +26,11 @@ std::string write(const std::string& file, int width, int height, bool srgb8, co
 }
 
 std::string read(const std::string& file, int max_side, wp::image_codec::Pixels& pixels) {
-    std::unique_ptr<OIIO::ImageInput> input = OIIO::ImageInput::open(file);
+    // Colours as stored, not multiplied by their alpha (OpenImageIO's default for PNG), as
+    // Mitsuba's bitmap reads them: the alpha of a texture is not part of its colour.
+    OIIO::ImageSpec config;
+    config.attribute("oiio:UnassociatedAlpha", 1);
+    std::unique_ptr<OIIO::ImageInput> input = OIIO::ImageInput::open(file, &config);
     if (!input) return error_or_unknown(OIIO::geterror());
     const OIIO::ImageSpec& spec = input->spec();
     pixels.width = spec.width;

@@ -24,6 +24,7 @@
 #include "scene/mitsuba_shapes.h"
 #include "scene/named_media.h"
 #include "scene/serialized_mesh.h"
+#include "scene/spectrum.h"
 #include "scene/texture_section.h"
 
 namespace wp {
@@ -321,15 +322,21 @@ class Plugin {
         const std::string& text = value(*p);
         const std::vector<std::string> words = tokens(text);
         glm::dvec3 color;
-        if (p->tag == "spectrum" && text.find(':') != std::string::npos)
-            fail(*p, property_name(*p) + ": wavelength:value lists are not supported (give an <rgb>)");
-        // Mitsuba's RGB modes read a spectrum of emitted radiance as an illuminant, whose
-        // colour against their D65 white is not grey: a flat 0.5 is (0.60, 0.47, 0.45).
-        if (p->tag == "spectrum" && max > 1.0)
+        // Mitsuba's RGB modes read a wavelength:value list by its colour-matching integral
+        // (scene/spectrum.h), and a spectrum of emitted light as an illuminant, whose colour
+        // against their D65 white is not grey: a flat 0.5 is (0.60, 0.47, 0.45), by an integral
+        // other than the lists' (0.04% apart), which is not reproduced.
+        const bool emission = name == "radiance" || name == "irradiance";
+        if (p->tag == "spectrum" && text.find(':') != std::string::npos) {
+            color = spectrum_colour(*p, words,
+                                    emission    ? SpectrumKind::Emission
+                                    : max > 1.0 ? SpectrumKind::Index
+                                                : SpectrumKind::Reflectance);
+        } else if (p->tag == "spectrum" && emission) {
             fail(*p, property_name(*p) +
-                         ": a <spectrum> of radiance is not supported (Mitsuba converts it as "
-                         "an illuminant, not grey; give an <rgb>)");
-        if (words.size() == 1) {
+                         ": a <spectrum> of one radiance is not supported (Mitsuba converts it as "
+                         "an illuminant, not grey; give an <rgb> or a wavelength:value list)");
+        } else if (words.size() == 1) {
             color = glm::dvec3(real(*p, property_name(*p), words[0]));
         } else if (words.size() == 3 && p->tag == "rgb") {
             for (int i = 0; i < 3; ++i) color[i] = real(*p, property_name(*p), words[std::size_t(i)]);
@@ -344,6 +351,26 @@ class Plugin {
                              format_number(color[i]));
         }
         return color;
+    }
+
+    // A <spectrum>'s value "w1:v1, w2:v2, ..." (wavelengths in nm, increasing), as Mitsuba's
+    // RGB variants read a property of that kind.
+    glm::dvec3 spectrum_colour(const XmlElement& p, const std::vector<std::string>& words, SpectrumKind kind) const {
+        const std::string what = property_name(p);
+        std::vector<double> wavelengths, values;
+        for (const std::string& word : words) {
+            const std::size_t colon = word.find(':');
+            if (colon == std::string::npos) fail(p, what + ": " + in_quotes(word) + " is not wavelength:value");
+            const double w = real(p, what, word.substr(0, colon)), v = real(p, what, word.substr(colon + 1));
+            if (!wavelengths.empty() && !(w > wavelengths.back()))
+                fail(p, what + ": wavelengths must increase, got " + format_number(w) + " after " +
+                            format_number(wavelengths.back()));
+            if (v < 0.0) fail(p, what + ": must be >= 0, got " + format_number(v));
+            wavelengths.push_back(w);
+            values.push_back(v);
+        }
+        if (wavelengths.size() < 2) fail(p, what + ": a wavelength:value list needs two entries at least");
+        return spectrum_to_srgb(wavelengths, values, kind);
     }
 
     std::optional<glm::dvec3> optional_point(std::string_view name) const {

@@ -221,5 +221,19 @@ TEST_F(ImageIoTest, TextureImagesDecodeEightBitFilesUnlessRaw) {
     EXPECT_THROW(read_texture_image(path("t.png"), false, 1), std::runtime_error);  // 2 rows, at most 1 allowed
 }
 
+// A grey texture with alpha (tests/image/grey_alpha.png: grey 200 and 50,
+// alpha 10 and 255) is read as its grey, in all three channels, as Mitsuba's
+// bitmap reads one: the alpha is not a colour (nor multiplied into it, as
+// OpenImageIO does to PNG files unless told not to).
+TEST_F(ImageIoTest, GreyAndAlphaTexturesAreReadAsTheirGrey) {
+    const Image raw = read_texture_image(WAVEPATH_SOURCE_DIR "/tests/image/grey_alpha.png", true, 16);
+    ASSERT_EQ(raw.width, 2);
+    ASSERT_EQ(raw.height, 1);
+    for (int c = 0; c < 3; ++c) {
+        EXPECT_FLOAT_EQ(raw.rgb[std::size_t(c)], 200.0f / 255.0f);
+        EXPECT_FLOAT_EQ(raw.rgb[std::size_t(3 + c)], 50.0f / 255.0f);
+    }
+}
+
 }  // namespace
 }  // namespace wp

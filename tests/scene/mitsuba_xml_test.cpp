@@ -296,6 +296,31 @@ TEST_F(MitsubaXml, BsdfsAsMaterials) {
     expect_near(scene.background, {0.1, 0.2, 0.3});
 }
 
+// <spectrum> lists and emitted spectra as Mitsuba 3.9.1's RGB variants read
+// them (scene/spectrum.h): the values it printed for the same XML (traverse
+// after load_string in scalar_rgb), to its float precision: a reflectance
+// weighted by D65, a conductor's eta and k likewise but not clamped to 1, an
+// emitted radiance as it is.
+TEST_F(MitsubaXml, SpectraAreTheColoursMitsubaGivesThem) {
+    const Scene scene = read(sensor() + R"(
+        <shape type="sphere"><bsdf type="diffuse">
+            <spectrum name="reflectance" value="400:0.1, 500:0.5, 600:0.9, 700:0.3"/></bsdf></shape>
+        <shape type="sphere"><bsdf type="roughconductor">
+            <spectrum name="eta" value="400:0.1, 500:0.5, 600:0.9, 700:0.3"/>
+            <spectrum name="k" value="400:1, 500:2, 600:3, 700:4"/></bsdf></shape>
+        <shape type="sphere"><emitter type="area">
+            <spectrum name="radiance" value="400:1, 500:5, 600:9, 700:3"/></emitter></shape>)")
+                            .scene;
+    const auto material = [&](int sphere) {
+        return scene.materials.at(std::size_t(scene.spheres.at(std::size_t(sphere)).material));
+    };
+    const double tolerance = 2e-6 * 10.0;  // Mitsuba's float sums, to its printed digits
+    expect_near(material(0).albedo, {0.854797, 0.68754, 0.265015}, tolerance);
+    expect_near(material(1).eta, {0.854797, 0.68754, 0.265015}, tolerance);
+    expect_near(material(1).k, {3.40779, 2.42912, 1.40304}, tolerance);
+    expect_near(material(2).emission, {9.99234, 6.597, 2.29444}, 10.0 * tolerance);
+}
+
 // Mitsuba's directional emitter: `direction` is the way the light travels
 // (normalized), or to_world's +z; irradiance defaults to 1.
 TEST_F(MitsubaXml, DirectionalEmittersAsDirectionalLights) {
