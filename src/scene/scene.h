@@ -270,8 +270,8 @@ struct FeatureSet {
     // kernel"), rather than intersect and shade apart.
     bool intersect_and_shade = false;
 
-    // A material with a delta lobe: paths carry whether their last bounce was one.
-    bool specular() const { return mirror || glass || conductor || thin_dielectric || plastic; }
+    // A material with a delta lobe (a mask's pass is one): paths carry whether their last bounce was one.
+    bool specular() const { return mirror || glass || conductor || thin_dielectric || plastic || mask; }
     // A material with a lobe of finite density: next-event estimation runs at its vertices.
     bool non_specular() const { return diffuse || rough_conductor || rough_dielectric || plastic || rough_plastic; }
     // A lobe of finite density other than the Lambertian one: SPPM's visible points keep their material to evaluate it.

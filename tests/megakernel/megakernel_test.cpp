@@ -209,6 +209,13 @@ TEST(Megakernel, MasksBitIdenticalInEveryBackend) {
     ASSERT_TRUE(opaque.features().mask && !unmasked.features().mask);
     EXPECT_EQ(render_megakernel(opaque, with_lanes(16u), {}).image.rgb,
               render_megakernel(unmasked, with_lanes(16u), {}).image.rgb);
+    // masks the only delta lobe (their passes): every nested material made diffuse
+    Scene diffuse = scene;
+    for (Material& m : diffuse.materials)
+        if (m.type != MaterialType::Emitter) m.type = MaterialType::Diffuse, m.albedo = glm::dvec3(0.5);
+    ASSERT_TRUE(diffuse.features().mask && diffuse.features().specular());
+    ASSERT_FALSE(diffuse.features().glass || diffuse.features().plastic || diffuse.features().rough_conductor);
+    expect_bit_identical_in_every_backend(diffuse);
 }
 
 // The environment map (kernels/shared/environment_map.h): its lookup where
