@@ -87,19 +87,19 @@ LIGHT_KEYS = {"directional": {"type", "direction", "irradiance"}, "envmap": {"ty
 CAMERA_KEYS = {"position", "look_at", "up", "fov_y", "width", "height"}
 RENDER_KEYS = {"spp", "max_depth", "rr_depth", "seed", "nee", "mis", "hemisphere", "sampler"}
 MATERIAL_KEYS = {
-    "diffuse": {"type", "albedo", "emission", "two_sided"},
-    "mirror": {"type", "reflectance"},
+    "diffuse": {"type", "albedo", "emission", "two_sided", "one_sided"},
+    "mirror": {"type", "reflectance", "one_sided"},
     "glass": {"type", "ior"},
     "emitter": {"type", "radiance", "two_sided"},
-    "conductor": {"type", "material", "eta", "k", "specular_reflectance"},
+    "conductor": {"type", "material", "eta", "k", "specular_reflectance", "one_sided"},
     "roughconductor": {"type", "material", "eta", "k", "specular_reflectance", "distribution", "alpha", "alpha_u",
-                       "alpha_v"},
+                       "alpha_v", "one_sided"},
     "dielectric": {"type", "int_ior", "ext_ior"},
     "roughdielectric": {"type", "int_ior", "ext_ior", "distribution", "alpha", "alpha_u", "alpha_v"},
     "thindielectric": {"type", "int_ior", "ext_ior"},
-    "plastic": {"type", "diffuse_reflectance", "specular_reflectance", "int_ior", "ext_ior", "nonlinear"},
+    "plastic": {"type", "diffuse_reflectance", "specular_reflectance", "int_ior", "ext_ior", "nonlinear", "one_sided"},
     "roughplastic": {"type", "diffuse_reflectance", "specular_reflectance", "int_ior", "ext_ior", "nonlinear",
-                     "distribution", "alpha"},
+                     "distribution", "alpha", "one_sided"},
     "normalmap": {"type", "normalmap", "bsdf"},
     "bumpmap": {"type", "bumpmap", "scale", "bsdf"},
     "mask": {"type", "opacity", "bsdf"},
@@ -446,6 +446,21 @@ def rgb_or_texture(value):
 
 
 def bsdf(material):
+    """Mitsuba's BSDF for the material: inside a twosided, as wavepath's reflecting materials reflect on both sides,
+    unless the material is one_sided (Mitsuba's BSDFs are black from the back)."""
+    plugin = two_sided_bsdf(material)
+    if material.get("one_sided") and plugin.get("type") == "twosided":
+        return plugin["bsdf"]
+    return plugin
+
+
+def adapter_outside(adapter, nested):
+    """A normalmap or bumpmap plugin inside a twosided, unless its nested material is one-sided."""
+    return adapter if nested.get("one_sided") else {"type": "twosided", "bsdf": adapter}
+
+
+def two_sided_bsdf(material):
+    """Mitsuba's BSDF for the material, a reflecting one inside a twosided."""
     kind = material["type"]
     if kind == "diffuse":
         return {"type": "twosided", "bsdf": {"type": "diffuse", "reflectance": rgb_or_texture(material["albedo"])}}
@@ -462,20 +477,20 @@ def bsdf(material):
                 plugin[key] = rgb_or_texture([value] * 3 if isinstance(value, (int, float)) else value)
             elif key in ("eta", "k"):
                 plugin[key] = rgb([value] * 3 if isinstance(value, (int, float)) else value)
-            elif key != "type":
+            elif key not in ("type", "one_sided"):
                 plugin[key] = value
         return {"type": "twosided", "bsdf": plugin}
     if kind == "normalmap":
         # twosided outside: Mitsuba's nested BSDF is then black to an arrival
         # below the perturbed normal, as wavepath's (shared/normal_map.h)
-        nested = bsdf(material["bsdf"])
-        return {"type": "twosided", "bsdf": {"type": "normalmap", "normalmap": material["normalmap"],
-                                             "bsdf": nested["bsdf"]}}
+        nested = two_sided_bsdf(material["bsdf"])
+        return adapter_outside({"type": "normalmap", "normalmap": material["normalmap"], "bsdf": nested["bsdf"]},
+                               material["bsdf"])
     if kind == "bumpmap":
         # twosided outside, as a normalmap's
-        nested = bsdf(material["bsdf"])
-        return {"type": "twosided", "bsdf": {"type": "bumpmap", "bumpmap": material["bumpmap"],
-                                             "scale": float(material.get("scale", 1.0)), "bsdf": nested["bsdf"]}}
+        nested = two_sided_bsdf(material["bsdf"])
+        return adapter_outside({"type": "bumpmap", "bumpmap": material["bumpmap"],
+                                "scale": float(material.get("scale", 1.0)), "bsdf": nested["bsdf"]}, material["bsdf"])
     if kind == "mask":
         # the same plugin around the nested material's BSDF (twosided inside, as wavepath's materials are)
         opacity = material.get("opacity", 0.5)

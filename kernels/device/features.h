@@ -43,6 +43,11 @@
 #if defined(WP_HAS_NORMAL_MAP) || defined(WP_HAS_BUMP_MAP)
 #define WP_PERTURBS_NORMALS
 #endif
+/* A vertex that may not scatter at all (Vertex.shades): an arrival below a
+ * normal or bump map's perturbed normal, the back of a one-sided material. */
+#if defined(WP_PERTURBS_NORMALS) || defined(WP_HAS_ONE_SIDED)
+#define WP_VERTEX_MAY_NOT_SHADE
+#endif
 /* The complex index and reflectance factor of conductor and roughconductor. */
 #if defined(WP_HAS_CONDUCTOR) || defined(WP_HAS_ROUGH_CONDUCTOR)
 #define WP_HAS_CONDUCTORS

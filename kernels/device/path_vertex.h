@@ -560,7 +560,7 @@ WP_FN lane_int sample_direct_light(WP_SCENE_PARAMS, lane_uint pixel, lane_uint s
  * contribution in *direct. */
 WP_FN lane_int vertex_light_sample(WP_SCENE_PARAMS, lane_int continues, Vertex v, lane_uint pixel, lane_uint sample,
                                    lane_uint bounce, vec3 throughput, DirectLight *direct) {
-#ifdef WP_PERTURBS_NORMALS
+#ifdef WP_VERTEX_MAY_NOT_SHADE
     continues = continues && v.shades;
 #endif
     return continues && vertex_is_non_specular(v) &&
@@ -685,8 +685,10 @@ WP_FN BsdfSample scatter_vertex(Vertex v, vec3 d, BsdfRandom random, uint transp
             roughplastic_sample(m.roughplastic, v.roughplastic_table, v.nf, v.ns, wo, random, WP_USES_SHADING_NORMALS),
             scattered);
 #endif
-#ifdef WP_PERTURBS_NORMALS
+#ifdef WP_VERTEX_MAY_NOT_SHADE
     scattered.valid = scattered.valid && v.shades;
+#endif
+#ifdef WP_PERTURBS_NORMALS
     scattered.weight =
         v3_scale(scattered.weight, normal_map_terminator(v.terminator_alpha2, v.ns_unperturbed, scattered.direction));
 #endif

@@ -163,6 +163,9 @@ WP_FN Surface surface_at(WP_SCENE_PARAMS, lane_uint shape, vec3 origin, vec3 dir
 typedef struct {
     lane_uint type; /* WP_MATERIAL_* */
     lane_int two_sided;
+#ifdef WP_HAS_ONE_SIDED
+    lane_int one_sided; /* black from the back */
+#endif
     vec3 emission;
 #ifdef WP_HAS_DIFFUSE
     vec3 albedo;
@@ -194,6 +197,9 @@ WP_FN Material material_at(__global const DeviceMaterial *materials, lane_uint i
     Material m;
     m.type = SCENE_FIELD(materials, index, type);
     m.two_sided = SCENE_FIELD(materials, index, two_sided) != 0u;
+#ifdef WP_HAS_ONE_SIDED
+    m.one_sided = SCENE_FIELD(materials, index, one_sided) != 0u;
+#endif
     m.emission = SCENE_FIELD(materials, index, emission);
 #ifdef WP_HAS_DIFFUSE
     m.albedo = SCENE_FIELD(materials, index, albedo);
@@ -470,7 +476,9 @@ typedef struct {
 #ifdef WP_PERTURBS_NORMALS
     vec3 ns_unperturbed;    /* ns before the material's normal or bump map: what its terminator term measures from */
     real terminator_alpha2; /* the map's terminator term (normal_map_terminator); 0: none */
-    lane_int shades;        /* the material scatters the path at all (normal_map_shades; 1 without a map) */
+#endif
+#ifdef WP_VERTEX_MAY_NOT_SHADE
+    lane_int shades; /* the material scatters the path at all (normal_map_shades, a one-sided material's front) */
 #endif
 #ifdef WP_HAS_ROUGH_PLASTIC
     __global const float *roughplastic_table; /* the scene's roughplastic_transmittance */
@@ -520,6 +528,11 @@ WP_FN Vertex vertex_at(WP_SCENE_PARAMS, lane_uint shape, vec3 origin, vec3 direc
     v.ns = mapped.normal;
     v.terminator_alpha2 = mapped.terminator_alpha2;
     v.shades = !adapted || normal_map_shades(v.wo, v.ns);
+#elif defined(WP_VERTEX_MAY_NOT_SHADE)
+    v.shades = 1;
+#endif
+#ifdef WP_HAS_ONE_SIDED
+    v.shades = v.shades && (v.front || !v.material.one_sided);
 #endif
     return v;
 }

@@ -91,6 +91,7 @@ typedef struct {
     uint nonlinear, transmittance_offset;
     float bump_scale; /* a `bumpmap` adapter's: its height texture's gradient times this (shared/normal_map.h) */
     float opacity;    /* a `mask` adapter's (shared/materials/mask.h); 1 on every other material */
+    uint one_sided;   /* black where a path meets the back (Mitsuba's BSDFs outside a twosided) */
 } DeviceMaterial;
 
 /* The material parameters that may be textured (docs/scene-format.md),

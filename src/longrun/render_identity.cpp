@@ -62,6 +62,7 @@ void add_material(Hasher& h, const Material& m) {
     // The adapters' constants, where the material is one.
     if (m.texture(TexturedParameter::BumpMap) != kNoTexture) h.add(m.bump_scale);
     if (m.masked()) h.add(m.opacity);
+    if (m.one_sided) h.add(m.one_sided);
 }
 
 // A texture by what it holds (its texels, not its file's name or date).

@@ -33,6 +33,7 @@ std::vector<std::pair<const char*, const char*>> features_in_use(const FeatureSe
     add(f.normal_map, "normal-map", "WP_HAS_NORMAL_MAP");
     add(f.bump_map, "bump-map", "WP_HAS_BUMP_MAP");
     add(f.mask, "mask", "WP_HAS_MASK");
+    add(f.one_sided, "one-sided", "WP_HAS_ONE_SIDED");
     add(f.emitter_material, "emitter", nullptr);
     add(f.sphere_lights, "sphere-lights", "WP_HAS_SPHERE_LIGHTS");
     add(f.quad_lights, "quad-lights", "WP_HAS_QUAD_LIGHTS");

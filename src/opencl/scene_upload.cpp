@@ -20,7 +20,7 @@ static_assert(sizeof(SceneHeader) == 43 * 4, "SceneHeader must match its OpenCL 
 static_assert(sizeof(DeviceSphere) == 5 * 4, "DeviceSphere must match its OpenCL C layout");
 static_assert(sizeof(DevicePlane) == 7 * 4, "DevicePlane must match its OpenCL C layout");
 static_assert(sizeof(DeviceQuad) == 16 * 4, "DeviceQuad must match its OpenCL C layout");
-static_assert(sizeof(DeviceMaterial) == 31 * 4, "DeviceMaterial must match its OpenCL C layout");
+static_assert(sizeof(DeviceMaterial) == 32 * 4, "DeviceMaterial must match its OpenCL C layout");
 static_assert(sizeof(DeviceLight) == 10 * 4, "DeviceLight must match its OpenCL C layout");
 static_assert(sizeof(MaterialTextures) == WP_TEXTURED_PARAMETERS * 4,
               "MaterialTextures must match its OpenCL C layout");
@@ -235,6 +235,7 @@ SceneLayout flatten_scene(const Scene& scene) {
         d.transmittance_offset = plastic.transmittance_offset;
         d.bump_scale = static_cast<float>(m.bump_scale);
         d.opacity = static_cast<float>(m.opacity);
+        d.one_sided = m.one_sided ? 1u : 0u;
         layout.materials.push_back(d);
     }
     add_textures(scene, layout);

@@ -730,7 +730,8 @@ Vec3<Real> trace_path(const ReferenceScene<Real>& scene, Ray<Real> ray, const Sa
         SurfacePoint<Real> surface = surface_at(scene, ray, hit);
         auto material = material_at(scene, surface);
         typename M::FacingNormals facing = M::normals_facing(ray.direction, surface.normal, surface.shading);
-        const bool shades = normal_mapped_vertex(scene, hit, surface, -ray.direction, facing, material);
+        const bool shades = normal_mapped_vertex(scene, hit, surface, -ray.direction, facing, material) &&
+                            (facing.front || !material.one_sided);  // a one-sided material's back is black
         const bool front = facing.front;
         const vec3 &nf = facing.nf, &ns = facing.ns;
         bool weighs_emission = scene.mis && !specular && M::emits(material.emission);  // the power heuristic's case

@@ -56,6 +56,7 @@ struct ReferenceScene {
         typename M::RoughPlasticParams roughplastic;
         Real bump_scale;  // a bumpmap's scale (Material::bump_scale)
         Real opacity;     // a mask's opacity (Material::opacity; 1 without a mask)
+        bool one_sided;   // black from the back (Material::one_sided)
         // At a normalmap's or bumpmap's hit (path_tracer.h's
         // normal_mapped_vertex): its terminator term's alpha^2 (0: none) and
         // the unperturbed shading normal it measures from (shared/normal_map.h).
@@ -168,6 +169,7 @@ struct ReferenceScene {
             s.microfacet = {distribution, Real(m.alpha_u), Real(m.alpha_v)};
             s.bump_scale = Real(m.bump_scale);
             s.opacity = Real(m.opacity);
+            s.one_sided = m.one_sided;
             s.plastic = {s.albedo,
                          s.specular_reflectance,
                          s.ior,

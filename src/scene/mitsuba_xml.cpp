@@ -652,13 +652,15 @@ Material read_diffuse(const Plugin& bsdf, const std::function<Material(const Xml
     return m;
 }
 
-// wavepath's materials reflect alike on both sides: a twosided BSDF is the BSDF it wraps.
+// Mitsuba's reflecting BSDFs are black from the back (Material::one_sided);
+// a twosided BSDF is the BSDF it wraps, reflecting alike on both sides.
 Material read_twosided(const Plugin& bsdf, const std::function<Material(const XmlElement&)>& nested) {
     bsdf.allow({}, {"bsdf"});
     const std::vector<const XmlElement*> inner = bsdf.objects("bsdf");
     if (inner.empty()) bsdf.fail("needs the BSDF it makes two-sided");
     if (inner.size() > 1) bsdf.fail(*inner[1], "another BSDF on the back side: not supported");
-    const Material m = nested(*inner.front());
+    Material m = nested(*inner.front());
+    m.one_sided = false;
     if (m.type == MaterialType::Glass || m.type == MaterialType::RoughDielectric ||
         m.type == MaterialType::ThinDielectric)
         bsdf.fail(*inner.front(), "a dielectric inside it: not supported (Mitsuba's twosided reflects only)");
@@ -816,6 +818,14 @@ const std::pair<const char*, BsdfReader> kBsdfs[] = {
     {"bumpmap", read_bumpmap},
     {"mask", read_mask},
 };
+
+// The BSDFs that reflect on their front only in Mitsuba (a dielectric has two sides of its own;
+// the adapters are their nested BSDF's).
+bool is_one_sided(std::string_view bsdf) {
+    for (std::string_view reflecting : {"diffuse", "conductor", "roughconductor", "plastic", "roughplastic"})
+        if (bsdf == reflecting) return true;
+    return false;
+}
 
 struct MaterialKey {
     const XmlElement* bsdf;  // nullptr: Mitsuba's default BSDF
@@ -1146,6 +1156,7 @@ class Reader {
                     if (const XmlElement* texture = bsdf.texture(t.property))
                         m.texture(t.parameter) = textured_parameter(bsdf, t, *texture);
             if (bsdf.type() == "bumpmap") m.texture(TexturedParameter::BumpMap) = bump_height(bsdf);
+            if (is_one_sided(bsdf.type())) m.one_sided = true;
             return m;
         }
         bsdf.fail("not supported (supported: " + supported + ")");
@@ -1254,6 +1265,7 @@ class Reader {
             // Mitsuba's default BSDF (render/shape.cpp): diffuse, 0.5, black on an emitter.
             m.type = MaterialType::Diffuse;
             m.albedo = glm::dvec3(emits(emission) ? 0.0 : 0.5);
+            m.one_sided = true;
         }
         std::string name = bsdf && bsdf->attribute("id") ? *bsdf->attribute("id") : "";
         if (name.empty()) name = bsdf ? *bsdf->attribute("type") : "default";

@@ -69,6 +69,7 @@ FeatureSet Scene::features() const {
         f.normal_map |= m.texture(TexturedParameter::NormalMap) != kNoTexture;
         f.bump_map |= m.texture(TexturedParameter::BumpMap) != kNoTexture;
         f.mask |= m.masked();
+        f.one_sided |= m.one_sided;
     }
     for (const Light& light : lights) {
         bool shape = light.kind == LightKind::Shape;
@@ -104,6 +105,8 @@ std::string sppm_problem(const Scene& scene) {
     if (f.normal_map) return "sppm does not render normalmap materials (render with the path integrator)";
     if (f.bump_map) return "sppm does not render bumpmap materials (render with the path integrator)";
     if (f.mask) return "sppm does not render mask materials (render with the path integrator)";
+    if (f.one_sided)
+        return "sppm does not render one-sided materials (render with the path integrator, or make them two-sided)";
     return "";
 }
 

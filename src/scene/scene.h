@@ -150,6 +150,10 @@ struct Material {
     bool nonlinear = false;  // plastic and roughplastic: Mitsuba's `nonlinear` (colours saturate under the coat)
     double bump_scale =
         1;  // a `bumpmap` adapter's `scale`: its height's gradient times this (TexturedParameter::BumpMap)
+    // diffuse, mirror, the conductors and the plastics: black where the path
+    // meets the back (the side the geometric normal points away from), as
+    // Mitsuba 3's BSDFs outside a twosided; else they reflect alike on both sides
+    bool one_sided = false;
     // a `mask` adapter's opacity in [0, 1] (TexturedParameter::Opacity): the
     // probability that the surface scatters a ray rather than let it pass
     // (kernels/shared/materials/mask.h); 1 without a mask
@@ -249,6 +253,7 @@ struct FeatureSet {
     bool normal_map = false;       // a material is a `normalmap` adapter: hits perturb their shading normal
     bool bump_map = false;         // a material is a `bumpmap` adapter: hits bend their shading normal
     bool mask = false;             // a material is a `mask` adapter: rays may pass its surface
+    bool one_sided = false;        // a material is black from the back (Material::one_sided)
     bool sphere_lights = false, quad_lights = false, mesh_lights = false;
     bool directional_lights = false;
     bool constant_environment = false;  // a non-black background: the environment light

@@ -98,7 +98,7 @@ void read_colour_parameter(const JsonField& field, const std::vector<Texture>& t
 }
 
 void read_diffuse(const JsonField& field, Material& material, const std::vector<Texture>& textures) {
-    field.allow_only_keys({"type", "albedo", "emission", "two_sided"});
+    field.allow_only_keys({"type", "albedo", "emission", "two_sided", "one_sided"});
     read_colour_parameter(field.member("albedo"), textures, material, TexturedParameter::Albedo, material.albedo,
                           read_reflectivity);
     if (auto emission = field.optional_member("emission")) material.emission = read_radiance(*emission);
@@ -106,7 +106,7 @@ void read_diffuse(const JsonField& field, Material& material, const std::vector<
 }
 
 void read_mirror(const JsonField& field, Material& material) {
-    field.allow_only_keys({"type", "reflectance"});
+    field.allow_only_keys({"type", "reflectance", "one_sided"});
     material.reflectance = read_reflectivity(field.member("reflectance"));
 }
 
@@ -175,7 +175,7 @@ void read_conductor(const JsonField& field, Material& material, const std::vecto
 }
 
 void read_smooth_conductor(const JsonField& field, Material& material, const std::vector<Texture>& textures) {
-    field.allow_only_keys({"type", "material", "eta", "k", "specular_reflectance"});
+    field.allow_only_keys({"type", "material", "eta", "k", "specular_reflectance", "one_sided"});
     read_conductor(field, material, textures);
 }
 
@@ -242,8 +242,8 @@ void read_microfacet(const JsonField& field, Material& material, const std::vect
 }
 
 void read_rough_conductor(const JsonField& field, Material& material, const std::vector<Texture>& textures) {
-    field.allow_only_keys(
-        {"type", "material", "eta", "k", "specular_reflectance", "distribution", "alpha", "alpha_u", "alpha_v"});
+    field.allow_only_keys({"type", "material", "eta", "k", "specular_reflectance", "distribution", "alpha", "alpha_u",
+                           "alpha_v", "one_sided"});
     read_conductor(field, material, textures);
     read_microfacet(field, material, textures);
 }
@@ -284,14 +284,15 @@ void read_plastic_coat(const JsonField& field, Material& material, const std::ve
 }
 
 void read_plastic(const JsonField& field, Material& material, const std::vector<Texture>& textures) {
-    field.allow_only_keys({"type", "diffuse_reflectance", "specular_reflectance", "int_ior", "ext_ior", "nonlinear"});
+    field.allow_only_keys(
+        {"type", "diffuse_reflectance", "specular_reflectance", "int_ior", "ext_ior", "nonlinear", "one_sided"});
     read_plastic_coat(field, material, textures);
 }
 
 // roughplastic: isotropic, as Mitsuba's (`alpha`, no alpha_u and alpha_v).
 void read_rough_plastic(const JsonField& field, Material& material, const std::vector<Texture>& textures) {
     field.allow_only_keys({"type", "diffuse_reflectance", "specular_reflectance", "int_ior", "ext_ior", "nonlinear",
-                           "distribution", "alpha"});
+                           "distribution", "alpha", "one_sided"});
     read_plastic_coat(field, material, textures);
     read_distribution(field, material);
     if (auto alpha = field.optional_member("alpha")) {
@@ -431,6 +432,8 @@ Material read_material(const std::string& name, const JsonField& field, const st
                         " (expected one of: diffuse, mirror, glass, emitter, conductor, roughconductor, dielectric, "
                         "roughdielectric, thindielectric, plastic, roughplastic, normalmap, bumpmap, mask)");
     }
+    // the reflecting materials' key (their readers allow it): black from the back, as Mitsuba's BSDFs outside twosided
+    if (auto one_sided = field.optional_member("one_sided")) material.one_sided = one_sided->boolean();
     return material;
 }
 

@@ -162,6 +162,7 @@ nlohmann::json material_json(const Material& m, const TextureNames& textures) {
             break;
     }
     if (m.two_sided) j["two_sided"] = true;
+    if (m.one_sided) j["one_sided"] = true;
     return adapted_json(m, std::move(j), textures);
 }
 

@@ -218,6 +218,16 @@ TEST(Megakernel, MasksBitIdenticalInEveryBackend) {
     expect_bit_identical_in_every_backend(diffuse);
 }
 
+// One-sided materials (Mitsuba's BSDFs outside a twosided: black from the
+// back), a diffuse, a rough plastic seen from behind and a rough conductor:
+// the same paths end at the same backs in every backend.
+TEST(Megakernel, OneSidedMaterialsBitIdenticalInEveryBackend) {
+    Scene scene = load_scene(WAVEPATH_SOURCE_DIR "/scenes/test/oracle_one_sided.json");
+    ASSERT_TRUE(scene.features().one_sided);
+    scene.render.spp = 2;
+    expect_bit_identical_in_every_backend(scene);
+}
+
 // The environment map (kernels/shared/environment_map.h): its lookup where
 // rays leave, its importance sampling and density in next-event estimation
 // and MIS, the same shared code in every backend, so bit-identical images

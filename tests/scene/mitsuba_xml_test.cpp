@@ -296,6 +296,33 @@ TEST_F(MitsubaXml, BsdfsAsMaterials) {
     expect_near(scene.background, {0.1, 0.2, 0.3});
 }
 
+// Mitsuba's reflecting BSDFs are black from the back unless inside a
+// twosided (Material::one_sided): a diffuse, a roughconductor and the default
+// BSDF alone are one-sided, a twosided's and a dielectric are not, and an
+// adapter's is its nested BSDF's.
+TEST_F(MitsubaXml, ReflectingBsdfsOutsideTwosidedAreOneSided) {
+    const Scene scene = read(sensor() + R"(
+        <shape type="sphere"><bsdf type="diffuse"/></shape>
+        <shape type="sphere"><bsdf type="twosided"><bsdf type="diffuse"/></bsdf></shape>
+        <shape type="sphere"><bsdf type="roughconductor"/></shape>
+        <shape type="sphere"/>
+        <shape type="sphere"><bsdf type="dielectric"/></shape>
+        <shape type="sphere"><bsdf type="mask"><bsdf type="plastic"/></bsdf></shape>
+        <shape type="sphere"><bsdf type="twosided"><bsdf type="mask"><bsdf type="plastic"/></bsdf></bsdf></shape>)")
+                            .scene;
+    const auto one_sided = [&](int sphere) {
+        return scene.materials.at(std::size_t(scene.spheres.at(std::size_t(sphere)).material)).one_sided;
+    };
+    EXPECT_TRUE(one_sided(0));
+    EXPECT_FALSE(one_sided(1));
+    EXPECT_TRUE(one_sided(2));
+    EXPECT_TRUE(one_sided(3));  // Mitsuba's default BSDF is a diffuse
+    EXPECT_FALSE(one_sided(4));
+    EXPECT_TRUE(one_sided(5));
+    EXPECT_FALSE(one_sided(6));
+    EXPECT_TRUE(scene.features().one_sided);
+}
+
 // <spectrum> lists and emitted spectra as Mitsuba 3.9.1's RGB variants read
 // them (scene/spectrum.h): the values it printed for the same XML (traverse
 // after load_string in scalar_rgb), to its float precision: a reflectance

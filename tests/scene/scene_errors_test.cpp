@@ -58,10 +58,10 @@ const PatchCase kPatchCases[] = {
      "render.samples: unknown key (expected one of: spp, max_depth, rr_depth, seed, nee, mis, hemisphere, sampler, "
      "integrator, photons, initial_radius, alpha)"},
     {"UnknownDiffuseKey", R"({"materials": {"white": {"colour": [1, 1, 1]}}})",
-     "materials.white.colour: unknown key (expected one of: type, albedo, emission, two_sided)"},
+     "materials.white.colour: unknown key (expected one of: type, albedo, emission, two_sided, one_sided)"},
     {"UnknownMirrorKey",
      R"({"materials": {"chrome": {"type": "mirror", "reflectance": [1, 1, 1], "albedo": [1, 1, 1]}}})",
-     "materials.chrome.albedo: unknown key (expected one of: type, reflectance)"},
+     "materials.chrome.albedo: unknown key (expected one of: type, reflectance, one_sided)"},
     {"UnknownGlassKey", R"({"materials": {"g": {"type": "glass", "ior": 1.5, "two_sided": true}}})",
      "materials.g.two_sided: unknown key (expected one of: type, ior)"},
     {"UnknownEmitterKey", R"({"materials": {"lamp": {"emission": [1, 1, 1]}}})",
@@ -207,7 +207,7 @@ const PatchCase kPatchCases[] = {
      "materials.m.alpha: must be >= 1e-04, got 0 (a smooth surface is a plastic)"},
     {"AnisotropicRoughPlastic", R"({"materials": {"m": {"type": "roughplastic", "alpha_u": 0.1, "alpha_v": 0.2}}})",
      "materials.m.alpha_u: unknown key (expected one of: type, diffuse_reflectance, specular_reflectance, int_ior, "
-     "ext_ior, nonlinear, distribution, alpha)"},
+     "ext_ior, nonlinear, distribution, alpha, one_sided)"},
     {"PlasticDiffuseAboveOne", R"({"materials": {"m": {"type": "plastic", "diffuse_reflectance": [0.5, 1.5, 0.5]}}})",
      "materials.m.diffuse_reflectance[1]: must be <= 1, got 1.5"},
     {"PlasticNonlinearNumber", R"({"materials": {"m": {"type": "plastic", "nonlinear": 1}}})",
