@@ -1,5 +1,6 @@
 #include "import/answer.h"
 
+#include <algorithm>
 #include <cstring>
 #include <type_traits>
 
@@ -101,6 +102,38 @@ void put_mesh(AnswerWriter& out, const ImportedMesh& mesh) {
     if (mesh.has_normals) out.put_array(mesh.normals);
     if (mesh.has_uvs) out.put_array(mesh.uvs);
     out.put_array(mesh.triangles);
+    out.put(mesh.material);
+}
+
+void put_material(AnswerWriter& out, const ImportedMaterial& material) {
+    out.put_text(material.name);
+    out.put(material.base_color);
+    out.put(material.metallic);
+    out.put(material.roughness);
+    out.put(material.emissive);
+    out.put(material.emissive_strength);
+    out.put(material.transmission);
+    out.put(material.ior);
+    out.put_text(material.base_color_texture);
+}
+
+void put_camera(AnswerWriter& out, const ImportedCamera& camera) {
+    out.put_text(camera.name);
+    out.put(camera.node);
+    out.put(camera.position);
+    out.put(camera.look_at);
+    out.put(camera.up);
+    out.put(camera.horizontal_fov);
+    out.put(camera.aspect);
+}
+
+void put_light(AnswerWriter& out, const ImportedLight& light) {
+    out.put_text(light.name);
+    out.put(light.node);
+    out.put(light.type);
+    out.put(light.color);
+    out.put(light.position);
+    out.put(light.direction);
 }
 
 void put_node(AnswerWriter& out, const ImportedNode& node) {
@@ -125,7 +158,54 @@ ImportedMesh take_mesh(AnswerReader& in, const std::string& what) {
     if (mesh.has_normals) mesh.normals = in.take_array<glm::vec3>(vertices, what + "'s normals");
     if (mesh.has_uvs) mesh.uvs = in.take_array<glm::vec2>(vertices, what + "'s uvs");
     mesh.triangles = in.take_array<glm::uvec3>(triangles, what + "'s triangles");
+    mesh.material = in.take<std::uint32_t>(what + "'s material");
     return mesh;
+}
+
+ImportedMaterial take_material(AnswerReader& in, const std::string& what) {
+    ImportedMaterial material;
+    material.name = in.take_text(0, kMaxImportedName, what + "'s name");
+    material.base_color = in.take<std::array<float, 4>>(what + "'s base colour");
+    material.metallic = in.take<float>(what + "'s metallic factor");
+    material.roughness = in.take<float>(what + "'s roughness factor");
+    material.emissive = in.take<std::array<float, 3>>(what + "'s emissive factor");
+    material.emissive_strength = in.take<float>(what + "'s emissive strength");
+    material.transmission = in.take<float>(what + "'s transmission");
+    material.ior = in.take<float>(what + "'s ior");
+    material.base_color_texture = in.take_text(0, kMaxImportedName, what + "'s base colour texture");
+    return material;
+}
+
+std::uint32_t take_node_index(AnswerReader& in, std::size_t node_count, const std::string& what) {
+    const auto node = in.take<std::uint32_t>(what + "'s node");
+    if (node >= node_count && node != kNoNode)
+        AnswerReader::fail(what + " names node " + std::to_string(node) + " of " + std::to_string(node_count));
+    return node;
+}
+
+ImportedCamera take_camera(AnswerReader& in, std::size_t node_count, const std::string& what) {
+    ImportedCamera camera;
+    camera.name = in.take_text(0, kMaxImportedName, what + "'s name");
+    camera.node = take_node_index(in, node_count, what);
+    camera.position = in.take<std::array<float, 3>>(what + "'s position");
+    camera.look_at = in.take<std::array<float, 3>>(what + "'s look-at point");
+    camera.up = in.take<std::array<float, 3>>(what + "'s up");
+    camera.horizontal_fov = in.take<float>(what + "'s horizontal field of view");
+    camera.aspect = in.take<float>(what + "'s aspect ratio");
+    return camera;
+}
+
+ImportedLight take_light(AnswerReader& in, std::size_t node_count, const std::string& what) {
+    ImportedLight light;
+    light.name = in.take_text(0, kMaxImportedName, what + "'s name");
+    light.node = take_node_index(in, node_count, what);
+    const auto type = in.take<std::uint32_t>(what + "'s type");
+    if (type < 1 || type > 3) AnswerReader::fail(what + "'s type is " + std::to_string(type) + " (1 to 3 expected)");
+    light.type = static_cast<ImportedLightType>(type);
+    light.color = in.take<std::array<float, 3>>(what + "'s colour");
+    light.position = in.take<std::array<float, 3>>(what + "'s position");
+    light.direction = in.take<std::array<float, 3>>(what + "'s direction");
+    return light;
 }
 
 ImportedNode take_node(AnswerReader& in, std::uint32_t index, std::size_t mesh_count) {
@@ -153,6 +233,21 @@ ImportedScene take_scene(AnswerReader& in) {
     for (std::uint32_t m = 0; m < meshes; ++m) scene.meshes.push_back(take_mesh(in, "mesh " + std::to_string(m)));
     const std::uint32_t nodes = in.take_count("the node count");
     for (std::uint32_t n = 0; n < nodes; ++n) scene.nodes.push_back(take_node(in, n, scene.meshes.size()));
+    const std::uint32_t materials = in.take_count("the material count");
+    for (std::uint32_t m = 0; m < materials; ++m)
+        scene.materials.push_back(take_material(in, "material " + std::to_string(m)));
+    for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
+        const std::uint32_t material = scene.meshes[m].material;
+        if (material >= std::max<std::size_t>(scene.materials.size(), 1))
+            AnswerReader::fail("mesh " + std::to_string(m) + " names material " + std::to_string(material) + " of " +
+                               std::to_string(scene.materials.size()));
+    }
+    const std::uint32_t cameras = in.take_count("the camera count");
+    for (std::uint32_t c = 0; c < cameras; ++c)
+        scene.cameras.push_back(take_camera(in, scene.nodes.size(), "camera " + std::to_string(c)));
+    const std::uint32_t lights = in.take_count("the light count");
+    for (std::uint32_t l = 0; l < lights; ++l)
+        scene.lights.push_back(take_light(in, scene.nodes.size(), "light " + std::to_string(l)));
     return scene;
 }
 
@@ -164,6 +259,12 @@ std::string encode_answer(const ImportedScene& scene) {
     for (const ImportedMesh& mesh : scene.meshes) put_mesh(out, mesh);
     out.put_count(scene.nodes.size());
     for (const ImportedNode& node : scene.nodes) put_node(out, node);
+    out.put_count(scene.materials.size());
+    for (const ImportedMaterial& material : scene.materials) put_material(out, material);
+    out.put_count(scene.cameras.size());
+    for (const ImportedCamera& camera : scene.cameras) put_camera(out, camera);
+    out.put_count(scene.lights.size());
+    for (const ImportedLight& light : scene.lights) put_light(out, light);
     return out.take();
 }
 

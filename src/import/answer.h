@@ -11,11 +11,20 @@
 //                       u32 vertices, u32 flags (bit 0: normals, bit 1: uvs), u32 triangles,
 //                       f32 x, y, z per vertex, the normals likewise if it has them,
 //                       f32 u, v per vertex if it has uvs,
-//                       u32 i0, i1, i2 per triangle;
+//                       u32 i0, i1, i2 per triangle, u32 material;
 //                     u32 node count, then each node (depth first, the root first):
 //                       u32 parent (0xffffffff for the root only, else below the node's own index),
 //                       f32[16] transform (row-major), u32 name length (up to kMaxNodeName), the name,
 //                       u32 mesh count, u32 per mesh (each below the scene's mesh count);
+//                     u32 material count, then each material: name (u32 length, up to
+//                       kMaxImportedName, the bytes), f32 base colour[4], metallic, roughness,
+//                       emissive[3], emissive strength, transmission, ior, the base colour
+//                       texture's name (u32 length, up to kMaxImportedName, the bytes);
+//                       every mesh's material is below the count (or 0 where there is none);
+//                     u32 camera count, then each camera: name, u32 node (below the node count, or kNoNode),
+//                       f32 position[3], look_at[3], up[3], horizontal fov, aspect;
+//                     u32 light count, then each light: name, u32 node, u32 type (1 to 3,
+//                       ImportedLightType), f32 colour[3], position[3], direction[3];
 //   and nothing after it.
 #pragma once
 
@@ -29,7 +38,7 @@
 
 namespace wp {
 
-inline constexpr std::uint32_t kAnswerVersion = 2;
+inline constexpr std::uint32_t kAnswerVersion = 3;
 inline constexpr std::size_t kMaxFailureLength = 4096;
 
 // The helper's file descriptors (import/helper/main.cpp): the requests it

@@ -1,7 +1,9 @@
 // A mesh file as assimp imported it (triangulated, identical vertices
 // joined), in the file's own coordinates and in float as assimp holds it:
 // what wavepath-import sends back (import/answer.h) and wavepath merges into
-// one world-space Mesh (scene/mesh_file.h).
+// one world-space Mesh (scene/mesh_file.h), or, for a glTF 2.0 file given as
+// the scene, reads as a scene with its materials, cameras and lights
+// (scene/gltf_scene.h).
 #pragma once
 
 #include <array>
@@ -20,6 +22,44 @@ struct ImportedMesh {
     std::vector<glm::uvec3> triangles;
     bool has_uvs = false;
     std::vector<glm::vec2> uvs;  // the file's first texture coordinates, one per position if has_uvs, else empty
+    std::uint32_t material = 0;  // index into ImportedScene::materials (0 where the file has none)
+};
+
+// A material in glTF 2.0's metallic-roughness model as assimp reads it
+// (glTF's defaults where the file gives no value).
+struct ImportedMaterial {
+    std::string name;                             // at most kMaxImportedName bytes
+    std::array<float, 4> base_color{1, 1, 1, 1};  // linear RGBA
+    float metallic = 1, roughness = 1;
+    std::array<float, 3> emissive{0, 0, 0};
+    float emissive_strength = 1;     // KHR_materials_emissive_strength
+    float transmission = 0;          // KHR_materials_transmission
+    float ior = 1.5;                 // KHR_materials_ior
+    std::string base_color_texture;  // the file's name for it (a uri, "*N" when embedded); empty: none
+};
+
+// What a camera or light that is on no node (assimp links them to nodes by
+// name) gives as its node.
+inline constexpr std::uint32_t kNoNode = 0xffffffffu;
+
+// A perspective camera, in the coordinates of the node that holds it.
+struct ImportedCamera {
+    std::string name;
+    std::uint32_t node = 0;  // index into ImportedScene::nodes, or kNoNode
+    // look_at: a point
+    std::array<float, 3> position{0, 0, 0}, look_at{0, 0, -1}, up{0, 1, 0};
+    float horizontal_fov = 0;  // radians, the whole angle (assimp's glTF reader's, 0 without an aspect ratio)
+    float aspect = 0;          // width / height; 0: the file gives none
+};
+
+// A KHR_lights_punctual light, in the coordinates of the node that holds it.
+enum class ImportedLightType : std::uint32_t { Directional = 1, Point = 2, Spot = 3 };
+struct ImportedLight {
+    std::string name;
+    std::uint32_t node = 0;  // index into ImportedScene::nodes, or kNoNode
+    ImportedLightType type = ImportedLightType::Directional;
+    std::array<float, 3> color{1, 1, 1};  // colour times intensity
+    std::array<float, 3> position{0, 0, 0}, direction{0, 0, -1};
 };
 
 // A node of the file's node graph. Nodes are listed depth first, each
@@ -35,9 +75,13 @@ struct ImportedNode {
 struct ImportedScene {
     std::vector<ImportedMesh> meshes;
     std::vector<ImportedNode> nodes;  // empty, or the root first
+    std::vector<ImportedMaterial> materials;
+    std::vector<ImportedCamera> cameras;
+    std::vector<ImportedLight> lights;
 };
 
-// assimp's node names (aiString) hold at most 1023 bytes.
+// assimp's names (aiString) hold at most 1023 bytes.
 inline constexpr std::size_t kMaxNodeName = 1023;
+inline constexpr std::size_t kMaxImportedName = 1023;
 
 }  // namespace wp

@@ -44,6 +44,7 @@ void expect_same_scene(const ImportedScene& a, const ImportedScene& b) {
         EXPECT_EQ(a.meshes[m].has_uvs, b.meshes[m].has_uvs);
         EXPECT_TRUE(same_bytes(a.meshes[m].uvs, b.meshes[m].uvs));
         EXPECT_TRUE(same_bytes(a.meshes[m].triangles, b.meshes[m].triangles));
+        EXPECT_EQ(a.meshes[m].material, b.meshes[m].material);
     }
     ASSERT_EQ(a.nodes.size(), b.nodes.size());
     for (std::size_t n = 0; n < a.nodes.size(); ++n) {
@@ -52,6 +53,40 @@ void expect_same_scene(const ImportedScene& a, const ImportedScene& b) {
         EXPECT_EQ(a.nodes[n].name, b.nodes[n].name);
         EXPECT_EQ(std::memcmp(a.nodes[n].transform.data(), b.nodes[n].transform.data(), 64), 0);
         EXPECT_EQ(a.nodes[n].meshes, b.nodes[n].meshes);
+    }
+    ASSERT_EQ(a.materials.size(), b.materials.size());
+    for (std::size_t m = 0; m < a.materials.size(); ++m) {
+        const ImportedMaterial &x = a.materials[m], &y = b.materials[m];
+        EXPECT_EQ(x.name, y.name);
+        EXPECT_EQ(x.base_color, y.base_color);
+        EXPECT_EQ(x.metallic, y.metallic);
+        EXPECT_EQ(x.roughness, y.roughness);
+        EXPECT_EQ(x.emissive, y.emissive);
+        EXPECT_EQ(x.emissive_strength, y.emissive_strength);
+        EXPECT_EQ(x.transmission, y.transmission);
+        EXPECT_EQ(x.ior, y.ior);
+        EXPECT_EQ(x.base_color_texture, y.base_color_texture);
+    }
+    ASSERT_EQ(a.cameras.size(), b.cameras.size());
+    for (std::size_t c = 0; c < a.cameras.size(); ++c) {
+        const ImportedCamera &x = a.cameras[c], &y = b.cameras[c];
+        EXPECT_EQ(x.name, y.name);
+        EXPECT_EQ(x.node, y.node);
+        EXPECT_EQ(x.position, y.position);
+        EXPECT_EQ(x.look_at, y.look_at);
+        EXPECT_EQ(x.up, y.up);
+        EXPECT_EQ(x.horizontal_fov, y.horizontal_fov);
+        EXPECT_EQ(x.aspect, y.aspect);
+    }
+    ASSERT_EQ(a.lights.size(), b.lights.size());
+    for (std::size_t l = 0; l < a.lights.size(); ++l) {
+        const ImportedLight &x = a.lights[l], &y = b.lights[l];
+        EXPECT_EQ(x.name, y.name);
+        EXPECT_EQ(x.node, y.node);
+        EXPECT_EQ(x.type, y.type);
+        EXPECT_EQ(x.color, y.color);
+        EXPECT_EQ(x.position, y.position);
+        EXPECT_EQ(x.direction, y.direction);
     }
 }
 
@@ -367,7 +402,8 @@ TEST(RealHelper, MissingIsAnInstallationProblem) {
 
 // ---- the answer's format ----
 
-// Two meshes (one with normals) and three nodes, two of them instancing mesh 1.
+// Two meshes (one with normals) of two materials, three nodes (two of them
+// instancing mesh 1), a camera and a light.
 ImportedScene small_scene() {
     ImportedScene scene;
     scene.meshes.push_back({{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, false, {}, {{0, 1, 2}}, false, {}});
@@ -383,6 +419,11 @@ ImportedScene small_scene() {
     scene.nodes.push_back({ImportedNode::kNoParent, "root", identity, {0}});
     scene.nodes.push_back({0, "a", moved, {1}});
     scene.nodes.push_back({1, "b", identity, {1, 0}});
+    scene.meshes[1].material = 1;
+    scene.materials.push_back({"plain", {0.5f, 0.25f, 1, 1}, 0, 0.5f, {0, 0, 0}, 1, 0, 1.5f, ""});
+    scene.materials.push_back({"lit", {1, 1, 1, 1}, 1, 0, {1, 0.5f, 0}, 4, 0.5f, 1.25f, "wood.png"});
+    scene.cameras.push_back({"eye", 1, {0, 1, 5}, {0, 1, 4}, {0, 1, 0}, 0.75f, 1.5f});
+    scene.lights.push_back({"sun", 2, ImportedLightType::Directional, {2, 2, 1.5f}, {0, 0, 0}, {0, 0, -1}});
     return scene;
 }
 
@@ -410,8 +451,8 @@ TEST(Answer, MalformedPartsAreNamed) {
     const std::string good = encode_answer(small_scene());
     EXPECT_EQ(malformation(good + "x"), "1 bytes after the answer");
     std::string bytes = good;
-    bytes[8] = 3;  // the version
-    EXPECT_EQ(malformation(bytes), "version 3, not 2");
+    bytes[8] = 4;  // the version
+    EXPECT_EQ(malformation(bytes), "version 4, not 3");
     bytes = good;
     bytes[12] = 3;  // the kind
     EXPECT_EQ(malformation(bytes), "kind 3, neither 1 nor 2");
@@ -434,6 +475,25 @@ TEST(Answer, MalformedPartsAreNamed) {
     scene = small_scene();
     scene.nodes[1].name.assign(kMaxNodeName + 1, 'n');
     EXPECT_EQ(malformation(encode_answer(scene)), "node 1's name of 1024 bytes (0 to 1023 expected)");
+    scene = small_scene();
+    scene.meshes[0].material = 2;
+    EXPECT_EQ(malformation(encode_answer(scene)), "mesh 0 names material 2 of 2");
+    scene = small_scene();
+    scene.materials.clear();
+    EXPECT_EQ(malformation(encode_answer(scene)), "mesh 1 names material 1 of 0");
+    scene = small_scene();
+    scene.cameras[0].node = 3;
+    EXPECT_EQ(malformation(encode_answer(scene)), "camera 0 names node 3 of 3");
+    scene = small_scene();
+    scene.lights[0].node = 7;
+    EXPECT_EQ(malformation(encode_answer(scene)), "light 0 names node 7 of 3");
+    scene = small_scene();
+    scene.lights[0].type = static_cast<ImportedLightType>(4);
+    EXPECT_EQ(malformation(encode_answer(scene)), "light 0's type is 4 (1 to 3 expected)");
+    scene = small_scene();
+    scene.materials[1].base_color_texture.assign(kMaxImportedName + 1, 't');
+    EXPECT_EQ(malformation(encode_answer(scene)),
+              "material 1's base colour texture of 1024 bytes (0 to 1023 expected)");
     EXPECT_EQ(malformation(encode_answer(ImportFailure{""})), "the failure message of 0 bytes (1 to 4096 expected)");
 }
 

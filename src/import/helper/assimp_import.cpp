@@ -1,5 +1,6 @@
 #include "import/helper/assimp_import.h"
 
+#include <assimp/GltfMaterial.h>
 #include <assimp/importerdesc.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
@@ -14,7 +15,10 @@
 #include <cstdio>
 #include <cstring>
 #include <exception>
+#include <fstream>
+#include <iterator>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -94,6 +98,13 @@ std::string reader_refusal(const Assimp::Importer& importer) {
         return {};
     return "format not supported: assimp chose its reader \"" + std::string(reader->mName) +
            "\"; wavepath reads OBJ, PLY, OFF, STL and glTF 2.0";
+}
+
+// Whether the reader assimp chose is the one named.
+bool read_by(const Assimp::Importer& importer, std::string_view reader_name) {
+    const int index = importer.GetPropertyInteger("importerIndex", -1);
+    const aiImporterDesc* reader = index < 0 ? nullptr : importer.GetImporterInfo(std::size_t(index));
+    return reader != nullptr && reader->mName == reader_name;
 }
 
 // Stops the import before a reader of another format reads the file:
@@ -194,6 +205,7 @@ ImportedMesh imported_mesh(const aiMesh& mesh) {
         for (unsigned v = 0; v < mesh.mNumVertices; ++v)
             out.uvs.emplace_back(mesh.mTextureCoords[0][v].x, mesh.mTextureCoords[0][v].y);
     }
+    out.material = mesh.mMaterialIndex;
     out.triangles.reserve(mesh.mNumFaces);
     for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
         const aiFace& face = mesh.mFaces[f];
@@ -230,6 +242,126 @@ std::vector<ImportedNode> imported_nodes(const aiNode* root) {
     return nodes;
 }
 
+// ---- materials, cameras and lights (glTF 2.0's; other formats' too, where assimp has them) ----
+
+std::array<float, 3> to_array(const aiVector3D& v) { return {v.x, v.y, v.z}; }
+std::array<float, 3> to_array(const aiColor3D& c) { return {c.r, c.g, c.b}; }
+
+std::string bounded_name(const aiString& name) { return std::string(name.C_Str()).substr(0, kMaxImportedName); }
+
+// A property where the material has it (the value stays as it was where not).
+template <class T>
+void get_property(const aiMaterial& material, const char* key, unsigned type, unsigned index, T& value) {
+    material.Get(key, type, index, value);
+}
+
+ImportedMaterial imported_material(const aiMaterial& material) {
+    ImportedMaterial out;
+    out.name = bounded_name(material.GetName());
+    aiColor4D base(1, 1, 1, 1);
+    get_property(material, AI_MATKEY_BASE_COLOR, base);
+    out.base_color = {base.r, base.g, base.b, base.a};
+    get_property(material, AI_MATKEY_METALLIC_FACTOR, out.metallic);
+    get_property(material, AI_MATKEY_ROUGHNESS_FACTOR, out.roughness);
+    aiColor3D emissive(0, 0, 0);
+    get_property(material, AI_MATKEY_COLOR_EMISSIVE, emissive);
+    out.emissive = to_array(emissive);
+    get_property(material, AI_MATKEY_EMISSIVE_INTENSITY, out.emissive_strength);
+    get_property(material, AI_MATKEY_TRANSMISSION_FACTOR, out.transmission);
+    get_property(material, AI_MATKEY_REFRACTI, out.ior);
+    aiString texture;
+    if (material.GetTexture(aiTextureType_BASE_COLOR, 0, &texture) == aiReturn_SUCCESS ||
+        material.GetTexture(aiTextureType_DIFFUSE, 0, &texture) == aiReturn_SUCCESS)
+        out.base_color_texture = bounded_name(texture);
+    return out;
+}
+
+// ---- the glTF extensions assimp 5.2 does not read ----
+
+// A glTF file's JSON: the whole of a .gltf, the first chunk of a .glb
+// (after its 12-byte header, a u32 length and the type "JSON"); empty if it holds none.
+std::string gltf_json(const std::filesystem::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (!bytes.starts_with("glTF")) return bytes;
+    if (bytes.size() < 20 || bytes.compare(16, 4, "JSON") != 0) return {};
+    std::uint32_t length = 0;
+    std::memcpy(&length, bytes.data() + 12, 4);
+    return bytes.substr(20, length);
+}
+
+// A number at `key` of `object`'s `extension`, if there is one.
+void get_extension_number(const nlohmann::json& object, const char* extension, const char* key, float& value) {
+    const auto extensions = object.find("extensions");
+    if (extensions == object.end() || !extensions->is_object()) return;
+    const auto found = extensions->find(extension);
+    if (found == extensions->end() || !found->is_object()) return;
+    const auto number = found->find(key);
+    if (number != found->end() && number->is_number()) value = number->get<float>();
+}
+
+// KHR_materials_emissive_strength, KHR_materials_transmission and
+// KHR_materials_ior of each material, from the file's JSON: assimp keeps the
+// file's materials in its order (and adds its default material after them).
+void read_material_extensions(const std::filesystem::path& path, std::vector<ImportedMaterial>& materials) {
+    const nlohmann::json document = nlohmann::json::parse(gltf_json(path), nullptr, false);
+    if (!document.is_object()) return;  // assimp read it: it is there
+    const auto found = document.find("materials");
+    if (found == document.end() || !found->is_array()) return;
+    for (std::size_t m = 0; m < std::min(found->size(), materials.size()); ++m) {
+        const nlohmann::json& material = (*found)[m];
+        if (!material.is_object()) continue;
+        get_extension_number(material, "KHR_materials_emissive_strength", "emissiveStrength",
+                             materials[m].emissive_strength);
+        get_extension_number(material, "KHR_materials_transmission", "transmissionFactor", materials[m].transmission);
+        get_extension_number(material, "KHR_materials_ior", "ior", materials[m].ior);
+    }
+}
+
+// The index of the first node (depth first) named `name`, or kNoNode.
+std::uint32_t node_named(const std::vector<ImportedNode>& nodes, const aiString& name) {
+    for (std::size_t n = 0; n < nodes.size(); ++n) {
+        if (nodes[n].name == name.C_Str()) return static_cast<std::uint32_t>(n);
+    }
+    return kNoNode;
+}
+
+ImportedCamera imported_camera(const aiCamera& camera, const std::vector<ImportedNode>& nodes) {
+    ImportedCamera out;
+    out.name = bounded_name(camera.mName);
+    out.node = node_named(nodes, camera.mName);
+    out.position = to_array(camera.mPosition);
+    out.look_at = to_array(camera.mPosition + camera.mLookAt);
+    out.up = to_array(camera.mUp);
+    out.horizontal_fov = camera.mHorizontalFOV;
+    out.aspect = camera.mAspect;
+    return out;
+}
+
+std::vector<ImportedLight> imported_lights(const aiScene& scene, const std::vector<ImportedNode>& nodes) {
+    std::vector<ImportedLight> lights;
+    for (unsigned l = 0; l < scene.mNumLights; ++l) {
+        const aiLight& light = *scene.mLights[l];
+        ImportedLight out;
+        out.name = bounded_name(light.mName);
+        out.node = node_named(nodes, light.mName);
+        if (light.mType == aiLightSource_DIRECTIONAL) {
+            out.type = ImportedLightType::Directional;
+        } else if (light.mType == aiLightSource_POINT) {
+            out.type = ImportedLightType::Point;
+        } else if (light.mType == aiLightSource_SPOT) {
+            out.type = ImportedLightType::Spot;
+        } else {
+            continue;  // ambient and area lights: other formats' (a mesh file's lights are not read)
+        }
+        out.color = to_array(light.mColorDiffuse);
+        out.position = to_array(light.mPosition);
+        out.direction = to_array(light.mDirection);
+        lights.push_back(out);
+    }
+    return lights;
+}
+
 }  // namespace
 
 ImportedScene import_with_assimp(const std::filesystem::path& path) {
@@ -239,6 +371,12 @@ ImportedScene import_with_assimp(const std::filesystem::path& path) {
     ImportedScene imported;
     for (unsigned m = 0; m < scene->mNumMeshes; ++m) imported.meshes.push_back(imported_mesh(*scene->mMeshes[m]));
     imported.nodes = imported_nodes(scene->mRootNode);
+    for (unsigned m = 0; m < scene->mNumMaterials; ++m)
+        imported.materials.push_back(imported_material(*scene->mMaterials[m]));
+    if (read_by(importer, "glTF2 Importer")) read_material_extensions(path, imported.materials);
+    for (unsigned c = 0; c < scene->mNumCameras; ++c)
+        imported.cameras.push_back(imported_camera(*scene->mCameras[c], imported.nodes));
+    imported.lights = imported_lights(*scene, imported.nodes);
     return imported;
 }
 
