@@ -9,6 +9,7 @@
 #include "cli/errors.h"
 #include "cli/scene_file.h"
 #include "core/atomic_file.h"
+#include "scene/gltf_scene.h"
 #include "scene/mitsuba_xml.h"
 #include "scene/scene_writer.h"
 
@@ -50,7 +51,7 @@ void write_scene_json(const MitsubaScene& scene, const fs::path& json_path) {
 }  // namespace
 
 void add_convert_options(CLI::App& convert, ConvertCommand& command) {
-    convert.add_option("scene", command.scene_path, "Mitsuba 3 scene (.xml)")->required();
+    convert.add_option("scene", command.scene_path, "Mitsuba 3 (.xml) or glTF 2.0 (.gltf, .glb) scene")->required();
     convert.add_option("-o,--output", command.output_path, "The wavepath scene to write (.json)")->required();
     convert
         .add_option("-D,--define", command.defines,
@@ -60,15 +61,21 @@ void add_convert_options(CLI::App& convert, ConvertCommand& command) {
 }
 
 void run_convert(const ConvertCommand& command) {
-    if (!is_mitsuba_scene_path(command.scene_path))
-        throw UsageError("convert: reads Mitsuba XML scenes (.xml), got " + command.scene_path);
+    const bool gltf = is_gltf_scene_path(command.scene_path);
+    if (!gltf && !is_mitsuba_scene_path(command.scene_path))
+        throw UsageError("convert: reads Mitsuba XML (.xml) and glTF 2.0 (.gltf, .glb) scenes, got " +
+                         command.scene_path);
+    if (gltf && !command.defines.empty())
+        throw UsageError("-D: applies to Mitsuba XML scenes (.xml) only, and " + command.scene_path + " is glTF");
     if (std::filesystem::path(command.output_path).extension() != ".json")
         throw UsageError("convert: -o must name a .json file, got " + command.output_path);
     check_writable_destination(command.output_path);
     const MitsubaScene scene =
-        read_mitsuba_scene(command.scene_path, parse_defines(command.defines), command.mesh_import);
+        gltf ? read_gltf_scene(command.scene_path, command.mesh_import)
+             : read_mitsuba_scene(command.scene_path, parse_defines(command.defines), command.mesh_import);
     if (!command.quiet)
-        for (const std::string& line : scene.warnings) std::cerr << "wavepath: warning: " << line << std::endl;
+        for (const std::string& line : scene.warnings)
+            std::cerr << "wavepath: " << (gltf ? "note: " : "warning: ") << line << std::endl;
     write_scene_json(scene, command.output_path);
     if (!command.quiet)
         std::cerr << "wavepath: wrote " << command.output_path << " (" << scene.scene.meshes.size()

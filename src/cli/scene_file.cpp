@@ -5,6 +5,7 @@
 #include <ostream>
 
 #include "cli/errors.h"
+#include "scene/gltf_scene.h"
 #include "scene/mitsuba_xml.h"
 
 namespace wp::cli {
@@ -40,6 +41,15 @@ ShapeProgress shapes_read(ProgressReporter* progress) {
 Scene load_scene_file(const std::string& path, const std::vector<std::string>& defines,
                       const MeshImportLimits& mesh_import, std::ostream* warnings, ProgressReporter* progress) {
     const XmlDefines parsed = parse_defines(defines);
+    if (is_gltf_scene_path(path)) {
+        if (!parsed.empty())
+            throw UsageError("-D: applies to Mitsuba XML scenes (.xml) only, and " + path + " is glTF");
+        std::vector<std::string> notes;
+        Scene scene = load_gltf_scene(path, mesh_import, &notes);
+        if (warnings)
+            for (const std::string& line : notes) *warnings << "wavepath: note: " << line << std::endl;
+        return scene;
+    }
     if (!is_mitsuba_scene_path(path)) {
         if (!parsed.empty())
             throw UsageError("-D: applies to Mitsuba XML scenes (.xml) only, and " + path + " is read as JSON");

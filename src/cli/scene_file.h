@@ -1,5 +1,6 @@
-// Which reader a scene file gets (wavepath JSON, or Mitsuba 3 XML by its
-// .xml extension) and the -D name=value definitions of Mitsuba scenes.
+// Which reader a scene file gets (wavepath JSON, Mitsuba 3 XML by its .xml
+// extension, glTF 2.0 by .gltf or .glb) and the -D name=value definitions of
+// Mitsuba scenes.
 #pragma once
 
 #include <iosfwd>
@@ -17,9 +18,11 @@ namespace wp::cli {
 // whose name is not letters, digits and '_'.
 XmlDefines parse_defines(const std::vector<std::string>& flags);
 
-// The scene: Mitsuba XML when the name ends in .xml, else JSON (where -D is a
-// UsageError). The Mitsuba reader's warnings are printed to `warnings`, one
-// line each ("wavepath: warning: ..."), when it is not null. `progress`, when
+// The scene: Mitsuba XML when the name ends in .xml, glTF when it ends in
+// .gltf or .glb, else JSON (-D is a UsageError but for XML). The Mitsuba
+// reader's warnings ("wavepath: warning: ...") and the glTF reader's notes on
+// the defaults it took ("wavepath: note: ...") are printed to `warnings`, one
+// line each, when it is not null. `progress`, when
 // not null, shows the shapes read ("120/500 shapes"): a scene of many mesh
 // files takes seconds to load. Its lines start 5 s into the load (a bar at
 // once on a terminal), so a quick load, and a quick failure's one error

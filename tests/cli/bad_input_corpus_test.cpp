@@ -42,6 +42,8 @@ const CorpusKind kKinds[] = {
     // Mitsuba 3 XML scenes (docs/scene-format.md, "Mitsuba XML"), with what they include
     // (<case>.inc) and name (<case>.serialized) beside them.
     {"xml", ".xml", render_scene},
+    // glTF 2.0 files given as the scene (docs/scene-format.md, "glTF scenes").
+    {"gltf", ".gltf", render_scene},
     // scripts/make_checkpoint_corpus.py writes these, for this command.
     {"checkpoints", ".wpfilm",
      [](const std::string& checkpoint, const std::string& output) {

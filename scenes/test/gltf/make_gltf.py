@@ -1,0 +1,105 @@
+#!/usr/bin/env python3
+"""Writes the glTF test scenes of this folder (tests/scene/gltf_scene_test.cpp):
+each value a float32 exactly (dyadic), so that the glTF reader and the JSON
+written by hand beside each (<name>.json) make the same Scene.
+
+    python3 scenes/test/gltf/make_gltf.py
+"""
+import base64
+import json
+import os
+import struct
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+
+
+def quad(corner, edge1, edge2):
+    """Four corners and two triangles whose front is edge1 x edge2."""
+    c = corner
+    p = [c, [c[i] + edge1[i] for i in range(3)], [c[i] + edge1[i] + edge2[i] for i in range(3)],
+         [c[i] + edge2[i] for i in range(3)]]
+    return p, [0, 1, 2, 0, 2, 3]
+
+
+def gltf(meshes, nodes, materials, extra_nodes, extensions=None, cameras=None, texture=None):
+    """meshes: (positions, indices, material) each; nodes: (name, mesh, matrix or None)."""
+    blob = b""
+    accessors, views, gmeshes = [], [], []
+    for positions, indices, material in meshes:
+        start = len(blob)
+        for p in positions:
+            blob += struct.pack("<3f", *p)
+        views.append({"buffer": 0, "byteOffset": start, "byteLength": len(blob) - start})
+        accessors.append({"bufferView": len(views) - 1, "componentType": 5126, "count": len(positions),
+                          "type": "VEC3", "min": [min(p[i] for p in positions) for i in range(3)],
+                          "max": [max(p[i] for p in positions) for i in range(3)]})
+        start = len(blob)
+        for i in indices:
+            blob += struct.pack("<H", i)
+        blob += b"\0" * (-len(blob) % 4)
+        views.append({"buffer": 0, "byteOffset": start, "byteLength": 2 * len(indices)})
+        accessors.append({"bufferView": len(views) - 1, "componentType": 5123, "count": len(indices),
+                          "type": "SCALAR"})
+        gmeshes.append({"primitives": [{"attributes": {"POSITION": len(accessors) - 2},
+                                        "indices": len(accessors) - 1, "material": material, "mode": 4}]})
+    gnodes = []
+    for name, mesh, matrix in nodes:
+        node = {"name": name, "mesh": mesh}
+        if matrix:
+            node["matrix"] = matrix
+        gnodes.append(node)
+    gnodes += extra_nodes
+    out = {"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": list(range(len(gnodes)))}],
+           "nodes": gnodes, "meshes": gmeshes, "materials": materials, "accessors": accessors,
+           "bufferViews": views,
+           "buffers": [{"byteLength": len(blob),
+                        "uri": "data:application/octet-stream;base64," + base64.b64encode(blob).decode()}]}
+    if cameras:
+        out["cameras"] = cameras
+    if extensions:
+        out["extensions"] = extensions
+        out["extensionsUsed"] = sorted(extensions.keys()) + ["KHR_materials_emissive_strength"]
+    return out
+
+
+def write(name, document):
+    with open(os.path.join(HERE, name), "w") as f:
+        json.dump(document, f, indent=1)
+        f.write("\n")
+
+
+def pbr(name, base, metallic, roughness, **extra):
+    m = {"name": name, "pbrMetallicRoughness": {"baseColorFactor": base + [1.0], "metallicFactor": metallic,
+                                                  "roughnessFactor": roughness}}
+    m.update(extra)
+    return m
+
+
+def main():
+    floor = quad([-2, 0, 2], [4, 0, 0], [0, 0, -4])
+    block = quad([-0.5, 0, 0], [1, 0, 0], [0, 1, 0])
+    coat = quad([-1.5, 0, -0.5], [1, 0, 0], [0, 1, 0])
+    lamp = quad([-0.5, 2.5, -0.5], [1, 0, 0], [0, 0, 1])  # (1, 0, 0) x (0, 0, 1) = (0, -1, 0): it faces down
+    materials = [
+        pbr("red", [0.75, 0.25, 0.25], 0.0, 1.0),
+        pbr("gold", [1.0, 0.75, 0.375], 1.0, 0.5),
+        pbr("coat", [0.25, 0.5, 0.75], 0.0, 0.25),
+        dict(pbr("lamp", [0.5, 0.5, 0.5], 0.0, 1.0), emissiveFactor=[1.0, 1.0, 0.5],
+             extensions={"KHR_materials_emissive_strength": {"emissiveStrength": 4.0}}),
+    ]
+    rotate_y_90 = [0, 0, -1, 0, 0, 1, 0, 0, 1, 0, 0, 0, 0.5, 0, 0, 1]  # column-major, then translate x 0.5
+    down = [1, 0, 0, 0, 0, 0, -1, 0, 0, 1, 0, 0, 0, 0, 0, 1]  # -z to -y
+    nodes = [("Floor", 0, None), ("Block", 1, rotate_y_90), ("Coat", 2, None), ("Lamp", 3, None)]
+    extra = [{"name": "Camera", "camera": 0, "translation": [0, 1, 5]},
+             {"name": "Sun", "matrix": down, "extensions": {"KHR_lights_punctual": {"light": 0}}}]
+    cameras = [{"type": "perspective", "perspective": {"yfov": 0.5, "aspectRatio": 1.5, "znear": 0.01}}]
+    lights = {"KHR_lights_punctual": {"lights": [{"name": "Sun", "type": "directional", "color": [1, 1, 0.75],
+                                                  "intensity": 2}]}}
+    meshes = [(floor[0], floor[1], 0), (block[0], block[1], 1), (coat[0], coat[1], 2), (lamp[0], lamp[1], 3)]
+    write("materials.gltf", gltf(meshes, nodes, materials, extra, lights, cameras))
+    # Nothing but a red floor: the default camera and the default light.
+    write("no_camera_no_light.gltf", gltf([(floor[0], floor[1], 0)], [("Floor", 0, None)], materials[:1], []))
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,356 @@
+#include "scene/gltf_scene.h"
+
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <cmath>
+#include <filesystem>
+#include <glm/geometric.hpp>
+#include <glm/mat3x3.hpp>
+#include <glm/matrix.hpp>
+#include <limits>
+#include <numbers>
+#include <set>
+#include <stdexcept>
+#include <utility>
+
+#include "core/number_text.h"
+#include "import/import_process.h"
+#include "import/mesh_invariants.h"
+#include "scene/json_field.h"
+#include "scene/limits.h"
+#include "scene/mesh_file.h"
+#include "scene/texture_section.h"
+
+namespace wp {
+namespace {
+namespace gltf_scene {
+
+namespace fs = std::filesystem;
+
+// The default camera's vertical field of view and aspect ratio (width / height).
+constexpr double kDefaultFovY = 40.0;
+constexpr double kDefaultAspect = 4.0 / 3.0;
+// The default camera's direction from the scene's centre: the front (+z), 26.6 degrees above it.
+constexpr glm::dvec3 kDefaultViewFrom{0.0, 1.0, 2.0};
+
+glm::dmat4 to_dmat4(const std::array<float, 16>& row_major) {
+    glm::dmat4 result;
+    for (int row = 0; row < 4; ++row) {
+        for (int column = 0; column < 4; ++column) result[column][row] = row_major[4 * row + column];
+    }
+    return result;
+}
+
+glm::dvec3 to_dvec3(const std::array<float, 3>& v) { return {v[0], v[1], v[2]}; }
+glm::dvec3 point_to_world(const glm::dmat4& m, const std::array<float, 3>& p) {
+    return glm::dvec3(m * glm::dvec4(to_dvec3(p), 1.0));
+}
+
+bool finite(const glm::dvec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+bool in_unit_interval(double x) { return x >= 0.0 && x <= 1.0; }
+
+std::string quoted(const std::string& name) { return "\"" + name + "\""; }
+
+class Reader {
+ public:
+    Reader(const std::string& path, const MeshImportLimits& mesh_import) : path_(path), importer_(mesh_import) {
+        out_.scene.source = path;
+    }
+
+    MitsubaScene read() {
+        try {
+            imported_ = importer_.import(path_);
+        } catch (const MeshFileError& error) {
+            fail(error.what());
+        }
+        // assimp turns glTF's v (0 at the image's top, as wavepath's textures) into 1 - v.
+        for (ImportedMesh& mesh : imported_.meshes)
+            for (glm::vec2& uv : mesh.uvs) uv.y = 1.0f - uv.y;
+        node_to_world_ = node_transforms();
+        material_indices_.assign(std::max<std::size_t>(imported_.materials.size(), 1), -1);
+        for (std::size_t n = 0; n < imported_.nodes.size(); ++n)
+            for (std::uint32_t mesh : imported_.nodes[n].meshes) add_mesh(n, mesh);
+        if (out_.scene.meshes.empty()) fail("no meshes: a glTF scene needs geometry");
+        read_camera();
+        read_lights();
+        return std::move(out_);
+    }
+
+ private:
+    [[noreturn]] void fail(const std::string& problem) const { throw SceneError(path_ + ": " + problem); }
+
+    // Each node's transform to the world, its ancestors' applied (nodes come after their parents).
+    std::vector<glm::dmat4> node_transforms() const {
+        std::vector<glm::dmat4> to_world(imported_.nodes.size());
+        for (std::size_t n = 0; n < imported_.nodes.size(); ++n) {
+            const ImportedNode& node = imported_.nodes[n];
+            const glm::dmat4 parent = node.parent == ImportedNode::kNoParent ? glm::dmat4(1.0) : to_world[node.parent];
+            to_world[n] = parent * to_dmat4(node.transform);
+        }
+        return to_world;
+    }
+
+    const glm::dmat4& node_transform(std::uint32_t node, const std::string& what) const {
+        if (node == kNoNode) fail(what + ": on no node of the scene");
+        return node_to_world_[node];
+    }
+
+    std::string node_name(std::size_t node) const {
+        const std::string& name = imported_.nodes[node].name;
+        return "node " + (name.empty() ? std::to_string(node) : quoted(name));
+    }
+
+    // ---- meshes ----
+
+    // One Mesh per primitive (assimp's mesh) of each node: one material each.
+    void add_mesh(std::size_t node, std::uint32_t mesh_index) {
+        const ImportedMesh& local = imported_.meshes[mesh_index];
+        ImportedScene one;
+        one.meshes.push_back(local);
+        one.nodes.push_back(ImportedNode{});
+        one.nodes[0].transform = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+        one.nodes[0].meshes = {0};
+        Mesh mesh;
+        try {
+            mesh = mesh_from_import(one, MeshFileOptions{node_to_world_[node], false, {}});
+        } catch (const MeshFileError& error) {
+            fail(node_name(node) + ", mesh " + std::to_string(mesh_index) + ": " + error.what());
+        }
+        mesh.file = fs::path(path_).filename().string();
+        mesh.material = material_index(local.material);
+        triangles_ += mesh.triangles.size();
+        if (triangles_ > kMaxTriangles)
+            fail("the meshes have more than the " + std::to_string(kMaxTriangles) + " triangles a scene may have");
+        MeshOrigin origin;
+        origin.local = local;
+        origin.to_world = node_to_world_[node];
+        out_.scene.meshes.push_back(std::move(mesh));
+        out_.meshes.push_back(std::move(origin));
+    }
+
+    // ---- materials ----
+
+    int material_index(std::uint32_t imported) {
+        int& index = material_indices_[imported];
+        if (index < 0) {
+            const ImportedMaterial fallback;  // a file without materials: glTF's default material
+            const ImportedMaterial& source =
+                imported_.materials.empty() ? fallback : imported_.materials[std::size_t(imported)];
+            Material material = gltf_material(source, "material " + quoted(source.name));
+            material.name = unique_name(source.name.empty() ? "material" : source.name);
+            index = static_cast<int>(out_.scene.materials.size());
+            out_.scene.materials.push_back(std::move(material));
+        }
+        return index;
+    }
+
+    std::string unique_name(const std::string& base) {
+        std::string name = base;
+        for (int n = 2; !material_names_.insert(name).second; ++n) name = base + " " + std::to_string(n);
+        return name;
+    }
+
+    // docs/scene-format.md, "glTF scenes", says which BSDF each material becomes.
+    Material gltf_material(const ImportedMaterial& source, const std::string& what) {
+        const glm::dvec3 base(source.base_color[0], source.base_color[1], source.base_color[2]);
+        const glm::dvec3 emission = to_dvec3(source.emissive) * double(source.emissive_strength);
+        const double roughness = source.roughness, metallic = source.metallic;
+        if (!(finite(base) && in_unit_interval(base.x) && in_unit_interval(base.y) && in_unit_interval(base.z)))
+            fail(what + ": baseColorFactor " + vector_text(base) + ": must be in [0, 1]");
+        if (!in_unit_interval(metallic))
+            fail(what + ": metallicFactor " + format_number(metallic) + ": must be in [0, 1]");
+        if (!in_unit_interval(roughness))
+            fail(what + ": roughnessFactor " + format_number(roughness) + ": must be in [0, 1]");
+        if (!(finite(emission) && emission.x >= 0 && emission.y >= 0 && emission.z >= 0 &&
+              std::max({emission.x, emission.y, emission.z}) <= kMaxSceneMagnitude))
+            fail(what + ": emissiveFactor times emissive_strength " + vector_text(emission) +
+                 ": must be finite and >= 0");
+        if (!in_unit_interval(source.transmission))
+            fail(what + ": transmissionFactor " + format_number(source.transmission) + ": must be in [0, 1]");
+        if (!(source.ior > 1.0 && source.ior <= 10.0))
+            fail(what + ": ior " + format_number(source.ior) + ": must be in (1, 10]");
+
+        Material m;
+        TexturedParameter coloured = TexturedParameter::Albedo;
+        if (emission != glm::dvec3(0.0)) {
+            m.type = MaterialType::Diffuse;
+            m.albedo = base;
+            m.emission = emission;
+        } else if (source.transmission > 0.0) {
+            m.type = roughness == 0.0 ? MaterialType::Glass : MaterialType::RoughDielectric;
+            m.ior = source.ior;
+        } else if (metallic >= 0.5) {
+            m.type = roughness == 0.0 ? MaterialType::Conductor : MaterialType::RoughConductor;
+            m.eta = glm::dvec3(0.0);
+            m.k = glm::dvec3(1.0);
+            m.specular_reflectance = base;
+            coloured = TexturedParameter::SpecularReflectance;
+        } else if (roughness == 1.0) {
+            m.type = MaterialType::Diffuse;
+            m.albedo = base;
+        } else {
+            m.type = roughness == 0.0 ? MaterialType::Plastic : MaterialType::RoughPlastic;
+            m.albedo = base;
+            m.ior = 1.5;  // glTF's dielectric: F0 = 0.04
+        }
+        if (m.type == MaterialType::RoughDielectric || m.type == MaterialType::RoughConductor ||
+            m.type == MaterialType::RoughPlastic) {
+            m.distribution = Microfacet::GGX;  // glTF's
+            m.alpha_u = m.alpha_v = std::max(roughness * roughness, kMinRoughness);
+        }
+        if (!source.base_color_texture.empty()) {
+            if (m.type == MaterialType::Glass || m.type == MaterialType::RoughDielectric)
+                fail(what + ": baseColorTexture on a transmissive material: wavepath's dielectrics are not tinted");
+            m.texture(coloured) = texture_index(source.base_color_texture, what);
+        }
+        return m;
+    }
+
+    int texture_index(const std::string& uri, const std::string& what) {
+        if (uri.starts_with("*"))
+            fail(what + ": baseColorTexture is embedded in the file (image " + uri.substr(1) +
+                 "): wavepath reads textures from image files beside it");
+        Texture texture;
+        texture.name = uri;
+        texture.file = uri;
+        const fs::path file = fs::path(path_).parent_path() / uri;
+        try {
+            read_bitmap_file(file.string(), false, texture);
+        } catch (const std::runtime_error& error) {
+            fail(what + ": baseColorTexture " + quoted(uri) + ": " + error.what());
+        }
+        texels_ += texture.texels.size() / 3;
+        if (texels_ > kMaxTextureTexels)
+            fail(what + ": the textures have more than the " + std::to_string(kMaxTextureTexels) +
+                 " texels a scene may have");
+        out_.scene.textures.push_back(std::move(texture));
+        return static_cast<int>(out_.scene.textures.size()) - 1;
+    }
+
+    // ---- camera ----
+
+    void read_camera() {
+        Camera& camera = out_.scene.camera;
+        if (imported_.cameras.empty()) {
+            default_camera();
+            return;
+        }
+        const ImportedCamera& source = imported_.cameras.front();
+        const std::string what = "camera " + quoted(source.name);
+        const glm::dmat4& to_world = node_transform(source.node, what);
+        // A glTF camera sits at its node's origin; assimp 5.2 copies the node's
+        // translation into its position as well, which would apply it twice.
+        camera.position = point_to_world(to_world, {0, 0, 0});
+        camera.look_at = glm::dvec3(to_world * glm::dvec4(to_dvec3(source.look_at) - to_dvec3(source.position), 1.0));
+        camera.up = glm::dmat3(to_world) * to_dvec3(source.up);
+        if (!(source.aspect > 0.0f && std::isfinite(source.aspect)))
+            fail(what + ": no aspectRatio (wavepath sizes the image by it)");
+        // assimp 5.2's glTF reader gives yfov * aspectRatio as the horizontal angle.
+        camera.fov_y_degrees = double(source.horizontal_fov) / double(source.aspect) * 180.0 / std::numbers::pi;
+        if (!(camera.fov_y_degrees > 0.0 && camera.fov_y_degrees < 180.0))
+            fail(what + ": yfov of " + format_number(camera.fov_y_degrees) + " degrees: must be in (0, 180)");
+        set_size(source.aspect, what);
+        const glm::dvec3 view = camera.look_at - camera.position;
+        if (!finite(camera.position) || !finite(view) || glm::length(view) == 0.0 ||
+            glm::length(glm::cross(view, camera.up)) == 0.0)
+            fail(what + ": its node's transform leaves no view direction and up");
+    }
+
+    void set_size(double aspect, const std::string& what) {
+        const double height = std::round(kGltfImageWidth / aspect);
+        if (!(height >= 1.0 && height <= kMaxResolution))
+            fail(what + ": aspectRatio " + format_number(aspect) + " gives an image of " +
+                 std::to_string(kGltfImageWidth) + " x " + format_number(height) + " pixels");
+        out_.scene.camera.width = kGltfImageWidth;
+        out_.scene.camera.height = static_cast<int>(height);
+    }
+
+    // Looking at the meshes' bounding box from the front (+z) and above (kDefaultViewFrom), from
+    // where its bounding sphere fills the height.
+    void default_camera() {
+        glm::dvec3 low(std::numeric_limits<double>::infinity()), high(-std::numeric_limits<double>::infinity());
+        for (const Mesh& mesh : out_.scene.meshes)
+            for (const glm::dvec3& p : mesh.positions) {
+                low = glm::min(low, p);
+                high = glm::max(high, p);
+            }
+        const glm::dvec3 center = 0.5 * (low + high);
+        const double radius = 0.5 * glm::length(high - low);
+        Camera& camera = out_.scene.camera;
+        camera.fov_y_degrees = kDefaultFovY;
+        camera.look_at = center;
+        camera.position = center + glm::normalize(kDefaultViewFrom) *
+                                       (radius / std::sin(0.5 * kDefaultFovY * std::numbers::pi / 180.0));
+        camera.up = {0.0, 1.0, 0.0};
+        set_size(kDefaultAspect, "the default camera");
+        out_.warnings.push_back(
+            path_ + ": no camera: looking at the meshes' bounding box from +z and above (fov_y 40, 640 x 480)");
+    }
+
+    // ---- lights ----
+
+    void read_lights() {
+        for (const ImportedLight& light : imported_.lights) {
+            const std::string what = "light " + quoted(light.name);
+            if (light.type != ImportedLightType::Directional)
+                fail(what + ": a " + (light.type == ImportedLightType::Point ? "point" : "spot") +
+                     " light (KHR_lights_punctual): wavepath has no point or spot lights (give it an emissive mesh "
+                     "or a directional light)");
+            DirectionalLight directional;
+            const glm::dvec3 direction = glm::dmat3(node_transform(light.node, what)) * to_dvec3(light.direction);
+            directional.irradiance = to_dvec3(light.color);
+            if (!(finite(direction) && glm::length(direction) > 0.0))
+                fail(what + ": its node's transform leaves no direction");
+            if (!(finite(directional.irradiance) &&
+                  glm::all(glm::greaterThanEqual(directional.irradiance, glm::dvec3(0.0)))))
+                fail(what + ": colour times intensity " + vector_text(directional.irradiance) +
+                     ": must be finite and >= 0");
+            directional.direction = glm::normalize(direction);
+            out_.scene.directional_lights.push_back(directional);
+        }
+        const bool emits = std::any_of(out_.scene.materials.begin(), out_.scene.materials.end(),
+                                       [](const Material& m) { return m.emits(); });
+        if (out_.scene.directional_lights.empty() && !emits) {
+            out_.scene.background = glm::dvec3(1.0);
+            out_.warnings.push_back(path_ + ": no light: a constant white environment of radiance 1 lights the scene");
+        }
+    }
+
+    std::string path_;
+    MeshImporter importer_;
+    ImportedScene imported_;
+    std::vector<glm::dmat4> node_to_world_;
+    std::vector<int> material_indices_;  // per imported material: its index in the scene, -1 before its first use
+    std::set<std::string> material_names_;
+    std::size_t triangles_ = 0;
+    std::size_t texels_ = 0;
+    MitsubaScene out_;
+};
+
+std::string lower(std::string text) {
+    std::transform(text.begin(), text.end(), text.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    return text;
+}
+
+}  // namespace gltf_scene
+}  // namespace
+
+MitsubaScene read_gltf_scene(const std::string& path, const MeshImportLimits& mesh_import) {
+    return gltf_scene::Reader(path, mesh_import).read();
+}
+
+Scene load_gltf_scene(const std::string& path, const MeshImportLimits& mesh_import, std::vector<std::string>* notes) {
+    MitsubaScene read = read_gltf_scene(path, mesh_import);
+    finish_scene(read.scene);
+    if (notes) *notes = std::move(read.warnings);
+    return std::move(read.scene);
+}
+
+bool is_gltf_scene_path(const std::string& path) {
+    const std::string extension = gltf_scene::lower(std::filesystem::path(path).extension().string());
+    return extension == ".gltf" || extension == ".glb";
+}
+
+}  // namespace wp

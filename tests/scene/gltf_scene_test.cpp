@@ -1,0 +1,221 @@
+// glTF 2.0 files as scenes (scene/gltf_scene.h; docs/scene-format.md, "glTF
+// scenes"): the glTF scenes of scenes/test/gltf/ make the same Scene as the
+// JSON written by hand beside each (so they render the same image), each
+// material rule of the mapping, and the one-line errors.
+#include "scene/gltf_scene.h"
+
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "scene/limits.h"
+#include "support/temp_directory.h"
+
+namespace wp::test {
+namespace {
+// A namespace of its own: the sanitizer build compiles test files together (unity).
+namespace gltf_scene_test {
+
+namespace fs = std::filesystem;
+
+const fs::path kScenes = fs::path(WAVEPATH_SOURCE_DIR) / "scenes/test/gltf";
+
+void expect_near(const glm::dvec3& a, const glm::dvec3& b, double tolerance) {
+    EXPECT_NEAR(a.x, b.x, tolerance);
+    EXPECT_NEAR(a.y, b.y, tolerance);
+    EXPECT_NEAR(a.z, b.z, tolerance);
+}
+
+void expect_same_material(const Material& a, const Material& b) {
+    SCOPED_TRACE(a.name);
+    EXPECT_EQ(a.name, b.name);
+    EXPECT_EQ(a.type, b.type);
+    EXPECT_EQ(a.albedo, b.albedo);
+    EXPECT_EQ(a.emission, b.emission);
+    EXPECT_EQ(a.two_sided, b.two_sided);
+    EXPECT_EQ(a.ior, b.ior);
+    EXPECT_EQ(a.eta, b.eta);
+    EXPECT_EQ(a.k, b.k);
+    EXPECT_EQ(a.specular_reflectance, b.specular_reflectance);
+    EXPECT_EQ(a.distribution, b.distribution);
+    EXPECT_EQ(a.alpha_u, b.alpha_u);
+    EXPECT_EQ(a.alpha_v, b.alpha_v);
+    EXPECT_EQ(a.nonlinear, b.nonlinear);
+    EXPECT_EQ(a.textures, b.textures);
+}
+
+// Everything the renderers read; the camera's angles (which go through
+// assimp's float horizontal field of view) and, after a camera placed
+// within `tolerance`, the camera-relative positions within `tolerance`.
+void expect_same_scene(const Scene& gltf, const Scene& json, double tolerance) {
+    EXPECT_EQ(gltf.camera.width, json.camera.width);
+    EXPECT_EQ(gltf.camera.height, json.camera.height);
+    EXPECT_NEAR(gltf.camera.fov_y_degrees, json.camera.fov_y_degrees, 1e-5);
+    expect_near(gltf.camera.position, json.camera.position, tolerance);
+    expect_near(gltf.camera.look_at, json.camera.look_at, tolerance);
+    expect_near(gltf.camera.up, json.camera.up, 1e-12);
+    expect_near(gltf.world_offset, json.world_offset, tolerance);
+    EXPECT_EQ(gltf.background, json.background);
+    ASSERT_EQ(gltf.directional_lights.size(), json.directional_lights.size());
+    for (std::size_t l = 0; l < gltf.directional_lights.size(); ++l) {
+        EXPECT_EQ(gltf.directional_lights[l].direction, json.directional_lights[l].direction);
+        EXPECT_EQ(gltf.directional_lights[l].irradiance, json.directional_lights[l].irradiance);
+    }
+    ASSERT_EQ(gltf.meshes.size(), json.meshes.size());
+    for (std::size_t m = 0; m < gltf.meshes.size(); ++m) {
+        SCOPED_TRACE("mesh " + std::to_string(m));
+        const Mesh &a = gltf.meshes[m], &b = json.meshes[m];
+        EXPECT_EQ(a.triangles, b.triangles);
+        ASSERT_EQ(a.positions.size(), b.positions.size());
+        for (std::size_t v = 0; v < a.positions.size(); ++v) expect_near(a.positions[v], b.positions[v], tolerance);
+        EXPECT_EQ(a.normals, b.normals);
+        expect_same_material(gltf.materials[std::size_t(a.material)], json.materials[std::size_t(b.material)]);
+    }
+    EXPECT_EQ(gltf.textures.size(), json.textures.size());
+    ASSERT_EQ(gltf.lights.size(), json.lights.size());
+    for (std::size_t l = 0; l < gltf.lights.size(); ++l) {
+        EXPECT_EQ(gltf.lights[l].kind, json.lights[l].kind);
+        EXPECT_NEAR(gltf.lights[l].power, json.lights[l].power, 1e-12 * json.lights[l].power);
+    }
+}
+
+TEST(GltfScene, MaterialsCameraAndSunMakeTheSceneOfTheirHandWrittenJson) {
+    std::vector<std::string> notes;
+    const Scene gltf = load_gltf_scene((kScenes / "materials.gltf").string(), {}, &notes);
+    const Scene json = load_scene((kScenes / "materials.json").string());
+    expect_same_scene(gltf, json, 0.0);
+    EXPECT_EQ(notes, std::vector<std::string>{});
+    // The mapping's four rules are all there: diffuse, roughconductor, roughplastic, emitting diffuse.
+    ASSERT_EQ(gltf.materials.size(), 4u);
+    EXPECT_EQ(gltf.materials[1].type, MaterialType::RoughConductor);
+    EXPECT_EQ(gltf.materials[2].type, MaterialType::RoughPlastic);
+    EXPECT_EQ(gltf.materials[3].emission, glm::dvec3(4, 4, 2));  // emissiveFactor times KHR_materials_emissive_strength
+}
+
+TEST(GltfScene, NoCameraAndNoLightTakeTheDocumentedDefaultsWithANoteEach) {
+    const std::string path = (kScenes / "no_camera_no_light.gltf").string();
+    std::vector<std::string> notes;
+    const Scene gltf = load_gltf_scene(path, {}, &notes);
+    const Scene json = load_scene((kScenes / "no_camera_no_light.json").string());
+    expect_same_scene(gltf, json, 1e-12);
+    EXPECT_EQ(notes,
+              (std::vector<std::string>{
+                  path + ": no camera: looking at the meshes' bounding box from +z and above (fov_y 40, 640 x 480)",
+                  path + ": no light: a constant white environment of radiance 1 lights the scene"}));
+}
+
+TEST(GltfScene, ExtensionsChooseTheReader) {
+    EXPECT_TRUE(is_gltf_scene_path("a/b.gltf"));
+    EXPECT_TRUE(is_gltf_scene_path("B.GLB"));
+    EXPECT_FALSE(is_gltf_scene_path("b.gltf.json"));
+    EXPECT_FALSE(is_gltf_scene_path("b.xml"));
+}
+
+// ---- the material mapping, one glTF material at a time ----
+
+// One triangle of the given material, its camera and light defaulted.
+std::string one_triangle(const std::string& material) {
+    return R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}],
+ "nodes": [{"name": "Triangle", "mesh": 0}],
+ "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "material": 0, "mode": 4}]}],
+ "materials": [)" +
+           material + R"(],
+ "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]}],
+ "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 36}],
+ "buffers": [{"byteLength": 36, "uri": "data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAA"}]})";
+}
+
+class GltfMaterial : public ::testing::Test {
+ protected:
+    Material read(const std::string& material) const {
+        const fs::path path = dir_.path() / "triangle.gltf";
+        write_text(path, one_triangle(material));
+        const MitsubaScene scene = read_gltf_scene(path.string());
+        EXPECT_EQ(scene.scene.materials.size(), 1u);
+        return scene.scene.materials.at(0);
+    }
+    std::string error_of(const std::string& material) const {
+        try {
+            read(material);
+        } catch (const SceneError& error) {
+            return std::string(error.what()).substr(dir_.path().string().size() + 1);
+        }
+        return "(no error)";
+    }
+    TempDirectory dir_{"gltf"};
+};
+
+std::string pbr(const std::string& factors) { return R"({"name": "m", "pbrMetallicRoughness": {)" + factors + "}}"; }
+
+TEST_F(GltfMaterial, MetallicFromOneHalfIsAConductorTintedByTheBaseColour) {
+    const Material rough =
+        read(pbr(R"("baseColorFactor": [0.5, 0.25, 1, 1], "metallicFactor": 0.5, "roughnessFactor": 0.5)"));
+    EXPECT_EQ(rough.type, MaterialType::RoughConductor);
+    EXPECT_EQ(rough.specular_reflectance, glm::dvec3(0.5, 0.25, 1));
+    EXPECT_EQ(rough.eta, glm::dvec3(0.0));
+    EXPECT_EQ(rough.k, glm::dvec3(1.0));
+    EXPECT_EQ(rough.distribution, Microfacet::GGX);
+    EXPECT_EQ(rough.alpha_u, 0.25);  // roughness squared
+    EXPECT_EQ(rough.alpha_v, 0.25);
+    EXPECT_EQ(read(pbr(R"("metallicFactor": 1, "roughnessFactor": 0)")).type, MaterialType::Conductor);
+}
+
+TEST_F(GltfMaterial, MetallicBelowOneHalfIsAPlasticOrDiffuseWhereFullyRough) {
+    const Material coat =
+        read(pbr(R"("baseColorFactor": [0.5, 0.25, 1, 1], "metallicFactor": 0.25, "roughnessFactor": 0.5)"));
+    EXPECT_EQ(coat.type, MaterialType::RoughPlastic);
+    EXPECT_EQ(coat.albedo, glm::dvec3(0.5, 0.25, 1));
+    EXPECT_EQ(coat.ior, 1.5);
+    EXPECT_EQ(coat.alpha_u, 0.25);
+    EXPECT_EQ(read(pbr(R"("metallicFactor": 0, "roughnessFactor": 0)")).type, MaterialType::Plastic);
+    const Material matte =
+        read(pbr(R"("baseColorFactor": [0.5, 0.25, 1, 1], "metallicFactor": 0, "roughnessFactor": 1)"));
+    EXPECT_EQ(matte.type, MaterialType::Diffuse);
+    EXPECT_EQ(matte.albedo, glm::dvec3(0.5, 0.25, 1));
+}
+
+TEST_F(GltfMaterial, TheRoughnessIsClampedToTheLeastTheRenderersTake) {
+    EXPECT_EQ(read(pbr(R"("metallicFactor": 1, "roughnessFactor": 0.001)")).alpha_u, kMinRoughness);
+}
+
+TEST_F(GltfMaterial, WithoutFactorsItIsGltfsDefaultARoughWhiteMetal) {
+    const Material m = read(R"({"name": "m"})");
+    EXPECT_EQ(m.type, MaterialType::RoughConductor);
+    EXPECT_EQ(m.specular_reflectance, glm::dvec3(1.0));
+    EXPECT_EQ(m.alpha_u, 1.0);
+}
+
+TEST_F(GltfMaterial, TransmissionIsADielectricOfItsIor) {
+    const Material rough = read(
+        R"({"name": "m", "pbrMetallicRoughness": {"roughnessFactor": 0.5}, "extensions": {"KHR_materials_transmission": {"transmissionFactor": 1}, "KHR_materials_ior": {"ior": 1.25}}})");
+    EXPECT_EQ(rough.type, MaterialType::RoughDielectric);
+    EXPECT_EQ(rough.ior, 1.25);
+    EXPECT_EQ(rough.distribution, Microfacet::GGX);
+    EXPECT_EQ(rough.alpha_u, 0.25);
+    const Material smooth = read(
+        R"({"name": "m", "pbrMetallicRoughness": {"roughnessFactor": 0}, "extensions": {"KHR_materials_transmission": {"transmissionFactor": 0.5}}})");
+    EXPECT_EQ(smooth.type, MaterialType::Glass);
+    EXPECT_EQ(smooth.ior, 1.5);  // KHR_materials_ior's default
+}
+
+TEST_F(GltfMaterial, EmissionIsADiffuseAreaLightOfFactorTimesStrength) {
+    const Material lamp = read(
+        R"({"name": "m", "pbrMetallicRoughness": {"baseColorFactor": [0.5, 0.5, 0.5, 1], "metallicFactor": 1}, "emissiveFactor": [1, 0.5, 0], "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": 8}}})");
+    EXPECT_EQ(lamp.type, MaterialType::Diffuse);
+    EXPECT_EQ(lamp.albedo, glm::dvec3(0.5));
+    EXPECT_EQ(lamp.emission, glm::dvec3(8, 4, 0));
+    EXPECT_FALSE(lamp.two_sided);
+}
+
+TEST_F(GltfMaterial, FactorsOutsideTheirRangeAreOneErrorLine) {
+    EXPECT_EQ(error_of(pbr(R"("baseColorFactor": [2, 0.5, 0.5, 1])")),
+              "triangle.gltf: material \"m\": baseColorFactor (2, 0.5, 0.5): must be in [0, 1]");
+    EXPECT_EQ(error_of(pbr(R"("roughnessFactor": 1.5)")),
+              "triangle.gltf: material \"m\": roughnessFactor 1.5: must be in [0, 1]");
+    EXPECT_EQ(error_of(R"({"name": "m", "extensions": {"KHR_materials_ior": {"ior": 0.5}}})"),
+              "triangle.gltf: material \"m\": ior 0.5: must be in (1, 10]");
+}
+
+}  // namespace gltf_scene_test
+}  // namespace
+}  // namespace wp::test
