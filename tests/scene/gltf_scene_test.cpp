@@ -8,6 +8,7 @@
 
 #include <string>
 
+#include "image/image_io.h"
 #include "scene/limits.h"
 #include "support/temp_directory.h"
 
@@ -111,26 +112,44 @@ TEST(GltfScene, ExtensionsChooseTheReader) {
     EXPECT_FALSE(is_gltf_scene_path("b.xml"));
 }
 
+// The binary container (make_gltf.py writes materials.glb of the same
+// document, its buffer the BIN chunk) reads as its JSON does, the extensions
+// wavepath-import reads from the JSON chunk (KHR_materials_emissive_strength) included.
+TEST(GltfScene, GlbReadsAsItsGltf) {
+    const Scene from_glb = load_gltf_scene((kScenes / "materials.glb").string());
+    const Scene from_gltf = load_gltf_scene((kScenes / "materials.gltf").string());
+    expect_same_scene(from_glb, from_gltf, 0.0);
+    EXPECT_EQ(from_glb.materials.at(3).emission, glm::dvec3(4, 4, 2));
+}
+
 // ---- the material mapping, one glTF material at a time ----
 
-// One triangle of the given material, its camera and light defaulted.
-std::string one_triangle(const std::string& material) {
+// One triangle of the given material, with texture coordinates (0, 0), (1,
+// 0), (0, 0.25) and, where `image` is not empty, that image as texture 0;
+// its camera and light defaulted.
+std::string one_triangle(const std::string& material, const std::string& image = "") {
+    const std::string textures =
+        image.empty() ? "" : R"("textures": [{"source": 0}], "images": [{"uri": ")" + image + R"("}],)";
     return R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}],
  "nodes": [{"name": "Triangle", "mesh": 0}],
- "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "material": 0, "mode": 4}]}],
+ "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "TEXCOORD_0": 1}, "material": 0, "mode": 4}]}],
  "materials": [)" +
-           material + R"(],
- "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]}],
- "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 36}],
- "buffers": [{"byteLength": 36, "uri": "data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAA"}]})";
+           material + "], " + textures + R"(
+ "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]},
+               {"bufferView": 1, "componentType": 5126, "count": 3, "type": "VEC2"}],
+ "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 36}, {"buffer": 0, "byteOffset": 36, "byteLength": 24}],
+ "buffers": [{"byteLength": 60, "uri": "data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAAAAAAAAAAAAAAAIA/AAAAAAAAAAAAAIA+"}]})";
 }
 
 class GltfMaterial : public ::testing::Test {
  protected:
-    Material read(const std::string& material) const {
+    MitsubaScene read_scene(const std::string& material, const std::string& image = "") const {
         const fs::path path = dir_.path() / "triangle.gltf";
-        write_text(path, one_triangle(material));
-        const MitsubaScene scene = read_gltf_scene(path.string());
+        write_text(path, one_triangle(material, image));
+        return read_gltf_scene(path.string());
+    }
+    Material read(const std::string& material) const {
+        const MitsubaScene scene = read_scene(material);
         EXPECT_EQ(scene.scene.materials.size(), 1u);
         return scene.scene.materials.at(0);
     }
@@ -205,6 +224,32 @@ TEST_F(GltfMaterial, EmissionIsADiffuseAreaLightOfFactorTimesStrength) {
     EXPECT_EQ(lamp.albedo, glm::dvec3(0.5));
     EXPECT_EQ(lamp.emission, glm::dvec3(8, 4, 0));
     EXPECT_FALSE(lamp.two_sided);
+}
+
+// glTF's texture coordinates as the file has them (v = 0 at the image's top,
+// as wavepath's); the image read from beside the file, decoded from sRGB.
+TEST_F(GltfMaterial, BaseColorTextureIsTheAlbedoOrTheConductorsReflectance) {
+    write_image(Image{2, 1, {0.5f, 0.25f, 1.0f, 0.0f, 0.0f, 0.0f}}, (dir_.path() / "t.png").string());
+    const std::string textured = R"("baseColorTexture": {"index": 0}, "roughnessFactor": 1)";
+    const MitsubaScene matte = read_scene(pbr(textured + R"(, "metallicFactor": 0)"), "t.png");
+    ASSERT_EQ(matte.scene.textures.size(), 1u);
+    const Texture& t = matte.scene.textures[0];
+    EXPECT_EQ(t.file, "t.png");
+    EXPECT_FALSE(t.raw);
+    EXPECT_EQ(t.width, 2);
+    EXPECT_NEAR(t.texels[0], 0.5f, 0.01f);  // 8-bit sRGB of 0.5 and back
+    EXPECT_EQ(t.texels[3], 0.0f);
+    EXPECT_EQ(matte.scene.materials[0].type, MaterialType::Diffuse);
+    EXPECT_EQ(matte.scene.materials[0].texture(TexturedParameter::Albedo), 0);
+    const Mesh& mesh = matte.scene.meshes.at(0);
+    ASSERT_EQ(mesh.uvs.size(), 3u);
+    EXPECT_EQ(mesh.uvs[1], glm::dvec2(1, 0));
+    EXPECT_EQ(mesh.uvs[2], glm::dvec2(0, 0.25));
+
+    const Material metal = read_scene(pbr(textured + R"(, "metallicFactor": 1)"), "t.png").scene.materials[0];
+    EXPECT_EQ(metal.type, MaterialType::RoughConductor);
+    EXPECT_EQ(metal.texture(TexturedParameter::SpecularReflectance), 0);
+    EXPECT_EQ(metal.texture(TexturedParameter::Albedo), kNoTexture);
 }
 
 TEST_F(GltfMaterial, FactorsOutsideTheirRangeAreOneErrorLine) {

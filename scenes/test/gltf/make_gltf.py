@@ -68,6 +68,19 @@ def write(name, document):
         f.write("\n")
 
 
+def write_glb(name, document):
+    """The binary container: the JSON chunk, then the buffer as the BIN chunk (buffer 0 without a uri)."""
+    document = json.loads(json.dumps(document))
+    buffer = document["buffers"][0]
+    blob = base64.b64decode(buffer.pop("uri").split(",", 1)[1])
+    text = json.dumps(document).encode()
+    text += b" " * (-len(text) % 4)
+    blob += b"\0" * (-len(blob) % 4)
+    chunks = struct.pack("<I4s", len(text), b"JSON") + text + struct.pack("<I4s", len(blob), b"BIN\0") + blob
+    with open(os.path.join(HERE, name), "wb") as f:
+        f.write(struct.pack("<4sII", b"glTF", 2, 12 + len(chunks)) + chunks)
+
+
 def pbr(name, base, metallic, roughness, **extra):
     m = {"name": name, "pbrMetallicRoughness": {"baseColorFactor": base + [1.0], "metallicFactor": metallic,
                                                   "roughnessFactor": roughness}}
@@ -97,6 +110,7 @@ def main():
                                                   "intensity": 2}]}}
     meshes = [(floor[0], floor[1], 0), (block[0], block[1], 1), (coat[0], coat[1], 2), (lamp[0], lamp[1], 3)]
     write("materials.gltf", gltf(meshes, nodes, materials, extra, lights, cameras))
+    write_glb("materials.glb", gltf(meshes, nodes, materials, extra, lights, cameras))
     # Nothing but a red floor: the default camera and the default light.
     write("no_camera_no_light.gltf", gltf([(floor[0], floor[1], 0)], [("Floor", 0, None)], materials[:1], []))
 
