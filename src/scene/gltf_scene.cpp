@@ -64,9 +64,7 @@ class Reader {
         } catch (const MeshFileError& error) {
             fail(error.what());
         }
-        // assimp turns glTF's v (0 at the image's top, as wavepath's textures) into 1 - v.
-        for (ImportedMesh& mesh : imported_.meshes)
-            for (glm::vec2& uv : mesh.uvs) uv.y = 1.0f - uv.y;
+        orient_file_uvs(path_, imported_);
         node_to_world_ = node_transforms();
         material_indices_.assign(std::max<std::size_t>(imported_.materials.size(), 1), -1);
         for (std::size_t n = 0; n < imported_.nodes.size(); ++n)

@@ -182,18 +182,18 @@ Mesh mesh_from_import(const ImportedScene& imported, const MeshFileOptions& opti
     return MeshMerger(imported, options).merge();
 }
 
-void flip_obj_uvs(const std::filesystem::path& path, ImportedScene& scene) {
+void orient_file_uvs(const std::filesystem::path& path, ImportedScene& scene) {
     std::string extension = path.extension().string();
     std::transform(extension.begin(), extension.end(), extension.begin(),
                    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-    if (extension != ".obj") return;
+    if (extension != ".obj" && extension != ".gltf" && extension != ".glb") return;
     for (ImportedMesh& mesh : scene.meshes)
         for (glm::vec2& uv : mesh.uvs) uv.y = 1.0f - uv.y;
 }
 
 Mesh read_mesh_file(const std::filesystem::path& path, const MeshFileOptions& options, MeshImporter& importer) {
     ImportedScene imported = importer.import(path);
-    flip_obj_uvs(path, imported);
+    orient_file_uvs(path, imported);
     return mesh_from_import(imported, options);
 }
 

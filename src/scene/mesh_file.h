@@ -23,16 +23,19 @@ struct MeshFileOptions {
 
 // Reads every mesh of the file's node graph, merged into one, with node
 // transforms and then `to_world` applied. Fills positions, normals and uvs
-// (each only if every vertex has one in the file; an OBJ's v turned as
-// flip_obj_uvs says), triangles and degenerate_dropped of the result; file
+// (each only if every vertex has one in the file; v turned as
+// orient_file_uvs says), triangles and degenerate_dropped of the result; file
 // and material are the caller's. Throws MeshFileError
 // (ImportProcessError if the import process failed).
 Mesh read_mesh_file(const std::filesystem::path& path, const MeshFileOptions& options, MeshImporter& importer);
 
+// Texture coordinates as textures read them, v = 0 at an image's top row.
 // Mitsuba's OBJ reader turns v upside down (an OBJ's v grows upwards, an
 // image's rows downwards); its PLY and serialized readers, like assimp, do
-// not. For a file at `path` of that extension, v becomes 1 - v in `scene`.
-void flip_obj_uvs(const std::filesystem::path& path, ImportedScene& scene);
+// not. glTF's v already grows downwards, and assimp's glTF reader turns it
+// into 1 - v. For a file at `path` of those extensions (.obj; .gltf, .glb),
+// v becomes 1 - v in `scene`.
+void orient_file_uvs(const std::filesystem::path& path, ImportedScene& scene);
 
 // What read_mesh_file makes of an imported file: its meshes checked
 // (finite vertices, indices in range), then merged as above.

@@ -1412,7 +1412,7 @@ class Reader {
         } catch (const MeshFileError& error) {
             shape.fail(*shape.property("filename"), name + ": " + error.what());
         }
-        flip_obj_uvs(path, imported);
+        orient_file_uvs(path, imported);
         bool exact = true;
         ImportedMesh mesh = merge_imported(imported, exact);
         add_mesh(shape, std::move(mesh), path.string(), exact, true);

@@ -252,6 +252,19 @@ TEST_F(GltfMaterial, BaseColorTextureIsTheAlbedoOrTheConductorsReflectance) {
     EXPECT_EQ(metal.texture(TexturedParameter::Albedo), kNoTexture);
 }
 
+// A glTF file as a JSON scene's `mesh` has the same texture coordinates.
+TEST_F(GltfMaterial, AJsonMeshOfTheFileHasItsTextureCoordinatesToo) {
+    write_text(dir_.path() / "triangle.gltf", one_triangle(pbr("")));
+    const fs::path json = dir_.path() / "scene.json";
+    write_text(json, R"({"camera": {"position": [0, 0, 2], "look_at": [0, 0, 0], "fov_y": 40, "width": 4, "height": 4},
+        "materials": {"white": {"type": "diffuse", "albedo": [0.5, 0.5, 0.5]}},
+        "shapes": [{"type": "mesh", "file": "triangle.gltf", "material": "white"}]})");
+    const Scene scene = load_scene(json.string());
+    ASSERT_EQ(scene.meshes.at(0).uvs.size(), 3u);
+    EXPECT_EQ(scene.meshes[0].uvs[1], glm::dvec2(1, 0));
+    EXPECT_EQ(scene.meshes[0].uvs[2], glm::dvec2(0, 0.25));
+}
+
 TEST_F(GltfMaterial, FactorsOutsideTheirRangeAreOneErrorLine) {
     EXPECT_EQ(error_of(pbr(R"("baseColorFactor": [2, 0.5, 0.5, 1])")),
               "triangle.gltf: material \"m\": baseColorFactor (2, 0.5, 0.5): must be in [0, 1]");
