@@ -4,11 +4,14 @@
 // defaults it takes, and refuses -D.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
+#include <numbers>
 #include <string>
 #include <vector>
 
 #include "cli/run_wavepath.h"
+#include "image/image_io.h"
 
 namespace wp::test {
 namespace {
@@ -52,6 +55,37 @@ TEST_F(GltfCli, NotesTheDefaultCameraAndLight) {
     EXPECT_NE(result.err.find("wavepath: note: " + gltf + ": no camera: "), std::string::npos) << result.err;
     EXPECT_NE(result.err.find("wavepath: note: " + gltf + ": no light: "), std::string::npos) << result.err;
     EXPECT_EQ(image_of(gltf), image_of((kScenes / "no_camera_no_light.json").string()));
+}
+
+// A point light becomes a small emitting sphere of its intensity, which gives
+// a point outside it exactly the point light's irradiance I cos / d^2:
+// point_light.gltf's grey floor (albedo 0.5) 1 below a light of intensity 1,
+// seen from 3 above. A block of 20 x 20 pixels beside the light's foot, at 4
+// samples each, against 0.5 / pi / d^3 at each pixel's centre. The
+// estimate's spread is the light sample's: the sphere (radius 2.8e-3) moves
+// d by at most 0.3%, so the block mean's relative standard error is below
+// 1e-4 and the 2e-3 bound is 20 standard errors (false failure below 1e-20);
+// a radiance off by any factor (the sphere's area for its projected area,
+// 4) fails it. Measured: 0.1570523 against 0.1570523 (64 spp, 1e-7).
+TEST_F(GltfCli, APointLightGivesItsIrradiance) {
+    const std::string gltf = (kScenes / "point_light.gltf").string();
+    const CommandResult result = run({"render", gltf, "-o", scratch_ / "image.pfm", "--spp", "4", "-q"});
+    ASSERT_EQ(result.exit_code, 0) << result.err;
+    const Image image = read_image(scratch_ / "image.pfm");
+    ASSERT_EQ(image.width, 640);
+    ASSERT_EQ(image.height, 640);
+    const double half_width = 3.0 * std::tan(0.125);  // yfov 0.25 at the floor, 3 below the camera
+    double rendered = 0.0, expected = 0.0;
+    for (int y = 310; y < 330; ++y) {
+        for (int x = 420; x < 440; ++x) {
+            const double fx = ((x + 0.5) / 640.0 * 2.0 - 1.0) * half_width;
+            const double fz = ((y + 0.5) / 640.0 * 2.0 - 1.0) * half_width;
+            const double d = std::sqrt(1.0 + fx * fx + fz * fz);
+            expected += 0.5 / std::numbers::pi / (d * d * d);
+            rendered += image.rgb[3 * std::size_t(y * 640 + x)];
+        }
+    }
+    EXPECT_NEAR(rendered / expected, 1.0, 2e-3);
 }
 
 TEST_F(GltfCli, DefinesAreACommandLineError) {

@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <numbers>
 #include <string>
 
 #include "image/image_io.h"
@@ -122,8 +124,6 @@ TEST(GltfScene, GlbReadsAsItsGltf) {
     EXPECT_EQ(from_glb.materials.at(3).emission, glm::dvec3(4, 4, 2));
 }
 
-// ---- the material mapping, one glTF material at a time ----
-
 // One triangle of the given material, with texture coordinates (0, 0), (1,
 // 0), (0, 0.25) and, where `image` is not empty, that image as texture 0;
 // its camera and light defaulted.
@@ -140,6 +140,37 @@ std::string one_triangle(const std::string& material, const std::string& image =
  "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 36}, {"buffer": 0, "byteOffset": 36, "byteLength": 24}],
  "buffers": [{"byteLength": 60, "uri": "data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAAAAAAAAAAAAAAAIA/AAAAAAAAAAAAAIA+"}]})";
 }
+
+// A point light is a small emitting sphere of its intensity: radius 1e-3 of
+// the meshes' bounding sphere's, radiance I / (pi r^2). The triangle's
+// bounding sphere has radius sqrt(2) / 2, about its centre (0.5, 0.5, 0).
+TEST(GltfScene, APointLightIsASmallSphereOfTheSameIntensity) {
+    const TempDirectory dir("point");
+    std::string text = one_triangle(R"({"name": "m"})");
+    text.replace(
+        text.find(R"("nodes": [{"name": "Triangle", "mesh": 0}])"),
+        std::string(R"("nodes": [{"name": "Triangle", "mesh": 0}])").size(),
+        R"("nodes": [{"name": "Triangle", "mesh": 0}, {"name": "Bulb", "translation": [0, 0, 2], "extensions": {"KHR_lights_punctual": {"light": 0}}}],
+ "extensions": {"KHR_lights_punctual": {"lights": [{"name": "Bulb", "type": "point", "color": [1, 0.5, 1], "intensity": 3}]}},
+ "extensionsUsed": ["KHR_lights_punctual"])");
+    text.replace(text.find(R"("scenes": [{"nodes": [0]}])"), std::string(R"("scenes": [{"nodes": [0]}])").size(),
+                 R"("scenes": [{"nodes": [0, 1]}])");
+    write_text(dir.path() / "bulb.gltf", text);
+    const MitsubaScene read = read_gltf_scene(dir / "bulb.gltf");
+    EXPECT_EQ(read.warnings.size(), 1u);  // the camera's note, no light's
+    ASSERT_EQ(read.scene.spheres.size(), 1u);
+    const Sphere& bulb = read.scene.spheres[0];
+    EXPECT_EQ(bulb.center, glm::dvec3(0, 0, 2));
+    const double radius = 1e-3 * std::sqrt(0.5);
+    EXPECT_NEAR(bulb.radius, radius, 1e-18);
+    const Material& m = read.scene.materials.at(std::size_t(bulb.material));
+    EXPECT_EQ(m.name, "Bulb (point light)");
+    EXPECT_EQ(m.type, MaterialType::Emitter);
+    // Its intensity, radiance times its projected area, is the light's.
+    expect_near(m.emission * (std::numbers::pi * bulb.radius * bulb.radius), glm::dvec3(3, 1.5, 3), 1e-12);
+}
+
+// ---- the material mapping, one glTF material at a time ----
 
 class GltfMaterial : public ::testing::Test {
  protected:

@@ -111,6 +111,14 @@ def main():
     meshes = [(floor[0], floor[1], 0), (block[0], block[1], 1), (coat[0], coat[1], 2), (lamp[0], lamp[1], 3)]
     write("materials.gltf", gltf(meshes, nodes, materials, extra, lights, cameras))
     write_glb("materials.glb", gltf(meshes, nodes, materials, extra, lights, cameras))
+    # A grey floor 1 below a point light of intensity 1, seen from 3 above it (GltfCli's irradiance test).
+    grey = [pbr("grey", [0.5, 0.5, 0.5], 0.0, 1.0)]
+    look_down = [1, 0, 0, 0, 0, 0, -1, 0, 0, 1, 0, 0, 0, 3, 0, 1]  # -z to -y, then up 3
+    bulb = [{"name": "Bulb", "translation": [0, 1, 0], "extensions": {"KHR_lights_punctual": {"light": 0}}},
+            {"name": "Camera", "camera": 0, "matrix": look_down}]
+    square = [{"type": "perspective", "perspective": {"yfov": 0.25, "aspectRatio": 1.0, "znear": 0.01}}]
+    point = {"KHR_lights_punctual": {"lights": [{"name": "Bulb", "type": "point", "intensity": 1}]}}
+    write("point_light.gltf", gltf([(floor[0], floor[1], 0)], [("Floor", 0, None)], grey, bulb, point, square))
     # Nothing but a red floor: the default camera and the default light.
     write("no_camera_no_light.gltf", gltf([(floor[0], floor[1], 0)], [("Floor", 0, None)], materials[:1], []))
 
