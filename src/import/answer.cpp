@@ -123,7 +123,7 @@ void put_camera(AnswerWriter& out, const ImportedCamera& camera) {
     out.put(camera.position);
     out.put(camera.look_at);
     out.put(camera.up);
-    out.put(camera.horizontal_fov);
+    out.put(camera.yfov);
     out.put(camera.aspect);
 }
 
@@ -190,7 +190,7 @@ ImportedCamera take_camera(AnswerReader& in, std::size_t node_count, const std::
     camera.position = in.take<std::array<float, 3>>(what + "'s position");
     camera.look_at = in.take<std::array<float, 3>>(what + "'s look-at point");
     camera.up = in.take<std::array<float, 3>>(what + "'s up");
-    camera.horizontal_fov = in.take<float>(what + "'s horizontal field of view");
+    camera.yfov = in.take<float>(what + "'s vertical field of view");
     camera.aspect = in.take<float>(what + "'s aspect ratio");
     return camera;
 }

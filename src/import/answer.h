@@ -22,7 +22,7 @@
 //                       texture's name (u32 length, up to kMaxImportedName, the bytes);
 //                       every mesh's material is below the count (or 0 where there is none);
 //                     u32 camera count, then each camera: name, u32 node (below the node count, or kNoNode),
-//                       f32 position[3], look_at[3], up[3], horizontal fov, aspect;
+//                       f32 position[3], look_at[3], up[3], yfov, aspect;
 //                     u32 light count, then each light: name, u32 node, u32 type (1 to 3,
 //                       ImportedLightType), f32 colour[3], position[3], direction[3];
 //   and nothing after it.

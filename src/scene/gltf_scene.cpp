@@ -244,13 +244,16 @@ class Reader {
         camera.position = point_to_world(to_world, {0, 0, 0});
         camera.look_at = glm::dvec3(to_world * glm::dvec4(to_dvec3(source.look_at) - to_dvec3(source.position), 1.0));
         camera.up = glm::dmat3(to_world) * to_dvec3(source.up);
-        if (!(source.aspect > 0.0f && std::isfinite(source.aspect)))
-            fail(what + ": no aspectRatio (wavepath sizes the image by it)");
-        // assimp 5.2's glTF reader gives yfov * aspectRatio as the horizontal angle.
-        camera.fov_y_degrees = double(source.horizontal_fov) / double(source.aspect) * 180.0 / std::numbers::pi;
+        camera.fov_y_degrees = double(source.yfov) * 180.0 / std::numbers::pi;
         if (!(camera.fov_y_degrees > 0.0 && camera.fov_y_degrees < 180.0))
-            fail(what + ": yfov of " + format_number(camera.fov_y_degrees) + " degrees: must be in (0, 180)");
-        set_size(source.aspect, what);
+            fail(what + ": yfov " + format_number(source.yfov) +
+                 " radians: must be in (0, pi) (wavepath's cameras are perspective)");
+        if (source.aspect > 0.0f && std::isfinite(source.aspect)) {
+            set_size(source.aspect, what);
+        } else {
+            set_size(kDefaultAspect, what);
+            out_.warnings.push_back(path_ + ": " + what + ": no aspectRatio: 640 x 480");
+        }
         const glm::dvec3 view = camera.look_at - camera.position;
         if (!finite(camera.position) || !finite(view) || glm::length(view) == 0.0 ||
             glm::length(glm::cross(view, camera.up)) == 0.0)

@@ -75,7 +75,7 @@ void expect_same_scene(const ImportedScene& a, const ImportedScene& b) {
         EXPECT_EQ(x.position, y.position);
         EXPECT_EQ(x.look_at, y.look_at);
         EXPECT_EQ(x.up, y.up);
-        EXPECT_EQ(x.horizontal_fov, y.horizontal_fov);
+        EXPECT_EQ(x.yfov, y.yfov);
         EXPECT_EQ(x.aspect, y.aspect);
     }
     ASSERT_EQ(a.lights.size(), b.lights.size());

@@ -141,20 +141,41 @@ std::string one_triangle(const std::string& material, const std::string& image =
  "buffers": [{"byteLength": 60, "uri": "data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAAAAAAAAAAAAAAAIA/AAAAAAAAAAAAAIA+"}]})";
 }
 
+// `gltf` (one_triangle's) with a second node in its scene and `top_level` keys (each followed by a comma).
+std::string with_node(std::string gltf, const std::string& node, const std::string& top_level) {
+    const std::string nodes = R"("nodes": [{"name": "Triangle", "mesh": 0}])";
+    gltf.replace(gltf.find(nodes), nodes.size(), R"("nodes": [{"name": "Triangle", "mesh": 0}, )" + node + "]");
+    const std::string scenes = R"("scenes": [{"nodes": [0]}],)";
+    gltf.replace(gltf.find(scenes), scenes.size(), R"("scenes": [{"nodes": [0, 1]}], )" + top_level);
+    return gltf;
+}
+
+// A camera without aspectRatio (glTF: the viewport's) makes a 640 x 480 image, with a note.
+TEST(GltfScene, ACameraWithoutAspectRatioIs640By480) {
+    const TempDirectory dir("aspect");
+    write_text(dir.path() / "eye.gltf",
+               with_node(one_triangle(R"({"name": "m"})"), R"({"name": "Eye", "camera": 0, "translation": [0, 0, 3]})",
+                         R"("cameras": [{"type": "perspective", "perspective": {"yfov": 0.5, "znear": 0.1}}],)"));
+    const MitsubaScene read = read_gltf_scene(dir / "eye.gltf");
+    EXPECT_EQ(read.scene.camera.width, 640);
+    EXPECT_EQ(read.scene.camera.height, 480);
+    EXPECT_EQ(read.scene.camera.fov_y_degrees, 0.5 * 180.0 / std::numbers::pi);
+    EXPECT_EQ(read.scene.camera.position, glm::dvec3(0, 0, 3));
+    EXPECT_EQ(read.scene.camera.look_at, glm::dvec3(0, 0, 2));
+    ASSERT_EQ(read.warnings.size(), 2u);  // and the light's
+    EXPECT_EQ(read.warnings[0], (dir / "eye.gltf") + ": camera \"Eye\": no aspectRatio: 640 x 480");
+}
+
 // A point light is a small emitting sphere of its intensity: radius 1e-3 of
 // the meshes' bounding sphere's, radiance I / (pi r^2). The triangle's
 // bounding sphere has radius sqrt(2) / 2, about its centre (0.5, 0.5, 0).
 TEST(GltfScene, APointLightIsASmallSphereOfTheSameIntensity) {
     const TempDirectory dir("point");
-    std::string text = one_triangle(R"({"name": "m"})");
-    text.replace(
-        text.find(R"("nodes": [{"name": "Triangle", "mesh": 0}])"),
-        std::string(R"("nodes": [{"name": "Triangle", "mesh": 0}])").size(),
-        R"("nodes": [{"name": "Triangle", "mesh": 0}, {"name": "Bulb", "translation": [0, 0, 2], "extensions": {"KHR_lights_punctual": {"light": 0}}}],
- "extensions": {"KHR_lights_punctual": {"lights": [{"name": "Bulb", "type": "point", "color": [1, 0.5, 1], "intensity": 3}]}},
- "extensionsUsed": ["KHR_lights_punctual"])");
-    text.replace(text.find(R"("scenes": [{"nodes": [0]}])"), std::string(R"("scenes": [{"nodes": [0]}])").size(),
-                 R"("scenes": [{"nodes": [0, 1]}])");
+    const std::string text = with_node(
+        one_triangle(R"({"name": "m"})"),
+        R"({"name": "Bulb", "translation": [0, 0, 2], "extensions": {"KHR_lights_punctual": {"light": 0}}})",
+        R"("extensions": {"KHR_lights_punctual": {"lights": [{"name": "Bulb", "type": "point", "color": [1, 0.5, 1], "intensity": 3}]}},
+ "extensionsUsed": ["KHR_lights_punctual"],)");
     write_text(dir.path() / "bulb.gltf", text);
     const MitsubaScene read = read_gltf_scene(dir / "bulb.gltf");
     EXPECT_EQ(read.warnings.size(), 1u);  // the camera's note, no light's

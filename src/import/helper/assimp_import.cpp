@@ -11,6 +11,7 @@
 #include <assimp/LogStream.hpp>
 #include <assimp/ProgressHandler.hpp>
 #include <cerrno>
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
@@ -300,21 +301,43 @@ void get_extension_number(const nlohmann::json& object, const char* extension, c
     if (number != found->end() && number->is_number()) value = number->get<float>();
 }
 
-// KHR_materials_emissive_strength, KHR_materials_transmission and
-// KHR_materials_ior of each material, from the file's JSON: assimp keeps the
-// file's materials in its order (and adds its default material after them).
-void read_material_extensions(const std::filesystem::path& path, std::vector<ImportedMaterial>& materials) {
+// A number at `key` of `object`, if there is one.
+void get_number(const nlohmann::json& object, const char* key, float& value) {
+    const auto number = object.find(key);
+    if (number != object.end() && number->is_number()) value = number->get<float>();
+}
+
+// What assimp 5.2 does not read from a glTF file, from its JSON: each
+// material's KHR_materials_emissive_strength, KHR_materials_transmission and
+// KHR_materials_ior, and each perspective camera's yfov and aspectRatio
+// (assimp's horizontal angle is yfov x aspectRatio, and 0 without one).
+// assimp keeps the file's materials and cameras in its order (and adds its
+// default material after them).
+void read_gltf_extras(const std::filesystem::path& path, ImportedScene& scene) {
     const nlohmann::json document = nlohmann::json::parse(gltf_json(path), nullptr, false);
     if (!document.is_object()) return;  // assimp read it: it is there
-    const auto found = document.find("materials");
-    if (found == document.end() || !found->is_array()) return;
-    for (std::size_t m = 0; m < std::min(found->size(), materials.size()); ++m) {
-        const nlohmann::json& material = (*found)[m];
-        if (!material.is_object()) continue;
-        get_extension_number(material, "KHR_materials_emissive_strength", "emissiveStrength",
-                             materials[m].emissive_strength);
-        get_extension_number(material, "KHR_materials_transmission", "transmissionFactor", materials[m].transmission);
-        get_extension_number(material, "KHR_materials_ior", "ior", materials[m].ior);
+    const auto materials = document.find("materials");
+    if (materials != document.end() && materials->is_array()) {
+        for (std::size_t m = 0; m < std::min(materials->size(), scene.materials.size()); ++m) {
+            const nlohmann::json& material = (*materials)[m];
+            if (!material.is_object()) continue;
+            ImportedMaterial& out = scene.materials[m];
+            get_extension_number(material, "KHR_materials_emissive_strength", "emissiveStrength",
+                                 out.emissive_strength);
+            get_extension_number(material, "KHR_materials_transmission", "transmissionFactor", out.transmission);
+            get_extension_number(material, "KHR_materials_ior", "ior", out.ior);
+        }
+    }
+    const auto cameras = document.find("cameras");
+    if (cameras == document.end() || !cameras->is_array()) return;
+    for (std::size_t c = 0; c < std::min(cameras->size(), scene.cameras.size()); ++c) {
+        const nlohmann::json& camera = (*cameras)[c];
+        if (!camera.is_object()) continue;
+        const auto perspective = camera.find("perspective");
+        scene.cameras[c].yfov = scene.cameras[c].aspect = 0.0f;                  // unless the file gives them
+        if (perspective == camera.end() || !perspective->is_object()) continue;  // orthographic
+        get_number(*perspective, "yfov", scene.cameras[c].yfov);
+        get_number(*perspective, "aspectRatio", scene.cameras[c].aspect);
     }
 }
 
@@ -333,8 +356,10 @@ ImportedCamera imported_camera(const aiCamera& camera, const std::vector<Importe
     out.position = to_array(camera.mPosition);
     out.look_at = to_array(camera.mPosition + camera.mLookAt);
     out.up = to_array(camera.mUp);
-    out.horizontal_fov = camera.mHorizontalFOV;
+    // assimp's horizontal angle is whole (its documentation says half); a glTF file's own yfov and
+    // aspectRatio replace both (read_gltf_extras).
     out.aspect = camera.mAspect;
+    if (camera.mAspect > 0.0f) out.yfov = 2.0f * std::atan(std::tan(0.5f * camera.mHorizontalFOV) / camera.mAspect);
     return out;
 }
 
@@ -373,10 +398,10 @@ ImportedScene import_with_assimp(const std::filesystem::path& path) {
     imported.nodes = imported_nodes(scene->mRootNode);
     for (unsigned m = 0; m < scene->mNumMaterials; ++m)
         imported.materials.push_back(imported_material(*scene->mMaterials[m]));
-    if (read_by(importer, "glTF2 Importer")) read_material_extensions(path, imported.materials);
     for (unsigned c = 0; c < scene->mNumCameras; ++c)
         imported.cameras.push_back(imported_camera(*scene->mCameras[c], imported.nodes));
     imported.lights = imported_lights(*scene, imported.nodes);
+    if (read_by(importer, "glTF2 Importer")) read_gltf_extras(path, imported);
     return imported;
 }
 
