@@ -115,6 +115,8 @@ void put_material(AnswerWriter& out, const ImportedMaterial& material) {
     out.put(material.transmission);
     out.put(material.ior);
     out.put_text(material.base_color_texture);
+    out.put(material.alpha_mode);
+    out.put(material.alpha_cutoff);
 }
 
 void put_camera(AnswerWriter& out, const ImportedCamera& camera) {
@@ -173,6 +175,11 @@ ImportedMaterial take_material(AnswerReader& in, const std::string& what) {
     material.transmission = in.take<float>(what + "'s transmission");
     material.ior = in.take<float>(what + "'s ior");
     material.base_color_texture = in.take_text(0, kMaxImportedName, what + "'s base colour texture");
+    const auto alpha_mode = in.take<std::uint32_t>(what + "'s alpha mode");
+    if (alpha_mode > 2)
+        AnswerReader::fail(what + "'s alpha mode is " + std::to_string(alpha_mode) + " (0 to 2 expected)");
+    material.alpha_mode = static_cast<ImportedAlphaMode>(alpha_mode);
+    material.alpha_cutoff = in.take<float>(what + "'s alpha cutoff");
     return material;
 }
 

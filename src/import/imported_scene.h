@@ -25,6 +25,9 @@ struct ImportedMesh {
     std::uint32_t material = 0;  // index into ImportedScene::materials (0 where the file has none)
 };
 
+// glTF's alphaMode: the base colour's alpha ignored, a cut-out at alphaCutoff, or a blend.
+enum class ImportedAlphaMode : std::uint32_t { Opaque = 0, Mask = 1, Blend = 2 };
+
 // A material in glTF 2.0's metallic-roughness model as assimp reads it
 // (glTF's defaults where the file gives no value).
 struct ImportedMaterial {
@@ -36,6 +39,8 @@ struct ImportedMaterial {
     float transmission = 0;          // KHR_materials_transmission
     float ior = 1.5;                 // KHR_materials_ior
     std::string base_color_texture;  // the file's name for it (a uri, "*N" when embedded); empty: none
+    ImportedAlphaMode alpha_mode = ImportedAlphaMode::Opaque;
+    float alpha_cutoff = 0.5f;
 };
 
 // What a camera or light that is on no node (assimp links them to nodes by

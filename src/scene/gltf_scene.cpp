@@ -156,8 +156,13 @@ class Reader {
         const glm::dvec3 base(source.base_color[0], source.base_color[1], source.base_color[2]);
         const glm::dvec3 emission = to_dvec3(source.emissive) * double(source.emissive_strength);
         const double roughness = source.roughness, metallic = source.metallic;
-        if (!(finite(base) && in_unit_interval(base.x) && in_unit_interval(base.y) && in_unit_interval(base.z)))
-            fail(what + ": baseColorFactor " + vector_text(base) + ": must be in [0, 1]");
+        const double alpha = source.base_color[3];
+        if (!(finite(base) && in_unit_interval(base.x) && in_unit_interval(base.y) && in_unit_interval(base.z) &&
+              in_unit_interval(alpha)))
+            fail(what + ": baseColorFactor " + vector_text(base) + ", alpha " + format_number(alpha) +
+                 ": must be in [0, 1]");
+        if (!(std::isfinite(source.alpha_cutoff) && source.alpha_cutoff >= 0.0f))
+            fail(what + ": alphaCutoff " + format_number(source.alpha_cutoff) + ": must be >= 0");
         if (!in_unit_interval(metallic))
             fail(what + ": metallicFactor " + format_number(metallic) + ": must be in [0, 1]");
         if (!in_unit_interval(roughness))
@@ -204,6 +209,9 @@ class Reader {
                 fail(what + ": baseColorTexture on a transmissive material: wavepath's dielectrics are not tinted");
             m.texture(coloured) = texture_index(source.base_color_texture, what);
         }
+        // The base colour's alpha as a `mask`'s opacity: a cut-out (MASK) or its fraction of rays stopped (BLEND).
+        if (source.alpha_mode == ImportedAlphaMode::Mask) m.opacity = alpha >= source.alpha_cutoff ? 1.0 : 0.0;
+        if (source.alpha_mode == ImportedAlphaMode::Blend) m.opacity = alpha;
         return m;
     }
 

@@ -66,6 +66,8 @@ void expect_same_scene(const ImportedScene& a, const ImportedScene& b) {
         EXPECT_EQ(x.transmission, y.transmission);
         EXPECT_EQ(x.ior, y.ior);
         EXPECT_EQ(x.base_color_texture, y.base_color_texture);
+        EXPECT_EQ(x.alpha_mode, y.alpha_mode);
+        EXPECT_EQ(x.alpha_cutoff, y.alpha_cutoff);
     }
     ASSERT_EQ(a.cameras.size(), b.cameras.size());
     for (std::size_t c = 0; c < a.cameras.size(); ++c) {
@@ -421,7 +423,8 @@ ImportedScene small_scene() {
     scene.nodes.push_back({1, "b", identity, {1, 0}});
     scene.meshes[1].material = 1;
     scene.materials.push_back({"plain", {0.5f, 0.25f, 1, 1}, 0, 0.5f, {0, 0, 0}, 1, 0, 1.5f, ""});
-    scene.materials.push_back({"lit", {1, 1, 1, 1}, 1, 0, {1, 0.5f, 0}, 4, 0.5f, 1.25f, "wood.png"});
+    scene.materials.push_back(
+        {"lit", {1, 1, 1, 1}, 1, 0, {1, 0.5f, 0}, 4, 0.5f, 1.25f, "wood.png", ImportedAlphaMode::Blend, 0.25f});
     scene.cameras.push_back({"eye", 1, {0, 1, 5}, {0, 1, 4}, {0, 1, 0}, 0.75f, 1.5f});
     scene.lights.push_back({"sun", 2, ImportedLightType::Directional, {2, 2, 1.5f}, {0, 0, 0}, {0, 0, -1}});
     return scene;
@@ -490,6 +493,9 @@ TEST(Answer, MalformedPartsAreNamed) {
     scene = small_scene();
     scene.lights[0].type = static_cast<ImportedLightType>(4);
     EXPECT_EQ(malformation(encode_answer(scene)), "light 0's type is 4 (1 to 3 expected)");
+    scene = small_scene();
+    scene.materials[0].alpha_mode = static_cast<ImportedAlphaMode>(3);
+    EXPECT_EQ(malformation(encode_answer(scene)), "material 0's alpha mode is 3 (0 to 2 expected)");
     scene = small_scene();
     scene.materials[1].base_color_texture.assign(kMaxImportedName + 1, 't');
     EXPECT_EQ(malformation(encode_answer(scene)),

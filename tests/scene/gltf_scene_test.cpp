@@ -317,9 +317,23 @@ TEST_F(GltfMaterial, AJsonMeshOfTheFileHasItsTextureCoordinatesToo) {
     EXPECT_EQ(scene.meshes[0].uvs[2], glm::dvec2(0, 0.25));
 }
 
+// The base colour's alpha is a mask's opacity: BLEND's fraction, MASK's cut-out at
+// alphaCutoff (default 0.5); OPAQUE (the default) ignores it.
+TEST_F(GltfMaterial, AlphaModesAreMasks) {
+    const std::string quarter = R"("pbrMetallicRoughness": {"baseColorFactor": [1, 1, 1, 0.25], "roughnessFactor": 1})";
+    const Material blend = read(R"({"name": "m", "alphaMode": "BLEND", )" + quarter + "}");
+    EXPECT_EQ(blend.opacity, 0.25);
+    EXPECT_TRUE(blend.masked());
+    EXPECT_EQ(blend.type, MaterialType::RoughConductor);  // the material under the mask
+    EXPECT_EQ(read(R"({"name": "m", "alphaMode": "MASK", )" + quarter + "}").opacity, 0.0);
+    EXPECT_EQ(read(R"({"name": "m", "alphaMode": "MASK", "alphaCutoff": 0.25, )" + quarter + "}").opacity, 1.0);
+    EXPECT_EQ(read(R"({"name": "m", )" + quarter + "}").opacity, 1.0);
+    EXPECT_FALSE(read(R"({"name": "m", )" + quarter + "}").masked());
+}
+
 TEST_F(GltfMaterial, FactorsOutsideTheirRangeAreOneErrorLine) {
     EXPECT_EQ(error_of(pbr(R"("baseColorFactor": [2, 0.5, 0.5, 1])")),
-              "triangle.gltf: material \"m\": baseColorFactor (2, 0.5, 0.5): must be in [0, 1]");
+              "triangle.gltf: material \"m\": baseColorFactor (2, 0.5, 0.5), alpha 1: must be in [0, 1]");
     EXPECT_EQ(error_of(pbr(R"("roughnessFactor": 1.5)")),
               "triangle.gltf: material \"m\": roughnessFactor 1.5: must be in [0, 1]");
     EXPECT_EQ(error_of(R"({"name": "m", "extensions": {"KHR_materials_ior": {"ior": 0.5}}})"),

@@ -309,7 +309,7 @@ void get_number(const nlohmann::json& object, const char* key, float& value) {
 
 // What assimp 5.2 does not read from a glTF file, from its JSON: each
 // material's KHR_materials_emissive_strength, KHR_materials_transmission and
-// KHR_materials_ior, and each perspective camera's yfov and aspectRatio
+// KHR_materials_ior, its alphaMode and alphaCutoff, and each perspective camera's yfov and aspectRatio
 // (assimp's horizontal angle is yfov x aspectRatio, and 0 without one).
 // assimp keeps the file's materials and cameras in its order (and adds its
 // default material after them).
@@ -326,6 +326,10 @@ void read_gltf_extras(const std::filesystem::path& path, ImportedScene& scene) {
                                  out.emissive_strength);
             get_extension_number(material, "KHR_materials_transmission", "transmissionFactor", out.transmission);
             get_extension_number(material, "KHR_materials_ior", "ior", out.ior);
+            const auto alpha_mode = material.find("alphaMode");
+            if (alpha_mode != material.end() && *alpha_mode == "MASK") out.alpha_mode = ImportedAlphaMode::Mask;
+            if (alpha_mode != material.end() && *alpha_mode == "BLEND") out.alpha_mode = ImportedAlphaMode::Blend;
+            get_number(material, "alphaCutoff", out.alpha_cutoff);
         }
     }
     const auto cameras = document.find("cameras");
