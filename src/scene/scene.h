@@ -275,7 +275,8 @@ struct FeatureSet {
     // kernel"), rather than intersect and shade apart.
     bool intersect_and_shade = false;
 
-    // A material with a delta lobe (a mask's pass is one): paths carry whether their last bounce was one.
+    // A material with a delta lobe: paths carry whether their last bounce was one (a mask's pass is
+    // one; kernels/device/features.h's WP_HAS_SPECULAR).
     bool specular() const { return mirror || glass || conductor || thin_dielectric || plastic || mask; }
     // A material with a lobe of finite density: next-event estimation runs at its vertices.
     bool non_specular() const { return diffuse || rough_conductor || rough_dielectric || plastic || rough_plastic; }

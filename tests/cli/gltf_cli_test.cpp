@@ -88,6 +88,24 @@ TEST_F(GltfCli, APointLightGivesItsIrradiance) {
     EXPECT_NEAR(rendered / expected, 1.0, 2e-3);
 }
 
+// veil.gltf: a BLEND veil (a mask) over a floor, diffuse materials only, so
+// the mask's pass is the scene's one delta lobe: the wavefront carries the
+// paths' specular flag for it (FeatureSet::specular, as the kernels'
+// WP_HAS_SPECULAR; without it the wavefront's kernels failed to launch) and
+// renders the reference's bytes.
+TEST_F(GltfCli, AMaskAmongDiffuseMaterialsRendersOnEveryBackend) {
+    const std::string gltf = (kScenes / "veil.gltf").string();
+    std::vector<std::string> images;
+    for (const char* backend : {"wavefront", "megakernel", "reference"}) {
+        const CommandResult result =
+            run({"render", gltf, "-o", scratch_ / "image.pfm", "--spp", "1", "--backend", backend, "-q"});
+        ASSERT_EQ(result.exit_code, 0) << backend << ": " << result.err;
+        images.push_back(read_text(scratch_ / "image.pfm"));
+    }
+    EXPECT_EQ(images[0], images[2]);
+    EXPECT_EQ(images[1], images[2]);
+}
+
 TEST_F(GltfCli, DefinesAreACommandLineError) {
     const std::string gltf = (kScenes / "materials.gltf").string();
     const CommandResult result = run({"render", gltf, "-D", "spp=2", "-o", out_ / "image.pfm"});

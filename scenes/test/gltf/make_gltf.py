@@ -119,6 +119,14 @@ def main():
     square = [{"type": "perspective", "perspective": {"yfov": 0.25, "aspectRatio": 1.0, "znear": 0.01}}]
     point = {"KHR_lights_punctual": {"lights": [{"name": "Bulb", "type": "point", "intensity": 1}]}}
     write("point_light.gltf", gltf([(floor[0], floor[1], 0)], [("Floor", 0, None)], grey, bulb, point, square))
+    # A blue veil (BLEND, alpha 0.5: a mask) over a grey floor, lit by the point light: diffuse
+    # materials only, the mask's pass the one delta lobe (GltfCli's backends test).
+    veil = quad([-1, 0, 0.5], [2, 0, 0], [0, 1.5, 0])
+    veiled = grey + [dict(pbr("veil", [0.25, 0.5, 1.0], 0.0, 1.0), alphaMode="BLEND")]
+    veiled[1]["pbrMetallicRoughness"]["baseColorFactor"][3] = 0.5
+    lamp_above = [dict(bulb[0], translation=[0, 2, 1])]
+    write("veil.gltf", gltf([(floor[0], floor[1], 0), (veil[0], veil[1], 1)], [("Floor", 0, None), ("Veil", 1, None)],
+                            veiled, lamp_above, point))
     # Nothing but a red floor: the default camera and the default light.
     write("no_camera_no_light.gltf", gltf([(floor[0], floor[1], 0)], [("Floor", 0, None)], materials[:1], []))
 
