@@ -115,6 +115,7 @@ void put_material(AnswerWriter& out, const ImportedMaterial& material) {
     out.put(material.transmission);
     out.put(material.ior);
     out.put_text(material.base_color_texture);
+    out.put_text(material.normal_texture);
     out.put(material.alpha_mode);
     out.put(material.alpha_cutoff);
 }
@@ -175,6 +176,7 @@ ImportedMaterial take_material(AnswerReader& in, const std::string& what) {
     material.transmission = in.take<float>(what + "'s transmission");
     material.ior = in.take<float>(what + "'s ior");
     material.base_color_texture = in.take_text(0, kMaxImportedName, what + "'s base colour texture");
+    material.normal_texture = in.take_text(0, kMaxImportedName, what + "'s normal texture");
     const auto alpha_mode = in.take<std::uint32_t>(what + "'s alpha mode");
     if (alpha_mode > 2)
         AnswerReader::fail(what + "'s alpha mode is " + std::to_string(alpha_mode) + " (0 to 2 expected)");

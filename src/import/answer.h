@@ -19,7 +19,8 @@
 //                     u32 material count, then each material: name (u32 length, up to
 //                       kMaxImportedName, the bytes), f32 base colour[4], metallic, roughness,
 //                       emissive[3], emissive strength, transmission, ior, the base colour
-//                       texture's name (u32 length, up to kMaxImportedName, the bytes),
+//                       texture's name (u32 length, up to kMaxImportedName, the bytes), the
+//                       normal texture's likewise,
 //                       u32 alpha mode (0 to 2, ImportedAlphaMode), f32 alpha cutoff;
 //                       every mesh's material is below the count (or 0 where there is none);
 //                     u32 camera count, then each camera: name, u32 node (below the node count, or kNoNode),

@@ -39,6 +39,7 @@ struct ImportedMaterial {
     float transmission = 0;          // KHR_materials_transmission
     float ior = 1.5;                 // KHR_materials_ior
     std::string base_color_texture;  // the file's name for it (a uri, "*N" when embedded); empty: none
+    std::string normal_texture;      // likewise
     ImportedAlphaMode alpha_mode = ImportedAlphaMode::Opaque;
     float alpha_cutoff = 0.5f;
 };

@@ -9,6 +9,7 @@
 #include <glm/mat3x3.hpp>
 #include <glm/matrix.hpp>
 #include <limits>
+#include <map>
 #include <numbers>
 #include <set>
 #include <stdexcept>
@@ -207,33 +208,48 @@ class Reader {
         if (!source.base_color_texture.empty()) {
             if (m.type == MaterialType::Glass || m.type == MaterialType::RoughDielectric)
                 fail(what + ": baseColorTexture on a transmissive material: wavepath's dielectrics are not tinted");
-            m.texture(coloured) = texture_index(source.base_color_texture, what);
+            m.texture(coloured) = texture_index(source.base_color_texture, false, what + ": baseColorTexture");
         }
         // The base colour's alpha as a `mask`'s opacity: a cut-out (MASK) or its fraction of rays stopped (BLEND).
         if (source.alpha_mode == ImportedAlphaMode::Mask) m.opacity = alpha >= source.alpha_cutoff ? 1.0 : 0.0;
         if (source.alpha_mode == ImportedAlphaMode::Blend) m.opacity = alpha;
+        if (!source.normal_texture.empty()) add_normal_map(source.normal_texture, what, m);
         return m;
     }
 
-    int texture_index(const std::string& uri, const std::string& what) {
+    // glTF's tangent space is a normalmap's (x along increasing u, y along n x x, both with the file's
+    // uvs): the texture, read raw, as the material's normal map, where wavepath's adapters allow one.
+    void add_normal_map(const std::string& uri, const std::string& what, Material& m) {
+        const bool transmits = m.type == MaterialType::Glass || m.type == MaterialType::RoughDielectric;
+        if (transmits || m.masked()) {
+            out_.warnings.push_back(path_ + ": " + what + ": normalTexture ignored (wavepath's normal maps take no " +
+                                    (transmits ? "dielectric" : "mask") + ")");
+            return;
+        }
+        m.texture(TexturedParameter::NormalMap) = texture_index(uri, true, what + ": normalTexture");
+    }
+
+    // The image `uri` beside the file as a bitmap texture, read once per (uri, raw).
+    int texture_index(const std::string& uri, bool raw, const std::string& what) {
+        if (const auto found = textures_.find({uri, raw}); found != textures_.end()) return found->second;
         if (uri.starts_with("*"))
-            fail(what + ": baseColorTexture is embedded in the file (image " + uri.substr(1) +
+            fail(what + " is embedded in the file (image " + uri.substr(1) +
                  "): wavepath reads textures from image files beside it");
         Texture texture;
         texture.name = uri;
         texture.file = uri;
         const fs::path file = fs::path(path_).parent_path() / uri;
         try {
-            read_bitmap_file(file.string(), false, texture);
+            read_bitmap_file(file.string(), raw, texture);
         } catch (const std::runtime_error& error) {
-            fail(what + ": baseColorTexture " + quoted(uri) + ": " + error.what());
+            fail(what + " " + quoted(uri) + ": " + error.what());
         }
         texels_ += texture.texels.size() / 3;
         if (texels_ > kMaxTextureTexels)
             fail(what + ": the textures have more than the " + std::to_string(kMaxTextureTexels) +
                  " texels a scene may have");
         out_.scene.textures.push_back(std::move(texture));
-        return static_cast<int>(out_.scene.textures.size()) - 1;
+        return textures_[{uri, raw}] = static_cast<int>(out_.scene.textures.size()) - 1;
     }
 
     // ---- camera ----
@@ -352,6 +368,7 @@ class Reader {
     std::vector<glm::dmat4> node_to_world_;
     std::vector<int> material_indices_;  // per imported material: its index in the scene, -1 before its first use
     std::set<std::string> material_names_;
+    std::map<std::pair<std::string, bool>, int> textures_;  // by file and raw
     std::size_t triangles_ = 0;
     std::size_t texels_ = 0;
     MitsubaScene out_;

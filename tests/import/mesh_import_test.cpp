@@ -66,6 +66,7 @@ void expect_same_scene(const ImportedScene& a, const ImportedScene& b) {
         EXPECT_EQ(x.transmission, y.transmission);
         EXPECT_EQ(x.ior, y.ior);
         EXPECT_EQ(x.base_color_texture, y.base_color_texture);
+        EXPECT_EQ(x.normal_texture, y.normal_texture);
         EXPECT_EQ(x.alpha_mode, y.alpha_mode);
         EXPECT_EQ(x.alpha_cutoff, y.alpha_cutoff);
     }
@@ -423,8 +424,18 @@ ImportedScene small_scene() {
     scene.nodes.push_back({1, "b", identity, {1, 0}});
     scene.meshes[1].material = 1;
     scene.materials.push_back({"plain", {0.5f, 0.25f, 1, 1}, 0, 0.5f, {0, 0, 0}, 1, 0, 1.5f, ""});
-    scene.materials.push_back(
-        {"lit", {1, 1, 1, 1}, 1, 0, {1, 0.5f, 0}, 4, 0.5f, 1.25f, "wood.png", ImportedAlphaMode::Blend, 0.25f});
+    scene.materials.push_back({"lit",
+                               {1, 1, 1, 1},
+                               1,
+                               0,
+                               {1, 0.5f, 0},
+                               4,
+                               0.5f,
+                               1.25f,
+                               "wood.png",
+                               "bumps.png",
+                               ImportedAlphaMode::Blend,
+                               0.25f});
     scene.cameras.push_back({"eye", 1, {0, 1, 5}, {0, 1, 4}, {0, 1, 0}, 0.75f, 1.5f});
     scene.lights.push_back({"sun", 2, ImportedLightType::Directional, {2, 2, 1.5f}, {0, 0, 0}, {0, 0, -1}});
     return scene;

@@ -317,6 +317,34 @@ TEST_F(GltfMaterial, AJsonMeshOfTheFileHasItsTextureCoordinatesToo) {
     EXPECT_EQ(scene.meshes[0].uvs[2], glm::dvec2(0, 0.25));
 }
 
+// The normal texture is a normal map, read raw (and once more than the base
+// colour's sRGB texture of the same image); not where wavepath's normal maps
+// cannot go (under a mask, on a dielectric), with a note.
+TEST_F(GltfMaterial, NormalTextureIsARawNormalMap) {
+    write_image(Image{2, 1, {0.5f, 0.5f, 1.0f, 0.5f, 0.5f, 1.0f}}, (dir_.path() / "n.png").string());
+    const MitsubaScene read =
+        read_scene(pbr(R"("baseColorTexture": {"index": 0}, "metallicFactor": 0, "roughnessFactor": 0.5)")
+                       .insert(1, R"("normalTexture": {"index": 0}, )"),
+                   "n.png");
+    const Material& m = read.scene.materials.at(0);
+    EXPECT_EQ(m.type, MaterialType::RoughPlastic);
+    EXPECT_EQ(m.texture(TexturedParameter::Albedo), 0);
+    EXPECT_EQ(m.texture(TexturedParameter::NormalMap), 1);
+    ASSERT_EQ(read.scene.textures.size(), 2u);
+    EXPECT_FALSE(read.scene.textures[0].raw);
+    EXPECT_TRUE(read.scene.textures[1].raw);
+    EXPECT_TRUE(read.scene.features().normal_map);
+
+    const MitsubaScene masked = read_scene(
+        R"({"normalTexture": {"index": 0}, "name": "m", "alphaMode": "BLEND", "pbrMetallicRoughness": {"baseColorFactor": [1, 1, 1, 0.5]}})",
+        "n.png");
+    EXPECT_EQ(masked.scene.materials.at(0).texture(TexturedParameter::NormalMap), kNoTexture);
+    EXPECT_EQ(masked.scene.textures.size(), 0u);
+    ASSERT_EQ(masked.warnings.size(), 3u);  // the camera's and the light's too
+    EXPECT_EQ(masked.warnings[0], (dir_ / "triangle.gltf") +
+                                      ": material \"m\": normalTexture ignored (wavepath's normal maps take no mask)");
+}
+
 // The base colour's alpha is a mask's opacity: BLEND's fraction, MASK's cut-out at
 // alphaCutoff (default 0.5); OPAQUE (the default) ignores it.
 TEST_F(GltfMaterial, AlphaModesAreMasks) {

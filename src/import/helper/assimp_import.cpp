@@ -274,6 +274,8 @@ ImportedMaterial imported_material(const aiMaterial& material) {
     if (material.GetTexture(aiTextureType_BASE_COLOR, 0, &texture) == aiReturn_SUCCESS ||
         material.GetTexture(aiTextureType_DIFFUSE, 0, &texture) == aiReturn_SUCCESS)
         out.base_color_texture = bounded_name(texture);
+    if (material.GetTexture(aiTextureType_NORMALS, 0, &texture) == aiReturn_SUCCESS)
+        out.normal_texture = bounded_name(texture);
     return out;
 }
 
