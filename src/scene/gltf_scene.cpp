@@ -152,11 +152,14 @@ class Reader {
         return name;
     }
 
-    // docs/scene-format.md, "glTF scenes", says which BSDF each material becomes.
-    Material gltf_material(const ImportedMaterial& source, const std::string& what) {
-        const glm::dvec3 base(source.base_color[0], source.base_color[1], source.base_color[2]);
-        const glm::dvec3 emission = to_dvec3(source.emissive) * double(source.emissive_strength);
-        const double roughness = source.roughness, metallic = source.metallic;
+    static glm::dvec3 base_colour(const ImportedMaterial& m) {
+        return {m.base_color[0], m.base_color[1], m.base_color[2]};
+    }
+    static glm::dvec3 emission(const ImportedMaterial& m) { return to_dvec3(m.emissive) * double(m.emissive_strength); }
+
+    // glTF's ranges of the factors, each an error line naming its factor.
+    void check_factors(const ImportedMaterial& source, const std::string& what) const {
+        const glm::dvec3 base = base_colour(source), glow = emission(source);
         const double alpha = source.base_color[3];
         if (!(finite(base) && in_unit_interval(base.x) && in_unit_interval(base.y) && in_unit_interval(base.z) &&
               in_unit_interval(alpha)))
@@ -164,40 +167,45 @@ class Reader {
                  ": must be in [0, 1]");
         if (!(std::isfinite(source.alpha_cutoff) && source.alpha_cutoff >= 0.0f))
             fail(what + ": alphaCutoff " + format_number(source.alpha_cutoff) + ": must be >= 0");
-        if (!in_unit_interval(metallic))
-            fail(what + ": metallicFactor " + format_number(metallic) + ": must be in [0, 1]");
-        if (!in_unit_interval(roughness))
-            fail(what + ": roughnessFactor " + format_number(roughness) + ": must be in [0, 1]");
-        if (!(finite(emission) && emission.x >= 0 && emission.y >= 0 && emission.z >= 0 &&
-              std::max({emission.x, emission.y, emission.z}) <= kMaxSceneMagnitude))
-            fail(what + ": emissiveFactor times emissive_strength " + vector_text(emission) +
+        if (!in_unit_interval(source.metallic))
+            fail(what + ": metallicFactor " + format_number(source.metallic) + ": must be in [0, 1]");
+        if (!in_unit_interval(source.roughness))
+            fail(what + ": roughnessFactor " + format_number(source.roughness) + ": must be in [0, 1]");
+        if (!(finite(glow) && glm::all(glm::greaterThanEqual(glow, glm::dvec3(0.0))) &&
+              std::max({glow.x, glow.y, glow.z}) <= kMaxSceneMagnitude))
+            fail(what + ": emissiveFactor times KHR_materials_emissive_strength " + vector_text(glow) +
                  ": must be finite and >= 0");
         if (!in_unit_interval(source.transmission))
             fail(what + ": transmissionFactor " + format_number(source.transmission) + ": must be in [0, 1]");
-        if (!(source.ior > 1.0 && source.ior <= 10.0))
+        if (!(source.ior > 1.0f && source.ior <= 10.0f))
             fail(what + ": ior " + format_number(source.ior) + ": must be in (1, 10]");
+    }
 
+    // The BSDF a material becomes (docs/scene-format.md, "glTF scenes"), and
+    // which parameter its base colour texture would give.
+    static Material bsdf_of(const ImportedMaterial& source, TexturedParameter& coloured) {
+        const double roughness = source.roughness;
         Material m;
-        TexturedParameter coloured = TexturedParameter::Albedo;
-        if (emission != glm::dvec3(0.0)) {
+        coloured = TexturedParameter::Albedo;
+        if (emission(source) != glm::dvec3(0.0)) {
             m.type = MaterialType::Diffuse;
-            m.albedo = base;
-            m.emission = emission;
-        } else if (source.transmission > 0.0) {
+            m.albedo = base_colour(source);
+            m.emission = emission(source);
+        } else if (source.transmission > 0.0f) {
             m.type = roughness == 0.0 ? MaterialType::Glass : MaterialType::RoughDielectric;
             m.ior = source.ior;
-        } else if (metallic >= 0.5) {
+        } else if (source.metallic >= 0.5f) {
             m.type = roughness == 0.0 ? MaterialType::Conductor : MaterialType::RoughConductor;
             m.eta = glm::dvec3(0.0);
             m.k = glm::dvec3(1.0);
-            m.specular_reflectance = base;
+            m.specular_reflectance = base_colour(source);
             coloured = TexturedParameter::SpecularReflectance;
         } else if (roughness == 1.0) {
             m.type = MaterialType::Diffuse;
-            m.albedo = base;
+            m.albedo = base_colour(source);
         } else {
             m.type = roughness == 0.0 ? MaterialType::Plastic : MaterialType::RoughPlastic;
-            m.albedo = base;
+            m.albedo = base_colour(source);
             m.ior = 1.5;  // glTF's dielectric: F0 = 0.04
         }
         if (m.type == MaterialType::RoughDielectric || m.type == MaterialType::RoughConductor ||
@@ -205,12 +213,20 @@ class Reader {
             m.distribution = Microfacet::GGX;  // glTF's
             m.alpha_u = m.alpha_v = std::max(roughness * roughness, kMinRoughness);
         }
+        return m;
+    }
+
+    Material gltf_material(const ImportedMaterial& source, const std::string& what) {
+        check_factors(source, what);
+        TexturedParameter coloured;
+        Material m = bsdf_of(source, coloured);
         if (!source.base_color_texture.empty()) {
             if (m.type == MaterialType::Glass || m.type == MaterialType::RoughDielectric)
                 fail(what + ": baseColorTexture on a transmissive material: wavepath's dielectrics are not tinted");
             m.texture(coloured) = texture_index(source.base_color_texture, false, what + ": baseColorTexture");
         }
         // The base colour's alpha as a `mask`'s opacity: a cut-out (MASK) or its fraction of rays stopped (BLEND).
+        const double alpha = source.base_color[3];
         if (source.alpha_mode == ImportedAlphaMode::Mask) m.opacity = alpha >= source.alpha_cutoff ? 1.0 : 0.0;
         if (source.alpha_mode == ImportedAlphaMode::Blend) m.opacity = alpha;
         if (!source.normal_texture.empty()) add_normal_map(source.normal_texture, what, m);
