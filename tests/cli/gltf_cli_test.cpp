@@ -92,7 +92,7 @@ TEST_F(GltfCli, APointLightGivesItsIrradiance) {
 // the mask's pass is the scene's one delta lobe: the wavefront carries the
 // paths' specular flag for it (FeatureSet::specular, as the kernels'
 // WP_HAS_SPECULAR; without it the wavefront's kernels failed to launch) and
-// renders the reference's bytes.
+// renders the reference's bytes, as does the scene's conversion to JSON.
 TEST_F(GltfCli, AMaskAmongDiffuseMaterialsRendersOnEveryBackend) {
     const std::string gltf = (kScenes / "veil.gltf").string();
     std::vector<std::string> images;
@@ -104,6 +104,13 @@ TEST_F(GltfCli, AMaskAmongDiffuseMaterialsRendersOnEveryBackend) {
     }
     EXPECT_EQ(images[0], images[2]);
     EXPECT_EQ(images[1], images[2]);
+    // Its conversion (the mask, the point light's sphere) renders the same bytes.
+    ASSERT_EQ(run({"convert", gltf, "-o", out_ / "veil.json", "-q"}).exit_code, 0);
+    ASSERT_EQ(
+        run({"render", out_ / "veil.json", "-o", scratch_ / "image.pfm", "--spp", "1", "--backend", "reference", "-q"})
+            .exit_code,
+        0);
+    EXPECT_EQ(read_text(scratch_ / "image.pfm"), images[2]);
 }
 
 TEST_F(GltfCli, DefinesAreACommandLineError) {
