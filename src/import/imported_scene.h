@@ -54,8 +54,8 @@ struct ImportedCamera {
     std::uint32_t node = 0;  // index into ImportedScene::nodes, or kNoNode
     // look_at: a point
     std::array<float, 3> position{0, 0, 0}, look_at{0, 0, -1}, up{0, 1, 0};
-    float yfov = 0;    // radians, the whole vertical angle; 0: unknown
-    float aspect = 0;  // width / height; 0: the file gives none
+    float yfov = 0;    // radians, the whole vertical angle (a glTF file's); 0: unknown
+    float aspect = 0;  // width / height (a glTF file's); 0: the file gives none
 };
 
 // A KHR_lights_punctual light, in the coordinates of the node that holds it.

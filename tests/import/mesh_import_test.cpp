@@ -423,7 +423,8 @@ ImportedScene small_scene() {
     scene.nodes.push_back({0, "a", moved, {1}});
     scene.nodes.push_back({1, "b", identity, {1, 0}});
     scene.meshes[1].material = 1;
-    scene.materials.push_back({"plain", {0.5f, 0.25f, 1, 1}, 0, 0.5f, {0, 0, 0}, 1, 0, 1.5f, ""});
+    scene.materials.push_back(
+        {"plain", {0.5f, 0.25f, 1, 1}, 0, 0.5f, {0, 0, 0}, 1, 0, 1.5f, "", "", ImportedAlphaMode::Opaque, 0.5f});
     scene.materials.push_back({"lit",
                                {1, 1, 1, 1},
                                1,

@@ -11,7 +11,6 @@
 #include <assimp/LogStream.hpp>
 #include <assimp/ProgressHandler.hpp>
 #include <cerrno>
-#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
@@ -250,26 +249,21 @@ std::array<float, 3> to_array(const aiColor3D& c) { return {c.r, c.g, c.b}; }
 
 std::string bounded_name(const aiString& name) { return std::string(name.C_Str()).substr(0, kMaxImportedName); }
 
-// A property where the material has it (the value stays as it was where not).
-template <class T>
-void get_property(const aiMaterial& material, const char* key, unsigned type, unsigned index, T& value) {
-    material.Get(key, type, index, value);
-}
-
 ImportedMaterial imported_material(const aiMaterial& material) {
     ImportedMaterial out;
     out.name = bounded_name(material.GetName());
+    // Each value stays glTF's default where the material lacks the property.
     aiColor4D base(1, 1, 1, 1);
-    get_property(material, AI_MATKEY_BASE_COLOR, base);
+    material.Get(AI_MATKEY_BASE_COLOR, base);
     out.base_color = {base.r, base.g, base.b, base.a};
-    get_property(material, AI_MATKEY_METALLIC_FACTOR, out.metallic);
-    get_property(material, AI_MATKEY_ROUGHNESS_FACTOR, out.roughness);
+    material.Get(AI_MATKEY_METALLIC_FACTOR, out.metallic);
+    material.Get(AI_MATKEY_ROUGHNESS_FACTOR, out.roughness);
     aiColor3D emissive(0, 0, 0);
-    get_property(material, AI_MATKEY_COLOR_EMISSIVE, emissive);
+    material.Get(AI_MATKEY_COLOR_EMISSIVE, emissive);
     out.emissive = to_array(emissive);
-    get_property(material, AI_MATKEY_EMISSIVE_INTENSITY, out.emissive_strength);
-    get_property(material, AI_MATKEY_TRANSMISSION_FACTOR, out.transmission);
-    get_property(material, AI_MATKEY_REFRACTI, out.ior);
+    material.Get(AI_MATKEY_EMISSIVE_INTENSITY, out.emissive_strength);
+    material.Get(AI_MATKEY_TRANSMISSION_FACTOR, out.transmission);
+    material.Get(AI_MATKEY_REFRACTI, out.ior);
     aiString texture;
     if (material.GetTexture(aiTextureType_BASE_COLOR, 0, &texture) == aiReturn_SUCCESS ||
         material.GetTexture(aiTextureType_DIFFUSE, 0, &texture) == aiReturn_SUCCESS)
@@ -282,15 +276,24 @@ ImportedMaterial imported_material(const aiMaterial& material) {
 // ---- the glTF extensions assimp 5.2 does not read ----
 
 // A glTF file's JSON: the whole of a .gltf, the first chunk of a .glb
-// (after its 12-byte header, a u32 length and the type "JSON"); empty if it holds none.
+// (after its 12-byte header, a u32 length and the type "JSON", and read
+// alone: the binary chunk after it may be large); empty if it holds none.
 std::string gltf_json(const std::filesystem::path& path) {
     std::ifstream in(path, std::ios::binary);
-    std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    if (!bytes.starts_with("glTF")) return bytes;
-    if (bytes.size() < 20 || bytes.compare(16, 4, "JSON") != 0) return {};
+    char header[20] = {};
+    in.read(header, sizeof header);
+    if (std::string_view(header, 4) != "glTF") {
+        in.clear();
+        in.seekg(0);
+        return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    }
+    if (in.gcount() < 20 || std::string_view(header + 16, 4) != "JSON") return {};
     std::uint32_t length = 0;
-    std::memcpy(&length, bytes.data() + 12, 4);
-    return bytes.substr(20, length);
+    std::memcpy(&length, header + 12, 4);
+    std::string json(length, '\0');  // assimp read the file: the chunk is there
+    in.read(json.data(), length);
+    json.resize(std::size_t(in.gcount()));
+    return json;
 }
 
 // A number at `key` of `object`'s `extension`, if there is one.
@@ -362,10 +365,9 @@ ImportedCamera imported_camera(const aiCamera& camera, const std::vector<Importe
     out.position = to_array(camera.mPosition);
     out.look_at = to_array(camera.mPosition + camera.mLookAt);
     out.up = to_array(camera.mUp);
-    // assimp's horizontal angle is whole (its documentation says half); a glTF file's own yfov and
-    // aspectRatio replace both (read_gltf_extras).
-    out.aspect = camera.mAspect;
-    if (camera.mAspect > 0.0f) out.yfov = 2.0f * std::atan(std::tan(0.5f * camera.mHorizontalFOV) / camera.mAspect);
+    // yfov and aspect are a glTF file's own (read_gltf_extras): assimp 5.2's
+    // horizontal angle for glTF is yfov x aspectRatio, where its documentation
+    // says half the horizontal angle.
     return out;
 }
 
