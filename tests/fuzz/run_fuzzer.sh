@@ -4,7 +4,7 @@
 # excess memory (-rss_limit_mb). Inputs that fail are written to the current
 # directory (crash-*, timeout-*, oom-*, leak-*); rerun one with
 # `FUZZER FILE`. New inputs grow a scratch corpus, removed at the end.
-# Usage: bash tests/fuzz/run_fuzzer.sh FUZZER scene|mesh|film|xml|serialized SECONDS|runs=N [libFuzzer flags...]
+# Usage: bash tests/fuzz/run_fuzzer.sh FUZZER scene|mesh|film|xml|serialized|gltf SECONDS|runs=N [libFuzzer flags...]
 #   e.g. bash tests/fuzz/run_fuzzer.sh build-asan/tests/fuzz/fuzz_scene scene 600
 # runs=N fuzzes N inputs instead of for a time: the same inputs on any
 # machine (CTest's short runs), where a time limit reaches further on a faster one.
@@ -33,9 +33,14 @@ case "$name" in
   xml) cp "$root"/tests/corpus/bad/xml/*.xml "$root"/scenes/test/mitsuba/*.xml "$corpus"/ ;;
   # The corpus's serialized files, and a valid one of two meshes (tests/fuzz/seeds).
   serialized) cp "$root"/tests/corpus/bad/xml/*.serialized "$root"/tests/fuzz/seeds/*.serialized "$corpus"/ ;;
+  # The malformed glTF scenes and the valid ones of the tests, each as "<extension>\n<bytes>".
+  gltf)
+    for file in "$root"/tests/corpus/bad/gltf/*.gltf "$root"/scenes/test/gltf/*.gltf "$root"/scenes/test/gltf/*.glb; do
+      { printf '%s\n' "${file##*.}"; cat "$file"; } > "$corpus/$(basename "$file")"
+    done ;;
   # The corpus's malformed checkpoints and a valid film (tests/fuzz/seeds).
   film) cp "$root"/tests/corpus/bad/checkpoints/*.wpfilm "$root"/tests/fuzz/seeds/*.wpfilm "$corpus"/ ;;
-  *) echo "run_fuzzer: unknown fuzzer '$name' (scene, mesh, film, xml or serialized)" >&2; exit 2 ;;
+  *) echo "run_fuzzer: unknown fuzzer '$name' (scene, mesh, film, xml, serialized or gltf)" >&2; exit 2 ;;
 esac
 
 echo "run_fuzzer: $(basename "$fuzzer") for $limit on $(ls "$corpus" | wc -l) seeds" >&2
