@@ -667,21 +667,27 @@ Material read_twosided(const Plugin& bsdf, const std::function<Material(const Xm
     return m;
 }
 
+// The one BSDF an adapter (`bsdf`: normalmap, bumpmap or mask) wraps, which
+// may not be an adapter itself; `missing` is the error where it has none.
+Material wrapped_bsdf(const Plugin& bsdf, const std::function<Material(const XmlElement&)>& nested,
+                      const char* missing) {
+    const std::vector<const XmlElement*> inner = bsdf.objects("bsdf");
+    if (inner.empty()) bsdf.fail(missing);
+    if (inner.size() > 1) bsdf.fail(*inner[1], "a second BSDF: " + std::string(bsdf.type()) + " wraps one");
+    Material m = nested(*inner.front());
+    if (m.adapted()) bsdf.fail(*inner.front(), "a normalmap, bumpmap or mask inside it");
+    return m;
+}
+
 // The BSDF a normalmap or bumpmap adapter (`bsdf`) wraps: like twosided,
 // one, and one that reflects only, nor another adapter (the JSON reader's
 // read_adapted_material says why).
 Material read_adapted_bsdf(const Plugin& bsdf, const std::function<Material(const XmlElement&)>& nested) {
-    const std::vector<const XmlElement*> inner = bsdf.objects("bsdf");
-    if (inner.empty()) bsdf.fail("needs the BSDF it perturbs");
-    if (inner.size() > 1) bsdf.fail(*inner[1], "a second BSDF: " + std::string(bsdf.type()) + " wraps one");
-    const Material m = nested(*inner.front());
-    if (m.texture(TexturedParameter::NormalMap) != kNoTexture || m.texture(TexturedParameter::BumpMap) != kNoTexture ||
-        m.masked())
-        bsdf.fail(*inner.front(), "a normalmap, bumpmap or mask inside it");
+    const Material m = wrapped_bsdf(bsdf, nested, "needs the BSDF it perturbs");
     if (m.type == MaterialType::Glass || m.type == MaterialType::RoughDielectric ||
         m.type == MaterialType::ThinDielectric)
-        bsdf.fail(*inner.front(), "a dielectric inside it: not supported (" + std::string(bsdf.type()) +
-                                      " wraps a BSDF that reflects only)");
+        bsdf.fail(*bsdf.objects("bsdf").front(), "a dielectric inside it: not supported (" + std::string(bsdf.type()) +
+                                                     " wraps a BSDF that reflects only)");
     return m;
 }
 
@@ -716,13 +722,7 @@ Material read_bumpmap(const Plugin& bsdf, const std::function<Material(const Xml
 Material read_mask(const Plugin& bsdf, const std::function<Material(const XmlElement&)>& nested) {
     bsdf.allow({"opacity"}, {"bsdf", "texture"});
     bsdf.textures_only_as({"opacity"});
-    const std::vector<const XmlElement*> inner = bsdf.objects("bsdf");
-    if (inner.empty()) bsdf.fail("needs the BSDF it masks");
-    if (inner.size() > 1) bsdf.fail(*inner[1], "a second BSDF: mask wraps one");
-    Material m = nested(*inner.front());
-    if (m.texture(TexturedParameter::NormalMap) != kNoTexture || m.texture(TexturedParameter::BumpMap) != kNoTexture ||
-        m.masked())
-        bsdf.fail(*inner.front(), "a normalmap, bumpmap or mask inside it");
+    Material m = wrapped_bsdf(bsdf, nested, "needs the BSDF it masks");
     if (bsdf.texture("opacity")) {
         m.opacity = 0.0;
         return m;

@@ -31,6 +31,11 @@ bool Material::emits() const { return SharedMath<double>::emits(emission); }
 
 bool Material::masked() const { return opacity != 1.0 || texture(TexturedParameter::Opacity) != kNoTexture; }
 
+bool Material::adapted() const {
+    return texture(TexturedParameter::NormalMap) != kNoTexture || texture(TexturedParameter::BumpMap) != kNoTexture ||
+           masked();
+}
+
 bool Material::textured() const {
     return std::any_of(textures.begin(), textures.end(), [](int t) { return t != kNoTexture; });
 }

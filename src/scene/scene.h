@@ -165,6 +165,7 @@ struct Material {
     int texture(TexturedParameter p) const { return textures[static_cast<std::size_t>(p)]; }
     bool textured() const;  // some parameter is
     bool masked() const;    // a `mask` adapter: its opacity is below 1 somewhere
+    bool adapted() const;   // a `normalmap`, `bumpmap` or `mask` adapter around its nested material
     bool emits() const;
 };
 

@@ -311,21 +311,27 @@ void read_emitter(const JsonField& field, Material& material) {
 
 Material read_material(const std::string& name, const JsonField& field, const std::vector<Texture>& textures);
 
+// The material an adapter (`adapter`: normalmap, bumpmap or mask) wraps
+// (`bsdf`), which may not be an adapter itself.
+Material read_wrapped_material(const std::string& name, const JsonField& field, const std::vector<Texture>& textures,
+                               const std::string& adapter) {
+    const JsonField nested_field = field.member("bsdf");
+    Material material = read_material(name, nested_field, textures);
+    if (material.adapted()) nested_field.fail("a " + adapter + " cannot nest a normalmap, bumpmap or mask");
+    return material;
+}
+
 // The material a `normalmap` or `bumpmap` adapter (`adapter`) nests
 // (`bsdf`). Only materials that reflect alone may be nested: a transmitting
 // one would need Mitsuba's inside-out treatment of an arrival below the
 // perturbed normal, which the kernels do not model; nor may another adapter.
 Material read_adapted_material(const std::string& name, const JsonField& field, const std::vector<Texture>& textures,
                                const std::string& adapter) {
-    const JsonField nested_field = field.member("bsdf");
-    Material material = read_material(name, nested_field, textures);
+    Material material = read_wrapped_material(name, field, textures, adapter);
     const MaterialType t = material.type;
-    if (material.texture(TexturedParameter::NormalMap) != kNoTexture ||
-        material.texture(TexturedParameter::BumpMap) != kNoTexture || material.masked())
-        nested_field.fail("a " + adapter + " cannot nest a normalmap, bumpmap or mask");
     if (t == MaterialType::Emitter || t == MaterialType::Glass || t == MaterialType::RoughDielectric ||
         t == MaterialType::ThinDielectric) {
-        nested_field.member("type").fail(
+        field.member("bsdf").member("type").fail(
             adapter + " nests only diffuse, mirror, conductor, roughconductor, plastic or roughplastic");
     }
     return material;
@@ -363,12 +369,9 @@ Material read_bump_map(const std::string& name, const JsonField& field, const st
 // pass), as is an emitter (its emission does not pass).
 Material read_mask(const std::string& name, const JsonField& field, const std::vector<Texture>& textures) {
     field.allow_only_keys({"type", "opacity", "bsdf"});
-    const JsonField nested_field = field.member("bsdf");
-    Material material = read_material(name, nested_field, textures);
-    if (material.texture(TexturedParameter::NormalMap) != kNoTexture ||
-        material.texture(TexturedParameter::BumpMap) != kNoTexture || material.masked())
-        nested_field.fail("a mask cannot nest a normalmap, bumpmap or mask");
-    if (material.type == MaterialType::Emitter) nested_field.member("type").fail("a mask cannot nest an emitter");
+    Material material = read_wrapped_material(name, field, textures, "mask");
+    if (material.type == MaterialType::Emitter)
+        field.member("bsdf").member("type").fail("a mask cannot nest an emitter");
     const std::optional<JsonField> opacity = field.optional_member("opacity");
     if (!opacity) {
         material.opacity = 0.5;
