@@ -19,7 +19,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// The JSON and its meshes, each written atomically; on failure nothing of them stays behind.
+// The JSON, its meshes and images, each written atomically; on failure nothing of them stays behind.
 void write_scene_json(const MitsubaScene& scene, const fs::path& json_path) {
     check_writable_destination(json_path);
     const SceneJson out = scene_json(scene, json_path);
@@ -34,6 +34,15 @@ void write_scene_json(const MitsubaScene& scene, const fs::path& json_path) {
                 }
             });
             written.push_back(mesh.path);
+        }
+        for (const ImageFileToWrite& image : out.images) {
+            write_atomically(image.path, [&](const fs::path& temporary) {
+                std::ofstream file(temporary, std::ios::binary);
+                file.write(image.bytes->data(), std::streamsize(image.bytes->size()));
+                file.close();
+                if (!file) throw OutputError(image.path.string() + ": cannot write: " + std::strerror(errno));
+            });
+            written.push_back(image.path);
         }
         write_atomically(json_path, [&](const fs::path& temporary) {
             std::ofstream file(temporary);

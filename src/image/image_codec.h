@@ -30,8 +30,9 @@ struct Codec {
     // `compression` is OpenImageIO's attribute, or nullptr for its default.
     std::string (*write)(const std::string& file, int width, int height, bool srgb8, const void* rgb,
                          const char* compression);
-    // Reads `file` into `pixels` (see Pixels: no values if a side is over `max_side`).
-    std::string (*read)(const std::string& file, int max_side, Pixels& pixels);
+    // Reads `file` into `pixels` (see Pixels: no values if a side is over `max_side`); or, where
+    // `bytes` is not null, the image file they hold, whose format `file`'s extension names.
+    std::string (*read)(const std::string& file, const std::string* bytes, int max_side, Pixels& pixels);
 };
 
 }  // namespace wp::image_codec

@@ -173,14 +173,12 @@ float decode_srgb(float encoded) {
     return static_cast<float>(v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4));
 }
 
-Image read_texture_image(const std::string& path, bool raw, int max_side) {
-    if (std::FILE* file = std::fopen(path.c_str(), "rb")) {  // OpenImageIO would name the path; the caller does
-        std::fclose(file);
-    } else {
-        throw std::runtime_error(std::string("cannot open: ") + std::strerror(errno));
-    }
+namespace {
+
+// A texture's image of what the codec read of a file (or of `bytes`, not null).
+Image texture_image(const std::string& file, const std::string* bytes, bool raw, int max_side) {
     image_codec::Pixels pixels;
-    const std::string error = codec().read(path, max_side, pixels);
+    const std::string error = codec().read(file, bytes, max_side, pixels);
     if (!error.empty()) throw std::runtime_error("cannot read the image: " + error);
     if (pixels.width > max_side || pixels.height > max_side) {
         throw std::runtime_error(std::to_string(pixels.width) + " x " + std::to_string(pixels.height) +
@@ -202,9 +200,24 @@ Image read_texture_image(const std::string& path, bool raw, int max_side) {
     return image;
 }
 
+}  // namespace
+
+Image read_texture_image(const std::string& path, bool raw, int max_side) {
+    if (std::FILE* file = std::fopen(path.c_str(), "rb")) {  // OpenImageIO would name the path; the caller does
+        std::fclose(file);
+    } else {
+        throw std::runtime_error(std::string("cannot open: ") + std::strerror(errno));
+    }
+    return texture_image(path, nullptr, raw, max_side);
+}
+
+Image read_texture_image_bytes(const std::string& bytes, const std::string& format, bool raw, int max_side) {
+    return texture_image("embedded." + format, &bytes, raw, max_side);
+}
+
 Image read_image(const std::string& path) {
     image_codec::Pixels pixels;
-    const std::string error = codec().read(path, std::numeric_limits<int>::max(), pixels);
+    const std::string error = codec().read(path, nullptr, std::numeric_limits<int>::max(), pixels);
     if (!error.empty()) throw std::runtime_error("cannot read " + path + ": " + error);
     if (pixels.channels < 3) throw std::runtime_error("cannot read " + path + ": fewer than 3 channels");
     Image image;

@@ -1,8 +1,10 @@
 // The module libwavepath_oiio.so: image_codec.h's calls, made with OpenImageIO.
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
 #include <memory>
+#include <optional>
 
 #include "image/image_codec.h"
 
@@ -25,12 +27,20 @@ std::string write(const std::string& file, int width, int height, bool srgb8, co
     return {};
 }
 
-std::string read(const std::string& file, int max_side, wp::image_codec::Pixels& pixels) {
+std::string read(const std::string& file, const std::string* bytes, int max_side, wp::image_codec::Pixels& pixels) {
     // Colours as stored, not multiplied by their alpha (OpenImageIO's default for PNG), as
     // Mitsuba's bitmap reads them: the alpha of a texture is not part of its colour.
     OIIO::ImageSpec config;
     config.attribute("oiio:UnassociatedAlpha", 1);
-    std::unique_ptr<OIIO::ImageInput> input = OIIO::ImageInput::open(file, &config);
+    // Bytes in memory through a proxy, which OpenImageIO 2.4 takes from the configuration where
+    // there is one (its `ioproxy` argument alone is then ignored).
+    std::optional<OIIO::Filesystem::IOMemReader> memory;
+    void* proxy = nullptr;
+    if (bytes) {
+        proxy = &memory.emplace(bytes->data(), bytes->size());
+        config.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy);
+    }
+    std::unique_ptr<OIIO::ImageInput> input = OIIO::ImageInput::open(file, &config, memory ? &*memory : nullptr);
     if (!input) return error_or_unknown(OIIO::geterror());
     const OIIO::ImageSpec& spec = input->spec();
     pixels.width = spec.width;

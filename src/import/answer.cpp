@@ -139,6 +139,11 @@ void put_light(AnswerWriter& out, const ImportedLight& light) {
     out.put(light.direction);
 }
 
+void put_image(AnswerWriter& out, const ImportedImage& image) {
+    out.put_text(image.format);
+    out.put_text(image.bytes);
+}
+
 void put_node(AnswerWriter& out, const ImportedNode& node) {
     out.put(node.parent);
     out.put(node.transform);
@@ -235,6 +240,13 @@ ImportedNode take_node(AnswerReader& in, std::uint32_t index, std::size_t mesh_c
     return node;
 }
 
+ImportedImage take_image(AnswerReader& in, const std::string& what) {
+    ImportedImage image;
+    image.format = in.take_text(0, kMaxImageFormat, what + "'s format");
+    image.bytes = in.take_text(0, kMaxImportedImageBytes, what + "'s bytes");
+    return image;
+}
+
 ImportedScene take_scene(AnswerReader& in) {
     ImportedScene scene;
     // Each item is read before the next is counted: a count the bytes do not hold allocates nothing.
@@ -257,6 +269,8 @@ ImportedScene take_scene(AnswerReader& in) {
     const std::uint32_t lights = in.take_count("the light count");
     for (std::uint32_t l = 0; l < lights; ++l)
         scene.lights.push_back(take_light(in, scene.nodes.size(), "light " + std::to_string(l)));
+    const std::uint32_t images = in.take_count("the image count");
+    for (std::uint32_t i = 0; i < images; ++i) scene.images.push_back(take_image(in, "image " + std::to_string(i)));
     return scene;
 }
 
@@ -274,6 +288,8 @@ std::string encode_answer(const ImportedScene& scene) {
     for (const ImportedCamera& camera : scene.cameras) put_camera(out, camera);
     out.put_count(scene.lights.size());
     for (const ImportedLight& light : scene.lights) put_light(out, light);
+    out.put_count(scene.images.size());
+    for (const ImportedImage& image : scene.images) put_image(out, image);
     return out.take();
 }
 

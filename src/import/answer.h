@@ -27,6 +27,9 @@
 //                       f32 position[3], look_at[3], up[3], yfov, aspect;
 //                     u32 light count, then each light: name, u32 node, u32 type (1 to 3,
 //                       ImportedLightType), f32 colour[3], position[3], direction[3];
+//                     u32 image count, then each embedded image: its format (u32 length, up to
+//                       kMaxImageFormat, the bytes), its bytes (u32 length, up to
+//                       kMaxImportedImageBytes, the bytes);
 //   and nothing after it.
 #pragma once
 
@@ -40,7 +43,7 @@
 
 namespace wp {
 
-inline constexpr std::uint32_t kAnswerVersion = 3;
+inline constexpr std::uint32_t kAnswerVersion = 4;
 inline constexpr std::size_t kMaxFailureLength = 4096;
 
 // The helper's file descriptors (import/helper/main.cpp): the requests it

@@ -78,16 +78,28 @@ struct ImportedNode {
     std::vector<std::uint32_t> meshes;  // indices into ImportedScene::meshes
 };
 
+// An image the file holds inside it (a .glb's buffer view, a data: uri), as
+// stored (compressed): a material names it "*N", N its index in
+// ImportedScene::images.
+struct ImportedImage {
+    std::string format;  // the file's hint, e.g. "png" or "jpg" (at most kMaxImageFormat bytes); empty: none
+    std::string bytes;   // at most kMaxImportedImageBytes; empty where the file's image is not compressed
+};
+
 struct ImportedScene {
     std::vector<ImportedMesh> meshes;
     std::vector<ImportedNode> nodes;  // empty, or the root first
     std::vector<ImportedMaterial> materials;
     std::vector<ImportedCamera> cameras;
     std::vector<ImportedLight> lights;
+    std::vector<ImportedImage> images;
 };
 
 // assimp's names (aiString) hold at most 1023 bytes.
 inline constexpr std::size_t kMaxNodeName = 1023;
 inline constexpr std::size_t kMaxImportedName = 1023;
+// assimp's format hints hold at most 8 bytes; an embedded image at most 1 GiB.
+inline constexpr std::size_t kMaxImageFormat = 8;
+inline constexpr std::size_t kMaxImportedImageBytes = std::size_t{1} << 30;
 
 }  // namespace wp

@@ -245,27 +245,50 @@ class Reader {
         m.texture(TexturedParameter::NormalMap) = texture_index(uri, true, what + ": normalTexture");
     }
 
-    // The image `uri` beside the file as a bitmap texture, read once per (uri, raw).
+    // The image `uri` as a bitmap texture, read once per (uri, raw): an image file beside the
+    // glTF, or "*N", the file's embedded image N (a .glb's buffer view, a data: uri).
     int texture_index(const std::string& uri, bool raw, const std::string& what) {
         if (const auto found = textures_.find({uri, raw}); found != textures_.end()) return found->second;
-        if (uri.starts_with("*"))
-            fail(what + " is embedded in the file (image " + uri.substr(1) +
-                 "): wavepath reads textures from image files beside it");
         Texture texture;
         texture.name = uri;
         texture.file = uri;
-        const fs::path file = fs::path(path_).parent_path() / uri;
+        const ImportedImage* embedded = uri.starts_with("*") ? &embedded_image(uri, what) : nullptr;
         try {
-            read_bitmap_file(file.string(), raw, texture);
+            if (embedded)
+                read_bitmap_bytes(embedded->bytes, embedded->format, raw, texture);
+            else
+                read_bitmap_file((fs::path(path_).parent_path() / uri).string(), raw, texture);
         } catch (const std::runtime_error& error) {
-            fail(what + " " + quoted(uri) + ": " + error.what());
+            fail(what + " " + (embedded ? "(embedded image " + uri.substr(1) + ")" : quoted(uri)) + ": " +
+                 error.what());
         }
+        if (embedded) out_.embedded_images.push_back({out_.scene.textures.size(), embedded->format, embedded->bytes});
         texels_ += texture.texels.size() / 3;
         if (texels_ > kMaxTextureTexels)
             fail(what + ": the textures have more than the " + std::to_string(kMaxTextureTexels) +
                  " texels a scene may have");
         out_.scene.textures.push_back(std::move(texture));
         return textures_[{uri, raw}] = static_cast<int>(out_.scene.textures.size()) - 1;
+    }
+
+    // The embedded image "*N" names, one wavepath can decode (its format named, its bytes sent).
+    const ImportedImage& embedded_image(const std::string& uri, const std::string& what) const {
+        const std::string digits = uri.substr(1);
+        const bool number = !digits.empty() && digits.size() <= 9 &&
+                            std::all_of(digits.begin(), digits.end(), [](char c) { return c >= '0' && c <= '9'; });
+        if (!number || std::stoul(digits) >= imported_.images.size())
+            fail(what + " names embedded image " + quoted(uri) + ", and the file holds " +
+                 std::to_string(imported_.images.size()));
+        const ImportedImage& image = imported_.images[std::stoul(digits)];
+        if (image.bytes.empty())
+            fail(what + " (embedded image " + digits + "): not a compressed image file (PNG, JPEG)");
+        const bool format_named = !image.format.empty() &&
+                                  std::all_of(image.format.begin(), image.format.end(),
+                                              [](char c) { return (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9'); });
+        if (!format_named)
+            fail(what + " (embedded image " + digits +
+                 "): its mimeType names no image format wavepath reads (image/png, image/jpeg)");
+        return image;
     }
 
     // ---- camera ----

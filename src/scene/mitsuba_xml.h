@@ -27,9 +27,19 @@ struct MeshOrigin {
     bool face_normals = false;
 };
 
+// An image a texture was read from that the scene file holds inside it (a
+// glTF file's embedded image), so that `wavepath convert` can write it as a
+// file of its own.
+struct EmbeddedImage {
+    std::size_t texture = 0;  // index into scene.textures
+    std::string format;       // the extension its file would have ("png", "jpg")
+    std::string bytes;
+};
+
 struct MitsubaScene {
-    Scene scene;                        // not yet rebased to the camera (finish_scene)
-    std::vector<MeshOrigin> meshes;     // one per scene.meshes
+    Scene scene;                     // not yet rebased to the camera (finish_scene)
+    std::vector<MeshOrigin> meshes;  // one per scene.meshes
+    std::vector<EmbeddedImage> embedded_images;
     std::vector<std::string> warnings;  // one line each, e.g. a pixel filter other than box
 };
 

@@ -1,5 +1,6 @@
 #include "scene/scene_writer.h"
 
+#include <algorithm>
 #include <bit>
 #include <cerrno>
 #include <cstring>
@@ -42,11 +43,12 @@ class TextureNames {
     std::vector<std::string> names_;
 };
 
-nlohmann::json texture_json(const Texture& t, const fs::path& folder) {
+// A texture's JSON; `file` is the bitmap's image as the JSON names it.
+nlohmann::json texture_json(const Texture& t, const std::string& file) {
     nlohmann::json j;
     if (t.type == TextureType::Bitmap) {
         j = {{"type", "bitmap"},
-             {"file", path_from(folder, t.path)},
+             {"file", file},
              {"filter_type", t.filter == TextureFilter::Nearest ? "nearest" : "bilinear"},
              {"wrap_mode", t.wrap == TextureWrap::Mirror  ? "mirror"
                            : t.wrap == TextureWrap::Clamp ? "clamp"
@@ -218,8 +220,19 @@ SceneJson scene_json(const MitsubaScene& read, const fs::path& json_path) {
     const TextureNames texture_names(scene.textures);
     if (!scene.textures.empty()) {
         nlohmann::json& textures = j["textures"] = nlohmann::json::object();
-        for (std::size_t t = 0; t < scene.textures.size(); ++t)
-            textures[texture_names[int(t)]] = texture_json(scene.textures[t], folder);
+        for (std::size_t t = 0; t < scene.textures.size(); ++t) {
+            const auto embedded = std::find_if(read.embedded_images.begin(), read.embedded_images.end(),
+                                               [&](const EmbeddedImage& image) { return image.texture == t; });
+            std::string file;
+            if (embedded != read.embedded_images.end()) {
+                file =
+                    json_path.stem().string() + "_image" + std::to_string(out.images.size()) + "." + embedded->format;
+                out.images.push_back({json_path.parent_path() / file, &embedded->bytes});
+            } else {
+                file = path_from(folder, scene.textures[t].path);
+            }
+            textures[texture_names[int(t)]] = texture_json(scene.textures[t], file);
+        }
     }
     j["materials"] = nlohmann::json::object();
     for (const Material& m : scene.materials) j["materials"][m.name] = material_json(m, texture_names);

@@ -17,9 +17,16 @@ struct MeshFileToWrite {
     const ImportedMesh* mesh = nullptr;
 };
 
+// An embedded image the JSON refers to, its bytes to be written beside it as they are.
+struct ImageFileToWrite {
+    std::filesystem::path path;
+    const std::string* bytes = nullptr;
+};
+
 struct SceneJson {
     nlohmann::json json;
     std::vector<MeshFileToWrite> meshes;
+    std::vector<ImageFileToWrite> images;
 };
 
 // The JSON of `scene` (before finish_scene: in the file's coordinates), to be
@@ -28,6 +35,8 @@ struct SceneJson {
 // with their transform; every other mesh (cube, disk, serialized, a file
 // whose winding or normals the scene changes) is a binary PLY beside the
 // JSON, "<stem>_mesh<N>.ply", in its own coordinates under the same transform.
+// A texture of an image embedded in the scene file refers to that image
+// written beside the JSON as it was stored, "<stem>_image<N>.<format>".
 SceneJson scene_json(const MitsubaScene& scene, const std::filesystem::path& json_path);
 
 // A binary little-endian PLY of float positions (and normals), int triangles; std::runtime_error

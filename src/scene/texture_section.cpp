@@ -95,17 +95,29 @@ Texture read_texture(const std::string& name, const JsonField& field, const std:
 }  // namespace texture_section
 }  // namespace
 
-void read_bitmap_file(const std::string& path, bool raw, Texture& texture) {
-    Image image = read_texture_image(path, raw, kMaxTextureSide);
+namespace {
+namespace texture_section {
+// A bitmap texture's texels, each a reflectance in [0, 1].
+void set_bitmap(Image image, bool raw, Texture& texture) {
     for (float value : image.rgb) {
         if (!(value >= 0.0f && value <= 1.0f))
             throw std::runtime_error("a texel value " + format_number(value) + " is outside [0, 1] (energy gain)");
     }
-    texture.path = path;
     texture.raw = raw;
     texture.width = image.width;
     texture.height = image.height;
     texture.texels = std::move(image.rgb);
+}
+}  // namespace texture_section
+}  // namespace
+
+void read_bitmap_file(const std::string& path, bool raw, Texture& texture) {
+    texture_section::set_bitmap(read_texture_image(path, raw, kMaxTextureSide), raw, texture);
+    texture.path = path;
+}
+
+void read_bitmap_bytes(const std::string& bytes, const std::string& format, bool raw, Texture& texture) {
+    texture_section::set_bitmap(read_texture_image_bytes(bytes, format, raw, kMaxTextureSide), raw, texture);
 }
 
 void read_environment_map_file(const std::string& path, EnvironmentMap& map) {

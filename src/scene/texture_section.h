@@ -20,6 +20,11 @@ std::vector<Texture> read_textures(const JsonField& field, const std::string& sc
 // texel outside [0, 1]). The JSON and the Mitsuba XML readers share it.
 void read_bitmap_file(const std::string& path, bool raw, Texture& texture);
 
+// The same of an image file's bytes held in memory (a glTF file's embedded
+// image), `format` the extension its file would have ("png", "jpg"); the
+// texture's path stays empty.
+void read_bitmap_bytes(const std::string& bytes, const std::string& format, bool raw, Texture& texture);
+
 // An environment map's image at `path` into map's width, height and texels
 // (linear RGB, decoded from sRGB where the file holds integers, as
 // Mitsuba 3's envmap reads it), `scale` already set; throws

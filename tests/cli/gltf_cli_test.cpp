@@ -48,6 +48,18 @@ TEST_F(GltfCli, RendersTheSameImageAsItsHandWrittenJsonAndItsConversion) {
     EXPECT_EQ(image_of(out_ / "materials.json"), image);
 }
 
+// A .glb's embedded image renders as the image file beside a .gltf, and its
+// conversion writes the image's bytes beside the JSON, which renders the same.
+TEST_F(GltfCli, AnEmbeddedImageRendersAsItsFileAndConvertsToIt) {
+    const std::string image = image_of((kScenes / "textured.gltf").string());
+    const std::string glb = (kScenes / "textured.glb").string();
+    EXPECT_EQ(image_of(glb), image);
+    ASSERT_EQ(run({"convert", glb, "-o", out_ / "textured.json", "-q"}).exit_code, 0);
+    EXPECT_EQ(out_.entries(), (std::vector<std::string>{"textured.json", "textured_image0.png", "textured_mesh0.ply"}));
+    EXPECT_EQ(read_text(out_ / "textured_image0.png"), read_text(kScenes / "../textures/tiles.png"));
+    EXPECT_EQ(image_of(out_ / "textured.json"), image);
+}
+
 TEST_F(GltfCli, NotesTheDefaultCameraAndLight) {
     const std::string gltf = (kScenes / "no_camera_no_light.gltf").string();
     const CommandResult result = run({"render", gltf, "-o", out_ / "image.pfm", "--spp", "1"});

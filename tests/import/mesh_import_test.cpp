@@ -91,6 +91,11 @@ void expect_same_scene(const ImportedScene& a, const ImportedScene& b) {
         EXPECT_EQ(x.position, y.position);
         EXPECT_EQ(x.direction, y.direction);
     }
+    ASSERT_EQ(a.images.size(), b.images.size());
+    for (std::size_t i = 0; i < a.images.size(); ++i) {
+        EXPECT_EQ(a.images[i].format, b.images[i].format);
+        EXPECT_EQ(a.images[i].bytes, b.images[i].bytes);
+    }
 }
 
 void expect_same_mesh(const Mesh& a, const Mesh& b) {
@@ -406,7 +411,7 @@ TEST(RealHelper, MissingIsAnInstallationProblem) {
 // ---- the answer's format ----
 
 // Two meshes (one with normals) of two materials, three nodes (two of them
-// instancing mesh 1), a camera and a light.
+// instancing mesh 1), a camera, a light and two embedded images.
 ImportedScene small_scene() {
     ImportedScene scene;
     scene.meshes.push_back({{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, false, {}, {{0, 1, 2}}, false, {}});
@@ -439,6 +444,8 @@ ImportedScene small_scene() {
                                0.25f});
     scene.cameras.push_back({"eye", 1, {0, 1, 5}, {0, 1, 4}, {0, 1, 0}, 0.75f, 1.5f});
     scene.lights.push_back({"sun", 2, ImportedLightType::Directional, {2, 2, 1.5f}, {0, 0, 0}, {0, 0, -1}});
+    scene.images.push_back({"png", std::string("\x89PNG\0\r\n", 7)});
+    scene.images.push_back({"", ""});  // an uncompressed one
     return scene;
 }
 
@@ -466,8 +473,8 @@ TEST(Answer, MalformedPartsAreNamed) {
     const std::string good = encode_answer(small_scene());
     EXPECT_EQ(malformation(good + "x"), "1 bytes after the answer");
     std::string bytes = good;
-    bytes[8] = 4;  // the version
-    EXPECT_EQ(malformation(bytes), "version 4, not 3");
+    bytes[8] = 3;  // the version
+    EXPECT_EQ(malformation(bytes), "version 3, not 4");
     bytes = good;
     bytes[12] = 3;  // the kind
     EXPECT_EQ(malformation(bytes), "kind 3, neither 1 nor 2");
@@ -512,6 +519,9 @@ TEST(Answer, MalformedPartsAreNamed) {
     scene.materials[1].base_color_texture.assign(kMaxImportedName + 1, 't');
     EXPECT_EQ(malformation(encode_answer(scene)),
               "material 1's base colour texture of 1024 bytes (0 to 1023 expected)");
+    scene = small_scene();
+    scene.images[0].format = "jpegjpegj";
+    EXPECT_EQ(malformation(encode_answer(scene)), "image 0's format of 9 bytes (0 to 8 expected)");
     EXPECT_EQ(malformation(encode_answer(ImportFailure{""})), "the failure message of 0 bytes (1 to 4096 expected)");
 }
 

@@ -150,6 +150,32 @@ std::string with_node(std::string gltf, const std::string& node, const std::stri
     return gltf;
 }
 
+// An image embedded in the file (a .glb's buffer view, a data: uri) is read
+// as the image file it holds: the same texels as that file beside the glTF.
+// `wavepath convert` writes it beside the JSON (GltfCli).
+TEST(GltfScene, AnEmbeddedImageReadsAsTheFileItHolds) {
+    const MitsubaScene beside = read_gltf_scene((kScenes / "textured.gltf").string());
+    ASSERT_EQ(beside.scene.textures.size(), 1u);
+    EXPECT_EQ(beside.scene.textures[0].file, "../textures/tiles.png");
+    EXPECT_TRUE(beside.embedded_images.empty());
+    for (const char* name : {"textured.glb", "textured_data_uri.gltf"}) {
+        SCOPED_TRACE(name);
+        const MitsubaScene embedded = read_gltf_scene((kScenes / name).string());
+        expect_same_scene(embedded.scene, beside.scene, 0.0);
+        ASSERT_EQ(embedded.scene.textures.size(), 1u);
+        const Texture &a = embedded.scene.textures[0], &b = beside.scene.textures[0];
+        EXPECT_EQ(a.file, "*0");
+        EXPECT_TRUE(a.path.empty());
+        EXPECT_EQ(a.width, b.width);
+        EXPECT_EQ(a.height, b.height);
+        EXPECT_EQ(a.texels, b.texels);
+        ASSERT_EQ(embedded.embedded_images.size(), 1u);
+        EXPECT_EQ(embedded.embedded_images[0].texture, 0u);
+        EXPECT_EQ(embedded.embedded_images[0].format, "png");
+        EXPECT_EQ(embedded.embedded_images[0].bytes.substr(0, 4), "\x89PNG");
+    }
+}
+
 // A camera without aspectRatio (glTF: the viewport's) makes a 640 x 480 image, with a note.
 TEST(GltfScene, ACameraWithoutAspectRatioIs640By480) {
     const TempDirectory dir("aspect");

@@ -21,11 +21,21 @@ def quad(corner, edge1, edge2):
     return p, [0, 1, 2, 0, 2, 3]
 
 
-def gltf(meshes, nodes, materials, extra_nodes, extensions=None, cameras=None, texture=None):
-    """meshes: (positions, indices, material) each; nodes: (name, mesh, matrix or None)."""
+def gltf(meshes, nodes, materials, extra_nodes, extensions=None, cameras=None, image=None):
+    """meshes: (positions, indices, material[, uvs]) each; nodes: (name, mesh, matrix or None);
+    image: texture 0's image, {"uri": file} or {"bytes": the file's bytes, "mimeType": ...} (embedded)."""
     blob = b""
     accessors, views, gmeshes = [], [], []
-    for positions, indices, material in meshes:
+    for positions, indices, material, *uvs in meshes:
+        attributes = {}
+        if uvs:
+            start = len(blob)
+            for uv in uvs[0]:
+                blob += struct.pack("<2f", *uv)
+            views.append({"buffer": 0, "byteOffset": start, "byteLength": len(blob) - start})
+            accessors.append({"bufferView": len(views) - 1, "componentType": 5126, "count": len(uvs[0]),
+                              "type": "VEC2"})
+            attributes["TEXCOORD_0"] = len(accessors) - 1
         start = len(blob)
         for p in positions:
             blob += struct.pack("<3f", *p)
@@ -40,7 +50,7 @@ def gltf(meshes, nodes, materials, extra_nodes, extensions=None, cameras=None, t
         views.append({"buffer": 0, "byteOffset": start, "byteLength": 2 * len(indices)})
         accessors.append({"bufferView": len(views) - 1, "componentType": 5123, "count": len(indices),
                           "type": "SCALAR"})
-        gmeshes.append({"primitives": [{"attributes": {"POSITION": len(accessors) - 2},
+        gmeshes.append({"primitives": [{"attributes": dict(attributes, POSITION=len(accessors) - 2),
                                         "indices": len(accessors) - 1, "material": material, "mode": 4}]})
     gnodes = []
     for name, mesh, matrix in nodes:
@@ -49,11 +59,22 @@ def gltf(meshes, nodes, materials, extra_nodes, extensions=None, cameras=None, t
             node["matrix"] = matrix
         gnodes.append(node)
     gnodes += extra_nodes
+    images = []
+    if image and "bytes" in image:
+        start = len(blob)
+        blob += image["bytes"] + b"\0" * (-len(image["bytes"]) % 4)
+        views.append({"buffer": 0, "byteOffset": start, "byteLength": len(image["bytes"])})
+        images.append({"bufferView": len(views) - 1, "mimeType": image["mimeType"]})
+    elif image:
+        images.append({"uri": image["uri"]})
     out = {"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": list(range(len(gnodes)))}],
            "nodes": gnodes, "meshes": gmeshes, "materials": materials, "accessors": accessors,
            "bufferViews": views,
            "buffers": [{"byteLength": len(blob),
                         "uri": "data:application/octet-stream;base64," + base64.b64encode(blob).decode()}]}
+    if images:
+        out["textures"] = [{"source": 0}]
+        out["images"] = images
     if cameras:
         out["cameras"] = cameras
     if extensions:
@@ -127,6 +148,19 @@ def main():
     lamp_above = [dict(bulb[0], translation=[0, 2, 1])]
     write("veil.gltf", gltf([(floor[0], floor[1], 0), (veil[0], veil[1], 1)], [("Floor", 0, None), ("Veil", 1, None)],
                             veiled, lamp_above, point))
+    # The floor textured with ../textures/tiles.png: as that file, embedded in a .glb and as a
+    # data: uri (GltfScene.AnEmbeddedImageReadsAsTheFileItHolds).
+    with open(os.path.join(HERE, "..", "textures", "tiles.png"), "rb") as f:
+        tiles = f.read()
+    tiled = [pbr("tiles", [1.0, 1.0, 1.0], 0.0, 1.0)]
+    tiled[0]["pbrMetallicRoughness"]["baseColorTexture"] = {"index": 0}
+    tiled_floor = [(floor[0], floor[1], 0, [[0, 0], [2, 0], [2, 2], [0, 2]])]
+    write("textured.gltf", gltf(tiled_floor, [("Floor", 0, None)], tiled, extra, lights, cameras,
+                                {"uri": "../textures/tiles.png"}))
+    write_glb("textured.glb", gltf(tiled_floor, [("Floor", 0, None)], tiled, extra, lights, cameras,
+                                   {"bytes": tiles, "mimeType": "image/png"}))
+    write("textured_data_uri.gltf", gltf(tiled_floor, [("Floor", 0, None)], tiled, extra, lights, cameras,
+                                         {"uri": "data:image/png;base64," + base64.b64encode(tiles).decode()}))
     # Nothing but a red floor: the default camera and the default light.
     write("no_camera_no_light.gltf", gltf([(floor[0], floor[1], 0)], [("Floor", 0, None)], materials[:1], []))
 

@@ -273,6 +273,24 @@ ImportedMaterial imported_material(const aiMaterial& material) {
     return out;
 }
 
+// The file's embedded images as stored (assimp's compressed textures: mHeight 0, mWidth bytes), in
+// its order, which its materials' "*N" names follow. An uncompressed one (other formats') goes with
+// no bytes, for the scene reader to refuse if a material uses it.
+std::vector<ImportedImage> imported_images(const aiScene& scene) {
+    std::vector<ImportedImage> images;
+    for (unsigned t = 0; t < scene.mNumTextures; ++t) {
+        const aiTexture& texture = *scene.mTextures[t];
+        ImportedImage& image = images.emplace_back();
+        if (texture.mHeight != 0 || !texture.pcData) continue;
+        if (texture.mWidth > kMaxImportedImageBytes)
+            throw MeshFileError("embedded image " + std::to_string(t) + " has " + std::to_string(texture.mWidth) +
+                                " bytes, more than the " + std::to_string(kMaxImportedImageBytes) + " wavepath reads");
+        image.format = std::string(texture.achFormatHint, strnlen(texture.achFormatHint, kMaxImageFormat));
+        image.bytes.assign(reinterpret_cast<const char*>(texture.pcData), texture.mWidth);
+    }
+    return images;
+}
+
 // ---- the glTF extensions assimp 5.2 does not read ----
 
 // A glTF file's JSON: the whole of a .gltf, the first chunk of a .glb
@@ -409,6 +427,7 @@ ImportedScene import_with_assimp(const std::filesystem::path& path) {
     for (unsigned c = 0; c < scene->mNumCameras; ++c)
         imported.cameras.push_back(imported_camera(*scene->mCameras[c], imported.nodes));
     imported.lights = imported_lights(*scene, imported.nodes);
+    imported.images = imported_images(*scene);
     if (read_by(importer, "glTF2 Importer")) read_gltf_extras(path, imported);
     return imported;
 }
