@@ -44,5 +44,5 @@ case "$name" in
 esac
 
 echo "run_fuzzer: $(basename "$fuzzer") for $limit on $(ls "$corpus" | wc -l) seeds" >&2
-"$fuzzer" -seed=1 "$budget" -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 \
+"$fuzzer" -seed=1 "$budget" -timeout=15 -rss_limit_mb=2048 -print_final_stats=1 \
   "$@" "$corpus"
