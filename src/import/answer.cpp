@@ -118,6 +118,7 @@ void put_material(AnswerWriter& out, const ImportedMaterial& material) {
     out.put_text(material.normal_texture);
     out.put(material.alpha_mode);
     out.put(material.alpha_cutoff);
+    out.put(material.unread_textures);
 }
 
 void put_camera(AnswerWriter& out, const ImportedCamera& camera) {
@@ -187,6 +188,10 @@ ImportedMaterial take_material(AnswerReader& in, const std::string& what) {
         AnswerReader::fail(what + "'s alpha mode is " + std::to_string(alpha_mode) + " (0 to 2 expected)");
     material.alpha_mode = static_cast<ImportedAlphaMode>(alpha_mode);
     material.alpha_cutoff = in.take<float>(what + "'s alpha cutoff");
+    material.unread_textures = in.take<std::uint32_t>(what + "'s unread textures");
+    if (material.unread_textures > kAllUnreadTextures)
+        AnswerReader::fail(what + "'s unread textures are " + std::to_string(material.unread_textures) + " (0 to " +
+                           std::to_string(kAllUnreadTextures) + " expected)");
     return material;
 }
 

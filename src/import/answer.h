@@ -21,7 +21,8 @@
 //                       emissive[3], emissive strength, transmission, ior, the base colour
 //                       texture's name (u32 length, up to kMaxImportedName, the bytes), the
 //                       normal texture's likewise,
-//                       u32 alpha mode (0 to 2, ImportedAlphaMode), f32 alpha cutoff;
+//                       u32 alpha mode (0 to 2, ImportedAlphaMode), f32 alpha cutoff,
+//                       u32 unread textures (ImportedUnreadTexture bits);
 //                       every mesh's material is below the count (or 0 where there is none);
 //                     u32 camera count, then each camera: name, u32 node (below the node count, or kNoNode),
 //                       f32 position[3], look_at[3], up[3], yfov, aspect;

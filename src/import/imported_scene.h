@@ -25,6 +25,13 @@ struct ImportedMesh {
     std::uint32_t material = 0;  // index into ImportedScene::materials (0 where the file has none)
 };
 
+// The glTF textures a material has that wavepath does not read (ImportedMaterial::unread_textures).
+enum ImportedUnreadTexture : std::uint32_t {
+    kMetallicRoughnessTexture = 1u,
+    kEmissiveTexture = 2u,
+    kAllUnreadTextures = 3u,
+};
+
 // glTF's alphaMode: the base colour's alpha ignored, a cut-out at alphaCutoff, or a blend.
 enum class ImportedAlphaMode : std::uint32_t { Opaque = 0, Mask = 1, Blend = 2 };
 
@@ -42,6 +49,7 @@ struct ImportedMaterial {
     std::string normal_texture;      // likewise
     ImportedAlphaMode alpha_mode = ImportedAlphaMode::Opaque;
     float alpha_cutoff = 0.5f;
+    std::uint32_t unread_textures = 0;  // ImportedUnreadTexture bits
 };
 
 // What a camera or light that is on no node (assimp links them to nodes by

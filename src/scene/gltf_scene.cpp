@@ -156,6 +156,11 @@ class Reader {
         return {m.base_color[0], m.base_color[1], m.base_color[2]};
     }
     static glm::dvec3 emission(const ImportedMaterial& m) { return to_dvec3(m.emissive) * double(m.emissive_strength); }
+    // Where an emissive texture modulates it, the factor alone would make the whole surface glow:
+    // such a material emits nothing here (with a note).
+    static bool emits(const ImportedMaterial& m) {
+        return emission(m) != glm::dvec3(0.0) && !(m.unread_textures & kEmissiveTexture);
+    }
 
     // glTF's ranges of the factors, each an error line naming its factor.
     void check_factors(const ImportedMaterial& source, const std::string& what) const {
@@ -187,7 +192,7 @@ class Reader {
         const double roughness = source.roughness;
         Material m;
         coloured = TexturedParameter::Albedo;
-        if (emission(source) != glm::dvec3(0.0)) {
+        if (emits(source)) {
             m.type = MaterialType::Diffuse;
             m.albedo = base_colour(source);
             m.emission = emission(source);
@@ -230,7 +235,19 @@ class Reader {
         if (source.alpha_mode == ImportedAlphaMode::Mask) m.opacity = alpha >= source.alpha_cutoff ? 1.0 : 0.0;
         if (source.alpha_mode == ImportedAlphaMode::Blend) m.opacity = alpha;
         if (!source.normal_texture.empty()) add_normal_map(source.normal_texture, what, m);
+        note_unread_textures(source, what);
         return m;
+    }
+
+    void note_unread_textures(const ImportedMaterial& source, const std::string& what) {
+        if (source.unread_textures & kMetallicRoughnessTexture)
+            out_.warnings.push_back(path_ + ": " + what +
+                                    ": metallicRoughnessTexture not read: metallicFactor and roughnessFactor hold "
+                                    "everywhere");
+        if (source.unread_textures & kEmissiveTexture)
+            out_.warnings.push_back(path_ + ": " + what +
+                                    ": emissiveTexture not read: the material emits nothing (wavepath's emission is "
+                                    "uniform)");
     }
 
     // glTF's tangent space is a normalmap's (x along increasing u, y along n x x, both with the file's

@@ -69,6 +69,7 @@ void expect_same_scene(const ImportedScene& a, const ImportedScene& b) {
         EXPECT_EQ(x.normal_texture, y.normal_texture);
         EXPECT_EQ(x.alpha_mode, y.alpha_mode);
         EXPECT_EQ(x.alpha_cutoff, y.alpha_cutoff);
+        EXPECT_EQ(x.unread_textures, y.unread_textures);
     }
     ASSERT_EQ(a.cameras.size(), b.cameras.size());
     for (std::size_t c = 0; c < a.cameras.size(); ++c) {
@@ -441,7 +442,8 @@ ImportedScene small_scene() {
                                "wood.png",
                                "bumps.png",
                                ImportedAlphaMode::Blend,
-                               0.25f});
+                               0.25f,
+                               kMetallicRoughnessTexture | kEmissiveTexture});
     scene.cameras.push_back({"eye", 1, {0, 1, 5}, {0, 1, 4}, {0, 1, 0}, 0.75f, 1.5f});
     scene.lights.push_back({"sun", 2, ImportedLightType::Directional, {2, 2, 1.5f}, {0, 0, 0}, {0, 0, -1}});
     scene.images.push_back({"png", std::string("\x89PNG\0\r\n", 7)});
@@ -519,6 +521,9 @@ TEST(Answer, MalformedPartsAreNamed) {
     scene.materials[1].base_color_texture.assign(kMaxImportedName + 1, 't');
     EXPECT_EQ(malformation(encode_answer(scene)),
               "material 1's base colour texture of 1024 bytes (0 to 1023 expected)");
+    scene = small_scene();
+    scene.materials[0].unread_textures = 4;
+    EXPECT_EQ(malformation(encode_answer(scene)), "material 0's unread textures are 4 (0 to 3 expected)");
     scene = small_scene();
     scene.images[0].format = "jpegjpegj";
     EXPECT_EQ(malformation(encode_answer(scene)), "image 0's format of 9 bytes (0 to 8 expected)");

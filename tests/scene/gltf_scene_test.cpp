@@ -371,6 +371,29 @@ TEST_F(GltfMaterial, NormalTextureIsARawNormalMap) {
                                       ": material \"m\": normalTexture ignored (wavepath's normal maps take no mask)");
 }
 
+// The metallic-roughness and emissive textures are not read, each with a
+// note; the factors alone would make an emissive texture's whole surface
+// glow, so such a material emits nothing.
+TEST_F(GltfMaterial, TexturesNotReadAreNotedAndAnEmissiveOneTurnsTheEmissionOff) {
+    write_image(Image{1, 1, {1.0f, 1.0f, 1.0f}}, (dir_.path() / "e.png").string());
+    const MitsubaScene read = read_scene(
+        R"({"name": "m", "emissiveFactor": [1, 1, 1], "emissiveTexture": {"index": 0}, "pbrMetallicRoughness": {"metallicFactor": 0, "roughnessFactor": 0.5, "metallicRoughnessTexture": {"index": 0}}})",
+        "e.png");
+    const Material& m = read.scene.materials.at(0);
+    EXPECT_EQ(m.type, MaterialType::RoughPlastic);
+    EXPECT_EQ(m.alpha_u, 0.25);
+    EXPECT_EQ(m.emission, glm::dvec3(0.0));
+    ASSERT_EQ(read.warnings.size(), 4u);  // the camera's and the light's too
+    const std::string file = dir_ / "triangle.gltf";
+    EXPECT_EQ(read.warnings[0], file +
+                                    ": material \"m\": metallicRoughnessTexture not read: metallicFactor and "
+                                    "roughnessFactor hold everywhere");
+    EXPECT_EQ(read.warnings[1], file +
+                                    ": material \"m\": emissiveTexture not read: the material emits nothing "
+                                    "(wavepath's emission is uniform)");
+    EXPECT_EQ(read.warnings[3], file + ": no light: a constant white environment of radiance 1 lights the scene");
+}
+
 // The base colour's alpha is a mask's opacity: BLEND's fraction, MASK's cut-out at
 // alphaCutoff (default 0.5); OPAQUE (the default) ignores it.
 TEST_F(GltfMaterial, AlphaModesAreMasks) {

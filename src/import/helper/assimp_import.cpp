@@ -332,7 +332,8 @@ void get_number(const nlohmann::json& object, const char* key, float& value) {
 
 // What assimp 5.2 does not read from a glTF file, from its JSON: each
 // material's KHR_materials_emissive_strength, KHR_materials_transmission and
-// KHR_materials_ior, its alphaMode and alphaCutoff, and each perspective camera's yfov and aspectRatio
+// KHR_materials_ior, its alphaMode and alphaCutoff, which of the textures wavepath does not read it
+// has, and each perspective camera's yfov and aspectRatio
 // (assimp's horizontal angle is yfov x aspectRatio, and 0 without one).
 // assimp keeps the file's materials and cameras in its order (and adds its
 // default material after them).
@@ -353,6 +354,10 @@ void read_gltf_extras(const std::filesystem::path& path, ImportedScene& scene) {
             if (alpha_mode != material.end() && *alpha_mode == "MASK") out.alpha_mode = ImportedAlphaMode::Mask;
             if (alpha_mode != material.end() && *alpha_mode == "BLEND") out.alpha_mode = ImportedAlphaMode::Blend;
             get_number(material, "alphaCutoff", out.alpha_cutoff);
+            const auto pbr = material.find("pbrMetallicRoughness");
+            if (pbr != material.end() && pbr->is_object() && pbr->contains("metallicRoughnessTexture"))
+                out.unread_textures |= kMetallicRoughnessTexture;
+            if (material.contains("emissiveTexture")) out.unread_textures |= kEmissiveTexture;
         }
     }
     const auto cameras = document.find("cameras");
