@@ -116,6 +116,8 @@ void put_material(AnswerWriter& out, const ImportedMaterial& material) {
     out.put(material.ior);
     out.put_text(material.base_color_texture);
     out.put_text(material.normal_texture);
+    out.put(material.base_color_transform);
+    out.put(material.normal_transform);
     out.put(material.alpha_mode);
     out.put(material.alpha_cutoff);
     out.put(material.unread_textures);
@@ -183,6 +185,8 @@ ImportedMaterial take_material(AnswerReader& in, const std::string& what) {
     material.ior = in.take<float>(what + "'s ior");
     material.base_color_texture = in.take_text(0, kMaxImportedName, what + "'s base colour texture");
     material.normal_texture = in.take_text(0, kMaxImportedName, what + "'s normal texture");
+    material.base_color_transform = in.take<std::array<float, 6>>(what + "'s base colour transform");
+    material.normal_transform = in.take<std::array<float, 6>>(what + "'s normal transform");
     const auto alpha_mode = in.take<std::uint32_t>(what + "'s alpha mode");
     if (alpha_mode > 2)
         AnswerReader::fail(what + "'s alpha mode is " + std::to_string(alpha_mode) + " (0 to 2 expected)");

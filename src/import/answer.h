@@ -20,7 +20,8 @@
 //                       kMaxImportedName, the bytes), f32 base colour[4], metallic, roughness,
 //                       emissive[3], emissive strength, transmission, ior, the base colour
 //                       texture's name (u32 length, up to kMaxImportedName, the bytes), the
-//                       normal texture's likewise,
+//                       normal texture's likewise, f32[6] the base colour texture's transform,
+//                       f32[6] the normal texture's,
 //                       u32 alpha mode (0 to 2, ImportedAlphaMode), f32 alpha cutoff,
 //                       u32 unread textures (ImportedUnreadTexture bits);
 //                       every mesh's material is below the count (or 0 where there is none);

@@ -47,6 +47,10 @@ struct ImportedMaterial {
     float ior = 1.5;                 // KHR_materials_ior
     std::string base_color_texture;  // the file's name for it (a uri, "*N" when embedded); empty: none
     std::string normal_texture;      // likewise
+    // Each texture's KHR_texture_transform as wavepath's Texture::to_uv (u' = t[0] u + t[1] v + t[2],
+    // v' = t[3] u + t[4] v + t[5]); the identity where the file gives none.
+    std::array<float, 6> base_color_transform{1, 0, 0, 0, 1, 0};
+    std::array<float, 6> normal_transform{1, 0, 0, 0, 1, 0};
     ImportedAlphaMode alpha_mode = ImportedAlphaMode::Opaque;
     float alpha_cutoff = 0.5f;
     std::uint32_t unread_textures = 0;  // ImportedUnreadTexture bits

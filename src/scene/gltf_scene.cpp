@@ -13,6 +13,7 @@
 #include <numbers>
 #include <set>
 #include <stdexcept>
+#include <tuple>
 #include <utility>
 
 #include "core/number_text.h"
@@ -228,13 +229,14 @@ class Reader {
         if (!source.base_color_texture.empty()) {
             if (m.type == MaterialType::Glass || m.type == MaterialType::RoughDielectric)
                 fail(what + ": baseColorTexture on a transmissive material: wavepath's dielectrics are not tinted");
-            m.texture(coloured) = texture_index(source.base_color_texture, false, what + ": baseColorTexture");
+            m.texture(coloured) = texture_index(source.base_color_texture, false, source.base_color_transform,
+                                                what + ": baseColorTexture");
         }
         // The base colour's alpha as a `mask`'s opacity: a cut-out (MASK) or its fraction of rays stopped (BLEND).
         const double alpha = source.base_color[3];
         if (source.alpha_mode == ImportedAlphaMode::Mask) m.opacity = alpha >= source.alpha_cutoff ? 1.0 : 0.0;
         if (source.alpha_mode == ImportedAlphaMode::Blend) m.opacity = alpha;
-        if (!source.normal_texture.empty()) add_normal_map(source.normal_texture, what, m);
+        if (!source.normal_texture.empty()) add_normal_map(source, what, m);
         note_unread_textures(source, what);
         return m;
     }
@@ -252,21 +254,37 @@ class Reader {
 
     // glTF's tangent space is a normalmap's (x along increasing u, y along n x x, both with the file's
     // uvs): the texture, read raw, as the material's normal map, where wavepath's adapters allow one.
-    void add_normal_map(const std::string& uri, const std::string& what, Material& m) {
+    void add_normal_map(const ImportedMaterial& source, const std::string& what, Material& m) {
         const bool transmits = m.type == MaterialType::Glass || m.type == MaterialType::RoughDielectric;
         if (transmits || m.masked()) {
             out_.warnings.push_back(path_ + ": " + what + ": normalTexture ignored (wavepath's normal maps take no " +
                                     (transmits ? "dielectric" : "mask") + ")");
             return;
         }
-        m.texture(TexturedParameter::NormalMap) = texture_index(uri, true, what + ": normalTexture");
+        m.texture(TexturedParameter::NormalMap) =
+            texture_index(source.normal_texture, true, source.normal_transform, what + ": normalTexture");
     }
 
-    // The image `uri` as a bitmap texture, read once per (uri, raw): an image file beside the
-    // glTF, or "*N", the file's embedded image N (a .glb's buffer view, a data: uri).
-    int texture_index(const std::string& uri, bool raw, const std::string& what) {
-        if (const auto found = textures_.find({uri, raw}); found != textures_.end()) return found->second;
+    // The image `uri` as a bitmap texture under its KHR_texture_transform `to_uv`, one per (uri, raw,
+    // to_uv), each image read once per (uri, raw): an image file beside the glTF, or "*N", the file's
+    // embedded image N (a .glb's buffer view, a data: uri).
+    int texture_index(const std::string& uri, bool raw, const std::array<float, 6>& to_uv, const std::string& what) {
+        if (!std::all_of(to_uv.begin(), to_uv.end(), [](float x) { return std::isfinite(x); }))
+            fail(what + ": KHR_texture_transform: offset, rotation and scale must be finite");
+        std::array<double, 6> transform;
+        std::copy(to_uv.begin(), to_uv.end(), transform.begin());
+        const TextureKey key{uri, raw, transform};
+        if (const auto found = textures_.find(key); found != textures_.end()) return found->second;
+        const auto read = std::find_if(textures_.begin(), textures_.end(), [&](const auto& entry) {
+            return std::get<0>(entry.first) == uri && std::get<1>(entry.first) == raw;
+        });
+        if (read != textures_.end()) {  // the image again under another transform
+            Texture copy = out_.scene.textures[std::size_t(read->second)];
+            copy.to_uv = transform;
+            return add_texture(std::move(copy), key, what);
+        }
         Texture texture;
+        texture.to_uv = transform;
         texture.name = uri;
         texture.file = uri;
         const ImportedImage* embedded = uri.starts_with("*") ? &embedded_image(uri, what) : nullptr;
@@ -280,12 +298,18 @@ class Reader {
                  error.what());
         }
         if (embedded) out_.embedded_images.push_back({out_.scene.textures.size(), embedded->format, embedded->bytes});
+        return add_texture(std::move(texture), key, what);
+    }
+
+    using TextureKey = std::tuple<std::string, bool, std::array<double, 6>>;  // its image, raw, to_uv
+
+    int add_texture(Texture texture, const TextureKey& key, const std::string& what) {
         texels_ += texture.texels.size() / 3;
         if (texels_ > kMaxTextureTexels)
             fail(what + ": the textures have more than the " + std::to_string(kMaxTextureTexels) +
                  " texels a scene may have");
         out_.scene.textures.push_back(std::move(texture));
-        return textures_[{uri, raw}] = static_cast<int>(out_.scene.textures.size()) - 1;
+        return textures_[key] = static_cast<int>(out_.scene.textures.size()) - 1;
     }
 
     // The embedded image "*N" names, one wavepath can decode (its format named, its bytes sent).
@@ -424,7 +448,7 @@ class Reader {
     std::vector<glm::dmat4> node_to_world_;
     std::vector<int> material_indices_;  // per imported material: its index in the scene, -1 before its first use
     std::set<std::string> material_names_;
-    std::map<std::pair<std::string, bool>, int> textures_;  // by file and raw
+    std::map<TextureKey, int> textures_;
     std::size_t triangles_ = 0;
     std::size_t texels_ = 0;
     MitsubaScene out_;

@@ -70,6 +70,8 @@ void expect_same_scene(const ImportedScene& a, const ImportedScene& b) {
         EXPECT_EQ(x.alpha_mode, y.alpha_mode);
         EXPECT_EQ(x.alpha_cutoff, y.alpha_cutoff);
         EXPECT_EQ(x.unread_textures, y.unread_textures);
+        EXPECT_EQ(x.base_color_transform, y.base_color_transform);
+        EXPECT_EQ(x.normal_transform, y.normal_transform);
     }
     ASSERT_EQ(a.cameras.size(), b.cameras.size());
     for (std::size_t c = 0; c < a.cameras.size(); ++c) {
@@ -429,8 +431,20 @@ ImportedScene small_scene() {
     scene.nodes.push_back({0, "a", moved, {1}});
     scene.nodes.push_back({1, "b", identity, {1, 0}});
     scene.meshes[1].material = 1;
-    scene.materials.push_back(
-        {"plain", {0.5f, 0.25f, 1, 1}, 0, 0.5f, {0, 0, 0}, 1, 0, 1.5f, "", "", ImportedAlphaMode::Opaque, 0.5f});
+    scene.materials.push_back({"plain",
+                               {0.5f, 0.25f, 1, 1},
+                               0,
+                               0.5f,
+                               {0, 0, 0},
+                               1,
+                               0,
+                               1.5f,
+                               "",
+                               "",
+                               {1, 0, 0, 0, 1, 0},
+                               {1, 0, 0, 0, 1, 0},
+                               ImportedAlphaMode::Opaque,
+                               0.5f});
     scene.materials.push_back({"lit",
                                {1, 1, 1, 1},
                                1,
@@ -441,6 +455,8 @@ ImportedScene small_scene() {
                                1.25f,
                                "wood.png",
                                "bumps.png",
+                               {0, -4, 0.5f, 2, 0, 0.25f},
+                               {2, 0, 0, 0, 2, 0},
                                ImportedAlphaMode::Blend,
                                0.25f,
                                kMetallicRoughnessTexture | kEmissiveTexture});

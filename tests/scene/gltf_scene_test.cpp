@@ -371,6 +371,25 @@ TEST_F(GltfMaterial, NormalTextureIsARawNormalMap) {
                                       ": material \"m\": normalTexture ignored (wavepath's normal maps take no mask)");
 }
 
+// KHR_texture_transform is the texture's to_uv: the spec's uv' = T(offset)
+// R(rotation) S(scale) uv, R's GLSL columns (cos, sin) and (-sin, cos), so
+// u' = cos sx u - sin sy v + ox and v' = sin sx u + cos sy v + oy. At a
+// quarter turn, scale (2, 4) and offset (0.5, 0.25): u' = -4 v + 0.5,
+// v' = 2 u + 0.25. A texture without one (the normal map here) is the identity.
+TEST_F(GltfMaterial, TextureTransformIsTheTexturesToUv) {
+    write_image(Image{1, 1, {0.5f, 0.5f, 1.0f}}, (dir_.path() / "t.png").string());
+    const MitsubaScene read = read_scene(
+        R"({"name": "m", "normalTexture": {"index": 0}, "pbrMetallicRoughness": {"metallicFactor": 0, "roughnessFactor": 0.5, "baseColorTexture": {"index": 0, "extensions": {"KHR_texture_transform": {"offset": [0.5, 0.25], "rotation": 1.5707963267948966, "scale": [2, 4]}}}}})",
+        "t.png");
+    ASSERT_EQ(read.scene.textures.size(), 2u);
+    const std::array<double, 6> expected{0, -4, 0.5, 2, 0, 0.25};
+    const Material& m = read.scene.materials.at(0);
+    const Texture& base = read.scene.textures.at(std::size_t(m.texture(TexturedParameter::Albedo)));
+    for (std::size_t i = 0; i < 6; ++i) EXPECT_NEAR(base.to_uv[i], expected[i], 1e-6) << i;
+    const Texture& normal = read.scene.textures.at(std::size_t(m.texture(TexturedParameter::NormalMap)));
+    EXPECT_EQ(normal.to_uv, (std::array<double, 6>{1, 0, 0, 0, 1, 0}));
+}
+
 // The metallic-roughness and emissive textures are not read, each with a
 // note; the factors alone would make an emissive texture's whole surface
 // glow, so such a material emits nothing.

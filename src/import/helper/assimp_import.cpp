@@ -6,11 +6,13 @@
 #include <assimp/scene.h>
 
 #include <algorithm>
+#include <array>
 #include <assimp/DefaultLogger.hpp>
 #include <assimp/Importer.hpp>
 #include <assimp/LogStream.hpp>
 #include <assimp/ProgressHandler.hpp>
 #include <cerrno>
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
@@ -330,10 +332,39 @@ void get_number(const nlohmann::json& object, const char* key, float& value) {
     if (number != object.end() && number->is_number()) value = number->get<float>();
 }
 
+// A textureInfo's KHR_texture_transform (glTF: uv' = T(offset) R(rotation) S(scale) uv, R's columns
+// (cos, sin) and (-sin, cos)) as the rows of Texture::to_uv; `transform` stays as it is without one.
+void get_texture_transform(const nlohmann::json& material, const char* parent, const char* texture,
+                           std::array<float, 6>& transform) {
+    const nlohmann::json* info = &material;
+    if (parent) {
+        const auto found = material.find(parent);
+        if (found == material.end() || !found->is_object()) return;
+        info = &*found;
+    }
+    const auto found = info->find(texture);
+    if (found == info->end() || !found->is_object()) return;
+    const auto extensions = found->find("extensions");
+    if (extensions == found->end() || !extensions->is_object()) return;
+    const auto t = extensions->find("KHR_texture_transform");
+    if (t == extensions->end() || !t->is_object()) return;
+    float offset[2] = {0, 0}, scale[2] = {1, 1}, rotation = 0;
+    get_number(*t, "rotation", rotation);
+    for (int i = 0; i < 2; ++i) {
+        if (const auto o = t->find("offset"); o != t->end() && o->is_array() && o->size() == 2 && (*o)[i].is_number())
+            offset[i] = (*o)[i].get<float>();
+        if (const auto s = t->find("scale"); s != t->end() && s->is_array() && s->size() == 2 && (*s)[i].is_number())
+            scale[i] = (*s)[i].get<float>();
+    }
+    const double c = std::cos(double(rotation)), s = std::sin(double(rotation));
+    transform = {float(c * scale[0]), float(-s * scale[1]), offset[0],
+                 float(s * scale[0]), float(c * scale[1]),  offset[1]};
+}
+
 // What assimp 5.2 does not read from a glTF file, from its JSON: each
 // material's KHR_materials_emissive_strength, KHR_materials_transmission and
 // KHR_materials_ior, its alphaMode and alphaCutoff, which of the textures wavepath does not read it
-// has, and each perspective camera's yfov and aspectRatio
+// has, its textures' KHR_texture_transform, and each perspective camera's yfov and aspectRatio
 // (assimp's horizontal angle is yfov x aspectRatio, and 0 without one).
 // assimp keeps the file's materials and cameras in its order (and adds its
 // default material after them).
@@ -358,6 +389,8 @@ void read_gltf_extras(const std::filesystem::path& path, ImportedScene& scene) {
             if (pbr != material.end() && pbr->is_object() && pbr->contains("metallicRoughnessTexture"))
                 out.unread_textures |= kMetallicRoughnessTexture;
             if (material.contains("emissiveTexture")) out.unread_textures |= kEmissiveTexture;
+            get_texture_transform(material, "pbrMetallicRoughness", "baseColorTexture", out.base_color_transform);
+            get_texture_transform(material, nullptr, "normalTexture", out.normal_transform);
         }
     }
     const auto cameras = document.find("cameras");
