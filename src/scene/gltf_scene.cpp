@@ -35,8 +35,6 @@ constexpr double kDefaultFovY = 40.0;
 constexpr double kDefaultAspect = 4.0 / 3.0;
 // The default camera's direction from the scene's centre: the front (+z), 26.6 degrees above it.
 constexpr glm::dvec3 kDefaultViewFrom{0.0, 1.0, 2.0};
-// A point light's sphere's radius over the meshes' bounding sphere's.
-constexpr double kPointLightRadius = 1e-3;
 
 glm::dmat4 to_dmat4(const std::array<float, 16>& row_major) {
     glm::dmat4 result;
@@ -398,7 +396,7 @@ class Reader {
     // ---- lights ----
 
     void read_lights() {
-        const double point_radius = kPointLightRadius * bounding_sphere(out_.scene).radius;
+        std::vector<PointLight> points;
         for (const ImportedLight& light : imported_.lights) {
             const std::string what = "light " + quoted(light.name);
             if (light.type == ImportedLightType::Spot)
@@ -411,7 +409,11 @@ class Reader {
                   std::max({colour.x, colour.y, colour.z}) <= kMaxSceneMagnitude))
                 fail(what + ": colour times intensity " + vector_text(colour) + ": must be finite and >= 0");
             if (light.type == ImportedLightType::Point) {
-                add_point_light(light, point_to_world(to_world, light.position), point_radius, colour);
+                const glm::dvec3 position = point_to_world(to_world, light.position);
+                if (!finite(position) || glm::any(glm::greaterThan(glm::abs(position), glm::dvec3(kMaxSceneMagnitude))))
+                    fail(what + ": its position " + vector_text(position) + " is out of range");
+                points.push_back(
+                    {unique_name((light.name.empty() ? "light" : light.name) + " (point light)"), position, colour});
                 continue;
             }
             const glm::dvec3 direction = glm::dmat3(to_world) * to_dvec3(light.direction);
@@ -419,27 +421,13 @@ class Reader {
                 fail(what + ": its node's transform leaves no direction");
             out_.scene.directional_lights.push_back({glm::normalize(direction), colour});
         }
+        add_point_lights(out_.scene, points);  // the meshes' bounding sphere sizes them (a glTF scene has meshes)
         const bool emits = std::any_of(out_.scene.materials.begin(), out_.scene.materials.end(),
                                        [](const Material& m) { return m.emits(); });
         if (out_.scene.directional_lights.empty() && !emits) {
             out_.scene.background = glm::dvec3(1.0);
             out_.warnings.push_back(path_ + ": no light: a constant white environment of radiance 1 lights the scene");
         }
-    }
-
-    // A point light of intensity I as a sphere of radius r and radiance
-    // I / (pi r^2): its intensity is L pi r^2 in every direction, and every
-    // point outside it receives exactly the point light's irradiance I / d^2.
-    void add_point_light(const ImportedLight& light, const glm::dvec3& position, double radius,
-                         const glm::dvec3& intensity) {
-        if (!finite(position) || glm::any(glm::greaterThan(glm::abs(position), glm::dvec3(kMaxSceneMagnitude))))
-            fail("light " + quoted(light.name) + ": its position " + vector_text(position) + " is out of range");
-        Material bulb;
-        bulb.type = MaterialType::Emitter;
-        bulb.emission = intensity / (std::numbers::pi * radius * radius);
-        bulb.name = unique_name((light.name.empty() ? "light" : light.name) + " (point light)");
-        out_.scene.spheres.push_back({position, radius, static_cast<int>(out_.scene.materials.size())});
-        out_.scene.materials.push_back(std::move(bulb));
     }
 
     std::string path_;

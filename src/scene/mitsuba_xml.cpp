@@ -871,6 +871,11 @@ class Reader {
             read_shape(*shapes[i]);
             if (progress_) progress_(i + 1, shapes.size());
         }
+        if (!point_lights_.empty() && !(bounding_sphere(out_.scene).radius > 0.0))
+            fail_at(*first_point_light_,
+                    "emitter \"point\": the scene has no bounded shape to size it by (wavepath renders a point "
+                    "light as a sphere of 1e-3 of the scene's size)");
+        add_point_lights(out_.scene, point_lights_);
         return std::move(out_);
     }
 
@@ -1063,8 +1068,12 @@ class Reader {
             read_envmap(emitter);
             return;
         }
+        if (emitter.type() == "point") {
+            read_point(emitter);
+            return;
+        }
         if (emitter.type() != "constant")
-            emitter.fail("not supported (supported: constant, directional, envmap; area inside a shape)");
+            emitter.fail("not supported (supported: constant, directional, envmap, point; area inside a shape)");
         emitter.allow({"radiance"});
         if (out_.scene.environment_map) emitter.fail(kSecondEnvironment);
         out_.scene.background += emitter.optional_color("radiance", kMaxSceneMagnitude, "").value_or(glm::dvec3(1.0));
@@ -1088,6 +1097,25 @@ class Reader {
         light.direction = glm::normalize(direction);
         light.irradiance = emitter.optional_color("irradiance", kMaxSceneMagnitude, "").value_or(glm::dvec3(1.0));
         out_.scene.directional_lights.push_back(light);
+    }
+
+    // Mitsuba's point: `intensity` (default 1) at `position` or to_world's origin, not both; a small
+    // emitting sphere once the shapes are read (add_point_lights, docs/scene-format.md).
+    void read_point(const Plugin& emitter) {
+        emitter.allow({"intensity", "position", "to_world"});
+        if (emitter.property("position") && emitter.property("to_world"))
+            emitter.fail("give \"position\" or \"to_world\", not both (as in Mitsuba)");
+        const glm::dmat4 m = emitter.optional_transform("to_world").value_or(glm::dmat4(1.0));
+        const glm::dvec3 position = emitter.optional_point("position").value_or(glm::dvec3(m[3]));
+        if (!std::isfinite(glm::length(position)) ||
+            glm::any(glm::greaterThan(glm::abs(position), glm::dvec3(kMaxSceneMagnitude))))
+            emitter.fail(emitter.property("position") ? *emitter.property("position") : emitter.element(),
+                         "the position must be finite and within the scene's range");
+        const glm::dvec3 intensity =
+            emitter.optional_color("intensity", kMaxSceneMagnitude, "").value_or(glm::dvec3(1.0));
+        const std::string base = emitter.id().empty() ? "point light" : emitter.id() + " (point light)";
+        point_lights_.push_back({unique_name(base), position, intensity});
+        if (!first_point_light_) first_point_light_ = &emitter.element();
     }
 
     static constexpr const char* kSecondEnvironment =
@@ -1499,6 +1527,8 @@ class Reader {
     std::set<std::string> names_;
     std::vector<const XmlElement*> converting_;
     std::size_t triangles_ = 0;
+    std::vector<PointLight> point_lights_;           // added once the shapes are read
+    const XmlElement* first_point_light_ = nullptr;  // where an error about them points
 };
 
 }  // namespace

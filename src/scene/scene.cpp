@@ -146,6 +146,18 @@ BoundingSphere bounding_sphere(const Scene& scene) {
             glm::length(hi - lo) * 0.5};  // the box's bounding sphere, as pbrt-v4's Bounds3::BoundingSphere
 }
 
+void add_point_lights(Scene& scene, const std::vector<PointLight>& lights) {
+    const double radius = kPointLightRadius * bounding_sphere(scene).radius;
+    for (const PointLight& light : lights) {
+        Material bulb;
+        bulb.type = MaterialType::Emitter;
+        bulb.emission = light.intensity / (std::numbers::pi * radius * radius);
+        bulb.name = light.name;
+        scene.spheres.push_back({light.position, radius, static_cast<int>(scene.materials.size())});
+        scene.materials.push_back(std::move(bulb));
+    }
+}
+
 void build_light_table(Scene& scene) {
     scene.lights.clear();
     scene.light_cdf.clear();

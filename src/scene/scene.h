@@ -357,6 +357,24 @@ struct BoundingSphere {
 };
 BoundingSphere bounding_sphere(const Scene& scene);
 
+// A point light (Mitsuba 3's `point`, glTF's KHR_lights_punctual `point`):
+// the name of the material it becomes, its position and its intensity.
+struct PointLight {
+    std::string name;
+    glm::dvec3 position{0.0}, intensity{0.0};
+};
+
+// A point light's sphere's radius over the scene's bounding sphere's.
+inline constexpr double kPointLightRadius = 1e-3;
+
+// Adds each point light as a sphere of radius r, kPointLightRadius times the
+// scene's bounding sphere's (its shapes' before the first light), with an
+// emitter material of the light's name and radiance I / (pi r^2): its
+// intensity, L pi r^2, is the light's in every direction, and every point
+// outside it receives exactly the point light's irradiance I cos / d^2. The
+// scene must have a bounded shape (bounding_sphere's radius > 0).
+void add_point_lights(Scene& scene, const std::vector<PointLight>& lights);
+
 // Fills Scene::lights and Scene::light_cdf from the emitting spheres, quads
 // and meshes (in that order), the directional lights, then the environment
 // where there is one (an environment map, or a background that is not black). The loader calls it; tests that
