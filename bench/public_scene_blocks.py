@@ -42,22 +42,14 @@ def with_box_filter(path, scratch):
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("--ppg", help="a clone of takkasila/practical_path_guiding_lab")
-    parser.add_argument("--mitsuba-data", help="a clone of mitsuba-renderer/mitsuba-data")
-    parser.add_argument("--scene", required=True, help="a name of public_scenes.py's table")
+    public_scenes.add_one_scene_arguments(parser)
     parser.add_argument("--binary", default=os.path.join(ROOT, "build", "wavepath"))
     parser.add_argument("--box-filter", action="store_true", help="replace the scene's pixel filter by a box")
     parser.add_argument("--width", type=int, default=128)
     parser.add_argument("--spp", type=int, default=32)
     parser.add_argument("--repeats", type=int, default=6)
     args = parser.parse_args()
-    roots = {"ppg": args.ppg, "mitsuba_data": args.mitsuba_data}
-    entry = next((e for e in public_scenes.SCENES if e[0] == args.scene), None)
-    if entry is None:
-        sys.exit(f"public_scene_blocks: no scene {args.scene!r} in public_scenes.py's table")
-    name, source, relative, defines = entry
-    if not roots.get(source):
-        sys.exit(f"public_scene_blocks: {name} needs --{'ppg' if source == 'ppg' else 'mitsuba-data'}")
+    name, path, defines = public_scenes.one_scene(args, "public_scene_blocks")
     os.environ.setdefault("DRJIT_LIBLLVM_PATH", "/usr/lib/x86_64-linux-gnu/libLLVM-19.so")
     import mitsuba as mi
     mi.set_variant("llvm_ad_rgb")
@@ -65,7 +57,6 @@ def main():
     commit = subprocess.run(["git", "-C", ROOT, "rev-parse", "--short", "HEAD"], capture_output=True,
                             text=True).stdout.strip()
     with tempfile.TemporaryDirectory() as scratch:
-        path = os.path.join(roots[source], relative)
         copy = with_box_filter(path, scratch) if args.box_filter else None
         try:
             measure(args, mi, name + (" (box filter)" if copy else ""), copy or path, defines, commit, scratch)

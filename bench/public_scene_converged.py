@@ -35,22 +35,13 @@ def read_pfm(path):
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("--ppg", help="a clone of takkasila/practical_path_guiding_lab")
-    parser.add_argument("--mitsuba-data", help="a clone of mitsuba-renderer/mitsuba-data")
-    parser.add_argument("--scene", required=True, help="a name of public_scenes.py's table")
+    public_scenes.add_one_scene_arguments(parser)
     parser.add_argument("--binary", default=os.path.join(ROOT, "build", "wavepath"))
     parser.add_argument("--width", type=int, default=64)
     parser.add_argument("--spp", type=int, default=512)
     parser.add_argument("--seeds", type=int, default=8)
     args = parser.parse_args()
-    roots = {"ppg": args.ppg, "mitsuba_data": args.mitsuba_data}
-    entry = next((e for e in public_scenes.SCENES if e[0] == args.scene), None)
-    if entry is None:
-        sys.exit(f"public_scene_converged: no scene {args.scene!r} in public_scenes.py's table")
-    name, source, relative, defines = entry
-    if not roots.get(source):
-        sys.exit(f"public_scene_converged: {name} needs --{'ppg' if source == 'ppg' else 'mitsuba-data'}")
-    path = os.path.join(roots[source], relative)
+    name, path, defines = public_scenes.one_scene(args, "public_scene_converged")
     os.environ.setdefault("DRJIT_LIBLLVM_PATH", "/usr/lib/x86_64-linux-gnu/libLLVM-19.so")
     import mitsuba as mi
     mi.set_variant("llvm_ad_rgb")

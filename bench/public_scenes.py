@@ -74,6 +74,25 @@ BLOCK = 8
 ALPHA = 1e-3
 
 
+def add_one_scene_arguments(parser):
+    """The arguments of a script that looks at one scene of SCENES: the clones and the scene's name."""
+    parser.add_argument("--ppg", help="a clone of takkasila/practical_path_guiding_lab")
+    parser.add_argument("--mitsuba-data", help="a clone of mitsuba-renderer/mitsuba-data")
+    parser.add_argument("--scene", required=True, help="a name of public_scenes.py's table")
+
+
+def one_scene(args, tool):
+    """(name, path, defines) of the scene add_one_scene_arguments' arguments name, or the tool's exit."""
+    roots = {"ppg": args.ppg, "mitsuba_data": args.mitsuba_data}
+    entry = next((e for e in SCENES if e[0] == args.scene), None)
+    if entry is None:
+        sys.exit(f"{tool}: no scene {args.scene!r} in public_scenes.py's table")
+    name, source, relative, defines = entry
+    if not roots.get(source):
+        sys.exit(f"{tool}: {name} needs --{'ppg' if source == 'ppg' else 'mitsuba-data'}")
+    return name, os.path.join(roots[source], relative), defines
+
+
 def scene_options(defines):
     return [word for key, value in defines.items() for word in ("-D", f"{key}={value}")]
 
