@@ -9,6 +9,7 @@
 #include "cli/errors.h"
 #include "cli/scene_file.h"
 #include "core/atomic_file.h"
+#include "image/image_io.h"
 #include "scene/gltf_scene.h"
 #include "scene/mitsuba_xml.h"
 #include "scene/scene_writer.h"
@@ -43,6 +44,11 @@ void write_scene_json(const MitsubaScene& scene, const fs::path& json_path) {
                 if (!file) throw OutputError(image.path.string() + ": cannot write: " + std::strerror(errno));
             });
             written.push_back(image.path);
+        }
+        for (const TextureFileToWrite& computed : out.computed) {
+            const Texture& t = *computed.texture;
+            write_image(Image{t.width, t.height, t.texels}, computed.path.string());  // atomically, or OutputError
+            written.push_back(computed.path);
         }
         write_atomically(json_path, [&](const fs::path& temporary) {
             std::ofstream file(temporary);

@@ -14,8 +14,8 @@
 
 namespace wp::image_codec {
 
-// An image file's header and, unless it is larger than asked for, its
-// first min(channels, 3) channels as floats, row 0 the file's top row.
+// An image file's header and, unless it is larger than asked for, the
+// channels asked for (ReadChannels) as floats, row 0 the file's top row.
 struct Pixels {
     int width = 0;
     int height = 0;
@@ -23,6 +23,10 @@ struct Pixels {
     bool floating_point = false;  // samples stored as floats (EXR, HDR, PFM), not integers
     std::vector<float> values;    // empty when width or height is over the read's max_side
 };
+
+// Which channels a read gives: the first min(channels, 3), or the alpha channel alone (1 where the
+// image has none).
+enum class ReadChannels { Colour, Alpha };
 
 struct Codec {
     // Writes `width` x `height` RGB pixels to `file`, whose extension picks
@@ -32,7 +36,8 @@ struct Codec {
                          const char* compression);
     // Reads `file` into `pixels` (see Pixels: no values if a side is over `max_side`); or, where
     // `bytes` is not null, the image file they hold, whose format `file`'s extension names.
-    std::string (*read)(const std::string& file, const std::string* bytes, int max_side, Pixels& pixels);
+    std::string (*read)(const std::string& file, const std::string* bytes, ReadChannels channels, int max_side,
+                        Pixels& pixels);
 };
 
 }  // namespace wp::image_codec

@@ -176,19 +176,21 @@ float decode_srgb(float encoded) {
 namespace {
 
 // A texture's image of what the codec read of a file (or of `bytes`, not null).
-Image texture_image(const std::string& file, const std::string* bytes, bool raw, int max_side) {
+Image texture_image(const std::string& file, const std::string* bytes, TextureChannels channels, int max_side) {
+    const bool alpha = channels == TextureChannels::Alpha;
     image_codec::Pixels pixels;
-    const std::string error = codec().read(file, bytes, max_side, pixels);
+    const std::string error = codec().read(
+        file, bytes, alpha ? image_codec::ReadChannels::Alpha : image_codec::ReadChannels::Colour, max_side, pixels);
     if (!error.empty()) throw std::runtime_error("cannot read the image: " + error);
     if (pixels.width > max_side || pixels.height > max_side) {
         throw std::runtime_error(std::to_string(pixels.width) + " x " + std::to_string(pixels.height) +
                                  " texels, more than " + std::to_string(max_side) + " on a side");
     }
     // Grey, with or without alpha, is read as its grey channel in all three (Mitsuba's bitmap
-    // texture reads grey and alpha as grey); the codec gives min(channels, 3) a texel.
-    const bool grey = pixels.channels <= 2;
-    const std::size_t stride = static_cast<std::size_t>(std::min(pixels.channels, 3));
-    const bool decode = !raw && !pixels.floating_point;
+    // texture reads grey and alpha as grey); the codec gives min(channels, 3) a texel, or the alpha.
+    const bool grey = alpha || pixels.channels <= 2;
+    const std::size_t stride = alpha ? 1 : static_cast<std::size_t>(std::min(pixels.channels, 3));
+    const bool decode = channels == TextureChannels::Colour && !pixels.floating_point;
     Image image;
     image.width = pixels.width;
     image.height = pixels.height;
@@ -202,22 +204,24 @@ Image texture_image(const std::string& file, const std::string* bytes, bool raw,
 
 }  // namespace
 
-Image read_texture_image(const std::string& path, bool raw, int max_side) {
+Image read_texture_image(const std::string& path, TextureChannels channels, int max_side) {
     if (std::FILE* file = std::fopen(path.c_str(), "rb")) {  // OpenImageIO would name the path; the caller does
         std::fclose(file);
     } else {
         throw std::runtime_error(std::string("cannot open: ") + std::strerror(errno));
     }
-    return texture_image(path, nullptr, raw, max_side);
+    return texture_image(path, nullptr, channels, max_side);
 }
 
-Image read_texture_image_bytes(const std::string& bytes, const std::string& format, bool raw, int max_side) {
-    return texture_image("embedded." + format, &bytes, raw, max_side);
+Image read_texture_image_bytes(const std::string& bytes, const std::string& format, TextureChannels channels,
+                               int max_side) {
+    return texture_image("embedded." + format, &bytes, channels, max_side);
 }
 
 Image read_image(const std::string& path) {
     image_codec::Pixels pixels;
-    const std::string error = codec().read(path, nullptr, std::numeric_limits<int>::max(), pixels);
+    const std::string error =
+        codec().read(path, nullptr, image_codec::ReadChannels::Colour, std::numeric_limits<int>::max(), pixels);
     if (!error.empty()) throw std::runtime_error("cannot read " + path + ": " + error);
     if (pixels.channels < 3) throw std::runtime_error("cannot read " + path + ": fewer than 3 channels");
     Image image;

@@ -27,15 +27,19 @@ Image read_image(const std::string& path);
 
 // A texture's image as linear RGB floats, row 0 the file's top row: files
 // of integer samples (PNG, JPEG: sRGB-encoded) are decoded from sRGB
-// unless `raw`, as Mitsuba 3's bitmap does; float files (EXR, HDR) are read
+// unless read Raw, as Mitsuba 3's bitmap does; float files (EXR, HDR) are read
 // as stored. Grey, with or without alpha, is copied to all three channels;
 // beyond three, the rest (alpha) is left out. Throws std::runtime_error (the
 // file unreadable, a side over `max_side`).
-Image read_texture_image(const std::string& path, bool raw, int max_side);
+// With TextureChannels::Alpha, the image's alpha channel instead (as stored,
+// 1 where it has none) in all three.
+enum class TextureChannels { Colour, Raw, Alpha };
+Image read_texture_image(const std::string& path, TextureChannels channels, int max_side);
 
 // The same of an image file's bytes held in memory (a glTF file's embedded
 // image); `format` is the extension its file would have ("png", "jpg").
-Image read_texture_image_bytes(const std::string& bytes, const std::string& format, bool raw, int max_side);
+Image read_texture_image_bytes(const std::string& bytes, const std::string& format, TextureChannels channels,
+                               int max_side);
 
 // The inverse of the sRGB transfer function (IEC 61966-2-1): the linear
 // value of an encoded one in [0, 1].

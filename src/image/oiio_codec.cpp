@@ -27,7 +27,8 @@ std::string write(const std::string& file, int width, int height, bool srgb8, co
     return {};
 }
 
-std::string read(const std::string& file, const std::string* bytes, int max_side, wp::image_codec::Pixels& pixels) {
+std::string read(const std::string& file, const std::string* bytes, wp::image_codec::ReadChannels wanted, int max_side,
+                 wp::image_codec::Pixels& pixels) {
     // Colours as stored, not multiplied by their alpha (OpenImageIO's default for PNG), as
     // Mitsuba's bitmap reads them: the alpha of a texture is not part of its colour.
     OIIO::ImageSpec config;
@@ -48,10 +49,18 @@ std::string read(const std::string& file, const std::string* bytes, int max_side
     pixels.channels = spec.nchannels;
     pixels.floating_point = spec.format.is_floating_point();
     if (spec.width > max_side || spec.height > max_side) return {};
-    const int channels = std::min(spec.nchannels, 3);
-    pixels.values.resize(static_cast<std::size_t>(spec.width) * static_cast<std::size_t>(spec.height) *
-                         static_cast<std::size_t>(channels));
-    if (!input->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, pixels.values.data()))
+    const std::size_t texels = static_cast<std::size_t>(spec.width) * static_cast<std::size_t>(spec.height);
+    int begin = 0, end = std::min(spec.nchannels, 3);
+    if (wanted == wp::image_codec::ReadChannels::Alpha) {
+        if (spec.alpha_channel < 0) {
+            pixels.values.assign(texels, 1.0f);
+            return {};
+        }
+        begin = spec.alpha_channel;
+        end = begin + 1;
+    }
+    pixels.values.resize(texels * static_cast<std::size_t>(end - begin));
+    if (!input->read_image(0, 0, begin, end, OIIO::TypeDesc::FLOAT, pixels.values.data()))
         return error_or_unknown(input->geterror());
     return {};
 }

@@ -227,13 +227,18 @@ class Reader {
         if (!source.base_color_texture.empty()) {
             if (m.type == MaterialType::Glass || m.type == MaterialType::RoughDielectric)
                 fail(what + ": baseColorTexture on a transmissive material: wavepath's dielectrics are not tinted");
-            m.texture(coloured) = texture_index(source.base_color_texture, false, source.base_color_transform,
-                                                what + ": baseColorTexture");
+            m.texture(coloured) = texture_index(source.base_color_texture, TextureChannels::Colour,
+                                                source.base_color_transform, what + ": baseColorTexture");
         }
-        // The base colour's alpha as a `mask`'s opacity: a cut-out (MASK) or its fraction of rays stopped (BLEND).
+        // The base colour's alpha (the factor's times the texture's) as a `mask`'s opacity: a cut-out
+        // (MASK) or its fraction of rays stopped (BLEND).
         const double alpha = source.base_color[3];
-        if (source.alpha_mode == ImportedAlphaMode::Mask) m.opacity = alpha >= source.alpha_cutoff ? 1.0 : 0.0;
-        if (source.alpha_mode == ImportedAlphaMode::Blend) m.opacity = alpha;
+        if (source.alpha_mode != ImportedAlphaMode::Opaque && !source.base_color_texture.empty())
+            m.texture(TexturedParameter::Opacity) = opacity_texture(source, what);
+        else if (source.alpha_mode == ImportedAlphaMode::Mask)
+            m.opacity = alpha >= source.alpha_cutoff ? 1.0 : 0.0;
+        else if (source.alpha_mode == ImportedAlphaMode::Blend)
+            m.opacity = alpha;
         if (!source.normal_texture.empty()) add_normal_map(source, what, m);
         note_unread_textures(source, what);
         return m;
@@ -259,55 +264,85 @@ class Reader {
                                     (transmits ? "dielectric" : "mask") + ")");
             return;
         }
-        m.texture(TexturedParameter::NormalMap) =
-            texture_index(source.normal_texture, true, source.normal_transform, what + ": normalTexture");
+        m.texture(TexturedParameter::NormalMap) = texture_index(source.normal_texture, TextureChannels::Raw,
+                                                                source.normal_transform, what + ": normalTexture");
     }
 
-    // The image `uri` as a bitmap texture under its KHR_texture_transform `to_uv`, one per (uri, raw,
-    // to_uv), each image read once per (uri, raw): an image file beside the glTF, or "*N", the file's
-    // embedded image N (a .glb's buffer view, a data: uri).
-    int texture_index(const std::string& uri, bool raw, const std::array<float, 6>& to_uv, const std::string& what) {
+    // The image `uri` as a bitmap texture of `channels` under its KHR_texture_transform `to_uv`, one
+    // per (uri, channels, to_uv): an image file beside the glTF, or "*N", the file's embedded image N
+    // (a .glb's buffer view, a data: uri).
+    int texture_index(const std::string& uri, TextureChannels channels, const std::array<float, 6>& to_uv,
+                      const std::string& what) {
+        const TextureKey key{uri, channels, checked_transform(to_uv, what)};
+        if (const auto found = textures_.find(key); found != textures_.end()) return found->second;
+        Texture texture = image_texture(uri, channels, what);
+        texture.to_uv = std::get<2>(key);
+        return textures_[key] = add_texture(std::move(texture), uri, what);
+    }
+
+    using TextureKey = std::tuple<std::string, TextureChannels, std::array<double, 6>>;  // image, channels, to_uv
+
+    std::array<double, 6> checked_transform(const std::array<float, 6>& to_uv, const std::string& what) const {
         if (!std::all_of(to_uv.begin(), to_uv.end(), [](float x) { return std::isfinite(x); }))
             fail(what + ": KHR_texture_transform: offset, rotation and scale must be finite");
         std::array<double, 6> transform;
         std::copy(to_uv.begin(), to_uv.end(), transform.begin());
-        const TextureKey key{uri, raw, transform};
-        if (const auto found = textures_.find(key); found != textures_.end()) return found->second;
+        return transform;
+    }
+
+    // The image `uri` read as `channels`, each image decoded once per channels (later uses copy it).
+    Texture image_texture(const std::string& uri, TextureChannels channels, const std::string& what) {
         const auto read = std::find_if(textures_.begin(), textures_.end(), [&](const auto& entry) {
-            return std::get<0>(entry.first) == uri && std::get<1>(entry.first) == raw;
+            return std::get<0>(entry.first) == uri && std::get<1>(entry.first) == channels;
         });
-        if (read != textures_.end()) {  // the image again under another transform
-            Texture copy = out_.scene.textures[std::size_t(read->second)];
-            copy.to_uv = transform;
-            return add_texture(std::move(copy), key, what);
-        }
+        if (read != textures_.end()) return out_.scene.textures[std::size_t(read->second)];
         Texture texture;
-        texture.to_uv = transform;
         texture.name = uri;
         texture.file = uri;
         const ImportedImage* embedded = uri.starts_with("*") ? &embedded_image(uri, what) : nullptr;
         try {
             if (embedded)
-                read_bitmap_bytes(embedded->bytes, embedded->format, raw, texture);
+                read_bitmap_bytes(embedded->bytes, embedded->format, channels, texture);
             else
-                read_bitmap_file((fs::path(path_).parent_path() / uri).string(), raw, texture);
+                read_bitmap_file((fs::path(path_).parent_path() / uri).string(), channels, texture);
         } catch (const std::runtime_error& error) {
             fail(what + " " + (embedded ? "(embedded image " + uri.substr(1) + ")" : quoted(uri)) + ": " +
                  error.what());
         }
-        if (embedded) out_.embedded_images.push_back({out_.scene.textures.size(), embedded->format, embedded->bytes});
-        return add_texture(std::move(texture), key, what);
+        return texture;
     }
 
-    using TextureKey = std::tuple<std::string, bool, std::array<double, 6>>;  // its image, raw, to_uv
-
-    int add_texture(Texture texture, const TextureKey& key, const std::string& what) {
+    // Adds `texture` to the scene; `uri` is the image it holds as it is, empty for one computed from
+    // an image (`wavepath convert` writes each kind as a file of its own).
+    int add_texture(Texture texture, const std::string& uri, const std::string& what) {
         texels_ += texture.texels.size() / 3;
         if (texels_ > kMaxTextureTexels)
             fail(what + ": the textures have more than the " + std::to_string(kMaxTextureTexels) +
                  " texels a scene may have");
+        const std::size_t index = out_.scene.textures.size();
+        if (uri.empty()) {
+            out_.computed_textures.push_back(index);
+        } else if (uri.starts_with("*")) {
+            const ImportedImage& image = embedded_image(uri, what);
+            out_.embedded_images.push_back({index, image.format, image.bytes});
+        }
         out_.scene.textures.push_back(std::move(texture));
-        return textures_[key] = static_cast<int>(out_.scene.textures.size()) - 1;
+        return static_cast<int>(index);
+    }
+
+    // The base colour texture's alpha times the factor's as a mask's opacity: that fraction of rays
+    // stopped (BLEND), or 1 where it is at least alphaCutoff and 0 below (MASK), texel by texel.
+    int opacity_texture(const ImportedMaterial& source, const std::string& what) {
+        Texture opacity =
+            image_texture(source.base_color_texture, TextureChannels::Alpha, what + ": baseColorTexture's alpha");
+        opacity.to_uv = checked_transform(source.base_color_transform, what);
+        opacity.name = source.base_color_texture + " (opacity)";
+        const float factor = source.base_color[3];
+        for (float& texel : opacity.texels) {
+            texel *= factor;
+            if (source.alpha_mode == ImportedAlphaMode::Mask) texel = texel >= source.alpha_cutoff ? 1.0f : 0.0f;
+        }
+        return add_texture(std::move(opacity), "", what);
     }
 
     // The embedded image "*N" names, one wavepath can decode (its format named, its bytes sent).

@@ -1256,7 +1256,8 @@ class Reader {
                              {"mirror", TextureWrap::Mirror},
                              {"clamp", TextureWrap::Clamp}});
             try {
-                read_bitmap_file(resolve_scene_file(xml_, *filename).string(), plugin.boolean("raw", false), t);
+                read_bitmap_file(resolve_scene_file(xml_, *filename).string(),
+                                 plugin.boolean("raw", false) ? TextureChannels::Raw : TextureChannels::Colour, t);
             } catch (const std::runtime_error& error) {
                 plugin.fail(*plugin.property("filename"), *filename + ": " + error.what());
             }

@@ -40,7 +40,8 @@ struct MitsubaScene {
     Scene scene;                     // not yet rebased to the camera (finish_scene)
     std::vector<MeshOrigin> meshes;  // one per scene.meshes
     std::vector<EmbeddedImage> embedded_images;
-    std::vector<std::string> warnings;  // one line each, e.g. a pixel filter other than box
+    std::vector<std::size_t> computed_textures;  // textures computed from an image (a glTF alpha's opacity)
+    std::vector<std::string> warnings;           // one line each, e.g. a pixel filter other than box
 };
 
 // Reads the scene; `defines` are -D name=value. Mesh files are imported under `mesh_import`.

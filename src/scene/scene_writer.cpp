@@ -193,6 +193,26 @@ nlohmann::json envmap_json(const EnvironmentMap& map, const fs::path& folder) {
             {"to_world", {{"matrix", matrix}}}};
 }
 
+// The image file texture `t`'s JSON names (none for a checkerboard): the one it was read from, or, for an image
+// embedded in the scene file or a texture computed from one, a file beside the JSON that `out` lists to write.
+std::string texture_file(const MitsubaScene& read, std::size_t t, const fs::path& json_path, SceneJson& out) {
+    if (read.scene.textures[t].type != TextureType::Bitmap) return {};
+    const std::string stem = json_path.stem().string();
+    const auto embedded = std::find_if(read.embedded_images.begin(), read.embedded_images.end(),
+                                       [&](const EmbeddedImage& image) { return image.texture == t; });
+    if (embedded != read.embedded_images.end()) {
+        const std::string file = stem + "_image" + std::to_string(out.images.size()) + "." + embedded->format;
+        out.images.push_back({json_path.parent_path() / file, &embedded->bytes});
+        return file;
+    }
+    if (std::find(read.computed_textures.begin(), read.computed_textures.end(), t) != read.computed_textures.end()) {
+        const std::string file = stem + "_texture" + std::to_string(out.computed.size()) + ".exr";
+        out.computed.push_back({json_path.parent_path() / file, &read.scene.textures[t]});
+        return file;
+    }
+    return path_from(fs::absolute(json_path).parent_path(), read.scene.textures[t].path);
+}
+
 }  // namespace
 
 SceneJson scene_json(const MitsubaScene& read, const fs::path& json_path) {
@@ -220,19 +240,8 @@ SceneJson scene_json(const MitsubaScene& read, const fs::path& json_path) {
     const TextureNames texture_names(scene.textures);
     if (!scene.textures.empty()) {
         nlohmann::json& textures = j["textures"] = nlohmann::json::object();
-        for (std::size_t t = 0; t < scene.textures.size(); ++t) {
-            const auto embedded = std::find_if(read.embedded_images.begin(), read.embedded_images.end(),
-                                               [&](const EmbeddedImage& image) { return image.texture == t; });
-            std::string file;
-            if (embedded != read.embedded_images.end()) {
-                file =
-                    json_path.stem().string() + "_image" + std::to_string(out.images.size()) + "." + embedded->format;
-                out.images.push_back({json_path.parent_path() / file, &embedded->bytes});
-            } else {
-                file = path_from(folder, scene.textures[t].path);
-            }
-            textures[texture_names[int(t)]] = texture_json(scene.textures[t], file);
-        }
+        for (std::size_t t = 0; t < scene.textures.size(); ++t)
+            textures[texture_names[int(t)]] = texture_json(scene.textures[t], texture_file(read, t, json_path, out));
     }
     j["materials"] = nlohmann::json::object();
     for (const Material& m : scene.materials) j["materials"][m.name] = material_json(m, texture_names);

@@ -23,10 +23,17 @@ struct ImageFileToWrite {
     const std::string* bytes = nullptr;
 };
 
+// A texture computed from an image, to be written beside the JSON as an EXR of its texels.
+struct TextureFileToWrite {
+    std::filesystem::path path;
+    const Texture* texture = nullptr;
+};
+
 struct SceneJson {
     nlohmann::json json;
     std::vector<MeshFileToWrite> meshes;
     std::vector<ImageFileToWrite> images;
+    std::vector<TextureFileToWrite> computed;
 };
 
 // The JSON of `scene` (before finish_scene: in the file's coordinates), to be
@@ -36,7 +43,9 @@ struct SceneJson {
 // whose winding or normals the scene changes) is a binary PLY beside the
 // JSON, "<stem>_mesh<N>.ply", in its own coordinates under the same transform.
 // A texture of an image embedded in the scene file refers to that image
-// written beside the JSON as it was stored, "<stem>_image<N>.<format>".
+// written beside the JSON as it was stored, "<stem>_image<N>.<format>", and
+// one computed from an image (a glTF alpha's opacity) to an EXR of its
+// texels, "<stem>_texture<N>.exr", which reads back to the same floats.
 SceneJson scene_json(const MitsubaScene& scene, const std::filesystem::path& json_path);
 
 // A binary little-endian PLY of float positions (and normals), int triangles; std::runtime_error

@@ -66,7 +66,8 @@ void read_bitmap(const JsonField& field, const std::string& scene_source, Textur
     const std::optional<JsonField> raw = field.optional_member("raw");
     const std::filesystem::path path = std::filesystem::path(scene_source).parent_path() / texture.file;
     try {
-        read_bitmap_file(path.string(), raw && raw->boolean(), texture);
+        read_bitmap_file(path.string(), raw && raw->boolean() ? TextureChannels::Raw : TextureChannels::Colour,
+                         texture);
     } catch (const std::runtime_error& error) {
         file_field.fail(texture.file + ": " + error.what());
     }
@@ -98,12 +99,12 @@ Texture read_texture(const std::string& name, const JsonField& field, const std:
 namespace {
 namespace texture_section {
 // A bitmap texture's texels, each a reflectance in [0, 1].
-void set_bitmap(Image image, bool raw, Texture& texture) {
+void set_bitmap(Image image, TextureChannels channels, Texture& texture) {
     for (float value : image.rgb) {
         if (!(value >= 0.0f && value <= 1.0f))
             throw std::runtime_error("a texel value " + format_number(value) + " is outside [0, 1] (energy gain)");
     }
-    texture.raw = raw;
+    texture.raw = channels != TextureChannels::Colour;
     texture.width = image.width;
     texture.height = image.height;
     texture.texels = std::move(image.rgb);
@@ -111,17 +112,18 @@ void set_bitmap(Image image, bool raw, Texture& texture) {
 }  // namespace texture_section
 }  // namespace
 
-void read_bitmap_file(const std::string& path, bool raw, Texture& texture) {
-    texture_section::set_bitmap(read_texture_image(path, raw, kMaxTextureSide), raw, texture);
+void read_bitmap_file(const std::string& path, TextureChannels channels, Texture& texture) {
+    texture_section::set_bitmap(read_texture_image(path, channels, kMaxTextureSide), channels, texture);
     texture.path = path;
 }
 
-void read_bitmap_bytes(const std::string& bytes, const std::string& format, bool raw, Texture& texture) {
-    texture_section::set_bitmap(read_texture_image_bytes(bytes, format, raw, kMaxTextureSide), raw, texture);
+void read_bitmap_bytes(const std::string& bytes, const std::string& format, TextureChannels channels,
+                       Texture& texture) {
+    texture_section::set_bitmap(read_texture_image_bytes(bytes, format, channels, kMaxTextureSide), channels, texture);
 }
 
 void read_environment_map_file(const std::string& path, EnvironmentMap& map) {
-    Image image = read_texture_image(path, false, kMaxTextureSide);
+    Image image = read_texture_image(path, TextureChannels::Colour, kMaxTextureSide);
     if (image.width < 2 || image.height < 3) {
         throw std::runtime_error(std::to_string(image.width) + " x " + std::to_string(image.height) +
                                  " texels, fewer than an environment map's 2 x 3");

@@ -5,6 +5,7 @@
 #include <glm/vec3.hpp>
 #include <vector>
 
+#include "image/image_io.h"
 #include "scene/json_field.h"
 #include "scene/scene.h"
 
@@ -15,15 +16,16 @@ namespace wp {
 std::vector<Texture> read_textures(const JsonField& field, const std::string& scene_source);
 
 // A bitmap's image at `path` into texture's path, raw, width, height and
-// texels (linear RGB, decoded from sRGB unless `raw`, scene/scene.h); throws
+// texels (linear RGB, decoded from sRGB unless read Raw; or the alpha, raw:
+// TextureChannels, scene/scene.h); throws
 // std::runtime_error with the one-line reason (unreadable, too large, a
 // texel outside [0, 1]). The JSON and the Mitsuba XML readers share it.
-void read_bitmap_file(const std::string& path, bool raw, Texture& texture);
+void read_bitmap_file(const std::string& path, TextureChannels channels, Texture& texture);
 
 // The same of an image file's bytes held in memory (a glTF file's embedded
 // image), `format` the extension its file would have ("png", "jpg"); the
 // texture's path stays empty.
-void read_bitmap_bytes(const std::string& bytes, const std::string& format, bool raw, Texture& texture);
+void read_bitmap_bytes(const std::string& bytes, const std::string& format, TextureChannels channels, Texture& texture);
 
 // An environment map's image at `path` into map's width, height and texels
 // (linear RGB, decoded from sRGB where the file holds integers, as

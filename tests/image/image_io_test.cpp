@@ -206,8 +206,8 @@ TEST_F(ImageIoTest, SrgbDecodeAsMitsuba) {
 TEST_F(ImageIoTest, TextureImagesDecodeEightBitFilesUnlessRaw) {
     const Image image{1, 2, {0.5f, 0.0f, 1.0f, 0.18f, 0.18f, 0.18f}};
     write_image(image, path("t.png"));  // codes 188, 0, 255 and 118
-    const Image decoded = read_texture_image(path("t.png"), false, 16);
-    const Image raw = read_texture_image(path("t.png"), true, 16);
+    const Image decoded = read_texture_image(path("t.png"), TextureChannels::Colour, 16);
+    const Image raw = read_texture_image(path("t.png"), TextureChannels::Raw, 16);
     ASSERT_EQ(decoded.width, 1);
     ASSERT_EQ(decoded.height, 2);
     EXPECT_NEAR(decoded.rgb[0], 0.5f, 3e-3f);  // within the 8-bit code's step
@@ -217,8 +217,9 @@ TEST_F(ImageIoTest, TextureImagesDecodeEightBitFilesUnlessRaw) {
     EXPECT_FLOAT_EQ(raw.rgb[0], 188.0f / 255.0f);
     EXPECT_FLOAT_EQ(raw.rgb[3], 118.0f / 255.0f);
     write_image(image, path("t.exr"));  // float files are linear already
-    EXPECT_EQ(read_texture_image(path("t.exr"), false, 16).rgb, image.rgb);
-    EXPECT_THROW(read_texture_image(path("t.png"), false, 1), std::runtime_error);  // 2 rows, at most 1 allowed
+    EXPECT_EQ(read_texture_image(path("t.exr"), TextureChannels::Colour, 16).rgb, image.rgb);
+    EXPECT_THROW(read_texture_image(path("t.png"), TextureChannels::Colour, 1),
+                 std::runtime_error);  // 2 rows, at most 1 allowed
 }
 
 // A grey texture with alpha (tests/image/grey_alpha.png: grey 200 and 50,
@@ -226,13 +227,27 @@ TEST_F(ImageIoTest, TextureImagesDecodeEightBitFilesUnlessRaw) {
 // bitmap reads one: the alpha is not a colour (nor multiplied into it, as
 // OpenImageIO does to PNG files unless told not to).
 TEST_F(ImageIoTest, GreyAndAlphaTexturesAreReadAsTheirGrey) {
-    const Image raw = read_texture_image(WAVEPATH_SOURCE_DIR "/tests/image/grey_alpha.png", true, 16);
+    const Image raw = read_texture_image(WAVEPATH_SOURCE_DIR "/tests/image/grey_alpha.png", TextureChannels::Raw, 16);
     ASSERT_EQ(raw.width, 2);
     ASSERT_EQ(raw.height, 1);
     for (int c = 0; c < 3; ++c) {
         EXPECT_FLOAT_EQ(raw.rgb[std::size_t(c)], 200.0f / 255.0f);
         EXPECT_FLOAT_EQ(raw.rgb[std::size_t(3 + c)], 50.0f / 255.0f);
     }
+}
+
+// Its alpha, read as TextureChannels::Alpha, is the stored alpha in all
+// three channels (10 and 255 there); an image without alpha reads as 1.
+TEST_F(ImageIoTest, TextureAlphaIsTheAlphaChannelOrOne) {
+    const Image alpha =
+        read_texture_image(WAVEPATH_SOURCE_DIR "/tests/image/grey_alpha.png", TextureChannels::Alpha, 16);
+    ASSERT_EQ(alpha.rgb.size(), 6u);
+    for (int c = 0; c < 3; ++c) {
+        EXPECT_FLOAT_EQ(alpha.rgb[std::size_t(c)], 10.0f / 255.0f);
+        EXPECT_FLOAT_EQ(alpha.rgb[std::size_t(3 + c)], 1.0f);
+    }
+    write_image(Image{1, 2, {0.5f, 0.0f, 1.0f, 0.18f, 0.18f, 0.18f}}, path("t.png"));
+    EXPECT_EQ(read_texture_image(path("t.png"), TextureChannels::Alpha, 16).rgb, std::vector<float>(6, 1.0f));
 }
 
 }  // namespace

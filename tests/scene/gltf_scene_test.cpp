@@ -12,6 +12,7 @@
 
 #include "image/image_io.h"
 #include "scene/limits.h"
+#include "scene/scene_writer.h"
 #include "support/temp_directory.h"
 
 namespace wp::test {
@@ -388,6 +389,35 @@ TEST_F(GltfMaterial, TextureTransformIsTheTexturesToUv) {
     for (std::size_t i = 0; i < 6; ++i) EXPECT_NEAR(base.to_uv[i], expected[i], 1e-6) << i;
     const Texture& normal = read.scene.textures.at(std::size_t(m.texture(TexturedParameter::NormalMap)));
     EXPECT_EQ(normal.to_uv, (std::array<double, 6>{1, 0, 0, 0, 1, 0}));
+}
+
+// With a base colour texture, the mask's opacity is the texture's alpha
+// times the factor's (tests/image/grey_alpha.png: alpha 10/255 and 1), as a
+// texture of its own: that fraction for BLEND, cut at alphaCutoff for MASK.
+// `wavepath convert` writes such a computed texture as an EXR beside the JSON.
+TEST_F(GltfMaterial, TheBaseColourTexturesAlphaIsTheMasksOpacity) {
+    fs::copy_file(fs::path(WAVEPATH_SOURCE_DIR) / "tests/image/grey_alpha.png", dir_.path() / "a.png");
+    const auto opacity_of = [&](const std::string& mode) {
+        const MitsubaScene read = read_scene(
+            R"({"name": "m", )" + mode +
+                R"(, "pbrMetallicRoughness": {"baseColorFactor": [1, 1, 1, 0.5], "baseColorTexture": {"index": 0}}})",
+            "a.png");
+        const Material& m = read.scene.materials.at(0);
+        EXPECT_EQ(m.texture(TexturedParameter::SpecularReflectance), 0);  // the colour, a metal's
+        EXPECT_EQ(read.scene.textures.size(), 2u);
+        const Texture& opacity = read.scene.textures.at(std::size_t(m.texture(TexturedParameter::Opacity)));
+        EXPECT_TRUE(opacity.raw);
+        EXPECT_EQ(read.computed_textures, std::vector<std::size_t>{1});
+        const SceneJson json = scene_json(read, dir_.path() / "out.json");
+        EXPECT_EQ(json.computed.size(), 1u);
+        EXPECT_EQ(json.json["textures"]["a.png (opacity)"]["file"], "out_texture0.exr");
+        return opacity.texels;
+    };
+    const float low = 10.0f / 255.0f;
+    EXPECT_EQ(opacity_of(R"("alphaMode": "BLEND")"),
+              (std::vector<float>{0.5f * low, 0.5f * low, 0.5f * low, 0.5f, 0.5f, 0.5f}));
+    EXPECT_EQ(opacity_of(R"("alphaMode": "MASK", "alphaCutoff": 0.25)"), (std::vector<float>{0, 0, 0, 1, 1, 1}));
+    EXPECT_EQ(opacity_of(R"("alphaMode": "MASK", "alphaCutoff": 0.75)"), (std::vector<float>(6, 0.0f)));
 }
 
 // The metallic-roughness and emissive textures are not read, each with a
