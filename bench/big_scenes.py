@@ -14,9 +14,11 @@ each as a wavepath JSON scene and a Mitsuba XML scene (constant environment ligh
 
 Measures, in --repeats interleaved repetitions (every configuration once per repetition, the load average
 recorded before each):
-  - wavepath, phase by phase (build/bench/load_bench, one process per run): the scene's load with its mesh
-    files, the BVH build and the device layout, the Embree intersector's build, resident memory after each,
-    the peak, and the bytes of each structure that holds triangles; on the JSON scene and on the XML one;
+  - wavepath, phase by phase (build/bench/load_bench, one process per run): a CPU device's path (the
+    scene's load with its mesh files, the device's triangles without a BVH, the Embree intersector's build),
+    then the path of the devices that trace with our BVH (its build and layout); resident memory after each,
+    each path's peak, and the bytes of each structure that holds triangles; on the JSON scene and on the
+    XML one;
   - wavepath end to end: `wavepath render` at 1 spp and 16x16 (load, BVH, kernel build from the cache, a
     trivial render): wall time and peak resident memory (wait4), with --baseline's binary beside it (the
     same command: e.g. the build before a change);
@@ -306,6 +308,7 @@ def summarise(scenes, runs, has_baseline):
              "wavepath_xml_load_s": spread(col(xml, "load_s")),
              "wavepath_bvh_s": spread(col(phases, "bvh_s")),
              "wavepath_layout_s": spread(col(phases, "layout_s")),
+             "wavepath_bvh_peak_bytes": spread(col(phases, "bvh_peak_bytes")),
              "wavepath_embree_s": spread(col(phases, "embree_s")),
              "wavepath_end_to_end_s": spread(col(end, "wall_s")),
              "wavepath_peak_bytes": spread(col(phases, "peak_bytes")),
@@ -318,14 +321,14 @@ def summarise(scenes, runs, has_baseline):
              "mitsuba_samples_per_s": spread(col(mitsuba, "samples_per_s")),
              "load_ratio": ratio_spread(col(phases, "load_s"), col(mitsuba, "load_s")),
              "xml_load_ratio": ratio_spread(col(xml, "load_s"), col(mitsuba, "load_s")),
-             "load_and_bvh_ratio": ratio_spread([p["load_s"] + p["bvh_s"] + p["layout_s"] + p["embree_s"]
-                                                 for p in phases], col(mitsuba, "load_s")),
+             "load_layout_embree_ratio": ratio_spread([p["load_s"] + p["layout_s"] + p["embree_s"]
+                                                       for p in phases], col(mitsuba, "load_s")),
              "end_to_end_ratio": ratio_spread(col(end, "wall_s"), col(mitsuba, "load_s")),
              "speed_ratio": ratio_spread(col(render, "samples_per_s"), col(mitsuba, "samples_per_s")),
              "peak_ratio": ratio_spread(col(render, "peak_bytes"), col(mitsuba, "peak_bytes")),
              "memory": {k: v for k, v in phases[0].items() if k.endswith("_bytes") and isinstance(v, dict)},
-             "resident": {k: phases[0][k] for k in ("resident_after_load", "resident_after_bvh",
-                                                    "resident_after_embree")},
+             "resident": {k: phases[0][k] for k in ("resident_after_load", "resident_after_layout",
+                                                    "resident_after_embree", "resident_added_by_bvh")},
              "load": spread([r["load"] for rs in (phases, xml, end, render, mitsuba) for r in rs])}
         embree = [r["embree_s"] for r in mitsuba if r["embree_s"] is not None]
         s["mitsuba_embree_s"] = spread(embree) if embree else None
@@ -361,11 +364,13 @@ def markdown(result):
              f"{SIZE}x{SIZE}, {SPP} spp, path tracing).", "",
              "## Time", "",
              "wavepath load: the scene and its mesh files read and checked (load_bench, in one process: `load_scene`, "
-             "or `load_mitsuba_scene` for the XML). BVH: `build_scene_bvh` (Embree's SAH builder, flattened); "
-             "layout: the device's triangles and nodes; Embree: the Embree intersector's own build (the CPU "
-             "device's tracer). End to end: `wavepath render` at 1 spp, 16x16 (load, BVH, kernels from the "
-             "cache, a trivial render). Mitsuba: `mitsuba.load_file` (its Embree build included, given apart "
-             "from its log).", "",
+             "or `load_mitsuba_scene` for the XML). A CPU device's render (Embree traces the meshes, no BVH is "
+             "built): layout, the device's triangles in the scene's order (`mesh_layout`); Embree, the Embree "
+             "intersector's own build. The devices that trace with our BVH (GPUs, the megakernel): "
+             "`build_scene_bvh` (Embree's SAH builder, flattened) and the device's triangles and nodes. End "
+             "to end: `wavepath render` at 1 spp, 16x16 on the CPU device (load, layout, Embree, kernels from "
+             "the cache, a trivial render). Mitsuba: `mitsuba.load_file` (its Embree build included, given "
+             "apart from its log).", "",
              "| scene | measure | wavepath (s) | Mitsuba (s) | wavepath / Mitsuba (min, median) |",
              "|---|---|---|---|---|"]
     for name, s in summary.items():
@@ -374,11 +379,13 @@ def markdown(result):
             f"{fmt(s['load_ratio'], '{:.2f}')} |",
             f"| {name} | load (the same XML) | {fmt(s['wavepath_xml_load_s'])} | {fmt(s['mitsuba_load_s'])} | "
             f"{fmt(s['xml_load_ratio'], '{:.2f}')} |",
-            f"| {name} | BVH build + layout | {fmt(s['wavepath_bvh_s'])} + {fmt(s['wavepath_layout_s'])} | "
+            f"| {name} | layout (CPU device: no BVH) | {fmt(s['wavepath_layout_s'])} | | |",
+            f"| {name} | Embree intersector build | {fmt(s['wavepath_embree_s'])} | "
             f"{fmt(s['mitsuba_embree_s']) if s['mitsuba_embree_s'] else 'n/a'} (Embree) | |",
-            f"| {name} | Embree intersector build | {fmt(s['wavepath_embree_s'])} | | |",
-            f"| {name} | load + BVH + layout + Embree | | {fmt(s['mitsuba_load_s'])} | "
-            f"{fmt(s['load_and_bvh_ratio'], '{:.2f}')} |",
+            f"| {name} | load + layout + Embree | | {fmt(s['mitsuba_load_s'])} | "
+            f"{fmt(s['load_layout_embree_ratio'], '{:.2f}')} |",
+            f"| {name} | our BVH build + layout (GPUs, megakernel) | {fmt(s['wavepath_bvh_s'])} | "
+            f"{fmt(s['mitsuba_embree_s']) if s['mitsuba_embree_s'] else 'n/a'} (Embree) | |",
             f"| {name} | end to end, 1 spp 16x16 | {fmt(s['wavepath_end_to_end_s'])} | {fmt(s['mitsuba_load_s'])} "
             f"(load_file) | {fmt(s['end_to_end_ratio'], '{:.2f}')} |"]
         if "baseline_end_to_end_s" in s:
@@ -392,8 +399,9 @@ def markdown(result):
         lines.append(f"| {name} | {fmt(s['wavepath_samples_per_s'], '{:,.0f}')} | "
                      f"{fmt(s['mitsuba_samples_per_s'], '{:,.0f}')} | {fmt(s['speed_ratio'], '{:.2f}')} |")
     lines += ["", "## Memory", "",
-              "Peak resident memory. wavepath phases: load_bench's own peak (VmHWM: load, BVH, layout, Embree; "
-              "its import helper apart, getrusage of its children); wavepath render: `wavepath render` at "
+              "Peak resident memory. wavepath phases: load_bench's own peak (VmHWM) on a CPU device's path "
+              "(load, layout, Embree; its import helper apart, getrusage of its children) and, the peak reset "
+              "with the scene loaded, on our BVH's path (build and layout); wavepath render: `wavepath render` at "
               "128x128, 16 spp (/usr/bin/time's %M: the largest of it and its children); Mitsuba: the "
               "process's VmHWM after load_file and at the end of its render (Python, Dr.Jit and the LLVM JIT "
               "included). Per triangle: the peak over the "
@@ -403,10 +411,13 @@ def markdown(result):
     for name, s in summary.items():
         t = s["triangles"]
         lines += [
-            f"| {name} | peak, load + BVH + Embree (load_bench) | {mib(s['wavepath_peak_bytes']['median']):.0f} "
+            f"| {name} | peak, load + layout + Embree (load_bench) | {mib(s['wavepath_peak_bytes']['median']):.0f} "
             f"(helper {mib(s['wavepath_children_peak_bytes']['median']):.0f}) | "
             f"{mib(s['mitsuba_peak_after_load_bytes']['median']):.0f} (after load_file) | | "
             f"{s['wavepath_peak_bytes']['median'] / t:.0f} | {s['mitsuba_peak_after_load_bytes']['median'] / t:.0f} |",
+            f"| {name} | peak, load + our BVH + layout (load_bench) | "
+            f"{mib(s['wavepath_bvh_peak_bytes']['median']):.0f} | | | "
+            f"{s['wavepath_bvh_peak_bytes']['median'] / t:.0f} | |",
             f"| {name} | peak, render | {mib(s['wavepath_render_peak_bytes']['median']):.0f} | "
             f"{mib(s['mitsuba_peak_bytes']['median']):.0f} | {fmt(s['peak_ratio'], '{:.2f}')} | "
             f"{s['wavepath_render_peak_bytes']['median'] / t:.0f} | {s['mitsuba_peak_bytes']['median'] / t:.0f} |"]
@@ -417,8 +428,9 @@ def markdown(result):
         return (big[key]["median"] - small[key]["median"]) / (big["triangles"] - small["triangles"])
     lines += ["", "Per triangle beyond each process's base: (peak on big - peak on pieces) / (their difference in "
               "triangles), medians:", "",
-              f"- load + BVH + Embree: wavepath (load_bench) {marginal('wavepath_peak_bytes'):.0f} B, Mitsuba "
+              f"- load + layout + Embree: wavepath (load_bench) {marginal('wavepath_peak_bytes'):.0f} B, Mitsuba "
               f"(after load_file) {marginal('mitsuba_peak_after_load_bytes'):.0f} B",
+              f"- load + our BVH + layout: wavepath (load_bench) {marginal('wavepath_bvh_peak_bytes'):.0f} B",
               f"- render: wavepath {marginal('wavepath_render_peak_bytes'):.0f} B, Mitsuba "
               f"{marginal('mitsuba_peak_bytes'):.0f} B",
               f"- wavepath's import helper and importers (their largest): "
@@ -428,19 +440,24 @@ def markdown(result):
     s = summary["big"]
     t = s["triangles"]
     held = {"positions": "the scene, to the end", "normals": "the scene, to the end",
-            "indices": "the scene, to the end", "scene_triangles": "during the BVH build and layout",
-            "nodes": "during the BVH build and layout", "leaf_order": "during the BVH build and layout",
-            "device_triangles": "the render (host copy and device buffer)",
-            "device_nodes": "the render (host copy and device buffer)"}
+            "indices": "the scene, to the end",
+            "device_triangles": "the render: the device buffer (the host's copy until the upload)",
+            "device_normals": "the render, with shading normals", "device_uvs": "the render, with textures",
+            "scene_triangles": "our BVH's path: during its build and layout",
+            "nodes": "our BVH's path: during its build and layout",
+            "leaf_order": "our BVH's path: during its build and layout",
+            "bvh_device_triangles": "our BVH's path: the render (device buffer)",
+            "device_nodes": "our BVH's path: the render (device buffer)"}
     for group in s["memory"].values():
         for key, value in group.items():
             lines.append(f"| {key} | {value / t:.1f} | {mib(value):.1f} | {held.get(key, '')} |")
     r = s["resident"]
     lines += ["", f"Resident memory added by each phase of load_bench on the big scene: load "
-              f"{mib(r['resident_after_load']):.0f} MiB, BVH and layout "
-              f"{mib(r['resident_after_bvh'] - r['resident_after_load']):.0f} MiB, Embree intersector "
-              f"{mib(r['resident_after_embree'] - r['resident_after_bvh']):.0f} MiB "
-              f"({r['resident_after_embree'] / t:.0f} B per triangle in all).", ""]
+              f"{mib(r['resident_after_load']):.0f} MiB, layout "
+              f"{mib(r['resident_after_layout'] - r['resident_after_load']):.0f} MiB, Embree intersector "
+              f"{mib(r['resident_after_embree'] - r['resident_after_layout']):.0f} MiB "
+              f"({r['resident_after_embree'] / t:.0f} B per triangle in all); on our BVH's path, its build and "
+              f"layout {mib(r['resident_added_by_bvh']):.0f} MiB.", ""]
     return "\n".join(lines)
 
 

@@ -1,16 +1,22 @@
 // load_bench: where a scene's load goes, phase by phase, in one process, as
 // wavepath's render takes the steps (bench/big_scenes.py runs it once per
-// measurement, so that each figure of memory is one load's):
+// measurement, so that each figure of memory is one load's). First a CPU
+// device's path (its default for meshes: Embree traces, no BVH is built):
 //  - load: the scene file and every mesh file (load_scene or, for .xml,
 //    load_mitsuba_scene: the contained import included);
+//  - layout: the device's triangles (mesh_layout without the BVH: the
+//    scene's order), which the render uploads;
+//  - embree: the Embree intersector over those triangles (its own copy
+//    and Embree's BVH);
+// its peak (VmHWM) read there. Then, the intersector and the layout gone
+// and the peak reset (/proc/self/clear_refs), the path of the devices that
+// trace with our BVH (GPUs, the megakernel):
 //  - bvh: build_scene_bvh (Embree's SAH builder, flattened) and its layout
-//    for the device (traversable_bvh<float>: triangles and nodes as the
-//    kernels read them);
-//  - embree: the Embree intersector over the same triangles (the CPU
-//    devices' default tracer, which builds Embree's own BVH).
-// After each: the process's resident memory (/proc/self/statm); at the end
-// its peak (VmHWM) and that of its children (getrusage: the import helper
-// and its importers); and the bytes of each structure that holds triangles.
+//    for the device (traversable_bvh<float>: triangles and nodes);
+// its peak. After each phase: the process's resident memory
+// (/proc/self/statm); at the end the children's peak (getrusage: the import
+// helper and its importers); and the bytes of each structure that holds
+// triangles.
 //
 // Usage: load_bench SCENE   (prints one JSON object)
 #include <sys/resource.h>
@@ -56,6 +62,14 @@ std::size_t peak_bytes() {
     return std::size_t(kib) * 1024;
 }
 
+// Sets the peak back to the resident memory now (Linux 4.0 on); false if it cannot.
+bool reset_peak() {
+    std::FILE* clear_refs = std::fopen("/proc/self/clear_refs", "w");
+    if (clear_refs == nullptr) return false;
+    const bool written = std::fputs("5", clear_refs) >= 0;
+    return std::fclose(clear_refs) == 0 && written;
+}
+
 // The largest of the children waited for (the import helper; it was started small, so its own).
 std::size_t children_peak_bytes() {
     rusage usage{};
@@ -98,25 +112,40 @@ int main(int argc, char** argv) {
     out["triangles"] = triangles;
     out["scene_bytes"] = {{"positions", positions}, {"normals", normals}, {"indices", indices}};
 
+    const FeatureSet features = scene.features();
+    start = Clock::now();
+    {
+        MeshLayout<float> layout = mesh_layout<float>(scene, {false, features.shading_normals, features.textures});
+        out["layout_s"] = seconds_since(start);
+        out["resident_after_layout"] = resident_bytes() - resident_at_start;
+        out["layout_bytes"] = {{"device_triangles", bytes_of(layout.triangles)},
+                               {"device_normals", bytes_of(layout.normals)},
+                               {"device_uvs", bytes_of(layout.uvs)}};
+
+        start = Clock::now();
+        const EmbreeIntersector embree(scene, layout.triangles);  // the render keeps the device's copy beside it
+        out["embree_s"] = seconds_since(start);
+        out["resident_after_embree"] = resident_bytes() - resident_at_start;
+        out["peak_bytes"] = peak_bytes();
+    }
+
+    if (!reset_peak()) {
+        std::cerr << "load_bench: cannot reset the peak (/proc/self/clear_refs)\n";
+        return 1;
+    }
+    const std::size_t resident_before_bvh = resident_bytes();
     start = Clock::now();
     SceneBvh bvh = build_scene_bvh(scene);
-    out["bvh_s"] = seconds_since(start);
-    start = Clock::now();
     TraversableBvh<float> flat = traversable_bvh<float>(bvh);
-    out["layout_s"] = seconds_since(start);
-    out["resident_after_bvh"] = resident_bytes() - resident_at_start;
+    out["bvh_s"] = seconds_since(start);
+    out["resident_added_by_bvh"] = resident_bytes() - resident_before_bvh;
     out["bvh_bytes"] = {{"scene_triangles", bytes_of(bvh.triangles)},
                         {"nodes", bytes_of(bvh.tree.nodes)},
                         {"leaf_order", bytes_of(bvh.tree.leaf_order)},
-                        {"device_triangles", bytes_of(flat.triangles)},
+                        {"bvh_device_triangles", bytes_of(flat.triangles)},
                         {"device_nodes", bytes_of(flat.nodes)}};
     out["bvh_nodes"] = bvh.tree.nodes.size();
-
-    start = Clock::now();
-    const EmbreeIntersector embree(scene, flat.triangles);
-    out["embree_s"] = seconds_since(start);
-    out["resident_after_embree"] = resident_bytes() - resident_at_start;
-    out["peak_bytes"] = peak_bytes();
+    out["bvh_peak_bytes"] = peak_bytes();
     out["children_peak_bytes"] = children_peak_bytes();
     std::cout << out.dump() << std::endl;
     return 0;

@@ -190,6 +190,16 @@ void put_in_order(std::vector<SceneTriangle>& items, const std::vector<std::uint
 
 }  // namespace
 
+std::array<glm::dvec3, 3> vertex_normals(const Mesh& mesh, const glm::uvec3& t) {
+    if (mesh.normals.empty()) return {};
+    return {mesh.normals[t.x], mesh.normals[t.y], mesh.normals[t.z]};
+}
+
+std::array<glm::dvec2, 3> vertex_uvs(const Mesh& mesh, const glm::uvec3& t) {
+    if (mesh.uvs.empty()) return {glm::dvec2(0.0, 0.0), glm::dvec2(1.0, 0.0), glm::dvec2(0.0, 1.0)};
+    return {mesh.uvs[t.x], mesh.uvs[t.y], mesh.uvs[t.z]};
+}
+
 std::vector<SceneTriangle> scene_triangles(const Scene& scene) {
     std::vector<SceneTriangle> triangles;
     std::size_t count = 0;
@@ -198,12 +208,11 @@ std::vector<SceneTriangle> scene_triangles(const Scene& scene) {
     for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
         const Mesh& mesh = scene.meshes[m];
         for (const glm::uvec3& t : mesh.triangles) {
-            SceneTriangle triangle{{mesh.positions[t.x], mesh.positions[t.y], mesh.positions[t.z]}};
-            if (!mesh.normals.empty()) triangle.normals = {mesh.normals[t.x], mesh.normals[t.y], mesh.normals[t.z]};
-            if (!mesh.uvs.empty()) triangle.uvs = {mesh.uvs[t.x], mesh.uvs[t.y], mesh.uvs[t.z]};
-            triangle.material = mesh.material;
-            triangle.mesh = static_cast<int>(m);
-            triangles.push_back(triangle);
+            triangles.push_back({{mesh.positions[t.x], mesh.positions[t.y], mesh.positions[t.z]},
+                                 vertex_normals(mesh, t),
+                                 vertex_uvs(mesh, t),
+                                 mesh.material,
+                                 static_cast<int>(m)});
         }
     }
     return triangles;

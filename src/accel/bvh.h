@@ -30,12 +30,18 @@ struct BvhTree {
 // threads (0: all). Throws std::runtime_error when Embree fails.
 BvhTree build_bvh(const std::vector<TrianglePositions>& triangles, int threads = 0);
 
+// A mesh triangle's vertex attributes, as every layout of the triangles
+// takes them: its vertices' shading normals (all zero: the mesh has none)
+// and uvs (a mesh without: (0, 0), (1, 0), (0, 1), whose interpolation is
+// the barycentric coordinates).
+std::array<glm::dvec3, 3> vertex_normals(const Mesh& mesh, const glm::uvec3& triangle);
+std::array<glm::dvec2, 3> vertex_uvs(const Mesh& mesh, const glm::uvec3& triangle);
+
 // Every mesh triangle of the scene in one list: mesh by mesh, in file order.
 struct SceneTriangle {
     TrianglePositions positions;
-    std::array<glm::dvec3, 3> normals{};  // the vertices' shading normals; all zero: the mesh has none
-    // the vertices' uvs; a mesh without: (0, 0), (1, 0), (0, 1), whose interpolation is the barycentric coordinates
-    std::array<glm::dvec2, 3> uvs{glm::dvec2(0.0, 0.0), glm::dvec2(1.0, 0.0), glm::dvec2(0.0, 1.0)};
+    std::array<glm::dvec3, 3> normals{};  // vertex_normals
+    std::array<glm::dvec2, 3> uvs{};      // vertex_uvs
     int material = 0;
     int mesh = 0;
 };

@@ -24,21 +24,35 @@ typename SharedMath<Real>::MeshTriangle mesh_triangle(const TrianglePositions& p
     return t;
 }
 
+template <class Real>
+typename SharedMath<Real>::TriangleNormals triangle_normals(const std::array<glm::dvec3, 3>& normals) {
+    typename SharedMath<Real>::TriangleNormals n{};
+    for (int i = 0; i < 3; ++i) {
+        n.n0[i] = static_cast<Real>(normals[0][i]);
+        n.n1[i] = static_cast<Real>(normals[1][i]);
+        n.n2[i] = static_cast<Real>(normals[2][i]);
+    }
+    return n;
+}
+
+template <class Real>
+typename SharedMath<Real>::TriangleUVs triangle_uvs(const std::array<glm::dvec2, 3>& uvs) {
+    typename SharedMath<Real>::TriangleUVs uv{};
+    for (int i = 0; i < 2; ++i) {
+        uv.uv0[i] = static_cast<Real>(uvs[0][i]);
+        uv.uv1[i] = static_cast<Real>(uvs[1][i]);
+        uv.uv2[i] = static_cast<Real>(uvs[2][i]);
+    }
+    return uv;
+}
+
 // The triangles' vertex normals in the tree's leaf order, for scenes that
 // shade with them (FeatureSet::shading_normals).
 template <class Real>
 std::vector<typename SharedMath<Real>::TriangleNormals> triangle_normals(const SceneBvh& bvh) {
     std::vector<typename SharedMath<Real>::TriangleNormals> normals;
     normals.reserve(bvh.triangles.size());
-    for (const SceneTriangle& t : bvh.triangles) {
-        typename SharedMath<Real>::TriangleNormals n{};
-        for (int i = 0; i < 3; ++i) {
-            n.n0[i] = static_cast<Real>(t.normals[0][i]);
-            n.n1[i] = static_cast<Real>(t.normals[1][i]);
-            n.n2[i] = static_cast<Real>(t.normals[2][i]);
-        }
-        normals.push_back(n);
-    }
+    for (const SceneTriangle& t : bvh.triangles) normals.push_back(triangle_normals<Real>(t.normals));
     return normals;
 }
 
@@ -48,15 +62,7 @@ template <class Real>
 std::vector<typename SharedMath<Real>::TriangleUVs> triangle_uvs(const SceneBvh& bvh) {
     std::vector<typename SharedMath<Real>::TriangleUVs> uvs;
     uvs.reserve(bvh.triangles.size());
-    for (const SceneTriangle& t : bvh.triangles) {
-        typename SharedMath<Real>::TriangleUVs uv{};
-        for (int i = 0; i < 2; ++i) {
-            uv.uv0[i] = static_cast<Real>(t.uvs[0][i]);
-            uv.uv1[i] = static_cast<Real>(t.uvs[1][i]);
-            uv.uv2[i] = static_cast<Real>(t.uvs[2][i]);
-        }
-        uvs.push_back(uv);
-    }
+    for (const SceneTriangle& t : bvh.triangles) uvs.push_back(triangle_uvs<Real>(t.uvs));
     return uvs;
 }
 
@@ -82,6 +88,57 @@ TraversableBvh<Real> traversable_bvh(const SceneBvh& bvh) {
         flat.nodes.push_back(node);
     }
     return flat;
+}
+
+// The meshes as a renderer reads them: the triangles and, as asked, their
+// vertex normals and uvs in parallel. With the BVH (the kernels and the
+// reference trace it): in its leaf order, beside its nodes. Without (where
+// Embree traces the rays, which finds a triangle by its index in any order:
+// no tree built, `nodes` empty): in the scene's order, mesh by mesh in file
+// order, straight from the meshes, so that no SceneTriangle is made.
+template <class Real>
+struct MeshLayout {
+    std::vector<typename SharedMath<Real>::MeshTriangle> triangles;
+    std::vector<typename SharedMath<Real>::TriangleNormals> normals;  // if asked
+    std::vector<typename SharedMath<Real>::TriangleUVs> uvs;          // if asked
+    std::vector<typename SharedMath<Real>::BvhNode> nodes;            // the BVH's, if asked
+    int depth = 0;                                                    // the BVH's levels
+};
+
+struct MeshLayoutRequest {
+    bool bvh = true;
+    bool normals = false;
+    bool uvs = false;
+};
+
+template <class Real>
+MeshLayout<Real> mesh_layout(const Scene& scene, const MeshLayoutRequest& request) {
+    MeshLayout<Real> layout;
+    if (request.bvh) {
+        SceneBvh bvh = build_scene_bvh(scene);
+        TraversableBvh<Real> flat = traversable_bvh<Real>(bvh);
+        if (request.normals) layout.normals = triangle_normals<Real>(bvh);
+        if (request.uvs) layout.uvs = triangle_uvs<Real>(bvh);
+        layout.triangles = std::move(flat.triangles);
+        layout.nodes = std::move(flat.nodes);
+        layout.depth = bvh.tree.depth;
+        return layout;
+    }
+    std::size_t count = 0;
+    for (const Mesh& mesh : scene.meshes) count += mesh.triangles.size();
+    layout.triangles.reserve(count);
+    if (request.normals) layout.normals.reserve(count);
+    if (request.uvs) layout.uvs.reserve(count);
+    for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
+        const Mesh& mesh = scene.meshes[m];
+        for (const glm::uvec3& t : mesh.triangles) {
+            layout.triangles.push_back(mesh_triangle<Real>(
+                {mesh.positions[t.x], mesh.positions[t.y], mesh.positions[t.z]}, mesh.material, int(m)));
+            if (request.normals) layout.normals.push_back(triangle_normals<Real>(vertex_normals(mesh, t)));
+            if (request.uvs) layout.uvs.push_back(triangle_uvs<Real>(vertex_uvs(mesh, t)));
+        }
+    }
+    return layout;
 }
 
 }  // namespace wp

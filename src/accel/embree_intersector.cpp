@@ -407,6 +407,7 @@ struct EmbreeIntersector::Impl {
                 {vec3(q.corner), vec3(q.edge1), vec3(q.edge2), M::quad_plane(vec3(q.edge1), vec3(q.edge2))});
         triangles.reserve(mesh_triangles.size());
         for (const M::MeshTriangle& t : mesh_triangles) triangles.push_back({t});
+        std::vector<M::MeshTriangle>().swap(mesh_triangles);  // one copy through Embree's builds
         has_embree_shapes = !triangles.empty() || !quads.empty();
         search_slack = float(0x1p-16 * coordinate_magnitude());
         verified_reach = float(4.0 * coordinate_magnitude());

@@ -30,8 +30,8 @@ using uint = std::uint32_t;
 }  // namespace device_layout
 
 // A hit: its distance and WP_SHAPE_* << WP_SHAPE_TYPE_SHIFT | index
-// (kernels/interface/scene_layout.h), triangles by their index in the BVH's
-// leaf order; no hit: t = WP_INFINITY (FLT_MAX), shape = WP_NO_HIT.
+// (kernels/interface/scene_layout.h), triangles by their index in the
+// intersector's list; no hit: t = WP_INFINITY (FLT_MAX), shape = WP_NO_HIT.
 struct HostHit {
     float t;
     std::uint32_t shape;
@@ -100,9 +100,11 @@ struct HitArrays {
 
 class EmbreeIntersector {
  public:
-    // `triangles` are the scene's mesh triangles in the BVH's leaf order
-    // (accel/bvh_layout.h), so that a triangle's shape id is the same for
-    // both intersectors. Throws std::runtime_error when Embree fails.
+    // `triangles` are the scene's mesh triangles in the order the renderer
+    // keeps them (accel/bvh_layout.h, mesh_layout: without a BVH the
+    // scene's), a triangle's shape id its index there. Embree's tree, and so
+    // its choice at a near tie, depends on that order. Throws
+    // std::runtime_error when Embree fails.
     EmbreeIntersector(const Scene& scene, std::vector<SharedMath<float>::MeshTriangle> triangles,
                       const EmbreeOptions& options = {});
     ~EmbreeIntersector();

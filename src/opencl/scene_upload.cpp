@@ -114,28 +114,32 @@ std::uint32_t microfacet_distribution(Microfacet distribution) {
     return distribution == Microfacet::GGX ? WP_MICROFACET_GGX : WP_MICROFACET_BECKMANN;
 }
 
+// The items copied into a new buffer (no copy of the vector on the way: a
+// mesh's triangles are the scene's largest).
 template <class T>
-cl::Buffer upload(const cl::Context& context, std::vector<T> items) {
-    if (items.empty()) items.resize(1);
-    return cl::Buffer(context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(T) * items.size(), items.data());
+cl::Buffer upload(const cl::Context& context, const std::vector<T>& items) {
+    const T none{};
+    return cl::Buffer(context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
+                      sizeof(T) * std::max<std::size_t>(items.size(), 1),
+                      const_cast<T*>(items.empty() ? &none : items.data()));
 }
 
-// The meshes' triangles in leaf order and the BVH's nodes, as the kernels read them.
-void flatten_meshes(const Scene& scene, SceneLayout& layout) {
+// The meshes' triangles and, where the kernels trace, the BVH's nodes, as the kernels read them.
+void flatten_meshes(const Scene& scene, Intersector intersector, SceneLayout& layout) {
     auto start = std::chrono::steady_clock::now();
-    SceneBvh bvh = build_scene_bvh(scene);
-    TraversableBvh<float> flat = traversable_bvh<float>(bvh);
-    if (scene.features().shading_normals) layout.triangle_normals = triangle_normals<float>(bvh);
-    if (scene.features().textures) layout.triangle_uvs = triangle_uvs<float>(bvh);
-    layout.triangles = std::move(flat.triangles);
-    layout.bvh_nodes = std::move(flat.nodes);
+    MeshLayout<float> meshes = mesh_layout<float>(
+        scene, {intersector == Intersector::Bvh, scene.features().shading_normals, scene.features().textures});
+    layout.triangles = std::move(meshes.triangles);
+    layout.triangle_normals = std::move(meshes.normals);
+    layout.triangle_uvs = std::move(meshes.uvs);
+    layout.bvh_nodes = std::move(meshes.nodes);
     MeshSummary& summary = layout.meshes;
     summary.meshes = scene.meshes.size();
-    summary.triangles = bvh.triangles.size();
+    summary.triangles = layout.triangles.size();
     for (const Mesh& mesh : scene.meshes) summary.degenerate_dropped += mesh.degenerate_dropped;
-    summary.bvh_nodes = bvh.tree.nodes.size();
-    summary.bvh_depth = bvh.tree.depth;
-    summary.bvh_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    summary.bvh_nodes = layout.bvh_nodes.size();
+    summary.bvh_depth = meshes.depth;
+    summary.layout_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 // The texture table, the texels and the materials' textured parameters.
@@ -179,10 +183,10 @@ std::string describe_textures(const Scene& scene, std::size_t device_bytes) {
     return out.str();
 }
 
-SceneLayout flatten_scene(const Scene& scene) {
+SceneLayout flatten_scene(const Scene& scene, Intersector intersector) {
     SceneLayout layout;
     layout.header = make_header(scene);
-    flatten_meshes(scene, layout);
+    flatten_meshes(scene, intersector, layout);
     for (const Sphere& s : scene.spheres) {
         DeviceSphere d{};
         put(d.center, s.center);
@@ -285,8 +289,11 @@ std::string MeshSummary::describe() const {
     if (meshes == 0) return "";
     std::ostringstream out;
     out << meshes << (meshes == 1 ? " mesh, " : " meshes, ") << triangles << " triangles (" << degenerate_dropped
-        << " degenerate dropped); BVH of " << bvh_nodes << " nodes, depth " << bvh_depth << ", built in " << bvh_seconds
-        << " s";
+        << " degenerate dropped); ";
+    if (bvh_nodes == 0)
+        out << "no BVH (the host traces), laid out in " << layout_seconds << " s";
+    else
+        out << "BVH of " << bvh_nodes << " nodes, depth " << bvh_depth << ", built in " << layout_seconds << " s";
     return out.str();
 }
 

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "accel/embree_intersector.h"
 #include "core/shared_math.h"
 #include "opencl/kernel_arguments.h"
 #include "scene/scene.h"
@@ -22,9 +23,11 @@ using uint = std::uint32_t;
 struct MeshSummary {
     std::size_t meshes = 0, triangles = 0, degenerate_dropped = 0, bvh_nodes = 0;
     int bvh_depth = 0;
-    double bvh_seconds = 0.0;  // building and flattening the tree
+    double layout_seconds = 0.0;  // building and flattening the tree, or laying the triangles out without one
 
-    // "2 meshes, 69666 triangles (3 degenerate dropped); BVH of 37650 nodes, depth 24, built in 0.061 s", or "".
+    // "2 meshes, 69666 triangles (3 degenerate dropped); BVH of 37650 nodes, depth 24, built in 0.061 s",
+    // without the BVH "2 meshes, 69666 triangles (3 degenerate dropped); no BVH (the host traces), laid out in
+    // 0.004 s", or "".
     std::string describe() const;
 };
 
@@ -37,7 +40,7 @@ struct SceneLayout {
     std::vector<device_layout::DeviceQuad> quads;
     std::vector<SharedMath<float>::MeshTriangle> triangles;            // in the BVH's leaf order
     std::vector<SharedMath<float>::TriangleNormals> triangle_normals;  // parallel, if FeatureSet::shading_normals
-    std::vector<SharedMath<float>::BvhNode> bvh_nodes;
+    std::vector<SharedMath<float>::BvhNode> bvh_nodes;                 // none where the host traces
     std::vector<device_layout::DeviceMaterial> materials;
     std::vector<device_layout::DeviceLight> lights;
     std::vector<float> light_cdf;
@@ -53,7 +56,11 @@ struct SceneLayout {
     std::string textures_summary;  // describe_textures
 };
 
-SceneLayout flatten_scene(const Scene& scene);
+// `intersector`: what traces the kernels' rays. Intersector::Embree (the
+// host traces: wavefront/host_trace.h) builds no BVH: the kernels only shade
+// the hits, so the triangles are in the scene's order (accel/bvh_layout.h,
+// mesh_layout) and bvh_nodes is empty.
+SceneLayout flatten_scene(const Scene& scene, Intersector intersector = Intersector::Bvh);
 
 // What --explain says of the textures: "2 textures (1 bitmap, 1
 // checkerboard), 65536 texels, 768 KiB of device memory", or "".

@@ -98,10 +98,10 @@ struct ReferenceScene {
     std::vector<SphereShape> spheres;
     std::vector<PlaneShape> planes;
     std::vector<QuadShape> quads;
-    std::vector<typename M::MeshTriangle> triangles;            // in the BVH's leaf order
+    std::vector<typename M::MeshTriangle> triangles;            // in the BVH's leaf order, or the scene's (Embree)
     std::vector<typename M::TriangleNormals> triangle_normals;  // parallel to triangles, if vertex_normals
-    std::vector<typename M::BvhNode> bvh_nodes;
-    std::shared_ptr<const EmbreeIntersector> embree;  // Intersector::Embree: closest_hit and occluded ask it
+    std::vector<typename M::BvhNode> bvh_nodes;                 // none where Embree traces
+    std::shared_ptr<const EmbreeIntersector> embree;            // Intersector::Embree: closest_hit and occluded ask it
     std::vector<LightRef> lights;
     std::vector<Real> light_cdf;
     std::vector<typename M::MeshTriangle> light_triangles;  // mesh lights' (scene/mesh_lights.h)
@@ -135,7 +135,7 @@ struct ReferenceScene {
         for (const Sphere& s : scene.spheres) spheres.push_back({vec3(s.center), Real(s.radius), s.material});
         for (const Plane& p : scene.planes) planes.push_back({vec3(p.point), vec3(p.normal), p.material});
         for (const Quad& q : scene.quads) quads.push_back({vec3(q.corner), vec3(q.edge1), vec3(q.edge2), q.material});
-        add_meshes(scene);
+        add_meshes(scene, intersector);
         if (intersector == Intersector::Embree) add_embree(scene);
         add_lights(scene);
         add_textures(scene);
@@ -230,14 +230,14 @@ struct ReferenceScene {
         material_textures = std::move(layout.material_textures);
     }
 
-    // The same tree and leaf order as the kernels', with the vertices in Real.
-    void add_meshes(const Scene& scene) {
-        SceneBvh bvh = build_scene_bvh(scene);
-        TraversableBvh<Real> flat = traversable_bvh<Real>(bvh);
-        if (vertex_normals) triangle_normals = wp::triangle_normals<Real>(bvh);
-        if (textures) triangle_uvs = wp::triangle_uvs<Real>(bvh);
-        triangles = std::move(flat.triangles);
-        bvh_nodes = std::move(flat.nodes);
+    // The kernels' layout with the vertices in Real: with the BVH, the same
+    // tree and leaf order; where Embree traces, no tree and the scene's order.
+    void add_meshes(const Scene& scene, Intersector intersector) {
+        MeshLayout<Real> meshes = mesh_layout<Real>(scene, {intersector == Intersector::Bvh, vertex_normals, textures});
+        triangles = std::move(meshes.triangles);
+        triangle_normals = std::move(meshes.normals);
+        triangle_uvs = std::move(meshes.uvs);
+        bvh_nodes = std::move(meshes.nodes);
     }
 
     static PinholeCamera convert_camera(const Camera& c) {

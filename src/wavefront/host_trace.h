@@ -40,7 +40,8 @@ std::string host_trace_row(const StageDeclaration& stage);
 
 class HostTrace {
  public:
-    // `triangles`: the scene's mesh triangles in the BVH's leaf order, as the kernels have them.
+    // `triangles`: the scene's mesh triangles in the kernels' order (the scene's: no BVH is built where the host
+    // traces).
     HostTrace(const Scene& scene, std::vector<SharedMath<float>::MeshTriangle> triangles);
 
     // Traces the rays of the queue `stage` consumes (a stage that traces),

@@ -45,10 +45,11 @@ KernelProgram pipeline_program(const Scene& scene, const DeviceInfo& device, con
 
 Pipeline::Pipeline(const Scene& scene, const DeviceInfo& device, std::size_t capacity, std::size_t pass_capacity,
                    const FeatureSet& kernel_features, const PipelineOptions& options)
-    : Pipeline(scene, flatten_scene(scene), device, capacity, pass_capacity, kernel_features, options,
+    : Pipeline(scene, flatten_scene(scene, kernel_features.host_traced ? Intersector::Embree : Intersector::Bvh),
+               device, capacity, pass_capacity, kernel_features, options,
                pipeline_program(scene, device, kernel_features, options)) {}
 
-Pipeline::Pipeline(const Scene& scene, const SceneLayout& layout, const DeviceInfo& device, std::size_t capacity,
+Pipeline::Pipeline(const Scene& scene, SceneLayout layout, const DeviceInfo& device, std::size_t capacity,
                    std::size_t pass_capacity, const FeatureSet& kernel_features, const PipelineOptions& options,
                    const KernelProgram& program)
     : capacity_(capacity),
@@ -89,7 +90,13 @@ Pipeline::Pipeline(const Scene& scene, const SceneLayout& layout, const DeviceIn
     if (options.profile)
         ray_depths_.emplace(program_.program, queues_.queues(), queues_.counts(), capacity, state_.field("depth"),
                             kernel_features.nee);
-    if (kernel_features.host_traced) host_trace_.emplace(scene, layout.triangles);
+    if (kernel_features.host_traced) {
+        // The triangles go to the host's tracer; the other host copies, which
+        // the device buffers have copied, go before its build.
+        std::vector<SharedMath<float>::MeshTriangle> triangles = std::move(layout.triangles);
+        layout = SceneLayout{};
+        host_trace_.emplace(scene, std::move(triangles));
+    }
     queue_.enqueueFillBuffer(slot_nonfinite_, std::uint32_t(0), 0, slot_nonfinite_.getInfo<CL_MEM_SIZE>());
 }
 

@@ -157,7 +157,8 @@ class Pipeline {
     std::vector<float> read_pass_radiance();
 
  private:
-    Pipeline(const Scene& scene, const SceneLayout& layout, const DeviceInfo& device, std::size_t capacity,
+    // `layout`: the host's copies, emptied once the device has its own (before the host trace's build).
+    Pipeline(const Scene& scene, SceneLayout layout, const DeviceInfo& device, std::size_t capacity,
              std::size_t pass_capacity, const FeatureSet& kernel_features, const PipelineOptions& options,
              const KernelProgram& program);
     void bind_round();

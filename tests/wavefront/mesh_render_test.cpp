@@ -199,6 +199,10 @@ TEST(MeshRender, WavefrontRetracesTheReferenceWithTheSameIntersectorOnTheShipped
             EXPECT_EQ(report.intersector, intersector) << label;
             EXPECT_EQ(report.features.find("host-traced") != std::string::npos, intersector == Intersector::Embree)
                 << label;
+            // Where the host traces, no BVH is built: the kernels only shade its hits.
+            if (!scene.meshes.empty())
+                EXPECT_EQ(report.meshes.find("no BVH") != std::string::npos, intersector == Intersector::Embree)
+                    << label << ": " << report.meshes;
             EXPECT_GT(wavefront.stats.shadow_rays, 0u) << label;
             ReferenceOptions reference{2, false};
             reference.intersector = intersector;
