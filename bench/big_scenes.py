@@ -367,7 +367,7 @@ def markdown(result):
              "or `load_mitsuba_scene` for the XML). A CPU device's render (Embree traces the meshes, no BVH is "
              "built): layout, the device's triangles in the scene's order (`mesh_layout`); Embree, the Embree "
              "intersector's own build. The devices that trace with our BVH (GPUs, the megakernel): "
-             "`build_scene_bvh` (Embree's SAH builder, flattened) and the device's triangles and nodes. End "
+             "`mesh_layout`: `build_bvh` (Embree's SAH builder, flattened) and the device's triangles and nodes. End "
              "to end: `wavepath render` at 1 spp, 16x16 on the CPU device (load, layout, Embree, kernels from "
              "the cache, a trivial render). Mitsuba: `mitsuba.load_file` (its Embree build included, given "
              "apart from its log).", "",
@@ -443,9 +443,6 @@ def markdown(result):
             "indices": "the scene, to the end",
             "device_triangles": "the render: the device buffer (the host's copy until the upload)",
             "device_normals": "the render, with shading normals", "device_uvs": "the render, with textures",
-            "scene_triangles": "our BVH's path: during its build and layout",
-            "nodes": "our BVH's path: during its build and layout",
-            "leaf_order": "our BVH's path: during its build and layout",
             "bvh_device_triangles": "our BVH's path: the render (device buffer)",
             "device_nodes": "our BVH's path: the render (device buffer)"}
     for group in s["memory"].values():

@@ -11,8 +11,9 @@
 // its peak (VmHWM) read there. Then, the intersector and the layout gone
 // and the peak reset (/proc/self/clear_refs), the path of the devices that
 // trace with our BVH (GPUs, the megakernel):
-//  - bvh: build_scene_bvh (Embree's SAH builder, flattened) and its layout
-//    for the device (traversable_bvh<float>: triangles and nodes);
+//  - bvh: mesh_layout with the BVH: build_bvh (Embree's SAH builder,
+//    flattened) over the triangles' corners, and the device's triangles in
+//    its leaf order and its nodes;
 // its peak. After each phase: the process's resident memory
 // (/proc/self/statm); at the end the children's peak (getrusage: the import
 // helper and its importers); and the bytes of each structure that holds
@@ -135,16 +136,11 @@ int main(int argc, char** argv) {
     }
     const std::size_t resident_before_bvh = resident_bytes();
     start = Clock::now();
-    SceneBvh bvh = build_scene_bvh(scene);
-    TraversableBvh<float> flat = traversable_bvh<float>(bvh);
+    const MeshLayout<float> bvh = mesh_layout<float>(scene, {true, features.shading_normals, features.textures});
     out["bvh_s"] = seconds_since(start);
     out["resident_added_by_bvh"] = resident_bytes() - resident_before_bvh;
-    out["bvh_bytes"] = {{"scene_triangles", bytes_of(bvh.triangles)},
-                        {"nodes", bytes_of(bvh.tree.nodes)},
-                        {"leaf_order", bytes_of(bvh.tree.leaf_order)},
-                        {"bvh_device_triangles", bytes_of(flat.triangles)},
-                        {"device_nodes", bytes_of(flat.nodes)}};
-    out["bvh_nodes"] = bvh.tree.nodes.size();
+    out["bvh_bytes"] = {{"bvh_device_triangles", bytes_of(bvh.triangles)}, {"device_nodes", bytes_of(bvh.nodes)}};
+    out["bvh_nodes"] = bvh.nodes.size();
     out["bvh_peak_bytes"] = peak_bytes();
     out["children_peak_bytes"] = children_peak_bytes();
     std::cout << out.dump() << std::endl;

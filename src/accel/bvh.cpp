@@ -168,28 +168,6 @@ BvhTree build_bvh(const std::vector<TrianglePositions>& triangles, int threads) 
     return tree;
 }
 
-namespace {
-
-// items[i] = the old items[order[i]] for every i, where `order` lists every index once (the leaves hold each
-// triangle once: the build splits none), following each cycle of the permutation.
-void put_in_order(std::vector<SceneTriangle>& items, const std::vector<std::uint32_t>& order) {
-    if (order.size() != items.size()) throw std::runtime_error("BVH: the leaves do not hold every triangle once");
-    std::vector<bool> placed(items.size(), false);
-    for (std::size_t start = 0; start < items.size(); ++start) {
-        if (placed[start]) continue;
-        SceneTriangle first = items[start];
-        std::size_t slot = start;
-        for (std::size_t from = order[slot]; from != start; slot = from, from = order[slot]) {
-            items[slot] = items[from];
-            placed[slot] = true;
-        }
-        items[slot] = first;
-        placed[slot] = true;
-    }
-}
-
-}  // namespace
-
 std::array<glm::dvec3, 3> vertex_normals(const Mesh& mesh, const glm::uvec3& t) {
     if (mesh.normals.empty()) return {};
     return {mesh.normals[t.x], mesh.normals[t.y], mesh.normals[t.z]};
@@ -200,36 +178,15 @@ std::array<glm::dvec2, 3> vertex_uvs(const Mesh& mesh, const glm::uvec3& t) {
     return {mesh.uvs[t.x], mesh.uvs[t.y], mesh.uvs[t.z]};
 }
 
-std::vector<SceneTriangle> scene_triangles(const Scene& scene) {
-    std::vector<SceneTriangle> triangles;
+std::vector<TrianglePositions> scene_triangle_positions(const Scene& scene) {
     std::size_t count = 0;
     for (const Mesh& mesh : scene.meshes) count += mesh.triangles.size();
-    triangles.reserve(count);
-    for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
-        const Mesh& mesh = scene.meshes[m];
-        for (const glm::uvec3& t : mesh.triangles) {
-            triangles.push_back({{mesh.positions[t.x], mesh.positions[t.y], mesh.positions[t.z]},
-                                 vertex_normals(mesh, t),
-                                 vertex_uvs(mesh, t),
-                                 mesh.material,
-                                 static_cast<int>(m)});
-        }
-    }
-    return triangles;
-}
-
-SceneBvh build_scene_bvh(const Scene& scene) {
-    SceneBvh result;
-    result.triangles = scene_triangles(scene);
-    {
-        std::vector<TrianglePositions> positions;
-        positions.reserve(result.triangles.size());
-        for (const SceneTriangle& t : result.triangles) positions.push_back(t.positions);
-        result.tree = build_bvh(positions);
-    }
-    // Into leaf order in place: a second copy of the triangles (152 bytes each) would be the load's peak.
-    put_in_order(result.triangles, result.tree.leaf_order);
-    return result;
+    std::vector<TrianglePositions> positions;
+    positions.reserve(count);
+    for (const Mesh& mesh : scene.meshes)
+        for (const glm::uvec3& t : mesh.triangles)
+            positions.push_back({mesh.positions[t.x], mesh.positions[t.y], mesh.positions[t.z]});
+    return positions;
 }
 
 }  // namespace wp

@@ -37,22 +37,8 @@ BvhTree build_bvh(const std::vector<TrianglePositions>& triangles, int threads =
 std::array<glm::dvec3, 3> vertex_normals(const Mesh& mesh, const glm::uvec3& triangle);
 std::array<glm::dvec2, 3> vertex_uvs(const Mesh& mesh, const glm::uvec3& triangle);
 
-// Every mesh triangle of the scene in one list: mesh by mesh, in file order.
-struct SceneTriangle {
-    TrianglePositions positions;
-    std::array<glm::dvec3, 3> normals{};  // vertex_normals
-    std::array<glm::dvec2, 3> uvs{};      // vertex_uvs
-    int material = 0;
-    int mesh = 0;
-};
-std::vector<SceneTriangle> scene_triangles(const Scene& scene);
-
-// The scene's triangles and their tree, ready to lay out for a renderer:
-// `triangles` in the tree's leaf order.
-struct SceneBvh {
-    std::vector<SceneTriangle> triangles;
-    BvhTree tree;
-};
-SceneBvh build_scene_bvh(const Scene& scene);
+// Every mesh triangle's corners, mesh by mesh in file order: what build_bvh
+// takes for a scene (the tree's leaf_order indexes this list).
+std::vector<TrianglePositions> scene_triangle_positions(const Scene& scene);
 
 }  // namespace wp

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <algorithm>
+#include <stdexcept>
 #include <vector>
 
 #include "accel/bvh.h"
@@ -46,56 +47,23 @@ typename SharedMath<Real>::TriangleUVs triangle_uvs(const std::array<glm::dvec2,
     return uv;
 }
 
-// The triangles' vertex normals in the tree's leaf order, for scenes that
-// shade with them (FeatureSet::shading_normals).
 template <class Real>
-std::vector<typename SharedMath<Real>::TriangleNormals> triangle_normals(const SceneBvh& bvh) {
-    std::vector<typename SharedMath<Real>::TriangleNormals> normals;
-    normals.reserve(bvh.triangles.size());
-    for (const SceneTriangle& t : bvh.triangles) normals.push_back(triangle_normals<Real>(t.normals));
-    return normals;
-}
-
-// The triangles' uvs in the tree's leaf order, for scenes with textures
-// (FeatureSet::textures).
-template <class Real>
-std::vector<typename SharedMath<Real>::TriangleUVs> triangle_uvs(const SceneBvh& bvh) {
-    std::vector<typename SharedMath<Real>::TriangleUVs> uvs;
-    uvs.reserve(bvh.triangles.size());
-    for (const SceneTriangle& t : bvh.triangles) uvs.push_back(triangle_uvs<Real>(t.uvs));
-    return uvs;
-}
-
-template <class Real>
-struct TraversableBvh {
-    std::vector<typename SharedMath<Real>::MeshTriangle> triangles;  // in the tree's leaf order
-    std::vector<typename SharedMath<Real>::BvhNode> nodes;
-};
-
-template <class Real>
-TraversableBvh<Real> traversable_bvh(const SceneBvh& bvh) {
-    TraversableBvh<Real> flat;
-    flat.triangles.reserve(bvh.triangles.size());
-    flat.nodes.reserve(bvh.tree.nodes.size());
-    for (const SceneTriangle& t : bvh.triangles)
-        flat.triangles.push_back(mesh_triangle<Real>(t.positions, t.material, t.mesh));
-    for (const BvhTree::Node& n : bvh.tree.nodes) {
-        typename SharedMath<Real>::BvhNode node{};
-        for (int i = 0; i < 2; ++i) {
-            std::copy(n.bounds[i].begin(), n.bounds[i].end(), node.bounds[i]);
-            node.child[i] = n.child[i];
-        }
-        flat.nodes.push_back(node);
+typename SharedMath<Real>::BvhNode bvh_node(const BvhTree::Node& n) {
+    typename SharedMath<Real>::BvhNode node{};
+    for (int i = 0; i < 2; ++i) {
+        std::copy(n.bounds[i].begin(), n.bounds[i].end(), node.bounds[i]);
+        node.child[i] = n.child[i];
     }
-    return flat;
+    return node;
 }
 
 // The meshes as a renderer reads them: the triangles and, as asked, their
-// vertex normals and uvs in parallel. With the BVH (the kernels and the
-// reference trace it): in its leaf order, beside its nodes. Without (where
-// Embree traces the rays, which finds a triangle by its index in any order:
-// no tree built, `nodes` empty): in the scene's order, mesh by mesh in file
-// order, straight from the meshes, so that no SceneTriangle is made.
+// vertex normals and uvs in parallel, each read straight from its mesh (no
+// list of the triangles in double is made: 200 bytes a triangle with its
+// normals and uvs). With the BVH (the kernels and the reference trace it):
+// in its leaf order, beside its nodes. Without (where Embree traces the
+// rays, which finds a triangle by its index in any order: no tree built,
+// `nodes` empty): in the scene's order, mesh by mesh in file order.
 template <class Real>
 struct MeshLayout {
     std::vector<typename SharedMath<Real>::MeshTriangle> triangles;
@@ -114,30 +82,37 @@ struct MeshLayoutRequest {
 template <class Real>
 MeshLayout<Real> mesh_layout(const Scene& scene, const MeshLayoutRequest& request) {
     MeshLayout<Real> layout;
-    if (request.bvh) {
-        SceneBvh bvh = build_scene_bvh(scene);
-        TraversableBvh<Real> flat = traversable_bvh<Real>(bvh);
-        if (request.normals) layout.normals = triangle_normals<Real>(bvh);
-        if (request.uvs) layout.uvs = triangle_uvs<Real>(bvh);
-        layout.triangles = std::move(flat.triangles);
-        layout.nodes = std::move(flat.nodes);
-        layout.depth = bvh.tree.depth;
-        return layout;
-    }
     std::size_t count = 0;
     for (const Mesh& mesh : scene.meshes) count += mesh.triangles.size();
     layout.triangles.reserve(count);
     if (request.normals) layout.normals.reserve(count);
     if (request.uvs) layout.uvs.reserve(count);
-    for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
+    auto add = [&](std::size_t m, const glm::uvec3& t) {
         const Mesh& mesh = scene.meshes[m];
-        for (const glm::uvec3& t : mesh.triangles) {
-            layout.triangles.push_back(mesh_triangle<Real>(
-                {mesh.positions[t.x], mesh.positions[t.y], mesh.positions[t.z]}, mesh.material, int(m)));
-            if (request.normals) layout.normals.push_back(triangle_normals<Real>(vertex_normals(mesh, t)));
-            if (request.uvs) layout.uvs.push_back(triangle_uvs<Real>(vertex_uvs(mesh, t)));
-        }
+        layout.triangles.push_back(mesh_triangle<Real>({mesh.positions[t.x], mesh.positions[t.y], mesh.positions[t.z]},
+                                                       mesh.material, static_cast<int>(m)));
+        if (request.normals) layout.normals.push_back(triangle_normals<Real>(vertex_normals(mesh, t)));
+        if (request.uvs) layout.uvs.push_back(triangle_uvs<Real>(vertex_uvs(mesh, t)));
+    };
+    if (!request.bvh) {
+        for (std::size_t m = 0; m < scene.meshes.size(); ++m)
+            for (const glm::uvec3& t : scene.meshes[m].triangles) add(m, t);
+        return layout;
     }
+    // The corners go once the tree is built; each leaf slot's triangle is
+    // then read from its mesh (scene_triangle_positions' index: the first
+    // triangle of each mesh, and past the last).
+    BvhTree tree = build_bvh(scene_triangle_positions(scene));
+    std::vector<std::size_t> first{0};
+    for (const Mesh& mesh : scene.meshes) first.push_back(first.back() + mesh.triangles.size());
+    if (tree.leaf_order.size() != count) throw std::runtime_error("BVH: the leaves do not hold every triangle once");
+    for (std::uint32_t i : tree.leaf_order) {
+        const std::size_t m = std::size_t(std::upper_bound(first.begin(), first.end(), i) - first.begin()) - 1;
+        add(m, scene.meshes[m].triangles[i - first[m]]);
+    }
+    layout.nodes.reserve(tree.nodes.size());
+    for (const BvhTree::Node& n : tree.nodes) layout.nodes.push_back(bvh_node<Real>(n));
+    layout.depth = tree.depth;
     return layout;
 }
 

@@ -24,12 +24,12 @@ namespace {
 using M = SharedMath<float>;
 using vec3 = M::vec3;
 
-using FlatMeshes = TraversableBvh<float>;
+using FlatMeshes = MeshLayout<float>;
 
 FlatMeshes flatten(const std::vector<Mesh>& meshes) {
     Scene scene;
     scene.meshes = meshes;
-    return traversable_bvh<float>(build_scene_bvh(scene));
+    return mesh_layout<float>(scene, {});
 }
 
 // Every triangle tested in turn, keeping the first of equal distances.
@@ -115,13 +115,9 @@ TEST(Bvh, FindsWhatTestingEveryTriangleFindsOnTheBunny) {
 }
 
 TEST(Bvh, SameTreeForAnyThreadCountAndRun) {
-    std::vector<TrianglePositions> triangles;
-    for (const SceneTriangle& t : scene_triangles([] {
-             Scene s;
-             s.meshes = soup();
-             return s;
-         }()))
-        triangles.push_back(t.positions);
+    Scene scene;
+    scene.meshes = soup();
+    const std::vector<TrianglePositions> triangles = scene_triangle_positions(scene);
     BvhTree one = build_bvh(triangles, 1), two = build_bvh(triangles, 2), again = build_bvh(triangles, 2);
     for (const BvhTree* other : {&two, &again}) {
         ASSERT_EQ(other->nodes.size(), one.nodes.size());
@@ -134,21 +130,58 @@ TEST(Bvh, SameTreeForAnyThreadCountAndRun) {
     EXPECT_LE(one.depth, 32);
 }
 
-// The scene's triangles, put into leaf order in place: slot i holds input triangle leaf_order[i], whole.
-TEST(Bvh, SceneTrianglesAreInLeafOrder) {
+// The layout's triangles are in leaf order: slot i holds input triangle
+// leaf_order[i] (scene_triangle_positions' index), whole: its corners, its
+// material, its mesh, its vertex normals and uvs. Without the BVH: the input's order.
+TEST(Bvh, MeshLayoutIsInLeafOrder) {
     Scene scene;
     scene.meshes = soup();
-    scene.meshes[1].material = 1;  // two meshes apart: the material and the mesh index travel with the triangle
-    const std::vector<SceneTriangle> input = scene_triangles(scene);
-    const SceneBvh bvh = build_scene_bvh(scene);
-    ASSERT_EQ(bvh.triangles.size(), input.size());
-    ASSERT_EQ(bvh.tree.leaf_order.size(), input.size());
-    for (std::size_t i = 0; i < input.size(); ++i) {
-        const SceneTriangle& expected = input[bvh.tree.leaf_order[i]];
-        EXPECT_EQ(bvh.triangles[i].positions, expected.positions);
-        EXPECT_EQ(bvh.triangles[i].normals, expected.normals);
-        EXPECT_EQ(bvh.triangles[i].material, expected.material);
-        EXPECT_EQ(bvh.triangles[i].mesh, expected.mesh);
+    scene.meshes[1].material = 1;       // meshes apart: the material and the mesh index travel with the triangle
+    scene.meshes[2].triangles.clear();  // an empty mesh shifts no index
+    for (std::size_t v = 0; v < scene.meshes[3].positions.size(); ++v) {  // one mesh with normals and uvs
+        scene.meshes[3].normals.push_back(glm::normalize(scene.meshes[3].positions[v] + 1e-3));
+        scene.meshes[3].uvs.push_back({0.25 * double(v), 0.5});
+    }
+    struct Input {
+        TrianglePositions positions;
+        std::array<glm::dvec3, 3> normals;
+        std::array<glm::dvec2, 3> uvs;
+        int material;
+        std::uint32_t mesh;
+    };
+    std::vector<Input> input;
+    for (std::size_t m = 0; m < scene.meshes.size(); ++m)
+        for (const glm::uvec3& t : scene.meshes[m].triangles) {
+            const Mesh& mesh = scene.meshes[m];
+            input.push_back({{mesh.positions[t.x], mesh.positions[t.y], mesh.positions[t.z]},
+                             vertex_normals(mesh, t),
+                             vertex_uvs(mesh, t),
+                             mesh.material,
+                             std::uint32_t(m)});
+        }
+    const BvhTree tree = build_bvh(scene_triangle_positions(scene));
+    for (bool with_bvh : {true, false}) {
+        SCOPED_TRACE(with_bvh ? "BVH" : "no BVH");
+        const MeshLayout<double> layout = mesh_layout<double>(scene, {with_bvh, true, true});
+        ASSERT_EQ(layout.triangles.size(), input.size());
+        ASSERT_EQ(layout.normals.size(), input.size());
+        ASSERT_EQ(layout.uvs.size(), input.size());
+        EXPECT_EQ(layout.nodes.size(), with_bvh ? tree.nodes.size() : 0u);
+        for (std::size_t i = 0; i < input.size(); ++i) {
+            const Input& expected = input[with_bvh ? tree.leaf_order[i] : i];
+            const auto& triangle = layout.triangles[i];
+            for (int a = 0; a < 3; ++a) {
+                EXPECT_EQ(triangle.p0[a], expected.positions[0][a]) << i;
+                EXPECT_EQ(triangle.p1[a], expected.positions[1][a]) << i;
+                EXPECT_EQ(triangle.p2[a], expected.positions[2][a]) << i;
+                EXPECT_EQ(layout.normals[i].n0[a], expected.normals[0][a]) << i;
+                EXPECT_EQ(layout.normals[i].n2[a], expected.normals[2][a]) << i;
+            }
+            EXPECT_EQ(layout.uvs[i].uv1[0], expected.uvs[1][0]) << i;
+            EXPECT_EQ(layout.uvs[i].uv2[1], expected.uvs[2][1]) << i;
+            EXPECT_EQ(triangle.material, std::uint32_t(expected.material)) << i;
+            EXPECT_EQ(triangle.mesh, expected.mesh) << i;
+        }
     }
 }
 
@@ -158,13 +191,12 @@ TEST(Bvh, BoxesHoldTheirTrianglesExactly) {
     std::vector<Mesh> meshes = soup();
     Scene scene;
     scene.meshes = meshes;
-    SceneBvh bvh = build_scene_bvh(scene);
-    std::function<void(std::uint32_t, const std::array<float, 6>&)> check = [&](std::uint32_t word,
-                                                                                const std::array<float, 6>& box) {
+    const MeshLayout<double> bvh = mesh_layout<double>(scene, {});
+    std::function<void(std::uint32_t, const float*)> check = [&](std::uint32_t word, const float* box) {
         if (word & WP_BVH_LEAF) {
             std::uint32_t first = (word & ~WP_BVH_LEAF) >> WP_BVH_LEAF_COUNT_BITS, count = (word & 7u) + 1;
             for (std::uint32_t k = first; k < first + count; ++k)
-                for (const glm::dvec3& p : bvh.triangles[k].positions)
+                for (const double* p : {bvh.triangles[k].p0, bvh.triangles[k].p1, bvh.triangles[k].p2})
                     for (int a = 0; a < 3; ++a) {
                         EXPECT_LE(double(box[a]), p[a]);
                         EXPECT_GE(double(box[3 + a]), p[a]);
@@ -172,10 +204,9 @@ TEST(Bvh, BoxesHoldTheirTrianglesExactly) {
             return;
         }
         for (int i = 0; i < 2; ++i)
-            if (bvh.tree.nodes[word].child[i] != WP_BVH_NO_CHILD)
-                check(bvh.tree.nodes[word].child[i], bvh.tree.nodes[word].bounds[i]);
+            if (bvh.nodes[word].child[i] != WP_BVH_NO_CHILD) check(bvh.nodes[word].child[i], bvh.nodes[word].bounds[i]);
     };
-    check(0, {});
+    check(0, nullptr);
     EXPECT_EQ(bvh.triangles.size(), 8u * 1280u);
 }
 
@@ -241,7 +272,7 @@ int bvh_rays_not_crossing(const Mesh& mesh, double size) {
     using R = SharedMath<Real>;
     Scene scene;
     scene.meshes = {mesh};
-    TraversableBvh<Real> flat = traversable_bvh<Real>(build_scene_bvh(scene));
+    MeshLayout<Real> flat = mesh_layout<Real>(scene, {});
     return rays_not_crossing_as_expected<Real>(
         mesh, size, [&](const typename R::vec3& origin, const typename R::vec3& direction) {
             std::uint32_t index = 0;
@@ -253,7 +284,7 @@ int bvh_rays_not_crossing(const Mesh& mesh, double size) {
 int embree_rays_not_crossing(const Mesh& mesh, double size, EmbreeMode mode) {
     Scene scene;
     scene.meshes = {mesh};
-    EmbreeIntersector embree(scene, traversable_bvh<float>(build_scene_bvh(scene)).triangles, {mode});
+    EmbreeIntersector embree(scene, mesh_layout<float>(scene, {}).triangles, {mode});
     return rays_not_crossing_as_expected<float>(mesh, size, [&](const vec3& origin, const vec3& direction) {
         return embree.closest(origin, direction, M::real_max).t;
     });
