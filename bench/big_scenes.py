@@ -441,7 +441,7 @@ def markdown(result):
     t = s["triangles"]
     held = {"positions": "the scene, to the end", "normals": "the scene, to the end",
             "indices": "the scene, to the end",
-            "device_triangles": "the render: the device buffer (the host's copy until the upload)",
+            "device_triangles": "the render: the Embree intersector's, which the device buffer uses in place",
             "device_normals": "the render, with shading normals", "device_uvs": "the render, with textures",
             "bvh_device_triangles": "our BVH's path: the render (device buffer)",
             "device_nodes": "our BVH's path: the render (device buffer)"}

@@ -6,8 +6,8 @@
 //    load_mitsuba_scene: the contained import included);
 //  - layout: the device's triangles (mesh_layout without the BVH: the
 //    scene's order), which the render uploads;
-//  - embree: the Embree intersector over those triangles (its own copy
-//    and Embree's BVH);
+//  - embree: the Embree intersector over those triangles (which it takes,
+//    and the device's buffer then uses in place, and Embree's BVH);
 // its peak (VmHWM) read there. Then, the intersector and the layout gone
 // and the peak reset (/proc/self/clear_refs), the path of the devices that
 // trace with our BVH (GPUs, the megakernel):
@@ -124,7 +124,8 @@ int main(int argc, char** argv) {
                                {"device_uvs", bytes_of(layout.uvs)}};
 
         start = Clock::now();
-        const EmbreeIntersector embree(scene, layout.triangles);  // the render keeps the device's copy beside it
+        // The render's device buffer uses the intersector's triangles in place: one copy.
+        const EmbreeIntersector embree(scene, std::move(layout.triangles));
         out["embree_s"] = seconds_since(start);
         out["resident_after_embree"] = resident_bytes() - resident_at_start;
         out["peak_bytes"] = peak_bytes();

@@ -12,6 +12,7 @@
 #include <mutex>
 #include <stdexcept>
 #include <thread>
+#include <type_traits>
 
 namespace wp {
 
@@ -144,7 +145,7 @@ struct QuadShape {
 struct TriangleShape {
     static constexpr std::uint32_t kind = WP_SHAPE_TRIANGLE;
     static constexpr unsigned triangles = 1;
-    M::MeshTriangle triangle;
+    M::MeshTriangle triangle;  // alone: a list of shapes has the bytes of a list of triangles (triangle_bytes)
     // These need with_triangle_ray(ray).
     float t(const Lane& ray) const { return M::mesh_triangle_t(&triangle, ray.triangle_ray, ray.origin, ray.t_max); }
     // mesh_triangle_t's two steps, the edges computed once for both distances.
@@ -643,6 +644,12 @@ EmbreeIntersector::~EmbreeIntersector() = default;
 const EmbreeOptions& EmbreeIntersector::options() const { return impl_->options; }
 
 std::uint64_t EmbreeIntersector::retraced_rays() const { return impl_->retraced; }
+
+static_assert(sizeof(TriangleShape) == sizeof(M::MeshTriangle) && std::is_standard_layout_v<TriangleShape>);
+
+std::span<const std::byte> EmbreeIntersector::triangle_bytes() const {
+    return std::as_bytes(std::span(impl_->triangles));
+}
 
 HostHit EmbreeIntersector::closest(const vec3& origin, const vec3& direction, float t_max) const {
     Lane lane = make_lane(origin, direction, t_max, impl_->search_slack);

@@ -125,6 +125,12 @@ class EmbreeIntersector {
 
     const EmbreeOptions& options() const;
 
+    // The triangles it was given, as their bytes: the layout of
+    // SharedMath<float>::MeshTriangle, in their order. They stay where they
+    // are for its life, so a device buffer on a CPU can use them in place
+    // (wavefront/pipeline.cpp).
+    std::span<const std::byte> triangle_bytes() const;
+
     // Closest-hit rays EmbreeMode::Verified traced again Exact (our test
     // missed the shape Embree found), so far.
     std::uint64_t retraced_rays() const;

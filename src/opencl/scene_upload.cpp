@@ -297,13 +297,17 @@ std::string MeshSummary::describe() const {
     return out.str();
 }
 
-DeviceScene::DeviceScene(const cl::Context& context, const SceneLayout& layout)
+DeviceScene::DeviceScene(const cl::Context& context, const SceneLayout& layout,
+                         std::span<const std::byte> host_triangles)
     : meshes_(layout.meshes), textures_(layout.textures_summary) {
     buffers_[arg::Scene::scene] = upload(context, std::vector<SceneHeader>{layout.header});
     buffers_[arg::Scene::spheres] = upload(context, layout.spheres);
     buffers_[arg::Scene::planes] = upload(context, layout.planes);
     buffers_[arg::Scene::quads] = upload(context, layout.quads);
-    buffers_[arg::Scene::triangles] = upload(context, layout.triangles);
+    buffers_[arg::Scene::triangles] =
+        host_triangles.empty() ? upload(context, layout.triangles)
+                               : cl::Buffer(context, CL_MEM_READ_ONLY | CL_MEM_USE_HOST_PTR, host_triangles.size(),
+                                            const_cast<std::byte*>(host_triangles.data()));
     buffers_[arg::Scene::triangle_normals] = upload(context, layout.triangle_normals);
     buffers_[arg::Scene::bvh_nodes] = upload(context, layout.bvh_nodes);
     buffers_[arg::Scene::materials] = upload(context, layout.materials);

@@ -3,7 +3,9 @@
 
 #include <CL/opencl.hpp>
 #include <array>
+#include <cstddef>
 #include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -70,11 +72,16 @@ std::string describe_textures(const Scene& scene, std::size_t device_bytes);
 // (OpenCL has no empty buffers); the counts say what is real.
 class DeviceScene {
  public:
-    DeviceScene(const cl::Context& context, const SceneLayout& layout);
+    // `host_triangles`: where the host traces, the mesh triangles its
+    // intersector holds (the bytes of layout.triangles, which is then
+    // empty), which the triangle buffer uses in place (CL_MEM_USE_HOST_PTR:
+    // on a CPU device, PoCL makes no copy); they must outlive this.
+    DeviceScene(const cl::Context& context, const SceneLayout& layout, std::span<const std::byte> host_triangles = {});
     // Sets a kernel's scene arguments (WP_SCENE_PARAMETERS, first in every kernel that traces).
     void bind(cl::Kernel& kernel) const;
     // The scene header alone (kernels that take it without the rest).
     const cl::Buffer& header() const { return buffers_[arg::Scene::scene]; }
+    const cl::Buffer& triangles() const { return buffers_[arg::Scene::triangles]; }
     const MeshSummary& meshes() const { return meshes_; }
     const std::string& textures() const { return textures_; }
 

@@ -61,7 +61,10 @@ Pipeline::Pipeline(const Scene& scene, SceneLayout layout, const DeviceInfo& dev
       queue_(context_, device.device, options.profile ? cl_command_queue_properties(CL_QUEUE_PROFILING_ENABLE) : 0),
       launcher_(queue_, options.profile),
       program_(build_program(context_, device, program.files, program.options, options.progress)),
-      scene_(context_, layout),
+      host_trace_(kernel_features.host_traced ? std::make_unique<HostTrace>(scene, std::move(layout.triangles))
+                                              : nullptr),
+      scene_(context_, layout,
+             host_trace_ ? host_trace_->intersector().triangle_bytes() : std::span<const std::byte>()),
       state_(context_, capacity, kernel_features),
       queues_(context_, queue_, program_.program, capacity, options.compaction,
               plan_queues(std::vector<std::vector<Stage>>{iteration_, photon_iteration_},
@@ -70,6 +73,7 @@ Pipeline::Pipeline(const Scene& scene, SceneLayout layout, const DeviceInfo& dev
       film_(context_, queue_, program_.program, scene.camera.width, scene.camera.height, options.film_squares),
       pass_radiance_(context_, CL_MEM_READ_WRITE, sizeof(float) * 3 * pass_capacity),
       slot_nonfinite_(context_, CL_MEM_READ_WRITE, sizeof(std::uint32_t) * WP_NONFINITE_STAGE_COUNT * capacity) {
+    layout = SceneLayout{};  // the device buffers have their own
     if (kernel_features.sppm) {
         photons_per_iteration_ = scene.lights.empty() ? 0 : static_cast<std::uint32_t>(sppm_photons(scene));
         sppm_.emplace(context_, queue_, program_.program, scene_, queues_.counts(),
@@ -90,15 +94,10 @@ Pipeline::Pipeline(const Scene& scene, SceneLayout layout, const DeviceInfo& dev
     if (options.profile)
         ray_depths_.emplace(program_.program, queues_.queues(), queues_.counts(), capacity, state_.field("depth"),
                             kernel_features.nee);
-    if (kernel_features.host_traced) {
-        // The triangles go to the host's tracer; the other host copies, which
-        // the device buffers have copied, go before its build.
-        std::vector<SharedMath<float>::MeshTriangle> triangles = std::move(layout.triangles);
-        layout = SceneLayout{};
-        host_trace_.emplace(scene, std::move(triangles));
-    }
     queue_.enqueueFillBuffer(slot_nonfinite_, std::uint32_t(0), 0, slot_nonfinite_.getInfo<CL_MEM_SIZE>());
 }
+
+Pipeline::~Pipeline() { clFinish(queue_()); }
 
 void Pipeline::begin_pass(std::uint64_t start, std::uint32_t size) {
     pass_start_ = start;

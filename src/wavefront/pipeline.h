@@ -60,12 +60,16 @@ class Pipeline {
     // (wavefront/host_trace.h).
     Pipeline(const Scene& scene, const DeviceInfo& device, std::size_t capacity, std::size_t pass_capacity,
              const FeatureSet& kernel_features, const PipelineOptions& options = {});
+    // Waits for the device's commands: its kernels may read the host tracer's triangles in place.
+    ~Pipeline();
 
     // The program (every kernel file, built with -DWP_LANES=lanes()).
     const BuiltProgram& program() const { return program_; }
     unsigned lanes() const { return lanes_; }
     const PathState& state() const { return state_; }
     const DeviceScene& device_scene() const { return scene_; }
+    // The host's tracer, where kernel_features.host_traced; else null.
+    const HostTrace* host_trace() const { return host_trace_.get(); }
     std::size_t capacity() const { return capacity_; }
     std::size_t pass_capacity() const { return pass_capacity_; }
     QueueSet& queues() { return queues_; }
@@ -157,7 +161,8 @@ class Pipeline {
     std::vector<float> read_pass_radiance();
 
  private:
-    // `layout`: the host's copies, emptied once the device has its own (before the host trace's build).
+    // `layout`: the host's copies, emptied once the device has its own;
+    // where the host traces, its triangles go to the host's tracer before.
     Pipeline(const Scene& scene, SceneLayout layout, const DeviceInfo& device, std::size_t capacity,
              std::size_t pass_capacity, const FeatureSet& kernel_features, const PipelineOptions& options,
              const KernelProgram& program);
@@ -170,6 +175,8 @@ class Pipeline {
     cl::CommandQueue queue_;
     KernelLauncher launcher_;
     BuiltProgram program_;
+    std::unique_ptr<HostTrace>
+        host_trace_;  // kernel_features.host_traced only; before scene_, which uses its triangles
     DeviceScene scene_;
     PathState state_;
     QueueSet queues_;
@@ -178,7 +185,6 @@ class Pipeline {
     std::optional<SppmPass> sppm_;               // the sppm integrator only
     std::vector<cl::Kernel> stages_;             // by Stage
     std::optional<RayDepthCounter> ray_depths_;  // profiling only
-    std::optional<HostTrace> host_trace_;        // kernel_features.host_traced only
     RenderProfile profile_;
     std::uint64_t pass_start_ = 0;
     std::uint32_t pass_size_ = 0;

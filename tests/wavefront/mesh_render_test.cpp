@@ -5,6 +5,9 @@
 // host or our BVH.
 #include <gtest/gtest.h>
 
+#include <cstddef>
+#include <span>
+
 #include "megakernel/megakernel_renderer.h"
 #include "reference/reference_renderer.h"
 #include "reference/reference_scene.h"
@@ -12,6 +15,7 @@
 #include "support/meshes.h"
 #include "support/path_agreement.h"
 #include "wavefront/intersector_choice.h"
+#include "wavefront/pipeline.h"
 #include "wavefront/wavefront_renderer.h"
 #include "wavefront/wavefront_test_support.h"
 
@@ -200,9 +204,10 @@ TEST(MeshRender, WavefrontRetracesTheReferenceWithTheSameIntersectorOnTheShipped
             EXPECT_EQ(report.features.find("host-traced") != std::string::npos, intersector == Intersector::Embree)
                 << label;
             // Where the host traces, no BVH is built: the kernels only shade its hits.
-            if (!scene.meshes.empty())
+            if (!scene.meshes.empty()) {
                 EXPECT_EQ(report.meshes.find("no BVH") != std::string::npos, intersector == Intersector::Embree)
                     << label << ": " << report.meshes;
+            }
             EXPECT_GT(wavefront.stats.shadow_rays, 0u) << label;
             ReferenceOptions reference{2, false};
             reference.intersector = intersector;
@@ -210,6 +215,22 @@ TEST(MeshRender, WavefrontRetracesTheReferenceWithTheSameIntersectorOnTheShipped
                                                  "wavefront and reference, " + label);
         }
     }
+}
+
+// Where the host traces, the device's triangle buffer is the host tracer's
+// triangles in place (CL_MEM_USE_HOST_PTR): on a CPU device, one copy.
+TEST(MeshRender, HostTracedTrianglesAreOneCopy) {
+    Scene scene = shipped("cornell_mesh", 8, 1);
+    FeatureSet features = scene.features();
+    features.host_traced = features.shadow_stage = true;
+    Pipeline pipeline(scene, choose_device(""), 64, 64, features);
+    ASSERT_NE(pipeline.host_trace(), nullptr);
+    const std::span<const std::byte> host = pipeline.host_trace()->intersector().triangle_bytes();
+    const cl::Buffer& device = pipeline.device_scene().triangles();
+    EXPECT_NE(device.getInfo<CL_MEM_FLAGS>() & CL_MEM_USE_HOST_PTR, 0u);
+    EXPECT_EQ(device.getInfo<CL_MEM_HOST_PTR>(), static_cast<const void*>(host.data()));
+    EXPECT_EQ(device.getInfo<CL_MEM_SIZE>(), host.size());
+    EXPECT_EQ(host.size(), sizeof(SharedMath<float>::MeshTriangle) * pipeline.device_scene().meshes().triangles);
 }
 
 // The hits the host writes are a function of each ray alone: the same image,
