@@ -336,6 +336,20 @@ WP_FN int lanes_have_kind(lane_uint type, uint kind) {
 #endif
 }
 
+#if defined(WP_HAS_ROUGH_CONDUCTOR) || defined(WP_HAS_ROUGH_DIELECTRIC)
+/* The frame of v's rough material's microfacets about the normal of
+ * `isotropic`, the frame the material builds from the normal alone
+ * (shared/materials/microfacet.h): that frame itself unless the scene has
+ * anisotropic roughness. */
+WP_FN Frame vertex_microfacet_frame(Vertex v, Frame isotropic) {
+#ifdef WP_HAS_ANISOTROPIC_ROUGHNESS
+    return microfacet_frame(v.material.microfacet, isotropic, v.dp_du);
+#else
+    return isotropic;
+#endif
+}
+#endif
+
 #ifdef WP_HAS_NON_SPECULAR
 /* The path's throughput times f, and the density of BSDF sampling, for the
  * direction wi from vertex v: next-event estimation's two numbers from the
@@ -362,17 +376,19 @@ WP_FN BsdfValue vertex_bsdf_value(Vertex v, vec3 wi, vec3 throughput) {
 #ifdef WP_HAS_ROUGH_CONDUCTOR
     if (lanes_have_kind(m.type, WP_MATERIAL_ROUGH_CONDUCTOR)) {
         lane_int is_rough = m.type == WP_MATERIAL_ROUGH_CONDUCTOR;
-        vec3 f = roughconductor_eval(m.microfacet, m.eta, m.k, m.specular_reflectance, v.ns, v.wo, wi);
+        Frame frame = vertex_microfacet_frame(v, frame_from_normal(v.ns));
+        vec3 f = roughconductor_eval(m.microfacet, m.eta, m.k, m.specular_reflectance, frame, v.wo, wi);
         b.throughput_f = v3_select(is_rough, v3_mul(throughput, f), b.throughput_f);
-        b.pdf = is_rough ? roughconductor_pdf(m.microfacet, v.ns, v.wo, wi) : b.pdf;
+        b.pdf = is_rough ? roughconductor_pdf(m.microfacet, frame, v.wo, wi) : b.pdf;
     }
 #endif
 #ifdef WP_HAS_ROUGH_DIELECTRIC
     if (lanes_have_kind(m.type, WP_MATERIAL_ROUGH_DIELECTRIC)) {
         lane_int is_rough = m.type == WP_MATERIAL_ROUGH_DIELECTRIC;
-        vec3 f = roughdielectric_eval(m.microfacet, m.ior, v.front, v.ns, v.wo, wi, WP_TRANSPORT_RADIANCE);
+        Frame frame = vertex_microfacet_frame(v, roughdielectric_frame(v.ns, v.front));
+        vec3 f = roughdielectric_eval(m.microfacet, m.ior, v.front, frame, v.wo, wi, WP_TRANSPORT_RADIANCE);
         b.throughput_f = v3_select(is_rough, v3_mul(throughput, f), b.throughput_f);
-        b.pdf = is_rough ? roughdielectric_pdf(m.microfacet, m.ior, v.front, v.ns, v.wo, wi) : b.pdf;
+        b.pdf = is_rough ? roughdielectric_pdf(m.microfacet, m.ior, v.front, frame, v.wo, wi) : b.pdf;
     }
 #endif
 #ifdef WP_HAS_PLASTIC
@@ -655,10 +671,12 @@ WP_FN BsdfSample scatter_vertex(Vertex v, vec3 d, BsdfRandom random, uint transp
 #endif
 #ifdef WP_HAS_ROUGH_DIELECTRIC
     if (lanes_have_kind(m.type, WP_MATERIAL_ROUGH_DIELECTRIC))
-        scattered = select_bsdf_sample(m.type == WP_MATERIAL_ROUGH_DIELECTRIC,
-                                       roughdielectric_sample(m.microfacet, m.ior, v.front, v.nf, v.ns, wo, random,
-                                                              transport, WP_USES_SHADING_NORMALS),
-                                       scattered);
+        scattered =
+            select_bsdf_sample(m.type == WP_MATERIAL_ROUGH_DIELECTRIC,
+                               roughdielectric_sample(m.microfacet, m.ior, v.front, v.nf,
+                                                      vertex_microfacet_frame(v, roughdielectric_frame(v.ns, v.front)),
+                                                      wo, random, transport, WP_USES_SHADING_NORMALS),
+                               scattered);
 #endif
 #ifdef WP_HAS_THIN_DIELECTRIC
     if (lanes_have_kind(m.type, WP_MATERIAL_THIN_DIELECTRIC))
@@ -670,7 +688,8 @@ WP_FN BsdfSample scatter_vertex(Vertex v, vec3 d, BsdfRandom random, uint transp
     if (lanes_have_kind(m.type, WP_MATERIAL_ROUGH_CONDUCTOR))
         scattered = select_bsdf_sample(m.type == WP_MATERIAL_ROUGH_CONDUCTOR,
                                        roughconductor_sample(m.microfacet, m.eta, m.k, m.specular_reflectance, v.nf,
-                                                             v.ns, wo, random.u, random.v, WP_USES_SHADING_NORMALS),
+                                                             vertex_microfacet_frame(v, frame_from_normal(v.ns)), wo,
+                                                             random.u, random.v, WP_USES_SHADING_NORMALS),
                                        scattered);
 #endif
 #ifdef WP_HAS_PLASTIC

@@ -27,6 +27,9 @@
 #ifdef WP_PERTURBS_NORMALS
 #include "shared/normal_map.h"
 #endif
+#ifdef WP_HAS_ANISOTROPIC_ROUGHNESS
+#include "shared/surface_tangents.h"
+#endif
 
 typedef struct {
     vec3 point;
@@ -360,8 +363,8 @@ WP_FN NormalMapped where_mapped(lane_uint texture, vec3 side, NormalMapped m) {
 }
 #endif
 
-#ifdef WP_HAS_NORMAL_MAP
-/* dp/du at surface s of `shape` (shared/normal_map.h): every shape kind in
+#if defined(WP_HAS_NORMAL_MAP) || defined(WP_HAS_ANISOTROPIC_ROUGHNESS)
+/* dp/du at surface s of `shape` (shared/surface_tangents.h): every shape kind in
  * the scene is evaluated and each lane keeps its own kind's; zero on planes. */
 WP_FN vec3 surface_dp_du(WP_SCENE_PARAMS, lane_uint shape, Surface s) {
     lane_uint index = shape & WP_SHAPE_INDEX_MASK;
@@ -391,7 +394,9 @@ WP_FN vec3 surface_dp_du(WP_SCENE_PARAMS, lane_uint shape, Surface s) {
 #endif
     return dp_du;
 }
+#endif
 
+#ifdef WP_HAS_NORMAL_MAP
 /* The shading normal of surface s of `shape`, turned to wo's side (`side`),
  * perturbed by its material's normal map `texture` (shared/normal_map.h):
  * `side` itself, and no terminator term, where the material has none
@@ -483,6 +488,9 @@ typedef struct {
 #ifdef WP_HAS_ROUGH_PLASTIC
     __global const float *roughplastic_table; /* the scene's roughplastic_transmittance */
 #endif
+#ifdef WP_HAS_ANISOTROPIC_ROUGHNESS
+    vec3 dp_du; /* the surface's: where an anisotropic material's alpha_u lies (microfacet_frame) */
+#endif
 } Vertex;
 
 WP_FN Vertex vertex_at(WP_SCENE_PARAMS, lane_uint shape, vec3 origin, vec3 direction, real t) {
@@ -499,6 +507,9 @@ WP_FN Vertex vertex_at(WP_SCENE_PARAMS, lane_uint shape, vec3 origin, vec3 direc
     v.wo = v3_neg(direction);
 #ifdef WP_HAS_ROUGH_PLASTIC
     v.roughplastic_table = roughplastic_transmittance;
+#endif
+#ifdef WP_HAS_ANISOTROPIC_ROUGHNESS
+    v.dp_du = surface_dp_du(WP_SCENE_ARGS, shape, v.surface);
 #endif
     FacingNormals facing = normals_facing(direction, v.surface.normal, v.surface.shading);
     v.front = facing.front;

@@ -9,62 +9,16 @@
  * 3.9's; the two normals' rule (leaves_on_side,
  * shared/materials/bsdf.h) still keeps every direction on the geometric
  * normal's side, so the perturbation cannot leak light through the
- * surface. dp/du per shape as Mitsuba's: a sphere's azimuthal tangent, a
- * quad's edge1 (Mitsuba's rectangle's +x), a triangle's from its vertex
- * uvs. Mitsuba 3's `bumpmap` adapter (bump_mapped) shares the flip and the
+ * surface. dp/du per shape as Mitsuba's (shared/surface_tangents.h).
+ * Mitsuba 3's `bumpmap` adapter (bump_mapped) shares the flip and the
  * terminator term; its normal is that of the surface raised along the
- * shading normal by a height texture, from dp/du and dp/dv (a quad's edge1
- * and edge2, sphere_tangents, triangle_dp_du and triangle_dp_dv). */
+ * shading normal by a height texture, from dp/du and dp/dv. */
 #ifndef WP_SHARED_NORMAL_MAP_H
 #define WP_SHARED_NORMAL_MAP_H
 
 #include "shared/prelude.h"
 #include "shared/sampling.h"
-
-/* dp/du of Mitsuba's sphere at unit normal `normal` (u the azimuth about
- * +z in turns): along (-y, x, 0); zero at the poles. */
-WP_FN vec3 sphere_dp_du(vec3 normal) { return make_vec3(-normal.y, normal.x, REAL(0.0)); }
-
-/* A surface's dp/du and dp/dv at a point, to their length (a bump map's
- * slope is per unit of uv). */
-typedef struct {
-    vec3 dp_du, dp_dv;
-} SurfaceTangents;
-
-/* Mitsuba's sphere's at unit normal `normal` on a sphere of `radius`: u the
- * azimuth in turns, 2 pi r (-y, x, 0); v the polar angle over pi,
- * pi r (z cos phi, z sin phi, -rho), rho = sqrt(x^2 + y^2), and (1, 0, 0)
- * there at the poles, as Mitsuba's. */
-WP_FN SurfaceTangents sphere_tangents(vec3 normal, real radius) {
-    real rho = sqrt(normal.x * normal.x + normal.y * normal.y);
-    lane_int pole = rho == REAL(0.0);
-    real inv_rho = REAL(1.0) / (pole ? REAL(1.0) : rho);
-    vec3 dp_dv = make_vec3(normal.z * normal.x * inv_rho, normal.z * normal.y * inv_rho, -rho);
-    SurfaceTangents t;
-    t.dp_du = v3_scale(sphere_dp_du(normal), REAL(2.0) * WP_PI * radius);
-    t.dp_dv = v3_scale(v3_select(pole, make_vec3(REAL(1.0), REAL(0.0), REAL(0.0)), dp_dv), WP_PI * radius);
-    return t;
-}
-
-/* dp/du of the triangle p0 p1 p2 with vertex uvs (u0, v0), (u1, v1), (u2,
- * v2): the solution of dp = dp/du du + dp/dv dv along its two edges from
- * p0; zero where the uvs are degenerate. */
-WP_FN vec3 triangle_dp_du(vec3 p0, vec3 p1, vec3 p2, real u0, real v0, real u1, real v1, real u2, real v2) {
-    real du1 = u1 - u0, dv1 = v1 - v0, du2 = u2 - u0, dv2 = v2 - v0;
-    real det = du1 * dv2 - dv1 * du2;
-    vec3 dp_du = v3_sub(v3_scale(v3_sub(p1, p0), dv2), v3_scale(v3_sub(p2, p0), dv1));
-    return v3_scale(dp_du, det != REAL(0.0) ? REAL(1.0) / det : REAL(0.0));
-}
-
-/* dp/dv of the same triangle (triangle_dp_du's other unknown); zero too
- * where the uvs are degenerate, so that a bump map leaves such a triangle's
- * normal (Mitsuba takes an arbitrary frame there). */
-WP_FN vec3 triangle_dp_dv(vec3 p0, vec3 p1, vec3 p2, real u0, real v0, real u1, real v1, real u2, real v2) {
-    real du1 = u1 - u0, dv1 = v1 - v0, du2 = u2 - u0, dv2 = v2 - v0;
-    real det = du1 * dv2 - dv1 * du2;
-    vec3 dp_dv = v3_sub(v3_scale(v3_sub(p2, p0), du1), v3_scale(v3_sub(p1, p0), du2));
-    return v3_scale(dp_dv, det != REAL(0.0) ? REAL(1.0) / det : REAL(0.0));
-}
+#include "shared/surface_tangents.h"
 
 /* A normal map's or bump map's shading normal at a hit, and the alpha^2 of
  * its shadow terminator term (0 where it has none). */
@@ -99,20 +53,16 @@ WP_FN NormalMapped perturbed_normal(vec3 side, vec3 tangential, real z, real tan
 
 /* The shading normal a normal map's texel `colour` gives a hit reached from
  * wo (pointing away from the surface): n = 2 c - 1 in the frame (s, t,
- * side), where s is dp_du made orthogonal to the unperturbed shading normal
- * ns (frame_from_normal's tangent where dp_du is zero or along ns),
- * t = ns x s, and `side` is ns turned to wo's side of the geometric normal
+ * side), where (s, t, ns) is frame_along(ns, dp_du) about the unperturbed
+ * shading normal ns (frame_from_normal's tangent where dp_du is zero or
+ * along ns), and `side` is ns turned to wo's side of the geometric normal
  * (perturbed_normal does the rest). A flat texel (n = (0, 0, z), z > 0)
  * gives `side` exactly. */
 WP_FN NormalMapped normal_mapped(vec3 ns, vec3 side, vec3 dp_du, vec3 colour, vec3 wo) {
     vec3 n =
         make_vec3(REAL(2.0) * colour.x - REAL(1.0), REAL(2.0) * colour.y - REAL(1.0), REAL(2.0) * colour.z - REAL(1.0));
-    vec3 tangent = v3_sub(dp_du, v3_scale(ns, v3_dot(ns, dp_du)));
-    real tangent_length = v3_length(tangent);
-    lane_int has_tangent = tangent_length > REAL(0.0);
-    vec3 s = v3_select(has_tangent, v3_scale(tangent, REAL(1.0) / (has_tangent ? tangent_length : REAL(1.0))),
-                       frame_from_normal(ns).tangent);
-    vec3 tangential = v3_add(v3_scale(s, n.x), v3_scale(v3_cross(ns, s), n.y));
+    Frame frame = frame_along(ns, dp_du, frame_from_normal(ns).tangent);
+    vec3 tangential = v3_add(v3_scale(frame.tangent, n.x), v3_scale(frame.bitangent, n.y));
     real tan2 = (n.x * n.x + n.y * n.y) / (n.z * n.z);
     return perturbed_normal(side, tangential, n.z, tan2, n.x == REAL(0.0) && n.y == REAL(0.0) && n.z > REAL(0.0), wo);
 }

@@ -21,6 +21,23 @@ WP_FN Frame frame_from_normal(vec3 n) {
     return frame;
 }
 
+/* The frame about unit n whose tangent is `direction` made orthogonal to n
+ * (Gram-Schmidt) and normalized, and whose bitangent is n x tangent: Mitsuba
+ * 3's shading frame (SurfaceInteraction::initialize_sh_frame) where
+ * `direction` is the surface's dp/du. Where `direction` has no part
+ * orthogonal to n (it is zero, or exactly along n) the tangent is
+ * `fallback`, a unit vector orthogonal to n. */
+WP_FN Frame frame_along(vec3 n, vec3 direction, vec3 fallback) {
+    vec3 tangent = v3_sub(direction, v3_scale(n, v3_dot(n, direction)));
+    real length = v3_length(tangent);
+    lane_int has_tangent = length > REAL(0.0);
+    Frame frame;
+    frame.tangent = v3_select(has_tangent, v3_scale(tangent, REAL(1.0) / (has_tangent ? length : REAL(1.0))), fallback);
+    frame.bitangent = v3_cross(n, frame.tangent);
+    frame.normal = n;
+    return frame;
+}
+
 WP_FN vec3 frame_to_world(Frame frame, vec3 local_direction) {
     return v3_add(v3_add(v3_scale(frame.tangent, local_direction.x), v3_scale(frame.bitangent, local_direction.y)),
                   v3_scale(frame.normal, local_direction.z));

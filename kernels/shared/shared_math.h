@@ -36,6 +36,7 @@
 #include "shared/sampling.h"
 #include "shared/special_functions.h"
 #include "shared/sppm.h"
+#include "shared/surface_tangents.h"
 #include "shared/texture.h"
 #include "shared/triangle.h"
 

@@ -32,6 +32,7 @@ std::vector<std::pair<const char*, const char*>> features_in_use(const FeatureSe
     add(f.textures, "textures", "WP_HAS_TEXTURES");
     add(f.normal_map, "normal-map", "WP_HAS_NORMAL_MAP");
     add(f.bump_map, "bump-map", "WP_HAS_BUMP_MAP");
+    add(f.anisotropic_roughness, "anisotropic-roughness", "WP_HAS_ANISOTROPIC_ROUGHNESS");
     add(f.mask, "mask", "WP_HAS_MASK");
     add(f.one_sided, "one-sided", "WP_HAS_ONE_SIDED");
     add(f.emitter_material, "emitter", nullptr);

@@ -128,7 +128,7 @@ cl::Buffer upload(const cl::Context& context, const std::vector<T>& items) {
 void flatten_meshes(const Scene& scene, Intersector intersector, SceneLayout& layout) {
     auto start = std::chrono::steady_clock::now();
     MeshLayout<float> meshes = mesh_layout<float>(
-        scene, {intersector == Intersector::Bvh, scene.features().shading_normals, scene.features().textures});
+        scene, {intersector == Intersector::Bvh, scene.features().shading_normals, scene.features().triangle_uvs()});
     layout.triangles = std::move(meshes.triangles);
     layout.triangle_normals = std::move(meshes.normals);
     layout.triangle_uvs = std::move(meshes.uvs);

@@ -52,7 +52,7 @@ struct SceneLayout {
     std::vector<device_layout::MaterialTextures> material_textures;  // parallel to materials
     std::vector<SharedMath<float>::TextureDescriptor> textures;
     std::vector<float> texels;
-    std::vector<SharedMath<float>::TriangleUVs> triangle_uvs;  // parallel to triangles, if FeatureSet::textures
+    std::vector<SharedMath<float>::TriangleUVs> triangle_uvs;  // parallel to triangles, if FeatureSet::triangle_uvs()
     std::vector<float> environment;                            // scene/environment_layout.h
     MeshSummary meshes;
     std::string textures_summary;  // describe_textures

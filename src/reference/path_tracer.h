@@ -484,6 +484,18 @@ struct BsdfValue {
     Real pdf;
 };
 
+// The frame of a rough material's microfacets about the normal of
+// `isotropic`, the frame it builds from the normal alone (shared/materials/microfacet.h):
+// that frame itself unless the scene has anisotropic roughness (the kernels'
+// WP_HAS_ANISOTROPIC_ROUGHNESS).
+template <class Real>
+typename SharedMath<Real>::Frame microfacet_frame(const ReferenceScene<Real>& scene,
+                                                  const typename ReferenceScene<Real>::SurfaceMaterial& material,
+                                                  const typename SharedMath<Real>::Frame& isotropic) {
+    return scene.anisotropic ? SharedMath<Real>::microfacet_frame(material.microfacet, isotropic, material.dp_du)
+                             : isotropic;
+}
+
 template <class Real>
 BsdfValue<Real> nested_bsdf_value(const ReferenceScene<Real>& scene,
                                   const typename ReferenceScene<Real>::SurfaceMaterial& material, bool front,
@@ -491,9 +503,10 @@ BsdfValue<Real> nested_bsdf_value(const ReferenceScene<Real>& scene,
                                   const Vec3<Real>& throughput) {
     using M = SharedMath<Real>;
     if (material.type == MaterialType::RoughDielectric) {
-        return {throughput * M::roughdielectric_eval(material.microfacet, material.ior, front, ns, wo, wi,
+        const typename M::Frame frame = microfacet_frame(scene, material, M::roughdielectric_frame(ns, front));
+        return {throughput * M::roughdielectric_eval(material.microfacet, material.ior, front, frame, wo, wi,
                                                      WP_TRANSPORT_RADIANCE),
-                M::roughdielectric_pdf(material.microfacet, material.ior, front, ns, wo, wi)};
+                M::roughdielectric_pdf(material.microfacet, material.ior, front, frame, wo, wi)};
     }
     if (material.type == MaterialType::Plastic) {  // the diffuse lobe's
         return {throughput * M::plastic_eval(material.plastic, ns, wo, wi),
@@ -505,9 +518,10 @@ BsdfValue<Real> nested_bsdf_value(const ReferenceScene<Real>& scene,
                 M::roughplastic_pdf(material.roughplastic, table, ns, wo, wi)};
     }
     if (material.type == MaterialType::RoughConductor) {
+        const typename M::Frame frame = microfacet_frame(scene, material, M::frame_from_normal(ns));
         return {throughput * M::roughconductor_eval(material.microfacet, material.eta, material.k,
-                                                    material.specular_reflectance, ns, wo, wi),
-                M::roughconductor_pdf(material.microfacet, ns, wo, wi)};
+                                                    material.specular_reflectance, frame, wo, wi),
+                M::roughconductor_pdf(material.microfacet, frame, wo, wi)};
     }
     return {M::diffuse_eval(throughput * material.albedo, ns, wi), M::diffuse_pdf(ns, wi, scene.uniform_hemisphere)};
 }
@@ -620,14 +634,16 @@ typename SharedMath<Real>::BsdfSample nested_scatter(const ReferenceScene<Real>&
             return M::conductor_sample(material.eta, material.k, material.specular_reflectance, -d, nf, ns,
                                        scene.shading_normals);
         case MaterialType::RoughDielectric:
-            return M::roughdielectric_sample(material.microfacet, material.ior, front, nf, ns, -d, random, transport,
-                                             scene.shading_normals);
+            return M::roughdielectric_sample(material.microfacet, material.ior, front, nf,
+                                             microfacet_frame(scene, material, M::roughdielectric_frame(ns, front)), -d,
+                                             random, transport, scene.shading_normals);
         case MaterialType::ThinDielectric:
             return M::thindielectric_sample(material.ior, -d, nf, ns, random.lobe, scene.shading_normals);
         case MaterialType::RoughConductor:
             return M::roughconductor_sample(material.microfacet, material.eta, material.k,
-                                            material.specular_reflectance, nf, ns, -d, random.u, random.v,
-                                            scene.shading_normals);
+                                            material.specular_reflectance, nf,
+                                            microfacet_frame(scene, material, M::frame_from_normal(ns)), -d, random.u,
+                                            random.v, scene.shading_normals);
         case MaterialType::Plastic:
             return M::plastic_sample(material.plastic, nf, ns, -d, random, scene.shading_normals);
         case MaterialType::RoughPlastic:
@@ -729,6 +745,7 @@ Vec3<Real> trace_path(const ReferenceScene<Real>& scene, Ray<Real> ray, const Sa
         travelled += hit.t;
         SurfacePoint<Real> surface = surface_at(scene, ray, hit);
         auto material = material_at(scene, surface);
+        if (scene.anisotropic) material.dp_du = surface_dp_du(scene, hit, surface);
         typename M::FacingNormals facing = M::normals_facing(ray.direction, surface.normal, surface.shading);
         const bool shades = normal_mapped_vertex(scene, hit, surface, -ray.direction, facing, material) &&
                             (facing.front || !material.one_sided);  // a one-sided material's back is black

@@ -62,6 +62,9 @@ struct ReferenceScene {
         // the unperturbed shading normal it measures from (shared/normal_map.h).
         Real terminator_alpha2 = 0;
         vec3 unperturbed_normal{0};
+        // The surface's dp/du at the hit, where the scene is `anisotropic`:
+        // an anisotropic material's alpha_u lies along it (microfacet_frame).
+        vec3 dp_du{0};
     };
     struct LightRef {
         LightKind kind;   // a shape's, a directional light, or the environment (then the last)
@@ -92,6 +95,7 @@ struct ReferenceScene {
     bool shading_normals;     // any: shading normals differ from geometric ones (the kernels' WP_USES_SHADING_NORMALS)
     bool uniform_hemisphere;  // diffuse vertices sample the uniform hemisphere (render.hemisphere)
     bool textures;            // some material parameter is textured: hits compute their uv (FeatureSet::textures)
+    bool anisotropic;         // some rough material is anisotropic: hits keep dp/du (FeatureSet::anisotropic_roughness)
     vec3 background;          // the environment's radiance (a light where not black)
     bool environment_map;     // the environment is an image (FeatureSet::environment_map)
     std::vector<SurfaceMaterial> materials;
@@ -111,7 +115,7 @@ struct ReferenceScene {
     std::vector<Real> texels;
     // per material and TexturedParameter: its texture, or WP_NO_TEXTURE
     std::vector<std::array<std::uint32_t, kTexturedParameters>> material_textures;
-    std::vector<typename M::TriangleUVs> triangle_uvs;    // parallel to triangles, if textures
+    std::vector<typename M::TriangleUVs> triangle_uvs;    // parallel to triangles, if textures or anisotropic
     typename M::EnvironmentMapLayout environment_layout;  // scene/environment_layout.h, with environment_map
     std::vector<Real> environment_data;
 
@@ -128,6 +132,7 @@ struct ReferenceScene {
           shading_normals(vertex_normals || perturbs_normals),
           uniform_hemisphere(scene.render.hemisphere == Hemisphere::Uniform),
           textures(scene.features().textures),
+          anisotropic(scene.features().anisotropic_roughness),
           background(scene.background),
           environment_map(scene.features().environment_map) {
         camera = convert_camera(scene.camera);
@@ -233,7 +238,8 @@ struct ReferenceScene {
     // The kernels' layout with the vertices in Real: with the BVH, the same
     // tree and leaf order; where Embree traces, no tree and the scene's order.
     void add_meshes(const Scene& scene, Intersector intersector) {
-        MeshLayout<Real> meshes = mesh_layout<Real>(scene, {intersector == Intersector::Bvh, vertex_normals, textures});
+        MeshLayout<Real> meshes =
+            mesh_layout<Real>(scene, {intersector == Intersector::Bvh, vertex_normals, textures || anisotropic});
         triangles = std::move(meshes.triangles);
         triangle_normals = std::move(meshes.normals);
         triangle_uvs = std::move(meshes.uvs);

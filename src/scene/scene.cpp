@@ -36,6 +36,12 @@ bool Material::adapted() const {
            masked();
 }
 
+bool Material::anisotropic() const {
+    const int u = texture(TexturedParameter::AlphaU), v = texture(TexturedParameter::AlphaV);
+    return (type == MaterialType::RoughConductor || type == MaterialType::RoughDielectric) &&
+           (u != v || (u == kNoTexture && alpha_u != alpha_v));
+}
+
 bool Material::textured() const {
     return std::any_of(textures.begin(), textures.end(), [](int t) { return t != kNoTexture; });
 }
@@ -73,6 +79,7 @@ FeatureSet Scene::features() const {
         f.textures |= m.textured();
         f.normal_map |= m.texture(TexturedParameter::NormalMap) != kNoTexture;
         f.bump_map |= m.texture(TexturedParameter::BumpMap) != kNoTexture;
+        f.anisotropic_roughness |= m.anisotropic();
         f.mask |= m.masked();
         f.one_sided |= m.one_sided;
     }
@@ -110,6 +117,9 @@ std::string sppm_problem(const Scene& scene) {
     if (f.normal_map) return "sppm does not render normalmap materials (render with the path integrator)";
     if (f.bump_map) return "sppm does not render bumpmap materials (render with the path integrator)";
     if (f.mask) return "sppm does not render mask materials (render with the path integrator)";
+    if (f.anisotropic_roughness)
+        return "sppm does not render anisotropic roughness (alpha_u differs from alpha_v; render with the path "
+               "integrator)";
     if (f.one_sided)
         return "sppm does not render one-sided materials (render with the path integrator, or make them two-sided)";
     return "";

@@ -166,6 +166,9 @@ struct Material {
     bool textured() const;  // some parameter is
     bool masked() const;    // a `mask` adapter: its opacity is below 1 somewhere
     bool adapted() const;   // a `normalmap`, `bumpmap` or `mask` adapter around its nested material
+    // a roughconductor or roughdielectric whose alpha_u may differ from its alpha_v: two different
+    // constants, two different textures, or one textured and not the other
+    bool anisotropic() const;
     bool emits() const;
 };
 
@@ -253,8 +256,11 @@ struct FeatureSet {
     bool textures = false;         // a material parameter is textured: hits compute their uv
     bool normal_map = false;       // a material is a `normalmap` adapter: hits perturb their shading normal
     bool bump_map = false;         // a material is a `bumpmap` adapter: hits bend their shading normal
-    bool mask = false;             // a material is a `mask` adapter: rays may pass its surface
-    bool one_sided = false;        // a material is black from the back (Material::one_sided)
+    // a rough conductor's or dielectric's alpha_u may differ from its alpha_v (Material::anisotropic):
+    // its microfacets' frame follows the surface's dp/du
+    bool anisotropic_roughness = false;
+    bool mask = false;       // a material is a `mask` adapter: rays may pass its surface
+    bool one_sided = false;  // a material is black from the back (Material::one_sided)
     bool sphere_lights = false, quad_lights = false, mesh_lights = false;
     bool directional_lights = false;
     bool constant_environment = false;  // a non-black background: the environment light
@@ -283,6 +289,8 @@ struct FeatureSet {
     bool non_specular() const { return diffuse || rough_conductor || rough_dielectric || plastic || rough_plastic; }
     // A lobe of finite density other than the Lambertian one: SPPM's visible points keep their material to evaluate it.
     bool glossy() const { return rough_conductor || rough_dielectric || plastic || rough_plastic; }
+    // The kernels read the mesh triangles' uvs: for a texture's uv, or for the dp/du anisotropic roughness follows.
+    bool triangle_uvs() const { return textures || anisotropic_roughness; }
     // A refraction into another medium: paths carry eta^2 for the roulette.
     bool refraction() const { return glass || rough_dielectric; }
 };

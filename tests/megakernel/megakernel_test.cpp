@@ -179,6 +179,16 @@ TEST(Megakernel, BumpMapsBitIdenticalInEveryBackend) {
     expect_bit_identical_in_every_backend(scene);
 }
 
+// Anisotropic roughness (microfacet.h' microfacet_frame) on a quad, a
+// sphere, a PLY mesh with uvs and, textured, on a rough dielectric sphere:
+// the same dp/du and the same microfacet frames in every backend.
+TEST(Megakernel, AnisotropicRoughnessBitIdenticalInEveryBackend) {
+    Scene scene = load_scene(WAVEPATH_SOURCE_DIR "/scenes/test/oracle_anisotropic.json");
+    ASSERT_TRUE(scene.features().anisotropic_roughness && scene.features().meshes && scene.features().spheres);
+    scene.render.spp = 2;
+    expect_bit_identical_in_every_backend(scene);
+}
+
 // Masks (kernels/shared/materials/mask.h) of a checkerboard, a bitmap and
 // constant opacities around a diffuse, a plastic, a dielectric and a rough
 // conductor: the same passes, rescaled lobe numbers and scaled densities in

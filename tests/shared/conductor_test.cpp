@@ -80,13 +80,15 @@ TYPED_TEST(Conductors, RoughSamplesFollowTheirPdf) {
             wp::test::UnitRandom<R> random(seed++);
             auto sample = [&]() -> std::optional<glm::dvec3> {
                 const R u = random(), v = random();
-                auto s = M::roughconductor_sample(wp::test::shared_microfacet<R>(m), Vec3<R>(kMirrorEta),
-                                                  Vec3<R>(kMirrorK), Vec3<R>(1), ns, ns, wo, u, v, 0);
+                auto s =
+                    M::roughconductor_sample(wp::test::shared_microfacet<R>(m), Vec3<R>(kMirrorEta), Vec3<R>(kMirrorK),
+                                             Vec3<R>(1), ns, M::frame_from_normal(ns), wo, u, v, 0);
                 if (!s.valid) return std::nullopt;
                 return glm::dvec3(s.direction);
             };
             auto pdf = [&](const glm::dvec3& wi) {
-                return double(M::roughconductor_pdf(wp::test::shared_microfacet<R>(m), ns, wo, Vec3<R>(wi)));
+                return double(M::roughconductor_pdf(wp::test::shared_microfacet<R>(m), M::frame_from_normal(ns), wo,
+                                                    Vec3<R>(wi)));
             };
             const wp::test::SphereChiSquare result = wp::test::sphere_chi_square(sample, pdf, kNormal, 100000);
             EXPECT_TRUE(result.failure.empty())
@@ -113,9 +115,9 @@ TYPED_TEST(Conductors, RoughSampleAgreesWithEvalAndPdf) {
             const Vec3<R> wo(around_normal(cos_theta, kAzimuth)), ns(kNormal);
             int valid = 0;
             for (int i = 0; i < 500; ++i) {
-                auto s =
-                    M::roughconductor_sample(wp::test::shared_microfacet<R>(m), Vec3<R>(kCopperEta), Vec3<R>(kCopperK),
-                                             Vec3<R>(R(0.9), R(0.8), R(0.7)), ns, ns, wo, random(), random(), 0);
+                auto s = M::roughconductor_sample(wp::test::shared_microfacet<R>(m), Vec3<R>(kCopperEta),
+                                                  Vec3<R>(kCopperK), Vec3<R>(R(0.9), R(0.8), R(0.7)), ns,
+                                                  M::frame_from_normal(ns), wo, random(), random(), 0);
                 EXPECT_EQ(s.specular, 0u);
                 EXPECT_EQ(s.eta_squared, R(1));
                 EXPECT_EQ(s.leave_side, ns);
@@ -128,12 +130,13 @@ TYPED_TEST(Conductors, RoughSampleAgreesWithEvalAndPdf) {
                 ++valid;
                 ASSERT_NEAR(glm::length(glm::dvec3(s.direction)), 1.0, wp::test::kRoundingTolerance<R>);
                 ASSERT_GT(cos_i, 0.0);
-                const double pdf = M::roughconductor_pdf(wp::test::shared_microfacet<R>(m), ns, wo, s.direction);
+                const double pdf =
+                    M::roughconductor_pdf(wp::test::shared_microfacet<R>(m), M::frame_from_normal(ns), wo, s.direction);
                 ASSERT_NEAR(s.pdf / pdf, 1.0, tolerance)
                     << wp::test::describe(m) << " cos " << cos_theta << " sample " << i;
                 const Vec3<R> f =
                     M::roughconductor_eval(wp::test::shared_microfacet<R>(m), Vec3<R>(kCopperEta), Vec3<R>(kCopperK),
-                                           Vec3<R>(R(0.9), R(0.8), R(0.7)), ns, wo, s.direction);
+                                           Vec3<R>(R(0.9), R(0.8), R(0.7)), M::frame_from_normal(ns), wo, s.direction);
                 for (int c = 0; c < 3; ++c) {
                     ASSERT_NEAR(s.weight[c] / (f[c] * cos_i / pdf), 1.0, tolerance)
                         << wp::test::describe(m) << " cos " << cos_theta << " sample " << i << " channel " << c;
@@ -156,9 +159,9 @@ TYPED_TEST(Conductors, RoughIsReciprocal) {
             const Vec3<R> a(around_normal(0.05 + 0.9 * ((i * 7) % 50) / 50.0, 0.3 * i));
             const Vec3<R> b(around_normal(0.05 + 0.9 * ((i * 13) % 50) / 50.0, 2.0 + 0.7 * i));
             const Vec3<R> ab = M::roughconductor_eval(wp::test::shared_microfacet<R>(m), Vec3<R>(kCopperEta),
-                                                      Vec3<R>(kCopperK), Vec3<R>(1), ns, a, b);
+                                                      Vec3<R>(kCopperK), Vec3<R>(1), M::frame_from_normal(ns), a, b);
             const Vec3<R> ba = M::roughconductor_eval(wp::test::shared_microfacet<R>(m), Vec3<R>(kCopperEta),
-                                                      Vec3<R>(kCopperK), Vec3<R>(1), ns, b, a);
+                                                      Vec3<R>(kCopperK), Vec3<R>(1), M::frame_from_normal(ns), b, a);
             for (int c = 0; c < 3; ++c) {
                 EXPECT_NEAR(ab[c], ba[c], 1e3 * wp::test::kRoundingTolerance<R> * (1.0 + std::fabs(ab[c])))
                     << wp::test::describe(m) << " pair " << i;
@@ -176,14 +179,14 @@ TYPED_TEST(Conductors, RoughReflectsNothingBelowTheSurface) {
     for (const MicrofacetParameters& m : sampled_distributions()) {
         for (auto [wo, wi] : {std::pair{above, below}, {below, above}, {below, below}}) {
             EXPECT_EQ(M::roughconductor_eval(wp::test::shared_microfacet<R>(m), Vec3<R>(kMirrorEta), Vec3<R>(kMirrorK),
-                                             Vec3<R>(1), ns, wo, wi),
+                                             Vec3<R>(1), M::frame_from_normal(ns), wo, wi),
                       Vec3<R>(0))
                 << wp::test::describe(m);
-            EXPECT_EQ(M::roughconductor_pdf(wp::test::shared_microfacet<R>(m), ns, wo, wi), R(0))
+            EXPECT_EQ(M::roughconductor_pdf(wp::test::shared_microfacet<R>(m), M::frame_from_normal(ns), wo, wi), R(0))
                 << wp::test::describe(m);
         }
         auto s = M::roughconductor_sample(wp::test::shared_microfacet<R>(m), Vec3<R>(kMirrorEta), Vec3<R>(kMirrorK),
-                                          Vec3<R>(1), ns, ns, below, R(0.3), R(0.6), 0);
+                                          Vec3<R>(1), ns, M::frame_from_normal(ns), below, R(0.3), R(0.6), 0);
         EXPECT_FALSE(s.valid) << wp::test::describe(m) << ": a path from behind the surface";
         EXPECT_EQ(s.weight, Vec3<R>(0));
     }
@@ -213,9 +216,9 @@ TYPED_TEST(Conductors, RoughAlbedoIsTheSingleScatteringAlbedo) {
                     const glm::dvec3 wi_local = 2.0 * wo_h * h - wo_local;
                     if (wo_h <= 0.0 || wi_local.z <= 0.0) return 0.0;
                     const glm::dvec3 wi = wi_local.x * x + wi_local.y * y + wi_local.z * kNormal;
-                    const Vec3<R> f = M::roughconductor_eval(wp::test::shared_microfacet<R>(m), Vec3<R>(kMirrorEta),
-                                                             Vec3<R>(kMirrorK), Vec3<R>(1), Vec3<R>(kNormal),
-                                                             Vec3<R>(wo), Vec3<R>(wi));
+                    const Vec3<R> f = M::roughconductor_eval(
+                        wp::test::shared_microfacet<R>(m), Vec3<R>(kMirrorEta), Vec3<R>(kMirrorK), Vec3<R>(1),
+                        M::frame_from_normal(Vec3<R>(kNormal)), Vec3<R>(wo), Vec3<R>(wi));
                     return double(f.x) * wi_local.z * 4.0 * wo_h;
                 });
                 reference = wp::test::integrate_over_normals(alpha, [&](glm::dvec3 h) {
@@ -243,10 +246,12 @@ TYPED_TEST(Conductors, RoughReflectionCarriesTheFresnelOfTheMicrofacet) {
     for (auto [cos_o, cos_i, phi] : {std::tuple{1.0, 1.0, 0.0}, {0.8, 0.3, 2.0}, {0.2, 0.5, 3.0}}) {
         const glm::dvec3 wo = around_normal(cos_o, kAzimuth), wi = around_normal(cos_i, kAzimuth + phi);
         const double cos_h = glm::dot(wo, glm::normalize(wo + wi));
-        const Vec3<R> copper = M::roughconductor_eval(wp::test::shared_microfacet<R>(m), Vec3<R>(kCopperEta),
-                                                      Vec3<R>(kCopperK), Vec3<R>(1), ns, Vec3<R>(wo), Vec3<R>(wi));
-        const Vec3<R> mirror = M::roughconductor_eval(wp::test::shared_microfacet<R>(m), Vec3<R>(kMirrorEta),
-                                                      Vec3<R>(kMirrorK), Vec3<R>(1), ns, Vec3<R>(wo), Vec3<R>(wi));
+        const Vec3<R> copper =
+            M::roughconductor_eval(wp::test::shared_microfacet<R>(m), Vec3<R>(kCopperEta), Vec3<R>(kCopperK),
+                                   Vec3<R>(1), M::frame_from_normal(ns), Vec3<R>(wo), Vec3<R>(wi));
+        const Vec3<R> mirror =
+            M::roughconductor_eval(wp::test::shared_microfacet<R>(m), Vec3<R>(kMirrorEta), Vec3<R>(kMirrorK),
+                                   Vec3<R>(1), M::frame_from_normal(ns), Vec3<R>(wo), Vec3<R>(wi));
         for (int c = 0; c < 3; ++c) {
             const std::complex<double> n(kCopperEta[c], kCopperK[c]);
             const std::complex<double> n_cos_t = std::sqrt(n * n - (1.0 - cos_h * cos_h));

@@ -156,10 +156,10 @@ TYPED_TEST(Mask, SamplesFollowTheirPdf) {
                 auto sample = [&]() {
                     const R lobe = random(), u = random(), v = random();
                     const auto passes = M::mask_passes(R(opacity), lobe);
-                    const auto nested = conductor
-                                            ? M::roughconductor_sample(wp::test::shared_microfacet<R>(ggx), vec3<R>(0),
-                                                                       vec3<R>(1), vec3<R>(1), ns, ns, wo, u, v, 0)
-                                            : M::diffuse_sample(vec3<R>(0.5), ns, ns, u, v, 0, 0);
+                    const auto nested = conductor ? M::roughconductor_sample(wp::test::shared_microfacet<R>(ggx),
+                                                                             vec3<R>(0), vec3<R>(1), vec3<R>(1), ns,
+                                                                             M::frame_from_normal(ns), wo, u, v, 0)
+                                                  : M::diffuse_sample(vec3<R>(0.5), ns, ns, u, v, 0, 0);
                     const auto s = M::mask_sample(R(opacity), passes, nested, d, ns);
                     wp::test::SphereSample result;
                     result.delta = s.valid && s.specular;
@@ -167,10 +167,10 @@ TYPED_TEST(Mask, SamplesFollowTheirPdf) {
                     return result;
                 };
                 auto pdf = [&](const glm::dvec3& wi) {
-                    const double nested =
-                        conductor
-                            ? double(M::roughconductor_pdf(wp::test::shared_microfacet<R>(ggx), ns, wo, vec3<R>(wi)))
-                            : double(M::diffuse_pdf(ns, vec3<R>(wi), 0));
+                    const double nested = conductor
+                                              ? double(M::roughconductor_pdf(wp::test::shared_microfacet<R>(ggx),
+                                                                             M::frame_from_normal(ns), wo, vec3<R>(wi)))
+                                              : double(M::diffuse_pdf(ns, vec3<R>(wi), 0));
                     return opacity * nested;
                 };
                 const std::string where = std::string(conductor ? "roughconductor" : "diffuse") + " opacity " +

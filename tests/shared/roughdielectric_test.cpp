@@ -79,14 +79,15 @@ TYPED_TEST(RoughDielectric, SamplesFollowTheirPdf) {
             auto sample = [&]() -> std::optional<glm::dvec3> {
                 typename M::BsdfRandom r;
                 r.lobe = random(), r.u = random(), r.v = random();
-                auto s = M::roughdielectric_sample(shared_microfacet<R>(m), R(kIor), arrival.entering, ns, ns, wo, r,
+                auto s = M::roughdielectric_sample(shared_microfacet<R>(m), R(kIor), arrival.entering, ns,
+                                                   M::roughdielectric_frame(ns, arrival.entering), wo, r,
                                                    WP_TRANSPORT_RADIANCE, 0);
                 if (!s.valid) return std::nullopt;
                 return glm::dvec3(s.direction);
             };
             auto pdf = [&](const glm::dvec3& wi) {
-                return double(
-                    M::roughdielectric_pdf(shared_microfacet<R>(m), R(kIor), arrival.entering, ns, wo, Vec3<R>(wi)));
+                return double(M::roughdielectric_pdf(shared_microfacet<R>(m), R(kIor), arrival.entering,
+                                                     M::roughdielectric_frame(ns, arrival.entering), wo, Vec3<R>(wi)));
             };
             const wp::test::SphereChiSquare result = wp::test::sphere_chi_square(sample, pdf, kNormal, 100000);
             const std::string where = wp::test::describe(m) + (arrival.entering ? " entering" : " leaving");
@@ -115,8 +116,9 @@ TYPED_TEST(RoughDielectric, SampleAgreesWithEvalAndPdf) {
                 typename M::BsdfRandom r;
                 r.lobe = random(), r.u = random(), r.v = random();
                 for (std::uint32_t transport : {WP_TRANSPORT_RADIANCE, WP_TRANSPORT_IMPORTANCE}) {
-                    auto s = M::roughdielectric_sample(shared_microfacet<R>(m), R(kIor), arrival.entering, ns, ns, wo,
-                                                       r, transport, 0);
+                    auto s =
+                        M::roughdielectric_sample(shared_microfacet<R>(m), R(kIor), arrival.entering, ns,
+                                                  M::roughdielectric_frame(ns, arrival.entering), wo, r, transport, 0);
                     EXPECT_EQ(s.specular, 0u);
                     if (!s.valid) {
                         EXPECT_EQ(s.pdf, R(0));
@@ -128,9 +130,11 @@ TYPED_TEST(RoughDielectric, SampleAgreesWithEvalAndPdf) {
                     EXPECT_NEAR(s.eta_squared, refracted ? eta * eta : 1.0, wp::test::kRoundingTolerance<R>);
                     if (transport == WP_TRANSPORT_RADIANCE) ++(refracted ? refractions : reflections);
                     const double pdf =
-                        M::roughdielectric_pdf(shared_microfacet<R>(m), R(kIor), arrival.entering, ns, wo, s.direction);
+                        M::roughdielectric_pdf(shared_microfacet<R>(m), R(kIor), arrival.entering,
+                                               M::roughdielectric_frame(ns, arrival.entering), wo, s.direction);
                     ASSERT_NEAR(s.pdf / pdf, 1.0, tolerance) << wp::test::describe(m) << " sample " << i;
-                    const double f = M::roughdielectric_eval(shared_microfacet<R>(m), R(kIor), arrival.entering, ns, wo,
+                    const double f = M::roughdielectric_eval(shared_microfacet<R>(m), R(kIor), arrival.entering,
+                                                             M::roughdielectric_frame(ns, arrival.entering), wo,
                                                              s.direction, transport)
                                          .x;
                     ASSERT_NEAR(s.weight.x / (f * std::fabs(cos_i) / pdf), 1.0, tolerance)
@@ -163,12 +167,15 @@ TYPED_TEST(RoughDielectric, RadianceIsTheAdjointOfImportance) {
                 const double cos_i = (i % 2 ? 1 : -1) * (0.1 + 0.85 * ((i * 11) % 40) / 40.0);
                 const Vec3<R> wi(double(entering ? 1 : -1) * around_normal(cos_i, 2.0 + 0.7 * i));
                 const bool refracts = glm::dot(glm::dvec3(wi), side) < 0;
-                const double forward = M::roughdielectric_eval(shared_microfacet<R>(m), R(kIor), entering, ns, wo, wi,
-                                                               WP_TRANSPORT_RADIANCE)
-                                           .x;
+                const double forward =
+                    M::roughdielectric_eval(shared_microfacet<R>(m), R(kIor), entering,
+                                            M::roughdielectric_frame(ns, entering), wo, wi, WP_TRANSPORT_RADIANCE)
+                        .x;
                 const double backward =
-                    M::roughdielectric_eval(shared_microfacet<R>(m), R(kIor), refracts ? !entering : entering,
-                                            refracts ? -ns : ns, wi, wo, WP_TRANSPORT_IMPORTANCE)
+                    M::roughdielectric_eval(
+                        shared_microfacet<R>(m), R(kIor), refracts ? !entering : entering,
+                        M::roughdielectric_frame(refracts ? -ns : ns, refracts ? !entering : entering), wi, wo,
+                        WP_TRANSPORT_IMPORTANCE)
                         .x;
                 EXPECT_NEAR(forward, backward, 1e-4 * (1.0 + std::fabs(forward)))
                     << wp::test::describe(m) << " entering " << entering << " pair " << i;
@@ -222,7 +229,8 @@ TYPED_TEST(RoughDielectric, AlbedoIsTheSingleScatteringAlbedo) {
                     const glm::dvec3 wi_r = 2.0 * wo_h * h - wo_local;
                     if (wi_r.z > 0.0) {
                         sum += M::roughdielectric_eval(shared_microfacet<R>(m), R(kIor), arrival.entering,
-                                                       Vec3<R>(side), Vec3<R>(world(wo_local)), Vec3<R>(world(wi_r)),
+                                                       M::roughdielectric_frame(Vec3<R>(side), arrival.entering),
+                                                       Vec3<R>(world(wo_local)), Vec3<R>(world(wi_r)),
                                                        WP_TRANSPORT_IMPORTANCE)
                                    .x *
                                wi_r.z * 4.0 * wo_h;
@@ -232,7 +240,8 @@ TYPED_TEST(RoughDielectric, AlbedoIsTheSingleScatteringAlbedo) {
                         const double denominator = wo_h + eta * glm::dot(wi_t, h);
                         const double jacobian = eta * eta * std::fabs(glm::dot(wi_t, h)) / (denominator * denominator);
                         sum += M::roughdielectric_eval(shared_microfacet<R>(m), R(kIor), arrival.entering,
-                                                       Vec3<R>(side), Vec3<R>(world(wo_local)), Vec3<R>(world(wi_t)),
+                                                       M::roughdielectric_frame(Vec3<R>(side), arrival.entering),
+                                                       Vec3<R>(world(wo_local)), Vec3<R>(world(wi_t)),
                                                        WP_TRANSPORT_IMPORTANCE)
                                    .x *
                                -wi_t.z / jacobian;

@@ -3,10 +3,9 @@
  * anisotropic, their Smith masking function and the sampling of the normals
  * visible from a direction.
  *
- * Everything here works in the local shading frame, z along the shading
- * normal and x along its tangent (shared/sampling.h's frame_from_normal):
- * alpha_u is the roughness along x, alpha_v along y, and every direction is
- * a unit vector. Conventions and formulas: Walter et al. 2007, "Microfacet
+ * Everything here works in the local frame of microfacet_frame, z along the
+ * shading normal: alpha_u is the roughness along x, alpha_v along y, and
+ * every direction is a unit vector. Conventions and formulas: Walter et al. 2007, "Microfacet
  * Models for Refraction through Rough Surfaces" (D, the half-vector
  * Jacobians); Heitz 2014, "Understanding the Masking-Shadowing Function in
  * Microfacet-Based BRDFs" (Smith's Lambda, section 5); Mitsuba 3's
@@ -28,6 +27,23 @@ typedef struct {
     lane_uint distribution; /* WP_MICROFACET_BECKMANN or WP_MICROFACET_GGX */
     real alpha_u, alpha_v;  /* roughness along the tangent (x) and the bitangent (y); > 0 */
 } Microfacet;
+
+/* The local frame of a rough material's microfacets about `isotropic`'s
+ * normal (the shading normal on wo's side). Where alpha_u != alpha_v its x
+ * (alpha_u's direction) is the surface's dp/du made orthogonal to the
+ * normal, as in Mitsuba 3's shading frame (shared/sampling.h' frame_along),
+ * or isotropic's tangent where dp/du has no such part (a plane); flipping
+ * the normal or the tangent leaves an anisotropic D as it is, so either
+ * side sees the same one. Elsewhere (an isotropic D is the same about any
+ * tangent) it is `isotropic` itself, the frame the material builds without
+ * dp/du (frame_from_normal, roughdielectric_frame). */
+WP_FN Frame microfacet_frame(Microfacet m, Frame isotropic, vec3 dp_du) {
+    Frame along = frame_along(isotropic.normal, dp_du, isotropic.tangent);
+    lane_int anisotropic = m.alpha_u != m.alpha_v;
+    along.tangent = v3_select(anisotropic, along.tangent, isotropic.tangent);
+    along.bitangent = v3_select(anisotropic, along.bitangent, isotropic.bitangent);
+    return along;
+}
 
 /* Whether some lane uses `distribution`. */
 WP_FN int microfacet_any(Microfacet m, uint distribution) { return lanes_any(m.distribution == distribution); }

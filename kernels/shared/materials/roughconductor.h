@@ -5,8 +5,9 @@
  *   f(wo, wi) = specular_reflectance F(wo.h) D(h) G(wo, wi, h) / (4 wo.z wi.z),
  * h the half vector of wo and wi (Walter et al. 2007, eq. 20), 0 unless both
  * directions are above the shading normal. Directions are sampled by
- * reflecting wo about a visible normal. The microfacet frame is
- * frame_from_normal(ns): alpha_u lies along its tangent.
+ * reflecting wo about a visible normal. `frame` is the microfacets' frame,
+ * z along the shading normal ns (microfacet_frame about frame_from_normal(ns)):
+ * alpha_u lies along its tangent.
  * Conventions: shared/materials/bsdf.h. */
 #ifndef WP_SHARED_MATERIALS_ROUGHCONDUCTOR_H
 #define WP_SHARED_MATERIALS_ROUGHCONDUCTOR_H
@@ -26,8 +27,8 @@ WP_FN vec3 roughconductor_eval_local(Microfacet m, vec3 eta, vec3 k, vec3 specul
 }
 
 /* f for the pair wo, wi (without the cosine). */
-WP_FN vec3 roughconductor_eval(Microfacet m, vec3 eta, vec3 k, vec3 specular_reflectance, vec3 ns, vec3 wo, vec3 wi) {
-    Frame frame = frame_from_normal(ns);
+WP_FN vec3 roughconductor_eval(Microfacet m, vec3 eta, vec3 k, vec3 specular_reflectance, Frame frame, vec3 wo,
+                               vec3 wi) {
     return roughconductor_eval_local(m, eta, k, specular_reflectance, frame_to_local(frame, wo),
                                      frame_to_local(frame, wi));
 }
@@ -39,8 +40,7 @@ WP_FN real roughconductor_pdf_local(Microfacet m, vec3 wo, vec3 wi) {
 }
 
 /* The density with which roughconductor_sample picks wi. */
-WP_FN real roughconductor_pdf(Microfacet m, vec3 ns, vec3 wo, vec3 wi) {
-    Frame frame = frame_from_normal(ns);
+WP_FN real roughconductor_pdf(Microfacet m, Frame frame, vec3 wo, vec3 wi) {
     return roughconductor_pdf_local(m, frame_to_local(frame, wo), frame_to_local(frame, wi));
 }
 
@@ -50,9 +50,8 @@ WP_FN real roughconductor_pdf(Microfacet m, vec3 ns, vec3 wo, vec3 wi) {
  * visible-normal sampling). Where the reflection leaves below the shading
  * normal (or wo arrives from behind it), f is 0: the sample is invalid, with
  * weight and pdf 0 and the direction ns. */
-WP_FN BsdfSample roughconductor_sample(Microfacet m, vec3 eta, vec3 k, vec3 specular_reflectance, vec3 nf, vec3 ns,
+WP_FN BsdfSample roughconductor_sample(Microfacet m, vec3 eta, vec3 k, vec3 specular_reflectance, vec3 nf, Frame frame,
                                        vec3 wo, real u, real v, int shading_normals) {
-    Frame frame = frame_from_normal(ns);
     vec3 wo_local = frame_to_local(frame, wo);
     vec3 h = microfacet_sample_visible(m, wo_local, u, v);
     vec3 wi_local = reflect_direction(v3_neg(wo_local), h);
@@ -60,7 +59,7 @@ WP_FN BsdfSample roughconductor_sample(Microfacet m, vec3 eta, vec3 k, vec3 spec
     lane_int reflects = wo_local.z > REAL(0.0) && wi_local.z > REAL(0.0) && pdf > REAL(0.0);
     vec3 weight = v3_scale(v3_mul(specular_reflectance, fresnel_conductor(v3_dot(wo_local, h), eta, k)),
                            microfacet_G1(m, wi_local, h));
-    return glossy_reflection_sample(frame, wi_local, weight, pdf, reflects, nf, ns, shading_normals);
+    return glossy_reflection_sample(frame, wi_local, weight, pdf, reflects, nf, frame.normal, shading_normals);
 }
 
 #endif

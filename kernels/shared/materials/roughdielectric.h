@@ -15,7 +15,9 @@
  * F the dielectric Fresnel reflectance (shared/fresnel.h), G the separable
  * Smith form. A sample draws h from the normals visible from wo, then
  * reflects with probability F(wo.h) (the BsdfRandom's `lobe`) and refracts
- * otherwise, as Mitsuba does. Local frame: roughdielectric_frame.
+ * otherwise, as Mitsuba does. `frame` is the microfacets' frame, z along
+ * the shading normal ns on wo's side (microfacet_frame about
+ * roughdielectric_frame).
  * Conventions: shared/materials/bsdf.h. */
 #ifndef WP_SHARED_MATERIALS_ROUGHDIELECTRIC_H
 #define WP_SHARED_MATERIALS_ROUGHDIELECTRIC_H
@@ -29,11 +31,12 @@
 /* The relative index across the interface from wo's side. */
 WP_FN real roughdielectric_eta(real ior, lane_int entering) { return entering ? ior : REAL(1.0) / ior; }
 
-/* The local frame, z along ns (on wo's side): the tangents of the outward
- * shading normal's frame_from_normal, so that alpha_u keeps its direction on
- * the surface whichever side a path arrives from, turned half about the
- * tangent for a path from inside (as Mitsuba mirrors a direction from
- * inside into its one shading frame). */
+/* The local frame without dp/du (microfacet_frame's isotropic one), z along
+ * ns (on wo's side): the tangents of the outward shading normal's
+ * frame_from_normal, so that they keep their direction on the surface
+ * whichever side a path arrives from, turned half about the tangent for a
+ * path from inside (as Mitsuba mirrors a direction from inside into its one
+ * shading frame). */
 WP_FN Frame roughdielectric_frame(vec3 ns, lane_int entering) {
     Frame frame = frame_from_normal(v3_select(entering, ns, v3_neg(ns)));
     frame.bitangent = v3_select(entering, frame.bitangent, v3_neg(frame.bitangent));
@@ -74,8 +77,8 @@ WP_FN real roughdielectric_eval_local(Microfacet m, real eta, vec3 wo, vec3 wi, 
 }
 
 /* f for the pair wo, wi (without the cosine), the same in each channel. */
-WP_FN vec3 roughdielectric_eval(Microfacet m, real ior, lane_int entering, vec3 ns, vec3 wo, vec3 wi, uint transport) {
-    Frame frame = roughdielectric_frame(ns, entering);
+WP_FN vec3 roughdielectric_eval(Microfacet m, real ior, lane_int entering, Frame frame, vec3 wo, vec3 wi,
+                                uint transport) {
     real f = roughdielectric_eval_local(m, roughdielectric_eta(ior, entering), frame_to_local(frame, wo),
                                         frame_to_local(frame, wi), transport);
     return make_vec3(f, f, f);
@@ -94,8 +97,7 @@ WP_FN real roughdielectric_pdf_local(Microfacet m, real eta, vec3 wo, vec3 wi) {
 }
 
 /* The density with which roughdielectric_sample picks wi. */
-WP_FN real roughdielectric_pdf(Microfacet m, real ior, lane_int entering, vec3 ns, vec3 wo, vec3 wi) {
-    Frame frame = roughdielectric_frame(ns, entering);
+WP_FN real roughdielectric_pdf(Microfacet m, real ior, lane_int entering, Frame frame, vec3 wo, vec3 wi) {
     return roughdielectric_pdf_local(m, roughdielectric_eta(ior, entering), frame_to_local(frame, wo),
                                      frame_to_local(frame, wi));
 }
@@ -106,10 +108,9 @@ WP_FN real roughdielectric_pdf(Microfacet m, real ior, lane_int entering, vec3 n
  * times 1 / eta^2 for refracted radiance. A direction that leaves on the
  * wrong side of the surface for its lobe is invalid, with weight and pdf 0
  * and the direction ns. */
-WP_FN BsdfSample roughdielectric_sample(Microfacet m, real ior, lane_int entering, vec3 nf, vec3 ns, vec3 wo,
+WP_FN BsdfSample roughdielectric_sample(Microfacet m, real ior, lane_int entering, vec3 nf, Frame frame, vec3 wo,
                                         BsdfRandom random, uint transport, int shading_normals) {
     real eta = roughdielectric_eta(ior, entering);
-    Frame frame = roughdielectric_frame(ns, entering);
     vec3 wo_local = frame_to_local(frame, wo);
     vec3 h = microfacet_sample_visible(m, wo_local, random.u, random.v);
     real fresnel = fresnel_dielectric(v3_dot(wo_local, h), eta);
@@ -125,7 +126,7 @@ WP_FN BsdfSample roughdielectric_sample(Microfacet m, real ior, lane_int enterin
     real weight =
         microfacet_G1(m, wi_local, h) / (refracts && transport == WP_TRANSPORT_RADIANCE ? eta * eta : REAL(1.0));
     BsdfSample s;
-    s.direction = v3_select(scatters, frame_to_world(frame, wi_local), ns);
+    s.direction = v3_select(scatters, frame_to_world(frame, wi_local), frame.normal);
     s.weight = make_vec3(scatters ? weight : REAL(0.0), scatters ? weight : REAL(0.0), scatters ? weight : REAL(0.0));
     s.leave_side = v3_select(refracts, v3_neg(nf), nf);
     s.pdf = scatters ? pdf : REAL(0.0);
