@@ -8,14 +8,27 @@
 namespace wp {
 
 ImportedMesh cube_mesh() {
+    // Each face as its corners (bit 0 of a corner's index: x = +1, bit 1: y, bit 2: z), two counter-clockwise
+    // triangles seen from outside, and the uv Mitsuba's cube gives its points: u = (1 + u_sign p[u_axis]) / 2,
+    // v = (1 + v_sign p[v_axis]) / 2 (a unit uv square per face, which fixes each face's dp/du).
+    struct Face {
+        unsigned corners[4];
+        int u_axis, u_sign, v_axis, v_sign;
+    };
+    const Face faces[6] = {{{0, 4, 6, 2}, 1, 1, 2, 1},   {{1, 3, 7, 5}, 1, 1, 2, -1}, {{0, 1, 5, 4}, 2, 1, 0, 1},
+                           {{2, 6, 7, 3}, 0, -1, 2, -1}, {{0, 2, 3, 1}, 1, -1, 0, 1}, {{4, 5, 7, 6}, 1, 1, 0, 1}};
     ImportedMesh mesh;
-    for (int i = 0; i < 8; ++i)
-        mesh.positions.push_back({i & 1 ? 1.0f : -1.0f, i & 2 ? 1.0f : -1.0f, i & 4 ? 1.0f : -1.0f});
-    // Each face as two counter-clockwise triangles seen from outside (corner i has bits x, y, z).
-    const unsigned faces[6][4] = {{0, 4, 6, 2}, {1, 3, 7, 5}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 2, 3, 1}, {4, 5, 7, 6}};
-    for (const auto& f : faces) {
-        mesh.triangles.push_back({f[0], f[1], f[2]});
-        mesh.triangles.push_back({f[0], f[2], f[3]});
+    mesh.has_uvs = true;
+    for (const Face& f : faces) {
+        const unsigned first = unsigned(mesh.positions.size());
+        for (unsigned corner : f.corners) {
+            const glm::vec3 p(corner & 1 ? 1.0f : -1.0f, corner & 2 ? 1.0f : -1.0f, corner & 4 ? 1.0f : -1.0f);
+            mesh.positions.push_back(p);
+            mesh.uvs.push_back(
+                {0.5f * (1.0f + float(f.u_sign) * p[f.u_axis]), 0.5f * (1.0f + float(f.v_sign) * p[f.v_axis])});
+        }
+        mesh.triangles.push_back({first, first + 1, first + 2});
+        mesh.triangles.push_back({first, first + 2, first + 3});
     }
     return mesh;
 }

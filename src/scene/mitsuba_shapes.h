@@ -13,7 +13,8 @@ namespace wp {
 inline constexpr int kDiskSegments = 512;
 
 // Mitsuba's `cube`: [-1, 1]^3, 12 triangles, counter-clockwise seen from
-// outside (no vertex normals: its faces are flat).
+// outside (no vertex normals: its faces are flat), with Mitsuba's uvs: each
+// face's own four corners, the unit uv square over it.
 ImportedMesh cube_mesh();
 
 // Mitsuba's `disk`: the unit disk in the xy plane facing +z, as a fan of
