@@ -3,8 +3,6 @@
 // or the one SceneError naming the file. Anything else (another exception, a
 // crash, a sanitizer report, a hang) is a finding. The input is the
 // extension (gltf or glb), a newline, then the file's bytes.
-#include <unistd.h>
-
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>
@@ -16,21 +14,7 @@
 #include "import/import_process.h"
 #include "import_failures.h"
 #include "scene/gltf_scene.h"
-
-namespace {
-
-// Where each input becomes a file (the importer reads paths), removed at exit.
-struct ScratchDirectory {
-    std::filesystem::path path =
-        std::filesystem::temp_directory_path() / ("wavepath-fuzz-gltf-" + std::to_string(::getpid()));
-    ScratchDirectory() { std::filesystem::create_directories(path); }
-    ~ScratchDirectory() {
-        std::error_code ignored;
-        std::filesystem::remove_all(path, ignored);
-    }
-};
-
-}  // namespace
+#include "scratch_directory.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     const std::string input(reinterpret_cast<const char*>(data), size);
@@ -39,7 +23,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const std::string extension = input.substr(0, newline);
     if (extension != "gltf" && extension != "glb") return 0;
 
-    static const ScratchDirectory scratch;
+    static const wp::fuzz::ScratchDirectory scratch(
+        "gltf");  // where each input becomes a file (the importer reads paths)
     const std::filesystem::path file = scratch.path / ("scene." + extension);
     std::ofstream(file, std::ios::binary).write(input.data() + newline + 1, input.size() - newline - 1);
     try {

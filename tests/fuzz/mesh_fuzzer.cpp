@@ -2,8 +2,6 @@
 // the contained import (assimp in wavepath-import's process). The input is
 // the file's extension, a newline, then its bytes; extensions are the
 // formats docs/scene-format.md lists (wavepath refuses the others' readers).
-#include <unistd.h>
-
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
@@ -14,21 +12,7 @@
 #include "import/import_process.h"
 #include "import_failures.h"
 #include "scene/mesh_file.h"
-
-namespace {
-
-// Where each input becomes a file (assimp reads paths), removed at exit.
-struct ScratchDirectory {
-    std::filesystem::path path =
-        std::filesystem::temp_directory_path() / ("wavepath-fuzz-mesh-" + std::to_string(::getpid()));
-    ScratchDirectory() { std::filesystem::create_directories(path); }
-    ~ScratchDirectory() {
-        std::error_code ignored;
-        std::filesystem::remove_all(path, ignored);
-    }
-};
-
-}  // namespace
+#include "scratch_directory.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     static const std::set<std::string> kFormats = {"obj", "ply", "off", "stl", "gltf", "glb"};
@@ -36,7 +20,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const std::size_t newline = input.find('\n');
     if (newline == std::string::npos || !kFormats.contains(input.substr(0, newline))) return 0;
 
-    static const ScratchDirectory scratch;
+    static const wp::fuzz::ScratchDirectory scratch("mesh");  // where each input becomes a file (assimp reads paths)
     const std::filesystem::path file = scratch.path / ("mesh." + input.substr(0, newline));
     std::ofstream(file, std::ios::binary).write(input.data() + newline + 1, input.size() - newline - 1);
     static wp::MeshImporter importer(wp::fuzz::kImportLimits);  // one helper for the run, as for a scene
