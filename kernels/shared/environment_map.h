@@ -69,11 +69,9 @@ WP_FN CdfInterval environment_interval(WP_GLOBAL const real_element *data, lane_
     return interval;
 }
 
-/* The texel at column x (wrapped) of row y. */
+/* The texel at column x (in [0, W)) of row y. */
 WP_FN vec3 environment_texel(EnvironmentMapLayout map, WP_GLOBAL const real_element *data, lane_int x, lane_int y) {
-    lane_int width = (lane_int)(int)(map.width);
-    lane_int column = wrap_texel(x, width, WP_WRAP_REPEAT);
-    lane_uint index = TO_LANE_UINT(y * width + column) * 3u;
+    lane_uint index = TO_LANE_UINT(y * (lane_int)(int)(map.width) + x) * 3u;
     return make_vec3(gather(data, index), gather(data, index + 1u), gather(data, index + 2u));
 }
 
@@ -85,8 +83,10 @@ WP_FN vec3 environment_radiance_uv(EnvironmentMapLayout map, WP_GLOBAL const rea
     real x0 = floor(x), y0 = fmin(floor(y), (real_element)(map.height - 2u));
     real fx = x - x0, fy = y - y0;
     lane_int ix = floor_to_int(x0), iy = floor_to_int(y0);
-    vec3 c00 = environment_texel(map, data, ix, iy), c10 = environment_texel(map, data, ix + 1, iy);
-    vec3 c01 = environment_texel(map, data, ix, iy + 1), c11 = environment_texel(map, data, ix + 1, iy + 1);
+    lane_int width = (lane_int)(int)(map.width);
+    lane_int column0 = wrap_texel(ix, width, WP_WRAP_REPEAT), column1 = wrap_texel(ix + 1, width, WP_WRAP_REPEAT);
+    vec3 c00 = environment_texel(map, data, column0, iy), c10 = environment_texel(map, data, column1, iy);
+    vec3 c01 = environment_texel(map, data, column0, iy + 1), c11 = environment_texel(map, data, column1, iy + 1);
     return bilinear_blend(c00, c10, c01, c11, fx, fy);
 }
 

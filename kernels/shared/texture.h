@@ -91,19 +91,27 @@ WP_FN TextureUV texture_transform(Texture t, TextureUV uv) {
                            t.to_uv[3] * uv.u + t.to_uv[4] * uv.v + t.to_uv[5]);
 }
 
+/* x mod size, in [0, size), for size > 0, exactly. The quotient comes from
+ * a division in real: for |x| < 2^24 both are exact in float and the
+ * division rounds correctly, so its floor is the true quotient or one more,
+ * which the last line corrects. An integer division (a loop over the lanes
+ * in vector code, several times the rest's cost) only where some lane lies
+ * beyond, at a uv of millions of texels. */
+WP_FN lane_int floor_mod(lane_int x, lane_int size) {
+    lane_int remainder = x - TO_LANE_INT(floor(TO_REAL(x) / TO_REAL(size))) * size; /* in [-size, size) */
+    if (lanes_any(x >= (1 << 24) || x <= -(1 << 24))) remainder = x % size;         /* in (-size, size) */
+    return remainder < 0 ? remainder + size : remainder;
+}
+
 /* Texel coordinate x (an integer) of a row or column of `size` texels
  * wrapped into [0, size) by WP_WRAP_*: repeat; mirror (-1 -> 0, size ->
- * size - 1); clamp to the edge. A mode's integer divisions (a loop over the
- * lanes in vector code) are done only where some lane has that mode. */
+ * size - 1); clamp to the edge. A mode's work is done only where some lane
+ * has that mode. */
 WP_FN lane_int wrap_texel(lane_int x, lane_int size, lane_uint wrap) {
     lane_int wrapped = x < 0 ? (lane_int)0 : (x >= size ? size - 1 : x); /* clamped */
-    if (lanes_any(wrap == WP_WRAP_REPEAT)) {
-        lane_int remainder = x % size; /* in (-size, size) */
-        wrapped = wrap == WP_WRAP_REPEAT ? (remainder < 0 ? remainder + size : remainder) : wrapped;
-    }
+    if (lanes_any(wrap == WP_WRAP_REPEAT)) wrapped = wrap == WP_WRAP_REPEAT ? floor_mod(x, size) : wrapped;
     if (lanes_any(wrap == WP_WRAP_MIRROR)) {
-        lane_int reflected = x < 0 ? -x - 1 : x;
-        reflected = reflected % (size + size);
+        lane_int reflected = floor_mod(x < 0 ? -x - 1 : x, size + size);
         reflected = reflected >= size ? size + size - 1 - reflected : reflected;
         wrapped = wrap == WP_WRAP_MIRROR ? reflected : wrapped;
     }

@@ -51,8 +51,7 @@ void add_material(Hasher& h, const Material& m) {
         h.add(m.eta).add(m.k).add(m.specular_reflectance);
     }
     if (plastic) h.add(m.specular_reflectance).add(m.nonlinear);
-    if (m.type == MaterialType::RoughConductor || m.type == MaterialType::RoughDielectric ||
-        m.type == MaterialType::RoughPlastic) {
+    if (m.rough()) {
         h.add(m.distribution).add(m.alpha_u).add(m.alpha_v);
     }
     // A textured albedo hashes its index alone, as before the other parameters could be textured.

@@ -8,6 +8,7 @@
 #include "core/shared_math.h"
 #include "scene/environment_layout.h"
 #include "scene/mesh_lights.h"
+#include "scene/microfacet_code.h"
 #include "scene/pixel_filter.h"
 #include "scene/plastic_constants.h"
 #include "scene/texture_layout.h"
@@ -108,10 +109,6 @@ std::uint32_t material_type(MaterialType type) {
             return WP_MATERIAL_ROUGH_PLASTIC;
     }
     return WP_MATERIAL_DIFFUSE;
-}
-
-std::uint32_t microfacet_distribution(Microfacet distribution) {
-    return distribution == Microfacet::GGX ? WP_MICROFACET_GGX : WP_MICROFACET_BECKMANN;
 }
 
 // The items copied into a new buffer (no copy of the vector on the way: a
@@ -229,7 +226,7 @@ SceneLayout flatten_scene(const Scene& scene, Intersector intersector) {
         put(d.eta, m.eta);
         put(d.k, m.k);
         put(d.specular_reflectance, m.specular_reflectance);
-        d.distribution = microfacet_distribution(m.distribution);
+        d.distribution = microfacet_code(m);
         d.alpha_u = static_cast<float>(m.alpha_u);
         d.alpha_v = static_cast<float>(m.alpha_v);
         d.inv_eta_2 = static_cast<float>(plastic.inv_eta_2);

@@ -13,6 +13,7 @@
 #include "core/shared_math.h"
 #include "scene/environment_layout.h"
 #include "scene/mesh_lights.h"
+#include "scene/microfacet_code.h"
 #include "scene/pixel_filter.h"
 #include "scene/plastic_constants.h"
 #include "scene/scene.h"
@@ -160,7 +161,6 @@ struct ReferenceScene {
         for (std::size_t i = 0; i < scene.materials.size(); ++i) {
             const Material& m = scene.materials[i];
             const PlasticConstants& c = plastics.materials[i];
-            std::uint32_t distribution = m.distribution == Microfacet::GGX ? WP_MICROFACET_GGX : WP_MICROFACET_BECKMANN;
             SurfaceMaterial s{};
             s.type = m.type;
             s.albedo = vec3(m.albedo);
@@ -171,7 +171,7 @@ struct ReferenceScene {
             s.eta = vec3(m.eta);
             s.k = vec3(m.k);
             s.specular_reflectance = vec3(m.specular_reflectance);
-            s.microfacet = {distribution, Real(m.alpha_u), Real(m.alpha_v)};
+            s.microfacet = {microfacet_code(m), Real(m.alpha_u), Real(m.alpha_v)};
             s.bump_scale = Real(m.bump_scale);
             s.opacity = Real(m.opacity);
             s.one_sided = m.one_sided;

@@ -5,6 +5,7 @@
 #include <tuple>
 
 #include "core/shared_math.h"
+#include "scene/microfacet_code.h"
 #include "scene/texture_section.h"
 
 namespace wp {
@@ -28,8 +29,7 @@ const RoughCoat& rough_coat(const Material& m) {
     const auto key = std::make_tuple(m.distribution, m.alpha_u, m.ior);
     auto found = computed.find(key);
     if (found != computed.end()) return found->second;
-    const D::Microfacet microfacet{m.distribution == Microfacet::GGX ? WP_MICROFACET_GGX : WP_MICROFACET_BECKMANN,
-                                   m.alpha_u, m.alpha_u};
+    const D::Microfacet microfacet{microfacet_code(m), m.alpha_u, m.alpha_u};
     RoughCoat coat{D::roughplastic_internal_reflectance(microfacet, m.ior), {}};
     for (int k = 0; k < WP_ROUGHPLASTIC_TABLE_SIZE; ++k) {
         coat.transmittance.push_back(

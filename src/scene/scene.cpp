@@ -36,6 +36,11 @@ bool Material::adapted() const {
            masked();
 }
 
+bool Material::rough() const {
+    return type == MaterialType::RoughConductor || type == MaterialType::RoughDielectric ||
+           type == MaterialType::RoughPlastic;
+}
+
 bool Material::anisotropic() const {
     const int u = texture(TexturedParameter::AlphaU), v = texture(TexturedParameter::AlphaV);
     return (type == MaterialType::RoughConductor || type == MaterialType::RoughDielectric) &&

@@ -146,6 +146,7 @@ struct Material {
     // roughconductor, roughdielectric and roughplastic: the microfacet distribution and its
     // roughness along the shading frame's two tangents (equal where isotropic; roughplastic's are)
     Microfacet distribution = Microfacet::Beckmann;
+    bool rough() const;  // roughconductor, roughdielectric or roughplastic: one with microfacets
     double alpha_u = 0.1, alpha_v = 0.1;
     bool nonlinear = false;  // plastic and roughplastic: Mitsuba's `nonlinear` (colours saturate under the coat)
     double bump_scale =

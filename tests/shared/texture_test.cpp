@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <vector>
 
 #include "core/shared_math.h"
@@ -84,6 +85,32 @@ TYPED_TEST(Textures, MirrorReflectsAtEachEdgeAndRepeatsEveryTwoWidths) {
     EXPECT_EQ(M::wrap_texel(-4, 3, WP_WRAP_REPEAT), 2);
     EXPECT_EQ(M::wrap_texel(-4, 3, WP_WRAP_CLAMP), 0);
     EXPECT_EQ(M::wrap_texel(7, 3, WP_WRAP_CLAMP), 2);
+}
+
+// floor_mod divides in real where that is exact and in integers beyond
+// 2^24; either way it must be the true remainder: next to every multiple of
+// the size (where a rounded quotient is one too many), at the 2^24 edge and
+// across the whole range floor_to_int returns.
+TYPED_TEST(Textures, FloorModIsTheExactRemainderEverywhere) {
+    using M = wp::SharedMath<TypeParam>;
+    const auto expected = [](long long x, long long size) { return int(((x % size) + size) % size); };
+    std::vector<long long> xs = {
+        0,         1,         -1, (1 << 24) - 1, 1 << 24, (1 << 24) + 1, -(1 << 24) + 1, -(1 << 24), -(1 << 24) - 1,
+        (1 << 30), -(1 << 30)};
+    unsigned long long state = 12345;  // a fixed LCG (Knuth's MMIX constants) spreads x over +-2^30
+    for (int i = 0; i < 4000; ++i) {
+        state = state * 6364136223846793005ull + 1442695040888963407ull;
+        xs.push_back(static_cast<long long>(state >> 33) % (1ll << 31) - (1ll << 30));
+    }
+    for (int size : {1, 2, 3, 7, 255, 256, 1000, 4097, 16384}) {
+        std::vector<long long> near = xs;
+        for (long long k : {1ll, 3ll, 1000ll, 4000000ll, 16000000ll, 100000000ll})
+            for (long long d : {-1ll, 0ll, 1ll})
+                for (long long sign : {-1ll, 1ll})
+                    if (std::llabs(k * size) <= (1ll << 30)) near.push_back(sign * k * size + d);
+        for (long long x : near)
+            ASSERT_EQ(M::floor_mod(int(x), size), expected(x, size)) << "x " << x << " size " << size;
+    }
 }
 
 TYPED_TEST(Textures, HugeAndNonFiniteUvsStayInsideTheImage) {

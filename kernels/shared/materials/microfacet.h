@@ -22,9 +22,13 @@
 
 #define WP_MICROFACET_BECKMANN 0u
 #define WP_MICROFACET_GGX 1u
+/* A material without microfacets: its lanes ask for neither distribution's
+ * work, so that a diffuse lane beside a GGX one does not run Beckmann's
+ * (whose visible normals take five erfinv). */
+#define WP_MICROFACET_NONE 2u
 
 typedef struct {
-    lane_uint distribution; /* WP_MICROFACET_BECKMANN or WP_MICROFACET_GGX */
+    lane_uint distribution; /* WP_MICROFACET_BECKMANN, WP_MICROFACET_GGX or WP_MICROFACET_NONE */
     real alpha_u, alpha_v;  /* roughness along the tangent (x) and the bitangent (y); > 0 */
 } Microfacet;
 
