@@ -323,19 +323,6 @@ WP_FN LightShape light_shape(WP_SCENE_PARAMS, lane_uint light, real u_triangle) 
     return l;
 }
 
-/* Whether some lane of the vector has material kind `kind`: its code runs
- * only then (a vertex pays for the kinds its vector holds, not for every
- * kind compiled in: bench/results/analysis.md, "Materials against Mitsuba
- * 3"). With one kind of BSDF in the scene every lane that scatters has it,
- * and the test is compiled out. */
-WP_FN int lanes_have_kind(lane_uint type, uint kind) {
-#ifdef WP_HAS_MIXED_MATERIALS
-    return lanes_any(type == kind);
-#else
-    return 1;
-#endif
-}
-
 #if defined(WP_HAS_ROUGH_CONDUCTOR) || defined(WP_HAS_ROUGH_DIELECTRIC)
 /* The frame of v's rough material's microfacets about the normal of
  * `isotropic`, the frame the material builds from the normal alone

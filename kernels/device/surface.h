@@ -196,6 +196,68 @@ typedef struct {
 #endif
 } Material;
 
+/* Whether some lane of the vector has material kind `kind`: its code runs
+ * only then (a vertex pays for the kinds its vector holds, not for every
+ * kind compiled in: bench/results/analysis.md, "Materials against Mitsuba
+ * 3"). With one kind of BSDF in the scene every lane that scatters has it,
+ * and the test is compiled out. */
+WP_FN int lanes_have_kind(lane_uint type, uint kind) {
+#ifdef WP_HAS_MIXED_MATERIALS
+    return lanes_any(type == kind);
+#else
+    return 1;
+#endif
+}
+
+#ifdef WP_HAS_PLASTIC
+/* A plastic's fields where `loads`, else zeros. */
+WP_FN PlasticParams plastic_params_at(__global const DeviceMaterial *materials, lane_uint index, int loads) {
+    PlasticParams p;
+    p.diffuse_reflectance = p.specular_reflectance = make_vec3(REAL(0.0), REAL(0.0), REAL(0.0));
+    p.eta = p.inv_eta_2 = p.fdr_int = p.specular_sampling_weight = REAL(0.0);
+    p.nonlinear = 0;
+    if (loads) {
+        p.diffuse_reflectance = SCENE_FIELD(materials, index, albedo);
+        p.specular_reflectance = SCENE_FIELD(materials, index, specular_reflectance);
+        p.eta = SCENE_FIELD(materials, index, ior);
+        p.inv_eta_2 = SCENE_FIELD(materials, index, inv_eta_2);
+        p.fdr_int = SCENE_FIELD(materials, index, internal_reflectance);
+        p.specular_sampling_weight = SCENE_FIELD(materials, index, specular_sampling_weight);
+        p.nonlinear = SCENE_FIELD(materials, index, nonlinear) != 0u;
+    }
+    return p;
+}
+#endif
+
+#ifdef WP_HAS_ROUGH_PLASTIC
+/* A rough plastic's fields, its microfacets m, where `loads`, else zeros. */
+WP_FN RoughPlasticParams roughplastic_params_at(__global const DeviceMaterial *materials, lane_uint index, Microfacet m,
+                                                int loads) {
+    RoughPlasticParams p;
+    p.m = m;
+    p.diffuse_reflectance = p.specular_reflectance = make_vec3(REAL(0.0), REAL(0.0), REAL(0.0));
+    p.eta = p.inv_eta_2 = p.specular_sampling_weight = p.internal_reflectance = REAL(0.0);
+    p.nonlinear = 0;
+    p.transmittance_offset = 0u;
+    if (loads) {
+        p.diffuse_reflectance = SCENE_FIELD(materials, index, albedo);
+        p.specular_reflectance = SCENE_FIELD(materials, index, specular_reflectance);
+        p.eta = SCENE_FIELD(materials, index, ior);
+        p.inv_eta_2 = SCENE_FIELD(materials, index, inv_eta_2);
+        p.specular_sampling_weight = SCENE_FIELD(materials, index, specular_sampling_weight);
+        p.internal_reflectance = SCENE_FIELD(materials, index, internal_reflectance);
+        p.nonlinear = SCENE_FIELD(materials, index, nonlinear) != 0u;
+        p.transmittance_offset = SCENE_FIELD(materials, index, transmittance_offset);
+    }
+    return p;
+}
+#endif
+
+/* A material's fields, per lane, each group loaded only where some lane's
+ * kind reads it (lanes_have_kind): a gather costs a load per lane, and a
+ * vertex pays for the kinds its vector holds. The lanes of other kinds
+ * hold zeros, and a microfacet distribution of none (WP_MICROFACET_NONE, so
+ * that they ask for no distribution's work) of roughness 1. */
 WP_FN Material material_at(__global const DeviceMaterial *materials, lane_uint index) {
     Material m;
     m.type = SCENE_FIELD(materials, index, type);
@@ -204,44 +266,43 @@ WP_FN Material material_at(__global const DeviceMaterial *materials, lane_uint i
     m.one_sided = SCENE_FIELD(materials, index, one_sided) != 0u;
 #endif
     m.emission = SCENE_FIELD(materials, index, emission);
+    vec3 zero = make_vec3(REAL(0.0), REAL(0.0), REAL(0.0));
 #ifdef WP_HAS_DIFFUSE
-    m.albedo = SCENE_FIELD(materials, index, albedo);
+    m.albedo = lanes_have_kind(m.type, WP_MATERIAL_DIFFUSE) ? SCENE_FIELD(materials, index, albedo) : zero;
 #endif
 #ifdef WP_HAS_MIRROR
-    m.reflectance = SCENE_FIELD(materials, index, reflectance);
+    m.reflectance = lanes_have_kind(m.type, WP_MATERIAL_MIRROR) ? SCENE_FIELD(materials, index, reflectance) : zero;
 #endif
 #ifdef WP_HAS_DIELECTRICS
-    m.ior = SCENE_FIELD(materials, index, ior);
+    m.ior = REAL(0.0);
+    if (lanes_have_kind(m.type, WP_MATERIAL_GLASS) || lanes_have_kind(m.type, WP_MATERIAL_ROUGH_DIELECTRIC) ||
+        lanes_have_kind(m.type, WP_MATERIAL_THIN_DIELECTRIC))
+        m.ior = SCENE_FIELD(materials, index, ior);
 #endif
 #ifdef WP_HAS_CONDUCTORS
-    m.eta = SCENE_FIELD(materials, index, eta);
-    m.k = SCENE_FIELD(materials, index, k);
-    m.specular_reflectance = SCENE_FIELD(materials, index, specular_reflectance);
+    m.eta = m.k = m.specular_reflectance = zero;
+    if (lanes_have_kind(m.type, WP_MATERIAL_CONDUCTOR) || lanes_have_kind(m.type, WP_MATERIAL_ROUGH_CONDUCTOR)) {
+        m.eta = SCENE_FIELD(materials, index, eta);
+        m.k = SCENE_FIELD(materials, index, k);
+        m.specular_reflectance = SCENE_FIELD(materials, index, specular_reflectance);
+    }
 #endif
 #ifdef WP_HAS_MICROFACET
-    m.microfacet.distribution = SCENE_FIELD(materials, index, distribution);
-    m.microfacet.alpha_u = SCENE_FIELD(materials, index, alpha_u);
-    m.microfacet.alpha_v = SCENE_FIELD(materials, index, alpha_v);
+    m.microfacet.distribution = WP_MICROFACET_NONE;
+    m.microfacet.alpha_u = m.microfacet.alpha_v = REAL(1.0);
+    if (lanes_have_kind(m.type, WP_MATERIAL_ROUGH_CONDUCTOR) || lanes_have_kind(m.type, WP_MATERIAL_ROUGH_DIELECTRIC) ||
+        lanes_have_kind(m.type, WP_MATERIAL_ROUGH_PLASTIC)) {
+        m.microfacet.distribution = SCENE_FIELD(materials, index, distribution);
+        m.microfacet.alpha_u = SCENE_FIELD(materials, index, alpha_u);
+        m.microfacet.alpha_v = SCENE_FIELD(materials, index, alpha_v);
+    }
 #endif
 #ifdef WP_HAS_PLASTIC
-    m.plastic.diffuse_reflectance = SCENE_FIELD(materials, index, albedo);
-    m.plastic.specular_reflectance = SCENE_FIELD(materials, index, specular_reflectance);
-    m.plastic.eta = SCENE_FIELD(materials, index, ior);
-    m.plastic.inv_eta_2 = SCENE_FIELD(materials, index, inv_eta_2);
-    m.plastic.fdr_int = SCENE_FIELD(materials, index, internal_reflectance);
-    m.plastic.specular_sampling_weight = SCENE_FIELD(materials, index, specular_sampling_weight);
-    m.plastic.nonlinear = SCENE_FIELD(materials, index, nonlinear) != 0u;
+    m.plastic = plastic_params_at(materials, index, lanes_have_kind(m.type, WP_MATERIAL_PLASTIC));
 #endif
 #ifdef WP_HAS_ROUGH_PLASTIC
-    m.roughplastic.m = m.microfacet;
-    m.roughplastic.diffuse_reflectance = SCENE_FIELD(materials, index, albedo);
-    m.roughplastic.specular_reflectance = SCENE_FIELD(materials, index, specular_reflectance);
-    m.roughplastic.eta = SCENE_FIELD(materials, index, ior);
-    m.roughplastic.inv_eta_2 = SCENE_FIELD(materials, index, inv_eta_2);
-    m.roughplastic.specular_sampling_weight = SCENE_FIELD(materials, index, specular_sampling_weight);
-    m.roughplastic.internal_reflectance = SCENE_FIELD(materials, index, internal_reflectance);
-    m.roughplastic.nonlinear = SCENE_FIELD(materials, index, nonlinear) != 0u;
-    m.roughplastic.transmittance_offset = SCENE_FIELD(materials, index, transmittance_offset);
+    m.roughplastic =
+        roughplastic_params_at(materials, index, m.microfacet, lanes_have_kind(m.type, WP_MATERIAL_ROUGH_PLASTIC));
 #endif
 #ifdef WP_HAS_MASK
     m.opacity = SCENE_FIELD(materials, index, opacity);
