@@ -514,7 +514,7 @@ WP_FN lane_int sample_direct_light(WP_SCENE_PARAMS, lane_uint pixel, lane_uint s
 #endif
     CameraPair point = camera_pair(seed, pixel, sample, bounce, DIM_LIGHT_U, WP_USES_SOBOL);
     LightPoint p = sample_light_shape(WP_SCENE_ARGS, light, v.surface.point, point.u, point.v, u_triangle);
-    Material emitter = material_at(materials, p.material);
+    Emission emitter = emission_at(materials, p.material);
     vec3 wi = direct_light_direction(p.sample, v.surface.point);
 #ifdef WP_HAS_CONSTANT_ENVIRONMENT
     lane_int environment = is_environment_light(WP_SCENE_ARGS, light);

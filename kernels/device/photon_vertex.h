@@ -80,7 +80,7 @@ WP_FN EmittedPhoton emit_scene_photon(WP_SCENE_PARAMS, uint iteration, lane_uint
     LightShape shape = light_shape(WP_SCENE_ARGS, light, u_triangle);
     EmissionPoint e = emission_point(shape, photon_uniform(seed, iteration, photon, 0u, DIM_PHOTON_POINT_U),
                                      photon_uniform(seed, iteration, photon, 0u, DIM_PHOTON_POINT_V));
-    Material emitter = material_at(materials, shape.material);
+    Emission emitter = emission_at(materials, shape.material);
     return emit_photon(e.at, shape_point_error(shape.magnitude), e.area, light_selection_pmf(light_cdf, light),
                        emitter.emission, emitter.two_sided,
                        photon_uniform(seed, iteration, photon, 0u, DIM_PHOTON_SIDE),

@@ -209,6 +209,20 @@ WP_FN int lanes_have_kind(lane_uint type, uint kind) {
 #endif
 }
 
+/* What a light's material emits: all that a light sample or a photon's
+ * emission reads of it. */
+typedef struct {
+    vec3 emission;
+    lane_int two_sided; /* emits from both sides */
+} Emission;
+
+WP_FN Emission emission_at(__global const DeviceMaterial *materials, lane_uint index) {
+    Emission e;
+    e.emission = SCENE_FIELD(materials, index, emission);
+    e.two_sided = SCENE_FIELD(materials, index, two_sided) != 0u;
+    return e;
+}
+
 #ifdef WP_HAS_PLASTIC
 /* A plastic's fields where `loads`, else zeros. */
 WP_FN PlasticParams plastic_params_at(__global const DeviceMaterial *materials, lane_uint index, int loads) {
