@@ -140,6 +140,8 @@ void put_light(AnswerWriter& out, const ImportedLight& light) {
     out.put(light.color);
     out.put(light.position);
     out.put(light.direction);
+    out.put(light.inner_cone);
+    out.put(light.outer_cone);
 }
 
 void put_image(AnswerWriter& out, const ImportedImage& image) {
@@ -228,6 +230,8 @@ ImportedLight take_light(AnswerReader& in, std::size_t node_count, const std::st
     light.color = in.take<std::array<float, 3>>(what + "'s colour");
     light.position = in.take<std::array<float, 3>>(what + "'s position");
     light.direction = in.take<std::array<float, 3>>(what + "'s direction");
+    light.inner_cone = in.take<float>(what + "'s inner cone angle");
+    light.outer_cone = in.take<float>(what + "'s outer cone angle");
     return light;
 }
 

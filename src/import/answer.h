@@ -28,7 +28,8 @@
 //                     u32 camera count, then each camera: name, u32 node (below the node count, or kNoNode),
 //                       f32 position[3], look_at[3], up[3], yfov, aspect;
 //                     u32 light count, then each light: name, u32 node, u32 type (1 to 3,
-//                       ImportedLightType), f32 colour[3], position[3], direction[3];
+//                       ImportedLightType), f32 colour[3], position[3], direction[3],
+//                       f32 inner and outer cone angle;
 //                     u32 image count, then each embedded image: its format (u32 length, up to
 //                       kMaxImageFormat, the bytes), its bytes (u32 length, up to
 //                       kMaxImportedImageBytes, the bytes);
@@ -45,7 +46,7 @@
 
 namespace wp {
 
-inline constexpr std::uint32_t kAnswerVersion = 4;
+inline constexpr std::uint32_t kAnswerVersion = 5;
 inline constexpr std::size_t kMaxFailureLength = 4096;
 
 // The helper's file descriptors (import/helper/main.cpp): the requests it

@@ -78,6 +78,7 @@ struct ImportedLight {
     ImportedLightType type = ImportedLightType::Directional;
     std::array<float, 3> color{1, 1, 1};  // colour times intensity
     std::array<float, 3> position{0, 0, 0}, direction{0, 0, -1};
+    float inner_cone = 0, outer_cone = 0;  // a spot's innerConeAngle and outerConeAngle, radians
 };
 
 // A node of the file's node graph. Nodes are listed depth first, each

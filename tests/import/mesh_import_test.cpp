@@ -93,6 +93,8 @@ void expect_same_scene(const ImportedScene& a, const ImportedScene& b) {
         EXPECT_EQ(x.color, y.color);
         EXPECT_EQ(x.position, y.position);
         EXPECT_EQ(x.direction, y.direction);
+        EXPECT_EQ(x.inner_cone, y.inner_cone);
+        EXPECT_EQ(x.outer_cone, y.outer_cone);
     }
     ASSERT_EQ(a.images.size(), b.images.size());
     for (std::size_t i = 0; i < a.images.size(); ++i) {
@@ -461,7 +463,8 @@ ImportedScene small_scene() {
                                0.25f,
                                kMetallicRoughnessTexture | kEmissiveTexture});
     scene.cameras.push_back({"eye", 1, {0, 1, 5}, {0, 1, 4}, {0, 1, 0}, 0.75f, 1.5f});
-    scene.lights.push_back({"sun", 2, ImportedLightType::Directional, {2, 2, 1.5f}, {0, 0, 0}, {0, 0, -1}});
+    scene.lights.push_back({"sun", 2, ImportedLightType::Directional, {2, 2, 1.5f}, {0, 0, 0}, {0, 0, -1}, 0, 0});
+    scene.lights.push_back({"lamp", 1, ImportedLightType::Spot, {4, 3, 2}, {0, 1, 0}, {0, 0, -1}, 0.25f, 0.5f});
     scene.images.push_back({"png", std::string("\x89PNG\0\r\n", 7)});
     scene.images.push_back({"", ""});  // an uncompressed one
     return scene;
@@ -492,7 +495,7 @@ TEST(Answer, MalformedPartsAreNamed) {
     EXPECT_EQ(malformation(good + "x"), "1 bytes after the answer");
     std::string bytes = good;
     bytes[8] = 3;  // the version
-    EXPECT_EQ(malformation(bytes), "version 3, not 4");
+    EXPECT_EQ(malformation(bytes), "version 3, not 5");
     bytes = good;
     bytes[12] = 3;  // the kind
     EXPECT_EQ(malformation(bytes), "kind 3, neither 1 nor 2");

@@ -446,6 +446,8 @@ std::vector<ImportedLight> imported_lights(const aiScene& scene, const std::vect
         out.color = to_array(light.mColorDiffuse);
         out.position = to_array(light.mPosition);
         out.direction = to_array(light.mDirection);
+        out.inner_cone = light.mAngleInnerCone;  // glTF's innerConeAngle and outerConeAngle
+        out.outer_cone = light.mAngleOuterCone;
         lights.push_back(out);
     }
     return lights;
