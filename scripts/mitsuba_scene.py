@@ -46,7 +46,10 @@ wavepath code agreeing with itself. The mapping (docs/mitsuba.md):
   none);
 - background: a `constant` emitter when not black;
 - lights: `directional` emitters of the same `direction` and `irradiance`;
-  `envmap` emitters of the same file, `scale` and `to_world`.
+  `envmap` emitters of the same file, `scale` and `to_world`; `point`
+  emitters of the same `position` and `intensity`; `spot` emitters of the
+  same `intensity`, `cutoff_angle` and `beam_width`, a look-at `to_world`
+  from the position along the direction.
 
 Everything is rebased to the camera as wavepath's loader does (the camera at
 the origin), so that Mitsuba's float arithmetic sees the same small numbers.
@@ -83,7 +86,9 @@ class MitsubaSceneError(Exception):
 # The keys each part of a scene may have (docs/scene-format.md); any other key is refused,
 # so that a feature added to wavepath is never silently dropped from Mitsuba's image.
 TOP_KEYS = {"camera", "render", "background", "lights", "textures", "materials", "shapes"}
-LIGHT_KEYS = {"directional": {"type", "direction", "irradiance"}, "envmap": {"type", "filename", "scale", "to_world"}}
+LIGHT_KEYS = {"directional": {"type", "direction", "irradiance"}, "envmap": {"type", "filename", "scale", "to_world"},
+              "point": {"type", "position", "intensity"},
+              "spot": {"type", "position", "direction", "intensity", "cutoff_angle", "beam_width"}}
 CAMERA_KEYS = {"position", "look_at", "up", "fov_y", "width", "height"}
 RENDER_KEYS = {"spp", "max_depth", "rr_depth", "seed", "nee", "mis", "hemisphere", "sampler"}
 MATERIAL_KEYS = {
@@ -269,6 +274,17 @@ class Converter:
             if "to_world" in light:
                 out["to_world"] = self.transform(light["to_world"], f"{where}.to_world")
             return out
+        if kind == "point":
+            return {"type": "point", "position": sub(light["position"], self.origin),
+                    "intensity": rgb(light.get("intensity", [1, 1, 1]))}
+        if kind == "spot":
+            position = sub(light["position"], self.origin)
+            direction = normalized(light["direction"])
+            up = [1.0, 0.0, 0.0] if abs(direction[1]) > 0.9 else [0.0, 1.0, 0.0]  # any up not along the axis
+            cutoff = float(light.get("cutoff_angle", 20.0))
+            return {"type": "spot", "to_world": {"look_at": [position, add(position, direction), up]},
+                    "intensity": rgb(light.get("intensity", [1, 1, 1])), "cutoff_angle": cutoff,
+                    "beam_width": float(light.get("beam_width", 0.75 * cutoff))}
         return {"type": "directional", "direction": light["direction"],
                 "irradiance": rgb(light.get("irradiance", [1, 1, 1]))}
 

@@ -529,6 +529,11 @@ WP_FN lane_int sample_direct_light(WP_SCENE_PARAMS, lane_uint pixel, lane_uint s
     lane_int directional = (SCENE_FIELD(lights, light, shape) >> WP_SHAPE_TYPE_SHIFT) == WP_LIGHT_DIRECTIONAL;
     wi = v3_select(directional, SCENE_FIELD(lights, light, to_light), wi);
 #endif
+#ifdef WP_HAS_POINT_LIGHTS
+    lane_int point_light = (SCENE_FIELD(lights, light, shape) >> WP_SHAPE_TYPE_SHIFT) == WP_LIGHT_POINT;
+    vec3 light_position = SCENE_FIELD(lights, light, position);
+    wi = v3_select(point_light, v3_normalize(v3_sub(light_position, v.surface.point)), wi);
+#endif
     BsdfValue bsdf = vertex_bsdf_value(v, wi, throughput);
     real selection_pmf = light_selection_pmf(light_cdf, light);
     *direct = direct_light(v.surface.point, v.surface.error, v.nf, v.ns, vertex_transmits(v), wi, bsdf.throughput_f,
@@ -549,10 +554,20 @@ WP_FN lane_int sample_direct_light(WP_SCENE_PARAMS, lane_uint pixel, lane_uint s
 #endif
 #ifdef WP_HAS_DIRECTIONAL_LIGHTS
     /* a delta light: no multiple importance sampling, its density the selection probability */
-    DirectLight sun = distant_direct_light(v.surface.point, v.surface.error, v.nf, v.ns, vertex_transmits(v), wi,
-                                           bsdf.throughput_f, bsdf.pdf, selection_pmf,
-                                           SCENE_FIELD(lights, light, irradiance), 0, WP_USES_SHADING_NORMALS);
+    DirectLight sun =
+        distant_direct_light(v.surface.point, v.surface.error, v.nf, v.ns, vertex_transmits(v), wi, bsdf.throughput_f,
+                             bsdf.pdf, selection_pmf, SCENE_FIELD(lights, light, emitted), 0, WP_USES_SHADING_NORMALS);
     *direct = select_direct_light(directional, sun, *direct);
+#endif
+#ifdef WP_HAS_POINT_LIGHTS
+    /* a delta light too */
+    real falloff = spot_falloff(SCENE_FIELD(lights, light, axis), v3_neg(wi), SCENE_FIELD(lights, light, cos_cutoff),
+                                SCENE_FIELD(lights, light, cos_beam), SCENE_FIELD(lights, light, cutoff_angle),
+                                SCENE_FIELD(lights, light, inv_transition_width));
+    DirectLight bulb = point_direct_light(
+        v.surface.point, v.surface.error, v.nf, v.ns, vertex_transmits(v), wi, bsdf.throughput_f, selection_pmf,
+        light_position, v3_scale(SCENE_FIELD(lights, light, emitted), falloff), WP_USES_SHADING_NORMALS);
+    *direct = select_direct_light(point_light, bulb, *direct);
 #endif
     return direct->carries;
 }

@@ -14,10 +14,11 @@
 #define WP_SHAPE_QUAD 2u
 #define WP_SHAPE_TRIANGLE 3u /* a mesh triangle, by its index in the BVH's leaf order */
 /* Not shapes: the types of DeviceLight.shape for the environment (Scene's
- * LightKind::Environment), the light table's last light, and for a
- * directional light. */
+ * LightKind::Environment), the light table's last light, for a
+ * directional light, and for a point light (a spot included). */
 #define WP_LIGHT_ENVIRONMENT 4u
 #define WP_LIGHT_DIRECTIONAL 5u
+#define WP_LIGHT_POINT 6u
 #define WP_SHAPE_TYPE_SHIFT 29u
 #define WP_SHAPE_INDEX_MASK 0x1fffffffu
 #define WP_NO_HIT 0xffffffffu
@@ -122,12 +123,19 @@ typedef struct {
     uint shape;          /* WP_SHAPE_SPHERE or WP_SHAPE_QUAD, index included as in hit_shape; a mesh:
                           * WP_SHAPE_TRIANGLE with its first triangle in light_triangles as the index;
                           * the environment (constant or a map): WP_LIGHT_ENVIRONMENT, index 0; a directional light:
-                          * WP_LIGHT_DIRECTIONAL, index 0 */
+                          * WP_LIGHT_DIRECTIONAL, index 0; a point or spot light: WP_LIGHT_POINT, index 0 */
     uint triangle_count; /* a mesh: its triangles in light_triangles (and light_triangle_cdf) */
     float area;          /* a mesh: its area */
     uint mesh;           /* a mesh: its index in the scene's meshes (MeshTriangle.mesh of its triangles) */
     float to_light[3];   /* a directional light: the unit direction towards it */
-    float irradiance[3]; /* a directional light's */
+    float emitted[3];    /* a directional light's irradiance; a point light's intensity (a spot's on its axis) */
+    float position[3];   /* a point light's */
+    float axis[3];       /* a spot's: the unit direction its cone points in */
+    /* A spot's cone (spot_falloff): the cosines of its cutoff angle and of its
+     * beam width, the cutoff angle in radians and one over the cutoff angle
+     * minus the beam width (0 where they are equal). A point light's cosines
+     * are -2, below every direction's: its falloff is 1 everywhere. */
+    float cos_cutoff, cos_beam, cutoff_angle, inv_transition_width;
 } DeviceLight;
 
 #endif

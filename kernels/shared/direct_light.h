@@ -9,6 +9,7 @@
 #include "shared/estimator.h"
 #include "shared/lights.h"
 #include "shared/prelude.h"
+#include "shared/special_functions.h"
 
 typedef struct {
     ShadowRay shadow;
@@ -74,6 +75,45 @@ WP_FN DirectLight distant_direct_light(vec3 x, real x_error, vec3 nf, vec3 ns, l
     direct.contribution = light_sample_contribution(throughput_f, radiance, v3_dot(wi, side.ns), light_pdf,
                                                     light_sample_weight(light_pdf, bsdf_pdf, mis));
     direct.carries = light_sample_carries(light_pdf, wi, side.nf, side.ns, 1, 1, shading_normals);
+    return direct;
+}
+
+/* The share of a spot's intensity that leaves it in the unit direction d,
+ * as Mitsuba 3's spot (falloff_curve): 1 within its beam (the angle to its
+ * unit `axis` at most the beam width, cos_beam), falling linearly in that
+ * angle to 0 at the cutoff angle (cos_cutoff, `cutoff_angle` in radians,
+ * `inv_transition_width` one over the cutoff angle minus the beam width), 0
+ * beyond. The angle is atan2(|axis x d|, axis . d), exact near the axis
+ * where acos(axis . d) is not. A point light's cosines lie below -1: 1 in
+ * every direction. */
+WP_FN real spot_falloff(vec3 axis, vec3 d, real cos_cutoff, real cos_beam, real cutoff_angle,
+                        real inv_transition_width) {
+    real cos_theta = v3_dot(axis, d);
+    real angle = REAL(2.0) * WP_PI * atan2_turns(v3_length(v3_cross(axis, d)), cos_theta);
+    real falloff = cos_theta >= cos_beam ? REAL(1.0) : (cutoff_angle - angle) * inv_transition_width;
+    return cos_theta > cos_cutoff ? falloff : REAL(0.0);
+}
+
+/* The light sample at vertex x (as direct_light's) of a point light at
+ * `position`, in direction wi (direct_light_direction's towards it), whose
+ * intensity towards x is `intensity` (a spot's falloff included), chosen
+ * with probability `selection_pmf`: a delta light, found by next-event
+ * estimation alone (no MIS), its density that probability; it adds
+ * intensity / r^2 as radiance. Its shadow ray ends at the light, short of
+ * it by the far-end offset of a shape light's (shadow_ray), and there is
+ * none where no light leaves towards x. */
+WP_FN DirectLight point_direct_light(vec3 x, real x_error, vec3 nf, vec3 ns, lane_int transmits, vec3 wi,
+                                     vec3 throughput_f, real selection_pmf, vec3 position, vec3 intensity,
+                                     int shading_normals) {
+    SideNormals side = light_side_normals(nf, ns, transmits, wi);
+    vec3 to_light = v3_sub(position, x);
+    vec3 radiance = v3_div(intensity, v3_dot(to_light, to_light));
+    DirectLight direct;
+    direct.shadow = shadow_ray(x, x_error, side.nf, position, v3_neg(wi), 1, max_abs(position));
+    direct.contribution =
+        light_sample_contribution(throughput_f, radiance, v3_dot(wi, side.ns), selection_pmf, REAL(1.0));
+    direct.carries =
+        light_sample_carries(selection_pmf, wi, side.nf, side.ns, 1, 1, shading_normals) && emits(intensity);
     return direct;
 }
 

@@ -98,6 +98,13 @@ std::uint64_t scene_hash(const Scene& scene) {
         h.add(scene.directional_lights.size());
         for (const DirectionalLight& d : scene.directional_lights) h.add(d.direction).add(d.irradiance);
     }
+    if (!scene.point_lights.empty()) {  // as the directional lights
+        h.add(scene.point_lights.size());
+        for (const PointLight& p : scene.point_lights) {
+            h.add(p.position).add(p.intensity).add(p.cone.has_value());
+            if (p.cone) h.add(p.cone->axis).add(p.cone->cutoff_angle).add(p.cone->beam_width);
+        }
+    }
     if (const auto& map = scene.environment_map) {  // by what it holds, not its file's name; only where present
         h.add(map->width).add(map->height).add_all(map->texels).add(map->scale);
         for (int column = 0; column < 3; ++column) h.add(map->to_world[column]);

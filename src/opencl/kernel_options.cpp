@@ -40,6 +40,7 @@ std::vector<std::pair<const char*, const char*>> features_in_use(const FeatureSe
     add(f.quad_lights, "quad-lights", "WP_HAS_QUAD_LIGHTS");
     add(f.mesh_lights, "mesh-lights", "WP_HAS_MESH_LIGHTS");
     add(f.directional_lights, "directional-lights", "WP_HAS_DIRECTIONAL_LIGHTS");
+    add(f.point_lights, "point-lights", "WP_HAS_POINT_LIGHTS");
     add(f.constant_environment, "constant-environment", "WP_HAS_CONSTANT_ENVIRONMENT");
     add(f.environment_map, "environment-map", "WP_HAS_ENVIRONMENT_MAP");
     add(f.pixel_filter, "pixel-filter", "WP_HAS_PIXEL_FILTER");

@@ -22,7 +22,7 @@ static_assert(sizeof(DeviceSphere) == 5 * 4, "DeviceSphere must match its OpenCL
 static_assert(sizeof(DevicePlane) == 7 * 4, "DevicePlane must match its OpenCL C layout");
 static_assert(sizeof(DeviceQuad) == 16 * 4, "DeviceQuad must match its OpenCL C layout");
 static_assert(sizeof(DeviceMaterial) == 32 * 4, "DeviceMaterial must match its OpenCL C layout");
-static_assert(sizeof(DeviceLight) == 10 * 4, "DeviceLight must match its OpenCL C layout");
+static_assert(sizeof(DeviceLight) == 20 * 4, "DeviceLight must match its OpenCL C layout");
 static_assert(sizeof(MaterialTextures) == WP_TEXTURED_PARAMETERS * 4,
               "MaterialTextures must match its OpenCL C layout");
 static_assert(WP_TEXTURED_PARAMETERS == kTexturedParameters &&
@@ -255,7 +255,21 @@ SceneLayout flatten_scene(const Scene& scene, Intersector intersector) {
             const DirectionalLight& directional = scene.directional_lights[std::size_t(light.index)];
             d.shape = shape_ref(WP_LIGHT_DIRECTIONAL, 0);
             put(d.to_light, -directional.direction);
-            put(d.irradiance, directional.irradiance);
+            put(d.emitted, directional.irradiance);
+            layout.lights.push_back(d);
+            continue;
+        }
+        if (light.kind == LightKind::Point) {
+            const PointLight& point = scene.point_lights[std::size_t(light.index)];
+            const SpotFalloffTerms terms = spot_falloff_terms(point);
+            d.shape = shape_ref(WP_LIGHT_POINT, 0);
+            put(d.emitted, point.intensity);
+            put(d.position, point.position);
+            put(d.axis, terms.axis);
+            d.cos_cutoff = static_cast<float>(terms.cos_cutoff);
+            d.cos_beam = static_cast<float>(terms.cos_beam);
+            d.cutoff_angle = static_cast<float>(terms.cutoff_angle);
+            d.inv_transition_width = static_cast<float>(terms.inv_transition_width);
             layout.lights.push_back(d);
             continue;
         }

@@ -567,7 +567,15 @@ Vec3<Real> sample_direct_light(const ReferenceScene<Real>& scene, const Vec3<Rea
         BsdfValue<Real> bsdf = bsdf_value(scene, material, front, ns, wo, light.to_light, throughput);
         direct =
             M::distant_direct_light(x, x_error, nf, ns, transmits(material.type), light.to_light, bsdf.throughput_f,
-                                    bsdf.pdf, selection_pmf, light.irradiance, false, scene.shading_normals);
+                                    bsdf.pdf, selection_pmf, light.emitted, false, scene.shading_normals);
+    } else if (light.kind == LightKind::Point) {                        // a delta light too
+        Vec3<Real> wi = M::v3_normalize(M::v3_sub(light.position, x));  // as the kernels compute it
+        BsdfValue<Real> bsdf = bsdf_value(scene, material, front, ns, wo, wi, throughput);
+        Real falloff = M::spot_falloff(light.axis, -wi, light.cos_cutoff, light.cos_beam, light.cutoff_angle,
+                                       light.inv_transition_width);
+        direct =
+            M::point_direct_light(x, x_error, nf, ns, transmits(material.type), wi, bsdf.throughput_f, selection_pmf,
+                                  light.position, M::v3_scale(light.emitted, falloff), scene.shading_normals);
     } else if (light.kind == LightKind::Environment && scene.environment_map) {
         typename M::EnvironmentSample sky =
             M::environment_sample(scene.environment_layout, scene.environment_data.data(), point.u, point.v);

@@ -68,12 +68,17 @@ struct ReferenceScene {
         vec3 dp_du{0};
     };
     struct LightRef {
-        LightKind kind;   // a shape's, a directional light, or the environment (then the last)
+        LightKind kind;   // a shape's, a directional or point light, or the environment (then the last)
         ShapeType shape;  // a shape's: Sphere, Quad or Mesh
         int index;        // into spheres, quads or the scene's meshes
         std::uint32_t first_triangle, triangle_count;  // a mesh: its triangles in light_triangles
         Real area;                                     // a mesh: its area
-        vec3 to_light, irradiance;  // a directional light: the unit direction towards it, its irradiance
+        vec3 to_light;                                 // a directional light: the unit direction towards it
+        vec3 emitted;   // a directional light's irradiance, a point light's intensity (a spot's on its axis)
+        vec3 position;  // a point light's
+        // A point light's falloff (spot_falloff_terms), rounded as the device's.
+        vec3 axis;
+        Real cos_cutoff, cos_beam, cutoff_angle, inv_transition_width;
     };
     // Pinhole camera; its frame is built in double and then rounded, as the
     // kernels' host does (opencl/scene_upload.cpp).
@@ -208,10 +213,25 @@ struct ReferenceScene {
         for (std::size_t i = 0; i < scene.lights.size(); ++i) {
             const MeshLightTriangles::Range& range = mesh_lights.ranges[i];
             const Light& light = scene.lights[i];
-            DirectionalLight directional{glm::dvec3(0.0), glm::dvec3(0.0)};
-            if (light.kind == LightKind::Directional) directional = scene.directional_lights[std::size_t(light.index)];
-            lights.push_back({light.kind, light.shape, light.index, range.first, range.count, Real(range.area),
-                              vec3(-directional.direction), vec3(directional.irradiance)});
+            LightRef ref{light.kind, light.shape, light.index, range.first, range.count, Real(range.area), vec3(0),
+                         vec3(0),    vec3(0),     vec3(0),     Real(0),     Real(0),     Real(0),          Real(0)};
+            if (light.kind == LightKind::Directional) {
+                const DirectionalLight& directional = scene.directional_lights[std::size_t(light.index)];
+                ref.to_light = vec3(-directional.direction);
+                ref.emitted = vec3(directional.irradiance);
+            }
+            if (light.kind == LightKind::Point) {
+                const PointLight& point = scene.point_lights[std::size_t(light.index)];
+                const SpotFalloffTerms terms = spot_falloff_terms(point);
+                ref.emitted = vec3(point.intensity);
+                ref.position = vec3(point.position);
+                ref.axis = vec3(terms.axis);
+                ref.cos_cutoff = Real(terms.cos_cutoff);
+                ref.cos_beam = Real(terms.cos_beam);
+                ref.cutoff_angle = Real(terms.cutoff_angle);
+                ref.inv_transition_width = Real(terms.inv_transition_width);
+            }
+            lights.push_back(ref);
         }
         for (std::size_t k = 0; k < mesh_lights.triangles.size(); ++k) {
             light_triangles.push_back(mesh_triangle<Real>(mesh_lights.triangles[k], mesh_lights.materials[k], 0));

@@ -8,6 +8,7 @@
 #include <glm/geometric.hpp>
 #include <glm/mat3x3.hpp>
 #include <glm/matrix.hpp>
+#include <glm/trigonometric.hpp>
 #include <limits>
 #include <map>
 #include <numbers>
@@ -431,38 +432,50 @@ class Reader {
     // ---- lights ----
 
     void read_lights() {
-        std::vector<PointLight> points;
         for (const ImportedLight& light : imported_.lights) {
             const std::string what = "light " + quoted(light.name);
-            if (light.type == ImportedLightType::Spot)
-                fail(what +
-                     ": a spot light (KHR_lights_punctual): wavepath has no spot lights (give it an emissive "
-                     "mesh, a point light or a directional light)");
             const glm::dmat4& to_world = node_transform(light.node, what);
             const glm::dvec3 colour = to_dvec3(light.color);
             if (!(finite(colour) && glm::all(glm::greaterThanEqual(colour, glm::dvec3(0.0))) &&
                   std::max({colour.x, colour.y, colour.z}) <= kMaxSceneMagnitude))
                 fail(what + ": colour times intensity " + vector_text(colour) + ": must be finite and >= 0");
-            if (light.type == ImportedLightType::Point) {
-                const glm::dvec3 position = point_to_world(to_world, light.position);
-                if (!finite(position) || glm::any(glm::greaterThan(glm::abs(position), glm::dvec3(kMaxSceneMagnitude))))
-                    fail(what + ": its position " + vector_text(position) + " is out of range");
-                points.push_back(
-                    {unique_name((light.name.empty() ? "light" : light.name) + " (point light)"), position, colour});
+            const glm::dvec3 direction = glm::dmat3(to_world) * to_dvec3(light.direction);
+            if (light.type != ImportedLightType::Point && !(finite(direction) && glm::length(direction) > 0.0))
+                fail(what + ": its node's transform leaves no direction");
+            if (light.type == ImportedLightType::Directional) {
+                out_.scene.directional_lights.push_back({glm::normalize(direction), colour});
                 continue;
             }
-            const glm::dvec3 direction = glm::dmat3(to_world) * to_dvec3(light.direction);
-            if (!(finite(direction) && glm::length(direction) > 0.0))
-                fail(what + ": its node's transform leaves no direction");
-            out_.scene.directional_lights.push_back({glm::normalize(direction), colour});
+            PointLight point;
+            point.position = point_to_world(to_world, light.position);
+            if (!finite(point.position) ||
+                glm::any(glm::greaterThan(glm::abs(point.position), glm::dvec3(kMaxSceneMagnitude))))
+                fail(what + ": its position " + vector_text(point.position) + " is out of range");
+            point.intensity = colour;  // candela, as wavepath's intensity
+            if (light.type == ImportedLightType::Spot) point.cone = spot_cone(light, glm::normalize(direction), what);
+            out_.scene.point_lights.push_back(point);
         }
-        add_point_lights(out_.scene, points);  // the meshes' bounding sphere sizes them (a glTF scene has meshes)
         const bool emits = std::any_of(out_.scene.materials.begin(), out_.scene.materials.end(),
                                        [](const Material& m) { return m.emits(); });
-        if (out_.scene.directional_lights.empty() && !emits) {
+        if (out_.scene.directional_lights.empty() && out_.scene.point_lights.empty() && !emits) {
             out_.scene.background = glm::dvec3(1.0);
             out_.warnings.push_back(path_ + ": no light: a constant white environment of radiance 1 lights the scene");
         }
+    }
+
+    // A spot's cone: outerConeAngle the cutoff angle, innerConeAngle the beam
+    // width (the falloff between them Mitsuba's, linear in the angle, not
+    // glTF's recommended smooth one; docs/scene-format.md).
+    SpotCone spot_cone(const ImportedLight& light, const glm::dvec3& axis, const std::string& what) const {
+        SpotCone cone;
+        cone.axis = axis;
+        cone.cutoff_angle = glm::degrees(double(light.outer_cone));
+        cone.beam_width = glm::degrees(double(light.inner_cone));
+        if (!(cone.cutoff_angle > 0.0 && cone.cutoff_angle <= 90.0))
+            fail(what + ": outerConeAngle " + format_number(light.outer_cone) + ": must be in (0, pi/2]");
+        if (!(cone.beam_width >= 0.0 && cone.beam_width <= cone.cutoff_angle))
+            fail(what + ": innerConeAngle " + format_number(light.inner_cone) + ": must be in [0, outerConeAngle]");
+        return cone;
     }
 
     std::string path_;

@@ -871,11 +871,6 @@ class Reader {
             read_shape(*shapes[i]);
             if (progress_) progress_(i + 1, shapes.size());
         }
-        if (!point_lights_.empty() && !(bounding_sphere(out_.scene).radius > 0.0))
-            fail_at(*first_point_light_,
-                    "emitter \"point\": the scene has no bounded shape to size it by (wavepath renders a point "
-                    "light as a sphere of 1e-3 of the scene's size)");
-        add_point_lights(out_.scene, point_lights_);
         return std::move(out_);
     }
 
@@ -1072,8 +1067,12 @@ class Reader {
             read_point(emitter);
             return;
         }
+        if (emitter.type() == "spot") {
+            read_spot(emitter);
+            return;
+        }
         if (emitter.type() != "constant")
-            emitter.fail("not supported (supported: constant, directional, envmap, point; area inside a shape)");
+            emitter.fail("not supported (supported: constant, directional, envmap, point, spot; area inside a shape)");
         emitter.allow({"radiance"});
         if (out_.scene.environment_map) emitter.fail(kSecondEnvironment);
         out_.scene.background += emitter.optional_color("radiance", kMaxSceneMagnitude, "").value_or(glm::dvec3(1.0));
@@ -1099,23 +1098,52 @@ class Reader {
         out_.scene.directional_lights.push_back(light);
     }
 
-    // Mitsuba's point: `intensity` (default 1) at `position` or to_world's origin, not both; a small
-    // emitting sphere once the shapes are read (add_point_lights, docs/scene-format.md).
+    // Mitsuba's point: `intensity` (default 1) at `position` or to_world's origin, not both.
     void read_point(const Plugin& emitter) {
         emitter.allow({"intensity", "position", "to_world"});
         if (emitter.property("position") && emitter.property("to_world"))
             emitter.fail("give \"position\" or \"to_world\", not both (as in Mitsuba)");
         const glm::dmat4 m = emitter.optional_transform("to_world").value_or(glm::dmat4(1.0));
-        const glm::dvec3 position = emitter.optional_point("position").value_or(glm::dvec3(m[3]));
+        PointLight light;
+        light.position = emitter.optional_point("position").value_or(glm::dvec3(m[3]));
+        check_light_position(emitter, light.position);
+        light.intensity = emitter.optional_color("intensity", kMaxSceneMagnitude, "").value_or(glm::dvec3(1.0));
+        out_.scene.point_lights.push_back(light);
+    }
+
+    // Mitsuba's spot: at to_world's origin, pointing along its +z (a
+    // <lookat> from origin to target), `intensity` (default 1) on its axis,
+    // `cutoff_angle` (default 20) and `beam_width` (default 3/4 of it) in degrees.
+    void read_spot(const Plugin& emitter) {
+        emitter.allow({"intensity", "cutoff_angle", "beam_width", "to_world"});
+        const glm::dmat4 m = emitter.optional_transform("to_world").value_or(glm::dmat4(1.0));
+        PointLight light;
+        light.position = glm::dvec3(m[3]);
+        check_light_position(emitter, light.position);
+        light.intensity = emitter.optional_color("intensity", kMaxSceneMagnitude, "").value_or(glm::dvec3(1.0));
+        SpotCone cone;
+        const glm::dvec3 axis(m * glm::dvec4(0, 0, 1, 0));
+        if (!(glm::length(axis) > 0.0) || !std::isfinite(glm::length(axis)))
+            emitter.fail(*emitter.property("to_world"), "to_world leaves the spot no direction (its +z)");
+        cone.axis = glm::normalize(axis);
+        cone.cutoff_angle = emitter.number("cutoff_angle", 20.0);
+        if (!(cone.cutoff_angle > 0.0 && cone.cutoff_angle <= 90.0))
+            emitter.fail(*emitter.property("cutoff_angle"),
+                         "float \"cutoff_angle\": must be in (0, 90] degrees, got " + format_number(cone.cutoff_angle));
+        cone.beam_width = emitter.number("beam_width", cone.cutoff_angle * 0.75);
+        if (!(cone.beam_width >= 0.0 && cone.beam_width <= cone.cutoff_angle))
+            emitter.fail(*emitter.property("beam_width"), "float \"beam_width\": must be in [0, cutoff_angle " +
+                                                              format_number(cone.cutoff_angle) + "] degrees, got " +
+                                                              format_number(cone.beam_width));
+        light.cone = cone;
+        out_.scene.point_lights.push_back(light);
+    }
+
+    static void check_light_position(const Plugin& emitter, const glm::dvec3& position) {
         if (!std::isfinite(glm::length(position)) ||
             glm::any(glm::greaterThan(glm::abs(position), glm::dvec3(kMaxSceneMagnitude))))
             emitter.fail(emitter.property("position") ? *emitter.property("position") : emitter.element(),
                          "the position must be finite and within the scene's range");
-        const glm::dvec3 intensity =
-            emitter.optional_color("intensity", kMaxSceneMagnitude, "").value_or(glm::dvec3(1.0));
-        const std::string base = emitter.id().empty() ? "point light" : emitter.id() + " (point light)";
-        point_lights_.push_back({unique_name(base), position, intensity});
-        if (!first_point_light_) first_point_light_ = &emitter.element();
     }
 
     static constexpr const char* kSecondEnvironment =
@@ -1528,8 +1556,6 @@ class Reader {
     std::set<std::string> names_;
     std::vector<const XmlElement*> converting_;
     std::size_t triangles_ = 0;
-    std::vector<PointLight> point_lights_;           // added once the shapes are read
-    const XmlElement* first_point_light_ = nullptr;  // where an error about them points
 };
 
 }  // namespace

@@ -94,6 +94,7 @@ FeatureSet Scene::features() const {
         f.quad_lights |= shape && light.shape == ShapeType::Quad;
         f.mesh_lights |= shape && light.shape == ShapeType::Mesh;
         f.directional_lights |= light.kind == LightKind::Directional;
+        f.point_lights |= light.kind == LightKind::Point;
         f.constant_environment |= light.kind == LightKind::Environment && !environment_map;
         f.environment_map |= light.kind == LightKind::Environment && environment_map.has_value();
     }
@@ -118,6 +119,10 @@ std::string sppm_problem(const Scene& scene) {
     if (f.directional_lights) {
         return "sppm takes its light from emitting shapes, and a directional light would light paths no photon takes "
                "(render with the path integrator)";
+    }
+    if (f.point_lights) {
+        return "sppm takes its light from emitting shapes, and a point or spot light would light paths no photon "
+               "takes (render with the path integrator)";
     }
     if (f.normal_map) return "sppm does not render normalmap materials (render with the path integrator)";
     if (f.bump_map) return "sppm does not render bumpmap materials (render with the path integrator)";
@@ -161,17 +166,32 @@ BoundingSphere bounding_sphere(const Scene& scene) {
             glm::length(hi - lo) * 0.5};  // the box's bounding sphere, as pbrt-v4's Bounds3::BoundingSphere
 }
 
-void add_point_lights(Scene& scene, const std::vector<PointLight>& lights) {
-    const double radius = kPointLightRadius * bounding_sphere(scene).radius;
-    for (const PointLight& light : lights) {
-        Material bulb;
-        bulb.type = MaterialType::Emitter;
-        bulb.emission = light.intensity / (std::numbers::pi * radius * radius);
-        bulb.name = light.name;
-        scene.spheres.push_back({light.position, radius, static_cast<int>(scene.materials.size())});
-        scene.materials.push_back(std::move(bulb));
-    }
+SpotFalloffTerms spot_falloff_terms(const PointLight& light) {
+    SpotFalloffTerms terms;
+    if (!light.cone) return terms;
+    const double cutoff = glm::radians(light.cone->cutoff_angle), beam = glm::radians(light.cone->beam_width);
+    terms.axis = light.cone->axis;
+    terms.cos_cutoff = std::cos(cutoff);
+    terms.cos_beam = std::cos(beam);
+    terms.cutoff_angle = cutoff;
+    terms.inv_transition_width = cutoff > beam ? 1.0 / (cutoff - beam) : 0.0;
+    return terms;
 }
+
+namespace {
+
+// pbrt-v4's estimate (PointLight::Phi, SpotLight::Phi): 4 pi I for a point
+// light; for a spot 2 pi I ((1 - cos beam) + (cos beam - cos cutoff) / 2),
+// its falloff taken as linear in the cosine (Mitsuba's is linear in the
+// angle: the estimate only weighs the light's choice).
+double point_light_power(const PointLight& light) {
+    const double intensity = luminance(light.intensity);
+    if (!light.cone) return 4.0 * std::numbers::pi * intensity;
+    const SpotFalloffTerms terms = spot_falloff_terms(light);
+    return 2.0 * std::numbers::pi * intensity * ((1.0 - terms.cos_beam) + (terms.cos_beam - terms.cos_cutoff) / 2.0);
+}
+
+}  // namespace
 
 void build_light_table(Scene& scene) {
     scene.lights.clear();
@@ -203,6 +223,8 @@ void build_light_table(Scene& scene) {
         double power = std::numbers::pi * radius * radius * luminance(scene.directional_lights[i].irradiance);
         scene.lights.push_back({LightKind::Directional, ShapeType::Sphere, i, power});
     }
+    for (int i = 0; i < static_cast<int>(scene.point_lights.size()); ++i)
+        scene.lights.push_back({LightKind::Point, ShapeType::Sphere, i, point_light_power(scene.point_lights[i])});
     if (scene.environment_map) {
         double power = std::numbers::pi * radius * radius * environment_luminance_integral(*scene.environment_map);
         scene.lights.push_back({LightKind::Environment, ShapeType::Sphere, 0, power});

@@ -208,16 +208,42 @@ struct Mesh {
 enum class ShapeType { Sphere, Plane, Quad, Mesh };
 
 // What emits a light: a shape's material, a directional light (Mitsuba 3's
-// `directional`: Scene::directional_lights), or the environment, the
+// `directional`: Scene::directional_lights), a point or spot light (its
+// `point` and `spot`: Scene::point_lights), or the environment, the
 // radiance Scene::background of every direction that leaves the scene
 // (Mitsuba 3's `constant` emitter) or Scene::environment_map's (its `envmap`).
-enum class LightKind { Shape, Directional, Environment };
+enum class LightKind { Shape, Directional, Point, Environment };
 
 // A light at infinity in one direction, a delta light (docs/scene-format.md, "lights").
 struct DirectionalLight {
     glm::dvec3 direction{0.0, -1.0, 0.0};  // unit: the way its light travels (Mitsuba's `direction`)
     glm::dvec3 irradiance{1.0};            // on a surface facing it
 };
+
+// A spot's cone (Mitsuba 3's `spot`): its intensity falls off linearly in
+// the angle to its axis, from 1 at the beam width to 0 at the cutoff angle.
+struct SpotCone {
+    glm::dvec3 axis{0.0, 0.0, 1.0};  // unit: the direction it points in (to_world's +z in Mitsuba)
+    double cutoff_angle = 20.0;      // degrees, in (0, 90]
+    double beam_width = 15.0;        // degrees, in [0, cutoff_angle]
+};
+
+// A light at a point, a delta light (docs/scene-format.md, "lights"): a
+// point light shines alike in every direction, a spot within its cone.
+struct PointLight {
+    glm::dvec3 position{0.0};
+    glm::dvec3 intensity{1.0};     // radiant intensity (a spot's on its axis): irradiance I cos / r^2
+    std::optional<SpotCone> cone;  // a spot's
+};
+
+// The terms of a point light's falloff (kernels/shared/direct_light.h,
+// spot_falloff), in double; the device's and the reference's round them.
+// A point light's cosines are -2: its falloff is 1 in every direction.
+struct SpotFalloffTerms {
+    glm::dvec3 axis{0.0, 0.0, 1.0};
+    double cos_cutoff = -2.0, cos_beam = -2.0, cutoff_angle = 0.0, inv_transition_width = 0.0;
+};
+SpotFalloffTerms spot_falloff_terms(const PointLight& light);
 
 // The environment as an image (Mitsuba 3's `envmap`; docs/scene-format.md,
 // "lights"): a latitude-longitude map of the radiance arriving from every
@@ -232,17 +258,21 @@ struct EnvironmentMap {
 };
 
 // An emitting sphere, quad or mesh (planes cannot emit: infinite power), a
-// directional light, or the environment, which is the table's last light.
+// directional light, a point light, or the environment, which is the
+// table's last light.
 struct Light {
     LightKind kind = LightKind::Shape;
     ShapeType shape = ShapeType::Quad;  // a shape's
-    int index = 0;                      // into Scene::spheres, Scene::quads or Scene::meshes; Scene::directional_lights
+    int index = 0;  // into Scene::spheres, Scene::quads or Scene::meshes; Scene::directional_lights or point_lights
     // A shape's: pi * luminance(emission) * area * (two_sided ? 2 : 1). The
     // distant lights' what reaches the scene's bounding sphere (radius r), as
     // pbrt-v4 estimates it (DistantLight::Phi, UniformInfiniteLight::Phi,
     // ImageInfiniteLight::Phi): pi r^2 * luminance(irradiance),
     // 4 pi * pi r^2 * luminance(radiance), an environment map's pi r^2 times
     // its luminance's integral over the sphere (environment_luminance_integral).
+    // A point light's: 4 pi luminance(intensity); a spot's as pbrt-v4's
+    // SpotLight::Phi, 2 pi luminance(intensity) ((1 - cos beam) + (cos beam -
+    // cos cutoff) / 2), its falloff taken as linear in the cosine.
     double power = 0.0;
 };
 
@@ -264,6 +294,7 @@ struct FeatureSet {
     bool one_sided = false;  // a material is black from the back (Material::one_sided)
     bool sphere_lights = false, quad_lights = false, mesh_lights = false;
     bool directional_lights = false;
+    bool point_lights = false;          // point and spot lights (Scene::point_lights)
     bool constant_environment = false;  // a non-black background: the environment light
     bool environment_map = false;       // the environment is an image (Scene::environment_map)
     bool nee = false;                   // next-event estimation runs: render.nee is on and the scene has a light
@@ -309,6 +340,7 @@ struct Scene {
     std::vector<Quad> quads;
     std::vector<Mesh> meshes;
     std::vector<DirectionalLight> directional_lights;
+    std::vector<PointLight> point_lights;
     // The environment as an image; then the background is black (one
     // environment per scene).
     std::optional<EnvironmentMap> environment_map;
@@ -327,7 +359,8 @@ class SceneError : public std::runtime_error {
 
 // Why the scene cannot be rendered with its sppm settings, or "" when it can:
 // photons leave emitting shapes only, so a background that is not black (an
-// environment light) or a directional light would light paths no photon takes.
+// environment light), a directional light or a point light would light paths
+// no photon takes.
 std::string sppm_problem(const Scene& scene);
 
 // The photons per iteration by default: the CPU's default wavefront
@@ -366,26 +399,8 @@ struct BoundingSphere {
 };
 BoundingSphere bounding_sphere(const Scene& scene);
 
-// A point light (Mitsuba 3's `point`, glTF's KHR_lights_punctual `point`):
-// the name of the material it becomes, its position and its intensity.
-struct PointLight {
-    std::string name;
-    glm::dvec3 position{0.0}, intensity{0.0};
-};
-
-// A point light's sphere's radius over the scene's bounding sphere's.
-inline constexpr double kPointLightRadius = 1e-3;
-
-// Adds each point light as a sphere of radius r, kPointLightRadius times the
-// scene's bounding sphere's (its shapes' before the first light), with an
-// emitter material of the light's name and radiance I / (pi r^2): its
-// intensity, L pi r^2, is the light's in every direction, and every point
-// outside it receives exactly the point light's irradiance I cos / d^2. The
-// scene must have a bounded shape (bounding_sphere's radius > 0).
-void add_point_lights(Scene& scene, const std::vector<PointLight>& lights);
-
 // Fills Scene::lights and Scene::light_cdf from the emitting spheres, quads
-// and meshes (in that order), the directional lights, then the environment
+// and meshes (in that order), the directional lights, the point lights, then the environment
 // where there is one (an environment map, or a background that is not black). The loader calls it; tests that
 // build scenes in code call it too.
 void build_light_table(Scene& scene);

@@ -28,6 +28,7 @@ void rebase_to_camera(Scene& scene) {
     for (Mesh& mesh : scene.meshes) {
         for (glm::dvec3& position : mesh.positions) position -= origin;
     }
+    for (PointLight& light : scene.point_lights) light.position -= origin;
 }
 
 // The mesh files the shapes name, in order, for the importer to start on

@@ -765,6 +765,37 @@ void read_environment_map(const JsonField& light, Scene& scene) {
     scene.environment_map = std::move(map);
 }
 
+// A point light (Mitsuba's point): `position`, `intensity`; a spot (its
+// spot) also `direction`, `cutoff_angle` and `beam_width` in degrees.
+void read_point_light(const JsonField& light, bool spot, Scene& scene) {
+    if (spot)
+        light.allow_only_keys({"type", "position", "direction", "intensity", "cutoff_angle", "beam_width"});
+    else
+        light.allow_only_keys({"type", "position", "intensity"});
+    PointLight point;
+    point.position = light.member("position").vec3();
+    if (auto intensity = light.optional_member("intensity"))
+        point.intensity = intensity->vec3_in(0.0, kMaxSceneMagnitude);
+    if (spot) {
+        SpotCone cone;
+        cone.axis = safe_normalize(read_direction(light.member("direction")));
+        if (auto cutoff = light.optional_member("cutoff_angle")) {
+            cone.cutoff_angle = cutoff->number();
+            if (!(cone.cutoff_angle > 0.0 && cone.cutoff_angle <= 90.0))
+                cutoff->fail("must be in (0, 90] degrees, got " + format_number(cone.cutoff_angle));
+        }
+        cone.beam_width = 0.75 * cone.cutoff_angle;
+        if (auto beam = light.optional_member("beam_width")) {
+            cone.beam_width = beam->number();
+            if (!(cone.beam_width >= 0.0 && cone.beam_width <= cone.cutoff_angle))
+                beam->fail("must be in [0, cutoff_angle " + format_number(cone.cutoff_angle) + "] degrees, got " +
+                           format_number(cone.beam_width));
+        }
+        point.cone = cone;
+    }
+    scene.point_lights.push_back(point);
+}
+
 }  // namespace
 
 void read_lights(const JsonField& field, Scene& scene) {
@@ -777,9 +808,13 @@ void read_lights(const JsonField& field, Scene& scene) {
             read_environment_map(light, scene);
             continue;
         }
+        if (type == "point" || type == "spot") {
+            read_point_light(light, type == "spot", scene);
+            continue;
+        }
         if (type != "directional") {
             type_field.fail("unknown light type " + nlohmann::json(type).dump() +
-                            " (expected one of: directional, envmap)");
+                            " (expected one of: directional, envmap, point, spot)");
         }
         light.allow_only_keys({"type", "direction", "irradiance"});
         DirectionalLight directional;

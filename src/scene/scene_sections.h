@@ -21,7 +21,7 @@ std::vector<Material> read_materials(const JsonField& field, const std::vector<T
 // Appends to scene.spheres/planes/quads/meshes; materials and source must already be set
 // (mesh files are found relative to the directory of scene.source, and imported by `importer`).
 void read_shapes(const JsonField& field, Scene& scene, MeshImporter& importer, const ShapeProgress& progress);
-// Appends to scene.directional_lights.
+// Appends to scene.directional_lights and scene.point_lights, or sets scene.environment_map.
 void read_lights(const JsonField& field, Scene& scene);
 
 }  // namespace wp

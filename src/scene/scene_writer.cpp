@@ -193,6 +193,19 @@ nlohmann::json envmap_json(const EnvironmentMap& map, const fs::path& folder) {
             {"to_world", {{"matrix", matrix}}}};
 }
 
+// A point light, or a spot with its cone.
+nlohmann::json point_light_json(const PointLight& light) {
+    nlohmann::json j = {{"type", light.cone ? "spot" : "point"},
+                        {"position", vec3(light.position)},
+                        {"intensity", vec3(light.intensity)}};
+    if (light.cone) {
+        j["direction"] = vec3(light.cone->axis);
+        j["cutoff_angle"] = light.cone->cutoff_angle;
+        j["beam_width"] = light.cone->beam_width;
+    }
+    return j;
+}
+
 // The image file texture `t`'s JSON names (none for a checkerboard): the one it was read from, or, for an image
 // embedded in the scene file or a texture computed from one, a file beside the JSON that `out` lists to write.
 std::string texture_file(const MitsubaScene& read, std::size_t t, const fs::path& json_path, SceneJson& out) {
@@ -230,11 +243,12 @@ SceneJson scene_json(const MitsubaScene& read, const fs::path& json_path) {
     const RenderSettings& r = scene.render;
     j["render"] = {{"spp", r.spp}, {"max_depth", r.max_depth}, {"rr_depth", r.rr_depth}, {"seed", r.seed}};
     j["background"] = vec3(scene.background);
-    if (!scene.directional_lights.empty() || scene.environment_map) {
+    if (!scene.directional_lights.empty() || !scene.point_lights.empty() || scene.environment_map) {
         nlohmann::json& lights = j["lights"] = nlohmann::json::array();
         for (const DirectionalLight& d : scene.directional_lights)
             lights.push_back(
                 {{"type", "directional"}, {"direction", vec3(d.direction)}, {"irradiance", vec3(d.irradiance)}});
+        for (const PointLight& p : scene.point_lights) lights.push_back(point_light_json(p));
         if (const auto& map = scene.environment_map) lights.push_back(envmap_json(*map, folder));
     }
     const TextureNames texture_names(scene.textures);

@@ -69,16 +69,13 @@ TEST_F(GltfCli, NotesTheDefaultCameraAndLight) {
     EXPECT_EQ(image_of(gltf), image_of((kScenes / "no_camera_no_light.json").string()));
 }
 
-// A point light becomes a small emitting sphere of its intensity, which gives
-// a point outside it exactly the point light's irradiance I cos / d^2:
-// point_light.gltf's grey floor (albedo 0.5) 1 below a light of intensity 1,
-// seen from 3 above. A block of 20 x 20 pixels beside the light's foot, at 4
-// samples each, against 0.5 / pi / d^3 at each pixel's centre. The
-// estimate's spread is the light sample's: the sphere (radius 2.8e-3) moves
-// d by at most 0.3%, so the block mean's relative standard error is below
-// 1e-4 and the 2e-3 bound is 20 standard errors (false failure below 1e-20);
-// a radiance off by any factor (the sphere's area for its projected area,
-// 4) fails it. Measured: 0.1570523 against 0.1570523 (64 spp, 1e-7).
+// A point light gives the irradiance I cos / d^2: point_light.gltf's grey
+// floor (albedo 0.5) 1 below a light of intensity 1, seen from 3 above. A
+// block of 20 x 20 pixels beside the light's foot, at 4 samples each,
+// against 0.5 / pi / d^3 at each pixel's centre. The estimate's only spread
+// is the pixel jitter's (d varies by under 0.1% across a pixel, so the block
+// mean's relative deviation stays far below 1e-4); a radiance off by any
+// factor (pi, 4) fails the 2e-3 bound.
 TEST_F(GltfCli, APointLightGivesItsIrradiance) {
     const std::string gltf = (kScenes / "point_light.gltf").string();
     const CommandResult result = run({"render", gltf, "-o", scratch_ / "image.pfm", "--spp", "4", "-q"});

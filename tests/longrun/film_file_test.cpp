@@ -341,6 +341,21 @@ TEST(RenderIdentity, EverySettingThatChangesTheImageChangesIt) {
     };
     EXPECT_TRUE(directional_changed([](DirectionalLight& d) { d.direction.x += 1e-9; }));
     EXPECT_TRUE(directional_changed([](DirectionalLight& d) { d.irradiance.z += 1e-9; }));
+    // A point light, its position and intensity, and a spot's cone.
+    EXPECT_TRUE(scene_changed([](Scene& s) { s.point_lights.push_back({}); }));
+    auto point_changed = [&](auto change) {
+        Scene a = base;
+        a.point_lights.push_back({{0, 2, 0}, glm::dvec3(1.0), SpotCone{}});
+        Scene b = a;
+        change(b.point_lights[0]);
+        return render_identity(a, "opencl").scene != render_identity(b, "opencl").scene;
+    };
+    EXPECT_TRUE(point_changed([](PointLight& p) { p.position.y += 1e-9; }));
+    EXPECT_TRUE(point_changed([](PointLight& p) { p.intensity.x += 1e-9; }));
+    EXPECT_TRUE(point_changed([](PointLight& p) { p.cone.reset(); }));
+    EXPECT_TRUE(point_changed([](PointLight& p) { p.cone->axis.x += 1e-9; }));
+    EXPECT_TRUE(point_changed([](PointLight& p) { p.cone->cutoff_angle += 1e-9; }));
+    EXPECT_TRUE(point_changed([](PointLight& p) { p.cone->beam_width += 1e-9; }));
     // An environment map: its texels, scale and frame.
     auto environment_changed = [&](auto change) {
         Scene a = base;

@@ -256,6 +256,16 @@ TEST(Megakernel, EnvironmentMapBitIdenticalInEveryBackend) {
     }
 }
 
+// Point and spot lights (kernels/shared/direct_light.h's point_direct_light
+// and spot_falloff), delta lights beside the environment: the same light
+// choice, falloff and shadow ray in every backend.
+TEST(Megakernel, PointAndSpotLightsBitIdenticalInEveryBackend) {
+    Scene scene = load_scene(WAVEPATH_SOURCE_DIR "/scenes/test/oracle_spot.json");
+    ASSERT_TRUE(scene.features().point_lights);
+    scene.render.spp = 2;
+    expect_bit_identical_in_every_backend(scene);
+}
+
 TEST(Megakernel, ProfileTimesItsLaunches) {
     Scene scene = test::small_room(32, 2);
     MegakernelReport report;

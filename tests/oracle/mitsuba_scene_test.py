@@ -102,9 +102,28 @@ class ConverterTest(unittest.TestCase):
         self.assertEqual(out["light_0"], {"type": "directional", "direction": [0, -1, 0.5],
                                           "irradiance": {"type": "rgb", "value": [2, 1, 0.5]}})
         self.assertEqual(out["light_1"]["irradiance"], {"type": "rgb", "value": [1, 1, 1]})
-        self.refused("lights[0].type: light type \"spot\" has no Mitsuba counterpart here", lights=[{"type": "spot"}])
+        self.refused("lights[0].type: light type \"area\" has no Mitsuba counterpart here", lights=[{"type": "area"}])
         self.refused("lights[0].angle: not expressible in Mitsuba",
                      lights=[{"type": "directional", "direction": [0, -1, 0], "angle": 1}])
+
+    def test_point_and_spot_lights_are_point_and_spot_emitters(self):
+        origin = CAMERA["position"]
+        out = self.convert(lights=[{"type": "point", "position": [1, 2, 3], "intensity": [2, 1, 0.5]},
+                                   {"type": "spot", "position": [0, 3, 0], "direction": [0, -2, 0],
+                                    "intensity": [4, 4, 4], "cutoff_angle": 30, "beam_width": 10},
+                                   {"type": "spot", "position": [0, 3, 0], "direction": [1, 0, 0]}])
+        self.assertEqual(out["light_0"], {"type": "point", "position": [1 - origin[0], 2 - origin[1], 3 - origin[2]],
+                                          "intensity": {"type": "rgb", "value": [2, 1, 0.5]}})
+        spot = out["light_1"]
+        self.assertEqual((spot["type"], spot["cutoff_angle"], spot["beam_width"]), ("spot", 30.0, 10.0))
+        at, target, up = spot["to_world"]["look_at"]  # from the position along the unit direction, up not along it
+        self.assertEqual(at, [0 - origin[0], 3 - origin[1], 0 - origin[2]])
+        self.assertEqual(mitsuba_scene.sub(target, at), [0.0, -1.0, 0.0])
+        self.assertEqual(up, [1.0, 0.0, 0.0])
+        self.assertEqual((out["light_2"]["cutoff_angle"], out["light_2"]["beam_width"]), (20.0, 15.0))  # Mitsuba's
+        self.assertEqual(out["light_2"]["intensity"], {"type": "rgb", "value": [1, 1, 1]})
+        self.refused("lights[0].to_world: not expressible in Mitsuba",
+                     lights=[{"type": "spot", "position": [0, 1, 0], "direction": [0, -1, 0], "to_world": {}}])
 
     def test_envmap_lights_are_envmap_emitters(self):
         out = self.convert(lights=[{"type": "envmap", "filename": "sky.exr", "scale": 2,

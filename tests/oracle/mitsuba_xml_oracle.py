@@ -72,6 +72,7 @@ CASES = [
     ("mask", "mask.xml", {}),
     ("envmap", "envmap.xml", {}),
     ("point_light", "point_light.xml", {}),
+    ("spot", "spot.xml", {}),
     ("anisotropic", "anisotropic.xml", {}),
 ]
 # Cases compared in blocks of 8 x 8 rather than of --block: filters.xml's edges lie on those blocks' borders, so

@@ -13,6 +13,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+#include <glm/trigonometric.hpp>
 #include <limits>
 #include <numbers>
 #include <string>
@@ -261,6 +264,80 @@ TYPED_TEST(ReferenceAnalytic, FloorUnderDirectionalLightShowsAlbedoTimesIrradian
         EXPECT_GT(mean.standard_error(), 0.0);  // the light choice does vary
         EXPECT_NEAR(mean.mean(), expected[c], wp::test::kSigmaTolerance * mean.standard_error()) << "channel " << c;
     }
+}
+
+// A point light at the centre of a diffuse sphere (radius R) seen from the
+// centre: exactly albedo / pi * I / R^2 in every pixel (a few roundings), at
+// two radii (the inverse square law); with a light outside the sphere that
+// no inside point sees, the point light's selection probability (its power
+// 4 pi luminance(I) against the sphere light's) divides its samples and the
+// image mean stays, within kSigmaTolerance standard errors.
+TYPED_TEST(ReferenceAnalytic, PointLightInsideSphereShowsAlbedoTimesIntensityOverPiRSquared) {
+    const glm::dvec3 albedo(0.2, 0.5, 0.9), intensity(3.0, 2.0, 1.0);
+    for (double radius : {2.0, 0.5}) {
+        RenderBlock block{.width = 16, .height = 16, .spp = 4};
+        wp::Scene scene = wp::test::inside_sphere_around_point_light(block, albedo, radius, intensity, std::nullopt);
+        ASSERT_TRUE(scene.features().point_lights);
+        expect_uniform_image(this->render(scene).image, albedo / std::numbers::pi * intensity / (radius * radius), 1e-5,
+                             "radius " + std::to_string(radius));
+    }
+    RenderBlock block{.width = 16, .height = 16, .spp = 16};
+    wp::Scene scene = wp::test::inside_sphere_around_point_light(block, albedo, 2.0, intensity, std::nullopt);
+    scene.spheres.push_back({{0.3, 5.0, 0.2}, 0.5, wp::test::add_material(scene, wp::test::emitter(glm::dvec3(1.0)))});
+    wp::build_light_table(scene);
+    ASSERT_GT(scene.light_cdf[0], 0.1);  // the hidden light takes a share of the choice ...
+    ASSERT_LT(scene.light_cdf[0], 0.9);  // ... and so does the point light
+    wp::RenderResult result = this->render(scene);
+    const glm::dvec3 expected = albedo / std::numbers::pi * intensity / 4.0;
+    for (int c = 0; c < 3; ++c) {
+        wp::test::RunningMean mean = wp::test::channel_mean(result.image, c);
+        EXPECT_GT(mean.standard_error(), 0.0);  // the light choice does vary
+        EXPECT_NEAR(mean.mean(), expected[c], wp::test::kSigmaTolerance * mean.standard_error()) << "channel " << c;
+    }
+}
+
+// The same with a spot pointing along the view, Mitsuba's falloff: 1 within
+// the beam width, falling linearly in the angle to 0 at the cutoff angle.
+// Each pixel's samples take directions between its nearest and farthest
+// angle from the axis (the image plane's distances tan(angle) from its
+// centre to the pixel's rectangle), so its value lies between the falloffs
+// there times albedo / pi * I / R^2: exactly that within the beam, exactly 0
+// beyond the cutoff, and in between across the transition.
+TYPED_TEST(ReferenceAnalytic, SpotInsideSphereFallsOffLinearlyInAngle) {
+    const glm::dvec3 albedo(0.2, 0.5, 0.9), intensity(3.0, 2.0, 1.0);
+    const double radius = 2.0, cutoff = 35.0, beam = 20.0;
+    const int size = 16;
+    RenderBlock block{.width = size, .height = size, .spp = 4};
+    wp::Scene scene = wp::test::inside_sphere_around_point_light(
+        block, albedo, radius, intensity, wp::SpotCone{.cutoff_angle = cutoff, .beam_width = beam});
+    const wp::Image image = this->render(scene).image;
+    const glm::dvec3 full = albedo / std::numbers::pi * intensity / (radius * radius);
+    auto falloff = [&](double distance) {  // at the angle atan(distance) from the axis
+        return std::clamp((cutoff - glm::degrees(std::atan(distance))) / (cutoff - beam), 0.0, 1.0);
+    };
+    int inside = 0, transition = 0, outside = 0;
+    for (int row = 0; row < size; ++row) {
+        for (int column = 0; column < size; ++column) {
+            // The pixel's rectangle on the image plane at distance 1 (fov 90: [-1, 1]^2).
+            const double x0 = 2.0 * column / size - 1.0, x1 = 2.0 * (column + 1) / size - 1.0;
+            const double y0 = 1.0 - 2.0 * (row + 1) / size, y1 = 1.0 - 2.0 * row / size;
+            const double near = std::hypot(std::clamp(0.0, x0, x1), std::clamp(0.0, y0, y1));
+            const double far =
+                std::hypot(std::max(std::fabs(x0), std::fabs(x1)), std::max(std::fabs(y0), std::fabs(y1)));
+            const double most = falloff(near), least = falloff(far);
+            inside += least == 1.0;
+            outside += most == 0.0;
+            transition += least < 1.0 && most > 0.0;
+            for (int c = 0; c < 3; ++c) {
+                const double value = image.rgb[3 * std::size_t(row * size + column) + c];
+                EXPECT_GE(value, full[c] * least * (1 - 1e-5)) << "pixel " << column << ", " << row;
+                EXPECT_LE(value, full[c] * most * (1 + 1e-5)) << "pixel " << column << ", " << row;
+            }
+        }
+    }
+    EXPECT_GE(inside, 12);  // every region has pixels
+    EXPECT_GE(transition, 12);
+    EXPECT_GE(outside, 100);
 }
 
 // The n^2 law of radiance: tolerance a few float ULPs per Fresnel bounce.

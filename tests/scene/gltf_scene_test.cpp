@@ -65,6 +65,17 @@ void expect_same_scene(const Scene& gltf, const Scene& json, double tolerance) {
         EXPECT_EQ(gltf.directional_lights[l].direction, json.directional_lights[l].direction);
         EXPECT_EQ(gltf.directional_lights[l].irradiance, json.directional_lights[l].irradiance);
     }
+    ASSERT_EQ(gltf.point_lights.size(), json.point_lights.size());
+    for (std::size_t l = 0; l < gltf.point_lights.size(); ++l) {
+        const PointLight &a = gltf.point_lights[l], &b = json.point_lights[l];
+        expect_near(a.position, b.position, tolerance);
+        EXPECT_EQ(a.intensity, b.intensity);
+        ASSERT_EQ(a.cone.has_value(), b.cone.has_value());
+        if (!a.cone) continue;
+        expect_near(a.cone->axis, b.cone->axis, 1e-12);
+        EXPECT_NEAR(a.cone->cutoff_angle, b.cone->cutoff_angle, 1e-12);
+        EXPECT_NEAR(a.cone->beam_width, b.cone->beam_width, 1e-12);
+    }
     ASSERT_EQ(gltf.meshes.size(), json.meshes.size());
     for (std::size_t m = 0; m < gltf.meshes.size(); ++m) {
         SCOPED_TRACE("mesh " + std::to_string(m));
@@ -193,29 +204,20 @@ TEST(GltfScene, ACameraWithoutAspectRatioIs640By480) {
     EXPECT_EQ(read.warnings[0], (dir / "eye.gltf") + ": camera \"Eye\": no aspectRatio: 640 x 480");
 }
 
-// A point light is a small emitting sphere of its intensity: radius 1e-3 of
-// the meshes' bounding sphere's, radiance I / (pi r^2). The triangle's
-// bounding sphere has radius sqrt(2) / 2, about its centre (0.5, 0.5, 0).
-TEST(GltfScene, APointLightIsASmallSphereOfTheSameIntensity) {
-    const TempDirectory dir("point");
-    const std::string text = with_node(
-        one_triangle(R"({"name": "m"})"),
-        R"({"name": "Bulb", "translation": [0, 0, 2], "extensions": {"KHR_lights_punctual": {"light": 0}}})",
-        R"("extensions": {"KHR_lights_punctual": {"lights": [{"name": "Bulb", "type": "point", "color": [1, 0.5, 1], "intensity": 3}]}},
- "extensionsUsed": ["KHR_lights_punctual"],)");
-    write_text(dir.path() / "bulb.gltf", text);
-    const MitsubaScene read = read_gltf_scene(dir / "bulb.gltf");
-    EXPECT_EQ(read.warnings.size(), 1u);  // the camera's note, no light's
-    ASSERT_EQ(read.scene.spheres.size(), 1u);
-    const Sphere& bulb = read.scene.spheres[0];
-    EXPECT_EQ(bulb.center, glm::dvec3(0, 0, 2));
-    const double radius = 1e-3 * std::sqrt(0.5);
-    EXPECT_NEAR(bulb.radius, radius, 1e-18);
-    const Material& m = read.scene.materials.at(std::size_t(bulb.material));
-    EXPECT_EQ(m.name, "Bulb (point light)");
-    EXPECT_EQ(m.type, MaterialType::Emitter);
-    // Its intensity, radiance times its projected area, is the light's.
-    expect_near(m.emission * (std::numbers::pi * bulb.radius * bulb.radius), glm::dvec3(3, 1.5, 3), 1e-12);
+// KHR_lights_punctual's point and spot lights are wavepath's: intensity
+// (candela) colour times intensity, at the node's origin; a spot along the
+// node's -z, outerConeAngle its cutoff angle and innerConeAngle its beam
+// width; a point light's `range` ignored (spot_light.gltf, make_gltf.py).
+TEST(GltfScene, PointAndSpotLightsMakeTheSceneOfTheirHandWrittenJson) {
+    std::vector<std::string> notes;
+    const Scene gltf = load_gltf_scene((kScenes / "spot_light.gltf").string(), {}, &notes);
+    const Scene json = load_scene((kScenes / "spot_light.json").string());
+    expect_same_scene(gltf, json, 1e-12);
+    ASSERT_EQ(gltf.point_lights.size(), 2u);
+    ASSERT_TRUE(gltf.point_lights[0].cone.has_value());
+    EXPECT_FALSE(gltf.point_lights[1].cone.has_value());
+    EXPECT_EQ(notes, std::vector<std::string>{});
+    EXPECT_TRUE(gltf.features().point_lights);
 }
 
 // ---- the material mapping, one glTF material at a time ----

@@ -367,6 +367,56 @@ TEST_F(MitsubaXml, DirectionalEmittersAsDirectionalLights) {
     EXPECT_TRUE(scene.features().directional_lights);
 }
 
+// Mitsuba's point (at `position` or to_world's origin) and spot (at
+// to_world's origin, pointing along its +z; cutoff_angle 20 and beam_width
+// 3/4 of it by default) as point lights; `wavepath convert` writes them and
+// the JSON reads back the same lights (in the camera's frame).
+TEST_F(MitsubaXml, PointAndSpotEmittersAsPointLights) {
+    const MitsubaScene read_scene = read(sensor() + R"(
+        <emitter type="point"><point name="position" value="1, 2, 3"/><rgb name="intensity" value="3, 2, 1"/></emitter>
+        <emitter type="point"><transform name="to_world"><translate x="-1"/></transform></emitter>
+        <emitter type="spot"><transform name="to_world"><lookat origin="0, 2, 0" target="0, 0, 1" up="0, 1, 0"/>
+            </transform><float name="cutoff_angle" value="40"/><float name="beam_width" value="10"/></emitter>
+        <emitter type="spot"><transform name="to_world"><rotate x="1" angle="90"/><translate y="3"/></transform>
+            <rgb name="intensity" value="5"/></emitter>)");
+    const Scene& scene = read_scene.scene;
+    ASSERT_EQ(scene.point_lights.size(), 4u);
+    expect_near(scene.point_lights[0].position, {1, 2, 3});
+    expect_near(scene.point_lights[0].intensity, {3, 2, 1});
+    EXPECT_FALSE(scene.point_lights[0].cone.has_value());
+    expect_near(scene.point_lights[1].position, {-1, 0, 0});
+    expect_near(scene.point_lights[1].intensity, glm::dvec3(1.0));
+    const PointLight& aimed = scene.point_lights[2];
+    ASSERT_TRUE(aimed.cone.has_value());
+    expect_near(aimed.position, {0, 2, 0});
+    expect_near(aimed.cone->axis, glm::normalize(glm::dvec3(0, -2, 1)));
+    EXPECT_EQ(aimed.cone->cutoff_angle, 40.0);
+    EXPECT_EQ(aimed.cone->beam_width, 10.0);
+    const PointLight& turned = scene.point_lights[3];
+    ASSERT_TRUE(turned.cone.has_value());
+    expect_near(turned.position, {0, 3, 0});
+    expect_near(turned.cone->axis, {0, -1, 0});  // +z turned 90 degrees about x
+    EXPECT_EQ(turned.cone->cutoff_angle, 20.0);
+    EXPECT_EQ(turned.cone->beam_width, 15.0);
+    expect_near(turned.intensity, glm::dvec3(5.0));
+    fs::create_directories(dir_.path() / "out");
+    const fs::path json = dir_.path() / "out/converted.json";
+    write_text(json, scene_json(read_scene, json).json.dump());
+    const Scene from_json = load_scene(json.string());
+    ASSERT_EQ(from_json.point_lights.size(), 4u);
+    for (std::size_t i = 0; i < 4; ++i) {
+        const PointLight &a = from_json.point_lights[i], &b = scene.point_lights[i];
+        expect_near(a.position + from_json.world_offset, b.position);
+        EXPECT_EQ(a.intensity, b.intensity);
+        ASSERT_EQ(a.cone.has_value(), b.cone.has_value());
+        if (!a.cone) continue;
+        expect_near(a.cone->axis, b.cone->axis);
+        EXPECT_EQ(a.cone->cutoff_angle, b.cone->cutoff_angle);
+        EXPECT_EQ(a.cone->beam_width, b.cone->beam_width);
+    }
+    EXPECT_TRUE(from_json.features().point_lights);
+}
+
 // Mitsuba's envmap: its file found beside the scene, `scale` and a
 // `to_world` that rotates; `wavepath convert` writes it (the file named from
 // the JSON's folder, to_world as a matrix) and the JSON reads back the same

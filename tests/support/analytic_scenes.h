@@ -8,6 +8,7 @@
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 #include <numbers>
+#include <optional>
 
 #include "scene/scene.h"
 
@@ -166,6 +167,24 @@ inline Scene floor_under_directional_light(const RenderBlock& block, const glm::
     Scene scene = empty_scene(block, {0, -1, 0}, 60.0);
     scene.planes.push_back({{0, -1, 0}, {0, 1, 0}, add_material(scene, diffuse(albedo))});
     scene.directional_lights.push_back({{std::sin(theta), -std::cos(theta), 0.0}, irradiance});
+    build_light_table(scene);
+    return scene;
+}
+
+// The camera at the centre of a diffuse sphere of radius R seen from inside,
+// looking along -z, with a point light of intensity I at the centre too
+// (where `cone`, a spot pointing along -z), direct light only (max_depth 1):
+// every surface point lies at distance R and faces the light, so a pixel
+// shows albedo / pi * I / R^2 times the mean falloff over the directions its
+// samples take, which are also the directions from the light.
+inline Scene inside_sphere_around_point_light(const RenderBlock& block, const glm::dvec3& albedo, double radius,
+                                              const glm::dvec3& intensity, std::optional<SpotCone> cone) {
+    RenderBlock direct_only = block;
+    direct_only.max_depth = 1;
+    Scene scene = empty_scene(direct_only, {0, 0, -1}, 90.0);
+    scene.spheres.push_back({{0, 0, 0}, radius, add_material(scene, diffuse(albedo, glm::dvec3(0), true))});
+    if (cone) cone->axis = {0, 0, -1};
+    scene.point_lights.push_back({{0, 0, 0}, intensity, cone});
     build_light_table(scene);
     return scene;
 }

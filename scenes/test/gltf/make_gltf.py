@@ -140,6 +140,18 @@ def main():
     square = [{"type": "perspective", "perspective": {"yfov": 0.25, "aspectRatio": 1.0, "znear": 0.01}}]
     point = {"KHR_lights_punctual": {"lights": [{"name": "Bulb", "type": "point", "intensity": 1}]}}
     write("point_light.gltf", gltf([(floor[0], floor[1], 0)], [("Floor", 0, None)], grey, bulb, point, square))
+    # The grey floor under a spot 2 above it, pointing down (the node's -z; innerConeAngle and
+    # outerConeAngle its beam width and cutoff angle), and a coloured point light beside it
+    # (GltfScene.PointAndSpotLightsMakeTheSceneOfTheirHandWrittenJson).
+    spot_down = [1, 0, 0, 0, 0, 0, -1, 0, 0, 1, 0, 0, 0, 2, 0, 1]  # -z to -y, then up 2
+    lamps = [{"name": "Spot", "matrix": spot_down, "extensions": {"KHR_lights_punctual": {"light": 0}}},
+             {"name": "Bulb", "translation": [1, 0.5, -1], "extensions": {"KHR_lights_punctual": {"light": 1}}},
+             bulb[1]]
+    spot = {"KHR_lights_punctual": {"lights": [
+        {"name": "Spot", "type": "spot", "color": [1, 0.75, 0.5], "intensity": 4,
+         "spot": {"innerConeAngle": 0.25, "outerConeAngle": 0.5}},
+        {"name": "Bulb", "type": "point", "color": [0.5, 0.5, 1], "intensity": 2, "range": 8}]}}
+    write("spot_light.gltf", gltf([(floor[0], floor[1], 0)], [("Floor", 0, None)], grey, lamps, spot, square))
     # A blue veil (BLEND, alpha 0.5: a mask) over a grey floor, lit by the point light: diffuse
     # materials only, the mask's pass the one delta lobe (GltfCli's backends test).
     veil = quad([-1, 0, 0.5], [2, 0, 0], [0, 1.5, 0])
