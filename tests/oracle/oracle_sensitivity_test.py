@@ -3,7 +3,7 @@
 
 tests/oracle/mitsuba_oracle.py is only as good as the biases it detects. Here
 wavepath renders each scene with every light 3% brighter (every emitter's
-radiance, every glow, the background and every light at infinity times 1.03) and Mitsuba renders it
+radiance, every glow, the background and every light at infinity or at a point times 1.03) and Mitsuba renders it
 as it is, at the oracle's default settings (64 pixels, 8 seeds x 32 spp,
 blocks of 16^2), and the two are compared as the oracle compares them,
 against the |z| threshold of the oracle's default run over every shipped
@@ -49,6 +49,8 @@ def brighter_scene(path, factor, scratch):
         if light["type"] == "envmap":
             light["scale"] = factor * light.get("scale", 1.0)
             light["filename"] = os.path.join(here, light["filename"])
+        elif light["type"] in ("point", "spot"):
+            light["intensity"] = scale(light.get("intensity", [1, 1, 1]))
         else:
             light["irradiance"] = scale(light.get("irradiance", [1, 1, 1]))
     for named in [*scene.get("shapes", []), *scene.get("textures", {}).values()]:
