@@ -2,9 +2,8 @@
 // the contained importer (import/import_process.h) reads the file's meshes,
 // node transforms, metallic-roughness materials, cameras and
 // KHR_lights_punctual lights, and this maps them onto the Scene the JSON
-// loader makes. What wavepath cannot render (a point or spot light, an
-// embedded texture) and every malformed file is one SceneError line naming
-// the file and the element.
+// loader makes. Every malformed file (a spot's cone out of range among
+// them) is one SceneError line naming the file and the element.
 #pragma once
 
 #include <string>
