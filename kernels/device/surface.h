@@ -223,55 +223,13 @@ WP_FN Emission emission_at(__global const DeviceMaterial *materials, lane_uint i
     return e;
 }
 
-#ifdef WP_HAS_PLASTIC
-/* A plastic's fields where `loads`, else zeros. */
-WP_FN PlasticParams plastic_params_at(__global const DeviceMaterial *materials, lane_uint index, int loads) {
-    PlasticParams p;
-    p.diffuse_reflectance = p.specular_reflectance = make_vec3(REAL(0.0), REAL(0.0), REAL(0.0));
-    p.eta = p.inv_eta_2 = p.fdr_int = p.specular_sampling_weight = REAL(0.0);
-    p.nonlinear = 0;
-    if (loads) {
-        p.diffuse_reflectance = SCENE_FIELD(materials, index, albedo);
-        p.specular_reflectance = SCENE_FIELD(materials, index, specular_reflectance);
-        p.eta = SCENE_FIELD(materials, index, ior);
-        p.inv_eta_2 = SCENE_FIELD(materials, index, inv_eta_2);
-        p.fdr_int = SCENE_FIELD(materials, index, internal_reflectance);
-        p.specular_sampling_weight = SCENE_FIELD(materials, index, specular_sampling_weight);
-        p.nonlinear = SCENE_FIELD(materials, index, nonlinear) != 0u;
-    }
-    return p;
-}
-#endif
-
-#ifdef WP_HAS_ROUGH_PLASTIC
-/* A rough plastic's fields, its microfacets m, where `loads`, else zeros. */
-WP_FN RoughPlasticParams roughplastic_params_at(__global const DeviceMaterial *materials, lane_uint index, Microfacet m,
-                                                int loads) {
-    RoughPlasticParams p;
-    p.m = m;
-    p.diffuse_reflectance = p.specular_reflectance = make_vec3(REAL(0.0), REAL(0.0), REAL(0.0));
-    p.eta = p.inv_eta_2 = p.specular_sampling_weight = p.internal_reflectance = REAL(0.0);
-    p.nonlinear = 0;
-    p.transmittance_offset = 0u;
-    if (loads) {
-        p.diffuse_reflectance = SCENE_FIELD(materials, index, albedo);
-        p.specular_reflectance = SCENE_FIELD(materials, index, specular_reflectance);
-        p.eta = SCENE_FIELD(materials, index, ior);
-        p.inv_eta_2 = SCENE_FIELD(materials, index, inv_eta_2);
-        p.specular_sampling_weight = SCENE_FIELD(materials, index, specular_sampling_weight);
-        p.internal_reflectance = SCENE_FIELD(materials, index, internal_reflectance);
-        p.nonlinear = SCENE_FIELD(materials, index, nonlinear) != 0u;
-        p.transmittance_offset = SCENE_FIELD(materials, index, transmittance_offset);
-    }
-    return p;
-}
-#endif
-
 /* A material's fields, per lane, each group loaded only where some lane's
  * kind reads it (lanes_have_kind): a gather costs a load per lane, and a
  * vertex pays for the kinds its vector holds. The lanes of other kinds
  * hold zeros, and a microfacet distribution of none (WP_MICROFACET_NONE, so
- * that they ask for no distribution's work) of roughness 1. */
+ * that they ask for no distribution's work) of roughness 1. The plastics'
+ * constants are still loaded at every vertex: gating them wants one loader
+ * of the fields their two structs share. */
 WP_FN Material material_at(__global const DeviceMaterial *materials, lane_uint index) {
     Material m;
     m.type = SCENE_FIELD(materials, index, type);
@@ -312,11 +270,24 @@ WP_FN Material material_at(__global const DeviceMaterial *materials, lane_uint i
     }
 #endif
 #ifdef WP_HAS_PLASTIC
-    m.plastic = plastic_params_at(materials, index, lanes_have_kind(m.type, WP_MATERIAL_PLASTIC));
+    m.plastic.diffuse_reflectance = SCENE_FIELD(materials, index, albedo);
+    m.plastic.specular_reflectance = SCENE_FIELD(materials, index, specular_reflectance);
+    m.plastic.eta = SCENE_FIELD(materials, index, ior);
+    m.plastic.inv_eta_2 = SCENE_FIELD(materials, index, inv_eta_2);
+    m.plastic.fdr_int = SCENE_FIELD(materials, index, internal_reflectance);
+    m.plastic.specular_sampling_weight = SCENE_FIELD(materials, index, specular_sampling_weight);
+    m.plastic.nonlinear = SCENE_FIELD(materials, index, nonlinear) != 0u;
 #endif
 #ifdef WP_HAS_ROUGH_PLASTIC
-    m.roughplastic =
-        roughplastic_params_at(materials, index, m.microfacet, lanes_have_kind(m.type, WP_MATERIAL_ROUGH_PLASTIC));
+    m.roughplastic.m = m.microfacet;
+    m.roughplastic.diffuse_reflectance = SCENE_FIELD(materials, index, albedo);
+    m.roughplastic.specular_reflectance = SCENE_FIELD(materials, index, specular_reflectance);
+    m.roughplastic.eta = SCENE_FIELD(materials, index, ior);
+    m.roughplastic.inv_eta_2 = SCENE_FIELD(materials, index, inv_eta_2);
+    m.roughplastic.specular_sampling_weight = SCENE_FIELD(materials, index, specular_sampling_weight);
+    m.roughplastic.internal_reflectance = SCENE_FIELD(materials, index, internal_reflectance);
+    m.roughplastic.nonlinear = SCENE_FIELD(materials, index, nonlinear) != 0u;
+    m.roughplastic.transmittance_offset = SCENE_FIELD(materials, index, transmittance_offset);
 #endif
 #ifdef WP_HAS_MASK
     m.opacity = SCENE_FIELD(materials, index, opacity);

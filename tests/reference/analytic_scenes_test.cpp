@@ -146,6 +146,17 @@ void expect_uniform_image(const wp::Image& image, const glm::dvec3& value, doubl
     }
 }
 
+// Each channel's image mean equals expected within kSigmaTolerance of its
+// standard error, which must not be 0: a light chosen at random among
+// several (one hidden) makes the pixels vary.
+void expect_mean_where_the_choice_varies(const wp::Image& image, const glm::dvec3& expected) {
+    for (int c = 0; c < 3; ++c) {
+        wp::test::RunningMean mean = wp::test::channel_mean(image, c);
+        EXPECT_GT(mean.standard_error(), 0.0);  // the light choice does vary
+        EXPECT_NEAR(mean.mean(), expected[c], wp::test::kSigmaTolerance * mean.standard_error()) << "channel " << c;
+    }
+}
+
 TYPED_TEST(ReferenceAnalytic, DiffuseSphereUnderBackgroundShowsAlbedoTimesBackground) {
     const glm::dvec3 albedo(0.2, 0.5, 0.9);
     wp::RenderResult result =
@@ -259,12 +270,7 @@ TYPED_TEST(ReferenceAnalytic, FloorUnderDirectionalLightShowsAlbedoTimesIrradian
     block.spp = 16;
     scene = wp::test::floor_under_directional_light(block, albedo, irradiance, theta);
     wp::test::add_hidden_light_below_floor(scene, glm::dvec3(0.2));  // chosen with probability 0.55
-    wp::RenderResult result = this->render(scene);
-    for (int c = 0; c < 3; ++c) {
-        wp::test::RunningMean mean = wp::test::channel_mean(result.image, c);
-        EXPECT_GT(mean.standard_error(), 0.0);  // the light choice does vary
-        EXPECT_NEAR(mean.mean(), expected[c], wp::test::kSigmaTolerance * mean.standard_error()) << "channel " << c;
-    }
+    expect_mean_where_the_choice_varies(this->render(scene).image, expected);
 }
 
 // A point light at the centre of a diffuse sphere (radius R) seen from the
@@ -288,13 +294,7 @@ TYPED_TEST(ReferenceAnalytic, PointLightInsideSphereShowsAlbedoTimesIntensityOve
     wp::build_light_table(scene);
     ASSERT_GT(scene.light_cdf[0], 0.1);  // the hidden light takes a share of the choice ...
     ASSERT_LT(scene.light_cdf[0], 0.9);  // ... and so does the point light
-    wp::RenderResult result = this->render(scene);
-    const glm::dvec3 expected = albedo / std::numbers::pi * intensity / 4.0;
-    for (int c = 0; c < 3; ++c) {
-        wp::test::RunningMean mean = wp::test::channel_mean(result.image, c);
-        EXPECT_GT(mean.standard_error(), 0.0);  // the light choice does vary
-        EXPECT_NEAR(mean.mean(), expected[c], wp::test::kSigmaTolerance * mean.standard_error()) << "channel " << c;
-    }
+    expect_mean_where_the_choice_varies(this->render(scene).image, albedo / std::numbers::pi * intensity / 4.0);
 }
 
 // The same with a spot pointing along the view, Mitsuba's falloff: 1 within
