@@ -161,8 +161,8 @@ WP_FN lane_uint light_of_shape(WP_SCENE_PARAMS, lane_uint shape) {
 /* The emission a path of throughput `throughput` counts at vertex v (reached
  * along the ray from `origin`, which hit `shape`): emission_seen with its
  * share emission_weight; the bounce recorded its density `bsdf_pdf`. */
-WP_FN vec3 hit_emission(WP_SCENE_PARAMS, lane_uint shape, vec3 origin, Vertex v, lane_int after_specular, real bsdf_pdf,
-                        vec3 throughput) {
+WP_VERTEX_FN vec3 hit_emission(WP_SCENE_PARAMS, lane_uint shape, vec3 origin, Vertex v, lane_int after_specular,
+                               real bsdf_pdf, vec3 throughput) {
 #ifdef WP_MIS
     real light_pdf =
         light_point_pdf(WP_SCENE_ARGS, light_of_shape(WP_SCENE_ARGS, shape), origin, v.surface.point, v.surface.normal);
@@ -250,7 +250,7 @@ WP_FN vec3 add_radiance_seen(WP_SCENE_PARAMS, vec3 radiance, lane_int missed, la
 /* Whether the path ends at vertex v once its emission is counted: the depth
  * cap (a vertex at depth max_depth adds its emission and no more) or an
  * emitter material, which reflects nothing. */
-WP_FN lane_int vertex_ends_path(Vertex v, lane_uint bounce, uint max_depth) {
+WP_VERTEX_FN lane_int vertex_ends_path(Vertex v, lane_uint bounce, uint max_depth) {
     return bounce >= max_depth || v.material.type == WP_MATERIAL_EMITTER;
 }
 
@@ -328,7 +328,7 @@ WP_FN LightShape light_shape(WP_SCENE_PARAMS, lane_uint light, real u_triangle) 
  * `isotropic`, the frame the material builds from the normal alone
  * (shared/materials/microfacet.h): that frame itself unless the scene has
  * anisotropic roughness. */
-WP_FN Frame vertex_microfacet_frame(Vertex v, Frame isotropic) {
+WP_VERTEX_FN Frame vertex_microfacet_frame(Vertex v, Frame isotropic) {
 #ifdef WP_HAS_ANISOTROPIC_ROUGHNESS
     return microfacet_frame(v.material.microfacet, isotropic, v.dp_du);
 #else
@@ -347,7 +347,7 @@ typedef struct {
     real pdf;
 } BsdfValue;
 
-WP_FN BsdfValue vertex_bsdf_value(Vertex v, vec3 wi, vec3 throughput) {
+WP_VERTEX_FN BsdfValue vertex_bsdf_value(Vertex v, vec3 wi, vec3 throughput) {
     Material m = v.material;
     BsdfValue b;
     b.throughput_f = make_vec3(REAL(0.0), REAL(0.0), REAL(0.0));
@@ -407,7 +407,7 @@ WP_FN BsdfValue vertex_bsdf_value(Vertex v, vec3 wi, vec3 throughput) {
 
 /* Whether vertex v's material transmits light through a lobe of finite
  * density: next-event estimation then samples lights on both sides. */
-WP_FN lane_int vertex_transmits(Vertex v) {
+WP_VERTEX_FN lane_int vertex_transmits(Vertex v) {
 #ifdef WP_HAS_ROUGH_DIELECTRIC
     return v.material.type == WP_MATERIAL_ROUGH_DIELECTRIC;
 #else
@@ -417,7 +417,7 @@ WP_FN lane_int vertex_transmits(Vertex v) {
 
 /* Whether vertex v's material has a lobe of finite density (next-event
  * estimation samples a light there). */
-WP_FN lane_int vertex_is_non_specular(Vertex v) {
+WP_VERTEX_FN lane_int vertex_is_non_specular(Vertex v) {
     lane_int non_specular = 0;
 #ifdef WP_HAS_DIFFUSE
     non_specular = non_specular || v.material.type == WP_MATERIAL_DIFFUSE;
@@ -440,7 +440,7 @@ WP_FN lane_int vertex_is_non_specular(Vertex v) {
  * BSDF sample is `scattered`: at a non-specular material, and at a plastic
  * where the sample chose its base (the coat's delta lobe goes on as a
  * specular bounce, as path tracing takes it). */
-WP_FN lane_int vertex_is_visible_point(Vertex v, BsdfSample scattered) {
+WP_VERTEX_FN lane_int vertex_is_visible_point(Vertex v, BsdfSample scattered) {
     lane_int visible = vertex_is_non_specular(v);
 #ifdef WP_HAS_PLASTIC
     visible = visible && !(v.material.type == WP_MATERIAL_PLASTIC && scattered.specular != 0u);
@@ -453,7 +453,7 @@ WP_FN lane_int vertex_is_visible_point(Vertex v, BsdfSample scattered) {
  * vertex times the albedo (textured where it is: diffuse_eval then takes
  * it, photon_deposit), at a plastic's base over the probability with which
  * the sample chose it (plastic_base_throughput), else the throughput. */
-WP_FN vec3 visible_point_weight(Vertex v, vec3 throughput) {
+WP_VERTEX_FN vec3 visible_point_weight(Vertex v, vec3 throughput) {
     vec3 weight = throughput;
 #ifdef WP_HAS_PLASTIC
     weight = v3_select(v.material.type == WP_MATERIAL_PLASTIC,
@@ -502,8 +502,8 @@ WP_FN LightPoint sample_light_shape(WP_SCENE_PARAMS, lane_uint light, vec3 x, re
 #ifdef WP_HAS_NON_SPECULAR
 /* Samples one light for vertex v on a path of throughput `throughput` into
  * *direct (direct_light); returns where it carries light. */
-WP_FN lane_int sample_direct_light(WP_SCENE_PARAMS, lane_uint pixel, lane_uint sample, lane_uint bounce, Vertex v,
-                                   vec3 throughput, DirectLight *direct) {
+WP_VERTEX_FN lane_int sample_direct_light(WP_SCENE_PARAMS, lane_uint pixel, lane_uint sample, lane_uint bounce,
+                                          Vertex v, vec3 throughput, DirectLight *direct) {
     uint seed = scene->seed;
     lane_uint light = select_light(light_cdf, LIGHT_COUNT,
                                    camera_uniform(seed, pixel, sample, bounce, DIM_LIGHT_SELECT, WP_USES_SOBOL));
@@ -576,8 +576,8 @@ WP_FN lane_int sample_direct_light(WP_SCENE_PARAMS, lane_uint pixel, lane_uint s
  * `continues` past its emission (vertex_ends_path) and the material is
  * non-specular: returns where it has a shadow ray to trace, its
  * contribution in *direct. */
-WP_FN lane_int vertex_light_sample(WP_SCENE_PARAMS, lane_int continues, Vertex v, lane_uint pixel, lane_uint sample,
-                                   lane_uint bounce, vec3 throughput, DirectLight *direct) {
+WP_VERTEX_FN lane_int vertex_light_sample(WP_SCENE_PARAMS, lane_int continues, Vertex v, lane_uint pixel,
+                                          lane_uint sample, lane_uint bounce, vec3 throughput, DirectLight *direct) {
 #ifdef WP_VERTEX_MAY_NOT_SHADE
     continues = continues && v.shades;
 #endif
@@ -638,7 +638,7 @@ WP_FN BsdfRandom photon_bsdf_random(uint seed, uint iteration, lane_uint photon,
 /* BSDF sampling with `random` at vertex v, reached along d, for its
  * material's kind (every kind that some lane has is sampled; each lane keeps its
  * material's), on a path that carries `transport` (WP_TRANSPORT_*). */
-WP_FN BsdfSample scatter_vertex(Vertex v, vec3 d, BsdfRandom random, uint transport) {
+WP_VERTEX_FN BsdfSample scatter_vertex(Vertex v, vec3 d, BsdfRandom random, uint transport) {
     Material m = v.material;
     vec3 wo = v3_neg(d);
     BsdfSample scattered = no_bsdf_sample();
@@ -734,8 +734,8 @@ typedef struct {
  * throughput `throughput` and eta_scale `eta_scale` (roulette_survival),
  * then Russian roulette (russian_roulette) once the depth after it reaches
  * rr_depth. */
-WP_FN PathStep step_from_vertex(Vertex v, vec3 d, vec3 throughput, real eta_scale, uint seed, lane_uint px, lane_uint s,
-                                lane_uint bounce, uint rr_depth) {
+WP_VERTEX_FN PathStep step_from_vertex(Vertex v, vec3 d, vec3 throughput, real eta_scale, uint seed, lane_uint px,
+                                       lane_uint s, lane_uint bounce, uint rr_depth) {
     PathStep step;
     step.scattered = scatter_vertex(v, d, camera_bsdf_random(seed, px, s, bounce), WP_TRANSPORT_RADIANCE);
     step.origin = offset_ray_origin(v.surface.point, step.scattered.leave_side, v.surface.error);

@@ -162,6 +162,15 @@ WP_FN Surface surface_at(WP_SCENE_PARAMS, lane_uint shape, vec3 origin, vec3 dir
     return s;
 }
 
+/* A function that takes or returns a Vertex or a Material by value (every
+ * field of the vertex's material, per lane): always inlined. Where LLVM's
+ * inliner calls one instead, which it starts doing as a scene's kernel
+ * grows (material kinds on no shape were enough), the struct is copied
+ * through the stack at every call: 1.37x the kernels' instructions on
+ * bench/scenes/materials.json (bench/results/analysis.md, "Materials
+ * against Mitsuba 3"). */
+#define WP_VERTEX_FN static inline __attribute__((always_inline))
+
 /* A material's fields, per lane; only those of the material kinds in the scene. */
 typedef struct {
     lane_uint type; /* WP_MATERIAL_* */
@@ -230,7 +239,7 @@ WP_FN Emission emission_at(__global const DeviceMaterial *materials, lane_uint i
  * that they ask for no distribution's work) of roughness 1. The plastics'
  * constants are still loaded at every vertex: gating them wants one loader
  * of the fields their two structs share. */
-WP_FN Material material_at(__global const DeviceMaterial *materials, lane_uint index) {
+WP_VERTEX_FN Material material_at(__global const DeviceMaterial *materials, lane_uint index) {
     Material m;
     m.type = SCENE_FIELD(materials, index, type);
     m.two_sided = SCENE_FIELD(materials, index, two_sided) != 0u;
@@ -356,7 +365,8 @@ WP_FN real material_scalar(WP_SCENE_PARAMS, lane_uint texture, TextureUV uv, rea
 
 /* m, the fields of `material`, with its textured parameters (p) looked up
  * at uv (the lanes whose material has none keep its constants). */
-WP_FN Material textured_material(WP_SCENE_PARAMS, Material m, lane_uint material, ParameterTextures p, TextureUV uv) {
+WP_VERTEX_FN Material textured_material(WP_SCENE_PARAMS, Material m, lane_uint material, ParameterTextures p,
+                                        TextureUV uv) {
 #if defined(WP_HAS_DIFFUSE) || defined(WP_HAS_PLASTICS)
     vec3 albedo =
         material_colour(WP_SCENE_ARGS, p.texture[WP_TEXTURED_ALBEDO], uv, SCENE_FIELD(materials, material, albedo));
@@ -539,7 +549,7 @@ typedef struct {
 #endif
 } Vertex;
 
-WP_FN Vertex vertex_at(WP_SCENE_PARAMS, lane_uint shape, vec3 origin, vec3 direction, real t) {
+WP_VERTEX_FN Vertex vertex_at(WP_SCENE_PARAMS, lane_uint shape, vec3 origin, vec3 direction, real t) {
     Vertex v;
     v.surface = surface_at(WP_SCENE_ARGS, shape, origin, direction, t);
     v.material = material_at(materials, v.surface.material);

@@ -312,7 +312,9 @@ TYPED_TEST(ReferenceAnalytic, SpotInsideSphereFallsOffLinearlyInAngle) {
     const double radius = 2.0;
     const int size = 16;
     const glm::dvec3 full = albedo / std::numbers::pi * intensity / (radius * radius);
-    for (const auto& [cutoff, beam] : {std::pair{35.0, 20.0}, std::pair{90.0, 0.0}}) {
+    for (const std::pair<double, double>& cone : {std::pair{35.0, 20.0}, std::pair{90.0, 0.0}}) {
+        // named copies, not a structured binding: clang 15 (the sanitizer build) lets no lambda capture one
+        const double cutoff = cone.first, beam = cone.second;
         SCOPED_TRACE("cutoff " + std::to_string(cutoff) + ", beam width " + std::to_string(beam));
         RenderBlock block{.width = size, .height = size, .spp = 4};
         const wp::Image image = this->render(wp::test::inside_sphere_around_point_light(
