@@ -305,19 +305,29 @@ WP_VERTEX_FN Material material_at(__global const DeviceMaterial *materials, lane
 }
 
 #ifdef WP_HAS_TEXTURES
-/* Texture `index`'s fields, per lane. */
+/* Texture `index`'s fields, per lane: a bitmap's and a checkerboard's each
+ * loaded only where some lane's texture is of that type, as material_at's
+ * (the lanes of the other type then hold a checkerboard's 1 x 1 texels at
+ * 0, or black, which texture_value does not read). */
 WP_FN Texture texture_at(__global const TextureDescriptor *textures, lane_uint index) {
     Texture t;
     t.type = SCENE_FIELD(textures, index, type);
-    t.filter = SCENE_FIELD(textures, index, filter);
-    t.wrap = SCENE_FIELD(textures, index, wrap);
-    t.width = SCENE_FIELD(textures, index, width);
-    t.height = SCENE_FIELD(textures, index, height);
-    t.first_texel = SCENE_FIELD(textures, index, first_texel);
     lane_uint words = index * WP_STRUCT_WORDS(textures);
     for (int k = 0; k < 6; ++k) t.to_uv[k] = gather(&textures->to_uv[k], words);
-    t.color0 = SCENE_FIELD(textures, index, color0);
-    t.color1 = SCENE_FIELD(textures, index, color1);
+    t.filter = t.wrap = t.first_texel = 0u;
+    t.width = t.height = 1u;
+    if (lanes_any(t.type == WP_TEXTURE_BITMAP)) {
+        t.filter = SCENE_FIELD(textures, index, filter);
+        t.wrap = SCENE_FIELD(textures, index, wrap);
+        t.width = SCENE_FIELD(textures, index, width);
+        t.height = SCENE_FIELD(textures, index, height);
+        t.first_texel = SCENE_FIELD(textures, index, first_texel);
+    }
+    t.color0 = t.color1 = make_vec3(REAL(0.0), REAL(0.0), REAL(0.0));
+    if (lanes_any(t.type == WP_TEXTURE_CHECKERBOARD)) {
+        t.color0 = SCENE_FIELD(textures, index, color0);
+        t.color1 = SCENE_FIELD(textures, index, color1);
+    }
     return t;
 }
 

@@ -72,7 +72,7 @@ WP_FN CdfInterval environment_interval(WP_GLOBAL const real_element *data, lane_
 /* The texel at column x (in [0, W)) of row y. */
 WP_FN vec3 environment_texel(EnvironmentMapLayout map, WP_GLOBAL const real_element *data, lane_int x, lane_int y) {
     lane_uint index = TO_LANE_UINT(y * (lane_int)(int)(map.width) + x) * 3u;
-    return make_vec3(gather(data, index), gather(data, index + 1u), gather(data, index + 2u));
+    return gather_rgb(data, index);
 }
 
 /* The radiance at (u, v): bilinear between the centre-aligned columns

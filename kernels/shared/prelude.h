@@ -173,6 +173,34 @@ WP_FN vec3 v3_select(lane_int choose_a, vec3 a, vec3 b) {
     return make_vec3(choose_a ? a.x : b.x, choose_a ? a.y : b.y, choose_a ? a.z : b.z);
 }
 
+/* (p[index], p[index + 1], p[index + 2]) per lane: an RGB texel. With
+ * several lanes, each lane's three values come in one 4-wide load, where
+ * three gathers took a load per lane each (scalar loads on PoCL's CPUs), so
+ * p[index + 3] must lie in the buffer too: the texel buffers end in a spare
+ * value (scene/texture_layout.h; an environment map's texels are followed
+ * by its distributions). */
+#if defined(__OPENCL_C_VERSION__) && WP_LANES > 1
+#define WP_LOAD_TEXEL_LANE(s, k) float4 texel##k = vload4(0, p + index.s);
+#define WP_RED_LANE(s, k) texel##k.x,
+#define WP_GREEN_LANE(s, k) texel##k.y,
+#define WP_BLUE_LANE(s, k) texel##k.z,
+WP_LANE_FN vec3 gather_rgb(__global const float *p, lane_uint index) {
+    WP_FOR_LANES(WP_LOAD_TEXEL_LANE)
+    float red[WP_LANES] = {WP_FOR_LANES(WP_RED_LANE)};
+    float green[WP_LANES] = {WP_FOR_LANES(WP_GREEN_LANE)};
+    float blue[WP_LANES] = {WP_FOR_LANES(WP_BLUE_LANE)};
+    return make_vec3(LANES_LOAD(red), LANES_LOAD(green), LANES_LOAD(blue));
+}
+#undef WP_LOAD_TEXEL_LANE
+#undef WP_RED_LANE
+#undef WP_GREEN_LANE
+#undef WP_BLUE_LANE
+#else
+WP_FN vec3 gather_rgb(WP_GLOBAL const real_element *p, lane_uint index) {
+    return make_vec3(p[index], p[index + 1u], p[index + 2u]);
+}
+#endif
+
 WP_FN real wp_clamp(real x, real lo, real hi) { return fmin(fmax(x, lo), hi); }
 /* sqrt that tolerates arguments a rounding error below zero. */
 WP_FN real safe_sqrt(real x) { return sqrt(fmax(x, REAL(0.0))); }

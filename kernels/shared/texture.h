@@ -134,7 +134,7 @@ WP_FN vec3 bilinear_blend(vec3 c00, vec3 c10, vec3 c01, vec3 c11, real fx, real 
 /* The texel at column and row (wrapped already). */
 WP_FN vec3 bitmap_texel(Texture t, WP_GLOBAL const real_element *texels, lane_int column, lane_int row) {
     lane_uint index = (t.first_texel + TO_LANE_UINT(row * TO_LANE_INT(t.width) + column)) * 3u;
-    return make_vec3(gather(texels, index), gather(texels, index + 1u), gather(texels, index + 2u));
+    return gather_rgb(texels, index);
 }
 
 /* The four texels around a point of a bitmap (c00 at its lower column and

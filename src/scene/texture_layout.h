@@ -19,7 +19,8 @@ struct TextureLayout {
     std::vector<typename SharedMath<Real>::TextureDescriptor> descriptors;
     // The bitmaps' texels, 3 values each, and never empty: a checkerboard's
     // descriptor says 1 x 1 texels at 0, so that the bitmap path every lane
-    // also evaluates reads inside the buffer.
+    // also evaluates reads inside the buffer. One spare value ends it, which
+    // gather_rgb's 4-wide loads read (shared/prelude.h).
     std::vector<Real> texels;
     // Per material and TexturedParameter: its texture, or WP_NO_TEXTURE.
     std::vector<std::array<std::uint32_t, kTexturedParameters>> material_textures;
@@ -60,6 +61,7 @@ TextureLayout<Real> texture_layout(const Scene& scene) {
         layout.descriptors.push_back(black);
     }
     if (layout.texels.empty()) layout.texels.resize(3, Real(0));
+    layout.texels.push_back(Real(0));
     for (const Material& m : scene.materials) {
         std::array<std::uint32_t, kTexturedParameters> slots{};
         for (std::size_t p = 0; p < kTexturedParameters; ++p)
