@@ -440,14 +440,7 @@ struct EmbreeIntersector::Impl {
         // margin exceeds (the same rays found in every test; 1.15x the
         // bunny's samples/s).
         if (mode == EmbreeMode::Exact) rtcSetSceneFlags(built, RTC_SCENE_FLAG_ROBUST);
-        // Verified's exact fallback, for the few rays it retraces, is built
-        // for memory, not speed: Embree's low quality (its Morton builder)
-        // holds the 1.1M-triangle bunny in 14 bytes a triangle against
-        // medium's 61, and builds in 0.2 s against 0.47 (load_bench). No
-        // tree changes an exact result: the first hit in hit_precedes' order
-        // whatever order the shapes are visited in.
-        const bool fallback = mode == EmbreeMode::Exact && options.mode == EmbreeMode::Verified;
-        rtcSetSceneBuildQuality(built, fallback ? RTC_BUILD_QUALITY_LOW : RTC_BUILD_QUALITY_MEDIUM);
+        rtcSetSceneBuildQuality(built, RTC_BUILD_QUALITY_MEDIUM);
         if (mode == EmbreeMode::Verified) {
             attach_enlarged(built, quad_list);
             attach_enlarged(built, triangle_list);

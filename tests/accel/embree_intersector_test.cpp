@@ -12,7 +12,6 @@
 
 #include <algorithm>
 #include <cstdio>
-#include <numbers>
 #include <numeric>
 #include <random>
 
@@ -534,107 +533,6 @@ TEST(EmbreeIntersector, VerifiedModeFindsWhatTheExactModeFindsThroughVerticesAnd
         "[figure] verified mode through vertices and edges: %zu rays, %zu near ties, %llu traced again exactly\n", rays,
         near_ties.count, static_cast<unsigned long long>(verified.retraced_rays()));
     EXPECT_GT(rays, 90000u);
-}
-
-// A folded patch of triangles with a boundary, a quad beside it, and an
-// icosphere and a quad behind them, which rays through the patch's and the
-// front quad's margins reach.
-Scene margin_scene() {
-    Scene scene;
-    Mesh patch;
-    const int n = 4;
-    std::mt19937 random(31);
-    std::uniform_real_distribution<double> jitter(-0.08, 0.08);
-    for (int i = 0; i <= n; ++i)
-        for (int j = 0; j <= n; ++j) {
-            const bool inner = i > 0 && i < n && j > 0 && j < n;
-            const double x = -1.0 + 2.0 * i / n + (inner ? jitter(random) : 0.0);
-            const double y = -1.0 + 2.0 * j / n + (inner ? jitter(random) : 0.0);
-            patch.positions.push_back({x, y, 0.2 * x + 0.1 * y + (inner ? jitter(random) : 0.0)});
-        }
-    for (unsigned i = 0; i < n; ++i)
-        for (unsigned j = 0; j < n; ++j) {
-            const unsigned a = i * (n + 1) + j, b = a + 1, c = a + n + 1, d = c + 1;
-            patch.triangles.push_back({a, c, d});
-            patch.triangles.push_back({a, d, b});
-        }
-    scene.meshes.push_back(patch);
-    scene.meshes.push_back(test::transformed(test::icosphere(2, 0), 0.8, {0.0, 0.0, -1.0}));
-    scene.quads.push_back({{1.3, -1.0, 0.3}, {1.0, 0.0, 0.1}, {0.0, 2.0, 0.05}, 0});
-    scene.quads.push_back({{-3.0, -3.0, -1.5}, {6.0, 0.0, 0.0}, {0.0, 6.0, 0.0}, 0});
-    return scene;
-}
-
-// Rays at points within the enlargement's margin (2^-18 of the scene's
-// magnitude) of the front shapes' edges and vertices, inside and out, from
-// the front at cosines from 1 to 1e-2 with the surface. Where our test
-// misses the enlarged shape Embree found, the verified mode traces the ray
-// again on its exact fallback, whose tree (of another build quality than
-// the exact mode's) changes no result: bit for bit what the exact mode
-// finds, the shape behind through a boundary's margin, the neighbour
-// through a shared edge's. Fails where the retrace is left out. (Retraced
-// through the enlarged shapes alone, our test run on every one Embree
-// offers, rays lose hits where Embree's rounding outgrows the margin: here
-// 10 of 4579 retraced rays at cosines 1e-3 to 2e-3, and 17 of the rays of
-// VerifiedModeFindsWhatTheExactModeFindsThroughVerticesAndEdges at cosines
-// up to 0.017.)
-TEST(EmbreeIntersector, VerifiedModeRetracesRaysThroughMarginsAsTheExactModeFindsThem) {
-    const Scene scene = margin_scene();
-    const RefScene reference{scene};
-    EmbreeIntersector verified(scene, reference.triangles, {EmbreeMode::Verified});
-    EmbreeIntersector exact(scene, reference.triangles, {EmbreeMode::Exact});
-    const double margin = 0x1p-18 * coordinate_magnitude(reference);
-    const Mesh& patch = scene.meshes[0];
-    const Quad& front_quad = scene.quads[0];
-    std::mt19937 random(37);
-    std::uniform_real_distribution<double> unit(0.0, 1.0);
-    NearTies near_ties;
-    std::size_t retraced = 0, hits = 0;
-    const int rays = 20000;
-    for (int r = 0; r < rays; ++r) {
-        // A front triangle (of the patch, or half the front quad), one of its edges (p, q) and its third corner o.
-        std::array<glm::dvec3, 3> corner;
-        if (r % 4 == 0) {
-            const glm::dvec3 c = front_quad.corner, e1 = front_quad.edge1, e2 = front_quad.edge2;
-            corner = r % 8 ? std::array{c, c + e1, c + e1 + e2} : std::array{c, c + e1 + e2, c + e2};
-        } else {
-            const glm::uvec3 t = patch.triangles[random() % patch.triangles.size()];
-            corner = {patch.positions[t[0]], patch.positions[t[1]], patch.positions[t[2]]};
-        }
-        const int edge = int(random() % 3);
-        const glm::dvec3 p = corner[edge], q = corner[(edge + 1) % 3], o = corner[(edge + 2) % 3];
-        const glm::dvec3 normal = glm::normalize(glm::cross(q - p, o - p));
-        const glm::dvec3 outward = glm::normalize(glm::cross(q - p, normal));  // in the plane, away from o
-        // A point on the edge or the vertex p, moved up to 1.5 margins in or out.
-        const glm::dvec3 on_edge = r % 3 == 0 ? p : p + unit(random) * (q - p);
-        const glm::dvec3 target = on_edge + (3.0 * unit(random) - 1.5) * margin * outward;
-        // From the front (the side of +z), 1 to 4 away, at a cosine from 1 to 1e-2.
-        const double cosine = std::pow(10.0, -2.0 * unit(random)), angle = 2.0 * std::numbers::pi * unit(random);
-        const glm::dvec3 along = glm::normalize(q - p), across = glm::cross(normal, along);
-        const glm::dvec3 tangent = std::cos(angle) * along + std::sin(angle) * across;
-        const glm::dvec3 up = normal.z > 0.0 ? normal : -normal;
-        const glm::dvec3 origin =
-            target + (1.0 + 3.0 * unit(random)) * (cosine * up + std::sqrt(1.0 - cosine * cosine) * tangent);
-        const Ray ray{vec3(origin), glm::normalize(vec3(target) - vec3(origin))};
-        const std::string label = "ray " + std::to_string(r);
-        const HostHit expected = exact.closest(ray.origin, ray.direction, M::real_max);
-        const std::uint64_t retraced_before = verified.retraced_rays();
-        const HostHit found = verified.closest(ray.origin, ray.direction, M::real_max);
-        hits += expected.shape != WP_NO_HIT;
-        if (verified.retraced_rays() > retraced_before) {
-            ++retraced;
-            ASSERT_TRUE(same(found, expected))
-                << label << " (traced again, cosine " << cosine << "): " << found.t << " " << found.shape
-                << ", the exact mode " << expected.t << " " << expected.shape;
-        } else {
-            expect_same_or_near_tie(reference, ray, M::real_max, found, expected, near_ties, label);
-        }
-    }
-    std::printf(
-        "[figure] verified mode through the margins: %d rays, %zu hits, %zu traced again (each as the exact mode), "
-        "%zu near ties\n",
-        rays, hits, retraced, near_ties.count);
-    EXPECT_GT(retraced, std::size_t(rays / 20));
 }
 
 // Rays grazing tie_scene's triangles (at 1e-1 to 1e-5 radians) from origins
