@@ -353,7 +353,8 @@ TEST_F(CliTest, FlagsOverrideTheScene) {
 
     // The seed is the only difference between these runs.
     const auto render_with_seed = [&](const char* seed) {
-        EXPECT_EQ(render(base_scene().dump(), {"--seed", seed, "-q"}).exit_code, 0);
+        const auto result = render(base_scene().dump(), {"--seed", seed, "-q"});
+        EXPECT_EQ(result.exit_code, 0) << result.err;
         return read_image(output_path()).rgb;
     };
     EXPECT_EQ(render_with_seed("3"), render_with_seed("3"));
