@@ -332,6 +332,17 @@ MUTANTS = [
            "return u;",
            "a mask hands its nested material the number that chose it, uniform on [0, opacity) instead of [0, 1)",
            (GTest("test_shared", "Mask/*.*"),)),
+    # ---------------------------------------------------------------- the sampler
+    Mutant("choices-take-independent-numbers", "kernels/shared/sampler.h",
+           "return owen_scrambled_radical_inverse(nested_uniform_scramble(sample, hashes.x), hashes.y);",
+           "return rng_uniform(seed, pixel, sample, bounce, dimension);",
+           "the discrete choices take independent numbers instead of stratified ones",
+           (GTest("test_shared", "Sampler.*"),)),
+    Mutant("choices-share-one-sample-order", "kernels/shared/sampler.h",
+           "return owen_scrambled_radical_inverse(nested_uniform_scramble(sample, hashes.x), hashes.y);",
+           "return owen_scrambled_radical_inverse(sample, hashes.y);",
+           "the choices' sample index is not shuffled, so every choice of a sample falls in the same stratum",
+           (GTest("test_shared", "Sampler.*"),)),
     # ---------------------------------------------------------------- the BVH
     Mutant("box-widening-removed", "kernels/shared/bvh.h",
            "WP_FN real box_leave_scale(void) { return REAL(1.0) + REAL(2.0) * rounding_gamma(REAL(3.0)); }",

@@ -1,7 +1,7 @@
 /* The camera path's random numbers: Owen-scrambled Sobol' points, padded in
  * two dimensions (Burley, "Practical Hash-based Owen Scrambling", JCGT 9(4),
  * 2020; pbrt-v4's PaddedSobolSampler pads alike), for the 2-D integrals of a
- * vertex, and independent numbers for its discrete choices.
+ * vertex, and stratified 1-D numbers for its discrete choices.
  *
  * Each of the first DIM_SOBOL_PAIRS pairs of camera dimensions (2k, 2k + 1
  * of shared/rng.h: the pixel, the light point, the BSDF direction) at each
@@ -10,16 +10,22 @@
  * the 2^m cells of every grid of 2^a x 2^(m-a) cells, where independent
  * numbers leave some cells empty and others doubled, so the error of smooth
  * integrands (a pixel's area, a light's, a diffuse lobe) falls faster than
- * 1/sqrt(n). The choices (which light, which triangle, the glass lobe, the
- * roulette) take rng_uniform's numbers: as Sobol' pairs they gained little
- * and cost more (bench/results/analysis.md, "The default command against Mitsuba 3").
+ * 1/sqrt(n). Each choice (which light, which triangle, the lobe, the
+ * roulette) takes Sobol's first dimension alone, a (0,1)-sequence: the
+ * first 2^m samples put one number in each 1/2^m of [0, 1), so a lobe of
+ * fixed probability p is chosen by p 2^m samples give or take one, where
+ * independent numbers spread the count by sqrt(p (1 - p) 2^m) (as Mitsuba's
+ * ldsampler draws its 1-D numbers; bench/results/analysis.md, "Materials
+ * against Mitsuba 3", measures the gain).
  *
- * Two scrambles, both hashes of (seed, pixel, bounce, pair) and so the same
- * for every sample of a pixel:
+ * Each pair and each choice is a stream of its own, keyed by (seed, pixel,
+ * bounce, stream) and so the same for every sample of a pixel: a pair's
+ * stream is its index k, a choice's its dimension (>= 2 DIM_SOBOL_PAIRS, so
+ * apart from the pairs'). Two scrambles, both hashes of the key:
  *   - the sample index is shuffled by a nested uniform scramble, which keeps
- *     each block of 2^m samples a net while making the pairs' points
- *     independent of one another (unshuffled, sample i would take the same
- *     point in every pair);
+ *     each block of 2^m samples a net while making the streams'
+ *     points independent of one another (unshuffled, sample i would take the
+ *     same point in every stream);
  *   - each coordinate is Owen-scrambled, which keeps the net and makes every
  *     number uniform on [0, 1) over seeds: the estimate stays unbiased.
  * No state, so the image stays a function of (seed, pixel, sample) as with
@@ -74,13 +80,30 @@ WP_FN lane_uint sobol_second_dimension_reversed(lane_uint index) {
     return y;
 }
 
+/* Stream `stream`'s hashes at bounce `bounce` of pixel `pixel`: apart from
+ * rng_bits's keys, whose w is the seed. */
+WP_FN RngKey sobol_stream_hashes(uint seed, lane_uint pixel, lane_uint bounce, uint stream) {
+    RngKey key;
+    key.x = pixel;
+    key.y = (bounce << 6u) | stream;
+    key.z = seed;
+    key.w = 0x5ca1ab1eu;
+    return pcg4d(key);
+}
+
+/* Sobol's first dimension (van der Corput's radical inverse) at the
+ * shuffled index, Owen-scrambled by `hash`: the nested_uniform_scramble of
+ * the point, whose first reversal undoes the digits' reversal here. */
+WP_FN real owen_scrambled_radical_inverse(lane_uint index, lane_uint hash) {
+    return uniform_from_bits(reverse_bits(laine_karras_permutation(index, hash)));
+}
+
 /* The two numbers of Sobol' pair `first_dimension` / 2 (its dimensions
  * first_dimension and first_dimension + 1) at bounce `bounce` of sample
  * `sample` of pixel `pixel`: the point at the shuffled index, each coordinate
- * Owen-scrambled (the nested_uniform_scramble of the point, whose first
- * reversal undoes the digits' reversal here), uniform in [0, 1) with 24 bits
- * as rng_uniform. Without `sobol` (render.sampler "independent"), the two
- * dimensions' rng_uniform numbers. */
+ * Owen-scrambled, uniform in [0, 1) with 24 bits as rng_uniform. Without
+ * `sobol` (render.sampler "independent"), the two dimensions' rng_uniform
+ * numbers. */
 typedef struct {
     real u, v;
 } CameraPair;
@@ -93,14 +116,9 @@ WP_FN CameraPair camera_pair(uint seed, lane_uint pixel, lane_uint sample, lane_
         pair.v = rng_uniform(seed, pixel, sample, bounce, first_dimension + 1u);
         return pair;
     }
-    RngKey key;
-    key.x = pixel;
-    key.y = (bounce << 6u) | (first_dimension >> 1u);
-    key.z = seed;
-    key.w = 0x5ca1ab1eu; /* apart from rng_bits's keys, whose w is the seed */
-    RngKey hashes = pcg4d(key);
+    RngKey hashes = sobol_stream_hashes(seed, pixel, bounce, first_dimension >> 1u);
     lane_uint index = nested_uniform_scramble(sample, hashes.x);
-    pair.u = uniform_from_bits(reverse_bits(laine_karras_permutation(index, hashes.y)));
+    pair.u = owen_scrambled_radical_inverse(index, hashes.y);
     pair.v =
         uniform_from_bits(reverse_bits(laine_karras_permutation(sobol_second_dimension_reversed(index), hashes.z)));
     return pair;
@@ -108,11 +126,16 @@ WP_FN CameraPair camera_pair(uint seed, lane_uint pixel, lane_uint sample, lane_
 
 /* The camera's number for any dimension `dimension` (DIM_* of shared/rng.h)
  * at bounce `bounce` of sample `sample` of pixel `pixel`: a coordinate of a
- * Sobol' pair (camera_pair), or an independent number. */
+ * Sobol' pair (camera_pair), or a choice's stratified number. Without
+ * `sobol`, an independent number. */
 WP_FN real camera_uniform(uint seed, lane_uint pixel, lane_uint sample, lane_uint bounce, uint dimension, int sobol) {
-    if (dimension >= 2u * DIM_SOBOL_PAIRS) return rng_uniform(seed, pixel, sample, bounce, dimension);
-    CameraPair pair = camera_pair(seed, pixel, sample, bounce, dimension & ~1u, sobol);
-    return (dimension & 1u) != 0u ? pair.v : pair.u;
+    if (dimension < 2u * DIM_SOBOL_PAIRS) {
+        CameraPair pair = camera_pair(seed, pixel, sample, bounce, dimension & ~1u, sobol);
+        return (dimension & 1u) != 0u ? pair.v : pair.u;
+    }
+    if (!sobol) return rng_uniform(seed, pixel, sample, bounce, dimension);
+    RngKey hashes = sobol_stream_hashes(seed, pixel, bounce, dimension);
+    return owen_scrambled_radical_inverse(nested_uniform_scramble(sample, hashes.x), hashes.y);
 }
 
 #endif

@@ -1,6 +1,7 @@
 // The camera's sampler (kernels/shared/sampler.h): Sobol's points, each
-// prefix of 2^m samples a (0,m,2)-net after both scrambles, every number
-// uniform over pixels, the pairs independent of one another, and the error
+// prefix of 2^m samples a (0,m,2)-net after both scrambles and each choice's
+// numbers stratified, every number uniform over pixels, the streams
+// independent of one another, and the error
 // on a smooth integrand far below independent numbers'. Chi-square tests at
 // kChiSquareAlpha (1e-3) with fixed keys; see support/statistics.h.
 #include <gtest/gtest.h>
@@ -90,6 +91,28 @@ TEST(Sampler, EachBlockOfAPowerOfTwoSamplesIsANet) {
                         }
 }
 
+// A choice's number (a dimension past the pairs) is a (0,1)-sequence: each
+// block of 2^m samples of a pixel puts one number in each 1/2^m of [0, 1),
+// for m up to 12, the first block and the next. Independent numbers (the
+// rng_uniform of the same dimension) fail at m = 2 already with probability
+// 1 - 4!/4^4 per block.
+TEST(Sampler, EachChoiceStratifiesEveryBlockOfAPowerOfTwoSamples) {
+    for (std::uint32_t seed : {0u, 7u})
+        for (std::uint32_t pixel : {0u, 1u, 4095u})
+            for (std::uint32_t bounce : {0u, 3u})
+                for (std::uint32_t dimension = 2 * DIM_SOBOL_PAIRS; dimension <= DIM_ROULETTE; ++dimension)
+                    for (int m = 0; m <= 12; ++m)
+                        for (std::uint32_t block = 0; block < 2; ++block) {
+                            std::set<int> strata;
+                            for (std::uint32_t i = 0; i < (1u << m); ++i)
+                                strata.insert(static_cast<int>(
+                                    std::ldexp(camera_uniform<F>(seed, pixel, (block << m) + i, bounce, dimension), m)));
+                            ASSERT_EQ(strata.size(), 1u << m)
+                                << "seed " << seed << " pixel " << pixel << " bounce " << bounce << " dimension "
+                                << dimension << " m " << m << " block " << block;
+                        }
+}
+
 // Over pixels (one randomisation each) a sample's numbers are uniform, in
 // each dimension and in pairs: 400 000 pixels, 1000 bins (1-D) and 32 x 32
 // (2-D). A scramble that left any digit unflipped fails.
@@ -110,17 +133,18 @@ TEST(Sampler, UniformOverPixels) {
     EXPECT_GT(chi.p_value, kChiSquareAlpha) << "chi2 " << chi.statistic;
 }
 
-// Two pairs' points, or one pair's at two bounces, are independent over a
-// pixel's samples: 512 pixels x 1024 samples in 32 x 32 bins. Without the
+// Two streams' points (pairs' or choices'), or one stream's at two bounces,
+// are independent over a pixel's samples: 512 pixels x 1024 samples in 32 x 32 bins. Without the
 // index shuffle sample i takes the same Sobol' point in every pair and the
 // first digits agree (chi2 in the hundreds of thousands).
-TEST(Sampler, PairsAreIndependentOfOneAnother) {
+TEST(Sampler, StreamsAreIndependentOfOneAnother) {
     struct Draws {
         std::uint32_t bounce_a, dimension_a, bounce_b, dimension_b;
     };
     const Draws draws[] = {
         {0, DIM_FILM_X, 0, DIM_LIGHT_U}, {0, DIM_LIGHT_U, 0, DIM_BSDF_U},  {1, DIM_BSDF_U, 2, DIM_BSDF_U},
         {0, DIM_FILM_Y, 1, DIM_LIGHT_V}, {3, DIM_BSDF_V, 3, DIM_ROULETTE}, {0, DIM_LIGHT_SELECT, 1, DIM_LIGHT_SELECT},
+        {2, DIM_BSDF_LOBE, 2, DIM_BSDF_U}, {2, DIM_BSDF_LOBE, 2, DIM_ROULETTE}, {1, DIM_LIGHT_SELECT, 1, DIM_LIGHT_U},
     };
     for (const Draws& d : draws) {
         wp::test::Histogram2D histogram(32, 32);
