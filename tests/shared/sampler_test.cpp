@@ -105,8 +105,8 @@ TEST(Sampler, EachChoiceStratifiesEveryBlockOfAPowerOfTwoSamples) {
                         for (std::uint32_t block = 0; block < 2; ++block) {
                             std::set<int> strata;
                             for (std::uint32_t i = 0; i < (1u << m); ++i)
-                                strata.insert(static_cast<int>(
-                                    std::ldexp(camera_uniform<F>(seed, pixel, (block << m) + i, bounce, dimension), m)));
+                                strata.insert(static_cast<int>(std::ldexp(
+                                    camera_uniform<F>(seed, pixel, (block << m) + i, bounce, dimension), m)));
                             ASSERT_EQ(strata.size(), 1u << m)
                                 << "seed " << seed << " pixel " << pixel << " bounce " << bounce << " dimension "
                                 << dimension << " m " << m << " block " << block;
@@ -142,9 +142,11 @@ TEST(Sampler, StreamsAreIndependentOfOneAnother) {
         std::uint32_t bounce_a, dimension_a, bounce_b, dimension_b;
     };
     const Draws draws[] = {
-        {0, DIM_FILM_X, 0, DIM_LIGHT_U}, {0, DIM_LIGHT_U, 0, DIM_BSDF_U},  {1, DIM_BSDF_U, 2, DIM_BSDF_U},
-        {0, DIM_FILM_Y, 1, DIM_LIGHT_V}, {3, DIM_BSDF_V, 3, DIM_ROULETTE}, {0, DIM_LIGHT_SELECT, 1, DIM_LIGHT_SELECT},
-        {2, DIM_BSDF_LOBE, 2, DIM_BSDF_U}, {2, DIM_BSDF_LOBE, 2, DIM_ROULETTE}, {1, DIM_LIGHT_SELECT, 1, DIM_LIGHT_U},
+        {0, DIM_FILM_X, 0, DIM_LIGHT_U},       {0, DIM_LIGHT_U, 0, DIM_BSDF_U},
+        {1, DIM_BSDF_U, 2, DIM_BSDF_U},        {0, DIM_FILM_Y, 1, DIM_LIGHT_V},
+        {3, DIM_BSDF_V, 3, DIM_ROULETTE},      {0, DIM_LIGHT_SELECT, 1, DIM_LIGHT_SELECT},
+        {2, DIM_BSDF_LOBE, 2, DIM_BSDF_U},     {2, DIM_BSDF_LOBE, 2, DIM_ROULETTE},
+        {1, DIM_LIGHT_SELECT, 1, DIM_LIGHT_U},
     };
     for (const Draws& d : draws) {
         wp::test::Histogram2D histogram(32, 32);
