@@ -87,6 +87,17 @@ WP_FN CosSin cos_sin_turns(real u) {
     return r;
 }
 
+/* The t in [0, 1) whose density is proportional to the line from a at
+ * t = 0 to b at t = 1 (a, b >= 0, not both 0), by inverting its cumulative
+ * (a t + (b - a) t^2 / 2) / ((a + b) / 2) = u: the root
+ * t = u (a + b) / (a + sqrt((1 - u) a^2 + u b^2)), in the form that does not
+ * cancel where a and b are close (pbrt-v4's SampleLinear). */
+WP_FN real sample_linear(real u, real a, real b) {
+    real denominator = a + sqrt((REAL(1.0) - u) * a * a + u * b * b);
+    real t = denominator > REAL(0.0) ? u * (a + b) / denominator : u;
+    return wp_clamp(t, REAL(0.0), REAL(1.0) - WP_UNIT_ROUNDOFF);
+}
+
 /* The point at radius r and angle 2 pi u of the plane z = z, as a vector. */
 WP_FN vec3 polar_vec3(real r, real u, real z) {
     CosSin phi = cos_sin_turns(u);

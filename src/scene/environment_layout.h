@@ -12,20 +12,29 @@
 
 namespace wp {
 
-// The sampling cells' weights, row by row: W x (H - 1) cells, cell (x, y)
-// the mean luminance of texels (x, y), (x + 1, y), (x, y + 1), (x + 1, y + 1)
-// (columns wrapping), scale applied, times sin t at the cell's centre.
-std::vector<double> environment_cell_weights(const EnvironmentMap& map);
+// The texels' sampling weights, row by row (W x H): luminance, scale
+// applied, times the mean of sin t over the texel's band of rows
+// (kernels/shared/environment_map.h says why).
+std::vector<double> environment_texel_weights(const EnvironmentMap& map);
 
-// The integral of the map's luminance over the sphere, as the cells
-// estimate it: their weights' sum times each cell's (2 pi / W) (pi / (H - 1)).
+// The same, scaled so that their bilinear blend is the sampling density
+// over [0, 1)^2 in (u, v): over the cells' mean weight (a cell's weight the
+// mean of its four texels').
+std::vector<double> environment_texel_densities(const EnvironmentMap& map);
+
+// The integral of the map's luminance over the sphere, as the weights'
+// bilinear blend estimates it: the cells' mean weight times the map's area
+// in solid angle per unit of (u, v), 2 pi^2 (a constant map's is exactly
+// 4 pi times its luminance). 0 where no weight is positive: the map has no
+// power to sample.
 double environment_luminance_integral(const EnvironmentMap& map);
 
 template <class Real>
 struct EnvironmentLayout {
     typename SharedMath<Real>::EnvironmentMapLayout map{};
-    // The texels, the marginal and the conditional cumulative distributions
-    // (environment_map.h's order); never empty (the buffer exists without a map).
+    // The texels, their densities, the rows' marginal cumulative distribution
+    // and the texel rows' cumulative sums (environment_map.h's order); never
+    // empty (the buffer exists without a map).
     std::vector<Real> data;
 };
 
@@ -37,21 +46,27 @@ EnvironmentLayout<Real> environment_layout(const Scene& scene) {
         return layout;
     }
     const EnvironmentMap& map = *scene.environment_map;
-    const auto width = static_cast<std::size_t>(map.width), rows = static_cast<std::size_t>(map.height - 1);
+    const auto width = static_cast<std::size_t>(map.width), height = static_cast<std::size_t>(map.height);
     layout.map.width = static_cast<std::uint32_t>(map.width);
     layout.map.height = static_cast<std::uint32_t>(map.height);
     for (int i = 0; i < 9; ++i) layout.map.to_world[i] = static_cast<Real>(map.to_world[i % 3][i / 3]);
     for (float texel : map.texels) layout.data.push_back(static_cast<Real>(double(texel) * map.scale));
-    const std::vector<double> weights = environment_cell_weights(map);
-    std::vector<double> row_weights(rows, 0.0);
-    for (std::size_t y = 0; y < rows; ++y)
-        for (std::size_t x = 0; x < width; ++x) row_weights[y] += weights[y * width + x];
-    for (double c : cumulative_distribution(row_weights)) layout.data.push_back(static_cast<Real>(c));
-    for (std::size_t y = 0; y < rows; ++y) {
-        std::vector<double> row(weights.begin() + std::ptrdiff_t(y * width),
-                                weights.begin() + std::ptrdiff_t((y + 1) * width));
-        for (double c : cumulative_distribution(row)) layout.data.push_back(static_cast<Real>(c));
+    const std::vector<double> densities = environment_texel_densities(map);
+    for (double density : densities) layout.data.push_back(static_cast<Real>(density));
+    std::vector<double> row_sums;  // each texel row's cumulative sums of its cells' edge densities
+    std::vector<double> row_totals(height);
+    for (std::size_t y = 0; y < height; ++y) {
+        double sum = 0.0;
+        for (std::size_t x = 0; x < width; ++x) {
+            sum += 0.5 * (densities[y * width + x] + densities[y * width + (x + 1) % width]);
+            row_sums.push_back(sum);
+        }
+        row_totals[y] = sum;
     }
+    std::vector<double> cell_rows(height - 1);
+    for (std::size_t y = 0; y + 1 < height; ++y) cell_rows[y] = 0.5 * (row_totals[y] + row_totals[y + 1]);
+    for (double c : cumulative_distribution(cell_rows)) layout.data.push_back(static_cast<Real>(c));
+    for (double sum : row_sums) layout.data.push_back(static_cast<Real>(sum));
     return layout;
 }
 

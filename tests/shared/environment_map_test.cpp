@@ -2,8 +2,8 @@
 // distribution, src/scene/environment_layout.h), float and double: its
 // lookup against Mitsuba 3.9.1's values, its sampling against its density (a
 // chi-square test), the density's integral over the sphere, and the density
-// of a constant map (uniform over the sphere: the sin(theta) of the cells'
-// weights cancels the map's Jacobian).
+// of a constant map (nearly uniform over the sphere: the sin(theta) of the
+// texels' weights cancels the map's Jacobian).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -143,8 +143,8 @@ TYPED_TEST(EnvironmentMaps, SamplesFollowTheirPdf) {
 // The density integrates to 1 over the sphere: in (u, v), where the solid
 // angle is 2 pi^2 sin(t) du dv, by the midpoint rule on a grid 8 times finer
 // than the cells, whose cells lie inside the map's (the density times
-// sin(t) is constant on each): 1 within the cumulative distributions'
-// rounding. The density's 1 / sin(t), the Jacobian, is what makes it 1.
+// sin(t) is bilinear on each, which the midpoint rule integrates exactly):
+// 1 within the densities' rounding. The density's 1 / sin(t), the Jacobian, is what makes it 1.
 TYPED_TEST(EnvironmentMaps, PdfIntegratesToOne) {
     using R = TypeParam;
     using M = wp::SharedMath<R>;
@@ -167,25 +167,34 @@ TYPED_TEST(EnvironmentMaps, PdfIntegratesToOne) {
     EXPECT_NEAR(integral, 1.0, tolerance);
 }
 
-// A constant map's cells weigh sin(t) at their centre t_c alone, so its
-// density is sin(t_c) / (mean sin(t_c) 2 pi^2 sin(t)): near 1 / (4 pi), the
-// uniform sphere's, away from the poles (within 0.2% at the equator with
-// these 64 x 33 texels); checked at every direction of a grid to the
-// cumulative distributions' rounding. Without sin(t) in the weights it
-// would be 1 / (2 pi^2 sin(t)), 57% above it at the equator.
+// A constant map's texels weigh the mean of sin(t) over their band of rows,
+// s_y (t from half a row above to half a row below, within [0, pi]), so its
+// density at t between rows y and y + 1 is the blend of s_y and s_y+1 over
+// (the cells' mean weight times 2 pi^2 sin(t)): near 1 / (4 pi), the uniform
+// sphere's, away from the poles (within 0.2% at the equator with these
+// 64 x 33 texels); checked at every direction of a grid to the cumulative
+// sums' rounding. Without sin(t) in the weights it would be
+// 1 / (2 pi^2 sin(t)), 57% above it at the equator.
 TYPED_TEST(EnvironmentMaps, ConstantMapsDensityIsNearlyUniform) {
     using R = TypeParam;
     using M = wp::SharedMath<R>;
     const int width = 64, height = 33, rows = height - 1;
     const wp::EnvironmentLayout<R> layout = wp::environment_layout<R>(
         scene_with_map(width, height, std::vector<float>(std::size_t(3 * width * height), 0.7f), 2.0, glm::dmat3(1.0)));
-    double mean_sin = 0.0;
-    for (int row = 0; row < rows; ++row) mean_sin += std::sin(std::numbers::pi * (row + 0.5) / rows) / rows;
+    const double row_angle = std::numbers::pi / rows;
+    auto band_mean_sin = [&](int y) {  // integral of sin over the band / its width
+        const double top = std::max((y - 0.5) * row_angle, 0.0);
+        const double bottom = std::min((y + 0.5) * row_angle, std::numbers::pi);
+        return (std::cos(top) - std::cos(bottom)) / (bottom - top);
+    };
+    double mean_cell = 0.0;
+    for (int y = 0; y < rows; ++y) mean_cell += 0.5 * (band_mean_sin(y) + band_mean_sin(y + 1)) / rows;
     const double tolerance = std::is_same_v<R, float> ? 1e-4 : 1e-9;
     for (double theta = 0.03; theta < std::numbers::pi; theta += 0.05) {
-        const int row = std::min(int(theta / std::numbers::pi * rows), rows - 1);
-        const double expected = std::sin(std::numbers::pi * (row + 0.5) / rows) /
-                                (mean_sin * 2.0 * std::numbers::pi * std::numbers::pi * std::sin(theta));
+        const int row = std::min(int(theta / row_angle), rows - 1);
+        const double fy = theta / row_angle - row;
+        const double weight = (1.0 - fy) * band_mean_sin(row) + fy * band_mean_sin(row + 1);
+        const double expected = weight / (mean_cell * 2.0 * std::numbers::pi * std::numbers::pi * std::sin(theta));
         for (double phi = 0.0; phi < 2.0 * std::numbers::pi; phi += 0.3) {
             const glm::dvec3 d(std::sin(theta) * std::sin(phi), std::cos(theta), -std::sin(theta) * std::cos(phi));
             const double pdf = double(M::environment_pdf(layout.map, layout.data.data(), Vec3<R>(d)));
