@@ -160,6 +160,14 @@ WP_FN real environment_texel_density(EnvironmentMapLayout map, WP_GLOBAL const r
     return gather(data, environment_density_start(map) + TO_LANE_UINT(y * (lane_int)(int)(map.width) + x));
 }
 
+/* The density along texel column x at fraction fy between rows y and
+ * y + 1: a cell's left or right edge at v. */
+WP_FN real environment_column_density(EnvironmentMapLayout map, WP_GLOBAL const real_element *data, lane_int x,
+                                      lane_int y, real fy) {
+    return (REAL(1.0) - fy) * environment_texel_density(map, data, x, y) +
+           fy * environment_texel_density(map, data, x, y + 1);
+}
+
 /* The density in (u, v) at a cell point: the bilinear blend of its four
  * texels' densities. */
 WP_FN real environment_density_uv(EnvironmentMapLayout map, WP_GLOBAL const real_element *data,
@@ -214,10 +222,8 @@ WP_FN EnvironmentSample environment_sample(EnvironmentMapLayout map, WP_GLOBAL c
     lane_uint column = environment_search(data, sums0, sums1, map.width, p.fy, target);
     p.column = TO_LANE_INT(column);
     lane_int next = environment_next_column(map, p.column);
-    real left = (REAL(1.0) - p.fy) * environment_texel_density(map, data, p.column, p.row) +
-                p.fy * environment_texel_density(map, data, p.column, p.row + 1);
-    real right = (REAL(1.0) - p.fy) * environment_texel_density(map, data, next, p.row) +
-                 p.fy * environment_texel_density(map, data, next, p.row + 1);
+    real left = environment_column_density(map, data, p.column, p.row, p.fy);
+    real right = environment_column_density(map, data, next, p.row, p.fy);
     p.fx = sample_linear(environment_remainder(data, sums0, sums1, column, p.fy, target), left, right);
     real u = (TO_REAL(column) + p.fx + REAL(0.5)) / (real_element)(map.width);
     u = u >= REAL(1.0) ? u - REAL(1.0) : u;

@@ -54,17 +54,16 @@ EnvironmentLayout<Real> environment_layout(const Scene& scene) {
     const std::vector<double> densities = environment_texel_densities(map);
     for (double density : densities) layout.data.push_back(static_cast<Real>(density));
     std::vector<double> row_sums;  // each texel row's cumulative sums of its cells' edge densities
-    std::vector<double> row_totals(height);
     for (std::size_t y = 0; y < height; ++y) {
         double sum = 0.0;
         for (std::size_t x = 0; x < width; ++x) {
             sum += 0.5 * (densities[y * width + x] + densities[y * width + (x + 1) % width]);
             row_sums.push_back(sum);
         }
-        row_totals[y] = sum;
     }
+    auto row_total = [&](std::size_t y) { return row_sums[y * width + width - 1]; };
     std::vector<double> cell_rows(height - 1);
-    for (std::size_t y = 0; y + 1 < height; ++y) cell_rows[y] = 0.5 * (row_totals[y] + row_totals[y + 1]);
+    for (std::size_t y = 0; y + 1 < height; ++y) cell_rows[y] = 0.5 * (row_total(y) + row_total(y + 1));
     for (double c : cumulative_distribution(cell_rows)) layout.data.push_back(static_cast<Real>(c));
     for (double sum : row_sums) layout.data.push_back(static_cast<Real>(sum));
     return layout;
