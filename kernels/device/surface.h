@@ -353,7 +353,7 @@ WP_FN lane_int has_texture(ParameterTextures p) {
 
 /* The textures' entry `texture`, or any entry where it is WP_NO_TEXTURE
  * (the parameter functions then keep the constant). */
-WP_FN Texture parameter_texture(__global const TextureDescriptor *textures, lane_uint texture) {
+WP_INLINED_FN Texture parameter_texture(__global const TextureDescriptor *textures, lane_uint texture) {
     return texture_at(textures, texture != WP_NO_TEXTURE ? texture : (lane_uint)0u);
 }
 

@@ -78,8 +78,8 @@ WP_FN lane_uint environment_search(WP_GLOBAL const real_element *data, lane_uint
 
 /* Where target falls in interval i of the blended sequence, in [0, 1): the
  * rest of the random number, for the point inside the interval. */
-WP_FN real environment_remainder(WP_GLOBAL const real_element *data, lane_uint start0, lane_uint start1, lane_uint i,
-                                 real t, real target) {
+WP_INLINED_FN real environment_remainder(WP_GLOBAL const real_element *data, lane_uint start0, lane_uint start1,
+                                         lane_uint i, real t, real target) {
     real below = i == 0u ? REAL(0.0) : environment_blended(data, start0, start1, i == 0u ? i : i - 1u, t);
     real mass = environment_blended(data, start0, start1, i, t) - below;
     real rest = mass > REAL(0.0) ? (target - below) / mass : REAL(0.0);
@@ -119,7 +119,7 @@ WP_FN vec3 environment_texel(EnvironmentMapLayout map, WP_GLOBAL const real_elem
 }
 
 /* The radiance at (u, v): bilinear between the four texels around it. */
-WP_FN vec3 environment_radiance_uv(EnvironmentMapLayout map, WP_GLOBAL const real_element *data, TextureUV uv) {
+WP_INLINED_FN vec3 environment_radiance_uv(EnvironmentMapLayout map, WP_GLOBAL const real_element *data, TextureUV uv) {
     EnvironmentCellPoint p = environment_cell_point(map, uv);
     lane_int next = environment_next_column(map, p.column);
     vec3 c00 = environment_texel(map, data, p.column, p.row), c10 = environment_texel(map, data, next, p.row);

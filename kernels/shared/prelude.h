@@ -74,6 +74,12 @@ typedef WP_LANE_VECTOR(uint) lane_uint;
  * At 16 lanes LLVM's inliner otherwise calls it, its vector arguments and
  * result passed through the stack (the shading stages ran at half speed). */
 #define WP_LANE_FN static inline __attribute__((always_inline))
+/* A shared function that LLVM's inliner left as a call in a shading kernel,
+ * its vectors passed through the stack (found by the calls left in PoCL's
+ * kernel objects): always inlined. Not every function: inlining all of them
+ * cut the material scene's kernel instructions by a quarter but doubled the
+ * kernels' build time (bench/results/analysis.md, "Inlining"). */
+#define WP_INLINED_FN static inline __attribute__((always_inline))
 /* Kernel-side functions overloaded on their pointer's type (clang's
  * extension, which every OpenCL C compiler built on clang has). */
 #define WP_OVERLOAD __attribute__((overloadable))
@@ -131,6 +137,7 @@ WP_LANE_FN uint lanes_sum(lane_uint x) {
 /* C++: the including namespace (src/core/shared_math.h) defines `real`,
  * `vec3`, `uint`, `real_max` and `unit_roundoff`; one lane. */
 #define WP_FN static inline
+#define WP_INLINED_FN static inline
 #define WP_GLOBAL
 typedef int lane_int;
 typedef uint lane_uint;

@@ -184,7 +184,7 @@ WP_FN vec3 checkerboard_value(Texture t, TextureUV uv) {
 }
 
 /* Texture t's value at the hit's uv. */
-WP_FN vec3 texture_value(Texture t, WP_GLOBAL const real_element *texels, TextureUV hit_uv) {
+WP_INLINED_FN vec3 texture_value(Texture t, WP_GLOBAL const real_element *texels, TextureUV hit_uv) {
     TextureUV uv = texture_transform(t, hit_uv);
     lane_int checkerboard = t.type == WP_TEXTURE_CHECKERBOARD;
     vec3 value = checkerboard_value(t, uv);

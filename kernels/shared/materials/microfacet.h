@@ -190,7 +190,7 @@ WP_FN vec3 beckmann_sample_visible(Microfacet m, vec3 wo, real u, real v) {
 /* A microfacet normal h drawn from the normals visible from wo (wo.z > 0),
  * D_wo(h) = G1(wo, h) max(0, wo.h) D(h) / wo.z, from random numbers u, v in
  * [0, 1). */
-WP_FN vec3 microfacet_sample_visible(Microfacet m, vec3 wo, real u, real v) {
+WP_INLINED_FN vec3 microfacet_sample_visible(Microfacet m, vec3 wo, real u, real v) {
     vec3 beckmann = wo, ggx = wo;
     if (microfacet_any(m, WP_MICROFACET_BECKMANN)) beckmann = beckmann_sample_visible(m, wo, u, v);
     if (microfacet_any(m, WP_MICROFACET_GGX)) ggx = ggx_sample_visible(m, wo, u, v);
