@@ -119,7 +119,8 @@ WP_FN uint lanes_sum(lane_uint x) { return x; }
 #else
 /* Whether any lane's sign bit is set, as any() answers: the vector's halves
  * ORed together down to two ints. PoCL's any() tests the lanes one by one,
- * which took 9% of the material scene's kernel instructions (callgrind). */
+ * which took 8% of the material scene's kernel instructions (callgrind,
+ * bench/results/analysis.md, "`lanes_any`"). */
 WP_FN int sign_any2(int2 condition) { return (condition.x | condition.y) < 0; }
 WP_FN int sign_any4(int4 condition) { return sign_any2(condition.lo | condition.hi); }
 WP_FN int sign_any8(int8 condition) { return sign_any4(condition.lo | condition.hi); }
