@@ -70,16 +70,16 @@ typedef WP_LANE_VECTOR(uint) lane_uint;
 /* The WP_LANES consecutive elements at p. */
 #define LANES_LOAD(p) WP_LANE_VECTOR(vload)(0, p)
 #endif
-/* A function that repeats its body per lane (WP_FOR_LANES): always inlined.
- * At 16 lanes LLVM's inliner otherwise calls it, its vector arguments and
- * result passed through the stack (the shading stages ran at half speed). */
-#define WP_LANE_FN static inline __attribute__((always_inline))
 /* A shared function that LLVM's inliner left as a call in a shading kernel,
  * its vectors passed through the stack (found by the calls left in PoCL's
  * kernel objects): always inlined. Not every function: inlining all of them
  * cut the material scene's kernel instructions by a quarter but doubled the
  * kernels' build time (bench/results/analysis.md, "Inlining"). */
 #define WP_INLINED_FN static inline __attribute__((always_inline))
+/* A function that repeats its body per lane (WP_FOR_LANES): always inlined
+ * too. At 16 lanes LLVM's inliner otherwise calls it, its vector arguments and
+ * result passed through the stack (the shading stages ran at half speed). */
+#define WP_LANE_FN WP_INLINED_FN
 /* Kernel-side functions overloaded on their pointer's type (clang's
  * extension, which every OpenCL C compiler built on clang has). */
 #define WP_OVERLOAD __attribute__((overloadable))
